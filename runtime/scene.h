@@ -1,0 +1,71 @@
+// The renderer's CPU-side scene: what an importer (assimp, built-in generators) produces and
+// the runtime uploads. Plain data, no Vulkan, so that importers and tests need no device.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace memograph::runtime {
+
+// One triangle mesh; shared by every instance that references it (one BLAS per mesh).
+struct Mesh {
+  std::string name;
+  std::vector<glm::vec3> positions;
+  std::vector<glm::vec3> normals;      // per vertex, same count as positions
+  std::vector<glm::vec2> uvs;          // empty: the mesh has no texture coordinates
+  std::vector<glm::vec4> tangents;     // xyz tangent along +u, w handedness; may be empty
+  std::vector<glm::vec4> colors;       // empty: no vertex colors
+  std::vector<std::uint32_t> indices;  // three per triangle
+};
+
+// A placed copy of a mesh with one material.
+struct Instance {
+  std::uint32_t mesh = 0;
+  std::uint32_t material = 0;  // index into Scene::materials
+  glm::mat4 objectToWorld{1.0f};
+};
+
+// A scene material is a name that maps to a material graph (a .mgraph file, or generated
+// graph text for the built-in scenes).
+struct MaterialRef {
+  std::string name;
+  std::string graphPath;  // a .mgraph file; empty when graphText is given
+  std::string graphText;  // inline graph source (built-in scenes)
+};
+
+enum class LightType : std::uint32_t { Point = 0, Directional = 1 };
+
+struct Light {
+  LightType type = LightType::Point;
+  glm::vec3 position{0.0f};               // point lights
+  glm::vec3 direction{0.0f, -1.0f, 0.0f};  // directional lights: direction the light travels
+  glm::vec3 intensity{1.0f};              // point: W/sr (radiant intensity); directional: irradiance
+};
+
+struct Camera {
+  glm::vec3 position{0.0f, 0.0f, 5.0f};
+  glm::vec3 target{0.0f};
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+  float verticalFovDegrees = 45.0f;
+};
+
+// Environment: a constant radiance, or an equirectangular image (path) loaded at the edge.
+struct Environment {
+  glm::vec3 constantRadiance{0.0f};
+  std::string imagePath;
+  glm::vec3 sunDirection{0.0f};  // unused unless a directional light is derived from it
+};
+
+struct Scene {
+  std::vector<Mesh> meshes;
+  std::vector<Instance> instances;
+  std::vector<MaterialRef> materials;
+  std::vector<Light> lights;
+  Camera camera;
+  Environment environment;
+};
+
+}  // namespace memograph::runtime

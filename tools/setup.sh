@@ -1,0 +1,51 @@
+#!/usr/bin/env bash
+# Installs everything memograph needs on Debian 12 (bookworm), idempotently: a second run
+# with everything present only checks and returns in about a second.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config clang-format
+  glslang-dev glslang-tools
+  libvulkan-dev vulkan-tools vulkan-validationlayers spirv-tools
+  libglm-dev libopenimageio-dev openimageio-tools libassimp-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+# lavapipe with ray tracing comes only from bookworm-backports (../shared/GPU.md).
+backports_mesa=mesa-vulkan-drivers
+
+sudo_if_needed() { if [ "$(id -u)" -eq 0 ]; then "$@"; else sudo "$@"; fi; }
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+mesa_version=$(dpkg-query -W -f='${Version}' "$backports_mesa" 2>/dev/null || true)
+need_mesa=0
+case "$mesa_version" in *bpo*) ;; *) need_mesa=1 ;; esac
+
+if [ ${#missing[@]} -eq 0 ] && [ $need_mesa -eq 0 ]; then
+  exit 0
+fi
+
+backports_file=/etc/apt/sources.list.d/memograph-backports.sources
+if ! grep -rqs "bookworm-backports" /etc/apt/sources.list /etc/apt/sources.list.d/; then
+  echo "setup: adding the bookworm-backports suite ($backports_file)"
+  sudo_if_needed tee "$backports_file" >/dev/null <<'SRC'
+Types: deb
+URIs: http://deb.debian.org/debian
+Suites: bookworm-backports
+Components: main
+Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
+SRC
+fi
+
+export DEBIAN_FRONTEND=noninteractive
+echo "setup: installing ${missing[*]:-} ${need_mesa:+(and Mesa from backports)}"
+sudo_if_needed apt-get update -qq
+if [ ${#missing[@]} -gt 0 ]; then
+  sudo_if_needed apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+if [ $need_mesa -eq 1 ]; then
+  sudo_if_needed apt-get install -y -qq --no-install-recommends -t bookworm-backports \
+    "$backports_mesa"
+fi
