@@ -1,0 +1,50 @@
+// Built-in procedural scenes for tests and benchmarks (issue 3): a closed classroom-like
+// room with many procedural materials and an open landscape with one expensive terrain
+// material. They need no files, so the renderer can run them on the GPU machine.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "runtime/scene.h"
+#include "runtime/scenes/material_recipes.h"
+
+namespace memograph::runtime {
+
+struct BuiltinSceneOptions {
+  // How expensive every generated material graph is (noise octaves and extra layers); the
+  // memoization benchmarks raise it until no-memo/floor matches the thesis (issue 4).
+  MaterialCost materialCost{};
+  // Landscape terrain grid: cells per side (vertices = (cells+1)^2).
+  int terrainCells = 256;
+};
+
+// "classroom", "landscape".
+std::vector<std::string> builtinSceneNames();
+
+// Builds a built-in scene. Throws std::invalid_argument for an unknown name, the message
+// listing the known ones; also for options out of range (terrainCells < 2, octaves < 1 or
+// > 16, layers < 0 or > 16).
+Scene makeBuiltinScene(std::string_view name, const BuiltinSceneOptions& options = {});
+
+// The individual generators.
+Scene makeClassroomScene(const BuiltinSceneOptions& options);
+Scene makeLandscapeScene(const BuiltinSceneOptions& options);
+
+// The landscape's terrain height (metres) at world (x, z): the same function the terrain
+// mesh samples, so camera paths and object placement can follow the ground.
+float landscapeTerrainHeight(float x, float z);
+
+// The classroom's interior (metres): x ∈ [0, width], y ∈ [0, height], z ∈ [0, depth].
+struct ClassroomExtent {
+  float width = 9.0f;
+  float height = 3.2f;
+  float depth = 7.5f;
+};
+inline constexpr ClassroomExtent kClassroom{};
+
+// The landscape terrain covers [-halfSize, halfSize]² in x and z.
+inline constexpr float kLandscapeHalfSize = 200.0f;
+
+}  // namespace memograph::runtime

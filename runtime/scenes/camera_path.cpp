@@ -1,0 +1,261 @@
+#include "runtime/scenes/camera_path.h"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include "runtime/scenes/builtin_scenes.h"
+
+namespace memograph::runtime {
+namespace {
+
+struct Field {
+  std::string_view text;
+  std::uint32_t column = 0;  // 1-based
+};
+
+// Splits a line (comment already removed) at spaces and tabs.
+std::vector<Field> splitFields(std::string_view line) {
+  std::vector<Field> fields;
+  std::size_t i = 0;
+  while (i < line.size()) {
+    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r'))
+      ++i;
+    const std::size_t start = i;
+    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r')
+      ++i;
+    if (i > start)
+      fields.push_back({line.substr(start, i - start), static_cast<std::uint32_t>(start + 1)});
+  }
+  return fields;
+}
+
+std::optional<float> parseFloat(std::string_view s) {
+  float value = 0;
+  const char* end = s.data() + s.size();
+  // from_chars rejects a leading '+'; accept it since people write it.
+  const char* begin = (!s.empty() && s[0] == '+') ? s.data() + 1 : s.data();
+  const auto [ptr, ec] = std::from_chars(begin, end, value);
+  if (ec != std::errc() || ptr != end || !std::isfinite(value))
+    return std::nullopt;
+  return value;
+}
+
+}  // namespace
+
+std::optional<CameraPath> parseCameraPath(const compiler::SourceFile& file,
+                                          compiler::Diagnostics& diagnostics) {
+  CameraPath path;
+  const std::size_t errorsBefore = diagnostics.errorCount();
+  const std::string_view text = file.text;
+  std::uint32_t lineNumber = 0;
+  for (std::size_t start = 0; start < text.size();) {
+    ++lineNumber;
+    std::size_t end = text.find('\n', start);
+    if (end == std::string_view::npos)
+      end = text.size();
+    std::string_view line = text.substr(start, end - start);
+    start = end + 1;
+    if (const std::size_t hash = line.find('#'); hash != std::string_view::npos) {
+      line = line.substr(0, hash);
+    }
+    const std::vector<Field> fields = splitFields(line);
+    if (fields.empty())
+      continue;
+    if (fields.size() != 7) {
+      const std::uint32_t column = fields.size() > 7 ? fields[7].column : fields.back().column;
+      auto& d = diagnostics.error(
+          file, {lineNumber, column},
+          "a camera-path frame has 7 numbers (px py pz tx ty tz fov), this line has " +
+              std::to_string(fields.size()));
+      d.notes.push_back("comments start with '#'");
+      continue;
+    }
+    float v[7];
+    bool ok = true;
+    for (int i = 0; i < 7; ++i) {
+      const auto value = parseFloat(fields[i].text);
+      if (!value) {
+        diagnostics.error(file, {lineNumber, fields[i].column},
+                          "expected a number, found '" + std::string(fields[i].text) + "'");
+        ok = false;
+        break;
+      }
+      v[i] = *value;
+    }
+    if (!ok)
+      continue;
+    Camera camera;
+    camera.position = {v[0], v[1], v[2]};
+    camera.target = {v[3], v[4], v[5]};
+    camera.verticalFovDegrees = v[6];
+    if (!(v[6] > 0.0f && v[6] < 180.0f)) {
+      diagnostics.error(file, {lineNumber, fields[6].column},
+                        "the vertical field of view must be between 0 and 180 degrees, got " +
+                            std::string(fields[6].text));
+      continue;
+    }
+    const glm::vec3 view = camera.target - camera.position;
+    const float length = glm::length(view);
+    if (length < 1e-6f) {
+      diagnostics.error(file, {lineNumber, fields[3].column},
+                        "the target equals the camera position: no view direction");
+      continue;
+    }
+    if (std::abs(view.y) / length > 0.99999f) {
+      diagnostics
+          .error(file, {lineNumber, fields[3].column},
+                 "the view direction is parallel to the up vector (0, 1, 0)")
+          .notes.push_back("move the target a little sideways");
+      continue;
+    }
+    path.frames.push_back(camera);
+  }
+  if (diagnostics.errorCount() > errorsBefore)
+    return std::nullopt;
+  if (path.frames.empty()) {
+    diagnostics.error(file, {1, 1}, "the camera path has no frames")
+        .notes.push_back("each frame is a line: px py pz tx ty tz fov");
+    return std::nullopt;
+  }
+  return path;
+}
+
+std::optional<CameraPath> loadCameraPath(const std::string& path,
+                                         compiler::Diagnostics& diagnostics) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    diagnostics.error(path, "cannot open the camera-path file");
+    return std::nullopt;
+  }
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) {
+    diagnostics.error(path, "cannot read the camera-path file");
+    return std::nullopt;
+  }
+  return parseCameraPath(compiler::SourceFile{path, text.str()}, diagnostics);
+}
+
+std::string formatCameraPath(const CameraPath& path, std::string_view headerComment) {
+  std::string out;
+  if (!headerComment.empty()) {
+    std::istringstream lines{std::string(headerComment)};
+    for (std::string line; std::getline(lines, line);)
+      out += "# " + line + '\n';
+  }
+  out += "# px py pz  tx ty tz  vertical-fov-degrees\n";
+  char buffer[256];
+  for (const Camera& c : path.frames) {
+    // %.9g round-trips every float.
+    std::snprintf(buffer, sizeof buffer, "%.9g %.9g %.9g  %.9g %.9g %.9g  %.9g\n", c.position.x,
+                  c.position.y, c.position.z, c.target.x, c.target.y, c.target.z,
+                  c.verticalFovDegrees);
+    out += buffer;
+  }
+  return out;
+}
+
+namespace {
+
+// A closed Catmull-Rom curve through `points`, evaluated at parameter s ∈ [0, n).
+glm::vec3 catmullRom(const std::vector<glm::vec3>& points, float s) {
+  const int n = static_cast<int>(points.size());
+  const int i = static_cast<int>(std::floor(s));
+  const float t = s - static_cast<float>(i);
+  const auto p = [&](int k) { return points[((k % n) + n) % n]; };
+  const glm::vec3 p0 = p(i - 1), p1 = p(i), p2 = p(i + 1), p3 = p(i + 2);
+  return 0.5f * ((2.0f * p1) + (-p0 + p2) * t + (2.0f * p0 - 5.0f * p1 + 4.0f * p2 - p3) * t * t +
+                 (-p0 + 3.0f * p1 - 3.0f * p2 + p3) * t * t * t);
+}
+
+// Samples `frames` cameras at equal arc length along closed curves through the eye and
+// target key points, so the camera moves at constant speed like a walking person.
+CameraPath sampleClosedPath(const std::vector<glm::vec3>& eyes,
+                            const std::vector<glm::vec3>& targets, float fov, int frames) {
+  const int n = static_cast<int>(eyes.size());
+  constexpr int kSteps = 64;  // per segment, to tabulate arc length
+  std::vector<float> length{0.0f};
+  glm::vec3 previous = catmullRom(eyes, 0.0f);
+  for (int k = 1; k <= n * kSteps; ++k) {
+    const glm::vec3 point = catmullRom(eyes, static_cast<float>(k) / kSteps);
+    length.push_back(length.back() + glm::length(point - previous));
+    previous = point;
+  }
+  CameraPath path;
+  for (int f = 0; f < frames; ++f) {
+    const float wanted = length.back() * static_cast<float>(f) / static_cast<float>(frames);
+    std::size_t k = 1;
+    while (k + 1 < length.size() && length[k] < wanted)
+      ++k;
+    const float segment = length[k] - length[k - 1];
+    const float t = segment > 0 ? (wanted - length[k - 1]) / segment : 0.0f;
+    const float s = (static_cast<float>(k - 1) + t) / kSteps;
+    Camera camera;
+    camera.position = catmullRom(eyes, s);
+    camera.target = catmullRom(targets, s);
+    // Interpolated targets can pass close to the eye; keep them at least 1 m away so the
+    // view direction stays well defined.
+    const glm::vec3 view = camera.target - camera.position;
+    if (glm::length(view) < 1.0f)
+      camera.target = camera.position + glm::normalize(view);
+    camera.verticalFovDegrees = fov;
+    path.frames.push_back(camera);
+  }
+  return path;
+}
+
+}  // namespace
+
+CameraPath makeBuiltinCameraPath(std::string_view scene, int frames) {
+  if (frames < 1)
+    throw std::invalid_argument("a camera path needs at least one frame");
+  if (scene == "classroom") {
+    // Eye height 1.6 m: in along the window aisle, across the front past the blackboard,
+    // back down the middle aisle, a look at the bookcases, and out along the left wall.
+    const float eye = 1.6f;
+    const std::vector<glm::vec3> eyes = {{8.4f, eye, 6.8f}, {8.4f, eye, 4.5f}, {8.3f, eye, 2.2f},
+                                         {6.5f, eye, 1.0f}, {4.5f, eye, 0.9f}, {3.2f, eye, 1.2f},
+                                         {4.5f, eye, 2.4f}, {4.5f, eye, 4.5f}, {4.5f, eye, 6.6f},
+                                         {2.5f, eye, 6.7f}, {0.6f, eye, 5.5f}, {0.6f, eye, 2.5f},
+                                         {2.5f, eye, 2.2f}, {5.5f, eye, 6.8f}};
+    const std::vector<glm::vec3> targets = {
+        {4.0f, 1.2f, 1.0f}, {5.0f, 1.0f, 1.0f}, {4.5f, 1.4f, 0.0f}, {4.5f, 1.6f, 0.0f},
+        {3.0f, 1.6f, 0.0f}, {8.9f, 1.6f, 3.5f}, {6.0f, 0.8f, 4.0f}, {4.5f, 1.2f, 7.5f},
+        {2.2f, 1.2f, 7.5f}, {1.5f, 1.5f, 0.0f}, {4.5f, 1.5f, 0.0f}, {4.5f, 1.5f, 0.0f},
+        {8.9f, 1.7f, 3.8f}, {9.0f, 1.4f, 5.0f}};
+    return sampleClosedPath(eyes, targets, 60.0f, frames);
+  }
+  if (scene == "landscape") {
+    // A loop around the valley at 25–40 m above the ground, passing over both groves,
+    // looking ahead and slightly down.
+    std::vector<glm::vec3> eyes, targets;
+    const int keys = 12;
+    for (int k = 0; k < keys; ++k) {
+      const float a = 6.2831853f * static_cast<float>(k) / keys;
+      const float radius = 110.0f + 30.0f * std::sin(3.0f * a);
+      const float x = radius * std::cos(a), z = radius * std::sin(a);
+      const float ground = landscapeTerrainHeight(x, z);
+      eyes.push_back({x, ground + 28.0f + 8.0f * std::cos(2.0f * a), z});
+      const float b = a + 0.5f;
+      const float tx = 0.7f * radius * std::cos(b), tz = 0.7f * radius * std::sin(b);
+      targets.push_back({tx, landscapeTerrainHeight(tx, tz), tz});
+    }
+    CameraPath path = sampleClosedPath(eyes, targets, 55.0f, frames);
+    // The spline may dip between keys: keep at least 8 m of clearance over the ground.
+    for (Camera& c : path.frames) {
+      const float ground = landscapeTerrainHeight(c.position.x, c.position.z);
+      c.position.y = std::max(c.position.y, ground + 8.0f);
+    }
+    return path;
+  }
+  std::string known;
+  for (const std::string& n : builtinSceneNames())
+    known += (known.empty() ? "" : ", ") + n;
+  throw std::invalid_argument("no built-in camera path for scene '" + std::string(scene) +
+                              "'; known scenes: " + known);
+}
+
+}  // namespace memograph::runtime
