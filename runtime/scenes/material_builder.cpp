@@ -1,6 +1,8 @@
 #include "runtime/scenes/material_builder.h"
 
-// Node and socket names as declared in nodes/*.inc (docs/nodes.md).
+// Node and socket names as declared in nodes/*.inc (docs/nodes.md): math.inc (Mul, Add,
+// Fract, MapRange, Mix), converter.inc (ColorRamp), inputs.inc, outputs.inc, and the
+// texture families (NoiseTexture, VoronoiTexture, CheckerTexture, BrickTexture).
 namespace memograph::runtime {
 namespace {
 using A = GraphArg;
@@ -14,20 +16,20 @@ GraphLink MaterialBuilder::uv() {
 
 GraphLink MaterialBuilder::transformUv(GraphLink uv, glm::vec2 scale, glm::vec2 offset) {
   const GraphLink scaled = graph_.newLink(), out = graph_.newLink();
-  graph_.node("Multiply", {A::in("A", uv), A::constant("B", scale), A::out("Out", scaled)});
+  graph_.node("Mul", {A::in("A", uv), A::constant("B", scale), A::out("Out", scaled)});
   graph_.node("Add", {A::in("A", scaled), A::constant("B", offset), A::out("Out", out)});
   return out;
 }
 
 GraphLink MaterialBuilder::multiply(GraphLink a, float b) {
   const GraphLink out = graph_.newLink();
-  graph_.node("Multiply", {A::in("A", a), A::constant("B", b), A::out("Out", out)});
+  graph_.node("Mul", {A::in("A", a), A::constant("B", b), A::out("Out", out)});
   return out;
 }
 
 GraphLink MaterialBuilder::multiply(GraphLink a, GraphLink b) {
   const GraphLink out = graph_.newLink();
-  graph_.node("Multiply", {A::in("A", a), A::in("B", b), A::out("Out", out)});
+  graph_.node("Mul", {A::in("A", a), A::in("B", b), A::out("Out", out)});
   return out;
 }
 
@@ -39,15 +41,15 @@ GraphLink MaterialBuilder::add(GraphLink a, float b) {
 
 GraphLink MaterialBuilder::fraction(GraphLink a) {
   const GraphLink out = graph_.newLink();
-  graph_.node("Fraction", {A::in("In", a), A::out("Out", out)});
+  graph_.node("Fract", {A::in("In", a), A::out("Out", out)});
   return out;
 }
 
 GraphLink MaterialBuilder::mapRange(GraphLink value, float from0, float from1) {
   const GraphLink out = graph_.newLink();
   graph_.node("MapRange",
-              {A::in("Value", value), A::constant("FromMin", from0), A::constant("FromMax", from1),
-               A::constant("ToMin", 0.0f), A::constant("ToMax", 1.0f), A::out("Result", out)});
+              {A::in("In", value), A::constant("FromMin", from0), A::constant("FromMax", from1),
+               A::constant("ToMin", 0.0f), A::constant("ToMax", 1.0f), A::out("Out", out)});
   return out;
 }
 
@@ -105,28 +107,28 @@ GraphLink MaterialBuilder::ramp(GraphLink fac, float p0, glm::vec3 c0, float p1,
 
 GraphLink MaterialBuilder::mix(GraphLink fac, GraphLink a, GraphLink b) {
   const GraphLink out = graph_.newLink();
-  graph_.node("Mix", {A::in("Fac", fac), A::in("A", a), A::in("B", b), A::out("Result", out)});
+  graph_.node("Mix", {A::in("A", a), A::in("B", b), A::in("Factor", fac), A::out("Out", out)});
   return out;
 }
 
 GraphLink MaterialBuilder::mix(GraphLink fac, glm::vec3 a, glm::vec3 b) {
   const GraphLink out = graph_.newLink();
   graph_.node("Mix",
-              {A::in("Fac", fac), A::constant("A", a), A::constant("B", b), A::out("Result", out)});
+              {A::constant("A", a), A::constant("B", b), A::in("Factor", fac), A::out("Out", out)});
   return out;
 }
 
 GraphLink MaterialBuilder::mix(GraphLink fac, GraphLink a, glm::vec3 b) {
   const GraphLink out = graph_.newLink();
   graph_.node("Mix",
-              {A::in("Fac", fac), A::in("A", a), A::constant("B", b), A::out("Result", out)});
+              {A::in("A", a), A::constant("B", b), A::in("Factor", fac), A::out("Out", out)});
   return out;
 }
 
 GraphLink MaterialBuilder::mix(GraphLink fac, float a, float b) {
   const GraphLink out = graph_.newLink();
   graph_.node("Mix",
-              {A::in("Fac", fac), A::constant("A", a), A::constant("B", b), A::out("Result", out)});
+              {A::constant("A", a), A::constant("B", b), A::in("Factor", fac), A::out("Out", out)});
   return out;
 }
 

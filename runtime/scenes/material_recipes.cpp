@@ -200,6 +200,13 @@ std::string corkGraph(const std::string& name, const CorkParams& p, RecipeSeed s
   return b.text();
 }
 
+std::string missingMaterialGraph(const std::string& name) {
+  MaterialBuilder b(name);
+  b.baseColor(b.mix(b.checker(b.uv(), 5.0f), glm::vec3(1.0f, 0.0f, 1.0f), glm::vec3(0.02f)));
+  b.roughness(0.6f);
+  return b.text();
+}
+
 std::string emitterGraph(const std::string& name, const EmitterParams& p) {
   MaterialBuilder b(name);
   b.baseColor(p.baseColor);

@@ -117,6 +117,9 @@ std::string posterGraph(const std::string& name, const PosterParams& p, RecipeSe
                         MaterialCost cost);
 std::string corkGraph(const std::string& name, const CorkParams& p, RecipeSeed seed,
                       MaterialCost cost);
+// The visible stand-in for a material whose graph is missing: a magenta and black checker
+// (five checks per UV unit), as renderers traditionally show missing textures.
+std::string missingMaterialGraph(const std::string& name);
 // Cheap on purpose: lamps and windows are light sources, not texture work.
 std::string emitterGraph(const std::string& name, const EmitterParams& p);
 // The landscape's one expensive material: grass, dirt, rock and snow layers, each a

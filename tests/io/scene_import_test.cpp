@@ -1,0 +1,254 @@
+// Scene import: small glTF and OBJ files written here by hand, and the error paths.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "tools/io/scene_import.h"
+
+namespace memograph::io {
+namespace {
+
+namespace fs = std::filesystem;
+using compiler::Diagnostics;
+
+std::string base64(const std::vector<unsigned char>& bytes) {
+  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const unsigned n = (bytes[i] << 16) | ((i + 1 < bytes.size() ? bytes[i + 1] : 0) << 8) |
+                       (i + 2 < bytes.size() ? bytes[i + 2] : 0);
+    out += table[(n >> 18) & 63];
+    out += table[(n >> 12) & 63];
+    out += i + 1 < bytes.size() ? table[(n >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? table[n & 63] : '=';
+  }
+  return out;
+}
+
+template <typename T>
+void append(std::vector<unsigned char>& bytes, std::initializer_list<T> values) {
+  for (T v : values) {
+    unsigned char b[sizeof(T)];
+    std::memcpy(b, &v, sizeof(T));
+    bytes.insert(bytes.end(), b, b + sizeof(T));
+  }
+}
+
+// A unit quad in the xy plane (normal +z, UVs 0..1, no tangents), used by two materials;
+// a parent node with two children instancing it; a camera; a point and a directional light.
+std::string quadGltf() {
+  std::vector<unsigned char> buffer;
+  append<float>(buffer, {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0});  // positions, 48 bytes
+  append<float>(buffer, {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1});  // normals, 48 bytes
+  append<float>(buffer, {0, 0, 1, 0, 1, 1, 0, 1});              // uvs, 32 bytes
+  append<std::uint16_t>(buffer, {0, 1, 2, 0, 2, 3});            // indices, 12 bytes
+  const std::string primitive =
+      R"("attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3)";
+  return R"({
+  "asset": {"version": "2.0"},
+  "extensionsUsed": ["KHR_lights_punctual"],
+  "extensions": {"KHR_lights_punctual": {"lights": [
+    {"name": "Bulb", "type": "point", "color": [1.0, 0.5, 0.25], "intensity": 4.0},
+    {"name": "Sun", "type": "directional", "color": [1.0, 1.0, 1.0], "intensity": 2.0}]}},
+  "scene": 0,
+  "scenes": [{"nodes": [0, 3, 4, 5, 6]}],
+  "nodes": [
+    {"name": "Parent", "translation": [10, 0, 0], "children": [1, 2]},
+    {"name": "QuadA", "mesh": 0},
+    {"name": "QuadB", "mesh": 0, "translation": [0, 2, 0], "scale": [2, 2, 2]},
+    {"name": "Window", "mesh": 1, "translation": [0, 0, -3]},
+    {"name": "Cam", "camera": 0, "translation": [0, 1, 5]},
+    {"name": "BulbNode", "translation": [1, 3, 1], "extensions": {"KHR_lights_punctual": {"light": 0}}},
+    {"name": "SunNode", "rotation": [-0.70710678, 0, 0, 0.70710678],
+     "extensions": {"KHR_lights_punctual": {"light": 1}}}],
+  "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "aspectRatio": 1.5, "znear": 0.1, "zfar": 100}}],
+  "materials": [{"name": "Wood"}, {"name": "Glass"}],
+  "meshes": [
+    {"name": "Quad", "primitives": [{)" +
+         primitive + R"(, "material": 0}]},
+    {"name": "Pane", "primitives": [{)" +
+         primitive + R"(, "material": 1}]}],
+  "accessors": [
+    {"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+    {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC3"},
+    {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"},
+    {"bufferView": 3, "componentType": 5123, "count": 6, "type": "SCALAR"}],
+  "bufferViews": [
+    {"buffer": 0, "byteOffset": 0, "byteLength": 48},
+    {"buffer": 0, "byteOffset": 48, "byteLength": 48},
+    {"buffer": 0, "byteOffset": 96, "byteLength": 32},
+    {"buffer": 0, "byteOffset": 128, "byteLength": 12}],
+  "buffers": [{"byteLength": 140, "uri": "data:application/octet-stream;base64,)" +
+         base64(buffer) + R"("}]
+})";
+}
+
+// A cube without normals, with UVs, using material Red from its .mtl.
+const char* kCubeObj = R"(mtllib cube.mtl
+o Cube
+v 0 0 0
+v 1 0 0
+v 1 1 0
+v 0 1 0
+v 0 0 1
+v 1 0 1
+v 1 1 1
+v 0 1 1
+vt 0 0
+vt 1 0
+vt 1 1
+vt 0 1
+usemtl Red
+f 1/1 4/4 3/3 2/2
+f 5/1 6/2 7/3 8/4
+f 1/1 2/2 6/3 5/4
+f 4/1 8/2 7/3 3/4
+f 1/1 5/2 8/3 4/4
+f 2/1 3/2 7/3 6/4
+)";
+
+class SceneImportTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir = fs::temp_directory_path() /
+          ("memograph_import_" +
+           std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir);
+    fs::create_directories(dir / "materials");
+    std::ofstream(dir / "materials" / "Wood.mgraph") << "material Wood;\n";
+    std::ofstream(dir / "materials" / "Red.mgraph") << "material Red;\n";
+  }
+  void TearDown() override { fs::remove_all(dir); }
+  std::string write(const std::string& name, const std::string& text) {
+    std::ofstream(dir / name, std::ios::binary) << text;
+    return (dir / name).string();
+  }
+  std::string materials() const { return (dir / "materials").string(); }
+  fs::path dir;
+};
+
+TEST_F(SceneImportTest, GltfGivesSharedMeshesInstancesCameraLightsAndMaterials) {
+  const std::string path = write("quad.gltf", quadGltf());
+  Diagnostics diagnostics;
+  const auto scene = importScene(path, materials(), diagnostics);
+  ASSERT_TRUE(scene.has_value()) << compiler::formatDiagnostics(diagnostics);
+
+  ASSERT_EQ(scene->meshes.size(), 2u);
+  ASSERT_EQ(scene->instances.size(), 3u);
+  const runtime::Mesh& quad = scene->meshes[scene->instances[0].mesh];
+  EXPECT_EQ(quad.indices.size(), 6u);
+  ASSERT_EQ(quad.uvs.size(), quad.positions.size());
+  ASSERT_EQ(quad.tangents.size(), quad.positions.size());  // generated: the file has none
+  for (std::size_t v = 0; v < quad.positions.size(); ++v) {
+    EXPECT_NEAR(glm::dot(quad.normals[v], glm::vec3(0, 0, 1)), 1.0f, 1e-5f);
+    // u grows along +x, so the tangent is +x.
+    EXPECT_NEAR(quad.tangents[v].x, 1.0f, 1e-5f);
+    EXPECT_EQ(std::abs(quad.tangents[v].w), 1.0f);
+  }
+  // Both children of Parent share the mesh; their world transforms compose the hierarchy.
+  EXPECT_EQ(scene->instances[0].mesh, scene->instances[1].mesh);
+  const glm::vec4 cornerA = scene->instances[0].objectToWorld * glm::vec4(1, 1, 0, 1);
+  const glm::vec4 cornerB = scene->instances[1].objectToWorld * glm::vec4(1, 1, 0, 1);
+  EXPECT_EQ(glm::vec3(cornerA), glm::vec3(11, 1, 0));
+  EXPECT_EQ(glm::vec3(cornerB), glm::vec3(12, 4, 0));
+
+  // Wood has a graph; Glass does not and gets the visible default, with a warning.
+  const runtime::MaterialRef& wood = scene->materials[scene->instances[0].material];
+  EXPECT_EQ(wood.name, "Wood");
+  EXPECT_EQ(fs::path(wood.graphPath), dir / "materials" / "Wood.mgraph");
+  const runtime::MaterialRef& glass = scene->materials[scene->instances[2].material];
+  EXPECT_EQ(glass.name, kMissingMaterialName);
+  EXPECT_NE(glass.graphText.find("CheckerTexture"), std::string::npos);
+  bool warned = false;
+  for (const auto& d : diagnostics.all()) {
+    warned |= d.severity == compiler::Severity::Warning &&
+              d.message.find("'Glass' has no graph") != std::string::npos;
+  }
+  EXPECT_TRUE(warned) << compiler::formatDiagnostics(diagnostics);
+  EXPECT_FALSE(diagnostics.hasErrors());
+
+  // Camera at (0, 1, 5) looking down -z with the file's vertical field of view.
+  EXPECT_NEAR(glm::distance(scene->camera.position, glm::vec3(0, 1, 5)), 0.0f, 1e-5f);
+  const glm::vec3 view = glm::normalize(scene->camera.target - scene->camera.position);
+  EXPECT_NEAR(view.z, -1.0f, 1e-5f);
+  EXPECT_NEAR(scene->camera.verticalFovDegrees, glm::degrees(0.8f), 0.05f);
+
+  ASSERT_EQ(scene->lights.size(), 2u);
+  const runtime::Light* bulb = nullptr;
+  const runtime::Light* sun = nullptr;
+  for (const auto& l : scene->lights)
+    (l.type == runtime::LightType::Point ? bulb : sun) = &l;
+  ASSERT_TRUE(bulb && sun);
+  EXPECT_NEAR(glm::distance(bulb->position, glm::vec3(1, 3, 1)), 0.0f, 1e-5f);
+  EXPECT_NEAR(bulb->intensity.r / bulb->intensity.g, 2.0f, 1e-4f);  // colour ratio kept
+  EXPECT_GT(bulb->intensity.r, 0.0f);
+  EXPECT_NEAR(glm::distance(sun->direction, glm::vec3(0, -1, 0)), 0.0f, 1e-4f);
+}
+
+TEST_F(SceneImportTest, ObjGetsNormalsTangentsAndItsMtlMaterial) {
+  write("cube.mtl", "newmtl Red\nKd 1 0 0\n");
+  const std::string path = write("cube.obj", kCubeObj);
+  Diagnostics diagnostics;
+  const auto scene = importScene(path, materials(), diagnostics);
+  ASSERT_TRUE(scene.has_value()) << compiler::formatDiagnostics(diagnostics);
+  ASSERT_EQ(scene->meshes.size(), 1u);
+  const runtime::Mesh& cube = scene->meshes[0];
+  EXPECT_EQ(cube.indices.size(), 36u);
+  ASSERT_EQ(cube.normals.size(), cube.positions.size());
+  ASSERT_EQ(cube.tangents.size(), cube.positions.size());
+  for (const glm::vec3& n : cube.normals)
+    EXPECT_NEAR(glm::length(n), 1.0f, 1e-4f);
+  ASSERT_EQ(scene->instances.size(), 1u);
+  EXPECT_EQ(scene->materials[scene->instances[0].material].name, "Red");
+  EXPECT_FALSE(scene->materials[scene->instances[0].material].graphPath.empty());
+  // No camera in an OBJ: the default one looks at the cube's centre from outside it.
+  EXPECT_NEAR(glm::distance(scene->camera.target, glm::vec3(0.5f)), 0.0f, 1e-5f);
+  EXPECT_GT(glm::distance(scene->camera.position, glm::vec3(0.5f)), 1.0f);
+}
+
+TEST_F(SceneImportTest, WithoutMaterialsFolderEveryMaterialIsTheDefault) {
+  const std::string path = write("quad.gltf", quadGltf());
+  Diagnostics diagnostics;
+  const auto scene = importScene(path, "", diagnostics);
+  ASSERT_TRUE(scene.has_value());
+  ASSERT_EQ(scene->materials.size(), 1u);
+  EXPECT_EQ(scene->materials[0].name, kMissingMaterialName);
+  EXPECT_FALSE(diagnostics.hasErrors());
+}
+
+TEST_F(SceneImportTest, MissingFileIsAnError) {
+  Diagnostics diagnostics;
+  EXPECT_FALSE(importScene((dir / "nothing.gltf").string(), "", diagnostics).has_value());
+  ASSERT_EQ(diagnostics.errorCount(), 1u);
+  EXPECT_EQ(diagnostics.all()[0].message, "no such scene file");
+}
+
+TEST_F(SceneImportTest, MissingMaterialsFolderIsAnError) {
+  const std::string path = write("quad.gltf", quadGltf());
+  Diagnostics diagnostics;
+  EXPECT_FALSE(importScene(path, (dir / "nope").string(), diagnostics).has_value());
+  EXPECT_NE(diagnostics.all()[0].message.find("materials folder"), std::string::npos);
+}
+
+TEST_F(SceneImportTest, BrokenFilesAreErrorsNotCrashes) {
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"truncated.gltf", quadGltf().substr(0, 300)},
+      {"garbage.glb", std::string("glTF\x02\0\0\0garbage", 15)},
+      {"points.obj", "v 0 0 0\nv 1 0 0\np 1 2\n"},
+      {"unknown.xyz123", "hello"},
+      {"empty.obj", ""},
+  };
+  for (const auto& [name, text] : files) {
+    SCOPED_TRACE(name);
+    Diagnostics diagnostics;
+    EXPECT_FALSE(importScene(write(name, text), "", diagnostics).has_value());
+    ASSERT_TRUE(diagnostics.hasErrors());
+    EXPECT_EQ(fs::path(diagnostics.all().back().file).filename(), name);
+    std::cout << compiler::formatDiagnostics(diagnostics);
+  }
+}
+
+}  // namespace
+}  // namespace memograph::io
