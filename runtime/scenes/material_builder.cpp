@@ -16,8 +16,13 @@ GraphLink MaterialBuilder::uv() {
 
 GraphLink MaterialBuilder::transformUv(GraphLink uv, glm::vec2 scale, glm::vec2 offset) {
   const GraphLink scaled = graph_.newLink(), out = graph_.newLink();
-  graph_.node("Mul", {A::in("A", uv), A::constant("B", scale), A::out("Out", scaled)});
-  graph_.node("Add", {A::in("A", scaled), A::constant("B", offset), A::out("Out", out)});
+  // Three components on purpose: the textures take float3 vectors, and widening the UV
+  // once at the first node leaves the compiler no choice of where to widen it (with
+  // float2 constants a UV feeding two textures is an ambiguous overload choice).
+  graph_.node("Mul",
+              {A::in("A", uv), A::constant("B", glm::vec3(scale, 1.0f)), A::out("Out", scaled)});
+  graph_.node("Add",
+              {A::in("A", scaled), A::constant("B", glm::vec3(offset, 0.0f)), A::out("Out", out)});
   return out;
 }
 

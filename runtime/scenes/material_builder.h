@@ -17,7 +17,8 @@ class MaterialBuilder {
 
   // Inputs and arithmetic.
   GraphLink uv();  // float2 texture coordinates
-  GraphLink transformUv(GraphLink uv, glm::vec2 scale, glm::vec2 offset);  // uv*scale+offset
+  // (uv*scale + offset, 0) as a float3, the texture nodes' vector type.
+  GraphLink transformUv(GraphLink uv, glm::vec2 scale, glm::vec2 offset);
   GraphLink multiply(GraphLink a, float b);
   GraphLink multiply(GraphLink a, GraphLink b);
   GraphLink add(GraphLink a, float b);
