@@ -1,11 +1,54 @@
 #include "runtime/scenes/builtin_scenes.h"
 
+#include <charconv>
 #include <stdexcept>
 
 namespace memograph::runtime {
 
 std::vector<std::string> builtinSceneNames() {
   return {"classroom", "landscape"};
+}
+
+std::optional<BuiltinSceneSpec> parseBuiltinSceneSpec(std::string_view text, std::string& error) {
+  BuiltinSceneSpec spec;
+  const std::size_t colon = text.find(':');
+  spec.name = std::string(text.substr(0, colon));
+  if (spec.name.empty()) {
+    error = "no built-in scene name before ':'";
+    return std::nullopt;
+  }
+  if (colon == std::string_view::npos)
+    return spec;
+  std::string_view rest = text.substr(colon + 1);
+  while (!rest.empty()) {
+    const std::size_t comma = rest.find(',');
+    const std::string_view item = rest.substr(0, comma);
+    rest = comma == std::string_view::npos ? std::string_view{} : rest.substr(comma + 1);
+    const std::size_t equals = item.find('=');
+    const std::string_view key = item.substr(0, equals);
+    const std::string_view value =
+        equals == std::string_view::npos ? std::string_view{} : item.substr(equals + 1);
+    int number = 0;
+    const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), number);
+    if (equals == std::string_view::npos || value.empty() || ec != std::errc() ||
+        end != value.data() + value.size()) {
+      error = "bad option '" + std::string(item) + "' for built-in scene '" + spec.name +
+              "': expected KEY=INTEGER";
+      return std::nullopt;
+    }
+    if (key == "octaves") {
+      spec.options.materialCost.octaves = number;
+    } else if (key == "layers") {
+      spec.options.materialCost.layers = number;
+    } else if (key == "terrain") {
+      spec.options.terrainCells = number;
+    } else {
+      error = "unknown option '" + std::string(key) + "' for built-in scene '" + spec.name +
+              "'; known options: octaves, layers, terrain";
+      return std::nullopt;
+    }
+  }
+  return spec;
 }
 
 Scene makeBuiltinScene(std::string_view name, const BuiltinSceneOptions& options) {

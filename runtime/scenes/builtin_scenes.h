@@ -3,6 +3,7 @@
 // material. They need no files, so the renderer can run them on the GPU machine.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -22,6 +23,17 @@ struct BuiltinSceneOptions {
 
 // "classroom", "landscape".
 std::vector<std::string> builtinSceneNames();
+
+// A built-in scene named on a command line: `NAME[:KEY=VALUE[,KEY=VALUE…]]`, keys
+// `octaves`, `layers` (MaterialCost) and `terrain` (terrainCells), e.g.
+// `classroom:octaves=10,layers=3`. The CLI strips its own `builtin:` prefix first.
+struct BuiltinSceneSpec {
+  std::string name;
+  BuiltinSceneOptions options;
+};
+// Returns nothing and sets `error` (naming the bad part and the valid keys) on a syntax
+// error; the name and the ranges are checked by makeBuiltinScene.
+std::optional<BuiltinSceneSpec> parseBuiltinSceneSpec(std::string_view text, std::string& error);
 
 // Builds a built-in scene. Throws std::invalid_argument for an unknown name, the message
 // listing the known ones; also for options out of range (terrainCells < 2, octaves < 1 or

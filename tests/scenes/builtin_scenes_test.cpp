@@ -190,3 +190,38 @@ TEST(BuiltinScenes, OutOfRangeOptionsAreRejected) {
 
 }  // namespace
 }  // namespace memograph::runtime
+
+namespace memograph::runtime {
+namespace {
+
+TEST(BuiltinSceneSpec, NameAloneGivesDefaults) {
+  std::string error;
+  const auto spec = parseBuiltinSceneSpec("landscape", error);
+  ASSERT_TRUE(spec.has_value()) << error;
+  EXPECT_EQ(spec->name, "landscape");
+  EXPECT_EQ(spec->options.terrainCells, BuiltinSceneOptions{}.terrainCells);
+}
+
+TEST(BuiltinSceneSpec, OptionsSetTheCostKnobs) {
+  std::string error;
+  const auto spec = parseBuiltinSceneSpec("classroom:octaves=10,layers=3,terrain=64", error);
+  ASSERT_TRUE(spec.has_value()) << error;
+  EXPECT_EQ(spec->name, "classroom");
+  EXPECT_EQ(spec->options.materialCost.octaves, 10);
+  EXPECT_EQ(spec->options.materialCost.layers, 3);
+  EXPECT_EQ(spec->options.terrainCells, 64);
+}
+
+TEST(BuiltinSceneSpec, BadOptionsNameTheProblem) {
+  std::string error;
+  EXPECT_FALSE(parseBuiltinSceneSpec("classroom:detail=3", error).has_value());
+  EXPECT_NE(error.find("unknown option 'detail'"), std::string::npos) << error;
+  EXPECT_NE(error.find("octaves, layers, terrain"), std::string::npos) << error;
+  EXPECT_FALSE(parseBuiltinSceneSpec("classroom:octaves=many", error).has_value());
+  EXPECT_NE(error.find("'octaves=many'"), std::string::npos) << error;
+  EXPECT_FALSE(parseBuiltinSceneSpec("classroom:octaves", error).has_value());
+  EXPECT_FALSE(parseBuiltinSceneSpec(":octaves=3", error).has_value());
+}
+
+}  // namespace
+}  // namespace memograph::runtime

@@ -12,6 +12,7 @@
 
 #include "runtime/scenes/material_recipes.h"
 #include "runtime/scenes/mesh_builder.h"
+#include "runtime/scenes/scene_validation.h"
 
 namespace memograph::io {
 namespace {
@@ -307,6 +308,9 @@ std::optional<Scene> importScene(const std::string& path, const std::string& mat
   }
   imp.convertLights();
   imp.convertCamera();
+  // assimp validated its own structure; this checks what the renderer relies on.
+  if (!runtime::validateScene(imp.scene, path, diagnostics))
+    return std::nullopt;
   return std::move(imp.scene);
 }
 
