@@ -142,3 +142,26 @@ TEST(CameraPath, UnknownSceneIsRejected) {
 
 }  // namespace
 }  // namespace memograph::runtime
+
+namespace memograph::runtime {
+namespace {
+
+// The committed example files parse and match the generator (they are its output).
+TEST(CameraPathExamples, MatchTheBuiltinGenerator) {
+  for (const std::string& scene : builtinSceneNames()) {
+    SCOPED_TRACE(scene);
+    compiler::Diagnostics diagnostics;
+    const auto path = loadCameraPath(
+        std::string(MEMOGRAPH_EXAMPLES_DIR) + "/camera_paths/" + scene + ".campath", diagnostics);
+    ASSERT_TRUE(path.has_value()) << compiler::formatDiagnostics(diagnostics);
+    ASSERT_GE(path->frames.size(), 300u);  // issue 4's benchmarks run ≥ 300 frames
+    const CameraPath expected = makeBuiltinCameraPath(scene, static_cast<int>(path->frames.size()));
+    for (std::size_t i = 0; i < expected.frames.size(); ++i) {
+      ASSERT_LT(glm::distance(path->frames[i].position, expected.frames[i].position), 1e-3f) << i;
+      ASSERT_LT(glm::distance(path->frames[i].target, expected.frames[i].target), 1e-3f) << i;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace memograph::runtime
