@@ -1,11 +1,11 @@
 // The memograph CLI as a user runs it: exit codes, messages, all-or-nothing output.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sys/wait.h>
 
 #include "test_support.h"
 
@@ -23,7 +23,8 @@ CliRun runCli(const std::string& arguments) {
   const std::string command = std::string(MEMOGRAPH_CLI) + " " + arguments + " 2>&1";
   CliRun run;
   FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return run;
+  if (!pipe)
+    return run;
   std::array<char, 4096> buffer;
   while (const std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) {
     run.output.append(buffer.data(), n);
@@ -49,7 +50,9 @@ class CliTest : public ::testing::Test {
     std::ofstream(path, std::ios::binary) << text;
     return path.string();
   }
-  std::string nodes() const { return std::string(" --nodes ") + MEMOGRAPH_TEST_DATA_DIR + "/nodes"; }
+  std::string nodes() const {
+    return std::string(" --nodes ") + MEMOGRAPH_TEST_DATA_DIR + "/nodes";
+  }
 
   fs::path directory_;
 };

@@ -30,14 +30,16 @@ TEST_P(BadGraphDiagnostic, PointsAtTheProblem) {
   EXPECT_EQ(d.location.line, c.line) << run.messages();
   EXPECT_EQ(d.location.column, c.column) << run.messages();
   EXPECT_NE(d.message.find(c.message), std::string::npos) << run.messages();
-  if (*c.note) EXPECT_NE(run.messages().find(c.note), std::string::npos) << run.messages();
+  if (*c.note)
+    EXPECT_NE(run.messages().find(c.note), std::string::npos) << run.messages();
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Cases, BadGraphDiagnostic,
     ::testing::Values(
         BadGraph{"SyntaxError", "NormalInput Out>1\nColorOutput In<1;", 2, 1,
-                 "socket 'ColorOutput' is not bound", "is a ';' missing at the end of the line above?"},
+                 "socket 'ColorOutput' is not bound",
+                 "is a ';' missing at the end of the line above?"},
         BadGraph{"UnknownNode", "NormalInput Out>1;\nColourOutput In<1;", 2, 1,
                  "unknown node type 'ColourOutput'", "did you mean 'ColorOutput'"},
         BadGraph{"UnknownSocket", "NormalInput Out>1;\nColorOutput Color<1;", 2, 13,
@@ -47,37 +49,45 @@ INSTANTIATE_TEST_SUITE_P(
         BadGraph{"LinkNeverProduced", "ColorOutput In<7;", 1, 13,
                  "link 7 is used here but no node produces it", "Out>7"},
         BadGraph{"LinkProducedTwice", "NormalInput Out>1;\nNormalInput Out>1;\nColorOutput In<1;",
-                 2, 13, "link 1 is produced twice", "first produced by 'NormalInput' at test.mgraph:1:1"},
+                 2, 13, "link 1 is produced twice",
+                 "first produced by 'NormalInput' at test.mgraph:1:1"},
         BadGraph{"Cycle", "Add A<2 B=1 Out>1;\nMul A<1 B=2 Out>2;\nColorOutput In<2;", 1, 5,
-                 "closes a cycle", "cycle: 'Add' at test.mgraph:1:1 → 'Mul' at test.mgraph:2:1 → 'Add'"},
-        BadGraph{"NoOverloadFits", "NormalInput Out>1;\nImageTexture \"t.png\" UV<1 Color>2;\n"
-                 "BaseColorOutput Color<2;", 2, 22, "no overload of 'ImageTexture'", "can be: float3"},
-        BadGraph{"Ambiguous", "Float1Constant 1.0 Out>1;\nSkew A<1 B<1 Out>2;\nRoughnessOutput Roughness<2;",
-                 2, 1, "ambiguous", "candidate: Skew(float2 A, float4 B)"},
-        BadGraph{"SecondDerivative", "PositionInput Out>1;\nNormalFromPosition Position<1 Normal>2;\n"
-                 "ImageTexture \"t.png\" UV<2 Color>3;\nBaseColorOutput Color<3;", 3, 22,
-                 "second derivative", "path:"},
-        BadGraph{"NoOutput", "NormalInput Out>1;\nMul A<1 B=2 Out>2;", 1, 1,
-                 "has no output node", "BaseColorOutput"},
+                 "closes a cycle",
+                 "cycle: 'Add' at test.mgraph:1:1 → 'Mul' at test.mgraph:2:1 → 'Add'"},
+        BadGraph{"NoOverloadFits",
+                 "NormalInput Out>1;\nImageTexture \"t.png\" UV<1 Color>2;\n"
+                 "BaseColorOutput Color<2;",
+                 2, 22, "no overload of 'ImageTexture'", "can be: float3"},
+        BadGraph{"Ambiguous",
+                 "Float1Constant 1.0 Out>1;\nSkew A<1 B<1 Out>2;\nRoughnessOutput Roughness<2;", 2,
+                 1, "ambiguous", "candidate: Skew(float2 A, float4 B)"},
+        BadGraph{"SecondDerivative",
+                 "PositionInput Out>1;\nNormalFromPosition Position<1 Normal>2;\n"
+                 "ImageTexture \"t.png\" UV<2 Color>3;\nBaseColorOutput Color<3;",
+                 3, 22, "second derivative", "path:"},
+        BadGraph{"NoOutput", "NormalInput Out>1;\nMul A<1 B=2 Out>2;", 1, 1, "has no output node",
+                 "BaseColorOutput"},
         BadGraph{"UnconnectedInputWithoutDefault", "ColorOutput;", 1, 1,
                  "input 'In' of 'ColorOutput' is not connected and has no default", "In=…"},
         BadGraph{"TooManyValues", "Float1Constant 1.0 2.0 Out>1;\nRoughnessOutput Roughness<1;", 1,
                  20, "too many values", ""},
         BadGraph{"StringForANumber", "Mul A=\"x\" Out>1;\nColorOutput In<1;", 1, 7,
                  "takes a number", ""},
-        BadGraph{"NumberForATexture", "UVInput UV>1;\nImageTexture 3 UV<1 Color>2;\n"
-                 "BaseColorOutput Color<2;", 2, 14, "texture path in quotes", ""},
+        BadGraph{"NumberForATexture",
+                 "UVInput UV>1;\nImageTexture 3 UV<1 Color>2;\n"
+                 "BaseColorOutput Color<2;",
+                 2, 14, "texture path in quotes", ""},
         BadGraph{"FractionForAnInt", "Pick Mode=0.5 A=1 B=2 Out>1;\nColorOutput In<1;", 1, 11,
                  "whole number", ""},
-        BadGraph{"InputBoundTwice", "Mul A=1 A=2 Out>1;\nColorOutput In<1;", 1, 9,
-                 "bound twice", ""},
+        BadGraph{"InputBoundTwice", "Mul A=1 A=2 Out>1;\nColorOutput In<1;", 1, 9, "bound twice",
+                 ""},
         BadGraph{"ReservedMaterialName", "material my__mat;\nNormalInput Out>1;\nColorOutput In<1;",
                  1, 10, "reserved in GLSL", ""}),
     [](const auto& info) { return std::string(info.param.name); });
 
 TEST(Diagnostics, FormatShowsTheLineAndACaretUnderTheColumn) {
-  const auto run = compileText("NormalInput Out>1;\nColorOutput\tColor<1;\n", testing::testLibrary(),
-                               "g/m.mgraph");
+  const auto run = compileText("NormalInput Out>1;\nColorOutput\tColor<1;\n",
+                               testing::testLibrary(), "g/m.mgraph");
   ASSERT_FALSE(run.material);
   const std::string text = formatDiagnostic(run.diagnostics.all().front());
   EXPECT_EQ(text,

@@ -71,9 +71,11 @@ TEST_P(Golden, CompilesWithGlslangForBothTargets) {
   const auto& c = GetParam();
   const auto run = compileText(c.graph, testing::testLibrary(), std::string(c.name) + ".mgraph");
   ASSERT_TRUE(run.material) << run.messages();
-  const auto glsl = testing::compileGlslMaterials({run.material->glsl}, {run.material->metadata.name});
+  const auto glsl =
+      testing::compileGlslMaterials({run.material->glsl}, {run.material->metadata.name});
   EXPECT_TRUE(glsl.ok) << glsl.log << run.material->glsl;
-  const auto hlsl = testing::compileHlslMaterials({run.material->hlsl}, {run.material->metadata.name});
+  const auto hlsl =
+      testing::compileHlslMaterials({run.material->hlsl}, {run.material->metadata.name});
   EXPECT_TRUE(hlsl.ok) << hlsl.log << run.material->hlsl;
 }
 
@@ -91,10 +93,12 @@ INSTANTIATE_TEST_SUITE_P(Cases, Golden, ::testing::ValuesIn(kGoldenCases),
                          [](const auto& info) { return std::string(info.param.name); });
 
 TEST(Emitter, NodeOrderInTheFileDoesNotChangeTheOutput) {
-  const auto a = compileText("NormalInput Out>0;\nFloat1Constant 0.5 Out>1;\nMul A<0 B<1 Out>2;\n"
-                             "Add A<1 B<2 Out>3;\nColorOutput In<3;\n");
-  const auto b = compileText("ColorOutput In<3;\nAdd A<1 B<2 Out>3;\nMul A<0 B<1 Out>2;\n"
-                             "NormalInput Out>0;\nFloat1Constant 0.5 Out>1;\n");
+  const auto a = compileText(
+      "NormalInput Out>0;\nFloat1Constant 0.5 Out>1;\nMul A<0 B<1 Out>2;\n"
+      "Add A<1 B<2 Out>3;\nColorOutput In<3;\n");
+  const auto b = compileText(
+      "ColorOutput In<3;\nAdd A<1 B<2 Out>3;\nMul A<0 B<1 Out>2;\n"
+      "NormalInput Out>0;\nFloat1Constant 0.5 Out>1;\n");
   ASSERT_TRUE(a.material && b.material);
   EXPECT_EQ(a.material->glsl, b.material->glsl);
 }
@@ -124,7 +128,8 @@ TEST(Emitter, OnlyTheFunctionsAMaterialUsesAreEmitted) {
   ASSERT_TRUE(run.material);
   EXPECT_EQ(run.material->glsl.find("void Mul("), std::string::npos);
   EXPECT_EQ(run.material->glsl.find("mg_wave"), std::string::npos);
-  const auto helpers = compileText("NormalInput Out>1;\nWave In<1 Out>2;\nRoughnessOutput Roughness<2;\n");
+  const auto helpers =
+      compileText("NormalInput Out>1;\nWave In<1 Out>2;\nRoughnessOutput Roughness<2;\n");
   ASSERT_TRUE(helpers.material);
   const auto& code = helpers.material->glsl;
   // Callees come before their callers.
@@ -148,13 +153,15 @@ TEST(Emitter, SeveralMaterialsCoexistInOneShader) {
 }
 
 TEST(Emitter, GlslangCheckCanFail) {
-  const auto broken = testing::compileGlslMaterials({"void EvaluateMaterial_X(int) { oops; }"}, {"X"});
+  const auto broken =
+      testing::compileGlslMaterials({"void EvaluateMaterial_X(int) { oops; }"}, {"X"});
   EXPECT_FALSE(broken.ok);
 }
 
 TEST(Metadata, CacheableOnlyWhenOutputsDependOnUvAndConstants) {
-  const auto uvOnly = compileText("UVInput UV>1;\nImageTexture \"a.png\" UV<1 Color>2;\n"
-                                  "BaseColorOutput Color<2;\n");
+  const auto uvOnly = compileText(
+      "UVInput UV>1;\nImageTexture \"a.png\" UV<1 Color>2;\n"
+      "BaseColorOutput Color<2;\n");
   ASSERT_TRUE(uvOnly.material) << uvOnly.messages();
   EXPECT_TRUE(uvOnly.material->metadata.cacheable);
   EXPECT_EQ(uvOnly.material->metadata.inputsUsed, std::vector<std::string>{"uv"});

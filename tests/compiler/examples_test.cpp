@@ -16,7 +16,8 @@ std::vector<std::string> graphsIn(const std::string& directory) {
   std::vector<std::string> paths;
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(directory, ec)) {
-    if (entry.path().extension() == ".mgraph") paths.push_back(entry.path().string());
+    if (entry.path().extension() == ".mgraph")
+      paths.push_back(entry.path().string());
   }
   std::sort(paths.begin(), paths.end());
   return paths;
@@ -32,7 +33,8 @@ TEST(Examples, EveryGraphCompilesAndGlslangAcceptsBothTargets) {
   ASSERT_FALSE(paths.empty());
   for (const auto& path : paths) {
     SCOPED_TRACE(path);
-    const auto run = testing::compileText(testing::readTextFile(path), testing::realLibrary(), path);
+    const auto run =
+        testing::compileText(testing::readTextFile(path), testing::realLibrary(), path);
     ASSERT_TRUE(run.material) << run.messages();
     const auto& m = *run.material;
     const auto glslCheck = testing::compileGlslMaterials({m.glsl}, {m.metadata.name});
@@ -55,7 +57,8 @@ TEST(Examples, BrokenGraphsFailWithADiagnosticInTheirFile) {
   ASSERT_FALSE(paths.empty());
   for (const auto& path : paths) {
     SCOPED_TRACE(path);
-    const auto run = testing::compileText(testing::readTextFile(path), testing::realLibrary(), path);
+    const auto run =
+        testing::compileText(testing::readTextFile(path), testing::realLibrary(), path);
     EXPECT_FALSE(run.material);
     ASSERT_TRUE(run.diagnostics.hasErrors());
     EXPECT_EQ(run.diagnostics.all().front().file, path);

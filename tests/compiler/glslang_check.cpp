@@ -52,8 +52,9 @@ std::string callAll(const std::vector<std::string>& names) {
   std::string body;
   for (const auto& name : names) {
     body += "  EvaluateMaterial_" + name + "(inputs, outputs);\n";
-    body += "  result[0] += float4(outputs.baseColor + outputs.normal + outputs.emission, "
-            "outputs.metallic + outputs.roughness + outputs.opacity);\n";
+    body +=
+        "  result[0] += float4(outputs.baseColor + outputs.normal + outputs.emission, "
+        "outputs.metallic + outputs.roughness + outputs.opacity);\n";
   }
   return body;
 }
@@ -63,7 +64,8 @@ std::string callAll(const std::vector<std::string>& names) {
 ShaderCheck compileGlslMaterials(const std::vector<std::string>& includes,
                                  const std::vector<std::string>& names) {
   std::string source = "#version 460\n";
-  for (const auto& include : includes) source += include;
+  for (const auto& include : includes)
+    source += include;
   source += R"(
 float4 mg_SampleTexture(int textureIndex, float2 uv, float2 ddx, float2 ddy) {
   return float4(uv, ddx.x + ddy.y, float(textureIndex));
@@ -90,7 +92,8 @@ void main() {
 ShaderCheck compileHlslMaterials(const std::vector<std::string>& includes,
                                  const std::vector<std::string>& names) {
   std::string source;
-  for (const auto& include : includes) source += include;
+  for (const auto& include : includes)
+    source += include;
   source += R"(
 float4 mg_SampleTexture(int textureIndex, float2 uv, float2 ddx, float2 ddy) {
   return float4(uv, ddx.x + ddy.y, float(textureIndex));

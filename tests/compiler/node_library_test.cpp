@@ -25,10 +25,10 @@ std::vector<SourceFile> withFamily(const std::string& text) {
 }
 
 TEST(NodeLibrary, ParsesListing52CrossOverloadsFromTheirSignatures) {
-  auto run = loadLibrary(withFamily(
-      "void Cross(in float3 A, in float3 B, out float3 Out) {\n  Out = cross(A, B);\n}\n"
-      "void Cross(in float3_D A, in float3_D B, out float3_D Out) {\n"
-      "  Out.v = cross(A.v, B.v);\n}\n"));
+  auto run = loadLibrary(
+      withFamily("void Cross(in float3 A, in float3 B, out float3 Out) {\n  Out = cross(A, B);\n}\n"
+                 "void Cross(in float3_D A, in float3_D B, out float3_D Out) {\n"
+                 "  Out.v = cross(A.v, B.v);\n}\n"));
   ASSERT_FALSE(run.diagnostics.hasErrors()) << formatDiagnostics(run.diagnostics);
   const NodeType* cross = run.library.find("Cross");
   ASSERT_NE(cross, nullptr);
@@ -44,10 +44,10 @@ TEST(NodeLibrary, ParsesListing52CrossOverloadsFromTheirSignatures) {
 }
 
 TEST(NodeLibrary, InstantiatesTemplatesIncludingUnderscoreSegments) {
-  auto run = loadLibrary(withFamily(
-      "/// Adds.\n"
-      "/// @types T = float, float3; S = float_D, float3_D\n"
-      "void Add(in T A, in S B, out T_D Out) { Out = mg_make_T_D(A, B.x, B.y); }\n"));
+  auto run = loadLibrary(
+      withFamily("/// Adds.\n"
+                 "/// @types T = float, float3; S = float_D, float3_D\n"
+                 "void Add(in T A, in S B, out T_D Out) { Out = mg_make_T_D(A, B.x, B.y); }\n"));
   ASSERT_FALSE(run.diagnostics.hasErrors()) << formatDiagnostics(run.diagnostics);
   const NodeType* add = run.library.find("Add");
   ASSERT_NE(add, nullptr);
@@ -130,10 +130,12 @@ INSTANTIATE_TEST_SUITE_P(
         LibraryErrorCase{"\nvoid A(in float3 X, out float3 Y) {", 2, "never closed"},
         LibraryErrorCase{"void A(in float3x3 X, out float3 Y) {}", 1, "of type 'float3x3'"},
         LibraryErrorCase{"void A(in float3 input, out float3 Y) {}", 1, "reserved"},
-        LibraryErrorCase{"void A(in float3 X, out float3 Y) {}\nvoid A(in float3 Z, out float3 Y) {}",
-                         2, "different sockets"},
-        LibraryErrorCase{"void A(in float3 X, out float3 Y) {}\nvoid A(in float3 X, out float3 Y) {}",
-                         2, "defined twice"},
+        LibraryErrorCase{
+            "void A(in float3 X, out float3 Y) {}\nvoid A(in float3 Z, out float3 Y) {}", 2,
+            "different sockets"},
+        LibraryErrorCase{
+            "void A(in float3 X, out float3 Y) {}\nvoid A(in float3 X, out float3 Y) {}", 2,
+            "defined twice"},
         LibraryErrorCase{"/// @default Q 1.0\nvoid A(in float3 X, out float3 Y) {}", 2,
                          "not a socket"},
         LibraryErrorCase{"/// @types T = float; S = float, float2\nvoid A(in T X, out S Y) {}", 2,
@@ -142,7 +144,8 @@ INSTANTIATE_TEST_SUITE_P(
                          "unknown or malformed annotation"},
         LibraryErrorCase{"float helper(float x) { return x; }", 1, "neither a node"},
         LibraryErrorCase{"float4 mg_proto(float x);", 1, "prototypes"},
-        LibraryErrorCase{"void A(in float3 X, inout float3 Y) {}", 1, "inout"}));
+        LibraryErrorCase{"void A(in float3 X, inout float3 Y) {}", 1, "inout"}),
+    [](const auto& info) { return "Case" + std::to_string(info.index); });
 
 TEST(LibraryScanner, ReplaceWordLeavesLongerIdentifiersAlone) {
   EXPECT_EQ(replaceWord("T Tx xT T_D mg_T T2", "T", "float3"),

@@ -136,7 +136,8 @@ INSTANTIATE_TEST_SUITE_P(
                       SyntaxCase{"Mix C=(1, 2, 3, 4, 5);", 1, 7, "2 to 4 components"},
                       SyntaxCase{"Mix C=1e999;", 1, 7, "not a valid finite number"},
                       SyntaxCase{"Mix C=12abc;", 1, 7, "not a valid finite number"},
-                      SyntaxCase{"material X Y;", 1, 12, "expected ';' after the material"}));
+                      SyntaxCase{"material X Y;", 1, 12, "expected ';' after the material"}),
+    [](const auto& info) { return "Case" + std::to_string(info.index); });
 
 TEST(Parser, RecoversAtSemicolonsAndReportsEveryBrokenStatement) {
   Diagnostics diagnostics;
@@ -149,7 +150,8 @@ TEST(Parser, RecoversAtSemicolonsAndReportsEveryBrokenStatement) {
 TEST(Parser, StopsAfterTooManyErrors) {
   Diagnostics diagnostics;
   std::string junk;
-  for (int i = 0; i < 1000; ++i) junk += "< ;";
+  for (int i = 0; i < 1000; ++i)
+    junk += "< ;";
   parse(junk, diagnostics);
   EXPECT_LE(diagnostics.errorCount(), 21u);
 }

@@ -28,7 +28,8 @@ const compiler::NodeLibrary& testLibrary() {
     compiler::Diagnostics diagnostics;
     const auto files = compiler::readNodeLibraryDirectory(
         std::string(MEMOGRAPH_TEST_DATA_DIR) + "/nodes", diagnostics);
-    if (!files) throw std::runtime_error(compiler::formatDiagnostics(diagnostics));
+    if (!files)
+      throw std::runtime_error(compiler::formatDiagnostics(diagnostics));
     return loadOrThrow(*files);
   }();
   return library;
@@ -54,7 +55,8 @@ CompileRun compileText(const std::string& text, const compiler::NodeLibrary& lib
 
 std::string readTextFile(const std::string& path) {
   std::ifstream stream(path, std::ios::binary);
-  if (!stream) throw std::runtime_error("cannot read " + path);
+  if (!stream)
+    throw std::runtime_error("cannot read " + path);
   std::ostringstream text;
   text << stream.rdbuf();
   return text.str();

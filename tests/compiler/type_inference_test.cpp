@@ -17,7 +17,8 @@ std::optional<CheckReport> check(const std::string& text, Diagnostics& diagnosti
 
 const LinkReport& linkNamed(const CheckReport& report, const std::string& name) {
   for (const auto& link : report.links) {
-    if (link.name == name) return link;
+    if (link.name == name)
+      return link;
   }
   throw std::runtime_error("no link " + name);
 }
@@ -44,10 +45,10 @@ TEST(TypeInference, DerivativesFlowOnlyUpstreamOfAConsumerThatNeedsThem) {
   Diagnostics diagnostics;
   const auto report = check(
       "UVInput UV>1;\n"
-      "Mul A<1 B=4.0 Out>2;\n"          // scaled UVs feed the texture: need _D
+      "Mul A<1 B=4.0 Out>2;\n"  // scaled UVs feed the texture: need _D
       "ImageTexture \"a.png\" UV<2 Color>3;\n"
       "BaseColorOutput Color<3;\n"
-      "Add A<1 B=0.5 Out>4;\n"          // the same UVs feed a plain computation
+      "Add A<1 B=0.5 Out>4;\n"  // the same UVs feed a plain computation
       "Wave In<4 Out>5;\n"
       "RoughnessOutput Roughness<5;\n",
       diagnostics);
@@ -64,18 +65,19 @@ TEST(TypeInference, DerivativesFlowOnlyUpstreamOfAConsumerThatNeedsThem) {
 
 TEST(TypeInference, WithoutADerivativeConsumerEverythingStaysPlain) {
   Diagnostics diagnostics;
-  const auto report = check("UVInput UV>1;\nMul A<1 B=2 Out>2;\nBaseColorOutput Color<2;\n",
-                            diagnostics);
+  const auto report =
+      check("UVInput UV>1;\nMul A<1 B=2 Out>2;\nBaseColorOutput Color<2;\n", diagnostics);
   ASSERT_TRUE(report) << formatDiagnostics(diagnostics);
-  for (const auto& link : report->links) EXPECT_FALSE(link.derivatives) << link.name;
+  for (const auto& link : report->links)
+    EXPECT_FALSE(link.derivatives) << link.name;
 }
 
 TEST(TypeInference, ConstantsFeedingDerivativeInputsUseZeroDerivativeOverloads) {
   Diagnostics diagnostics;
-  const auto report =
-      check("UVInput UV>1;\nFloat1Constant 3.0 Out>2;\nMul A<1 B<2 Out>3;\n"
-            "ImageTexture \"t.png\" UV<3 Color>4;\nBaseColorOutput Color<4;\n",
-            diagnostics);
+  const auto report = check(
+      "UVInput UV>1;\nFloat1Constant 3.0 Out>2;\nMul A<1 B<2 Out>3;\n"
+      "ImageTexture \"t.png\" UV<3 Color>4;\nBaseColorOutput Color<4;\n",
+      diagnostics);
   ASSERT_TRUE(report) << formatDiagnostics(diagnostics);
   EXPECT_EQ(linkNamed(*report, "link2").type, "float_D");
   EXPECT_EQ(linkNamed(*report, "link3").type, "float2_D");
@@ -85,17 +87,18 @@ TEST(TypeInference, PrefersSplattingToTruncating) {
   Diagnostics diagnostics;
   // Squash takes float2 or float4: a float3 is extended (lossless), not truncated, even
   // though float2 is narrower.
-  const auto report = check("NormalInput Out>1;\nSquash In<1 Out>2;\nRoughnessOutput Roughness<2;\n",
-                            diagnostics);
+  const auto report =
+      check("NormalInput Out>1;\nSquash In<1 Out>2;\nRoughnessOutput Roughness<2;\n", diagnostics);
   ASSERT_TRUE(report) << formatDiagnostics(diagnostics);
   EXPECT_NE(report->nodes[1].find("float4 In"), std::string::npos) << report->nodes[1];
 }
 
 TEST(TypeInference, IntConstantsConvertToFloat) {
   Diagnostics diagnostics;
-  const auto report = check("Pick Mode=1 A=(1, 0, 0) B<1 Out>2;\nNormalInput Out>1;\n"
-                            "BaseColorOutput Color<2;\n",
-                            diagnostics);
+  const auto report = check(
+      "Pick Mode=1 A=(1, 0, 0) B<1 Out>2;\nNormalInput Out>1;\n"
+      "BaseColorOutput Color<2;\n",
+      diagnostics);
   ASSERT_TRUE(report) << formatDiagnostics(diagnostics);
 }
 
@@ -129,8 +132,9 @@ TEST(TypeInference, ReportsWhenNoOverloadFitsWithTheTypesThatArrived) {
 
 TEST(TypeInference, ReportsAmbiguityListingTheCandidates) {
   // Skew(float2, float4) and Skew(float4, float2) tie on every criterion for scalars.
-  const auto run = compileText("Float1Constant 1.0 Out>1;\nSkew A<1 B<1 Out>2;\n"
-                               "RoughnessOutput Roughness<2;\n");
+  const auto run = compileText(
+      "Float1Constant 1.0 Out>1;\nSkew A<1 B<1 Out>2;\n"
+      "RoughnessOutput Roughness<2;\n");
   ASSERT_FALSE(run.material);
   const auto messages = run.messages();
   EXPECT_NE(messages.find("ambiguous: 2 overloads of 'Skew'"), std::string::npos) << messages;
@@ -142,8 +146,8 @@ TEST(TypeInference, ReportsAmbiguityListingTheCandidates) {
 TEST(TypeInference, AmongEqualConversionsPrefersTheNarrowestTypes) {
   Diagnostics diagnostics;
   // float2 UVs into a float3 output: Mul on float2 then extend, not extend then Mul float3.
-  const auto report = check("UVInput UV>1;\nMul A<1 B=2 Out>2;\nBaseColorOutput Color<2;\n",
-                            diagnostics);
+  const auto report =
+      check("UVInput UV>1;\nMul A<1 B=2 Out>2;\nBaseColorOutput Color<2;\n", diagnostics);
   ASSERT_TRUE(report) << formatDiagnostics(diagnostics);
   EXPECT_EQ(linkNamed(*report, "link2").type, "float2");
   EXPECT_EQ(linkNamed(*report, "link2").consumers,
@@ -151,7 +155,8 @@ TEST(TypeInference, AmongEqualConversionsPrefersTheNarrowestTypes) {
 }
 
 TEST(TypeInference, ReportsConstantsNoOverloadAccepts) {
-  const auto run = compileText("Pick Mode=1 A=\"x.png\" B=(1,2,3) Out>1;\nBaseColorOutput Color<1;\n");
+  const auto run =
+      compileText("Pick Mode=1 A=\"x.png\" B=(1,2,3) Out>1;\nBaseColorOutput Color<1;\n");
   ASSERT_FALSE(run.material);
   EXPECT_NE(run.messages().find("takes a number"), std::string::npos) << run.messages();
 }
