@@ -20,6 +20,23 @@ std::string formatGraphNumber(float value) {
   return s;
 }
 
+namespace {
+
+// "(x, y, …)"; built by appending, which also keeps GCC 12's -Wrestrict false positive
+// (bug 105329) away from operator+ chains.
+std::string formatTuple(std::initializer_list<float> values) {
+  std::string out = "(";
+  for (float v : values) {
+    if (out.size() > 1)
+      out += ", ";
+    out += formatGraphNumber(v);
+  }
+  out += ')';
+  return out;
+}
+
+}  // namespace
+
 GraphArg GraphArg::in(std::string socket, GraphLink link) {
   return {Kind::In, std::move(socket), link, {}};
 }
@@ -32,18 +49,12 @@ GraphArg GraphArg::constant(std::string socket, float value) {
 GraphArg GraphArg::constant(std::string socket, int value) {
   return {Kind::Constant, std::move(socket), {}, std::to_string(value)};
 }
+
 GraphArg GraphArg::constant(std::string socket, glm::vec2 value) {
-  return {Kind::Constant,
-          std::move(socket),
-          {},
-          "(" + formatGraphNumber(value.x) + ", " + formatGraphNumber(value.y) + ")"};
+  return {Kind::Constant, std::move(socket), {}, formatTuple({value.x, value.y})};
 }
 GraphArg GraphArg::constant(std::string socket, glm::vec3 value) {
-  return {Kind::Constant,
-          std::move(socket),
-          {},
-          "(" + formatGraphNumber(value.x) + ", " + formatGraphNumber(value.y) + ", " +
-              formatGraphNumber(value.z) + ")"};
+  return {Kind::Constant, std::move(socket), {}, formatTuple({value.x, value.y, value.z})};
 }
 
 GraphWriter::GraphWriter(std::string materialName) : name_(std::move(materialName)) {}

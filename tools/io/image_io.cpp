@@ -107,8 +107,11 @@ bool writeImage(const std::string& path, const runtime::FloatImage& image, const
   }
   // The temporary keeps the extension: OpenImageIO picks the format from it.
   const fs::path target(path);
-  const fs::path temporary =
-      target.parent_path() / ("." + target.stem().string() + ".partial" + ext);
+  std::string temporaryName = ".";  // appended, not operator+: GCC 12 bug 105329
+  temporaryName += target.stem().string();
+  temporaryName += ".partial";
+  temporaryName += ext;
+  const fs::path temporary = target.parent_path() / temporaryName;
   auto out = OIIO::ImageOutput::create(path);
   if (!out) {
     diagnostics.error(path, "cannot create an image writer: " + OIIO::geterror());
