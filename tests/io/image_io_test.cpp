@@ -129,6 +129,18 @@ TEST_F(ImageIoTest, BadPfmFilesGiveClearErrors) {
   EXPECT_NE(error("absent.pfm").find("cannot open"), std::string::npos);
 }
 
+TEST_F(ImageIoTest, GreyImagesExpandToRgbaWithOpaqueAlpha) {
+  std::ofstream(file("grey.pgm"), std::ios::binary) << "P5\n2 1\n255\n" << '\x00' << '\xc8';
+  Diagnostics diagnostics;
+  const auto image = readImageRgba8(file("grey.pgm"), diagnostics);
+  ASSERT_TRUE(image.has_value()) << compiler::formatDiagnostics(diagnostics);
+  EXPECT_EQ(image->rgba, (std::vector<std::uint8_t>{0, 0, 0, 255, 200, 200, 200, 255}));
+  const auto floats = readImageFloat(file("grey.pgm"), diagnostics);
+  ASSERT_TRUE(floats.has_value());
+  EXPECT_FLOAT_EQ(floats->rgba[4], 200.0f / 255.0f);
+  EXPECT_EQ(floats->rgba[7], 1.0f);
+}
+
 TEST_F(ImageIoTest, UnreadableImagesAreErrorsNotCrashes) {
   std::ofstream(file("fake.png")) << "this is not a png";
   Diagnostics diagnostics;

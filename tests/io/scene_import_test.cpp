@@ -38,12 +38,17 @@ void append(std::vector<unsigned char>& bytes, std::initializer_list<T> values) 
 
 // A unit quad in the xy plane (normal +z, UVs 0..1, no tangents), used by two materials;
 // a parent node with two children instancing it; a camera; a point and a directional light.
-std::string quadGltf() {
+std::vector<unsigned char> quadBuffer() {
   std::vector<unsigned char> buffer;
   append<float>(buffer, {0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0});  // positions, 48 bytes
   append<float>(buffer, {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1});  // normals, 48 bytes
   append<float>(buffer, {0, 0, 1, 0, 1, 1, 0, 1});              // uvs, 32 bytes
   append<std::uint16_t>(buffer, {0, 1, 2, 0, 2, 3});            // indices, 12 bytes
+  return buffer;
+}
+
+// `bufferSource` completes the buffer object: a data URI for .gltf, nothing for .glb.
+std::string quadJson(const std::string& bufferSource) {
   const std::string primitive =
       R"("attributes": {"POSITION": 0, "NORMAL": 1, "TEXCOORD_0": 2}, "indices": 3)";
   return R"({
@@ -80,9 +85,37 @@ std::string quadGltf() {
     {"buffer": 0, "byteOffset": 48, "byteLength": 48},
     {"buffer": 0, "byteOffset": 96, "byteLength": 32},
     {"buffer": 0, "byteOffset": 128, "byteLength": 12}],
-  "buffers": [{"byteLength": 140, "uri": "data:application/octet-stream;base64,)" +
-         base64(buffer) + R"("}]
+  "buffers": [{"byteLength": 140)" +
+         bufferSource + R"(}]
 })";
+}
+
+std::string quadGltf() {
+  return quadJson(R"(, "uri": "data:application/octet-stream;base64,)" + base64(quadBuffer()) +
+                  "\"");
+}
+
+// The same scene as a binary glTF: a 12-byte header, a JSON chunk and a BIN chunk, each
+// padded to four bytes (glTF 2.0 §4.4).
+std::string quadGlb() {
+  std::string json = quadJson("");
+  while (json.size() % 4)
+    json += ' ';
+  std::vector<unsigned char> bin = quadBuffer();
+  while (bin.size() % 4)
+    bin.push_back(0);
+  std::vector<unsigned char> out;
+  const auto u32 = [&](std::uint32_t v) { append<std::uint32_t>(out, {v}); };
+  u32(0x46546C67);  // "glTF"
+  u32(2);
+  u32(static_cast<std::uint32_t>(12 + 8 + json.size() + 8 + bin.size()));
+  u32(static_cast<std::uint32_t>(json.size()));
+  u32(0x4E4F534A);  // "JSON"
+  out.insert(out.end(), json.begin(), json.end());
+  u32(static_cast<std::uint32_t>(bin.size()));
+  u32(0x004E4942);  // "BIN"
+  out.insert(out.end(), bin.begin(), bin.end());
+  return std::string(out.begin(), out.end());
 }
 
 // A cube without normals, with UVs, using material Red from its .mtl.
@@ -185,6 +218,22 @@ TEST_F(SceneImportTest, GltfGivesSharedMeshesInstancesCameraLightsAndMaterials) 
   EXPECT_NEAR(bulb->intensity.r / bulb->intensity.g, 2.0f, 1e-4f);  // colour ratio kept
   EXPECT_GT(bulb->intensity.r, 0.0f);
   EXPECT_NEAR(glm::distance(sun->direction, glm::vec3(0, -1, 0)), 0.0f, 1e-4f);
+}
+
+TEST_F(SceneImportTest, BinaryGltfImportsLikeTheTextForm) {
+  Diagnostics diagnostics;
+  const auto glb = importScene(write("quad.glb", quadGlb()), materials(), diagnostics);
+  ASSERT_TRUE(glb.has_value()) << compiler::formatDiagnostics(diagnostics);
+  const auto gltf = importScene(write("quad.gltf", quadGltf()), materials(), diagnostics);
+  ASSERT_TRUE(gltf.has_value());
+  ASSERT_EQ(glb->instances.size(), gltf->instances.size());
+  ASSERT_EQ(glb->meshes.size(), gltf->meshes.size());
+  for (std::size_t i = 0; i < glb->instances.size(); ++i) {
+    EXPECT_EQ(glb->instances[i].objectToWorld, gltf->instances[i].objectToWorld);
+  }
+  EXPECT_EQ(glb->meshes[0].positions, gltf->meshes[0].positions);
+  EXPECT_EQ(glb->camera.position, gltf->camera.position);
+  EXPECT_EQ(glb->lights.size(), 2u);
 }
 
 TEST_F(SceneImportTest, ObjGetsNormalsTangentsAndItsMtlMaterial) {
