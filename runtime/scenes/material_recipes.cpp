@@ -22,13 +22,15 @@ GraphLink addDetailLayers(MaterialBuilder& b, GraphLink uv, GraphLink color, glm
 }  // namespace
 
 glm::vec2 RecipeSeed::offset() const {
-  // A cheap integer hash spread over a few hundred UV units: far enough apart that two
-  // seeds never show the same noise.
+  // A cheap integer hash spread over [0, 16) UV units: enough for two seeds to show
+  // different noise, and small enough that a texture's coordinates (offset × a Scale of up
+  // to a few hundred) keep float precision on the GPU: at offsets of hundreds of units a
+  // float's step would approach the size of a fine noise feature.
   std::uint32_t h = value * 747796405u + 2891336453u;
   h = ((h >> ((h >> 28u) + 4u)) ^ h) * 277803737u;
   h = (h >> 22u) ^ h;
-  return {static_cast<float>(h & 0xffffu) / 65536.0f * 512.0f,
-          static_cast<float>(h >> 16u) / 65536.0f * 512.0f};
+  return {static_cast<float>(h & 0xffffu) / 65536.0f * 16.0f,
+          static_cast<float>(h >> 16u) / 65536.0f * 16.0f};
 }
 
 std::string woodGraph(const std::string& name, const WoodParams& p, RecipeSeed seed,
