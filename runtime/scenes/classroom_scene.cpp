@@ -75,9 +75,11 @@ void addShell(Room& r) {
   b.instance(b.addMesh(boxesMesh("floor", {{{-t, -t, -t}, {W + t, 0, D + t}}})), tiles, at({}));
   b.instance(b.addMesh(boxesMesh("ceiling", {{{-t, H, -t}, {W + t, H + t, D + t}}})), ceiling,
              at({}));
-  b.instance(b.addMesh(boxesMesh("wall_front", {{{0, 0, -t}, {W, H, 0}}})), wallA, at({}));
+  // The front and back walls run across the corners, so no ray slips between two slabs'
+  // edges there.
+  b.instance(b.addMesh(boxesMesh("wall_front", {{{-t, 0, -t}, {W + t, H, 0}}})), wallA, at({}));
   b.instance(b.addMesh(boxesMesh("wall_left", {{{-t, 0, 0}, {0, H, D}}})), wallA, at({}));
-  b.instance(b.addMesh(boxesMesh("wall_back", {{{0, 0, D}, {W, H, D + t}}})), wallB, at({}));
+  b.instance(b.addMesh(boxesMesh("wall_back", {{{-t, 0, D}, {W + t, H, D + t}}})), wallB, at({}));
   // The window wall: below, above and the piers between three openings.
   const std::array<glm::vec2, 3> windows = {glm::vec2{0.75f, 2.25f}, {3.0f, 4.5f}, {5.25f, 6.75f}};
   const float sill = 0.9f, lintel = 2.6f;
