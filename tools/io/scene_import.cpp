@@ -126,9 +126,9 @@ struct Importer {
       index = static_cast<std::uint32_t>(scene.materials.size() - 1);
     } else {
       warn(diagnostics, path,
-           "material '" + name + "' has no graph (looked for " +
-               (materialsDir.empty() ? std::string("it with no --materials folder given")
-                                     : graph.string()) +
+           "material '" + name + "' has no graph (" +
+               (materialsDir.empty() ? std::string("no materials folder was given")
+                                     : "looked for " + graph.string()) +
                "); it renders as the magenta checker");
       if (missingMaterial < 0) {
         scene.materials.push_back(runtime::MaterialRef{
