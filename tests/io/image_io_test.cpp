@@ -5,8 +5,8 @@
 #include <filesystem>
 #include <fstream>
 
-#include "runtime/scenes/pfm.h"
 #include "tools/io/image_io.h"
+#include "tools/io/pfm.h"
 
 namespace memograph::io {
 namespace {
@@ -87,8 +87,8 @@ TEST_F(ImageIoTest, ExrRoundTripsFloatsExactly) {
 TEST_F(ImageIoTest, PfmRoundTripsAndConvertsToPng) {
   FloatImage image = gradient();
   Diagnostics diagnostics;
-  ASSERT_TRUE(runtime::writePfm(file("frame.pfm"), image, diagnostics));
-  const auto back = runtime::readPfm(file("frame.pfm"), diagnostics);
+  ASSERT_TRUE(writePfm(file("frame.pfm"), image, diagnostics));
+  const auto back = readPfm(file("frame.pfm"), diagnostics);
   ASSERT_TRUE(back.has_value()) << compiler::formatDiagnostics(diagnostics);
   // PFM has no alpha: it reads back as 1.
   for (std::size_t i = 0; i < image.rgba.size(); ++i) {
@@ -111,7 +111,7 @@ TEST_F(ImageIoTest, PfmReadsBigEndianAndGreyFiles) {
     out.write(reinterpret_cast<const char*>(pixels), sizeof pixels);
   }
   Diagnostics diagnostics;
-  const auto image = runtime::readPfm(file("grey.pfm"), diagnostics);
+  const auto image = readPfm(file("grey.pfm"), diagnostics);
   ASSERT_TRUE(image.has_value()) << compiler::formatDiagnostics(diagnostics);
   EXPECT_EQ(image->rgba, (std::vector<float>{1, 1, 1, 1, 2, 2, 2, 1}));
 }
@@ -121,7 +121,7 @@ TEST_F(ImageIoTest, BadPfmFilesGiveClearErrors) {
   std::ofstream(file("short.pfm"), std::ios::binary) << "PF\n4 4\n-1.0\n" << std::string(10, '\0');
   const auto error = [&](const std::string& name) {
     Diagnostics diagnostics;
-    EXPECT_FALSE(runtime::readPfm(file(name), diagnostics).has_value());
+    EXPECT_FALSE(readPfm(file(name), diagnostics).has_value());
     return diagnostics.all().empty() ? "" : diagnostics.all()[0].message;
   };
   EXPECT_NE(error("text.pfm").find("not a PFM file"), std::string::npos);

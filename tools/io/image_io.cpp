@@ -6,7 +6,7 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "runtime/scenes/pfm.h"
+#include "tools/io/pfm.h"
 
 namespace memograph::io {
 namespace {
@@ -174,7 +174,7 @@ std::optional<runtime::FloatImage> readImageFloat(const std::string& path,
 
 bool convertPfm(const std::string& pfmPath, const std::string& outPath, const LdrOptions& ldr,
                 compiler::Diagnostics& diagnostics) {
-  const auto image = runtime::readPfm(pfmPath, diagnostics);
+  const auto image = readPfm(pfmPath, diagnostics);
   return image && writeImage(outPath, *image, ldr, diagnostics);
 }
 

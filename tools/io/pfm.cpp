@@ -1,4 +1,4 @@
-#include "runtime/scenes/pfm.h"
+#include "tools/io/pfm.h"
 
 #include <bit>
 #include <cstdint>
@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-namespace memograph::runtime {
+namespace memograph::io {
 namespace {
 
 std::uint32_t byteSwap(std::uint32_t v) {
@@ -17,7 +17,7 @@ std::uint32_t byteSwap(std::uint32_t v) {
 
 }  // namespace
 
-bool writePfm(const std::string& path, const FloatImage& image,
+bool writePfm(const std::string& path, const runtime::FloatImage& image,
               compiler::Diagnostics& diagnostics) {
   if (image.width <= 0 || image.height <= 0 ||
       image.rgba.size() != static_cast<std::size_t>(image.width) * image.height * 4) {
@@ -62,7 +62,8 @@ bool writePfm(const std::string& path, const FloatImage& image,
   return true;
 }
 
-std::optional<FloatImage> readPfm(const std::string& path, compiler::Diagnostics& diagnostics) {
+std::optional<runtime::FloatImage> readPfm(const std::string& path,
+                                           compiler::Diagnostics& diagnostics) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     diagnostics.error(path, "cannot open the PFM file");
@@ -84,7 +85,7 @@ std::optional<FloatImage> readPfm(const std::string& path, compiler::Diagnostics
   in.get();  // the single whitespace character that ends the header
   const int channels = magic == "PF" ? 3 : 1;
   const bool swap = (scale < 0) != (std::endian::native == std::endian::little);
-  FloatImage image;
+  runtime::FloatImage image;
   image.width = static_cast<int>(width);
   image.height = static_cast<int>(height);
   image.rgba.resize(static_cast<std::size_t>(width) * height * 4);
@@ -112,4 +113,4 @@ std::optional<FloatImage> readPfm(const std::string& path, compiler::Diagnostics
   return image;
 }
 
-}  // namespace memograph::runtime
+}  // namespace memograph::io
