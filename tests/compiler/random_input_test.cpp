@@ -274,6 +274,28 @@ TEST(RandomInput, LongChainsAndDeepNestingComeBack) {
   EXPECT_EQ(compileAndCheck("semicolons.mgraph", std::string(50000, ';')), "");
 }
 
+// Thousands of bad lines once cost a copy of the line and a scan from the top of the file
+// for each diagnostic: quadratic time (26 s for 50,000 lines) and, for one long line,
+// gigabytes of memory.
+TEST(RegressionInputs, ThousandsOfProblemsKeepABoundedNumberOfDiagnostics) {
+  std::string unknownNodes, unreachedNodes = "RoughnessOutput;\n";
+  for (int i = 0; i < 20000; ++i) {
+    unknownNodes += "Foo" + std::to_string(i) + ";\n";
+    unreachedNodes += "NormalInput Out>" + std::to_string(i) + ";\n";
+  }
+  for (const auto& text : {unknownNodes, unreachedNodes}) {
+    const SourceFile file{"many.mgraph", text};
+    Diagnostics diagnostics;
+    compileMaterial(file, testLibrary(), {}, diagnostics);
+    EXPECT_LE(diagnostics.all().size(), Diagnostics::kMaxKeptPerFile + 1);
+    EXPECT_EQ(diagnostics.all().back().message,
+              "too many problems in this file; the rest are not shown");
+  }
+  Diagnostics diagnostics;
+  compileMaterial({"many.mgraph", unknownNodes}, testLibrary(), {}, diagnostics);
+  EXPECT_EQ(diagnostics.errorCount(), 20000u) << "errors past the limit must still count";
+}
+
 TEST(RegressionInputs, EachComesBackWithAPositionedErrorOrAResult) {
   namespace fs = std::filesystem;
   std::vector<fs::path> files;
