@@ -242,9 +242,11 @@ class Resolver {
                                             "' takes a number or a (x, y, …) tuple, not a string");
       return;
     }
-    if (isIntSocket(type, socket) && (value.kind != Literal::Kind::Number || !value.isInteger)) {
-      diagnostics_.error(file_, value.location,
-                         "input '" + name + "' of '" + type.name + "' takes a whole number");
+    if (isIntSocket(type, socket) && !isShaderInt(value)) {
+      diagnostics_.error(
+          file_, value.location,
+          "input '" + name + "' of '" + type.name +
+              "' takes a whole number from -2147483648 to 2147483647 (a shader int)");
       return;
     }
     InputSource source;

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "compiler/conversions.h"
+#include "compiler/literal.h"
 
 namespace memograph::compiler {
 
@@ -14,7 +15,7 @@ std::optional<Cost> constantCost(const Literal& value, Type to) {
       return to.base == BaseType::TextureRef ? std::optional(Cost{}) : std::nullopt;
     case Literal::Kind::Number:
       if (to.base == BaseType::Int)
-        return value.isInteger ? std::optional(Cost{}) : std::nullopt;
+        return isShaderInt(value) ? std::optional(Cost{}) : std::nullopt;
       return to.isFloat() ? std::optional(Cost{}) : std::nullopt;  // a scalar splats freely
     case Literal::Kind::Tuple:
       if (!to.isFloat())

@@ -296,6 +296,26 @@ TEST(RegressionInputs, ThousandsOfProblemsKeepABoundedNumberOfDiagnostics) {
   EXPECT_EQ(diagnostics.errorCount(), 20000u) << "errors past the limit must still count";
 }
 
+// Numbers a shader cannot hold compiled "successfully" into code no shader compiler takes:
+// `inf.0` for 1e300, and an int socket's 1e20 through llround as -9223372036854775808.
+TEST(RegressionInputs, NumbersOutsideShaderRangesAreErrors) {
+  const auto errorFor = [](const std::string& text) {
+    Diagnostics diagnostics;
+    const auto compiled = compileMaterial({"range.mgraph", text}, testLibrary(), {}, diagnostics);
+    return compiled ? std::string("(compiled)") : diagnostics.all().front().message;
+  };
+  EXPECT_EQ(errorFor("Float1Constant 1e300 Out>1; RoughnessOutput Roughness<1;"),
+            "'1e300' is too large for a 32-bit float (at most 3.4028235e38)");
+  EXPECT_EQ(
+      errorFor("Float3Constant 1 0 0 Out>1; Pick 4294967296 A<1 B<1 Out>2; ColorOutput In<2;"),
+      "input 'Mode' of 'Pick' takes a whole number from -2147483648 to 2147483647 (a shader "
+      "int)");
+  EXPECT_EQ(errorFor("Float1Constant 3.4e38 Out>1; RoughnessOutput Roughness<1;"), "(compiled)");
+  EXPECT_EQ(
+      errorFor("Float3Constant 1 0 0 Out>1; Pick -2147483648 A<1 B<1 Out>2; ColorOutput In<2;"),
+      "(compiled)");
+}
+
 TEST(RegressionInputs, EachComesBackWithAPositionedErrorOrAResult) {
   namespace fs = std::filesystem;
   std::vector<fs::path> files;
