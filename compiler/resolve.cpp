@@ -255,9 +255,9 @@ class Resolver {
     source.location = value.location;
     if (wantsTexture) {
       // Slots are numbered in order of first mention; the same path shares a slot.
-      const auto found = std::find(result_.textures.begin(), result_.textures.end(), value.text);
-      source.constant.components = {static_cast<double>(found - result_.textures.begin())};
-      if (found == result_.textures.end())
+      const auto [slot, added] = textureSlots_.emplace(value.text, result_.textures.size());
+      source.constant.components = {static_cast<double>(slot->second)};
+      if (added)
         result_.textures.push_back(value.text);
     }
     resolved.inputs[socket] = source;
@@ -269,6 +269,8 @@ class Resolver {
   Diagnostics& diagnostics_;
   ResolvedGraph result_;
   std::map<std::int64_t, std::pair<std::size_t, std::size_t>> producers_;  // link → node, socket
+  // Texture path → slot; a linear search of ResolvedGraph::textures was quadratic.
+  std::map<std::string, std::size_t, std::less<>> textureSlots_;
 };
 
 }  // namespace
