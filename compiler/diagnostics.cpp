@@ -4,14 +4,25 @@ namespace memograph::compiler {
 
 Diagnostic& Diagnostics::add(Severity severity, const SourceFile& file, SourceLocation at,
                              std::string message) {
-  Diagnostic& d = items_.emplace_back();
-  d.severity = severity;
-  d.file = file.path;
-  d.location = at;
-  d.message = std::move(message);
-  d.sourceLine = std::string(file.lineText(at.line));
   if (severity == Severity::Error)
     ++errorCount_;
+  std::size_t& kept = keptPerFile_[file.path];
+  if (kept > kMaxKeptPerFile) {
+    discarded_ = Diagnostic{};
+    return discarded_;
+  }
+  Diagnostic& d = items_.emplace_back();
+  d.file = file.path;
+  d.location = at;
+  d.sourceLine = std::string(file.lineText(at.line));
+  if (kept++ == kMaxKeptPerFile) {
+    d.severity = Severity::Note;
+    d.message = "too many problems in this file; the rest are not shown";
+    discarded_ = Diagnostic{};
+    return discarded_;
+  }
+  d.severity = severity;
+  d.message = std::move(message);
   return d;
 }
 
@@ -34,6 +45,8 @@ Diagnostic& Diagnostics::error(std::string file, std::string message) {
 void Diagnostics::append(const Diagnostics& other) {
   items_.insert(items_.end(), other.items_.begin(), other.items_.end());
   errorCount_ += other.errorCount_;
+  for (const auto& [file, kept] : other.keptPerFile_)
+    keptPerFile_[file] += kept;
 }
 
 std::string formatDiagnostic(const Diagnostic& d) {

@@ -2,6 +2,8 @@
 // the driver prints them as `file:line:col: error: message` with the line and a caret.
 #pragma once
 
+#include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -28,6 +30,11 @@ class Diagnostics {
   // Reports without a source position (e.g. a file that cannot be read).
   Diagnostic& error(std::string file, std::string message);
 
+  // Diagnostics kept per file. Past it they are still counted (hasErrors, errorCount) but
+  // not kept, and one note says so: each kept one copies its source line, found by a scan
+  // from the top of the file, so thousands of bad lines would cost quadratic time and memory.
+  static constexpr std::size_t kMaxKeptPerFile = 100;
+
   bool hasErrors() const { return errorCount_ > 0; }
   std::size_t errorCount() const { return errorCount_; }
   const std::vector<Diagnostic>& all() const { return items_; }
@@ -39,6 +46,8 @@ class Diagnostics {
                   std::string message);
   std::vector<Diagnostic> items_;
   std::size_t errorCount_ = 0;
+  std::map<std::string, std::size_t, std::less<>> keptPerFile_;
+  Diagnostic discarded_;  // what add() returns for a diagnostic past the limit
 };
 
 // `file:line:col: error: message`, then the source line, a caret under the column, and the

@@ -2,6 +2,8 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include "compiler/diagnostics.h"
 #include "compiler/lexer.h"
@@ -47,6 +49,14 @@ std::optional<Literal> parseLiteral(std::string_view text) {
   if (literal.components.size() > 4)
     return std::nullopt;
   return literal;
+}
+
+bool isShaderInt(const Literal& literal) {
+  if (literal.kind != Literal::Kind::Number || !literal.isInteger)
+    return false;
+  const double value = literal.components.at(0);
+  return value >= std::numeric_limits<std::int32_t>::min() &&
+         value <= std::numeric_limits<std::int32_t>::max();
 }
 
 Type literalType(const Literal& literal) {

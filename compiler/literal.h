@@ -14,6 +14,9 @@ namespace memograph::compiler {
 // Parses "0.5", "-2", "(1, 0, 0)"; nothing for anything else.
 std::optional<Literal> parseLiteral(std::string_view text);
 
+// Whether the literal is a whole number a shader `int` (32 bits in GLSL and HLSL) holds.
+bool isShaderInt(const Literal& literal);
+
 // The literal's own type: a Number is float (int when written as a whole number), a Tuple
 // floatN, a String a TextureRef.
 Type literalType(const Literal& literal);

@@ -497,6 +497,13 @@ std::vector<std::string> NodeLibrary::suggestions(std::string_view name) const {
   std::vector<std::pair<std::size_t, std::string>> scored;
   const std::size_t limit = std::max<std::size_t>(2, name.size() / 3);
   for (const auto& node : parts_.nodeTypes) {
+    // The distance is at least the difference in length; skipping on it keeps a huge
+    // unknown name (megabytes from a fuzzer) from costing its length times every name.
+    const std::size_t lengthDifference = name.size() > node.name.size()
+                                             ? name.size() - node.name.size()
+                                             : node.name.size() - name.size();
+    if (lengthDifference > limit)
+      continue;
     const auto distance = editDistance(name, node.name);
     if (distance <= limit)
       scored.emplace_back(distance, node.name);

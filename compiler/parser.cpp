@@ -184,6 +184,11 @@ class Parser {
       error(token, "'" + text + "' is not a valid finite number");
       return false;
     }
+    // Shaders compute in 32-bit floats: a larger value would be emitted as "inf".
+    if (std::abs(value) > std::numeric_limits<float>::max()) {
+      error(token, "'" + text + "' is too large for a 32-bit float (at most 3.4028235e38)");
+      return false;
+    }
     isInteger = text.find_first_of(".eE") == std::string::npos;
     return true;
   }

@@ -259,9 +259,11 @@ class Resolver {
                                             "' takes a number or a (x, y, …) tuple, not a string");
       return;
     }
-    if (isIntSocket(type, socket) && (value.kind != Literal::Kind::Number || !value.isInteger)) {
-      diagnostics_.error(file_, value.location,
-                         "input '" + name + "' of '" + type.name + "' takes a whole number");
+    if (isIntSocket(type, socket) && !isShaderInt(value)) {
+      diagnostics_.error(
+          file_, value.location,
+          "input '" + name + "' of '" + type.name +
+              "' takes a whole number from -2147483648 to 2147483647 (a shader int)");
       return;
     }
     InputSource source;
@@ -270,9 +272,9 @@ class Resolver {
     source.location = value.location;
     if (wantsTexture) {
       // Slots are numbered in order of first mention; the same path shares a slot.
-      const auto found = std::find(result_.textures.begin(), result_.textures.end(), value.text);
-      source.constant.components = {static_cast<double>(found - result_.textures.begin())};
-      if (found == result_.textures.end())
+      const auto [slot, added] = textureSlots_.emplace(value.text, result_.textures.size());
+      source.constant.components = {static_cast<double>(slot->second)};
+      if (added)
         result_.textures.push_back(value.text);
     }
     resolved.inputs[socket] = source;
@@ -285,6 +287,8 @@ class Resolver {
   ResolvedGraph result_;
   std::map<std::int64_t, std::pair<std::size_t, std::size_t>> producers_;  // link → node, socket
   std::set<std::int64_t> brokenLinks_;  // produced by a node or socket that does not exist
+  // Texture path → slot; a linear search of ResolvedGraph::textures was quadratic.
+  std::map<std::string, std::size_t, std::less<>> textureSlots_;
 };
 
 }  // namespace

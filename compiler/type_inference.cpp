@@ -1,9 +1,11 @@
 #include "compiler/type_inference.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <set>
 
 #include "compiler/conversions.h"
+#include "compiler/literal.h"
 
 namespace memograph::compiler {
 
@@ -13,7 +15,7 @@ std::optional<Cost> constantCost(const Literal& value, Type to) {
       return to.base == BaseType::TextureRef ? std::optional(Cost{}) : std::nullopt;
     case Literal::Kind::Number:
       if (to.base == BaseType::Int)
-        return value.isInteger ? std::optional(Cost{}) : std::nullopt;
+        return isShaderInt(value) ? std::optional(Cost{}) : std::nullopt;
       return to.isFloat() ? std::optional(Cost{}) : std::nullopt;  // a scalar splats freely
     case Literal::Kind::Tuple:
       if (!to.isFloat())
@@ -40,6 +42,46 @@ namespace {
 
 struct Edge {
   std::size_t producer, producerSocket, consumer, consumerSocket;
+};
+
+// The distinct types one socket takes over a node's candidate overloads, one bit per Type.
+// revise() builds two of these per edge and pass; as std::set their allocations were most
+// of the time spent compiling a large graph.
+class TypeSet {
+ public:
+  void insert(Type type) { bits_ |= bit(type); }
+
+  template <typename Predicate>
+  bool anyOf(Predicate predicate) const {
+    for (unsigned i = 0; i < kTypeCount; ++i) {
+      if ((bits_ >> i & 1u) && predicate(typeAt(i)))
+        return true;
+    }
+    return false;
+  }
+
+  // In Type's order, for messages.
+  std::set<Type> toSet() const {
+    std::set<Type> types;
+    anyOf([&](Type type) {
+      types.insert(type);
+      return false;
+    });
+    return types;
+  }
+
+ private:
+  static constexpr unsigned kBaseTypeCount = static_cast<unsigned>(BaseType::Outputs) + 1;
+  static constexpr unsigned kTypeCount = 2 * kBaseTypeCount;
+  static_assert(kTypeCount <= 16, "TypeSet holds its bits in 16 bits");
+
+  static std::uint16_t bit(Type type) {
+    return static_cast<std::uint16_t>(
+        1u << (2 * static_cast<unsigned>(type.base) + (type.derivatives ? 1 : 0)));
+  }
+  static Type typeAt(unsigned i) { return Type{static_cast<BaseType>(i / 2), i % 2 == 1}; }
+
+  std::uint16_t bits_ = 0;
 };
 
 std::string joinTypes(const std::set<Type>& types) {
@@ -125,13 +167,11 @@ class Inference {
     const auto wantedBefore = wantedTypes(e);
     auto keepConsumer = [&](std::size_t k) {
       const Type to = socketType(e.consumer, k, e.consumerSocket);
-      return std::any_of(offeredBefore.begin(), offeredBefore.end(),
-                         [&](Type from) { return conversionCost(from, to).has_value(); });
+      return offeredBefore.anyOf([&](Type from) { return conversionCost(from, to).has_value(); });
     };
     auto keepProducer = [&](std::size_t k) {
       const Type from = socketType(e.producer, k, e.producerSocket);
-      return std::any_of(wantedBefore.begin(), wantedBefore.end(),
-                         [&](Type to) { return conversionCost(from, to).has_value(); });
+      return wantedBefore.anyOf([&](Type to) { return conversionCost(from, to).has_value(); });
     };
     const auto before = producers.size() + consumers.size();
     std::erase_if(consumers, [&](std::size_t k) { return !keepConsumer(k); });
@@ -140,19 +180,19 @@ class Inference {
       changed = true;
     if (!producers.empty() && !consumers.empty())
       return true;
-    reportMismatch(e, offeredBefore, wantedBefore);
+    reportMismatch(e, offeredBefore.toSet(), wantedBefore.toSet());
     return false;
   }
 
-  std::set<Type> offeredTypes(const Edge& e) const {
-    std::set<Type> types;
+  TypeSet offeredTypes(const Edge& e) const {
+    TypeSet types;
     for (const auto k : candidates_[e.producer]) {
       types.insert(socketType(e.producer, k, e.producerSocket));
     }
     return types;
   }
-  std::set<Type> wantedTypes(const Edge& e) const {
-    std::set<Type> types;
+  TypeSet wantedTypes(const Edge& e) const {
+    TypeSet types;
     for (const auto k : candidates_[e.consumer]) {
       types.insert(socketType(e.consumer, k, e.consumerSocket));
     }

@@ -18,21 +18,6 @@ constexpr std::array<std::pair<std::string_view, BaseType>, 8> kSpellings{{
 }};
 }  // namespace
 
-int Type::width() const {
-  switch (base) {
-    case BaseType::Float:
-      return 1;
-    case BaseType::Float2:
-      return 2;
-    case BaseType::Float3:
-      return 3;
-    case BaseType::Float4:
-      return 4;
-    default:
-      return 0;
-  }
-}
-
 std::string Type::name() const {
   for (const auto& [spelling, b] : kSpellings) {
     if (b == base)

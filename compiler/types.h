@@ -20,8 +20,22 @@ struct Type {
   bool operator==(const Type&) const = default;
   auto operator<=>(const Type&) const = default;
 
-  // Number of float components for Float..Float4, else 0.
-  int width() const;
+  // Number of float components for Float..Float4, else 0. Inline: overload selection asks
+  // it for every candidate pair.
+  int width() const {
+    switch (base) {
+      case BaseType::Float:
+        return 1;
+      case BaseType::Float2:
+        return 2;
+      case BaseType::Float3:
+        return 3;
+      case BaseType::Float4:
+        return 4;
+      default:
+        return 0;
+    }
+  }
   bool isFloat() const { return width() > 0; }
   bool isContext() const { return base == BaseType::Inputs || base == BaseType::Outputs; }
   // The spelling in shader code: "float3", "float3_D", "int", "TextureRef", "MaterialInputs".
