@@ -145,6 +145,7 @@ class Resolver {
     const Node& node = graph_.nodes[index];
     ResolvedNode& resolved = result_.nodes[index];
     const NodeType& type = *resolved.type;
+    const std::size_t errorsBefore = diagnostics_.errorCount();
     auto alreadyBound = [&](int socket, SourceLocation at) {
       if (!resolved.inputs[socket])
         return false;
@@ -186,6 +187,9 @@ class Resolver {
       bindConstant(resolved, socket, binding.value, InputSource::Kind::Constant);
     }
     bindPositional(node, resolved);
+    // A misspelt socket or a rejected value usually *is* the missing input: say it once.
+    if (diagnostics_.errorCount() > errorsBefore)
+      return;
     for (std::size_t socket = 0; socket < type.sockets.size(); ++socket) {
       if (type.sockets[socket].direction != Direction::In || resolved.inputs[socket])
         continue;

@@ -246,7 +246,8 @@ class Inference {
                                      socketName(e.consumer, e.consumerSocket) + "'");
     d.notes.push_back("link " + std::to_string(input.link) + " from '" + nodeName(e.producer) +
                       "' (" + where(e.producer) + ") can be: " + joinTypes(offered));
-    d.notes.push_back("'" + nodeName(e.consumer) + "' could take: " + joinTypes(wanted));
+    d.notes.push_back(std::string("'").append(nodeName(e.consumer)) +
+                      "' could take: " + joinTypes(wanted));
     if (allWantDerivatives && noneOfferDerivatives) {
       d.notes.push_back("derivatives (_D types) cannot be made from a value without them");
     }
@@ -254,8 +255,13 @@ class Inference {
 
   // consumer ← producer ← … ← the source whose derivatives the producer differentiates.
   std::string derivativePath(const Edge& e) const {
-    std::string path = "'" + nodeName(e.consumer) + "' (" + where(e.consumer) + ") ← '" +
-                       nodeName(e.producer) + "' (" + where(e.producer) + ")";
+    // Appending (rather than "'" + …) also sidesteps a GCC 12 -Wrestrict false positive.
+    auto describe = [&](std::size_t node) {
+      std::string text;
+      text.append("'").append(nodeName(node)).append("' (").append(where(node)).append(")");
+      return text;
+    };
+    std::string path = describe(e.consumer) + " ← " + describe(e.producer);
     std::size_t node = e.producer;
     for (std::size_t steps = 0; steps < 64; ++steps) {
       const auto& inputs = graph_.nodes[node].inputs;
@@ -269,7 +275,7 @@ class Inference {
       if (!next)
         break;
       node = next->producer;
-      path += " ← '" + nodeName(node) + "' (" + where(node) + ")";
+      path += " ← " + describe(node);
     }
     return path;
   }

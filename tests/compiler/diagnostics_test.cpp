@@ -30,8 +30,9 @@ TEST_P(BadGraphDiagnostic, PointsAtTheProblem) {
   EXPECT_EQ(d.location.line, c.line) << run.messages();
   EXPECT_EQ(d.location.column, c.column) << run.messages();
   EXPECT_NE(d.message.find(c.message), std::string::npos) << run.messages();
-  if (*c.note)
+  if (*c.note) {
     EXPECT_NE(run.messages().find(c.note), std::string::npos) << run.messages();
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -103,6 +104,10 @@ TEST(Diagnostics, ABrokenProducerDoesNotCascadeIntoItsConsumers) {
   EXPECT_EQ(unknownNode.diagnostics.errorCount(), 1u) << unknownNode.messages();
   const auto unknownSocket = compileText("NormalInput Normal>1;\nColorOutput In<1;\n");
   EXPECT_EQ(unknownSocket.diagnostics.errorCount(), 1u) << unknownSocket.messages();
+  const auto misspeltInput = compileText("NormalInput Out>1;\nColorOutput Inn<1;\n");
+  EXPECT_EQ(misspeltInput.diagnostics.errorCount(), 1u) << misspeltInput.messages();
+  const auto rejectedValue = compileText("Pick Mode=0.5 A=1 B=2 Out>1;\nColorOutput In<1;\n");
+  EXPECT_EQ(rejectedValue.diagnostics.errorCount(), 1u) << rejectedValue.messages();
 }
 
 TEST(Diagnostics, NodesThatReachNoOutputAreDroppedWithAWarning) {
