@@ -10,7 +10,8 @@ Diagnostic& Diagnostics::add(Severity severity, const SourceFile& file, SourceLo
   d.location = at;
   d.message = std::move(message);
   d.sourceLine = std::string(file.lineText(at.line));
-  if (severity == Severity::Error) ++errorCount_;
+  if (severity == Severity::Error)
+    ++errorCount_;
   return d;
 }
 
@@ -18,8 +19,7 @@ Diagnostic& Diagnostics::error(const SourceFile& file, SourceLocation at, std::s
   return add(Severity::Error, file, at, std::move(message));
 }
 
-Diagnostic& Diagnostics::warning(const SourceFile& file, SourceLocation at,
-                                 std::string message) {
+Diagnostic& Diagnostics::warning(const SourceFile& file, SourceLocation at, std::string message) {
   return add(Severity::Warning, file, at, std::move(message));
 }
 
@@ -42,9 +42,15 @@ std::string formatDiagnostic(const Diagnostic& d) {
     out += ':' + std::to_string(d.location.line) + ':' + std::to_string(d.location.column);
   }
   switch (d.severity) {
-    case Severity::Error: out += ": error: "; break;
-    case Severity::Warning: out += ": warning: "; break;
-    case Severity::Note: out += ": note: "; break;
+    case Severity::Error:
+      out += ": error: ";
+      break;
+    case Severity::Warning:
+      out += ": warning: ";
+      break;
+    case Severity::Note:
+      out += ": note: ";
+      break;
   }
   out += d.message;
   out += '\n';
@@ -57,13 +63,15 @@ std::string formatDiagnostic(const Diagnostic& d) {
     }
     out += caret + "^\n";
   }
-  for (const auto& note : d.notes) out += "    " + note + '\n';
+  for (const auto& note : d.notes)
+    out += "    " + note + '\n';
   return out;
 }
 
 std::string formatDiagnostics(const Diagnostics& diagnostics) {
   std::string out;
-  for (const auto& d : diagnostics.all()) out += formatDiagnostic(d);
+  for (const auto& d : diagnostics.all())
+    out += formatDiagnostic(d);
   return out;
 }
 

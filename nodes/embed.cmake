@@ -17,6 +17,7 @@ foreach(source ${SOURCES})
   endif()
   string(APPEND body "    {\"${rel}\", ${chunks}},\n")
 endforeach()
-string(APPEND body "};\n}  // namespace\n\nstd::span<const EmbeddedFile> embeddedNodeLibrary() { return kFiles; }\n\n}  // namespace memograph::nodes\n")
+# A trailing sentinel keeps the array non-empty when there are no sources.
+string(APPEND body "    {\"\", \"\"},\n};\n}  // namespace\n\nstd::span<const EmbeddedFile> embeddedNodeLibrary() {\n  return std::span(kFiles).first(std::size(kFiles) - 1);\n}\n\n}  // namespace memograph::nodes\n")
 file(WRITE ${OUTPUT}.tmp "${body}")
 file(COPY_FILE ${OUTPUT}.tmp ${OUTPUT} ONLY_IF_DIFFERENT)

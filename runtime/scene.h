@@ -40,9 +40,9 @@ enum class LightType : std::uint32_t { Point = 0, Directional = 1 };
 
 struct Light {
   LightType type = LightType::Point;
-  glm::vec3 position{0.0f};               // point lights
+  glm::vec3 position{0.0f};                // point lights
   glm::vec3 direction{0.0f, -1.0f, 0.0f};  // directional lights: direction the light travels
-  glm::vec3 intensity{1.0f};              // point: W/sr (radiant intensity); directional: irradiance
+  glm::vec3 intensity{1.0f};  // point: W/sr (radiant intensity); directional: irradiance
 };
 
 struct Camera {

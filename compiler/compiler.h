@@ -1,0 +1,64 @@
+// The compiler's front door: one .mgraph source in, GLSL/HLSL includes and metadata out.
+// Runs the passes of thesis §5.1 in order: parse → resolve → prune/order → infer → emit.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "compiler/diagnostics.h"
+#include "compiler/node_library.h"
+#include "compiler/source_file.h"
+
+namespace memograph::compiler {
+
+struct CompileOptions {
+  bool emitGlsl = true;
+  bool emitHlsl = true;
+};
+
+// What the runtime needs to know about a material without reading its code.
+struct MaterialMetadata {
+  std::string name;
+  std::vector<std::string> inputsUsed;      // members of MaterialInputs read: "uv", "normal", …
+  std::vector<std::string> outputsWritten;  // members of MaterialOutputs written
+  std::vector<std::string> textures;        // texture paths, in slot order
+  // Outputs depend only on uv and constants, so they may be memoized (thesis §4.2).
+  bool cacheable = false;
+  bool needsDerivatives = false;  // some edge carries derivatives
+  std::size_t nodeCount = 0;      // nodes after pruning
+};
+
+struct CompiledMaterial {
+  MaterialMetadata metadata;
+  std::string glsl;  // empty unless CompileOptions::emitGlsl
+  std::string hlsl;  // empty unless CompileOptions::emitHlsl
+  std::string metadataJson;
+};
+
+// One link of a checked graph: what `memograph check` prints.
+struct LinkReport {
+  std::string name;         // "link3", or "unused…" for an output nothing reads
+  std::string producer;     // "Mul.Out"
+  SourceLocation location;  // of the producing node
+  std::string type;         // "float3_D"
+  bool derivatives = false;
+  std::vector<std::string> consumers;  // "Add.B (mg_to_float3)" when converted
+};
+
+struct CheckReport {
+  MaterialMetadata metadata;
+  std::vector<std::string> nodes;  // chosen overload per node, in emission order
+  std::vector<LinkReport> links;   // in emission order
+};
+
+// Runs every pass but emission and reports the inferred types.
+std::optional<CheckReport> checkMaterial(const SourceFile& graph, const NodeLibrary& library,
+                                         Diagnostics& diagnostics);
+
+// Returns nothing when `diagnostics` gained an error. Warnings may be added either way.
+std::optional<CompiledMaterial> compileMaterial(const SourceFile& graph, const NodeLibrary& library,
+                                                const CompileOptions& options,
+                                                Diagnostics& diagnostics);
+
+}  // namespace memograph::compiler

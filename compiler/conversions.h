@@ -1,0 +1,39 @@
+// Implicit conversions between edge types (thesis §5.1, "Convert" in Listing 5.3), each
+// emitted as a call to a named function of the prelude, and what they cost for overload
+// selection.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "compiler/types.h"
+
+namespace memograph::compiler {
+
+// Overload-selection cost, compared lexicographically: fewest conversions first; among
+// those, fewest that lose information (truncating a vector), so a scalar is splatted rather
+// than a vector cut down (Listing 5.1 → 5.3 picks float3 Mul/Add this way); then the least
+// derivative work, so derivatives flow only where a consumer needs them; then the fewest
+// dropped derivatives.
+struct Cost {
+  int conversions = 0;
+  int truncations = 0;
+  int derivativeWork = 0;
+  int droppedDerivatives = 0;
+
+  Cost operator+(const Cost& o) const {
+    return {conversions + o.conversions, truncations + o.truncations,
+            derivativeWork + o.derivativeWork, droppedDerivatives + o.droppedDerivatives};
+  }
+  auto operator<=>(const Cost&) const = default;
+};
+
+// The cost of passing a value of type `from` where `to` is expected, or nothing when no
+// implicit conversion exists (plain → `_D` never does: derivatives cannot be invented).
+std::optional<Cost> conversionCost(Type from, Type to);
+
+// Shader code converting `expression` from `from` to `to` (must be convertible):
+// "mg_to_float3(link0)", "mg_to_float(mg_drop_D(link4))", or `expression` itself.
+std::string convertExpression(const std::string& expression, Type from, Type to);
+
+}  // namespace memograph::compiler

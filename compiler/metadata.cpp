@@ -1,0 +1,99 @@
+#include "compiler/metadata.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace memograph::compiler {
+
+namespace {
+
+// Orders names as MaterialInputs/MaterialOutputs declare them, so lists read naturally.
+void sortByDeclaration(std::vector<std::string>& names, const std::vector<std::string>& order) {
+  std::sort(names.begin(), names.end(), [&](const std::string& a, const std::string& b) {
+    return std::find(order.begin(), order.end(), a) < std::find(order.begin(), order.end(), b);
+  });
+}
+
+void addUnique(std::vector<std::string>& list, const std::string& item) {
+  if (std::find(list.begin(), list.end(), item) == list.end())
+    list.push_back(item);
+}
+
+std::string jsonString(std::string_view text) {
+  std::string out = "\"";
+  for (const char c : text) {
+    switch (c) {
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char escape[8];
+          std::snprintf(escape, sizeof escape, "\\u%04x", c);
+          out += escape;
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+std::string jsonList(const std::vector<std::string>& items) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < items.size(); ++i)
+    out += (i ? ", " : "") + jsonString(items[i]);
+  return out + "]";
+}
+
+}  // namespace
+
+MaterialMetadata collectMetadata(const ResolvedGraph& graph, const std::vector<std::size_t>& order,
+                                 const OverloadChoice& chosen) {
+  MaterialMetadata meta;
+  meta.name = graph.name;
+  meta.textures = graph.textures;
+  meta.nodeCount = order.size();
+  for (const std::size_t node : order) {
+    const auto& type = *graph.nodes[node].type;
+    for (const auto& input : type.inputsRead)
+      addUnique(meta.inputsUsed, input);
+    for (const auto& output : type.outputsWritten)
+      addUnique(meta.outputsWritten, output);
+    const auto& overload = type.overloads[*chosen[node]];
+    if (overload.derivativeInputs + overload.derivativeOutputs > 0)
+      meta.needsDerivatives = true;
+  }
+  sortByDeclaration(meta.inputsUsed,
+                    {"uv", "position", "normal", "tangent", "vertexColor", "view", "time"});
+  sortByDeclaration(meta.outputsWritten,
+                    {"baseColor", "metallic", "roughness", "normal", "emission", "opacity"});
+  // Thesis §4.2: a cache keyed by (material, uv, mip) is only correct when nothing but the
+  // texture coordinates varies across the surface.
+  meta.cacheable = std::all_of(meta.inputsUsed.begin(), meta.inputsUsed.end(),
+                               [](const std::string& input) { return input == "uv"; });
+  return meta;
+}
+
+std::string metadataToJson(const MaterialMetadata& meta) {
+  std::string out = "{\n";
+  out += "  \"name\": " + jsonString(meta.name) + ",\n";
+  out += "  \"cacheable\": " + std::string(meta.cacheable ? "true" : "false") + ",\n";
+  out += "  \"needsDerivatives\": " + std::string(meta.needsDerivatives ? "true" : "false") + ",\n";
+  out += "  \"nodeCount\": " + std::to_string(meta.nodeCount) + ",\n";
+  out += "  \"inputs\": " + jsonList(meta.inputsUsed) + ",\n";
+  out += "  \"outputs\": " + jsonList(meta.outputsWritten) + ",\n";
+  out += "  \"textures\": " + jsonList(meta.textures) + "\n";
+  return out + "}\n";
+}
+
+}  // namespace memograph::compiler

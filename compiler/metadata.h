@@ -1,0 +1,18 @@
+// Per-material metadata for the runtime (thesis §4.2: which materials may be memoized).
+#pragma once
+
+#include <string>
+
+#include "compiler/compiler.h"
+#include "compiler/resolved_graph.h"
+#include "compiler/type_inference.h"
+
+namespace memograph::compiler {
+
+MaterialMetadata collectMetadata(const ResolvedGraph& graph, const std::vector<std::size_t>& order,
+                                 const OverloadChoice& chosen);
+
+// A small JSON object; keys in a fixed order so the file is byte-identical across runs.
+std::string metadataToJson(const MaterialMetadata& metadata);
+
+}  // namespace memograph::compiler

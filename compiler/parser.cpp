@@ -1,0 +1,273 @@
+#include "compiler/parser.h"
+
+#include <charconv>
+#include <cmath>
+#include <limits>
+
+#include "compiler/lexer.h"
+
+namespace memograph::compiler {
+
+namespace {
+
+// Past this many errors a file is probably not a graph at all; stop before flooding.
+constexpr std::size_t kMaxErrorsPerFile = 20;
+
+class Parser {
+ public:
+  Parser(const SourceFile& file, Diagnostics& diagnostics)
+      : file_(file), diagnostics_(diagnostics), tokens_(tokenize(file.text)) {}
+
+  Graph run() {
+    Graph graph;
+    graph.name = materialNameFromPath(file_.path);
+    while (peek().kind != TokenKind::End) {
+      if (errors_ >= kMaxErrorsPerFile) {
+        diagnostics_.error(file_, peek().location, "too many errors; giving up on this file");
+        break;
+      }
+      if (!statement(graph))
+        skipPastSemicolon();
+    }
+    return graph;
+  }
+
+ private:
+  const Token& peek(std::size_t ahead = 0) const {
+    return tokens_[std::min(index_ + ahead, tokens_.size() - 1)];
+  }
+  const Token& take() {
+    const Token& token = tokens_[index_];
+    if (index_ + 1 < tokens_.size())
+      ++index_;
+    return token;
+  }
+
+  void error(const Token& at, std::string message) {
+    ++errors_;
+    if (at.kind == TokenKind::Invalid) {
+      diagnostics_.error(file_, at.location, at.error);
+    } else {
+      diagnostics_.error(file_, at.location, std::move(message));
+    }
+  }
+
+  void skipPastSemicolon() {
+    while (peek().kind != TokenKind::End && peek().kind != TokenKind::Semicolon)
+      take();
+    if (peek().kind == TokenKind::Semicolon)
+      take();
+  }
+
+  bool statement(Graph& graph) {
+    const Token& head = peek();
+    if (head.kind != TokenKind::Identifier) {
+      error(head, "expected a node type at the start of a statement, found " +
+                      std::string(tokenKindName(head.kind)));
+      return false;
+    }
+    if (head.text == "material" && peek(1).kind == TokenKind::Identifier) {
+      return materialDeclaration(graph);
+    }
+    Node node;
+    node.type = std::string(take().text);
+    node.location = head.location;
+    while (peek().kind != TokenKind::Semicolon) {
+      if (!item(node))
+        return false;
+    }
+    take();  // ';'
+    graph.nodes.push_back(std::move(node));
+    return true;
+  }
+
+  bool materialDeclaration(Graph& graph) {
+    take();  // 'material'
+    const Token& name = take();
+    graph.name = std::string(name.text);
+    graph.nameLocation = name.location;
+    if (peek().kind != TokenKind::Semicolon) {
+      error(peek(), "expected ';' after the material name, found " +
+                        std::string(tokenKindName(peek().kind)));
+      return false;
+    }
+    take();
+    return true;
+  }
+
+  bool item(Node& node) {
+    const Token& token = peek();
+    switch (token.kind) {
+      case TokenKind::Identifier:
+        return socketBinding(node);
+      case TokenKind::Number:
+      case TokenKind::String:
+      case TokenKind::LeftParen: {
+        Literal value;
+        if (!literal(value))
+          return false;
+        node.positional.push_back(std::move(value));
+        return true;
+      }
+      case TokenKind::End:
+        error(token, "missing ';' at the end of the '" + node.type + "' node");
+        return false;
+      default:
+        error(token, "expected a socket (Name<id, Name>id, Name=value) or a value, found " +
+                         std::string(tokenKindName(token.kind)));
+        return false;
+    }
+  }
+
+  bool socketBinding(Node& node) {
+    const Token& socket = take();
+    const Token& op = peek();
+    if (op.kind == TokenKind::Less || op.kind == TokenKind::Greater) {
+      take();
+      std::int64_t link = 0;
+      if (!linkId(link))
+        return false;
+      LinkBinding binding{std::string(socket.text), link, socket.location};
+      (op.kind == TokenKind::Less ? node.inputs : node.outputs).push_back(binding);
+      return true;
+    }
+    if (op.kind == TokenKind::Equals) {
+      take();
+      ConstantBinding binding{std::string(socket.text), {}, socket.location};
+      if (!literal(binding.value))
+        return false;
+      node.constants.push_back(std::move(binding));
+      return true;
+    }
+    if (op.kind == TokenKind::Semicolon || op.kind == TokenKind::Identifier) {
+      error(socket, "socket '" + std::string(socket.text) + "' is not bound: write " +
+                        std::string(socket.text) + "<id (input), " + std::string(socket.text) +
+                        ">id (output) or " + std::string(socket.text) + "=value");
+    } else {
+      error(op, "expected '<', '>' or '=' after socket '" + std::string(socket.text) + "', found " +
+                    std::string(tokenKindName(op.kind)));
+    }
+    return false;
+  }
+
+  bool linkId(std::int64_t& link) {
+    const Token& token = peek();
+    if (token.kind != TokenKind::Number) {
+      error(token, "expected a link id (a whole number) after '<' or '>', found " +
+                       std::string(tokenKindName(token.kind)));
+      return false;
+    }
+    take();
+    const char* begin = token.text.data();
+    const char* end = begin + token.text.size();
+    const auto [rest, status] = std::from_chars(begin, end, link);
+    if (status != std::errc() || rest != end || link < 0) {
+      error(token, "link id '" + std::string(token.text) +
+                       "' is not a whole number between 0 and 9223372036854775807");
+      return false;
+    }
+    return true;
+  }
+
+  bool number(const Token& token, double& value, bool& isInteger) {
+    const std::string text(token.text);
+    const char* begin = text.c_str();
+    const char* end = begin + text.size();
+    if (*begin == '+')
+      ++begin;
+    const auto [rest, status] = std::from_chars(begin, end, value);
+    if (status != std::errc() || rest != end || !std::isfinite(value)) {
+      error(token, "'" + text + "' is not a valid finite number");
+      return false;
+    }
+    isInteger = text.find_first_of(".eE") == std::string::npos;
+    return true;
+  }
+
+  bool literal(Literal& out) {
+    const Token& token = peek();
+    out.location = token.location;
+    if (token.kind == TokenKind::String) {
+      take();
+      out.kind = Literal::Kind::String;
+      out.text = std::string(token.text);
+      return true;
+    }
+    if (token.kind == TokenKind::Number) {
+      take();
+      out.kind = Literal::Kind::Number;
+      double value = 0;
+      if (!number(token, value, out.isInteger))
+        return false;
+      out.components = {value};
+      return true;
+    }
+    if (token.kind != TokenKind::LeftParen) {
+      error(token, "expected a value (number, (x, y, …) tuple or \"string\"), found " +
+                       std::string(tokenKindName(token.kind)));
+      return false;
+    }
+    take();
+    out.kind = Literal::Kind::Tuple;
+    while (true) {
+      const Token& component = peek();
+      if (component.kind != TokenKind::Number) {
+        error(component, "expected a number in the tuple, found " +
+                             std::string(tokenKindName(component.kind)));
+        return false;
+      }
+      take();
+      double value = 0;
+      bool isInteger = false;
+      if (!number(component, value, isInteger))
+        return false;
+      out.components.push_back(value);
+      if (peek().kind == TokenKind::Comma) {
+        take();
+        continue;
+      }
+      if (peek().kind == TokenKind::RightParen) {
+        take();
+        break;
+      }
+      error(peek(),
+            "expected ',' or ')' in the tuple, found " + std::string(tokenKindName(peek().kind)));
+      return false;
+    }
+    if (out.components.size() < 2 || out.components.size() > 4) {
+      error(token,
+            "a tuple has 2 to 4 components; this one has " + std::to_string(out.components.size()));
+      return false;
+    }
+    return true;
+  }
+
+  const SourceFile& file_;
+  Diagnostics& diagnostics_;
+  std::vector<Token> tokens_;
+  std::size_t index_ = 0;
+  std::size_t errors_ = 0;
+};
+
+}  // namespace
+
+Graph parseGraph(const SourceFile& file, Diagnostics& diagnostics) {
+  return Parser(file, diagnostics).run();
+}
+
+std::string materialNameFromPath(std::string_view path) {
+  const auto slash = path.find_last_of("/\\");
+  std::string_view stem = slash == std::string_view::npos ? path : path.substr(slash + 1);
+  const auto dot = stem.find('.');
+  if (dot != std::string_view::npos)
+    stem = stem.substr(0, dot);
+  std::string name;
+  for (const char c : stem) {
+    name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+  }
+  if (name.empty() || std::isdigit(static_cast<unsigned char>(name[0])))
+    name = "M" + name;
+  return name;
+}
+
+}  // namespace memograph::compiler

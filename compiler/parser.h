@@ -1,0 +1,17 @@
+// Parses .mgraph text (thesis Listing 5.1 plus the extensions in docs/mgraph-format.md)
+// into an untyped Graph. Reports every syntax error it can recover from.
+#pragma once
+
+#include "compiler/diagnostics.h"
+#include "compiler/graph.h"
+#include "compiler/source_file.h"
+
+namespace memograph::compiler {
+
+// The material name defaults to the file stem, made into an identifier.
+Graph parseGraph(const SourceFile& file, Diagnostics& diagnostics);
+
+// "graphs/rusty-metal.mgraph" → "rusty_metal"; never empty, never starts with a digit.
+std::string materialNameFromPath(std::string_view path);
+
+}  // namespace memograph::compiler

@@ -1,0 +1,368 @@
+#include "compiler/type_inference.h"
+
+#include <algorithm>
+#include <set>
+
+#include "compiler/conversions.h"
+
+namespace memograph::compiler {
+
+std::optional<Cost> constantCost(const Literal& value, Type to) {
+  switch (value.kind) {
+    case Literal::Kind::String:
+      return to.base == BaseType::TextureRef ? std::optional(Cost{}) : std::nullopt;
+    case Literal::Kind::Number:
+      if (to.base == BaseType::Int)
+        return value.isInteger ? std::optional(Cost{}) : std::nullopt;
+      return to.isFloat() ? std::optional(Cost{}) : std::nullopt;  // a scalar splats freely
+    case Literal::Kind::Tuple:
+      if (!to.isFloat())
+        return std::nullopt;
+      {
+        const int width = static_cast<int>(value.components.size());
+        return Cost{width == to.width() ? 0 : 1, width > to.width() ? 1 : 0, 0, 0};
+      }
+  }
+  return std::nullopt;
+}
+
+std::string overloadSignature(const NodeType& type, const Overload& overload) {
+  std::string inputs, outputs;
+  for (std::size_t i = 0; i < type.sockets.size(); ++i) {
+    auto& list = type.sockets[i].direction == Direction::In ? inputs : outputs;
+    list +=
+        (list.empty() ? "" : ", ") + overload.socketTypes[i].name() + " " + type.sockets[i].name;
+  }
+  return type.name + "(" + inputs + ")" + (outputs.empty() ? "" : " -> " + outputs);
+}
+
+namespace {
+
+struct Edge {
+  std::size_t producer, producerSocket, consumer, consumerSocket;
+};
+
+std::string joinTypes(const std::set<Type>& types) {
+  std::string text;
+  for (const auto& t : types)
+    text += (text.empty() ? "" : ", ") + t.name();
+  return text;
+}
+
+class Inference {
+ public:
+  Inference(const ResolvedGraph& graph, const std::vector<std::size_t>& order,
+            const SourceFile& file, Diagnostics& diagnostics)
+      : graph_(graph), order_(order), file_(file), diagnostics_(diagnostics) {}
+
+  std::optional<OverloadChoice> run() {
+    candidates_.resize(graph_.nodes.size());
+    for (const std::size_t node : order_) {
+      if (!initialCandidates(node))
+        return std::nullopt;
+    }
+    for (const std::size_t consumer : order_) {
+      const auto& inputs = graph_.nodes[consumer].inputs;
+      for (std::size_t s = 0; s < inputs.size(); ++s) {
+        if (inputs[s] && inputs[s]->kind == InputSource::Kind::Link) {
+          edges_.push_back({inputs[s]->producer, inputs[s]->producerSocket, consumer, s});
+        }
+      }
+    }
+    // Phases 1 and 2 alternate until nothing changes: phase 1 walks the edges from the
+    // sinks towards the sources, phase 2 the other way.
+    for (bool changed = true; changed;) {
+      changed = false;
+      for (auto e = edges_.rbegin(); e != edges_.rend(); ++e) {
+        if (!revise(*e, changed))
+          return std::nullopt;
+      }
+      for (const auto& e : edges_) {
+        if (!revise(e, changed))
+          return std::nullopt;
+      }
+    }
+    return choose();
+  }
+
+ private:
+  const Overload& overload(std::size_t node, std::size_t k) const {
+    return graph_.nodes[node].type->overloads[k];
+  }
+  Type socketType(std::size_t node, std::size_t k, std::size_t socket) const {
+    return overload(node, k).socketTypes[socket];
+  }
+
+  bool initialCandidates(std::size_t node) {
+    const auto& resolved = graph_.nodes[node];
+    for (std::size_t k = 0; k < resolved.type->overloads.size(); ++k) {
+      bool fits = true;
+      for (std::size_t s = 0; s < resolved.inputs.size() && fits; ++s) {
+        const auto& input = resolved.inputs[s];
+        if (input && input->kind != InputSource::Kind::Link) {
+          fits = constantCost(input->constant, socketType(node, k, s)).has_value();
+        }
+      }
+      if (fits)
+        candidates_[node].push_back(k);
+    }
+    if (!candidates_[node].empty())
+      return true;
+    auto& d = diagnostics_.error(
+        file_, resolved.source->location,
+        "no overload of '" + resolved.type->name + "' accepts the constants given to it");
+    for (const auto& o : resolved.type->overloads) {
+      d.notes.push_back("candidate: " + overloadSignature(*resolved.type, o));
+    }
+    return false;
+  }
+
+  // Arc consistency on one edge: keep only overloads with a partner across it.
+  bool revise(const Edge& e, bool& changed) {
+    auto& producers = candidates_[e.producer];
+    auto& consumers = candidates_[e.consumer];
+    const auto offeredBefore = offeredTypes(e);
+    const auto wantedBefore = wantedTypes(e);
+    auto keepConsumer = [&](std::size_t k) {
+      const Type to = socketType(e.consumer, k, e.consumerSocket);
+      return std::any_of(offeredBefore.begin(), offeredBefore.end(),
+                         [&](Type from) { return conversionCost(from, to).has_value(); });
+    };
+    auto keepProducer = [&](std::size_t k) {
+      const Type from = socketType(e.producer, k, e.producerSocket);
+      return std::any_of(wantedBefore.begin(), wantedBefore.end(),
+                         [&](Type to) { return conversionCost(from, to).has_value(); });
+    };
+    const auto before = producers.size() + consumers.size();
+    std::erase_if(consumers, [&](std::size_t k) { return !keepConsumer(k); });
+    std::erase_if(producers, [&](std::size_t k) { return !keepProducer(k); });
+    if (producers.size() + consumers.size() != before)
+      changed = true;
+    if (!producers.empty() && !consumers.empty())
+      return true;
+    reportMismatch(e, offeredBefore, wantedBefore);
+    return false;
+  }
+
+  std::set<Type> offeredTypes(const Edge& e) const {
+    std::set<Type> types;
+    for (const auto k : candidates_[e.producer]) {
+      types.insert(socketType(e.producer, k, e.producerSocket));
+    }
+    return types;
+  }
+  std::set<Type> wantedTypes(const Edge& e) const {
+    std::set<Type> types;
+    for (const auto k : candidates_[e.consumer]) {
+      types.insert(socketType(e.consumer, k, e.consumerSocket));
+    }
+    return types;
+  }
+
+  std::string socketName(std::size_t node, std::size_t socket) const {
+    return graph_.nodes[node].type->sockets[socket].name;
+  }
+  std::string nodeName(std::size_t node) const { return graph_.nodes[node].type->name; }
+  std::string where(std::size_t node) const {
+    const auto at = graph_.nodes[node].source->location;
+    return file_.path + ":" + std::to_string(at.line) + ":" + std::to_string(at.column);
+  }
+
+  // A node that differentiates an input (takes it only as `_D`) but cannot give its own
+  // output derivatives: feeding that output to a `_D` consumer needs a second derivative.
+  bool differentiatesWithoutDerivativeOutput(std::size_t node, std::size_t socket) const {
+    const NodeType& type = *graph_.nodes[node].type;
+    bool takesD = false;
+    for (const auto& o : type.overloads) {
+      if (o.socketTypes[socket].derivatives)
+        return false;
+      takesD = takesD || o.derivativeInputs > 0;
+    }
+    return takesD;
+  }
+
+  void reportMismatch(const Edge& e, const std::set<Type>& offered, const std::set<Type>& wanted) {
+    const auto& input = *graph_.nodes[e.consumer].inputs[e.consumerSocket];
+    const bool allWantDerivatives =
+        std::all_of(wanted.begin(), wanted.end(), [](Type t) { return t.derivatives; });
+    const bool noneOfferDerivatives =
+        std::none_of(offered.begin(), offered.end(), [](Type t) { return t.derivatives; });
+    if (allWantDerivatives && noneOfferDerivatives &&
+        differentiatesWithoutDerivativeOutput(e.producer, e.producerSocket)) {
+      auto& d = diagnostics_.error(
+          file_, input.location,
+          "'" + nodeName(e.consumer) + "' needs derivatives of its input '" +
+              socketName(e.consumer, e.consumerSocket) + "', but '" + nodeName(e.producer) +
+              "' computes its output from derivatives already: that would need a second "
+              "derivative, which memograph cannot generate (thesis §5.1)");
+      d.notes.push_back("path: " + derivativePath(e));
+      d.notes.push_back("feed '" + socketName(e.consumer, e.consumerSocket) +
+                        "' from a value that does not go through '" + nodeName(e.producer) + "'");
+      return;
+    }
+    auto& d = diagnostics_.error(file_, input.location,
+                                 "no overload of '" + nodeName(e.consumer) +
+                                     "' fits what arrives at input '" +
+                                     socketName(e.consumer, e.consumerSocket) + "'");
+    d.notes.push_back("link " + std::to_string(input.link) + " from '" + nodeName(e.producer) +
+                      "' (" + where(e.producer) + ") can be: " + joinTypes(offered));
+    d.notes.push_back("'" + nodeName(e.consumer) + "' could take: " + joinTypes(wanted));
+    if (allWantDerivatives && noneOfferDerivatives) {
+      d.notes.push_back("derivatives (_D types) cannot be made from a value without them");
+    }
+  }
+
+  // consumer ← producer ← … ← the source whose derivatives the producer differentiates.
+  std::string derivativePath(const Edge& e) const {
+    std::string path = "'" + nodeName(e.consumer) + "' (" + where(e.consumer) + ") ← '" +
+                       nodeName(e.producer) + "' (" + where(e.producer) + ")";
+    std::size_t node = e.producer;
+    for (std::size_t steps = 0; steps < 64; ++steps) {
+      const auto& inputs = graph_.nodes[node].inputs;
+      const InputSource* next = nullptr;
+      for (const auto& input : inputs) {
+        if (input && input->kind == InputSource::Kind::Link) {
+          next = &*input;
+          break;
+        }
+      }
+      if (!next)
+        break;
+      node = next->producer;
+      path += " ← '" + nodeName(node) + "' (" + where(node) + ")";
+    }
+    return path;
+  }
+
+  Cost ownCost(std::size_t node, std::size_t k) const {
+    const auto& o = overload(node, k);
+    Cost cost{0, 0, o.derivativeInputs + o.derivativeOutputs, 0};
+    const auto& inputs = graph_.nodes[node].inputs;
+    for (std::size_t s = 0; s < inputs.size(); ++s) {
+      if (inputs[s] && inputs[s]->kind != InputSource::Kind::Link) {
+        cost = cost + *constantCost(inputs[s]->constant, socketType(node, k, s));
+      }
+    }
+    return cost;
+  }
+
+  // Phase 3. A dynamic programme over the remaining overloads: best[n][k] is the cheapest
+  // cost of node n's inputs' subgraphs when n takes overload k (exact on trees; shared
+  // subgraphs are counted once per consumer). Then, from the sinks back, each node takes the
+  // overload cheapest for its chosen consumers. Equal costs are an ambiguity.
+  std::optional<OverloadChoice> choose() {
+    std::vector<std::vector<Cost>> best(graph_.nodes.size());
+    for (const std::size_t node : order_) {
+      best[node].reserve(candidates_[node].size());
+      for (const std::size_t k : candidates_[node]) {
+        Cost total = ownCost(node, k);
+        const auto& inputs = graph_.nodes[node].inputs;
+        for (std::size_t s = 0; s < inputs.size(); ++s) {
+          if (!inputs[s] || inputs[s]->kind != InputSource::Kind::Link)
+            continue;
+          const std::size_t p = inputs[s]->producer;
+          std::optional<Cost> cheapest;
+          for (std::size_t i = 0; i < candidates_[p].size(); ++i) {
+            const auto conversion =
+                conversionCost(socketType(p, candidates_[p][i], inputs[s]->producerSocket),
+                               socketType(node, k, s));
+            if (!conversion)
+              continue;
+            const Cost c = best[p][i] + *conversion;
+            if (!cheapest || c < *cheapest)
+              cheapest = c;
+          }
+          total = total + cheapest.value_or(Cost{1 << 20, 0, 0, 0});
+        }
+        best[node].push_back(total);
+      }
+    }
+    OverloadChoice chosen(graph_.nodes.size());
+    for (auto it = order_.rbegin(); it != order_.rend(); ++it) {
+      const std::size_t node = *it;
+      std::optional<Cost> bestCost;
+      std::vector<std::size_t> tied;
+      for (std::size_t i = 0; i < candidates_[node].size(); ++i) {
+        const std::size_t k = candidates_[node][i];
+        std::optional<Cost> total = best[node][i];
+        for (std::size_t socket = 0; socket < graph_.nodes[node].consumers.size() && total;
+             ++socket) {
+          for (const auto& consumer : graph_.nodes[node].consumers[socket]) {
+            if (!chosen[consumer.node])
+              continue;  // pruned consumer
+            const auto conversion =
+                conversionCost(socketType(node, k, socket),
+                               socketType(consumer.node, *chosen[consumer.node], consumer.socket));
+            if (!conversion) {
+              total.reset();
+              break;
+            }
+            *total = *total + *conversion;
+          }
+        }
+        if (!total)
+          continue;
+        if (!bestCost || *total < *bestCost) {
+          bestCost = total;
+          tied = {k};
+        } else if (*total == *bestCost) {
+          tied.push_back(k);
+        }
+      }
+      if (tied.empty()) {
+        auto& d = diagnostics_.error(
+            file_, graph_.nodes[node].source->location,
+            "no overload of '" + nodeName(node) + "' fits all the nodes its outputs feed");
+        for (const auto k : candidates_[node]) {
+          d.notes.push_back("candidate: " +
+                            overloadSignature(*graph_.nodes[node].type, overload(node, k)));
+        }
+        return std::nullopt;
+      }
+      if (tied.size() > 1) {
+        reportAmbiguity(node, tied);
+        return std::nullopt;
+      }
+      chosen[node] = tied.front();
+    }
+    return chosen;
+  }
+
+  void reportAmbiguity(std::size_t node, const std::vector<std::size_t>& tied) {
+    const auto& resolved = graph_.nodes[node];
+    auto& d = diagnostics_.error(file_, resolved.source->location,
+                                 "ambiguous: " + std::to_string(tied.size()) + " overloads of '" +
+                                     nodeName(node) + "' fit this graph equally well");
+    for (const auto k : tied) {
+      d.notes.push_back("candidate: " + overloadSignature(*resolved.type, overload(node, k)));
+    }
+    for (std::size_t s = 0; s < resolved.inputs.size(); ++s) {
+      const auto& input = resolved.inputs[s];
+      if (!input || input->kind != InputSource::Kind::Link)
+        continue;
+      std::set<Type> arriving;
+      for (const auto k : candidates_[input->producer]) {
+        arriving.insert(socketType(input->producer, k, input->producerSocket));
+      }
+      d.notes.push_back("input '" + socketName(node, s) + "' arrives as " + joinTypes(arriving));
+    }
+    d.notes.push_back("make the choice explicit, e.g. convert the input first (Separate/Combine)");
+  }
+
+  const ResolvedGraph& graph_;
+  const std::vector<std::size_t>& order_;
+  const SourceFile& file_;
+  Diagnostics& diagnostics_;
+  std::vector<std::vector<std::size_t>> candidates_;
+  std::vector<Edge> edges_;
+};
+
+}  // namespace
+
+std::optional<OverloadChoice> inferTypes(const ResolvedGraph& graph,
+                                         const std::vector<std::size_t>& order,
+                                         const SourceFile& file, Diagnostics& diagnostics) {
+  return Inference(graph, order, file, diagnostics).run();
+}
+
+}  // namespace memograph::compiler

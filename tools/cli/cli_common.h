@@ -1,0 +1,62 @@
+// Shared pieces of the memograph commands: argument scanning, the node library, files.
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "compiler/diagnostics.h"
+#include "compiler/node_library.h"
+
+namespace memograph::cli {
+
+// Exit codes: 0 success, 1 the input was bad or something failed, 2 the command line was.
+constexpr int kExitOk = 0;
+constexpr int kExitFailure = 1;
+constexpr int kExitUsage = 2;
+
+// A usage error: prints "memograph <command>: message" and a pointer to --help.
+int usageError(std::string_view command, std::string_view message);
+
+// Walks `args`: options with a value (`--target glsl` or `--target=glsl`), flags, and
+// positional arguments. Unknown options are usage errors.
+class ArgumentScanner {
+ public:
+  ArgumentScanner(std::string_view command, std::span<const std::string_view> args)
+      : command_(command), args_(args) {}
+
+  // Registers an option taking a value; `out` receives it.
+  void option(std::string_view name, std::string* out) { options_.push_back({name, out, nullptr}); }
+  void flag(std::string_view name, bool* out) { options_.push_back({name, nullptr, out}); }
+
+  // Returns kExitOk and fills `positional`, or the exit code of a usage error (printed).
+  int scan(std::vector<std::string>& positional);
+
+ private:
+  struct Option {
+    std::string_view name;
+    std::string* value;
+    bool* flag;
+  };
+  std::string_view command_;
+  std::span<const std::string_view> args_;
+  std::vector<Option> options_;
+};
+
+// The node library: the embedded copy, or the *.inc files under `directory` when given.
+std::optional<compiler::NodeLibrary> loadNodeLibrary(const std::string& directory,
+                                                     compiler::Diagnostics& diagnostics);
+
+std::optional<std::string> readFile(const std::string& path, std::string& error);
+
+// Writes every (path, contents) pair or none: each goes to a temporary file first and all
+// are renamed into place only when every write succeeded.
+bool writeFilesAtomically(const std::vector<std::pair<std::string, std::string>>& files,
+                          std::string& error);
+
+void printDiagnostics(const compiler::Diagnostics& diagnostics);
+
+}  // namespace memograph::cli
