@@ -21,8 +21,8 @@ VkDeviceSize alignUp(VkDeviceSize value, VkDeviceSize alignment) {
 void buildBarrier(VkCommandBuffer commands) {
   VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   barrier.srcAccessMask = VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
-  barrier.dstAccessMask =
-      VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR | VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
+  barrier.dstAccessMask = VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR |
+                          VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
   vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
                        VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR, 0, 1, &barrier, 0,
                        nullptr, 0, nullptr);
@@ -31,8 +31,7 @@ void buildBarrier(VkCommandBuffer commands) {
 }  // namespace
 
 AccelerationStructure::AccelerationStructure(const VulkanContext& context,
-                                             VkAccelerationStructureTypeKHR type,
-                                             VkDeviceSize size)
+                                             VkAccelerationStructureTypeKHR type, VkDeviceSize size)
     : buffer_(context, size,
               VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR |
                   VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
@@ -112,9 +111,10 @@ SceneAccelerationStructures::SceneAccelerationStructures(
   // 2. Build them all, then read back the compacted sizes.
   std::vector<VkDeviceSize> compactSizes(meshes.size(), 0);
   if (!meshes.empty()) {
-    GpuBuffer scratch(context, scratchTotal + scratchAlignment,
-                      VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
-                      VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    GpuBuffer scratch(
+        context, scratchTotal + scratchAlignment,
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     stats_.scratchBytes += scratch.size();
     VkDeviceAddress scratchBase = alignUp(scratch.address(), scratchAlignment);
     std::vector<const VkAccelerationStructureBuildRangeInfoKHR*> rangePointers;
@@ -157,7 +157,8 @@ SceneAccelerationStructures::SceneAccelerationStructures(
   if (!meshes.empty()) {
     context.submitAndWait([&](VkCommandBuffer commands) {
       for (std::size_t i = 0; i < meshes.size(); ++i) {
-        VkCopyAccelerationStructureInfoKHR copy{VK_STRUCTURE_TYPE_COPY_ACCELERATION_STRUCTURE_INFO_KHR};
+        VkCopyAccelerationStructureInfoKHR copy{
+            VK_STRUCTURE_TYPE_COPY_ACCELERATION_STRUCTURE_INFO_KHR};
         copy.src = uncompacted[i].handle();
         copy.dst = blases_[i].handle();
         copy.mode = VK_COPY_ACCELERATION_STRUCTURE_MODE_COMPACT_KHR;
@@ -178,7 +179,8 @@ SceneAccelerationStructures::SceneAccelerationStructures(
       throw std::runtime_error("instance " + std::to_string(i) + " names mesh " +
                                std::to_string(placement.mesh) + ", but the scene has " +
                                std::to_string(blases_.size()) + " meshes");
-    if (i >= (1u << 24)) throw std::runtime_error("more than 2^24 instances");
+    if (i >= (1u << 24))
+      throw std::runtime_error("more than 2^24 instances");
     VkAccelerationStructureInstanceKHR record{};
     for (int row = 0; row < 3; ++row)
       for (int column = 0; column < 4; ++column)
@@ -190,11 +192,13 @@ SceneAccelerationStructures::SceneAccelerationStructures(
     record.accelerationStructureReference = blases_[placement.mesh].address();
     records.push_back(record);
   }
-  GpuBuffer instanceBuffer = uploadBuffer<VkAccelerationStructureInstanceKHR>(
-      context, records, kBuildInput);
-  VkAccelerationStructureGeometryKHR geometry{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
+  GpuBuffer instanceBuffer =
+      uploadBuffer<VkAccelerationStructureInstanceKHR>(context, records, kBuildInput);
+  VkAccelerationStructureGeometryKHR geometry{
+      VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
   geometry.geometryType = VK_GEOMETRY_TYPE_INSTANCES_KHR;
-  geometry.geometry.instances = {VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_INSTANCES_DATA_KHR};
+  geometry.geometry.instances = {
+      VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_INSTANCES_DATA_KHR};
   geometry.geometry.instances.data.deviceAddress = instanceBuffer.address();
   VkAccelerationStructureBuildGeometryInfoKHR build{
       VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include <glm/glm.hpp>
 #include <vulkan/vulkan.h>
+#include <glm/glm.hpp>
 
 #include "runtime/gpu_buffer.h"
 #include "runtime/vulkan_context.h"
@@ -18,7 +18,7 @@ namespace memograph::runtime {
 struct AccelerationStructureStats {
   std::uint32_t blasCount = 0;
   std::uint32_t instanceCount = 0;
-  std::uint64_t blasBytes = 0;                   // after compaction
+  std::uint64_t blasBytes = 0;  // after compaction
   std::uint64_t blasBytesBeforeCompaction = 0;
   std::uint64_t tlasBytes = 0;
   std::uint64_t scratchBytes = 0;  // build scratch allocated (freed after the build)

@@ -18,8 +18,8 @@ GpuBuffer::GpuBuffer(const VulkanContext& context, VkDeviceSize size, VkBufferUs
   info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
   VkBuffer buffer = VK_NULL_HANDLE;
   checkVk(vkCreateBuffer(device, &info, nullptr, &buffer), "vkCreateBuffer");
-  buffer_ = VulkanHandle<VkBuffer>(buffer,
-                                   [device](VkBuffer b) { vkDestroyBuffer(device, b, nullptr); });
+  buffer_ =
+      VulkanHandle<VkBuffer>(buffer, [device](VkBuffer b) { vkDestroyBuffer(device, b, nullptr); });
 
   VkMemoryRequirements requirements;
   vkGetBufferMemoryRequirements(device, buffer, &requirements);
@@ -46,13 +46,17 @@ GpuBuffer::GpuBuffer(const VulkanContext& context, VkDeviceSize size, VkBufferUs
 }
 
 void GpuBuffer::write(const void* data, std::size_t bytes, std::size_t offset) {
-  if (!mapped_) throw std::logic_error("GpuBuffer::write on a buffer that is not host-visible");
-  if (bytes) std::memcpy(static_cast<char*>(mapped_) + offset, data, bytes);
+  if (!mapped_)
+    throw std::logic_error("GpuBuffer::write on a buffer that is not host-visible");
+  if (bytes)
+    std::memcpy(static_cast<char*>(mapped_) + offset, data, bytes);
 }
 
 void GpuBuffer::read(void* data, std::size_t bytes, std::size_t offset) const {
-  if (!mapped_) throw std::logic_error("GpuBuffer::read on a buffer that is not host-visible");
-  if (bytes) std::memcpy(data, static_cast<const char*>(mapped_) + offset, bytes);
+  if (!mapped_)
+    throw std::logic_error("GpuBuffer::read on a buffer that is not host-visible");
+  if (bytes)
+    std::memcpy(data, static_cast<const char*>(mapped_) + offset, bytes);
 }
 
 GpuBuffer uploadBuffer(const VulkanContext& context, const void* data, std::size_t bytes,
@@ -60,7 +64,8 @@ GpuBuffer uploadBuffer(const VulkanContext& context, const void* data, std::size
   VkDeviceSize size = std::max<std::size_t>(bytes, 16);
   GpuBuffer target(context, size, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                    VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  if (bytes == 0) return target;
+  if (bytes == 0)
+    return target;
   GpuBuffer staging = hostBuffer(context, size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
   staging.write(data, bytes);
   context.submitAndWait([&](VkCommandBuffer commands) {

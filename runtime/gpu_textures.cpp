@@ -10,10 +10,9 @@ namespace {
 
 constexpr VkFormat kFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
 
-void transition(VkCommandBuffer commands, VkImage image, std::uint32_t levels,
-                VkImageLayout from, VkImageLayout to, VkAccessFlags srcAccess,
-                VkAccessFlags dstAccess, VkPipelineStageFlags srcStage,
-                VkPipelineStageFlags dstStage) {
+void transition(VkCommandBuffer commands, VkImage image, std::uint32_t levels, VkImageLayout from,
+                VkImageLayout to, VkAccessFlags srcAccess, VkAccessFlags dstAccess,
+                VkPipelineStageFlags srcStage, VkPipelineStageFlags dstStage) {
   VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
   barrier.oldLayout = from;
   barrier.newLayout = to;
@@ -45,7 +44,8 @@ GpuTextures::GpuTextures(const VulkanContext& context, const std::vector<Texture
     TextureImage& texture = all[t];
     if (texture.levels.empty() || texture.levels[0].width == 0 || texture.levels[0].height == 0)
       throw std::invalid_argument("texture " + std::to_string(t) + " is empty");
-    if (texture.levels.size() == 1) generateMipChain(texture);
+    if (texture.levels.size() == 1)
+      generateMipChain(texture);
     const auto levels = static_cast<std::uint32_t>(texture.levels.size());
     for (std::uint32_t l = 0; l < levels; ++l) {
       const HdrImage& level = texture.levels[l];
@@ -79,12 +79,14 @@ GpuTextures::GpuTextures(const VulkanContext& context, const std::vector<Texture
         context.findMemoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     VkDeviceMemory memory = VK_NULL_HANDLE;
     checkVk(vkAllocateMemory(device, &allocate, nullptr, &memory), "vkAllocateMemory (texture)");
-    memories_.emplace_back(memory, [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
+    memories_.emplace_back(memory,
+                           [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
     checkVk(vkBindImageMemory(device, image, memory, 0), "vkBindImageMemory");
     bytes_ += requirements.size;
 
     std::size_t stagingBytes = 0;
-    for (const auto& level : texture.levels) stagingBytes += level.rgba.size() * sizeof(float);
+    for (const auto& level : texture.levels)
+      stagingBytes += level.rgba.size() * sizeof(float);
     GpuBuffer staging = hostBuffer(context, stagingBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
     std::vector<VkBufferImageCopy> copies;
     std::size_t offset = 0;
@@ -132,8 +134,8 @@ GpuTextures::GpuTextures(const VulkanContext& context, const std::vector<Texture
   samplerInfo.maxLod = VK_LOD_CLAMP_NONE;
   VkSampler sampler = VK_NULL_HANDLE;
   checkVk(vkCreateSampler(device, &samplerInfo, nullptr, &sampler), "vkCreateSampler");
-  sampler_ = VulkanHandle<VkSampler>(sampler,
-                                     [device](VkSampler s) { vkDestroySampler(device, s, nullptr); });
+  sampler_ = VulkanHandle<VkSampler>(
+      sampler, [device](VkSampler s) { vkDestroySampler(device, s, nullptr); });
 }
 
 }  // namespace memograph::runtime

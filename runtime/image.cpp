@@ -9,7 +9,8 @@
 namespace memograph::runtime {
 
 void generateMipChain(TextureImage& texture) {
-  if (texture.levels.empty()) throw std::invalid_argument("texture without image");
+  if (texture.levels.empty())
+    throw std::invalid_argument("texture without image");
   texture.levels.resize(1);
   while (texture.levels.back().width > 1 || texture.levels.back().height > 1) {
     const HdrImage& src = texture.levels.back();
@@ -26,11 +27,13 @@ void generateMipChain(TextureImage& texture) {
             std::uint32_t sx = std::min(src.width - 1, 2 * x + dx);
             std::uint32_t sy = std::min(src.height - 1, 2 * y + dy);
             const float* in = src.pixel(sx, sy);
-            for (int c = 0; c < 4; ++c) out[c] += in[c];
+            for (int c = 0; c < 4; ++c)
+              out[c] += in[c];
             ++n;
           }
         }
-        for (int c = 0; c < 4; ++c) out[c] /= float(n);
+        for (int c = 0; c < 4; ++c)
+          out[c] /= float(n);
       }
     }
     texture.levels.push_back(std::move(dst));
@@ -39,7 +42,8 @@ void generateMipChain(TextureImage& texture) {
 
 void writePfm(const std::filesystem::path& path, const HdrImage& image) {
   std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error("cannot write " + path.string());
+  if (!out)
+    throw std::runtime_error("cannot write " + path.string());
   out << "PF\n" << image.width << " " << image.height << "\n-1.0\n";
   std::vector<float> row(std::size_t(image.width) * 3);
   for (std::uint32_t y = image.height; y-- > 0;) {
@@ -51,12 +55,14 @@ void writePfm(const std::filesystem::path& path, const HdrImage& image) {
     }
     out.write(reinterpret_cast<const char*>(row.data()), std::streamsize(row.size() * 4));
   }
-  if (!out) throw std::runtime_error("cannot write " + path.string());
+  if (!out)
+    throw std::runtime_error("cannot write " + path.string());
 }
 
 HdrImage readPfm(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error("cannot open " + path.string());
+  if (!in)
+    throw std::runtime_error("cannot open " + path.string());
   std::string magic;
   double scale = 0;
   HdrImage image;
@@ -66,11 +72,13 @@ HdrImage readPfm(const std::filesystem::path& path) {
       scale == 0) {
     throw std::runtime_error(path.string() + ": not a PFM file (expected 'PF' or 'Pf' header)");
   }
-  if (scale > 0) throw std::runtime_error(path.string() + ": big-endian PFM is not supported");
+  if (scale > 0)
+    throw std::runtime_error(path.string() + ": big-endian PFM is not supported");
   int channels = magic == "PF" ? 3 : 1;
   std::vector<float> data(std::size_t(image.width) * image.height * channels);
   in.read(reinterpret_cast<char*>(data.data()), std::streamsize(data.size() * 4));
-  if (!in) throw std::runtime_error(path.string() + ": truncated PFM data");
+  if (!in)
+    throw std::runtime_error(path.string() + ": truncated PFM data");
   image.rgba.resize(std::size_t(image.width) * image.height * 4);
   for (std::uint32_t y = 0; y < image.height; ++y) {
     std::uint32_t fileRow = image.height - 1 - y;

@@ -16,9 +16,7 @@ struct HdrImage {
   std::vector<float> rgba;  // width * height * 4
 
   float* pixel(std::uint32_t x, std::uint32_t y) { return &rgba[(y * width + x) * 4]; }
-  const float* pixel(std::uint32_t x, std::uint32_t y) const {
-    return &rgba[(y * width + x) * 4];
-  }
+  const float* pixel(std::uint32_t x, std::uint32_t y) const { return &rgba[(y * width + x) * 4]; }
 };
 
 // A texture and its mip chain; levels[0] is the full image, each next level half the size

@@ -29,7 +29,8 @@ namespace {
 
 std::string readText(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in) return {};
+  if (!in)
+    return {};
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
@@ -45,7 +46,8 @@ std::vector<compiler::SourceFile> nodeLibrarySources(const std::filesystem::path
   if (!std::filesystem::is_directory(directory))
     throw std::runtime_error("node library folder not found: " + directory.string());
   for (const auto& entry : std::filesystem::recursive_directory_iterator(directory)) {
-    if (entry.path().extension() != ".inc") continue;
+    if (entry.path().extension() != ".inc")
+      continue;
     files.push_back({std::filesystem::relative(entry.path(), directory).generic_string(),
                      readText(entry.path())});
   }
@@ -63,8 +65,8 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
     throw std::runtime_error("the scene has no materials; every instance needs one");
 
   compiler::Diagnostics libraryDiagnostics;
-  auto library =
-      compiler::NodeLibrary::load(nodeLibrarySources(options.nodeLibraryDirectory), libraryDiagnostics);
+  auto library = compiler::NodeLibrary::load(nodeLibrarySources(options.nodeLibraryDirectory),
+                                             libraryDiagnostics);
   if (libraryDiagnostics.hasErrors()) {
     throw std::runtime_error("the node library has errors:\n" +
                              compiler::formatDiagnostics(libraryDiagnostics));
@@ -119,7 +121,8 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
     entry.cacheable = compiled->metadata.cacheable;
     for (const auto& texture : compiled->metadata.textures) {
       std::filesystem::path path(texture);
-      if (path.is_relative() && !baseDirectory.empty()) path = baseDirectory / path;
+      if (path.is_relative() && !baseDirectory.empty())
+        path = baseDirectory / path;
       linked.texturePaths.push_back(path.string());
     }
     includes += "// ---- material " + name + " (" + graph.path + ")\n" + compiled->glsl + "\n";
@@ -132,8 +135,11 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
   out += "#ifndef MG_MATERIALS_GLSL\n#define MG_MATERIALS_GLSL\n";
   // The prelude (MaterialInputs, float3_D, ...) arrives, guarded, with each include.
   out += includes;
-  out += "// Evaluates the graph of scene material `materialId` (thesis §5.2: branch by material).\n";
-  out += "void evaluateMaterial(uint materialId, MaterialInputs inputs, out MaterialOutputs outputs) {\n";
+  out +=
+      "// Evaluates the graph of scene material `materialId` (thesis §5.2: branch by material).\n";
+  out +=
+      "void evaluateMaterial(uint materialId, MaterialInputs inputs, out MaterialOutputs outputs) "
+      "{\n";
   out += "  switch (materialId) {\n";
   for (std::size_t i = 0; i < linked.materials.size(); ++i) {
     const LinkedMaterial& m = linked.materials[i];

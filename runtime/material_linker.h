@@ -13,15 +13,15 @@
 namespace memograph::runtime {
 
 struct LinkedMaterial {
-  std::string name;      // the EvaluateMaterial_<name> it calls
-  int textureBase = 0;   // first slot of its textures in LinkedMaterials::texturePaths
+  std::string name;     // the EvaluateMaterial_<name> it calls
+  int textureBase = 0;  // first slot of its textures in LinkedMaterials::texturePaths
   bool cacheable = false;
 };
 
 struct LinkedMaterials {
-  std::string source;                      // the generated materials.glsl
-  std::vector<LinkedMaterial> materials;   // parallel to Scene::materials
-  std::vector<std::string> texturePaths;   // resolved paths, in descriptor-array order
+  std::string source;                     // the generated materials.glsl
+  std::vector<LinkedMaterial> materials;  // parallel to Scene::materials
+  std::vector<std::string> texturePaths;  // resolved paths, in descriptor-array order
   double compileMilliseconds = 0.0;
 };
 

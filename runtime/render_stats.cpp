@@ -5,9 +5,11 @@
 namespace memograph::runtime {
 
 double RenderStats::medianGpuMilliseconds() const {
-  if (frames.empty()) return 0.0;
+  if (frames.empty())
+    return 0.0;
   std::vector<double> times;
-  for (const auto& f : frames) times.push_back(f.gpuMilliseconds);
+  for (const auto& f : frames)
+    times.push_back(f.gpuMilliseconds);
   std::sort(times.begin(), times.end());
   std::size_t n = times.size();
   return n % 2 ? times[n / 2] : 0.5 * (times[n / 2 - 1] + times[n / 2]);
@@ -15,7 +17,8 @@ double RenderStats::medianGpuMilliseconds() const {
 
 std::uint64_t RenderStats::totalRays() const {
   std::uint64_t sum = 0;
-  for (const auto& f : frames) sum += f.rays;
+  for (const auto& f : frames)
+    sum += f.rays;
   return sum;
 }
 
@@ -27,14 +30,13 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
   const auto& a = s.accelerationStructures;
   for (const auto& f : s.frames) {
     double mraysPerSecond = f.gpuMilliseconds > 0 ? f.rays / (f.gpuMilliseconds * 1e3) : 0.0;
-    out << f.frame << ',' << f.gpuMilliseconds << ',' << f.wallMilliseconds << ',' << f.rays
-        << ',' << mraysPerSecond << ',' << s.width << ',' << s.height << ',' << s.pathsPerPixel
-        << ',' << s.raysPerPath << ',' << s.backend << ",\"" << s.device << "\","
-        << a.blasCount << ',' << a.instanceCount << ',' << a.blasBytes << ','
-        << a.blasBytesBeforeCompaction << ',' << a.tlasBytes << ',' << a.scratchBytes << ','
-        << a.buildMilliseconds << ',' << s.textureBytes << ',' << s.materialCount << ','
-        << s.materialCompileMilliseconds << ',' << s.shaderCompileMilliseconds << ','
-        << s.shaderCacheHits << '\n';
+    out << f.frame << ',' << f.gpuMilliseconds << ',' << f.wallMilliseconds << ',' << f.rays << ','
+        << mraysPerSecond << ',' << s.width << ',' << s.height << ',' << s.pathsPerPixel << ','
+        << s.raysPerPath << ',' << s.backend << ",\"" << s.device << "\"," << a.blasCount << ','
+        << a.instanceCount << ',' << a.blasBytes << ',' << a.blasBytesBeforeCompaction << ','
+        << a.tlasBytes << ',' << a.scratchBytes << ',' << a.buildMilliseconds << ','
+        << s.textureBytes << ',' << s.materialCount << ',' << s.materialCompileMilliseconds << ','
+        << s.shaderCompileMilliseconds << ',' << s.shaderCacheHits << '\n';
   }
 }
 

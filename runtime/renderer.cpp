@@ -28,9 +28,12 @@ void validateSettings(const RenderSettings& s) {
     throw std::invalid_argument("image size " + std::to_string(s.width) + "x" +
                                 std::to_string(s.height) + " is out of range (1.." +
                                 std::to_string(kMaxImageSide) + " per side)");
-  if (s.pathsPerPixel == 0) throw std::invalid_argument("paths per pixel must be at least 1");
-  if (s.raysPerPath == 0) throw std::invalid_argument("rays per path must be at least 1");
-  if (s.frames == 0) throw std::invalid_argument("frames must be at least 1");
+  if (s.pathsPerPixel == 0)
+    throw std::invalid_argument("paths per pixel must be at least 1");
+  if (s.raysPerPath == 0)
+    throw std::invalid_argument("rays per path must be at least 1");
+  if (s.frames == 0)
+    throw std::invalid_argument("frames must be at least 1");
 }
 
 bool sameCamera(const Camera& a, const Camera& b) {
@@ -65,7 +68,8 @@ void setCamera(gpu::FrameConstants& frame, const Camera& camera, std::uint32_t w
 
 TextureImage loadTextureCore(const std::string& path) {
   std::filesystem::path p(path);
-  if (!std::filesystem::exists(p)) throw std::runtime_error("texture not found: " + path);
+  if (!std::filesystem::exists(p))
+    throw std::runtime_error("texture not found: " + path);
   auto extension = p.extension().string();
   if (extension != ".pfm" && extension != ".PFM") {
     throw std::runtime_error("texture '" + path +
@@ -76,8 +80,7 @@ TextureImage loadTextureCore(const std::string& path) {
 }
 
 Renderer::Renderer(RendererOptions options)
-    : options_(std::move(options)),
-      context_(std::make_unique<VulkanContext>(options_.context)) {}
+    : options_(std::move(options)), context_(std::make_unique<VulkanContext>(options_.context)) {}
 
 Renderer::~Renderer() = default;
 
@@ -107,8 +110,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
 
   // Scene data, acceleration structures, textures.
   SceneBuffers buffers = uploadScene(context, scene);
-  SceneAccelerationStructures accel(context, buffers.vertices, sizeof(gpu::Vertex),
-                                    buffers.indices, buffers.geometry, buffers.placements);
+  SceneAccelerationStructures accel(context, buffers.vertices, sizeof(gpu::Vertex), buffers.indices,
+                                    buffers.geometry, buffers.placements);
   stats.accelerationStructures = accel.stats();
   GpuTextures textures(context, textureImages);
   stats.textureBytes = textures.bytes();
@@ -132,8 +135,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   // Per-render buffers.
   std::size_t pixelCount = std::size_t(settings.width) * settings.height;
   VkDeviceSize accumulationBytes = pixelCount * sizeof(glm::vec4);
-  GpuBuffer frameBuffer = hostBuffer(context, sizeof(gpu::FrameConstants),
-                                     VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+  GpuBuffer frameBuffer =
+      hostBuffer(context, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
   GpuBuffer accumulation(context, accumulationBytes,
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                          VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
@@ -141,7 +144,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                            VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  GpuBuffer rayReadback = hostBuffer(context, sizeof(std::uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  GpuBuffer rayReadback =
+      hostBuffer(context, sizeof(std::uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
 
   // Descriptor set.
   std::vector<VkDescriptorPoolSize> poolSizes = {
@@ -240,11 +244,12 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   Camera previousCamera;
   std::uint32_t sampleIndex = 0;
   for (std::uint32_t f = 0; f < settings.frames; ++f) {
-    const Camera& camera = settings.cameraPath.empty()
-                               ? scene.camera
-                               : settings.cameraPath[std::min<std::size_t>(
-                                     f, settings.cameraPath.size() - 1)];
-    if (f > 0 && !sameCamera(camera, previousCamera)) sampleIndex = 0;
+    const Camera& camera =
+        settings.cameraPath.empty()
+            ? scene.camera
+            : settings.cameraPath[std::min<std::size_t>(f, settings.cameraPath.size() - 1)];
+    if (f > 0 && !sameCamera(camera, previousCamera))
+      sampleIndex = 0;
     previousCamera = camera;
     frame.cameraForward.w = float(f) * settings.secondsPerFrame;
     setCamera(frame, camera, settings.width, settings.height);
@@ -267,8 +272,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
       }
       pipeline.record(commands, set, settings.width, settings.height);
       if (timestamps)
-        vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestampPool.get(),
-                            1);
+        vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestampPool.get(), 1);
       barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
       barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
       vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
@@ -293,7 +297,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
           double(ticks[1] - ticks[0]) * context.info().timestampPeriodNs * 1e-6;
     }
     stats.frames.push_back(frameStats);
-    if (settings.onFrame) settings.onFrame(frameStats);
+    if (settings.onFrame)
+      settings.onFrame(frameStats);
     ++sampleIndex;
   }
 

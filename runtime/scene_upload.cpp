@@ -21,8 +21,10 @@ std::string meshLabel(const Mesh& mesh, std::size_t index) {
 }  // namespace
 
 void validateScene(const Scene& scene) {
-  if (scene.meshes.empty()) throw std::invalid_argument("the scene has no meshes");
-  if (scene.instances.empty()) throw std::invalid_argument("the scene has no instances");
+  if (scene.meshes.empty())
+    throw std::invalid_argument("the scene has no meshes");
+  if (scene.instances.empty())
+    throw std::invalid_argument("the scene has no instances");
   for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
     const Mesh& mesh = scene.meshes[i];
     std::string label = meshLabel(mesh, i);
@@ -123,8 +125,8 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene) {
   if (!env.imageRgb.empty()) {
     environment.resize(std::size_t(env.imageWidth) * env.imageHeight);
     for (std::size_t i = 0; i < environment.size(); ++i)
-      environment[i] = glm::vec4(env.imageRgb[3 * i], env.imageRgb[3 * i + 1],
-                                 env.imageRgb[3 * i + 2], 1.0f);
+      environment[i] =
+          glm::vec4(env.imageRgb[3 * i], env.imageRgb[3 * i + 1], env.imageRgb[3 * i + 2], 1.0f);
     out.environmentWidth = env.imageWidth;
     out.environmentHeight = env.imageHeight;
   }

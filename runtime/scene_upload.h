@@ -16,11 +16,11 @@ namespace memograph::runtime {
 void validateScene(const Scene& scene);
 
 struct SceneBuffers {
-  GpuBuffer vertices;  // gpu::Vertex
-  GpuBuffer indices;   // uint32, relative to each mesh's first vertex
-  GpuBuffer meshes;    // gpu::Mesh
-  GpuBuffer instances; // gpu::Instance
-  GpuBuffer lights;    // gpu::Light
+  GpuBuffer vertices;     // gpu::Vertex
+  GpuBuffer indices;      // uint32, relative to each mesh's first vertex
+  GpuBuffer meshes;       // gpu::Mesh
+  GpuBuffer instances;    // gpu::Instance
+  GpuBuffer lights;       // gpu::Light
   GpuBuffer environment;  // vec4 texels of the environment image (one texel if none)
   std::vector<MeshGeometry> geometry;
   std::vector<InstancePlacement> placements;

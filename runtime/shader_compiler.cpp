@@ -76,9 +76,9 @@ class MapIncluder : public glslang::TShader::Includer {
  private:
   IncludeResult* find(const char* name) {
     auto it = files_.find(name);
-    if (it == files_.end()) return nullptr;
-    return std::make_unique<IncludeResult>(it->first, it->second.data(), it->second.size(),
-                                           nullptr)
+    if (it == files_.end())
+      return nullptr;
+    return std::make_unique<IncludeResult>(it->first, it->second.data(), it->second.size(), nullptr)
         .release();
   }
   const std::map<std::string, std::string>& files_;
@@ -86,30 +86,37 @@ class MapIncluder : public glslang::TShader::Includer {
 
 std::vector<std::uint32_t> readCache(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in) return {};
+  if (!in)
+    return {};
   auto size = static_cast<std::size_t>(in.tellg());
-  if (size == 0 || size % 4 != 0) return {};
+  if (size == 0 || size % 4 != 0)
+    return {};
   std::vector<std::uint32_t> words(size / 4);
   in.seekg(0);
   in.read(reinterpret_cast<char*>(words.data()), std::streamsize(size));
-  if (!in || words[0] != 0x07230203u) return {};  // SPIR-V magic
+  if (!in || words[0] != 0x07230203u)
+    return {};  // SPIR-V magic
   return words;
 }
 
 void writeCache(const std::filesystem::path& path, const std::vector<std::uint32_t>& words) {
   std::error_code error;
   std::filesystem::create_directories(path.parent_path(), error);
-  if (error) return;  // the cache is an optimisation; a read-only disk just disables it
+  if (error)
+    return;  // the cache is an optimisation; a read-only disk just disables it
   auto temporary = path;
   temporary += ".tmp" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count());
   {
     std::ofstream out(temporary, std::ios::binary);
-    if (!out) return;
+    if (!out)
+      return;
     out.write(reinterpret_cast<const char*>(words.data()), std::streamsize(words.size() * 4));
-    if (!out) return;
+    if (!out)
+      return;
   }
   std::filesystem::rename(temporary, path, error);  // atomic: readers see all or nothing
-  if (error) std::filesystem::remove(temporary, error);
+  if (error)
+    std::filesystem::remove(temporary, error);
 }
 
 }  // namespace
@@ -134,9 +141,10 @@ std::vector<std::uint32_t> ShaderCompiler::compile(const ShaderCompileRequest& r
   std::string preamble;
   for (const auto& define : request.defines) {
     auto eq = define.find('=');
-    preamble += "#define " +
-                (eq == std::string::npos ? define : define.substr(0, eq) + " " + define.substr(eq + 1)) +
-                "\n";
+    preamble +=
+        "#define " +
+        (eq == std::string::npos ? define : define.substr(0, eq) + " " + define.substr(eq + 1)) +
+        "\n";
   }
 
   // The key covers every file an include could reach, the defines, the stage, the target
@@ -195,7 +203,8 @@ std::vector<std::uint32_t> ShaderCompiler::compile(const ShaderCompileRequest& r
   stats_.compileMilliseconds +=
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   ++stats_.compiled;
-  if (!cachePath.empty()) writeCache(cachePath, spirv);
+  if (!cachePath.empty())
+    writeCache(cachePath, spirv);
   return spirv;
 }
 

@@ -12,7 +12,8 @@ namespace memograph::runtime {
 
 namespace {
 
-VulkanHandle<VkShaderModule> createModule(VkDevice device, const std::vector<std::uint32_t>& spirv) {
+VulkanHandle<VkShaderModule> createModule(VkDevice device,
+                                          const std::vector<std::uint32_t>& spirv) {
   VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
   info.codeSize = spirv.size() * sizeof(std::uint32_t);
   info.pCode = spirv.data();
@@ -33,8 +34,7 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
     : context_(context), backend_(context.backend()) {
   VkDevice device = context.device();
   bool query = backend_ == Backend::RayQuery;
-  VkShaderStageFlags stages = query ? VK_SHADER_STAGE_COMPUTE_BIT
-                                    : VK_SHADER_STAGE_RAYGEN_BIT_KHR;
+  VkShaderStageFlags stages = query ? VK_SHADER_STAGE_COMPUTE_BIT : VK_SHADER_STAGE_RAYGEN_BIT_KHR;
 
   using gpu::uint;
   std::vector<VkDescriptorSetLayoutBinding> bindings;
@@ -58,9 +58,9 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
   checkVk(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &setLayout),
           "vkCreateDescriptorSetLayout");
-  setLayout_ = VulkanHandle<VkDescriptorSetLayout>(
-      setLayout,
-      [device](VkDescriptorSetLayout l) { vkDestroyDescriptorSetLayout(device, l, nullptr); });
+  setLayout_ = VulkanHandle<VkDescriptorSetLayout>(setLayout, [device](VkDescriptorSetLayout l) {
+    vkDestroyDescriptorSetLayout(device, l, nullptr);
+  });
 
   VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
   layoutInfo.setLayoutCount = 1;
@@ -75,8 +75,8 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   auto destroyPipeline = [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); };
 
   if (query) {
-    auto module = createModule(
-        device, compiler.compile({"path_tracer.glsl", ShaderStage::Compute, defines}));
+    auto module =
+        createModule(device, compiler.compile({"path_tracer.glsl", ShaderStage::Compute, defines}));
     VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
     info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
@@ -150,13 +150,13 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   std::memcpy(&table[missOffset], &handles[handleSize], handleSize);
   std::memcpy(&table[missOffset + stride], &handles[2 * handleSize], handleSize);
   std::memcpy(&table[hitOffset], &handles[3 * handleSize], handleSize);
-  shaderBindingTable_ = GpuBuffer(context, tableSize + base,
-                                  VK_BUFFER_USAGE_SHADER_BINDING_TABLE_BIT_KHR |
-                                      VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
-                                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
-                                      VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  shaderBindingTable_ = GpuBuffer(
+      context, tableSize + base,
+      VK_BUFFER_USAGE_SHADER_BINDING_TABLE_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
   VkDeviceAddress tableAddress = alignUp(shaderBindingTable_.address(), base);
-  shaderBindingTable_.write(table.data(), table.size(), tableAddress - shaderBindingTable_.address());
+  shaderBindingTable_.write(table.data(), table.size(),
+                            tableAddress - shaderBindingTable_.address());
   raygenRegion_ = {tableAddress + raygenOffset, alignUp(stride, base), alignUp(stride, base)};
   missRegion_ = {tableAddress + missOffset, stride, 2 * stride};
   hitRegion_ = {tableAddress + hitOffset, stride, stride};

@@ -17,8 +17,7 @@ namespace memograph::runtime {
 
 class TracePipeline {
  public:
-  TracePipeline(const VulkanContext& context, ShaderCompiler& compiler,
-                std::uint32_t textureCount);
+  TracePipeline(const VulkanContext& context, ShaderCompiler& compiler, std::uint32_t textureCount);
 
   VkDescriptorSetLayout descriptorSetLayout() const { return setLayout_.get(); }
   // Binds and launches one thread per pixel.

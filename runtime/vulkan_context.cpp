@@ -22,9 +22,8 @@ std::vector<VkExtensionProperties> deviceExtensions(VkPhysicalDevice device) {
 }
 
 bool hasExtension(const std::vector<VkExtensionProperties>& extensions, const char* name) {
-  return std::any_of(extensions.begin(), extensions.end(), [&](const auto& e) {
-    return std::strcmp(e.extensionName, name) == 0;
-  });
+  return std::any_of(extensions.begin(), extensions.end(),
+                     [&](const auto& e) { return std::strcmp(e.extensionName, name) == 0; });
 }
 
 struct Candidate {
@@ -47,8 +46,10 @@ Candidate inspect(VkPhysicalDevice device) {
   c.rayQuery = c.accelerationStructure && hasExtension(extensions, VK_KHR_RAY_QUERY_EXTENSION_NAME);
   c.rayTracingPipeline = c.accelerationStructure &&
                          hasExtension(extensions, VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME);
-  if (c.properties.apiVersion < VK_API_VERSION_1_2) c.missing.push_back("Vulkan 1.2");
-  if (!c.accelerationStructure) c.missing.push_back(VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME);
+  if (c.properties.apiVersion < VK_API_VERSION_1_2)
+    c.missing.push_back("Vulkan 1.2");
+  if (!c.accelerationStructure)
+    c.missing.push_back(VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME);
   if (!c.rayQuery && !c.rayTracingPipeline) {
     c.missing.push_back(std::string(VK_KHR_RAY_QUERY_EXTENSION_NAME) + " or " +
                         VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME);
@@ -80,7 +81,8 @@ std::string describe(std::size_t index, const Candidate& c) {
             (c.rayTracingPipeline ? "ray-tracing pipeline" : "");
   } else {
     text += "no ray tracing (lacks";
-    for (const auto& m : c.missing) text += " " + m;
+    for (const auto& m : c.missing)
+      text += " " + m;
     text += ")";
   }
   return text;
@@ -107,8 +109,10 @@ VkInstance createInstance(bool validation, bool withDebugUtils) {
   app.apiVersion = VK_API_VERSION_1_2;
   std::vector<const char*> layers;
   std::vector<const char*> extensions;
-  if (validation) layers.push_back(kValidationLayer);
-  if (withDebugUtils) extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+  if (validation)
+    layers.push_back(kValidationLayer);
+  if (withDebugUtils)
+    extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
   VkInstanceCreateInfo info{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
   info.pApplicationInfo = &app;
   info.enabledLayerCount = static_cast<std::uint32_t>(layers.size());
@@ -140,7 +144,8 @@ bool instanceLayerPresent(const char* name) {
 template <typename T>
 T loadDevice(VkDevice device, const char* name) {
   auto function = reinterpret_cast<T>(vkGetDeviceProcAddr(device, name));
-  if (!function) throw std::runtime_error(std::string("Vulkan entry point missing: ") + name);
+  if (!function)
+    throw std::runtime_error(std::string("Vulkan entry point missing: ") + name);
   return function;
 }
 
@@ -159,9 +164,12 @@ const char* backendName(Backend backend) {
 }
 
 Backend parseBackend(const std::string& text) {
-  if (text == "auto") return Backend::Auto;
-  if (text == "query") return Backend::RayQuery;
-  if (text == "pipeline") return Backend::RayTracingPipeline;
+  if (text == "auto")
+    return Backend::Auto;
+  if (text == "query")
+    return Backend::RayQuery;
+  if (text == "pipeline")
+    return Backend::RayTracingPipeline;
   throw std::invalid_argument("unknown backend '" + text +
                               "': choose auto, query (compute + VK_KHR_ray_query) or pipeline "
                               "(VK_KHR_ray_tracing_pipeline)");
@@ -173,9 +181,10 @@ struct ValidationLog {
 };
 
 namespace {
-VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(
-    VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
-    const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
+VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT severity,
+                                                   VkDebugUtilsMessageTypeFlagsEXT,
+                                                   const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                   void* user) {
   if (severity & VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT) {
     auto* log = static_cast<ValidationLog*>(user);
     std::lock_guard lock(log->mutex);
@@ -185,6 +194,10 @@ VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(
 }
 }  // namespace
 
+bool validationLayerAvailable() {
+  return instanceLayerPresent(kValidationLayer);
+}
+
 std::vector<std::string> describeDevices() {
   VulkanHandle<VkInstance> instance(createInstance(false, false),
                                     [](VkInstance i) { vkDestroyInstance(i, nullptr); });
@@ -193,7 +206,8 @@ std::vector<std::string> describeDevices() {
   std::vector<VkPhysicalDevice> devices(count);
   vkEnumeratePhysicalDevices(instance.get(), &count, devices.data());
   std::vector<std::string> lines;
-  for (std::size_t i = 0; i < devices.size(); ++i) lines.push_back(describe(i, inspect(devices[i])));
+  for (std::size_t i = 0; i < devices.size(); ++i)
+    lines.push_back(describe(i, inspect(devices[i])));
   return lines;
 }
 
@@ -211,7 +225,8 @@ VulkanContext::VulkanContext(const ContextOptions& options)
         vkGetInstanceProcAddr(instance_.get(), "vkCreateDebugUtilsMessengerEXT"));
     auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
         vkGetInstanceProcAddr(instance_.get(), "vkDestroyDebugUtilsMessengerEXT"));
-    VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    VkDebugUtilsMessengerCreateInfoEXT info{
+        VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
     info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT |
                            VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
     info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
@@ -224,7 +239,8 @@ VulkanContext::VulkanContext(const ContextOptions& options)
     checkVk(result, "vkCreateDebugUtilsMessengerEXT");
     VkInstance instance = instance_.get();
     messenger_ = VulkanHandle<VkDebugUtilsMessengerEXT>(
-        messenger, [instance, destroy](VkDebugUtilsMessengerEXT m) { destroy(instance, m, nullptr); });
+        messenger,
+        [instance, destroy](VkDebugUtilsMessengerEXT m) { destroy(instance, m, nullptr); });
   }
 
   std::uint32_t count = 0;
@@ -237,15 +253,19 @@ VulkanContext::VulkanContext(const ContextOptions& options)
         "bookworm-backports for lavapipe, see tools/setup.sh).");
   }
   std::vector<Candidate> candidates;
-  for (auto d : devices) candidates.push_back(inspect(d));
+  for (auto d : devices)
+    candidates.push_back(inspect(d));
   std::string listing;
   for (std::size_t i = 0; i < candidates.size(); ++i)
     listing += "\n  " + describe(i, candidates[i]);
 
   auto supportsBackend = [&](const Candidate& c) {
-    if (!c.missing.empty()) return false;
-    if (options.backend == Backend::RayQuery) return c.rayQuery;
-    if (options.backend == Backend::RayTracingPipeline) return c.rayTracingPipeline;
+    if (!c.missing.empty())
+      return false;
+    if (options.backend == Backend::RayQuery)
+      return c.rayQuery;
+    if (options.backend == Backend::RayTracingPipeline)
+      return c.rayTracingPipeline;
     return true;
   };
   const Candidate* chosen = nullptr;
@@ -261,16 +281,17 @@ VulkanContext::VulkanContext(const ContextOptions& options)
     }
   } else {
     for (const auto& c : candidates) {
-      if (!supportsBackend(c)) continue;
+      if (!supportsBackend(c))
+        continue;
       if (!chosen || typeRank(c.properties.deviceType) < typeRank(chosen->properties.deviceType))
         chosen = &c;
     }
     if (!chosen) {
       throw std::runtime_error(
           std::string("No Vulkan device supports ray tracing") +
-          (options.backend == Backend::Auto ? "" : std::string(" with the ") +
-                                                       backendName(options.backend) +
-                                                       " backend") +
+          (options.backend == Backend::Auto
+               ? ""
+               : std::string(" with the ") + backendName(options.backend) + " backend") +
           ". The devices are:" + listing +
           "\nOn Debian 12, lavapipe gets ray tracing from Mesa in bookworm-backports "
           "(tools/setup.sh installs it).");
@@ -307,7 +328,8 @@ VulkanContext::VulkanContext(const ContextOptions& options)
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
   VkPhysicalDeviceAccelerationStructureFeaturesKHR asFeatures{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
-  VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  VkPhysicalDeviceVulkan12Features features12{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
   VkPhysicalDeviceFeatures2 features2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
   features2.pNext = &features12;
   features12.pNext = &asFeatures;
@@ -315,17 +337,20 @@ VulkanContext::VulkanContext(const ContextOptions& options)
                                                    : static_cast<void*>(&pipelineFeatures);
   vkGetPhysicalDeviceFeatures2(physicalDevice_, &features2);
   std::vector<std::string> missingFeatures;
-  if (!features12.bufferDeviceAddress) missingFeatures.push_back("bufferDeviceAddress");
+  if (!features12.bufferDeviceAddress)
+    missingFeatures.push_back("bufferDeviceAddress");
   if (!features12.shaderSampledImageArrayNonUniformIndexing)
     missingFeatures.push_back("shaderSampledImageArrayNonUniformIndexing");
-  if (!asFeatures.accelerationStructure) missingFeatures.push_back("accelerationStructure");
+  if (!asFeatures.accelerationStructure)
+    missingFeatures.push_back("accelerationStructure");
   if (backend_ == Backend::RayQuery && !rayQueryFeatures.rayQuery)
     missingFeatures.push_back("rayQuery");
   if (backend_ == Backend::RayTracingPipeline && !pipelineFeatures.rayTracingPipeline)
     missingFeatures.push_back("rayTracingPipeline");
   if (!missingFeatures.empty()) {
     std::string names;
-    for (const auto& f : missingFeatures) names += " " + f;
+    for (const auto& f : missingFeatures)
+      names += " " + f;
     throw std::runtime_error(info_.name + " lacks Vulkan features the renderer needs:" + names);
   }
 
@@ -368,7 +393,8 @@ VulkanContext::VulkanContext(const ContextOptions& options)
       break;
     }
   }
-  if (!found) throw std::runtime_error(info_.name + " has no compute queue");
+  if (!found)
+    throw std::runtime_error(info_.name + " has no compute queue");
 
   float priority = 1.0f;
   VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};

@@ -23,7 +23,7 @@ const char* backendName(Backend backend);
 Backend parseBackend(const std::string& text);
 
 struct ContextOptions {
-  int deviceIndex = -1;  // index into vkEnumeratePhysicalDevices; -1 picks one
+  int deviceIndex = -1;     // index into vkEnumeratePhysicalDevices; -1 picks one
   bool validation = false;  // enable VK_LAYER_KHRONOS_validation (error if missing)
   Backend backend = Backend::Auto;
 };
@@ -37,8 +37,7 @@ struct DeviceFunctions {
   PFN_vkCmdCopyAccelerationStructureKHR cmdCopyAccelerationStructure = nullptr;
   PFN_vkCmdWriteAccelerationStructuresPropertiesKHR cmdWriteAccelerationStructuresProperties =
       nullptr;
-  PFN_vkGetAccelerationStructureDeviceAddressKHR getAccelerationStructureDeviceAddress =
-      nullptr;
+  PFN_vkGetAccelerationStructureDeviceAddressKHR getAccelerationStructureDeviceAddress = nullptr;
   PFN_vkCreateRayTracingPipelinesKHR createRayTracingPipelines = nullptr;
   PFN_vkGetRayTracingShaderGroupHandlesKHR getRayTracingShaderGroupHandles = nullptr;
   PFN_vkCmdTraceRaysKHR cmdTraceRays = nullptr;
@@ -58,6 +57,9 @@ struct DeviceInfo {
 
 // Names and ray-tracing support of every device, for --list-devices and error messages.
 std::vector<std::string> describeDevices();
+
+// Whether VK_LAYER_KHRONOS_validation is installed (tests turn validation on when it is).
+bool validationLayerAvailable();
 
 class VulkanContext {
  public:

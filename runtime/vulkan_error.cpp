@@ -34,7 +34,8 @@ const char* resultName(VkResult result) {
 }
 
 void checkVk(VkResult result, const char* call) {
-  if (result >= 0) return;
+  if (result >= 0)
+    return;
   std::string message = std::string(call) + " failed: " + resultName(result) + " (" +
                         std::to_string(static_cast<int>(result)) + ")";
   switch (result) {

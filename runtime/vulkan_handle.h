@@ -28,7 +28,8 @@ class VulkanHandle {
   ~VulkanHandle() { reset(); }
 
   void reset() {
-    if (handle_ != T{} && destroy_) destroy_(handle_);
+    if (handle_ != T{} && destroy_)
+      destroy_(handle_);
     handle_ = T{};
   }
   T get() const { return handle_; }
