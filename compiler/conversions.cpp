@@ -6,7 +6,7 @@ std::optional<Cost> conversionCost(Type from, Type to) {
   if (from == to)
     return Cost{};
   if (from.base == BaseType::Int && to.isFloat() && !to.derivatives)
-    return Cost{1, 0, 0, 0};
+    return Cost{1, 0, 0, 0, 0};
   if (!from.isFloat() || !to.isFloat())
     return std::nullopt;
   if (!from.derivatives && to.derivatives)

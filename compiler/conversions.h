@@ -14,16 +14,19 @@ namespace memograph::compiler {
 // those, fewest that lose information (truncating a vector), so a scalar is splatted rather
 // than a vector cut down (Listing 5.1 → 5.3 picks float3 Mul/Add this way); then the least
 // derivative work, so derivatives flow only where a consumer needs them; then the fewest
-// dropped derivatives.
+// dropped derivatives; last, the narrowest types (the least arithmetic: a float2 graph
+// extended to float3 at its end beats a float3 graph fed an extended float2).
 struct Cost {
   int conversions = 0;
   int truncations = 0;
   int derivativeWork = 0;
   int droppedDerivatives = 0;
+  int componentWidth = 0;  // sum of the chosen overloads' socket widths
 
   Cost operator+(const Cost& o) const {
     return {conversions + o.conversions, truncations + o.truncations,
-            derivativeWork + o.derivativeWork, droppedDerivatives + o.droppedDerivatives};
+            derivativeWork + o.derivativeWork, droppedDerivatives + o.droppedDerivatives,
+            componentWidth + o.componentWidth};
   }
   auto operator<=>(const Cost&) const = default;
 };

@@ -31,6 +31,7 @@ class Diagnostics {
   bool hasErrors() const { return errorCount_ > 0; }
   std::size_t errorCount() const { return errorCount_; }
   const std::vector<Diagnostic>& all() const { return items_; }
+  Diagnostic& last() { return items_.back(); }  // to add notes; requires a diagnostic
   void append(const Diagnostics& other);
 
  private:

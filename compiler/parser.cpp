@@ -140,9 +140,13 @@ class Parser {
       return true;
     }
     if (op.kind == TokenKind::Semicolon || op.kind == TokenKind::Identifier) {
-      error(socket, "socket '" + std::string(socket.text) + "' is not bound: write " +
-                        std::string(socket.text) + "<id (input), " + std::string(socket.text) +
-                        ">id (output) or " + std::string(socket.text) + "=value");
+      const std::string name(socket.text);
+      error(socket, "socket '" + name + "' is not bound: write " + name + "<id (input), " + name +
+                        ">id (output) or " + name + "=value");
+      // A name opening a new line is more likely the next node after a forgotten ';'.
+      if (index_ >= 2 && tokens_[index_ - 2].location.line < socket.location.line) {
+        diagnostics_.last().notes.push_back("or is a ';' missing at the end of the line above?");
+      }
     } else {
       error(op, "expected '<', '>' or '=' after socket '" + std::string(socket.text) + "', found " +
                     std::string(tokenKindName(op.kind)));

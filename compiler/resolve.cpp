@@ -209,7 +209,13 @@ class Resolver {
     const bool allNumbers = std::all_of(values.begin(), values.end(), [](const Literal& l) {
       return l.kind == Literal::Kind::Number;
     });
-    if (freeSockets.size() == 1 && values.size() >= 2 && values.size() <= 4 && allNumbers) {
+    const auto socketTakesWidth = [&](int socket, std::size_t width) {
+      return std::any_of(type.overloads.begin(), type.overloads.end(), [&](const Overload& o) {
+        return static_cast<std::size_t>(o.socketTypes[socket].width()) == width;
+      });
+    };
+    if (freeSockets.size() == 1 && values.size() >= 2 && values.size() <= 4 && allNumbers &&
+        socketTakesWidth(freeSockets[0], values.size())) {
       Literal tuple;
       tuple.kind = Literal::Kind::Tuple;
       tuple.location = values[0].location;

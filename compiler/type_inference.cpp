@@ -20,7 +20,7 @@ std::optional<Cost> constantCost(const Literal& value, Type to) {
         return std::nullopt;
       {
         const int width = static_cast<int>(value.components.size());
-        return Cost{width == to.width() ? 0 : 1, width > to.width() ? 1 : 0, 0, 0};
+        return Cost{width == to.width() ? 0 : 1, width > to.width() ? 1 : 0, 0, 0, 0};
       }
   }
   return std::nullopt;
@@ -236,7 +236,8 @@ class Inference {
 
   Cost ownCost(std::size_t node, std::size_t k) const {
     const auto& o = overload(node, k);
-    Cost cost{0, 0, o.derivativeInputs + o.derivativeOutputs, 0};
+    Cost cost{0, 0, o.derivativeInputs + o.derivativeOutputs, 0, 0};
+    for (const Type& type : o.socketTypes) cost.componentWidth += type.width();
     const auto& inputs = graph_.nodes[node].inputs;
     for (std::size_t s = 0; s < inputs.size(); ++s) {
       if (inputs[s] && inputs[s]->kind != InputSource::Kind::Link) {
@@ -272,7 +273,7 @@ class Inference {
             if (!cheapest || c < *cheapest)
               cheapest = c;
           }
-          total = total + cheapest.value_or(Cost{1 << 20, 0, 0, 0});
+          total = total + cheapest.value_or(Cost{1 << 20, 0, 0, 0, 0});
         }
         best[node].push_back(total);
       }

@@ -8,6 +8,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "compiler/library_files.h"
 #include "memograph/embedded_node_library.h"
 
 namespace memograph::cli {
@@ -86,32 +87,16 @@ std::optional<compiler::NodeLibrary> loadNodeLibrary(const std::string& director
       files.push_back({std::string(embedded.path), std::string(embedded.text)});
     }
   } else {
-    std::error_code ec;
-    if (!fs::is_directory(directory, ec)) {
-      diagnostics.error(directory, "the node library directory does not exist");
-      return std::nullopt;
-    }
-    for (fs::recursive_directory_iterator it(directory, ec), end; it != end && !ec;
-         it.increment(ec)) {
-      if (!it->is_regular_file() || it->path().extension() != ".inc")
-        continue;
-      std::string error;
-      auto text = readFile(it->path().string(), error);
-      if (!text) {
-        diagnostics.error(it->path().string(), error);
-        continue;
-      }
-      files.push_back({fs::relative(it->path(), directory).generic_string(), std::move(*text)});
-    }
+    auto read = compiler::readNodeLibraryDirectory(directory, diagnostics);
+    if (!read) return std::nullopt;
+    files = std::move(*read);
   }
   if (files.empty()) {
-    diagnostics.error(directory.empty() ? "<embedded>" : directory,
-                      "the node library has no .inc files");
+    diagnostics.error("<built-in>", "the built-in node library is empty");
     return std::nullopt;
   }
   auto library = compiler::NodeLibrary::load(files, diagnostics);
-  if (diagnostics.hasErrors())
-    return std::nullopt;
+  if (diagnostics.hasErrors()) return std::nullopt;
   return library;
 }
 

@@ -1,0 +1,169 @@
+// The memograph CLI as a user runs it: exit codes, messages, all-or-nothing output.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "test_support.h"
+
+namespace memograph {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exitCode = -1;
+  std::string output;  // stdout and stderr together
+};
+
+CliRun runCli(const std::string& arguments) {
+  const std::string command = std::string(MEMOGRAPH_CLI) + " " + arguments + " 2>&1";
+  CliRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe)
+    return run;
+  std::array<char, 4096> buffer;
+  while (const std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) {
+    run.output.append(buffer.data(), n);
+  }
+  const int status = pclose(pipe);
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    directory_ = fs::temp_directory_path() /
+                 ("memograph_cli_" + std::to_string(::getpid()) + "_" +
+                  ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(directory_);
+    fs::create_directories(directory_);
+  }
+  void TearDown() override { fs::remove_all(directory_); }
+
+  std::string write(const std::string& name, const std::string& text) {
+    const auto path = directory_ / name;
+    std::ofstream(path, std::ios::binary) << text;
+    return path.string();
+  }
+  std::string nodes() const {
+    return std::string(" --nodes ") + MEMOGRAPH_TEST_DATA_DIR + "/nodes";
+  }
+
+  fs::path directory_;
+};
+
+TEST_F(CliTest, CompileWritesIncludesAndMetadataForEachTarget) {
+  const auto graph = write("normals.mgraph", "NormalInput Out>1;\nColorOutput In<1;\n");
+  const auto out = (directory_ / "out").string();
+  const auto run = runCli("compile " + graph + " --target both -o " + out + nodes());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(fs::exists(out + "/normals.glsl"));
+  EXPECT_TRUE(fs::exists(out + "/normals.hlsl"));
+  EXPECT_TRUE(fs::exists(out + "/normals.json"));
+  const auto glslOnly = runCli("compile " + graph + " --target=glsl -o " + out + "/g" + nodes());
+  ASSERT_EQ(glslOnly.exitCode, 0) << glslOnly.output;
+  EXPECT_TRUE(fs::exists(out + "/g/normals.glsl"));
+  EXPECT_FALSE(fs::exists(out + "/g/normals.hlsl"));
+}
+
+TEST_F(CliTest, ABadGraphFailsWithLocationAndWritesNothingAtAll) {
+  const auto good = write("good.mgraph", "NormalInput Out>1;\nColorOutput In<1;\n");
+  const auto bad = write("bad.mgraph", "NormalInput Out>1;\nColourOutput In<1;\n");
+  const auto out = (directory_ / "out").string();
+  const auto run = runCli("compile " + good + " " + bad + " -o " + out + nodes());
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_NE(run.output.find("bad.mgraph:2:1: error: unknown node type 'ColourOutput'"),
+            std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("nothing written"), std::string::npos);
+  EXPECT_FALSE(fs::exists(out + "/good.glsl")) << "no partial output";
+}
+
+TEST_F(CliTest, UsageErrorsExitWithTwo) {
+  EXPECT_EQ(runCli("").exitCode, 2);
+  EXPECT_EQ(runCli("frobnicate").exitCode, 2);
+  EXPECT_EQ(runCli("compile").exitCode, 2);
+  const auto badTarget = runCli("compile x.mgraph --target spirv");
+  EXPECT_EQ(badTarget.exitCode, 2);
+  EXPECT_NE(badTarget.output.find("--target must be glsl, hlsl or both"), std::string::npos);
+  EXPECT_EQ(runCli("compile x.mgraph --bogus").exitCode, 2);
+  EXPECT_EQ(runCli("compile x.mgraph -o").exitCode, 2);
+  EXPECT_EQ(runCli("check").exitCode, 2);
+}
+
+TEST_F(CliTest, EveryCommandHasHelp) {
+  for (const char* command : {"compile", "check", "nodes"}) {
+    const auto run = runCli(std::string(command) + " --help");
+    EXPECT_EQ(run.exitCode, 0) << command;
+    EXPECT_NE(run.output.find("usage: memograph " + std::string(command)), std::string::npos);
+  }
+  const auto top = runCli("--help");
+  EXPECT_EQ(top.exitCode, 0);
+  EXPECT_NE(top.output.find("compile"), std::string::npos);
+}
+
+TEST_F(CliTest, MissingAndUnreadableFilesAreClearErrors) {
+  const auto run = runCli("compile " + (directory_ / "nope.mgraph").string() + nodes());
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_NE(run.output.find("nope.mgraph: cannot open (no such file)"), std::string::npos)
+      << run.output;
+  const auto dir = runCli("check " + directory_.string() + nodes());
+  EXPECT_EQ(dir.exitCode, 1);
+  EXPECT_NE(dir.output.find("is a directory"), std::string::npos) << dir.output;
+}
+
+TEST_F(CliTest, CheckPrintsEachLinksTypeAndDerivatives) {
+  const auto graph = write("d.mgraph",
+                           "UVInput UV>1;\nImageTexture \"a.png\" UV<1 Color>2;\n"
+                           "BaseColorOutput Color<2;\n");
+  const auto run = runCli("check " + graph + nodes());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("material d: 3 nodes, cacheable, derivatives used"), std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("link1     float2_D  deriv  UVInput.UV -> ImageTexture.UV"),
+            std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("link2     float4    plain  ImageTexture.Color -> "
+                            "BaseColorOutput.Color (as float3)"),
+            std::string::npos)
+      << run.output;
+}
+
+TEST_F(CliTest, NodesListsOverloadsAndSuggestsNames) {
+  const auto run = runCli("nodes Mul" + nodes());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("Mul(float3_D A, float3_D B) -> float3_D Out"), std::string::npos);
+  EXPECT_NE(run.output.find("in  A = 1.0"), std::string::npos) << run.output;
+  const auto typo = runCli("nodes Mull" + nodes());
+  EXPECT_EQ(typo.exitCode, 1);
+  EXPECT_NE(typo.output.find("did you mean 'Mul'"), std::string::npos) << typo.output;
+}
+
+TEST_F(CliTest, DuplicateMaterialNamesAreRejected) {
+  const auto a = write("a.mgraph", "material Same;\nNormalInput Out>1;\nColorOutput In<1;\n");
+  const auto b = write("b.mgraph", "material Same;\nNormalInput Out>1;\nColorOutput In<1;\n");
+  const auto run = runCli("compile " + a + " " + b + " -o " + directory_.string() + nodes());
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_NE(run.output.find("material 'Same' is also defined by"), std::string::npos);
+}
+
+TEST_F(CliTest, RandomBytesNeverCrashTheCompiler) {
+  std::string bytes;
+  std::uint32_t state = 12345;
+  for (int i = 0; i < 4096; ++i) {
+    state = state * 1664525u + 1013904223u;
+    bytes += static_cast<char>(state >> 24);
+  }
+  const auto graph = write("noise.mgraph", bytes);
+  const auto run = runCli("compile " + graph + " -o " + directory_.string() + nodes());
+  EXPECT_EQ(run.exitCode, 1) << run.output;
+  EXPECT_NE(run.output.find("noise.mgraph:1:"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace memograph
