@@ -48,7 +48,8 @@ fi
 cat >"$bundle/run_device.sh" <<'RUN'
 #!/usr/bin/env bash
 # Runs on the GPU machine: installs the carried Vulkan loader, then the smoke test, the
-# renders and the benchmarks of issue 3. Everything it measures lands in $OUT.
+# renders and the benchmarks of issue 3. Everything it measures lands in $OUT: 8 files at
+# most (the device tool's limit), each under 16 MB.
 set -uo pipefail
 for f in .gl/*.deb; do dpkg -x "$f" /; done
 ldconfig
@@ -58,19 +59,23 @@ fi
 OUT=${OUT:-/tmp/out}
 mkdir -p "$OUT"
 m=bundle/memograph
+# Each step has its own time limit (together under the 600 s a device call may take), so
+# one slow step cannot eat the whole call.
+step() { local limit=$1; shift; timeout "$limit" "$@" || echo "STEP FAILED ($?): $*"; }
 {
   nvidia-smi -L || true
   $m render --list-devices
-  # Smoke test: a small render of each built-in scene with the pipeline backend.
-  for s in classroom landscape; do
-    $m render builtin:$s --size 320x180 --paths 1 --bounces 2 --frames 2 \
-      --out "$OUT/smoke_$s.pfm" || echo "SMOKE FAILED: $s"
+  # Smoke test: small renders (the first also warms the driver's pipeline cache).
+  for s in landscape classroom; do
+    step 150 $m render builtin:$s --size 320x180 --paths 1 --bounces 2 --frames 2 \
+      --out "$OUT/smoke_$s.pfm"
   done
   # Thesis settings (§6): 1920x1080, P = 6, L = 4.
-  $m bench builtin:classroom builtin:landscape --sizes 1920x1080 --paths 6 --bounces 4 \
-    --frames 30 --warmup 5 --csv "$OUT/bench_gpu.csv" --frames-csv "$OUT/frames_"
-  for s in classroom landscape; do
-    $m render builtin:$s --size 1920x1080 --paths 6 --bounces 4 --frames 8 \
+  step 180 $m bench builtin:landscape builtin:classroom --sizes 1920x1080 --paths 6 --bounces 4 \
+    --frames 30 --warmup 5 --csv "$OUT/bench_gpu.csv"
+  # Images at 960x540: a 1080p PFM (25 MB) is over the 16 MB a returned file may have.
+  for s in landscape classroom; do
+    step 50 $m render builtin:$s --size 960x540 --paths 6 --bounces 4 --frames 8 \
       --out "$OUT/$s.pfm" --stats "$OUT/${s}_stats.csv"
   done
 } 2>&1 | tee "$OUT/log.txt"
