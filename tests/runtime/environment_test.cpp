@@ -51,3 +51,43 @@ TEST(Environment, ImageIsLookedUpInTheDocumentedDirections) {
 
 }  // namespace
 }  // namespace memograph::runtime
+
+namespace memograph::runtime {
+namespace {
+
+// Progressive accumulation averages the frames of a still camera and restarts when the
+// camera moves, so a camera path's image shows only its last camera's frames.
+TEST(Accumulation, RestartsWhenTheCameraMoves) {
+  Scene scene;
+  scene.meshes.push_back(testing::quad(1.0f));
+  scene.materials.push_back({"Grey", "", testing::constantGraph("Grey", {0.5f, 0.5f, 0.5f}, 0.5f)});
+  scene.instances.push_back({0, 0, glm::mat4(1.0f)});
+  scene.instances[0].objectToWorld[3] = glm::vec4(0, -100, 0, 1);
+  // Sky: red towards -z (u = 0.5), blue towards +z (u = 0 / 1).
+  scene.environment.imageWidth = 3;
+  scene.environment.imageHeight = 1;
+  scene.environment.imageRgb = {0, 0, 1, 1, 0, 0, 0, 0, 1};
+  Camera towardsRed;
+  towardsRed.position = {0, 0, 0};
+  towardsRed.target = {0, 0, -1};
+  towardsRed.verticalFovDegrees = 5.0f;
+  Camera towardsBlue = towardsRed;
+  towardsBlue.target = {0, 0, 1};
+  Renderer renderer(testing::testOptions());
+  RenderSettings settings;
+  settings.width = settings.height = 3;
+  settings.raysPerPath = 1;
+  settings.frames = 3;
+  settings.cameraPath = {towardsRed, towardsRed, towardsBlue};
+  RenderResult moved = renderer.render(scene, settings);
+  EXPECT_EQ(moved.image.pixel(1, 1)[0], 0.0f);
+  EXPECT_EQ(moved.image.pixel(1, 1)[2], 1.0f);
+  settings.cameraPath = {towardsRed};  // the last camera repeats: a still camera
+  RenderResult still = renderer.render(scene, settings);
+  EXPECT_EQ(still.image.pixel(1, 1)[0], 1.0f);
+  ASSERT_EQ(still.stats.frames.size(), 3u);
+  EXPECT_TRUE(renderer.context().validationErrors().empty());
+}
+
+}  // namespace
+}  // namespace memograph::runtime

@@ -40,7 +40,7 @@ constexpr std::string_view kHelp =
     "  --paths P             paths per pixel per frame (default 1)\n"
     "  --bounces L           rays per path; 1 = primary hit with direct light (default 4)\n"
     "  --frames F            frames; a static camera accumulates them (default 1)\n"
-    "  --camera-path FILE    one camera per frame (plain text, see docs/runtime.md)\n"
+    "  --camera-path FILE    one camera per frame: lines 'px py pz  tx ty tz  fov'\n"
     "  --shared-primary      one primary ray through the pixel centre for all P paths\n"
     "  --seed S              random seed (default 0)\n"
     "  --backend B           auto (default; prefers query), query or pipeline\n"
