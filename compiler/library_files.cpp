@@ -19,7 +19,8 @@ std::optional<std::vector<SourceFile>> readNodeLibraryDirectory(const std::strin
   std::vector<SourceFile> files;
   for (fs::recursive_directory_iterator it(directory, ec), end; it != end && !ec;
        it.increment(ec)) {
-    if (!it->is_regular_file() || it->path().extension() != ".inc") continue;
+    if (!it->is_regular_file() || it->path().extension() != ".inc")
+      continue;
     std::ifstream stream(it->path(), std::ios::binary);
     std::ostringstream text;
     text << stream.rdbuf();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <set>
 
 #include "compiler/literal.h"
 
@@ -72,6 +73,9 @@ class Resolver {
     const Node& node = graph_.nodes[index];
     const NodeType* type = library_.find(node.type);
     if (!type) {
+      // Its links are already wrong once; consumers need not report them again.
+      for (const auto& binding : node.outputs)
+        brokenLinks_.insert(binding.link);
       auto& d = diagnostics_.error(file_, node.location, "unknown node type '" + node.type + "'");
       const auto suggestions = library_.suggestions(node.type);
       if (!suggestions.empty()) {
@@ -91,8 +95,10 @@ class Resolver {
     resolved.consumers.resize(type->sockets.size());
     for (const auto& binding : node.outputs) {
       const int socket = socketOf(*type, binding.socket, Direction::Out, binding.location);
-      if (socket < 0)
+      if (socket < 0) {
+        brokenLinks_.insert(binding.link);
         continue;
+      }
       if (resolved.outputLinks[socket]) {
         diagnostics_.error(file_, binding.location,
                            "output '" + binding.socket + "' is bound twice on this node");
@@ -151,6 +157,11 @@ class Resolver {
       if (socket < 0 || alreadyBound(socket, binding.location))
         continue;
       const auto producer = producers_.find(binding.link);
+      if (producer == producers_.end() && brokenLinks_.contains(binding.link)) {
+        // Reported where the link is produced; mark the input bound to say nothing more.
+        resolved.inputs[socket] = InputSource{InputSource::Kind::Default, 0, 0, 0, {}, {}};
+        continue;
+      }
       if (producer == producers_.end()) {
         auto& d = diagnostics_.error(
             file_, binding.location,
@@ -273,6 +284,7 @@ class Resolver {
   Diagnostics& diagnostics_;
   ResolvedGraph result_;
   std::map<std::int64_t, std::pair<std::size_t, std::size_t>> producers_;  // link → node, socket
+  std::set<std::int64_t> brokenLinks_;  // produced by a node or socket that does not exist
 };
 
 }  // namespace

@@ -237,7 +237,8 @@ class Inference {
   Cost ownCost(std::size_t node, std::size_t k) const {
     const auto& o = overload(node, k);
     Cost cost{0, 0, o.derivativeInputs + o.derivativeOutputs, 0, 0};
-    for (const Type& type : o.socketTypes) cost.componentWidth += type.width();
+    for (const Type& type : o.socketTypes)
+      cost.componentWidth += type.width();
     const auto& inputs = graph_.nodes[node].inputs;
     for (std::size_t s = 0; s < inputs.size(); ++s) {
       if (inputs[s] && inputs[s]->kind != InputSource::Kind::Link) {

@@ -98,6 +98,13 @@ TEST(Diagnostics, FormatShowsTheLineAndACaretUnderTheColumn) {
             "    its outputs: none\n");
 }
 
+TEST(Diagnostics, ABrokenProducerDoesNotCascadeIntoItsConsumers) {
+  const auto unknownNode = compileText("Foo Out>1;\nMul A<1 B=2 Out>2;\nColorOutput In<2;\n");
+  EXPECT_EQ(unknownNode.diagnostics.errorCount(), 1u) << unknownNode.messages();
+  const auto unknownSocket = compileText("NormalInput Normal>1;\nColorOutput In<1;\n");
+  EXPECT_EQ(unknownSocket.diagnostics.errorCount(), 1u) << unknownSocket.messages();
+}
+
 TEST(Diagnostics, NodesThatReachNoOutputAreDroppedWithAWarning) {
   const auto run = compileText("NormalInput Out>1;\nColorOutput In<1;\nMul A=1 B=2 Out>9;\n");
   ASSERT_TRUE(run.material) << run.messages();

@@ -21,6 +21,9 @@ constexpr std::string_view kHelp =
     "  --brief       one line per node\n";
 
 std::string literalText(const compiler::Literal& value) {
+  if (value.kind == compiler::Literal::Kind::Number && value.isInteger) {
+    return std::to_string(static_cast<long long>(value.components[0]));
+  }
   if (value.components.size() == 1)
     return compiler::formatFloat(value.components[0]);
   std::string text = "(";
