@@ -2,7 +2,7 @@
 // pixel's sequence never depends on other pixels or on the order threads run in.
 
 // PCG-hash of one 32-bit word (the RXS-M-XS output of a PCG step).
-uint mg_pcgHash(uint value) {
+uint pcgHash(uint value) {
   uint state = value * 747796405u + 2891336453u;
   uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
   return (word >> 22u) ^ word;
@@ -15,7 +15,7 @@ struct Rng {
 // The generator of one pixel in one frame for one seed.
 Rng rngForPixel(uvec2 pixel, uint frame, uint seed) {
   Rng rng;
-  rng.state = mg_pcgHash(pixel.x ^ mg_pcgHash(pixel.y ^ mg_pcgHash(frame ^ mg_pcgHash(seed))));
+  rng.state = pcgHash(pixel.x ^ pcgHash(pixel.y ^ pcgHash(frame ^ pcgHash(seed))));
   return rng;
 }
 
