@@ -72,6 +72,8 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
 
   std::vector<std::string> defines = {"MG_TEXTURE_COUNT=" + std::to_string(textureCount),
                                       query ? "MG_BACKEND_QUERY=1" : "MG_BACKEND_PIPELINE=1"};
+  if (context.info().subgroupArithmeticStages & stages)
+    defines.push_back("MG_SUBGROUP_RAY_COUNT=1");
   auto destroyPipeline = [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); };
 
   if (query) {

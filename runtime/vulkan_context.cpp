@@ -454,10 +454,18 @@ VulkanContext::VulkanContext(const ContextOptions& options)
   info_.rayTracingProperties.sType =
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_PROPERTIES_KHR;
   asProperties.pNext = &info_.rayTracingProperties;
+  VkPhysicalDeviceSubgroupProperties subgroupProperties{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  info_.rayTracingProperties.pNext = &subgroupProperties;
   VkPhysicalDeviceProperties2 properties2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
   properties2.pNext = &asProperties;
   vkGetPhysicalDeviceProperties2(physicalDevice_, &properties2);
   info_.rayTracingProperties.pNext = nullptr;
+  info_.subgroupSize = subgroupProperties.subgroupSize;
+  constexpr VkSubgroupFeatureFlags kNeeded =
+      VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
+  if ((subgroupProperties.supportedOperations & kNeeded) == kNeeded)
+    info_.subgroupArithmeticStages = subgroupProperties.supportedStages;
   info_.minAccelerationStructureScratchOffsetAlignment =
       std::max(1u, asProperties.minAccelerationStructureScratchOffsetAlignment);
   vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);

@@ -53,6 +53,9 @@ struct DeviceInfo {
   bool timestamps = false;
   VkPhysicalDeviceRayTracingPipelinePropertiesKHR rayTracingProperties{};
   std::uint32_t minAccelerationStructureScratchOffsetAlignment = 1;
+  std::uint32_t subgroupSize = 1;
+  // Stages with basic + arithmetic subgroup operations (lavapipe: not ray-tracing stages).
+  VkShaderStageFlags subgroupArithmeticStages = 0;
 };
 
 // Names and ray-tracing support of every device, for --list-devices and error messages.
