@@ -14,6 +14,7 @@
 #include "runtime/shader_compiler.h"
 #include "runtime/shader_sources.h"
 #include "runtime/shaders/shared_types.h"
+#include "runtime/trace_descriptors.h"
 #include "runtime/trace_pipelines.h"
 #include "runtime/vulkan_error.h"
 
@@ -147,76 +148,10 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   GpuBuffer rayReadback =
       hostBuffer(context, sizeof(std::uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
 
-  // Descriptor set.
-  std::vector<VkDescriptorPoolSize> poolSizes = {
-      {VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 1},
-      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8},
-      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textures.count()}};
-  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  poolInfo.maxSets = 1;
-  poolInfo.poolSizeCount = static_cast<std::uint32_t>(poolSizes.size());
-  poolInfo.pPoolSizes = poolSizes.data();
-  VkDescriptorPool pool = VK_NULL_HANDLE;
-  checkVk(vkCreateDescriptorPool(device, &poolInfo, nullptr, &pool), "vkCreateDescriptorPool");
-  VulkanHandle<VkDescriptorPool> poolOwner(
-      pool, [device](VkDescriptorPool p) { vkDestroyDescriptorPool(device, p, nullptr); });
-  VkDescriptorSetLayout setLayout = pipeline.descriptorSetLayout();
-  VkDescriptorSetAllocateInfo allocateInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  allocateInfo.descriptorPool = pool;
-  allocateInfo.descriptorSetCount = 1;
-  allocateInfo.pSetLayouts = &setLayout;
-  VkDescriptorSet set = VK_NULL_HANDLE;
-  checkVk(vkAllocateDescriptorSets(device, &allocateInfo, &set), "vkAllocateDescriptorSets");
-
-  std::vector<VkWriteDescriptorSet> writes;
-  std::vector<VkDescriptorBufferInfo> bufferInfos;
-  bufferInfos.reserve(16);
-  auto writeBuffer = [&](std::uint32_t binding, VkDescriptorType type, const GpuBuffer& buffer) {
-    bufferInfos.push_back({buffer.buffer(), 0, VK_WHOLE_SIZE});
-    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-    write.dstSet = set;
-    write.dstBinding = binding;
-    write.descriptorCount = 1;
-    write.descriptorType = type;
-    write.pBufferInfo = &bufferInfos.back();
-    writes.push_back(write);
-  };
-  constexpr auto kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  writeBuffer(gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, frameBuffer);
-  writeBuffer(gpu::kBindingAccumulation, kStorage, accumulation);
-  writeBuffer(gpu::kBindingVertices, kStorage, buffers.vertices);
-  writeBuffer(gpu::kBindingIndices, kStorage, buffers.indices);
-  writeBuffer(gpu::kBindingInstances, kStorage, buffers.instances);
-  writeBuffer(gpu::kBindingMeshes, kStorage, buffers.meshes);
-  writeBuffer(gpu::kBindingLights, kStorage, buffers.lights);
-  writeBuffer(gpu::kBindingEnvironment, kStorage, buffers.environment);
-  writeBuffer(gpu::kBindingRayCounter, kStorage, rayCounter);
-  VkAccelerationStructureKHR tlas = accel.tlas();
-  VkWriteDescriptorSetAccelerationStructureKHR tlasInfo{
-      VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};
-  tlasInfo.accelerationStructureCount = 1;
-  tlasInfo.pAccelerationStructures = &tlas;
-  VkWriteDescriptorSet tlasWrite{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  tlasWrite.pNext = &tlasInfo;
-  tlasWrite.dstSet = set;
-  tlasWrite.dstBinding = gpu::kBindingTlas;
-  tlasWrite.descriptorCount = 1;
-  tlasWrite.descriptorType = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR;
-  writes.push_back(tlasWrite);
-  std::vector<VkDescriptorImageInfo> imageInfos;
-  for (std::uint32_t i = 0; i < textures.count(); ++i)
-    imageInfos.push_back(
-        {textures.sampler(), textures.view(i), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
-  VkWriteDescriptorSet textureWrite{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  textureWrite.dstSet = set;
-  textureWrite.dstBinding = gpu::kBindingTextures;
-  textureWrite.descriptorCount = textures.count();
-  textureWrite.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  textureWrite.pImageInfo = imageInfos.data();
-  writes.push_back(textureWrite);
-  vkUpdateDescriptorSets(device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0,
-                         nullptr);
+  TraceResources resources{accel.tlas(), &frameBuffer, &accumulation,
+                           &rayCounter,  &buffers,     &textures};
+  TraceDescriptorSet descriptors(context, pipeline.descriptorSetLayout(), resources);
+  VkDescriptorSet set = descriptors.get();
 
   // Timestamps around each frame's trace.
   bool timestamps = context.info().timestamps;
