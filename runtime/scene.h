@@ -54,9 +54,14 @@ struct Camera {
 
 // Environment: a constant radiance, or an equirectangular image (path) loaded at the edge.
 struct Environment {
-  glm::vec3 constantRadiance{0.0f};
+  glm::vec3 constantRadiance{0.0f};  // used when imageRgb is empty
   std::string imagePath;
   glm::vec3 sunDirection{0.0f};  // unused unless a directional light is derived from it
+  // The loaded equirectangular image (filled by the importer at the edge; the core renderer
+  // reads no image files): linear RGB floats, rows top (zenith) to bottom, u = 0 at -z.
+  std::vector<float> imageRgb;  // imageWidth * imageHeight * 3; empty: constant radiance
+  std::uint32_t imageWidth = 0;
+  std::uint32_t imageHeight = 0;
 };
 
 struct Scene {

@@ -13,6 +13,8 @@ std::span<const Command> commands() {
       {"compile", "compile .mgraph material graphs to GLSL/HLSL includes", runCompile},
       {"check", "type-check a graph and print each link's inferred type", runCheck},
       {"nodes", "list the node library with its overloads", runNodes},
+      {"render", "path trace a scene to an HDR image", runRender},
+      {"bench", "frames and rays per second on the built-in scenes", runBench},
   };
   return kCommands;
 }

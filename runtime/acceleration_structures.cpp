@@ -1,0 +1,234 @@
+#include "runtime/acceleration_structures.h"
+
+#include <chrono>
+#include <stdexcept>
+
+#include "runtime/vulkan_error.h"
+
+namespace memograph::runtime {
+
+namespace {
+
+constexpr VkBufferUsageFlags kBuildInput =
+    VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
+    VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+
+VkDeviceSize alignUp(VkDeviceSize value, VkDeviceSize alignment) {
+  return (value + alignment - 1) / alignment * alignment;
+}
+
+// Makes finished builds visible to what comes next (compaction, copies, the TLAS build).
+void buildBarrier(VkCommandBuffer commands) {
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
+  barrier.dstAccessMask = VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR |
+                          VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR;
+  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+                       VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR, 0, 1, &barrier, 0,
+                       nullptr, 0, nullptr);
+}
+
+}  // namespace
+
+AccelerationStructure::AccelerationStructure(const VulkanContext& context,
+                                             VkAccelerationStructureTypeKHR type, VkDeviceSize size)
+    : buffer_(context, size,
+              VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_STORAGE_BIT_KHR |
+                  VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+              VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT) {
+  VkAccelerationStructureCreateInfoKHR info{
+      VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_CREATE_INFO_KHR};
+  info.buffer = buffer_.buffer();
+  info.size = size;
+  info.type = type;
+  VkAccelerationStructureKHR handle = VK_NULL_HANDLE;
+  const DeviceFunctions& f = context.functions();
+  checkVk(f.createAccelerationStructure(context.device(), &info, nullptr, &handle),
+          "vkCreateAccelerationStructureKHR");
+  VkDevice device = context.device();
+  auto destroy = f.destroyAccelerationStructure;
+  handle_ = VulkanHandle<VkAccelerationStructureKHR>(
+      handle, [device, destroy](VkAccelerationStructureKHR h) { destroy(device, h, nullptr); });
+  VkAccelerationStructureDeviceAddressInfoKHR addressInfo{
+      VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_DEVICE_ADDRESS_INFO_KHR};
+  addressInfo.accelerationStructure = handle;
+  address_ = f.getAccelerationStructureDeviceAddress(device, &addressInfo);
+}
+
+SceneAccelerationStructures::SceneAccelerationStructures(
+    const VulkanContext& context, const GpuBuffer& vertices, std::uint32_t vertexStride,
+    const GpuBuffer& indices, const std::vector<MeshGeometry>& meshes,
+    const std::vector<InstancePlacement>& instances) {
+  auto start = std::chrono::steady_clock::now();
+  const DeviceFunctions& f = context.functions();
+  VkDevice device = context.device();
+  VkDeviceSize scratchAlignment = context.info().minAccelerationStructureScratchOffsetAlignment;
+
+  // 1. Sizes of every BLAS, built in one batch with one scratch buffer.
+  std::vector<VkAccelerationStructureGeometryKHR> geometries(meshes.size());
+  std::vector<VkAccelerationStructureBuildGeometryInfoKHR> builds(meshes.size());
+  std::vector<VkAccelerationStructureBuildRangeInfoKHR> ranges(meshes.size());
+  std::vector<VkDeviceSize> scratchOffsets(meshes.size());
+  std::vector<AccelerationStructure> uncompacted;
+  VkDeviceSize scratchTotal = 0;
+  for (std::size_t i = 0; i < meshes.size(); ++i) {
+    const MeshGeometry& mesh = meshes[i];
+    if (mesh.triangleCount == 0)
+      throw std::runtime_error("mesh " + std::to_string(i) + " has no triangles");
+    auto& g = geometries[i];
+    g = {VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
+    g.geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR;
+    g.flags = VK_GEOMETRY_OPAQUE_BIT_KHR;
+    auto& t = g.geometry.triangles;
+    t = {VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR};
+    t.vertexFormat = VK_FORMAT_R32G32B32_SFLOAT;
+    t.vertexData.deviceAddress = vertices.address() + VkDeviceSize(mesh.firstVertex) * vertexStride;
+    t.vertexStride = vertexStride;
+    t.maxVertex = mesh.vertexCount - 1;
+    t.indexType = VK_INDEX_TYPE_UINT32;
+    t.indexData.deviceAddress = indices.address() + VkDeviceSize(mesh.firstIndex) * 4;
+
+    auto& b = builds[i];
+    b = {VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
+    b.type = VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR;
+    b.flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR |
+              VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_COMPACTION_BIT_KHR;
+    b.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
+    b.geometryCount = 1;
+    b.pGeometries = &g;
+    VkAccelerationStructureBuildSizesInfoKHR sizes{
+        VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
+    f.getAccelerationStructureBuildSizes(device, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR,
+                                         &b, &mesh.triangleCount, &sizes);
+    uncompacted.emplace_back(context, VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR,
+                             sizes.accelerationStructureSize);
+    stats_.blasBytesBeforeCompaction += sizes.accelerationStructureSize;
+    scratchOffsets[i] = scratchTotal;
+    scratchTotal = alignUp(scratchTotal + sizes.buildScratchSize, scratchAlignment);
+    ranges[i] = {mesh.triangleCount, 0, 0, 0};
+  }
+
+  // 2. Build them all, then read back the compacted sizes.
+  std::vector<VkDeviceSize> compactSizes(meshes.size(), 0);
+  if (!meshes.empty()) {
+    GpuBuffer scratch(
+        context, scratchTotal + scratchAlignment,
+        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    stats_.scratchBytes += scratch.size();
+    VkDeviceAddress scratchBase = alignUp(scratch.address(), scratchAlignment);
+    std::vector<const VkAccelerationStructureBuildRangeInfoKHR*> rangePointers;
+    std::vector<VkAccelerationStructureKHR> handles;
+    for (std::size_t i = 0; i < meshes.size(); ++i) {
+      builds[i].dstAccelerationStructure = uncompacted[i].handle();
+      builds[i].scratchData.deviceAddress = scratchBase + scratchOffsets[i];
+      rangePointers.push_back(&ranges[i]);
+      handles.push_back(uncompacted[i].handle());
+    }
+    VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    queryInfo.queryType = VK_QUERY_TYPE_ACCELERATION_STRUCTURE_COMPACTED_SIZE_KHR;
+    queryInfo.queryCount = static_cast<std::uint32_t>(meshes.size());
+    VkQueryPool pool = VK_NULL_HANDLE;
+    checkVk(vkCreateQueryPool(device, &queryInfo, nullptr, &pool), "vkCreateQueryPool");
+    VulkanHandle<VkQueryPool> poolOwner(
+        pool, [device](VkQueryPool p) { vkDestroyQueryPool(device, p, nullptr); });
+    context.submitAndWait([&](VkCommandBuffer commands) {
+      vkCmdResetQueryPool(commands, pool, 0, queryInfo.queryCount);
+      f.cmdBuildAccelerationStructures(commands, static_cast<std::uint32_t>(builds.size()),
+                                       builds.data(), rangePointers.data());
+      buildBarrier(commands);
+      f.cmdWriteAccelerationStructuresProperties(
+          commands, static_cast<std::uint32_t>(handles.size()), handles.data(),
+          VK_QUERY_TYPE_ACCELERATION_STRUCTURE_COMPACTED_SIZE_KHR, pool, 0);
+    });
+    checkVk(vkGetQueryPoolResults(device, pool, 0, queryInfo.queryCount,
+                                  compactSizes.size() * sizeof(VkDeviceSize), compactSizes.data(),
+                                  sizeof(VkDeviceSize),
+                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+            "vkGetQueryPoolResults (compacted sizes)");
+  }
+
+  // 3. Compact: copy each BLAS into a structure of its compacted size, drop the original.
+  for (std::size_t i = 0; i < meshes.size(); ++i) {
+    VkDeviceSize size = compactSizes[i] ? compactSizes[i] : uncompacted[i].size();
+    blases_.emplace_back(context, VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR, size);
+    stats_.blasBytes += size;
+  }
+  if (!meshes.empty()) {
+    context.submitAndWait([&](VkCommandBuffer commands) {
+      for (std::size_t i = 0; i < meshes.size(); ++i) {
+        VkCopyAccelerationStructureInfoKHR copy{
+            VK_STRUCTURE_TYPE_COPY_ACCELERATION_STRUCTURE_INFO_KHR};
+        copy.src = uncompacted[i].handle();
+        copy.dst = blases_[i].handle();
+        copy.mode = VK_COPY_ACCELERATION_STRUCTURE_MODE_COMPACT_KHR;
+        f.cmdCopyAccelerationStructure(commands, &copy);
+      }
+    });
+  }
+  uncompacted.clear();
+  stats_.blasCount = static_cast<std::uint32_t>(blases_.size());
+
+  // 4. The TLAS: one instance record per scene instance; the custom index finds the
+  //    instance's data in the shaders.
+  std::vector<VkAccelerationStructureInstanceKHR> records;
+  records.reserve(instances.size());
+  for (std::size_t i = 0; i < instances.size(); ++i) {
+    const InstancePlacement& placement = instances[i];
+    if (placement.mesh >= blases_.size())
+      throw std::runtime_error("instance " + std::to_string(i) + " names mesh " +
+                               std::to_string(placement.mesh) + ", but the scene has " +
+                               std::to_string(blases_.size()) + " meshes");
+    if (i >= (1u << 24))
+      throw std::runtime_error("more than 2^24 instances");
+    VkAccelerationStructureInstanceKHR record{};
+    for (int row = 0; row < 3; ++row)
+      for (int column = 0; column < 4; ++column)
+        record.transform.matrix[row][column] = placement.objectToWorld[column][row];
+    record.instanceCustomIndex = static_cast<std::uint32_t>(i);
+    record.mask = 0xFF;
+    record.instanceShaderBindingTableRecordOffset = 0;
+    record.flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR;
+    record.accelerationStructureReference = blases_[placement.mesh].address();
+    records.push_back(record);
+  }
+  GpuBuffer instanceBuffer =
+      uploadBuffer<VkAccelerationStructureInstanceKHR>(context, records, kBuildInput);
+  VkAccelerationStructureGeometryKHR geometry{
+      VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
+  geometry.geometryType = VK_GEOMETRY_TYPE_INSTANCES_KHR;
+  geometry.geometry.instances = {
+      VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_INSTANCES_DATA_KHR};
+  geometry.geometry.instances.data.deviceAddress = instanceBuffer.address();
+  VkAccelerationStructureBuildGeometryInfoKHR build{
+      VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
+  build.type = VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR;
+  build.flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR;
+  build.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
+  build.geometryCount = 1;
+  build.pGeometries = &geometry;
+  auto instanceCount = static_cast<std::uint32_t>(records.size());
+  VkAccelerationStructureBuildSizesInfoKHR sizes{
+      VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
+  f.getAccelerationStructureBuildSizes(device, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR,
+                                       &build, &instanceCount, &sizes);
+  tlas_ = AccelerationStructure(context, VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR,
+                                sizes.accelerationStructureSize);
+  stats_.tlasBytes = sizes.accelerationStructureSize;
+  GpuBuffer scratch(context, sizes.buildScratchSize + scratchAlignment,
+                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                    VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  stats_.scratchBytes += scratch.size();
+  build.dstAccelerationStructure = tlas_.handle();
+  build.scratchData.deviceAddress = alignUp(scratch.address(), scratchAlignment);
+  VkAccelerationStructureBuildRangeInfoKHR range{instanceCount, 0, 0, 0};
+  const VkAccelerationStructureBuildRangeInfoKHR* rangePointer = &range;
+  context.submitAndWait([&](VkCommandBuffer commands) {
+    f.cmdBuildAccelerationStructures(commands, 1, &build, &rangePointer);
+  });
+  stats_.instanceCount = instanceCount;
+  stats_.buildMilliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace memograph::runtime

@@ -1,0 +1,53 @@
+// Device buffers with their own memory: device-local ones filled through a staging copy,
+// host-visible ones mapped for uploads and read-backs, all with device addresses when the
+// usage asks for them (acceleration-structure inputs, scratch, shader-binding tables).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include <vulkan/vulkan.h>
+
+#include "runtime/vulkan_context.h"
+#include "runtime/vulkan_handle.h"
+
+namespace memograph::runtime {
+
+class GpuBuffer {
+ public:
+  GpuBuffer() = default;
+  GpuBuffer(const VulkanContext& context, VkDeviceSize size, VkBufferUsageFlags usage,
+            VkMemoryPropertyFlags memory);
+
+  VkBuffer buffer() const { return buffer_.get(); }
+  VkDeviceSize size() const { return size_; }
+  VkDeviceAddress address() const { return address_; }
+  void* mapped() const { return mapped_; }  // null unless host-visible
+
+  // Copies bytes in (host-visible buffers only).
+  void write(const void* data, std::size_t bytes, std::size_t offset = 0);
+  void read(void* data, std::size_t bytes, std::size_t offset = 0) const;
+
+ private:
+  VulkanHandle<VkDeviceMemory> memory_;
+  VulkanHandle<VkBuffer> buffer_;
+  VkDeviceSize size_ = 0;
+  VkDeviceAddress address_ = 0;
+  void* mapped_ = nullptr;
+};
+
+// A device-local buffer holding `bytes` (at least 16 bytes, so empty arrays still bind).
+GpuBuffer uploadBuffer(const VulkanContext& context, const void* data, std::size_t bytes,
+                       VkBufferUsageFlags usage);
+
+template <typename T>
+GpuBuffer uploadBuffer(const VulkanContext& context, std::span<const T> items,
+                       VkBufferUsageFlags usage) {
+  return uploadBuffer(context, items.data(), items.size_bytes(), usage);
+}
+
+// A host-visible, coherent buffer (uniforms, read-backs).
+GpuBuffer hostBuffer(const VulkanContext& context, VkDeviceSize size, VkBufferUsageFlags usage);
+
+}  // namespace memograph::runtime

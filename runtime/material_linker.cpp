@@ -1,0 +1,160 @@
+#include "runtime/material_linker.h"
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+// Until the compiler lands on main, the runtime builds without it and says so at run time.
+#if __has_include("compiler/compiler.h")
+#define MG_HAVE_COMPILER 1
+#include "compiler/compiler.h"
+#include "compiler/diagnostics.h"
+#include "compiler/node_library.h"
+#include "memograph/embedded_node_library.h"
+#endif
+
+namespace memograph::runtime {
+
+#ifndef MG_HAVE_COMPILER
+LinkedMaterials linkMaterials(const std::vector<MaterialRef>&, const MaterialLinkOptions&) {
+  throw std::runtime_error(
+      "this build has no material compiler (compiler/compiler.h was missing at build time)");
+}
+#else
+
+namespace {
+
+std::string readText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    return {};
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::vector<compiler::SourceFile> nodeLibrarySources(const std::filesystem::path& directory) {
+  std::vector<compiler::SourceFile> files;
+  if (directory.empty()) {
+    for (const auto& file : nodes::embeddedNodeLibrary())
+      files.push_back({std::string(file.path), std::string(file.text)});
+    return files;
+  }
+  if (!std::filesystem::is_directory(directory))
+    throw std::runtime_error("node library folder not found: " + directory.string());
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(directory)) {
+    if (entry.path().extension() != ".inc")
+      continue;
+    files.push_back({std::filesystem::relative(entry.path(), directory).generic_string(),
+                     readText(entry.path())});
+  }
+  std::sort(files.begin(), files.end(),
+            [](const auto& a, const auto& b) { return a.path < b.path; });
+  return files;
+}
+
+}  // namespace
+
+LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
+                              const MaterialLinkOptions& options) {
+  auto start = std::chrono::steady_clock::now();
+  if (materials.empty())
+    throw std::runtime_error("the scene has no materials; every instance needs one");
+
+  compiler::Diagnostics libraryDiagnostics;
+  auto library = compiler::NodeLibrary::load(nodeLibrarySources(options.nodeLibraryDirectory),
+                                             libraryDiagnostics);
+  if (libraryDiagnostics.hasErrors()) {
+    throw std::runtime_error("the node library has errors:\n" +
+                             compiler::formatDiagnostics(libraryDiagnostics));
+  }
+
+  LinkedMaterials linked;
+  std::string includes;
+  // Graphs compiled once per distinct source text; their function name is the graph's.
+  std::map<std::string, LinkedMaterial> bySource;
+  std::map<std::string, std::string> sourceByName;
+  compiler::CompileOptions compileOptions;
+  compileOptions.emitGlsl = true;
+  compileOptions.emitHlsl = false;
+  for (const MaterialRef& material : materials) {
+    compiler::SourceFile graph;
+    std::filesystem::path baseDirectory;
+    if (!material.graphText.empty()) {
+      graph.path = material.graphPath.empty() ? "<" + material.name + ">" : material.graphPath;
+      graph.text = material.graphText;
+    } else if (!material.graphPath.empty()) {
+      graph.path = material.graphPath;
+      if (!std::filesystem::is_regular_file(material.graphPath))
+        throw std::runtime_error("material '" + material.name + "': graph file '" +
+                                 material.graphPath + "' not found");
+      graph.text = readText(material.graphPath);
+      baseDirectory = std::filesystem::path(material.graphPath).parent_path();
+    } else {
+      throw std::runtime_error("material '" + material.name +
+                               "' has neither a graph file nor graph text");
+    }
+
+    auto known = bySource.find(graph.text);
+    if (known != bySource.end()) {
+      linked.materials.push_back(known->second);
+      continue;
+    }
+    compiler::Diagnostics diagnostics;
+    auto compiled = compiler::compileMaterial(graph, library, compileOptions, diagnostics);
+    if (!compiled) {
+      throw std::runtime_error("material '" + material.name + "' does not compile:\n" +
+                               compiler::formatDiagnostics(diagnostics));
+    }
+    const std::string& name = compiled->metadata.name;
+    if (auto other = sourceByName.find(name); other != sourceByName.end()) {
+      throw std::runtime_error("two different material graphs are both named '" + name +
+                               "'; rename one (EvaluateMaterial_" + name + " must be unique)");
+    }
+    sourceByName[name] = graph.text;
+    LinkedMaterial entry;
+    entry.name = name;
+    entry.textureBase = static_cast<int>(linked.texturePaths.size());
+    entry.cacheable = compiled->metadata.cacheable;
+    for (const auto& texture : compiled->metadata.textures) {
+      std::filesystem::path path(texture);
+      if (path.is_relative() && !baseDirectory.empty())
+        path = baseDirectory / path;
+      linked.texturePaths.push_back(path.string());
+    }
+    includes += "// ---- material " + name + " (" + graph.path + ")\n" + compiled->glsl + "\n";
+    bySource.emplace(graph.text, entry);
+    linked.materials.push_back(entry);
+  }
+
+  std::string& out = linked.source;
+  out = "// Generated by memograph's material linker. Do not edit.\n";
+  out += "#ifndef MG_MATERIALS_GLSL\n#define MG_MATERIALS_GLSL\n";
+  // The prelude (MaterialInputs, float3_D, ...) arrives, guarded, with each include.
+  out += includes;
+  out +=
+      "// Evaluates the graph of scene material `materialId` (thesis §5.2: branch by material).\n";
+  out +=
+      "void evaluateMaterial(uint materialId, MaterialInputs inputs, out MaterialOutputs outputs) "
+      "{\n";
+  out += "  switch (materialId) {\n";
+  for (std::size_t i = 0; i < linked.materials.size(); ++i) {
+    const LinkedMaterial& m = linked.materials[i];
+    out += "    case " + std::to_string(i) + "u:\n";
+    out += "      inputs.textureBase = " + std::to_string(m.textureBase) + ";\n";
+    out += "      EvaluateMaterial_" + m.name + "(inputs, outputs);\n";
+    out += "      break;\n";
+  }
+  out += "    default:\n      outputs = mg_defaultMaterialOutputs(inputs);\n      break;\n";
+  out += "  }\n}\n#endif\n";
+  linked.compileMilliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return linked;
+}
+
+#endif  // MG_HAVE_COMPILER
+
+}  // namespace memograph::runtime

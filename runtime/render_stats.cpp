@@ -1,0 +1,43 @@
+#include "runtime/render_stats.h"
+
+#include <algorithm>
+
+namespace memograph::runtime {
+
+double RenderStats::medianGpuMilliseconds() const {
+  if (frames.empty())
+    return 0.0;
+  std::vector<double> times;
+  for (const auto& f : frames)
+    times.push_back(f.gpuMilliseconds);
+  std::sort(times.begin(), times.end());
+  std::size_t n = times.size();
+  return n % 2 ? times[n / 2] : 0.5 * (times[n / 2 - 1] + times[n / 2]);
+}
+
+std::uint64_t RenderStats::totalRays() const {
+  std::uint64_t sum = 0;
+  for (const auto& f : frames)
+    sum += f.rays;
+  return sum;
+}
+
+void writeStatsCsv(std::ostream& out, const RenderStats& s) {
+  out << "frame,gpu_ms,wall_ms,rays,mrays_per_s,width,height,paths,rays_per_path,backend,"
+         "device,blas_count,instances,blas_bytes,blas_bytes_uncompacted,tlas_bytes,"
+         "scratch_bytes,as_build_ms,texture_bytes,materials,material_compile_ms,"
+         "shader_compile_ms,shader_cache_hits\n";
+  const auto& a = s.accelerationStructures;
+  for (const auto& f : s.frames) {
+    double mraysPerSecond = f.gpuMilliseconds > 0 ? f.rays / (f.gpuMilliseconds * 1e3) : 0.0;
+    out << f.frame << ',' << f.gpuMilliseconds << ',' << f.wallMilliseconds << ',' << f.rays << ','
+        << mraysPerSecond << ',' << s.width << ',' << s.height << ',' << s.pathsPerPixel << ','
+        << s.raysPerPath << ',' << s.backend << ",\"" << s.device << "\"," << a.blasCount << ','
+        << a.instanceCount << ',' << a.blasBytes << ',' << a.blasBytesBeforeCompaction << ','
+        << a.tlasBytes << ',' << a.scratchBytes << ',' << a.buildMilliseconds << ','
+        << s.textureBytes << ',' << s.materialCount << ',' << s.materialCompileMilliseconds << ','
+        << s.shaderCompileMilliseconds << ',' << s.shaderCacheHits << '\n';
+  }
+}
+
+}  // namespace memograph::runtime

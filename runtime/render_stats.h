@@ -1,0 +1,45 @@
+// What a render measured: per-frame GPU time (timestamp queries) and rays, set-up costs and
+// acceleration-structure memory. The CLI writes it as CSV (--stats).
+#pragma once
+
+#include <cstdint>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "runtime/acceleration_structures.h"
+
+namespace memograph::runtime {
+
+struct FrameStats {
+  std::uint32_t frame = 0;
+  double gpuMilliseconds = 0.0;   // between the timestamps around the trace (0 if none)
+  double wallMilliseconds = 0.0;  // submit to fence on the host
+  std::uint64_t rays = 0;         // closest-hit and shadow rays traced
+};
+
+struct RenderStats {
+  std::string device;
+  std::string backend;
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
+  std::uint32_t pathsPerPixel = 0;
+  std::uint32_t raysPerPath = 0;
+  std::vector<FrameStats> frames;
+  AccelerationStructureStats accelerationStructures;
+  std::uint64_t textureBytes = 0;
+  std::uint32_t materialCount = 0;
+  double materialCompileMilliseconds = 0.0;  // graph → GLSL
+  double shaderCompileMilliseconds = 0.0;    // GLSL → SPIR-V (0 when all came from the cache)
+  std::uint32_t shaderCacheHits = 0;
+  std::uint32_t shadersCompiled = 0;
+
+  double medianGpuMilliseconds() const;
+  std::uint64_t totalRays() const;
+};
+
+// One header line, then one line per frame; set-up figures repeat on every line so each
+// line stands alone in a spreadsheet.
+void writeStatsCsv(std::ostream& out, const RenderStats& stats);
+
+}  // namespace memograph::runtime

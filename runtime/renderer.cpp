@@ -1,0 +1,253 @@
+#include "runtime/renderer.h"
+
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "runtime/acceleration_structures.h"
+#include "runtime/gpu_buffer.h"
+#include "runtime/gpu_textures.h"
+#include "runtime/material_linker.h"
+#include "runtime/scene_upload.h"
+#include "runtime/shader_compiler.h"
+#include "runtime/shader_sources.h"
+#include "runtime/shaders/shared_types.h"
+#include "runtime/trace_descriptors.h"
+#include "runtime/trace_pipelines.h"
+#include "runtime/vulkan_error.h"
+
+namespace memograph::runtime {
+
+namespace {
+
+constexpr std::uint32_t kMaxImageSide = 16384;
+
+void validateSettings(const RenderSettings& s) {
+  if (s.width == 0 || s.height == 0 || s.width > kMaxImageSide || s.height > kMaxImageSide)
+    throw std::invalid_argument("image size " + std::to_string(s.width) + "x" +
+                                std::to_string(s.height) + " is out of range (1.." +
+                                std::to_string(kMaxImageSide) + " per side)");
+  if (s.pathsPerPixel == 0)
+    throw std::invalid_argument("paths per pixel must be at least 1");
+  if (s.raysPerPath == 0)
+    throw std::invalid_argument("rays per path must be at least 1");
+  if (s.frames == 0)
+    throw std::invalid_argument("frames must be at least 1");
+}
+
+bool sameCamera(const Camera& a, const Camera& b) {
+  return a.position == b.position && a.target == b.target && a.up == b.up &&
+         a.verticalFovDegrees == b.verticalFovDegrees;
+}
+
+// Camera basis and the primary ray cone's spread angle (thesis §2.2: one pixel's angle).
+void setCamera(gpu::FrameConstants& frame, const Camera& camera, std::uint32_t width,
+               std::uint32_t height) {
+  glm::vec3 forward = camera.target - camera.position;
+  if (glm::dot(forward, forward) < 1e-20f)
+    throw std::invalid_argument("the camera's position and target coincide");
+  if (!(camera.verticalFovDegrees > 0.0f && camera.verticalFovDegrees < 180.0f))
+    throw std::invalid_argument("the camera's vertical field of view must be in (0, 180) degrees");
+  forward = glm::normalize(forward);
+  glm::vec3 right = glm::cross(forward, camera.up);
+  if (glm::dot(right, right) < 1e-12f)
+    throw std::invalid_argument("the camera's up vector is parallel to its view direction");
+  right = glm::normalize(right);
+  glm::vec3 up = glm::cross(right, forward);
+  float tanHalf = std::tan(glm::radians(camera.verticalFovDegrees) * 0.5f);
+  float aspect = float(width) / float(height);
+  float pixelSpread = std::atan(2.0f * tanHalf / float(height));
+  frame.cameraPosition = glm::vec4(camera.position, pixelSpread);
+  frame.cameraRight = glm::vec4(right * tanHalf * aspect, 0.0f);
+  frame.cameraUp = glm::vec4(up * tanHalf, 0.0f);
+  frame.cameraForward = glm::vec4(forward, frame.cameraForward.w);
+}
+
+}  // namespace
+
+TextureImage loadTextureCore(const std::string& path) {
+  std::filesystem::path p(path);
+  if (!std::filesystem::exists(p))
+    throw std::runtime_error("texture not found: " + path);
+  auto extension = p.extension().string();
+  if (extension != ".pfm" && extension != ".PFM") {
+    throw std::runtime_error("texture '" + path +
+                             "': the core renderer reads only PFM; render through the "
+                             "memograph CLI (OpenImageIO) or convert it to .pfm");
+  }
+  return TextureImage{{readPfm(p)}};
+}
+
+Renderer::Renderer(RendererOptions options)
+    : options_(std::move(options)), context_(std::make_unique<VulkanContext>(options_.context)) {}
+
+Renderer::~Renderer() = default;
+
+RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings) {
+  validateSettings(settings);
+  validateScene(scene);
+  const VulkanContext& context = *context_;
+  VkDevice device = context.device();
+  RenderResult result;
+  RenderStats& stats = result.stats;
+  stats.device = context.info().name;
+  stats.backend = backendName(context.backend());
+  stats.width = settings.width;
+  stats.height = settings.height;
+  stats.pathsPerPixel = settings.pathsPerPixel;
+  stats.raysPerPath = settings.raysPerPath;
+
+  // Materials: graphs → GLSL, and the textures they name.
+  MaterialLinkOptions linkOptions;
+  linkOptions.nodeLibraryDirectory = options_.nodeLibraryDirectory;
+  LinkedMaterials materials = linkMaterials(scene.materials, linkOptions);
+  stats.materialCount = static_cast<std::uint32_t>(scene.materials.size());
+  stats.materialCompileMilliseconds = materials.compileMilliseconds;
+  std::vector<TextureImage> textureImages;
+  for (const auto& path : materials.texturePaths)
+    textureImages.push_back(options_.textureLoader(path));
+
+  // Scene data, acceleration structures, textures.
+  SceneBuffers buffers = uploadScene(context, scene);
+  SceneAccelerationStructures accel(context, buffers.vertices, sizeof(gpu::Vertex), buffers.indices,
+                                    buffers.geometry, buffers.placements);
+  stats.accelerationStructures = accel.stats();
+  GpuTextures textures(context, textureImages);
+  stats.textureBytes = textures.bytes();
+
+  // Shaders: the embedded sources plus the generated materials.glsl.
+  std::map<std::string, std::string> files;
+  for (const auto& shader : embeddedShaders())
+    files[std::string(shader.name)] = std::string(shader.text);
+  files["materials.glsl"] = materials.source;
+  std::filesystem::path cacheDirectory;
+  if (options_.shaderCache) {
+    cacheDirectory = options_.shaderCacheDirectory.empty() ? defaultShaderCacheDirectory()
+                                                           : options_.shaderCacheDirectory;
+  }
+  ShaderCompiler compiler(std::move(files), cacheDirectory);
+  TracePipeline pipeline(context, compiler, textures.count());
+  stats.shaderCompileMilliseconds = compiler.stats().compileMilliseconds;
+  stats.shaderCacheHits = compiler.stats().hits;
+  stats.shadersCompiled = compiler.stats().compiled;
+
+  // Per-render buffers.
+  std::size_t pixelCount = std::size_t(settings.width) * settings.height;
+  VkDeviceSize accumulationBytes = pixelCount * sizeof(glm::vec4);
+  GpuBuffer frameBuffer =
+      hostBuffer(context, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
+  GpuBuffer accumulation(context, accumulationBytes,
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                         VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  GpuBuffer rayCounter(context, sizeof(std::uint32_t),
+                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                           VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                       VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  GpuBuffer rayReadback =
+      hostBuffer(context, sizeof(std::uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+
+  TraceResources resources{accel.tlas(), &frameBuffer, &accumulation,
+                           &rayCounter,  &buffers,     &textures};
+  TraceDescriptorSet descriptors(context, pipeline.descriptorSetLayout(), resources);
+  VkDescriptorSet set = descriptors.get();
+
+  // Timestamps around each frame's trace.
+  bool timestamps = context.info().timestamps;
+  VulkanHandle<VkQueryPool> timestampPool;
+  if (timestamps) {
+    VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+    queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    queryInfo.queryCount = 2;
+    VkQueryPool queryPool = VK_NULL_HANDLE;
+    checkVk(vkCreateQueryPool(device, &queryInfo, nullptr, &queryPool), "vkCreateQueryPool");
+    timestampPool = VulkanHandle<VkQueryPool>(
+        queryPool, [device](VkQueryPool p) { vkDestroyQueryPool(device, p, nullptr); });
+  }
+
+  gpu::FrameConstants frame{};
+  frame.environment = scene.environment.imageRgb.empty()
+                          ? glm::vec4(scene.environment.constantRadiance, 0.0f)
+                          : glm::vec4(1.0f, 1.0f, 1.0f, 0.0f);
+  frame.image = glm::uvec4(settings.width, settings.height, 0, settings.seed);
+  std::uint32_t flags = (settings.sharedPrimaryRay ? gpu::kFlagSharedPrimaryRay : 0u) |
+                        (buffers.environmentWidth ? gpu::kFlagEnvironmentImage : 0u);
+  frame.path = glm::uvec4(settings.pathsPerPixel, settings.raysPerPath, flags, buffers.lightCount);
+  frame.environmentSize = glm::uvec4(buffers.environmentWidth, buffers.environmentHeight, 0, 0);
+
+  Camera previousCamera;
+  std::uint32_t sampleIndex = 0;
+  for (std::uint32_t f = 0; f < settings.frames; ++f) {
+    const Camera& camera =
+        settings.cameraPath.empty()
+            ? scene.camera
+            : settings.cameraPath[std::min<std::size_t>(f, settings.cameraPath.size() - 1)];
+    if (f > 0 && !sameCamera(camera, previousCamera))
+      sampleIndex = 0;
+    previousCamera = camera;
+    frame.cameraForward.w = float(f) * settings.secondsPerFrame;
+    setCamera(frame, camera, settings.width, settings.height);
+    frame.image.z = f;
+    frame.environmentSize.z = sampleIndex;
+    frameBuffer.write(&frame, sizeof frame);
+
+    auto start = std::chrono::steady_clock::now();
+    context.submitAndWait([&](VkCommandBuffer commands) {
+      vkCmdFillBuffer(commands, rayCounter.buffer(), 0, VK_WHOLE_SIZE, 0);
+      VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+      barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+      barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+      vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                           VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0, nullptr, 0,
+                           nullptr);
+      if (timestamps) {
+        vkCmdResetQueryPool(commands, timestampPool.get(), 0, 2);
+        vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestampPool.get(), 0);
+      }
+      pipeline.record(commands, set, settings.width, settings.height);
+      if (timestamps)
+        vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestampPool.get(), 1);
+      barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+      barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+      vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                           VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+      VkBufferCopy copy{0, 0, sizeof(std::uint32_t)};
+      vkCmdCopyBuffer(commands, rayCounter.buffer(), rayReadback.buffer(), 1, &copy);
+    });
+    FrameStats frameStats;
+    frameStats.frame = f;
+    frameStats.wallMilliseconds =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    std::uint32_t rays = 0;
+    rayReadback.read(&rays, sizeof rays);
+    frameStats.rays = rays;
+    if (timestamps) {
+      std::uint64_t ticks[2] = {0, 0};
+      checkVk(vkGetQueryPoolResults(device, timestampPool.get(), 0, 2, sizeof ticks, ticks,
+                                    sizeof(std::uint64_t),
+                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+              "vkGetQueryPoolResults (timestamps)");
+      frameStats.gpuMilliseconds =
+          double(ticks[1] - ticks[0]) * context.info().timestampPeriodNs * 1e-6;
+    }
+    stats.frames.push_back(frameStats);
+    if (settings.onFrame)
+      settings.onFrame(frameStats);
+    ++sampleIndex;
+  }
+
+  // Read the accumulated image back.
+  GpuBuffer readback = hostBuffer(context, accumulationBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  context.submitAndWait([&](VkCommandBuffer commands) {
+    VkBufferCopy copy{0, 0, accumulationBytes};
+    vkCmdCopyBuffer(commands, accumulation.buffer(), readback.buffer(), 1, &copy);
+  });
+  result.image.width = settings.width;
+  result.image.height = settings.height;
+  result.image.rgba.resize(pixelCount * 4);
+  readback.read(result.image.rgba.data(), accumulationBytes);
+  return result;
+}
+
+}  // namespace memograph::runtime

@@ -1,0 +1,75 @@
+// The runtime's front door: renders a runtime::Scene with the thesis §5.2 path tracer into
+// an HDR float image and reports per-frame statistics. Needs only Vulkan, glslang (static)
+// and GLM; image and scene files are the callers' business (tools/, the scenes module).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "runtime/image.h"
+#include "runtime/render_stats.h"
+#include "runtime/scene.h"
+#include "runtime/vulkan_context.h"
+
+namespace memograph::runtime {
+
+// Loads the texture a material graph names (path resolved against the graph's folder).
+// Throws std::runtime_error naming the path when it cannot.
+using TextureLoader = std::function<TextureImage(const std::string& path)>;
+
+// The core's own loader: PFM files only (no OpenImageIO in the core); anything else gets an
+// error that says which tool can convert it.
+TextureImage loadTextureCore(const std::string& path);
+
+struct RendererOptions {
+  ContextOptions context;
+  bool shaderCache = true;
+  std::filesystem::path shaderCacheDirectory;  // empty: defaultShaderCacheDirectory()
+  std::filesystem::path nodeLibraryDirectory;  // empty: the embedded node library
+  TextureLoader textureLoader = loadTextureCore;
+};
+
+struct RenderSettings {
+  std::uint32_t width = 64;
+  std::uint32_t height = 64;
+  std::uint32_t pathsPerPixel = 1;  // P
+  std::uint32_t raysPerPath = 2;    // L: rays per path (1 = primary ray + direct light only)
+  std::uint32_t frames = 1;
+  std::uint32_t seed = 0;
+  bool sharedPrimaryRay = false;  // one primary ray through the pixel centre for all P paths
+  // One camera per frame (the last repeats); empty: the scene's camera. Accumulation
+  // restarts whenever the camera moves.
+  std::vector<Camera> cameraPath;
+  float secondsPerFrame = 1.0f / 30.0f;  // MaterialInputs::time advances by this per frame
+  std::function<void(const FrameStats&)> onFrame;  // progress reporting
+};
+
+struct RenderResult {
+  HdrImage image;  // the accumulated mean radiance of the last camera's frames
+  RenderStats stats;
+};
+
+class Renderer {
+ public:
+  explicit Renderer(RendererOptions options);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  const VulkanContext& context() const { return *context_; }
+
+  // Compiles the scene's materials, uploads it, builds its acceleration structures and
+  // renders settings.frames frames. Throws std::runtime_error / std::invalid_argument with a
+  // message for people on bad input, VulkanError on device failures.
+  RenderResult render(const Scene& scene, const RenderSettings& settings);
+
+ private:
+  RendererOptions options_;
+  std::unique_ptr<VulkanContext> context_;
+};
+
+}  // namespace memograph::runtime

@@ -1,0 +1,144 @@
+#include "runtime/scene_upload.h"
+
+#include <stdexcept>
+#include <string>
+
+#include "runtime/shaders/shared_types.h"
+
+namespace memograph::runtime {
+
+namespace {
+
+constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+constexpr VkBufferUsageFlags kGeometry =
+    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+    VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR;
+
+std::string meshLabel(const Mesh& mesh, std::size_t index) {
+  return "mesh " + std::to_string(index) + (mesh.name.empty() ? "" : " ('" + mesh.name + "')");
+}
+
+}  // namespace
+
+void validateScene(const Scene& scene) {
+  if (scene.meshes.empty())
+    throw std::invalid_argument("the scene has no meshes");
+  if (scene.instances.empty())
+    throw std::invalid_argument("the scene has no instances");
+  for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
+    const Mesh& mesh = scene.meshes[i];
+    std::string label = meshLabel(mesh, i);
+    if (mesh.positions.empty() || mesh.indices.empty())
+      throw std::invalid_argument(label + " has no triangles");
+    if (mesh.indices.size() % 3 != 0)
+      throw std::invalid_argument(label + ": index count " + std::to_string(mesh.indices.size()) +
+                                  " is not a multiple of 3");
+    if (mesh.normals.size() != mesh.positions.size())
+      throw std::invalid_argument(label + ": " + std::to_string(mesh.normals.size()) +
+                                  " normals for " + std::to_string(mesh.positions.size()) +
+                                  " positions");
+    auto checkOptional = [&](std::size_t count, const char* what) {
+      if (count != 0 && count != mesh.positions.size())
+        throw std::invalid_argument(label + ": " + std::to_string(count) + " " + what + " for " +
+                                    std::to_string(mesh.positions.size()) + " positions");
+    };
+    checkOptional(mesh.uvs.size(), "uvs");
+    checkOptional(mesh.tangents.size(), "tangents");
+    checkOptional(mesh.colors.size(), "colors");
+    for (std::size_t k = 0; k < mesh.indices.size(); ++k) {
+      if (mesh.indices[k] >= mesh.positions.size())
+        throw std::invalid_argument(label + ": index " + std::to_string(k) + " is " +
+                                    std::to_string(mesh.indices[k]) + ", past its " +
+                                    std::to_string(mesh.positions.size()) + " vertices");
+    }
+  }
+  for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+    const Instance& instance = scene.instances[i];
+    if (instance.mesh >= scene.meshes.size())
+      throw std::invalid_argument("instance " + std::to_string(i) + " names mesh " +
+                                  std::to_string(instance.mesh) + " of " +
+                                  std::to_string(scene.meshes.size()));
+    if (instance.material >= scene.materials.size())
+      throw std::invalid_argument("instance " + std::to_string(i) + " names material " +
+                                  std::to_string(instance.material) + " of " +
+                                  std::to_string(scene.materials.size()));
+  }
+  const Environment& env = scene.environment;
+  if (!env.imageRgb.empty() &&
+      env.imageRgb.size() != std::size_t(env.imageWidth) * env.imageHeight * 3)
+    throw std::invalid_argument("environment image: " + std::to_string(env.imageRgb.size()) +
+                                " floats for " + std::to_string(env.imageWidth) + "x" +
+                                std::to_string(env.imageHeight) + " RGB texels");
+  if (env.imageRgb.empty() && !env.imagePath.empty())
+    throw std::invalid_argument("environment image '" + env.imagePath +
+                                "' was named but not loaded (the importer fills imageRgb)");
+}
+
+SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene) {
+  validateScene(scene);
+  SceneBuffers out;
+  std::vector<gpu::Vertex> vertices;
+  std::vector<std::uint32_t> indices;
+  std::vector<gpu::Mesh> meshes;
+  for (const Mesh& mesh : scene.meshes) {
+    MeshGeometry g;
+    g.firstVertex = static_cast<std::uint32_t>(vertices.size());
+    g.vertexCount = static_cast<std::uint32_t>(mesh.positions.size());
+    g.firstIndex = static_cast<std::uint32_t>(indices.size());
+    g.triangleCount = static_cast<std::uint32_t>(mesh.indices.size() / 3);
+    std::uint32_t flags = (mesh.uvs.empty() ? 0 : gpu::kMeshHasUvs) |
+                          (mesh.tangents.empty() ? 0 : gpu::kMeshHasTangents) |
+                          (mesh.colors.empty() ? 0 : gpu::kMeshHasColors);
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+      glm::vec2 uv = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[v];
+      gpu::Vertex vertex;
+      vertex.position = glm::vec4(mesh.positions[v], uv.x);
+      vertex.normal = glm::vec4(mesh.normals[v], uv.y);
+      vertex.tangent = mesh.tangents.empty() ? glm::vec4(0.0f) : mesh.tangents[v];
+      vertex.color = mesh.colors.empty() ? glm::vec4(1.0f) : mesh.colors[v];
+      vertices.push_back(vertex);
+    }
+    indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
+    meshes.push_back({glm::uvec4(g.firstVertex, g.firstIndex, flags, g.triangleCount)});
+    out.geometry.push_back(g);
+  }
+  std::vector<gpu::Instance> instances;
+  for (const Instance& instance : scene.instances) {
+    gpu::Instance gi;
+    gi.objectToWorld = instance.objectToWorld;
+    gi.normalToWorld = glm::transpose(glm::inverse(instance.objectToWorld));
+    gi.ids = glm::uvec4(instance.mesh, instance.material, 0, 0);
+    instances.push_back(gi);
+    out.placements.push_back({instance.mesh, instance.objectToWorld});
+  }
+  std::vector<gpu::Light> lights;
+  for (const Light& light : scene.lights) {
+    gpu::Light gl;
+    bool point = light.type == LightType::Point;
+    gl.positionOrDirection = glm::vec4(point ? light.position : light.direction,
+                                       float(point ? gpu::kLightPoint : gpu::kLightDirectional));
+    gl.intensity = glm::vec4(light.intensity, 0.0f);
+    lights.push_back(gl);
+  }
+  std::vector<glm::vec4> environment(1, glm::vec4(0.0f));
+  const Environment& env = scene.environment;
+  if (!env.imageRgb.empty()) {
+    environment.resize(std::size_t(env.imageWidth) * env.imageHeight);
+    for (std::size_t i = 0; i < environment.size(); ++i)
+      environment[i] =
+          glm::vec4(env.imageRgb[3 * i], env.imageRgb[3 * i + 1], env.imageRgb[3 * i + 2], 1.0f);
+    out.environmentWidth = env.imageWidth;
+    out.environmentHeight = env.imageHeight;
+  }
+
+  out.vertices = uploadBuffer<gpu::Vertex>(context, vertices, kGeometry);
+  out.indices = uploadBuffer<std::uint32_t>(context, indices, kGeometry);
+  out.meshes = uploadBuffer<gpu::Mesh>(context, meshes, kStorage);
+  out.instances = uploadBuffer<gpu::Instance>(context, instances, kStorage);
+  out.lights = uploadBuffer<gpu::Light>(context, lights, kStorage);
+  out.environment = uploadBuffer<glm::vec4>(context, environment, kStorage);
+  out.lightCount = static_cast<std::uint32_t>(lights.size());
+  return out;
+}
+
+}  // namespace memograph::runtime

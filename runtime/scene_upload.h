@@ -1,0 +1,34 @@
+// Uploads a runtime::Scene into the GPU buffers the path tracer reads (shared_types.h
+// layouts), after checking it: every index, mesh and material reference in range, so a bad
+// scene gets a message naming the element instead of a device fault.
+#pragma once
+
+#include <vector>
+
+#include "runtime/acceleration_structures.h"
+#include "runtime/gpu_buffer.h"
+#include "runtime/scene.h"
+#include "runtime/vulkan_context.h"
+
+namespace memograph::runtime {
+
+// Throws std::invalid_argument naming the first problem.
+void validateScene(const Scene& scene);
+
+struct SceneBuffers {
+  GpuBuffer vertices;     // gpu::Vertex
+  GpuBuffer indices;      // uint32, relative to each mesh's first vertex
+  GpuBuffer meshes;       // gpu::Mesh
+  GpuBuffer instances;    // gpu::Instance
+  GpuBuffer lights;       // gpu::Light
+  GpuBuffer environment;  // vec4 texels of the environment image (one texel if none)
+  std::vector<MeshGeometry> geometry;
+  std::vector<InstancePlacement> placements;
+  std::uint32_t lightCount = 0;
+  std::uint32_t environmentWidth = 0;  // 0: constant environment
+  std::uint32_t environmentHeight = 0;
+};
+
+SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene);
+
+}  // namespace memograph::runtime

@@ -1,0 +1,211 @@
+#include "runtime/shader_compiler.h"
+
+#include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <memory>
+#include <mutex>
+#include <stdexcept>
+
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+#include <glslang/SPIRV/GlslangToSpv.h>
+#include <glslang/build_info.h>
+
+namespace memograph::runtime {
+
+namespace {
+
+// Bump when anything about how SPIR-V is produced changes without the sources changing.
+constexpr const char* kCacheFormat = "memograph-spirv-1";
+
+EShLanguage toGlslang(ShaderStage stage) {
+  switch (stage) {
+    case ShaderStage::Compute:
+      return EShLangCompute;
+    case ShaderStage::RayGen:
+      return EShLangRayGen;
+    case ShaderStage::ClosestHit:
+      return EShLangClosestHit;
+    case ShaderStage::Miss:
+      return EShLangMiss;
+  }
+  return EShLangCompute;
+}
+
+// glslang keeps process-wide tables; initialise them once and never tear them down while
+// another thread might compile.
+void initializeGlslangOnce() {
+  static std::once_flag once;
+  std::call_once(once, [] { glslang::InitializeProcess(); });
+}
+
+// 64-bit FNV-1a, fed piece by piece with length prefixes so piece boundaries count.
+class Hasher {
+ public:
+  void add(std::string_view text) {
+    addRaw(std::to_string(text.size()) + ":");
+    addRaw(text);
+  }
+  std::uint64_t value() const { return hash_; }
+
+ private:
+  void addRaw(std::string_view text) {
+    for (unsigned char c : text) {
+      hash_ ^= c;
+      hash_ *= 1099511628211ull;
+    }
+  }
+  std::uint64_t hash_ = 14695981039346656037ull;
+};
+
+class MapIncluder : public glslang::TShader::Includer {
+ public:
+  explicit MapIncluder(const std::map<std::string, std::string>& files) : files_(files) {}
+
+  IncludeResult* includeLocal(const char* headerName, const char*, size_t) override {
+    return find(headerName);
+  }
+  IncludeResult* includeSystem(const char* headerName, const char*, size_t) override {
+    return find(headerName);
+  }
+  void releaseInclude(IncludeResult* result) override {
+    std::unique_ptr<IncludeResult> owned(result);  // glslang hands ownership back here
+  }
+
+ private:
+  IncludeResult* find(const char* name) {
+    auto it = files_.find(name);
+    if (it == files_.end())
+      return nullptr;
+    return std::make_unique<IncludeResult>(it->first, it->second.data(), it->second.size(), nullptr)
+        .release();
+  }
+  const std::map<std::string, std::string>& files_;
+};
+
+std::vector<std::uint32_t> readCache(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary | std::ios::ate);
+  if (!in)
+    return {};
+  auto size = static_cast<std::size_t>(in.tellg());
+  if (size == 0 || size % 4 != 0)
+    return {};
+  std::vector<std::uint32_t> words(size / 4);
+  in.seekg(0);
+  in.read(reinterpret_cast<char*>(words.data()), std::streamsize(size));
+  if (!in || words[0] != 0x07230203u)
+    return {};  // SPIR-V magic
+  return words;
+}
+
+void writeCache(const std::filesystem::path& path, const std::vector<std::uint32_t>& words) {
+  std::error_code error;
+  std::filesystem::create_directories(path.parent_path(), error);
+  if (error)
+    return;  // the cache is an optimisation; a read-only disk just disables it
+  auto temporary = path;
+  temporary += ".tmp" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count());
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    if (!out)
+      return;
+    out.write(reinterpret_cast<const char*>(words.data()), std::streamsize(words.size() * 4));
+    if (!out)
+      return;
+  }
+  std::filesystem::rename(temporary, path, error);  // atomic: readers see all or nothing
+  if (error)
+    std::filesystem::remove(temporary, error);
+}
+
+}  // namespace
+
+std::filesystem::path defaultShaderCacheDirectory() {
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+    return std::filesystem::path(xdg) / "memograph" / "shaders";
+  if (const char* home = std::getenv("HOME"); home && *home)
+    return std::filesystem::path(home) / ".cache" / "memograph" / "shaders";
+  return {};
+}
+
+ShaderCompiler::ShaderCompiler(std::map<std::string, std::string> files,
+                               std::filesystem::path cacheDirectory)
+    : files_(std::move(files)), cacheDirectory_(std::move(cacheDirectory)) {}
+
+std::vector<std::uint32_t> ShaderCompiler::compile(const ShaderCompileRequest& request) {
+  auto entry = files_.find(request.entryFile);
+  if (entry == files_.end())
+    throw std::runtime_error("shader source not found: " + request.entryFile);
+
+  std::string preamble;
+  for (const auto& define : request.defines) {
+    auto eq = define.find('=');
+    preamble +=
+        "#define " +
+        (eq == std::string::npos ? define : define.substr(0, eq) + " " + define.substr(eq + 1)) +
+        "\n";
+  }
+
+  // The key covers every file an include could reach, the defines, the stage, the target
+  // and the compiler's version: the cached SPIR-V is valid exactly when all are equal.
+  Hasher hasher;
+  hasher.add(kCacheFormat);
+  hasher.add(std::to_string(GLSLANG_VERSION_MAJOR) + "." + std::to_string(GLSLANG_VERSION_MINOR) +
+             "." + std::to_string(GLSLANG_VERSION_PATCH));
+  hasher.add("vulkan1.2/spirv1.4");
+  hasher.add(std::to_string(static_cast<int>(request.stage)));
+  hasher.add(request.entryFile);
+  hasher.add(preamble);
+  for (const auto& [name, text] : files_) {
+    hasher.add(name);
+    hasher.add(text);
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hasher.value()));
+  std::filesystem::path cachePath;
+  if (!cacheDirectory_.empty()) {
+    cachePath = cacheDirectory_ / (std::string(hex) + ".spv");
+    auto cached = readCache(cachePath);
+    if (!cached.empty()) {
+      ++stats_.hits;
+      return cached;
+    }
+  }
+
+  auto start = std::chrono::steady_clock::now();
+  initializeGlslangOnce();
+  EShLanguage stage = toGlslang(request.stage);
+  glslang::TShader shader(stage);
+  const char* text = entry->second.c_str();
+  int length = static_cast<int>(entry->second.size());
+  const char* name = entry->first.c_str();
+  shader.setStringsWithLengthsAndNames(&text, &length, &name, 1);
+  shader.setPreamble(preamble.c_str());
+  shader.setEnvInput(glslang::EShSourceGlsl, stage, glslang::EShClientVulkan, 100);
+  shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_2);
+  shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_4);
+  auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules);
+  MapIncluder includer(files_);
+  if (!shader.parse(GetDefaultResources(), 460, false, messages, includer)) {
+    throw std::runtime_error("GLSL compile error in " + request.entryFile + ":\n" +
+                             shader.getInfoLog() + shader.getInfoDebugLog());
+  }
+  glslang::TProgram program;
+  program.addShader(&shader);
+  if (!program.link(messages)) {
+    throw std::runtime_error("GLSL link error in " + request.entryFile + ":\n" +
+                             program.getInfoLog());
+  }
+  std::vector<std::uint32_t> spirv;
+  glslang::SpvOptions options;
+  glslang::GlslangToSpv(*program.getIntermediate(stage), spirv, &options);
+  stats_.compileMilliseconds +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  ++stats_.compiled;
+  if (!cachePath.empty())
+    writeCache(cachePath, spirv);
+  return spirv;
+}
+
+}  // namespace memograph::runtime

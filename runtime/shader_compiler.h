@@ -1,0 +1,48 @@
+// GLSL → SPIR-V through glslang's library at start-up, with a disk cache of SPIR-V keyed by
+// a hash of everything that decides the output (sources, defines, stage, target), so a
+// second run with the same scene starts without compiling.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace memograph::runtime {
+
+enum class ShaderStage { Compute, RayGen, ClosestHit, Miss };
+
+struct ShaderCompileRequest {
+  std::string entryFile;  // name in `files` of the file to compile
+  ShaderStage stage = ShaderStage::Compute;
+  std::vector<std::string> defines;  // "NAME" or "NAME=VALUE"
+};
+
+struct ShaderCacheStats {
+  std::uint32_t hits = 0;
+  std::uint32_t compiled = 0;
+  double compileMilliseconds = 0.0;
+};
+
+class ShaderCompiler {
+ public:
+  // `files`: every file an #include may name (embedded shaders plus generated ones).
+  // `cacheDirectory`: empty disables the disk cache.
+  ShaderCompiler(std::map<std::string, std::string> files, std::filesystem::path cacheDirectory);
+
+  // Returns SPIR-V; throws std::runtime_error with glslang's log on a compile error.
+  std::vector<std::uint32_t> compile(const ShaderCompileRequest& request);
+
+  const ShaderCacheStats& stats() const { return stats_; }
+
+ private:
+  std::map<std::string, std::string> files_;
+  std::filesystem::path cacheDirectory_;
+  ShaderCacheStats stats_;
+};
+
+// $XDG_CACHE_HOME/memograph/shaders, else ~/.cache/memograph/shaders, else empty.
+std::filesystem::path defaultShaderCacheDirectory();
+
+}  // namespace memograph::runtime

@@ -1,0 +1,33 @@
+// Counter-based random numbers: PCG (O'Neill 2014) seeded from pixel, frame and seed, so a
+// pixel's sequence never depends on other pixels or on the order threads run in.
+
+// PCG-hash of one 32-bit word (the RXS-M-XS output of a PCG step).
+uint pcgHash(uint value) {
+  uint state = value * 747796405u + 2891336453u;
+  uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+
+struct Rng {
+  uint state;
+};
+
+// The generator of one pixel in one frame for one seed.
+Rng rngForPixel(uvec2 pixel, uint frame, uint seed) {
+  Rng rng;
+  rng.state = pcgHash(pixel.x ^ pcgHash(pixel.y ^ pcgHash(frame ^ pcgHash(seed))));
+  return rng;
+}
+
+// A uniform float in [0, 1): one PCG32 step, 24 random mantissa bits.
+float rngNext(inout Rng rng) {
+  rng.state = rng.state * 747796405u + 2891336453u;
+  uint word = ((rng.state >> ((rng.state >> 28u) + 4u)) ^ rng.state) * 277803737u;
+  word = (word >> 22u) ^ word;
+  return float(word >> 8u) * (1.0 / 16777216.0);
+}
+
+vec2 rngNext2(inout Rng rng) {
+  float a = rngNext(rng);
+  return vec2(a, rngNext(rng));
+}

@@ -1,0 +1,94 @@
+// GPU structs, binding indices and constants shared by the host (C++) and the path tracer
+// (GLSL): one definition, so the two sides cannot drift apart (ARCHITECTURE.md).
+// Every struct is laid out in vec4-sized fields so std140/std430 and C++ agree.
+#ifndef MEMOGRAPH_SHARED_TYPES_H
+#define MEMOGRAPH_SHARED_TYPES_H
+
+#ifdef __cplusplus
+#include <cstdint>
+
+#include <glm/glm.hpp>
+namespace memograph::runtime::gpu {
+using uint = std::uint32_t;
+using vec2 = glm::vec2;
+using vec4 = glm::vec4;
+using uvec4 = glm::uvec4;
+using mat4 = glm::mat4;
+#define MG_CONSTANT(type, name, value) inline constexpr type name = value
+#else
+#define MG_CONSTANT(type, name, value) const type name = value
+#endif
+
+// Descriptor set 0 bindings.
+MG_CONSTANT(uint, kBindingTlas, 0);
+MG_CONSTANT(uint, kBindingFrame, 1);
+MG_CONSTANT(uint, kBindingAccumulation, 2);
+MG_CONSTANT(uint, kBindingVertices, 3);
+MG_CONSTANT(uint, kBindingIndices, 4);
+MG_CONSTANT(uint, kBindingInstances, 5);
+MG_CONSTANT(uint, kBindingMeshes, 6);
+MG_CONSTANT(uint, kBindingLights, 7);
+MG_CONSTANT(uint, kBindingEnvironment, 8);
+MG_CONSTANT(uint, kBindingTextures, 9);
+MG_CONSTANT(uint, kBindingRayCounter, 10);
+MG_CONSTANT(uint, kBindingCount, 11);
+
+// Compute work-group edge of the ray-query backend.
+MG_CONSTANT(uint, kWorkgroupSize, 8);
+
+// FrameConstants::flags bits.
+MG_CONSTANT(uint, kFlagSharedPrimaryRay, 1);
+MG_CONSTANT(uint, kFlagEnvironmentImage, 2);
+
+// Light::positionOrDirection.w
+MG_CONSTANT(uint, kLightPoint, 0);
+MG_CONSTANT(uint, kLightDirectional, 1);
+
+// Mesh::flags bits.
+MG_CONSTANT(uint, kMeshHasUvs, 1);
+MG_CONSTANT(uint, kMeshHasTangents, 2);
+MG_CONSTANT(uint, kMeshHasColors, 4);
+
+// Per-frame constants (uniform buffer).
+struct FrameConstants {
+  vec4 cameraPosition;  // xyz; w: pixel spread angle (thesis §2.2, primary cone)
+  vec4 cameraRight;     // xyz scaled by tan(fov/2) * aspect
+  vec4 cameraUp;        // xyz scaled by tan(fov/2)
+  vec4 cameraForward;   // xyz unit; w: time in seconds
+  vec4 environment;     // rgb constant radiance (or scale of the image); w unused
+  uvec4 image;          // x width, y height, z frame index, w seed
+  uvec4 path;           // x paths per pixel P, y rays per path L, z flags, w light count
+  uvec4 environmentSize;  // x width, y height of the equirectangular image; z sample index
+                          // in the accumulation (0 restarts it); w unused
+};
+
+// One vertex of the global vertex buffer; positions first so the BLAS reads them in place.
+struct Vertex {
+  vec4 position;  // xyz; w: u
+  vec4 normal;    // xyz; w: v
+  vec4 tangent;   // xyz; w: handedness
+  vec4 color;
+};
+
+// One mesh's range in the global vertex and index buffers.
+struct Mesh {
+  uvec4 ranges;  // x first vertex, y first index, z flags, w triangle count
+};
+
+// One placed instance; the TLAS's custom index points here.
+struct Instance {
+  mat4 objectToWorld;
+  mat4 normalToWorld;  // inverse transpose of objectToWorld
+  uvec4 ids;           // x mesh, y material, z/w unused
+};
+
+struct Light {
+  vec4 positionOrDirection;  // xyz; w: kLightPoint or kLightDirectional (as float)
+  vec4 intensity;            // rgb: W/sr (point) or irradiance (directional)
+};
+
+#ifdef __cplusplus
+}  // namespace memograph::runtime::gpu
+#endif
+#undef MG_CONSTANT
+#endif

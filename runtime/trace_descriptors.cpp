@@ -1,0 +1,83 @@
+#include "runtime/trace_descriptors.h"
+
+#include <vector>
+
+#include "runtime/shaders/shared_types.h"
+#include "runtime/vulkan_error.h"
+
+namespace memograph::runtime {
+
+TraceDescriptorSet::TraceDescriptorSet(const VulkanContext& context,
+                                       VkDescriptorSetLayout setLayout, const TraceResources& r) {
+  VkDevice device = context.device();
+  std::vector<VkDescriptorPoolSize> poolSizes = {
+      {VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 1},
+      {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8},
+      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, r.textures->count()}};
+  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+  poolInfo.maxSets = 1;
+  poolInfo.poolSizeCount = static_cast<std::uint32_t>(poolSizes.size());
+  poolInfo.pPoolSizes = poolSizes.data();
+  VkDescriptorPool pool = VK_NULL_HANDLE;
+  checkVk(vkCreateDescriptorPool(device, &poolInfo, nullptr, &pool), "vkCreateDescriptorPool");
+  pool_ = VulkanHandle<VkDescriptorPool>(
+      pool, [device](VkDescriptorPool p) { vkDestroyDescriptorPool(device, p, nullptr); });
+  VkDescriptorSetAllocateInfo allocateInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+  allocateInfo.descriptorPool = pool;
+  allocateInfo.descriptorSetCount = 1;
+  allocateInfo.pSetLayouts = &setLayout;
+  checkVk(vkAllocateDescriptorSets(device, &allocateInfo, &set_), "vkAllocateDescriptorSets");
+  VkDescriptorSet set = set_;
+
+  std::vector<VkWriteDescriptorSet> writes;
+  std::vector<VkDescriptorBufferInfo> bufferInfos;
+  bufferInfos.reserve(16);
+  auto writeBuffer = [&](std::uint32_t binding, VkDescriptorType type, const GpuBuffer& buffer) {
+    bufferInfos.push_back({buffer.buffer(), 0, VK_WHOLE_SIZE});
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = set;
+    write.dstBinding = binding;
+    write.descriptorCount = 1;
+    write.descriptorType = type;
+    write.pBufferInfo = &bufferInfos.back();
+    writes.push_back(write);
+  };
+  constexpr auto kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+  writeBuffer(gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, *r.frame);
+  writeBuffer(gpu::kBindingAccumulation, kStorage, *r.accumulation);
+  writeBuffer(gpu::kBindingVertices, kStorage, r.scene->vertices);
+  writeBuffer(gpu::kBindingIndices, kStorage, r.scene->indices);
+  writeBuffer(gpu::kBindingInstances, kStorage, r.scene->instances);
+  writeBuffer(gpu::kBindingMeshes, kStorage, r.scene->meshes);
+  writeBuffer(gpu::kBindingLights, kStorage, r.scene->lights);
+  writeBuffer(gpu::kBindingEnvironment, kStorage, r.scene->environment);
+  writeBuffer(gpu::kBindingRayCounter, kStorage, *r.rayCounter);
+  VkAccelerationStructureKHR tlas = r.tlas;
+  VkWriteDescriptorSetAccelerationStructureKHR tlasInfo{
+      VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};
+  tlasInfo.accelerationStructureCount = 1;
+  tlasInfo.pAccelerationStructures = &tlas;
+  VkWriteDescriptorSet tlasWrite{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  tlasWrite.pNext = &tlasInfo;
+  tlasWrite.dstSet = set;
+  tlasWrite.dstBinding = gpu::kBindingTlas;
+  tlasWrite.descriptorCount = 1;
+  tlasWrite.descriptorType = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR;
+  writes.push_back(tlasWrite);
+  std::vector<VkDescriptorImageInfo> imageInfos;
+  for (std::uint32_t i = 0; i < r.textures->count(); ++i)
+    imageInfos.push_back(
+        {r.textures->sampler(), r.textures->view(i), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+  VkWriteDescriptorSet textureWrite{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+  textureWrite.dstSet = set;
+  textureWrite.dstBinding = gpu::kBindingTextures;
+  textureWrite.descriptorCount = r.textures->count();
+  textureWrite.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+  textureWrite.pImageInfo = imageInfos.data();
+  writes.push_back(textureWrite);
+  vkUpdateDescriptorSets(device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0,
+                         nullptr);
+}
+
+}  // namespace memograph::runtime

@@ -1,0 +1,36 @@
+// The path tracer's one descriptor set: every binding of shaders/shared_types.h pointed at
+// the render's resources (TLAS, frame constants, accumulation, scene buffers, textures).
+#pragma once
+
+#include <vulkan/vulkan.h>
+
+#include "runtime/gpu_buffer.h"
+#include "runtime/gpu_textures.h"
+#include "runtime/scene_upload.h"
+#include "runtime/vulkan_context.h"
+#include "runtime/vulkan_handle.h"
+
+namespace memograph::runtime {
+
+// What the set points at; everything must outlive the set.
+struct TraceResources {
+  VkAccelerationStructureKHR tlas = VK_NULL_HANDLE;
+  const GpuBuffer* frame = nullptr;         // gpu::FrameConstants
+  const GpuBuffer* accumulation = nullptr;  // vec4 per pixel
+  const GpuBuffer* rayCounter = nullptr;    // one uint
+  const SceneBuffers* scene = nullptr;
+  const GpuTextures* textures = nullptr;
+};
+
+class TraceDescriptorSet {
+ public:
+  TraceDescriptorSet(const VulkanContext& context, VkDescriptorSetLayout layout,
+                     const TraceResources& resources);
+  VkDescriptorSet get() const { return set_; }
+
+ private:
+  VulkanHandle<VkDescriptorPool> pool_;  // frees the set with it
+  VkDescriptorSet set_ = VK_NULL_HANDLE;
+};
+
+}  // namespace memograph::runtime

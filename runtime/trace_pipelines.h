@@ -1,0 +1,40 @@
+// The two trace backends on the host side: a compute pipeline running path_tracer.glsl with
+// ray queries, or a ray-tracing pipeline running the same source as raygen with the
+// report-only hit and miss shaders and its shader-binding table. Both share one descriptor
+// set layout (shared_types.h bindings).
+#pragma once
+
+#include <cstdint>
+
+#include <vulkan/vulkan.h>
+
+#include "runtime/gpu_buffer.h"
+#include "runtime/shader_compiler.h"
+#include "runtime/vulkan_context.h"
+#include "runtime/vulkan_handle.h"
+
+namespace memograph::runtime {
+
+class TracePipeline {
+ public:
+  TracePipeline(const VulkanContext& context, ShaderCompiler& compiler, std::uint32_t textureCount);
+
+  VkDescriptorSetLayout descriptorSetLayout() const { return setLayout_.get(); }
+  // Binds and launches one thread per pixel.
+  void record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t width,
+              std::uint32_t height) const;
+
+ private:
+  const VulkanContext& context_;
+  Backend backend_;
+  VulkanHandle<VkDescriptorSetLayout> setLayout_;
+  VulkanHandle<VkPipelineLayout> layout_;
+  VulkanHandle<VkPipeline> pipeline_;
+  GpuBuffer shaderBindingTable_;
+  VkStridedDeviceAddressRegionKHR raygenRegion_{};
+  VkStridedDeviceAddressRegionKHR missRegion_{};
+  VkStridedDeviceAddressRegionKHR hitRegion_{};
+  VkStridedDeviceAddressRegionKHR callableRegion_{};
+};
+
+}  // namespace memograph::runtime

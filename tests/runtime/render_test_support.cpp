@@ -1,0 +1,80 @@
+#include "render_test_support.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+
+namespace memograph::runtime::testing {
+
+RendererOptions testOptions(Backend backend) {
+  if (!std::getenv("XDG_RUNTIME_DIR")) {
+    auto dir = std::filesystem::temp_directory_path() / "memograph-xdg-runtime";
+    std::filesystem::create_directories(dir);
+    setenv("XDG_RUNTIME_DIR", dir.c_str(), 0);
+  }
+  RendererOptions options;
+  options.context.backend = backend;
+  options.context.validation = validationLayerAvailable();
+  options.shaderCacheDirectory =
+      std::filesystem::temp_directory_path() / "memograph-test-shader-cache";
+  options.nodeLibraryDirectory = MEMOGRAPH_TEST_NODES_DIR;
+  return options;
+}
+
+Mesh quad(float size, float uvScale) {
+  Mesh mesh;
+  mesh.name = "quad";
+  float h = size * 0.5f;
+  mesh.positions = {{-h, 0, -h}, {h, 0, -h}, {h, 0, h}, {-h, 0, h}};
+  mesh.normals.assign(4, glm::vec3(0, 1, 0));
+  mesh.uvs = {{0, 0}, {uvScale, 0}, {uvScale, uvScale}, {0, uvScale}};
+  mesh.indices = {0, 2, 1, 0, 3, 2};
+  return mesh;
+}
+
+Mesh sphere(int segments) {
+  Mesh mesh;
+  mesh.name = "sphere";
+  int rings = segments / 2;
+  for (int r = 0; r <= rings; ++r) {
+    float v = float(r) / float(rings);
+    float theta = v * 3.14159265f;
+    for (int s = 0; s <= segments; ++s) {
+      float u = float(s) / float(segments);
+      float phi = u * 2.0f * 3.14159265f;
+      glm::vec3 p(std::sin(theta) * std::cos(phi), std::cos(theta),
+                  std::sin(theta) * std::sin(phi));
+      mesh.positions.push_back(p);
+      mesh.normals.push_back(p);
+      mesh.uvs.push_back({u, v});
+    }
+  }
+  int stride = segments + 1;
+  for (int r = 0; r < rings; ++r) {
+    for (int s = 0; s < segments; ++s) {
+      std::uint32_t a = r * stride + s, b = a + 1, c = a + stride, d = c + 1;
+      mesh.indices.insert(mesh.indices.end(), {a, c, b, b, c, d});
+    }
+  }
+  return mesh;
+}
+
+std::string constantGraph(const std::string& name, glm::vec3 c, float roughness) {
+  std::ostringstream text;
+  text << "material " << name << ";\n"
+       << "BaseColorOutput Color=(" << c.x << ", " << c.y << ", " << c.z << ");\n"
+       << "RoughnessOutput Roughness=" << roughness << ";\n";
+  return text.str();
+}
+
+double meanChannel(const HdrImage& image, int c, int x0, int y0, int x1, int y1) {
+  double sum = 0;
+  int n = 0;
+  for (int y = y0; y < y1; ++y)
+    for (int x = x0; x < x1; ++x, ++n)
+      sum += image.pixel(x, y)[c];
+  return n ? sum / n : 0.0;
+}
+
+}  // namespace memograph::runtime::testing

@@ -1,0 +1,31 @@
+// Shared pieces of the runtime tests: a renderer on the test machine's ray-tracing device
+// with validation on when installed, tiny scenes, and the material graphs they use (real
+// .mgraph text compiled by the compiler against its test node library).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "runtime/renderer.h"
+#include "runtime/scene.h"
+
+namespace memograph::runtime::testing {
+
+// Options for tests: the given backend, validation when the layer exists, a shader cache in
+// a temporary folder, the compiler's test node library. Sets XDG_RUNTIME_DIR when unset.
+RendererOptions testOptions(Backend backend = Backend::Auto);
+
+// A square in the y = 0 plane (normal +y) of side `size`, UVs 0..uvScale across it.
+Mesh quad(float size, float uvScale = 1.0f);
+// A unit sphere (smooth normals, UVs from longitude/latitude).
+Mesh sphere(int segments);
+
+// Graph text of a material with a constant base color and roughness.
+std::string constantGraph(const std::string& name, glm::vec3 baseColor, float roughness);
+
+// Mean of channel `c` over the pixels in [x0,x1) x [y0,y1).
+double meanChannel(const HdrImage& image, int c, int x0, int y0, int x1, int y1);
+
+}  // namespace memograph::runtime::testing

@@ -1,0 +1,88 @@
+#!/usr/bin/env bash
+# Builds the GPU-machine bundle: bundle/memograph (renderer + compiler + built-in scenes,
+# glslang and the C++ runtime linked statically; no OpenImageIO, no assimp) and
+# bundle/run_device.sh, the command the `device` tool runs. The only non-system library the
+# binary needs is libvulkan.so.1, which travels as Debian packages in .gl/ (the recipe of
+# the device tool's README). Everything stays under 64 MiB.
+#
+# Usage: tools/bundle_device.sh            (from the repository root)
+# Then run on the GPU machine (the device tool, one call; results come back under $OUT):
+#   run(kind="nvidia-h100-x1", carry=["bundle", ".gl"], timeout_s=600,
+#       command="bash bundle/run_device.sh")
+# Images come back as .pfm; convert them here with `memograph` built with the io module
+# (or oiiotool in.pfm -o out.png).
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+cd "$root"
+build=build-device
+bundle=bundle
+
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DMEMOGRAPH_BUILD_TESTS=OFF \
+  -DMEMOGRAPH_BUILD_IO=OFF \
+  -DCMAKE_EXE_LINKER_FLAGS="-static-libstdc++ -static-libgcc" >/dev/null
+cmake --build "$build" --target memograph -j"${JOBS:-2}"
+
+rm -rf "$bundle"
+mkdir -p "$bundle"
+cp "$build/tools/memograph" "$bundle/memograph"
+strip "$bundle/memograph"
+
+# The binary may need only system libraries and the Vulkan loader.
+unexpected=$(ldd "$bundle/memograph" | awk '{print $1}' |
+  grep -vE '^(linux-vdso\.so|/lib64/ld-linux-x86-64\.so|libc\.so|libm\.so|libpthread\.so|libdl\.so|librt\.so|libvulkan\.so\.1)' || true)
+if [ -n "$unexpected" ]; then
+  echo "bundle_device: the binary needs libraries that will not be on the GPU machine:" >&2
+  echo "$unexpected" >&2
+  echo "(configure without the io module: -DMEMOGRAPH_BUILD_IO=OFF)" >&2
+  exit 1
+fi
+
+# The Vulkan loader as Debian packages (device tool README); fetched once.
+if ! ls .gl/libvulkan1_*.deb >/dev/null 2>&1; then
+  mkdir -p .gl /tmp/amd64/partial
+  o='-oAPT::Architecture=amd64 -oAPT::Architectures=amd64 -oDir::State::Lists=/tmp/amd64'
+  apt-get $o update -qq
+  (cd .gl && apt-get $o download libvulkan1)
+fi
+
+cat >"$bundle/run_device.sh" <<'RUN'
+#!/usr/bin/env bash
+# Runs on the GPU machine: installs the carried Vulkan loader, then the smoke test, the
+# renders and the benchmarks of issue 3. Everything it measures lands in $OUT: 8 files at
+# most (the device tool's limit), each under 16 MB.
+set -uo pipefail
+for f in .gl/*.deb; do dpkg -x "$f" /; done
+ldconfig
+if ! ls /usr/share/vulkan/icd.d/nvidia_icd.json /etc/vulkan/icd.d/nvidia_icd.json >/dev/null 2>&1; then
+  export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+fi
+OUT=${OUT:-/tmp/out}
+mkdir -p "$OUT"
+m=bundle/memograph
+# Each step has its own time limit (together under the 600 s a device call may take), so
+# one slow step cannot eat the whole call.
+step() { local limit=$1; shift; timeout "$limit" "$@" || echo "STEP FAILED ($?): $*"; }
+{
+  nvidia-smi -L || true
+  $m render --list-devices
+  # Smoke test: small renders (the first also warms the driver's pipeline cache).
+  for s in landscape classroom; do
+    step 150 $m render builtin:$s --size 320x180 --paths 1 --bounces 2 --frames 2 \
+      --out "$OUT/smoke_$s.pfm"
+  done
+  # Thesis settings (§6): 1920x1080, P = 6, L = 4.
+  step 180 $m bench builtin:landscape builtin:classroom --sizes 1920x1080 --paths 6 --bounces 4 \
+    --frames 30 --warmup 5 --csv "$OUT/bench_gpu.csv"
+  # Images at 960x540: a 1080p PFM (25 MB) is over the 16 MB a returned file may have.
+  for s in landscape classroom; do
+    step 50 $m render builtin:$s --size 960x540 --paths 6 --bounces 4 --frames 8 \
+      --out "$OUT/$s.pfm" --stats "$OUT/${s}_stats.csv"
+  done
+} 2>&1 | tee "$OUT/log.txt"
+RUN
+chmod +x "$bundle/run_device.sh"
+
+size=$(du -sm "$bundle" .gl | awk '{s += $1} END {print s}')
+echo "bundle_device: $bundle/ and .gl/ hold ${size} MiB (limit 64)"
+[ "$size" -le 64 ] || { echo "bundle_device: too large" >&2; exit 1; }
+ldd "$bundle/memograph"

@@ -1,0 +1,191 @@
+// memograph bench [SCENES...] [--size WxH ...]: frames and rays per second of the path
+// tracer on the built-in scenes, from GPU timestamps, as medians over timed frames after
+// warm-up frames (thesis §6 settings: 1920x1080, P = 6, L = 4).
+#include <algorithm>
+#include <charconv>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "cli_common.h"
+#include "commands.h"
+
+#ifdef MEMOGRAPH_HAVE_RUNTIME
+#include "runtime/renderer.h"
+#endif
+#ifdef MEMOGRAPH_HAVE_SCENES
+#include "runtime/scenes/builtin_scenes.h"
+#include "runtime/scenes/camera_path.h"
+#endif
+
+namespace memograph::cli {
+
+namespace {
+
+constexpr std::string_view kHelp =
+    "usage: memograph bench [builtin:classroom builtin:landscape ...] [options]\n"
+    "\n"
+    "Renders each scene at each size and prints the median GPU frame time, frames per\n"
+    "second and rays per second over the timed frames (after warm-up frames). The camera\n"
+    "follows the scene's built-in camera path unless --static-camera is given.\n"
+    "\n"
+    "options:\n"
+    "  --sizes LIST          comma-separated WxH sizes (default 1920x1080)\n"
+    "  --paths P             paths per pixel (default 6)\n"
+    "  --bounces L           rays per path (default 4)\n"
+    "  --frames F            timed frames (default 20)\n"
+    "  --warmup W            untimed frames first (default 3)\n"
+    "  --static-camera       keep the scene's camera still\n"
+    "  --shared-primary      one primary ray per pixel shared by its paths\n"
+    "  --backend B           auto, query or pipeline\n"
+    "  --device N            Vulkan device index\n"
+    "  --nodes DIR           node library folder instead of the built-in one\n"
+    "  --shader-cache DIR    SPIR-V cache folder\n"
+    "  --csv FILE            one line per scene and size\n"
+    "  --frames-csv PREFIX   per-frame statistics to PREFIX<scene>_<W>x<H>.csv\n";
+
+bool parseNumber(std::string_view text, std::uint32_t& out) {
+  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), out);
+  return error == std::errc() && end == text.data() + text.size();
+}
+
+}  // namespace
+
+#if !defined(MEMOGRAPH_HAVE_RUNTIME) || !defined(MEMOGRAPH_HAVE_SCENES)
+int runBench(std::span<const std::string_view>) {
+  std::cerr << "memograph bench: this build lacks the renderer or the built-in scenes\n";
+  return kExitFailure;
+}
+#else
+
+int runBench(std::span<const std::string_view> args) {
+  std::string sizes = "1920x1080", paths = "6", bounces = "4", frames = "20", warmup = "3",
+              backend = "auto", device = "-1", nodes, shaderCache, csvPath, framesCsv;
+  bool help = false, staticCamera = false, sharedPrimary = false;
+  ArgumentScanner scanner("bench", args);
+  scanner.option("--sizes", &sizes);
+  scanner.option("--size", &sizes);
+  scanner.option("--paths", &paths);
+  scanner.option("--bounces", &bounces);
+  scanner.option("--frames", &frames);
+  scanner.option("--warmup", &warmup);
+  scanner.option("--backend", &backend);
+  scanner.option("--device", &device);
+  scanner.option("--nodes", &nodes);
+  scanner.option("--shader-cache", &shaderCache);
+  scanner.option("--csv", &csvPath);
+  scanner.option("--frames-csv", &framesCsv);
+  scanner.flag("--static-camera", &staticCamera);
+  scanner.flag("--shared-primary", &sharedPrimary);
+  scanner.flag("--help", &help);
+  std::vector<std::string> scenes;
+  if (const int code = scanner.scan(scenes); code != kExitOk)
+    return code;
+  if (help) {
+    std::cout << kHelp;
+    return kExitOk;
+  }
+  if (scenes.empty())
+    scenes = {"builtin:classroom", "builtin:landscape"};
+
+  std::uint32_t p = 0, l = 0, f = 0, w = 0, deviceIndex = 0;
+  if (!parseNumber(paths, p) || !parseNumber(bounces, l) || !parseNumber(frames, f) ||
+      !parseNumber(warmup, w) || f == 0)
+    return usageError("bench", "--paths, --bounces, --frames (>0) and --warmup take whole numbers");
+  if (device != "-1" && !parseNumber(device, deviceIndex))
+    return usageError("bench", "--device takes a device index");
+  std::vector<std::pair<std::uint32_t, std::uint32_t> > sizeList;
+  std::stringstream sizeStream(sizes);
+  for (std::string item; std::getline(sizeStream, item, ',');) {
+    auto x = item.find('x');
+    std::uint32_t width = 0, height = 0;
+    if (x == std::string::npos || !parseNumber(std::string_view(item).substr(0, x), width) ||
+        !parseNumber(std::string_view(item).substr(x + 1), height))
+      return usageError("bench", "--sizes takes WxH[,WxH...], not '" + item + "'");
+    sizeList.push_back({width, height});
+  }
+
+  runtime::RendererOptions options;
+  try {
+    options.context.backend = runtime::parseBackend(backend);
+  } catch (const std::invalid_argument& e) {
+    return usageError("bench", e.what());
+  }
+  options.context.deviceIndex = device == "-1" ? -1 : int(deviceIndex);
+  options.shaderCacheDirectory = shaderCache;
+  options.nodeLibraryDirectory = nodes;
+
+  std::ofstream csv;
+  if (!csvPath.empty()) {
+    csv.open(csvPath);
+    if (!csv) {
+      std::cerr << "memograph bench: cannot write " << csvPath << "\n";
+      return kExitFailure;
+    }
+    csv << "scene,width,height,paths,rays_per_path,backend,device,frames,median_gpu_ms,fps,"
+           "mrays_per_s,blas_bytes,tlas_bytes,scratch_bytes,materials\n";
+  }
+  try {
+    runtime::Renderer renderer(options);
+    std::cout << "device: " << renderer.context().info().name << ", backend "
+              << runtime::backendName(renderer.context().backend()) << "\n";
+    for (const auto& sceneName : scenes) {
+      if (sceneName.rfind("builtin:", 0) != 0)
+        return usageError("bench",
+                          "bench runs built-in scenes (builtin:NAME), not '" + sceneName + "'");
+      std::string name = sceneName.substr(8);
+      runtime::Scene scene = runtime::makeBuiltinScene(name);
+      for (auto [width, height] : sizeList) {
+        runtime::RenderSettings settings;
+        settings.width = width;
+        settings.height = height;
+        settings.pathsPerPixel = p;
+        settings.raysPerPath = l;
+        settings.frames = w + f;
+        settings.sharedPrimaryRay = sharedPrimary;
+        if (!staticCamera)
+          settings.cameraPath = runtime::makeBuiltinCameraPath(name, int(w + f)).frames;
+        runtime::RenderResult result = renderer.render(scene, settings);
+        std::vector<runtime::FrameStats> timed(result.stats.frames.begin() + w,
+                                               result.stats.frames.end());
+        std::vector<double> ms, mrays;
+        for (const auto& frame : timed) {
+          ms.push_back(frame.gpuMilliseconds);
+          mrays.push_back(frame.gpuMilliseconds > 0 ? frame.rays / (frame.gpuMilliseconds * 1e3)
+                                                    : 0);
+        }
+        auto median = [](std::vector<double> v) {
+          std::sort(v.begin(), v.end());
+          std::size_t n = v.size();
+          return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+        };
+        double medianMs = median(ms), medianMrays = median(mrays);
+        double fps = medianMs > 0 ? 1000.0 / medianMs : 0.0;
+        const auto& as = result.stats.accelerationStructures;
+        std::cout << name << " " << width << "x" << height << " P=" << p << " L=" << l
+                  << ": median " << medianMs << " ms/frame, " << fps << " fps, " << medianMrays
+                  << " Mrays/s (" << timed.size() << " frames; " << result.stats.materialCount
+                  << " materials; BLAS " << as.blasBytes << " B, TLAS " << as.tlasBytes << " B)\n";
+        if (csv) {
+          csv << name << ',' << width << ',' << height << ',' << p << ',' << l << ','
+              << result.stats.backend << ",\"" << result.stats.device << "\"," << timed.size()
+              << ',' << medianMs << ',' << fps << ',' << medianMrays << ',' << as.blasBytes << ','
+              << as.tlasBytes << ',' << as.scratchBytes << ',' << result.stats.materialCount
+              << '\n';
+        }
+        if (!framesCsv.empty()) {
+          std::ofstream perFrame(framesCsv + name + "_" + std::to_string(width) + "x" +
+                                 std::to_string(height) + ".csv");
+          runtime::writeStatsCsv(perFrame, result.stats);
+        }
+      }
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "memograph bench: " << e.what() << "\n";
+    return kExitFailure;
+  }
+  return kExitOk;
+}
+#endif
+
+}  // namespace memograph::cli

@@ -1,0 +1,250 @@
+// memograph render SCENE|builtin:NAME ... --out FILE: renders a scene with the path tracer
+// (runtime/) and writes the HDR image (.pfm always; .png/.exr when built with the io
+// module) and, with --stats, the per-frame statistics as CSV.
+#include <unistd.h>
+
+#include <charconv>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include "cli_common.h"
+#include "commands.h"
+
+#ifdef MEMOGRAPH_HAVE_RUNTIME
+#include "runtime/renderer.h"
+#endif
+#ifdef MEMOGRAPH_HAVE_SCENES
+#include "runtime/scenes/builtin_scenes.h"
+#include "runtime/scenes/camera_path.h"
+#endif
+#ifdef MEMOGRAPH_HAVE_IO
+#include "tools/io/image_io.h"
+#include "tools/io/scene_import.h"
+#endif
+
+namespace memograph::cli {
+
+namespace {
+
+constexpr std::string_view kHelp =
+    "usage: memograph render SCENE|builtin:classroom|builtin:landscape --out FILE [options]\n"
+    "\n"
+    "Path traces a scene (thesis §5.2) and writes the accumulated HDR image. SCENE is a\n"
+    "glTF/OBJ file whose material names map to DIR/<name>.mgraph (--materials DIR).\n"
+    "\n"
+    "options:\n"
+    "  --out FILE            .pfm (always), .png or .exr (builds with OpenImageIO)\n"
+    "  --size WxH            image size (default 640x360)\n"
+    "  --paths P             paths per pixel per frame (default 1)\n"
+    "  --bounces L           rays per path; 1 = primary hit with direct light (default 4)\n"
+    "  --frames F            frames; a static camera accumulates them (default 1)\n"
+    "  --camera-path FILE    one camera per frame: lines 'px py pz  tx ty tz  fov'\n"
+    "  --shared-primary      one primary ray through the pixel centre for all P paths\n"
+    "  --seed S              random seed (default 0)\n"
+    "  --backend B           auto (default; prefers query), query or pipeline\n"
+    "  --device N            Vulkan device index (see --list-devices)\n"
+    "  --list-devices        print the Vulkan devices and their ray-tracing support\n"
+    "  --materials DIR       folder of .mgraph graphs for a scene file's materials\n"
+    "  --nodes DIR           node library folder instead of the built-in one\n"
+    "  --shader-cache DIR    SPIR-V cache folder (default $XDG_CACHE_HOME/memograph)\n"
+    "  --no-shader-cache     compile every shader\n"
+    "  --stats FILE          per-frame statistics as CSV (GPU ms, rays, AS memory)\n"
+    "  --validation          enable the Vulkan validation layer\n";
+
+bool parseNumber(const std::string& text, std::uint32_t& out) {
+  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), out);
+  return error == std::errc() && end == text.data() + text.size();
+}
+
+}  // namespace
+
+#ifndef MEMOGRAPH_HAVE_RUNTIME
+int runRender(std::span<const std::string_view>) {
+  std::cerr << "memograph render: this build has no renderer (configured with "
+               "MEMOGRAPH_BUILD_RUNTIME=OFF)\n";
+  return kExitFailure;
+}
+#else
+
+int runRender(std::span<const std::string_view> args) {
+  std::string out, size = "640x360", paths = "1", bounces = "4", frames = "1", cameraPath,
+                   seed = "0", backend = "auto", device = "-1", materials, nodes, shaderCache,
+                   stats;
+  bool help = false, listDevices = false, sharedPrimary = false, noShaderCache = false,
+       validation = false;
+  ArgumentScanner scanner("render", args);
+  scanner.option("--out", &out);
+  scanner.option("-o", &out);
+  scanner.option("--size", &size);
+  scanner.option("--paths", &paths);
+  scanner.option("--bounces", &bounces);
+  scanner.option("--frames", &frames);
+  scanner.option("--camera-path", &cameraPath);
+  scanner.option("--seed", &seed);
+  scanner.option("--backend", &backend);
+  scanner.option("--device", &device);
+  scanner.option("--materials", &materials);
+  scanner.option("--nodes", &nodes);
+  scanner.option("--shader-cache", &shaderCache);
+  scanner.option("--stats", &stats);
+  scanner.flag("--shared-primary", &sharedPrimary);
+  scanner.flag("--no-shader-cache", &noShaderCache);
+  scanner.flag("--validation", &validation);
+  scanner.flag("--list-devices", &listDevices);
+  scanner.flag("--help", &help);
+  std::vector<std::string> positional;
+  if (const int code = scanner.scan(positional); code != kExitOk)
+    return code;
+  if (help) {
+    std::cout << kHelp;
+    return kExitOk;
+  }
+  if (listDevices) {
+    for (const auto& line : runtime::describeDevices())
+      std::cout << line << "\n";
+    return kExitOk;
+  }
+  if (positional.size() != 1)
+    return usageError("render", "expected one scene");
+  if (out.empty())
+    return usageError("render", "--out FILE is required");
+
+  runtime::RenderSettings settings;
+  auto x = size.find('x');
+  if (x == std::string::npos || !parseNumber(size.substr(0, x), settings.width) ||
+      !parseNumber(size.substr(x + 1), settings.height))
+    return usageError("render", "--size must be WxH, e.g. 1920x1080, not '" + size + "'");
+  std::uint32_t deviceIndex = 0;
+  if (!parseNumber(paths, settings.pathsPerPixel) || !parseNumber(bounces, settings.raysPerPath) ||
+      !parseNumber(frames, settings.frames) || !parseNumber(seed, settings.seed))
+    return usageError("render", "--paths, --bounces, --frames and --seed take whole numbers");
+  if (device != "-1" && !parseNumber(device, deviceIndex))
+    return usageError("render", "--device takes a device index (see --list-devices)");
+  settings.sharedPrimaryRay = sharedPrimary;
+
+  const std::string extension = std::filesystem::path(out).extension().string();
+#ifndef MEMOGRAPH_HAVE_IO
+  if (extension != ".pfm")
+    return usageError("render",
+                      "this build writes only .pfm (no OpenImageIO); convert it "
+                      "with 'memograph' built with the io module");
+#endif
+
+  runtime::RendererOptions options;
+  try {
+    options.context.backend = runtime::parseBackend(backend);
+  } catch (const std::invalid_argument& e) {
+    return usageError("render", e.what());
+  }
+  options.context.deviceIndex = device == "-1" ? -1 : int(deviceIndex);
+  options.context.validation = validation;
+  options.shaderCache = !noShaderCache;
+  options.shaderCacheDirectory = shaderCache;
+  options.nodeLibraryDirectory = nodes;
+
+  // The scene: built-in, or a file through the io module.
+  runtime::Scene scene;
+  compiler::Diagnostics diagnostics;
+  const std::string& name = positional[0];
+  if (name.rfind("builtin:", 0) == 0) {
+#ifdef MEMOGRAPH_HAVE_SCENES
+    try {
+      scene = runtime::makeBuiltinScene(name.substr(8));
+    } catch (const std::invalid_argument& e) {
+      std::cerr << "memograph render: " << e.what() << "\n";
+      return kExitFailure;
+    }
+#else
+    std::cerr << "memograph render: this build has no built-in scenes\n";
+    return kExitFailure;
+#endif
+  } else {
+#ifdef MEMOGRAPH_HAVE_IO
+    auto imported = io::importScene(name, materials, diagnostics);
+    printDiagnostics(diagnostics);
+    if (!imported)
+      return kExitFailure;
+    scene = std::move(*imported);
+#else
+    std::cerr << "memograph render: this build reads no scene files (no assimp); use a "
+                 "builtin: scene\n";
+    return kExitFailure;
+#endif
+  }
+#ifdef MEMOGRAPH_HAVE_IO
+  options.textureLoader = [](const std::string& path) {
+    compiler::Diagnostics textureDiagnostics;
+    auto image = io::readImageFloat(path, textureDiagnostics);
+    if (!image)
+      throw std::runtime_error(compiler::formatDiagnostics(textureDiagnostics));
+    runtime::HdrImage level{std::uint32_t(image->width), std::uint32_t(image->height),
+                            std::move(image->rgba)};
+    return runtime::TextureImage{{std::move(level)}};
+  };
+#endif
+  if (!cameraPath.empty()) {
+#ifdef MEMOGRAPH_HAVE_SCENES
+    auto path = runtime::loadCameraPath(cameraPath, diagnostics);
+    if (!path) {
+      printDiagnostics(diagnostics);
+      return kExitFailure;
+    }
+    settings.cameraPath = path->frames;
+#else
+    std::cerr << "memograph render: this build reads no camera paths\n";
+    return kExitFailure;
+#endif
+  }
+
+  const bool progress = isatty(STDERR_FILENO) && settings.frames > 1;
+  settings.onFrame = [&](const runtime::FrameStats& frame) {
+    if (!progress)
+      return;
+    int done = int(40.0 * (frame.frame + 1) / settings.frames);
+    std::fprintf(stderr, "\r[%-40s] frame %u/%u  %.2f ms", std::string(done, '#').c_str(),
+                 frame.frame + 1, settings.frames, frame.gpuMilliseconds);
+    if (frame.frame + 1 == settings.frames)
+      std::fprintf(stderr, "\n");
+  };
+
+  try {
+    runtime::Renderer renderer(options);
+    runtime::RenderResult result = renderer.render(scene, settings);
+    for (const auto& error : renderer.context().validationErrors())
+      std::cerr << "validation: " << error << "\n";
+    // Write to a temporary name and rename, so a failure leaves no partial file.
+    std::string temporary = out + ".partial" + extension;
+    if (extension == ".pfm") {
+      runtime::writePfm(temporary, result.image);
+    } else {
+#ifdef MEMOGRAPH_HAVE_IO
+      runtime::FloatImage image{int(result.image.width), int(result.image.height),
+                                std::move(result.image.rgba)};
+      if (!io::writeImage(temporary, image, io::LdrOptions{}, diagnostics)) {
+        printDiagnostics(diagnostics);
+        return kExitFailure;
+      }
+#endif
+    }
+    std::filesystem::rename(temporary, out);
+    if (!stats.empty()) {
+      std::ofstream csv(stats);
+      if (!csv) {
+        std::cerr << "memograph render: cannot write " << stats << "\n";
+        return kExitFailure;
+      }
+      runtime::writeStatsCsv(csv, result.stats);
+    }
+    std::cerr << "rendered " << out << " on " << result.stats.device << " (" << result.stats.backend
+              << "): median " << result.stats.medianGpuMilliseconds() << " ms per frame\n";
+  } catch (const std::exception& e) {
+    std::cerr << "memograph render: " << e.what() << "\n";
+    return kExitFailure;
+  }
+  return kExitOk;
+}
+#endif
+
+}  // namespace memograph::cli
