@@ -38,11 +38,12 @@ if [ -n "$unexpected" ]; then
 fi
 
 # The Vulkan loader as Debian packages (device tool README); fetched once.
-if ! ls .gl/libvulkan1_*.deb >/dev/null 2>&1; then
+# NVIDIA's ICD (libGLX_nvidia.so.0) needs libglvnd's dispatch libraries as well.
+if ! ls .gl/libvulkan1_*.deb .gl/libglvnd0_*.deb >/dev/null 2>&1; then
   mkdir -p .gl /tmp/amd64/partial
   o='-oAPT::Architecture=amd64 -oAPT::Architectures=amd64 -oDir::State::Lists=/tmp/amd64'
   apt-get $o update -qq
-  (cd .gl && apt-get $o download libvulkan1)
+  (cd .gl && apt-get $o download libvulkan1 libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2)
 fi
 
 cat >"$bundle/run_device.sh" <<'RUN'
