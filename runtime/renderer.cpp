@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -9,6 +10,7 @@
 #include "runtime/acceleration_structures.h"
 #include "runtime/gpu_buffer.h"
 #include "runtime/gpu_textures.h"
+#include "runtime/material_callables.h"
 #include "runtime/material_linker.h"
 #include "runtime/scene_upload.h"
 #include "runtime/shader_compiler.h"
@@ -65,6 +67,17 @@ void setCamera(gpu::FrameConstants& frame, const Camera& camera, std::uint32_t w
   frame.cameraForward = glm::vec4(forward, frame.cameraForward.w);
 }
 
+MaterialDispatch resolveMaterialDispatch(MaterialDispatch requested, Backend backend) {
+  if (requested == MaterialDispatch::Auto)
+    return backend == Backend::RayTracingPipeline ? MaterialDispatch::Callable
+                                                  : MaterialDispatch::Switch;
+  if (requested == MaterialDispatch::Callable && backend != Backend::RayTracingPipeline)
+    throw std::invalid_argument(
+        "--material-dispatch callable needs the ray-tracing pipeline backend (--backend "
+        "pipeline); compute shaders (the query backend) have no callable shaders");
+  return requested;
+}
+
 }  // namespace
 
 TextureImage loadTextureCore(const std::string& path) {
@@ -99,6 +112,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   stats.pathsPerPixel = settings.pathsPerPixel;
   stats.raysPerPath = settings.raysPerPath;
 
+  MaterialDispatch dispatch = resolveMaterialDispatch(options_.materialDispatch, context.backend());
+
   // Materials: graphs → GLSL, and the textures they name.
   MaterialLinkOptions linkOptions;
   linkOptions.nodeLibraryDirectory = options_.nodeLibraryDirectory;
@@ -117,21 +132,41 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   GpuTextures textures(context, textureImages);
   stats.textureBytes = textures.bytes();
 
-  // Shaders: the embedded sources plus the generated materials.glsl.
+  // Shaders: the embedded sources plus the generated materials.glsl; with callables, also
+  // one callable shader per distinct material.
   std::map<std::string, std::string> files;
   for (const auto& shader : embeddedShaders())
     files[std::string(shader.name)] = std::string(shader.text);
-  files["materials.glsl"] = materials.source;
   std::filesystem::path cacheDirectory;
   if (options_.shaderCache) {
     cacheDirectory = options_.shaderCacheDirectory.empty() ? defaultShaderCacheDirectory()
                                                            : options_.shaderCacheDirectory;
   }
+  bool callables = dispatch == MaterialDispatch::Callable;
+  stats.materialDispatch = materialDispatchName(dispatch);
+  ShaderCacheStats callableStats;
+  std::optional<MaterialCallables> materialCallables;
+  if (callables) {
+    MaterialCallableCompileOptions callableOptions;
+    callableOptions.files = files;
+    callableOptions.cacheDirectory = cacheDirectory;
+    callableOptions.textureCount = textures.count();
+    callableOptions.threads = options_.shaderCompileThreads;
+    materialCallables = compileMaterialCallables(materials, callableOptions, callableStats);
+  }
+  files["materials.glsl"] = callables ? materials.preludeSource : materials.source;
   ShaderCompiler compiler(std::move(files), cacheDirectory);
-  TracePipeline pipeline(context, compiler, textures.count());
-  stats.shaderCompileMilliseconds = compiler.stats().compileMilliseconds;
-  stats.shaderCacheHits = compiler.stats().hits;
-  stats.shadersCompiled = compiler.stats().compiled;
+  auto pipelineStart = std::chrono::steady_clock::now();
+  TracePipeline pipeline(context, compiler, textures.count(),
+                         materialCallables ? &*materialCallables : nullptr);
+  stats.pipelineCreateMilliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pipelineStart)
+          .count() -
+      compiler.stats().compileMilliseconds;
+  stats.shaderCompileMilliseconds =
+      compiler.stats().compileMilliseconds + callableStats.compileMilliseconds;
+  stats.shaderCacheHits = compiler.stats().hits + callableStats.hits;
+  stats.shadersCompiled = compiler.stats().compiled + callableStats.compiled;
 
   // Per-render buffers.
   std::size_t pixelCount = std::size_t(settings.width) * settings.height;
