@@ -118,6 +118,23 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   MaterialLinkOptions linkOptions;
   linkOptions.nodeLibraryDirectory = options_.nodeLibraryDirectory;
   LinkedMaterials materials = linkMaterials(scene.materials, linkOptions);
+  const std::size_t distinctMaterials = materials.distinct.size();
+  if (dispatch == MaterialDispatch::Switch && context.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU &&
+      options_.cpuSwitchMaterialLimit > 0 && distinctMaterials > options_.cpuSwitchMaterialLimit) {
+    // Fail in a second rather than after minutes and gigabytes of LLVM.
+    throw std::runtime_error(
+        "this scene has " + std::to_string(distinctMaterials) +
+        " distinct materials; compiling them into one path-tracer shader (the switch "
+        "dispatch) would take about " +
+        std::to_string((distinctMaterials * 110 + 500) / 1000) + " GB and minutes on " +
+        context.info().name + " (about 110 MB per material). Render with " +
+        (context.backend() == Backend::RayQuery
+             ? std::string("--backend pipeline, which compiles one small callable shader per "
+                           "material")
+             : std::string("--material-dispatch callable (the pipeline backend's default)")) +
+        " (library callers: or raise RendererOptions::cpuSwitchMaterialLimit, now " +
+        std::to_string(options_.cpuSwitchMaterialLimit) + ")");
+  }
   stats.materialCount = static_cast<std::uint32_t>(scene.materials.size());
   stats.materialCompileMilliseconds = materials.compileMilliseconds;
   std::vector<TextureImage> textureImages;

@@ -35,6 +35,10 @@ struct RendererOptions {
   // Auto: a callable shader per material on the pipeline backend (no shader holds every
   // graph), the switch on the query backend (compute shaders have no callables).
   MaterialDispatch materialDispatch = MaterialDispatch::Auto;
+  // On a CPU device (lavapipe) a switch over more distinct materials than this is refused
+  // before compiling: llvmpipe compiles the one shader in about 110 MB per material (the
+  // 88-material classroom: over 12 GB). 0: no limit.
+  std::uint32_t cpuSwitchMaterialLimit = 16;
   // Threads compiling callable material shaders; 0: one per hardware thread.
   std::uint32_t shaderCompileThreads = 0;
 };

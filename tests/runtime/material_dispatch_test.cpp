@@ -2,6 +2,7 @@
 // render exactly what the switch in the one path-tracer shader renders, textures included
 // (each callable samples from its own first texture slot); callables on the query backend
 // are refused with a message.
+#include <chrono>
 #include <cstring>
 
 #include <gtest/gtest.h>
@@ -114,6 +115,27 @@ TEST(MaterialDispatch, CallablesOnTheQueryBackendAreRefused) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("pipeline"), std::string::npos) << e.what();
   }
+}
+
+TEST(MaterialDispatch, ManyMaterialSwitchOnCpuFailsFastNamingThePipelineBackend) {
+  Renderer renderer(dispatchOptions(Backend::RayQuery, MaterialDispatch::Auto));
+  if (renderer.context().info().type != VK_PHYSICAL_DEVICE_TYPE_CPU)
+    GTEST_SKIP() << "the limit applies to CPU devices (lavapipe) only";
+  Scene scene = manyMaterialScene();
+  for (int i = 0; i < 12; ++i) {
+    std::string name = "Extra" + std::to_string(i);
+    scene.materials.push_back({name, "", testing::constantGraph(name, {0.5f, 0.5f, 0.5f}, 0.5f)});
+  }
+  auto start = std::chrono::steady_clock::now();
+  try {
+    renderer.render(scene, settings());
+    ADD_FAILURE() << "rendered";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("17 distinct materials"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("--backend pipeline"), std::string::npos) << e.what();
+  }
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_LT(seconds, 5.0) << "it must refuse before compiling";
 }
 
 TEST(MaterialDispatch, NamesParse) {
