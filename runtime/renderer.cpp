@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
+#include <thread>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -174,8 +175,15 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   files["materials.glsl"] = callables ? materials.preludeSource : materials.source;
   ShaderCompiler compiler(std::move(files), cacheDirectory);
   auto pipelineStart = std::chrono::steady_clock::now();
+  std::uint32_t threads = options_.shaderCompileThreads
+                              ? options_.shaderCompileThreads
+                              : std::max(1u, std::thread::hardware_concurrency());
+  // lavapipe (Mesa 25.0) creates ray-tracing pipelines on the calling thread whatever it is
+  // given, and crashes under the validation layer when handed a deferred operation: keep
+  // deferred pipeline creation to GPU drivers, where it can spread the compile.
+  std::uint32_t pipelineThreads = context.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1 : threads;
   TracePipeline pipeline(context, compiler, textures.count(),
-                         materialCallables ? &*materialCallables : nullptr);
+                         materialCallables ? &*materialCallables : nullptr, pipelineThreads);
   stats.pipelineCreateMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pipelineStart)
           .count() -

@@ -39,7 +39,8 @@ struct RendererOptions {
   // before compiling: llvmpipe compiles the one shader in about 110 MB per material (the
   // 88-material classroom: over 12 GB). 0: no limit.
   std::uint32_t cpuSwitchMaterialLimit = 16;
-  // Threads compiling callable material shaders; 0: one per hardware thread.
+  // Threads compiling callable material shaders and joining the driver's ray-tracing
+  // pipeline compile (deferred host operations); 0: one per hardware thread.
   std::uint32_t shaderCompileThreads = 0;
 };
 

@@ -1,9 +1,11 @@
 #include "runtime/trace_pipelines.h"
 
+#include <algorithm>
 #include <array>
 #include <cstring>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "runtime/shaders/shared_types.h"
@@ -24,6 +26,47 @@ VulkanHandle<VkShaderModule> createModule(VkDevice device,
       module, [device](VkShaderModule m) { vkDestroyShaderModule(device, m, nullptr); });
 }
 
+// vkCreateRayTracingPipelinesKHR through a deferred operation joined by up to `threads`
+// host threads: a driver that compiles the pipeline's shaders itself (one per material with
+// callables) can then compile them in parallel. A driver that does not defer simply
+// creates the pipeline in the call.
+VkPipeline createRayTracingPipeline(const VulkanContext& context,
+                                    const VkRayTracingPipelineCreateInfoKHR& info,
+                                    std::uint32_t threads) {
+  VkDevice device = context.device();
+  const DeviceFunctions& f = context.functions();
+  VkDeferredOperationKHR operation = VK_NULL_HANDLE;
+  if (threads > 1)
+    checkVk(f.createDeferredOperation(device, nullptr, &operation), "vkCreateDeferredOperationKHR");
+  VulkanHandle<VkDeferredOperationKHR> owned(operation, [device, &f](VkDeferredOperationKHR op) {
+    if (op != VK_NULL_HANDLE)
+      f.destroyDeferredOperation(device, op, nullptr);
+  });
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkResult result =
+      f.createRayTracingPipelines(device, operation, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
+  if (result == VK_OPERATION_DEFERRED_KHR) {
+    std::uint32_t concurrency = f.getDeferredOperationMaxConcurrency(device, operation);
+    std::uint32_t count = std::max(1u, std::min(threads, concurrency));
+    auto join = [&] {
+      // VK_THREAD_IDLE_KHR: nothing to do right now, but the operation is not done.
+      while (f.deferredOperationJoin(device, operation) == VK_THREAD_IDLE_KHR)
+        std::this_thread::yield();
+    };
+    std::vector<std::thread> helpers;
+    for (std::uint32_t i = 1; i < count; ++i)
+      helpers.emplace_back(join);
+    join();
+    for (auto& helper : helpers)
+      helper.join();
+    result = f.getDeferredOperationResult(device, operation);
+  } else if (result == VK_OPERATION_NOT_DEFERRED_KHR) {
+    result = VK_SUCCESS;
+  }
+  checkVk(result, "vkCreateRayTracingPipelinesKHR");
+  return pipeline;
+}
+
 VkDeviceSize alignUp(VkDeviceSize value, VkDeviceSize alignment) {
   return (value + alignment - 1) / alignment * alignment;
 }
@@ -31,7 +74,8 @@ VkDeviceSize alignUp(VkDeviceSize value, VkDeviceSize alignment) {
 }  // namespace
 
 TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compiler,
-                             std::uint32_t textureCount, const MaterialCallables* callables)
+                             std::uint32_t textureCount, const MaterialCallables* callables,
+                             std::uint32_t pipelineThreads)
     : context_(context), backend_(context.backend()) {
   VkDevice device = context.device();
   bool query = backend_ == Backend::RayQuery;
@@ -157,10 +201,7 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   // stack is part of the driver's default pipeline stack size).
   info.maxPipelineRayRecursionDepth = 1;
   info.layout = layout;
-  VkPipeline pipeline = VK_NULL_HANDLE;
-  checkVk(context.functions().createRayTracingPipelines(device, VK_NULL_HANDLE, VK_NULL_HANDLE, 1,
-                                                        &info, nullptr, &pipeline),
-          "vkCreateRayTracingPipelinesKHR");
+  VkPipeline pipeline = createRayTracingPipeline(context, info, pipelineThreads);
   pipeline_ = VulkanHandle<VkPipeline>(pipeline, destroyPipeline);
 
   // Shader-binding table: [raygen][miss, shadow miss][hit][callable per material id], each

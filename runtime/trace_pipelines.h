@@ -22,8 +22,10 @@ class TracePipeline {
   // `callables`: null for the switch dispatch (materials.glsl holds every material); else
   // the pipeline backend's callable material shaders (the raygen is then compiled with
   // MG_MATERIAL_CALLABLES). Throws std::invalid_argument for callables on the query backend.
+  // `pipelineThreads`: host threads that may join the driver's ray-tracing pipeline
+  // compile (VK_KHR_deferred_host_operations); 1 creates it on the calling thread alone.
   TracePipeline(const VulkanContext& context, ShaderCompiler& compiler, std::uint32_t textureCount,
-                const MaterialCallables* callables = nullptr);
+                const MaterialCallables* callables = nullptr, std::uint32_t pipelineThreads = 1);
 
   VkDescriptorSetLayout descriptorSetLayout() const { return setLayout_.get(); }
   // Binds and launches one thread per pixel.
