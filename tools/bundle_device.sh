@@ -61,7 +61,7 @@ OUT=${OUT:-/tmp/out}
 mkdir -p "$OUT"
 m=bundle/memograph
 # Each step has its own time limit, so one slow step cannot eat the whole call. The limits
-# add up to 540 s (+ a few seconds of set-up) under the 600 s a device call may take. The
+# add up to 560 s (+ a few seconds of set-up) under the 600 s a device call may take. The
 # landscape (4 materials) goes first and gets short limits; the classroom (88 materials)
 # compiles many shaders on its first start, so its steps get the generous ones (its later
 # steps reuse the SPIR-V disk cache and the driver's shader cache).
@@ -86,11 +86,15 @@ scene_steps() {
   nvidia-smi -L || true
   $m render --list-devices
   scene_steps landscape 30 50 30
-  scene_steps classroom 150 150 130
+  # What the callable material dispatch costs: the landscape once more with the switch.
+  echo "== landscape: bench with --material-dispatch switch"
+  step 30 $m bench builtin:landscape --sizes 1920x1080 --paths 6 --bounces 4 --frames 30 \
+    --warmup 5 --material-dispatch switch --csv "$bench_csv/landscape_switch.csv"
+  scene_steps classroom 150 150 120
   # One bench CSV (the device call returns 8 files at most): the header once, then each
   # scene's lines.
   first=1
-  for s in landscape classroom; do
+  for s in landscape landscape_switch classroom; do
     [ -f "$bench_csv/$s.csv" ] || continue
     if [ $first = 1 ]; then cat "$bench_csv/$s.csv"; first=0; else tail -n +2 "$bench_csv/$s.csv"; fi
   done >"$OUT/bench_gpu.csv"
