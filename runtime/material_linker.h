@@ -1,9 +1,13 @@
 // Links a scene's material graphs into the path tracer: compiles each graph with the
-// compiler library (thesis §5.1), and generates "materials.glsl": every compiled include
-// followed by evaluateMaterial(), a switch on the scene's material id that calls each
-// EvaluateMaterial_<Name> with its first texture slot.
+// compiler library (thesis §5.1) and generates the GLSL the two material dispatches need:
+// for the switch, "materials.glsl" with every compiled include followed by
+// evaluateMaterialSwitch(), a switch on the scene's material id that calls each
+// EvaluateMaterial_<Name> with its first texture slot; for callable shaders, only the
+// prelude (MaterialInputs, MaterialOutputs) for the raygen shader, and each material's own
+// include for its callable.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -16,14 +20,35 @@ struct LinkedMaterial {
   std::string name;     // the EvaluateMaterial_<name> it calls
   int textureBase = 0;  // first slot of its textures in LinkedMaterials::texturePaths
   bool cacheable = false;
+  // Index into LinkedMaterials::distinct: scene materials sharing a graph share one
+  // compiled include (and one callable shader).
+  std::uint32_t distinctIndex = 0;
+};
+
+// One distinct compiled graph: what a callable shader of its own needs.
+struct DistinctMaterial {
+  std::string name;     // EvaluateMaterial_<name>
+  std::string include;  // the compiler's GLSL include (prelude, node functions, function)
+  int textureBase = 0;
 };
 
 struct LinkedMaterials {
-  std::string source;                     // the generated materials.glsl
+  std::string source;                     // materials.glsl for the switch dispatch
+  std::string preludeSource;              // materials.glsl for the callable dispatch
   std::vector<LinkedMaterial> materials;  // parallel to Scene::materials
+  std::vector<DistinctMaterial> distinct;
   std::vector<std::string> texturePaths;  // resolved paths, in descriptor-array order
   double compileMilliseconds = 0.0;
 };
+
+// How the path tracer reaches a scene material's graph: a switch in the one path-tracer
+// shader (both backends), or a callable shader per material (ray-tracing pipeline only).
+// Auto: callable on the pipeline backend, switch on the query backend.
+enum class MaterialDispatch { Auto, Switch, Callable };
+
+const char* materialDispatchName(MaterialDispatch dispatch);
+// Parses "auto", "switch" or "callable"; throws std::invalid_argument naming the choices.
+MaterialDispatch parseMaterialDispatch(const std::string& text);
 
 struct MaterialLinkOptions {
   // A node-library folder that replaces the embedded one (for --nodes DIR); empty: embedded.

@@ -26,7 +26,7 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
   out << "frame,gpu_ms,wall_ms,rays,mrays_per_s,width,height,paths,rays_per_path,backend,"
          "device,blas_count,instances,blas_bytes,blas_bytes_uncompacted,tlas_bytes,"
          "scratch_bytes,as_build_ms,texture_bytes,materials,material_compile_ms,"
-         "shader_compile_ms,shader_cache_hits\n";
+         "shader_compile_ms,shader_cache_hits,material_dispatch,pipeline_create_ms\n";
   const auto& a = s.accelerationStructures;
   for (const auto& f : s.frames) {
     double mraysPerSecond = f.gpuMilliseconds > 0 ? f.rays / (f.gpuMilliseconds * 1e3) : 0.0;
@@ -36,7 +36,8 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
         << a.instanceCount << ',' << a.blasBytes << ',' << a.blasBytesBeforeCompaction << ','
         << a.tlasBytes << ',' << a.scratchBytes << ',' << a.buildMilliseconds << ','
         << s.textureBytes << ',' << s.materialCount << ',' << s.materialCompileMilliseconds << ','
-        << s.shaderCompileMilliseconds << ',' << s.shaderCacheHits << '\n';
+        << s.shaderCompileMilliseconds << ',' << s.shaderCacheHits << ',' << s.materialDispatch
+        << ',' << s.pipelineCreateMilliseconds << '\n';
   }
 }
 

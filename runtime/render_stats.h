@@ -33,6 +33,9 @@ struct RenderStats {
   double shaderCompileMilliseconds = 0.0;    // GLSL → SPIR-V (0 when all came from the cache)
   std::uint32_t shaderCacheHits = 0;
   std::uint32_t shadersCompiled = 0;
+  std::string materialDispatch;  // "switch" or "callable"
+  // Shader modules and pipeline (the driver's own compile), excluding GLSL → SPIR-V.
+  double pipelineCreateMilliseconds = 0.0;
 
   double medianGpuMilliseconds() const;
   std::uint64_t totalRays() const;

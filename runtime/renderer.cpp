@@ -2,13 +2,16 @@
 
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
+#include <thread>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "runtime/acceleration_structures.h"
 #include "runtime/gpu_buffer.h"
 #include "runtime/gpu_textures.h"
+#include "runtime/material_callables.h"
 #include "runtime/material_linker.h"
 #include "runtime/scene_upload.h"
 #include "runtime/shader_compiler.h"
@@ -65,6 +68,17 @@ void setCamera(gpu::FrameConstants& frame, const Camera& camera, std::uint32_t w
   frame.cameraForward = glm::vec4(forward, frame.cameraForward.w);
 }
 
+MaterialDispatch resolveMaterialDispatch(MaterialDispatch requested, Backend backend) {
+  if (requested == MaterialDispatch::Auto)
+    return backend == Backend::RayTracingPipeline ? MaterialDispatch::Callable
+                                                  : MaterialDispatch::Switch;
+  if (requested == MaterialDispatch::Callable && backend != Backend::RayTracingPipeline)
+    throw std::invalid_argument(
+        "--material-dispatch callable needs the ray-tracing pipeline backend (--backend "
+        "pipeline); compute shaders (the query backend) have no callable shaders");
+  return requested;
+}
+
 }  // namespace
 
 TextureImage loadTextureCore(const std::string& path) {
@@ -99,10 +113,29 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   stats.pathsPerPixel = settings.pathsPerPixel;
   stats.raysPerPath = settings.raysPerPath;
 
+  MaterialDispatch dispatch = resolveMaterialDispatch(options_.materialDispatch, context.backend());
+
   // Materials: graphs → GLSL, and the textures they name.
   MaterialLinkOptions linkOptions;
   linkOptions.nodeLibraryDirectory = options_.nodeLibraryDirectory;
   LinkedMaterials materials = linkMaterials(scene.materials, linkOptions);
+  const std::size_t distinctMaterials = materials.distinct.size();
+  if (dispatch == MaterialDispatch::Switch && context.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU &&
+      options_.cpuSwitchMaterialLimit > 0 && distinctMaterials > options_.cpuSwitchMaterialLimit) {
+    // Fail in a second rather than after minutes and gigabytes of LLVM.
+    throw std::runtime_error(
+        "this scene has " + std::to_string(distinctMaterials) +
+        " distinct materials; compiling them into one path-tracer shader (the switch "
+        "dispatch) would take about " +
+        std::to_string((distinctMaterials * 110 + 500) / 1000) + " GB and minutes on " +
+        context.info().name + " (about 110 MB per material). Render with " +
+        (context.backend() == Backend::RayQuery
+             ? std::string("--backend pipeline, which compiles one small callable shader per "
+                           "material")
+             : std::string("--material-dispatch callable (the pipeline backend's default)")) +
+        " (library callers: or raise RendererOptions::cpuSwitchMaterialLimit, now " +
+        std::to_string(options_.cpuSwitchMaterialLimit) + ")");
+  }
   stats.materialCount = static_cast<std::uint32_t>(scene.materials.size());
   stats.materialCompileMilliseconds = materials.compileMilliseconds;
   std::vector<TextureImage> textureImages;
@@ -117,21 +150,48 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   GpuTextures textures(context, textureImages);
   stats.textureBytes = textures.bytes();
 
-  // Shaders: the embedded sources plus the generated materials.glsl.
+  // Shaders: the embedded sources plus the generated materials.glsl; with callables, also
+  // one callable shader per distinct material.
   std::map<std::string, std::string> files;
   for (const auto& shader : embeddedShaders())
     files[std::string(shader.name)] = std::string(shader.text);
-  files["materials.glsl"] = materials.source;
   std::filesystem::path cacheDirectory;
   if (options_.shaderCache) {
     cacheDirectory = options_.shaderCacheDirectory.empty() ? defaultShaderCacheDirectory()
                                                            : options_.shaderCacheDirectory;
   }
+  bool callables = dispatch == MaterialDispatch::Callable;
+  stats.materialDispatch = materialDispatchName(dispatch);
+  ShaderCacheStats callableStats;
+  std::optional<MaterialCallables> materialCallables;
+  if (callables) {
+    MaterialCallableCompileOptions callableOptions;
+    callableOptions.files = files;
+    callableOptions.cacheDirectory = cacheDirectory;
+    callableOptions.textureCount = textures.count();
+    callableOptions.threads = options_.shaderCompileThreads;
+    materialCallables = compileMaterialCallables(materials, callableOptions, callableStats);
+  }
+  files["materials.glsl"] = callables ? materials.preludeSource : materials.source;
   ShaderCompiler compiler(std::move(files), cacheDirectory);
-  TracePipeline pipeline(context, compiler, textures.count());
-  stats.shaderCompileMilliseconds = compiler.stats().compileMilliseconds;
-  stats.shaderCacheHits = compiler.stats().hits;
-  stats.shadersCompiled = compiler.stats().compiled;
+  auto pipelineStart = std::chrono::steady_clock::now();
+  std::uint32_t threads = options_.shaderCompileThreads
+                              ? options_.shaderCompileThreads
+                              : std::max(1u, std::thread::hardware_concurrency());
+  // lavapipe (Mesa 25.0) gained nothing from a deferred operation (the classroom's pipeline
+  // took as long, on one core) and crashes under the validation layer when handed one: keep
+  // deferred pipeline creation to GPU drivers, where it can spread the compile.
+  std::uint32_t pipelineThreads = context.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1 : threads;
+  TracePipeline pipeline(context, compiler, textures.count(),
+                         materialCallables ? &*materialCallables : nullptr, pipelineThreads);
+  stats.pipelineCreateMilliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pipelineStart)
+          .count() -
+      compiler.stats().compileMilliseconds;
+  stats.shaderCompileMilliseconds =
+      compiler.stats().compileMilliseconds + callableStats.compileMilliseconds;
+  stats.shaderCacheHits = compiler.stats().hits + callableStats.hits;
+  stats.shadersCompiled = compiler.stats().compiled + callableStats.compiled;
 
   // Per-render buffers.
   std::size_t pixelCount = std::size_t(settings.width) * settings.height;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "runtime/image.h"
+#include "runtime/material_linker.h"
 #include "runtime/render_stats.h"
 #include "runtime/scene.h"
 #include "runtime/vulkan_context.h"
@@ -31,6 +32,16 @@ struct RendererOptions {
   std::filesystem::path shaderCacheDirectory;  // empty: defaultShaderCacheDirectory()
   std::filesystem::path nodeLibraryDirectory;  // empty: the embedded node library
   TextureLoader textureLoader = loadTextureCore;
+  // Auto: a callable shader per material on the pipeline backend (no shader holds every
+  // graph), the switch on the query backend (compute shaders have no callables).
+  MaterialDispatch materialDispatch = MaterialDispatch::Auto;
+  // On a CPU device (lavapipe) a switch over more distinct materials than this is refused
+  // before compiling: llvmpipe compiles the one shader in about 110 MB per material (the
+  // 88-material classroom: over 12 GB). 0: no limit.
+  std::uint32_t cpuSwitchMaterialLimit = 16;
+  // Threads compiling callable material shaders and joining the driver's ray-tracing
+  // pipeline compile (deferred host operations); 0: one per hardware thread.
+  std::uint32_t shaderCompileThreads = 0;
 };
 
 struct RenderSettings {

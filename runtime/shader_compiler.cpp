@@ -29,6 +29,8 @@ EShLanguage toGlslang(ShaderStage stage) {
       return EShLangClosestHit;
     case ShaderStage::Miss:
       return EShLangMiss;
+    case ShaderStage::Callable:
+      return EShLangCallable;
   }
   return EShLangCompute;
 }

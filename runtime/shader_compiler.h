@@ -11,7 +11,7 @@
 
 namespace memograph::runtime {
 
-enum class ShaderStage { Compute, RayGen, ClosestHit, Miss };
+enum class ShaderStage { Compute, RayGen, ClosestHit, Miss, Callable };
 
 struct ShaderCompileRequest {
   std::string entryFile;  // name in `files` of the file to compile
@@ -25,6 +25,9 @@ struct ShaderCacheStats {
   double compileMilliseconds = 0.0;
 };
 
+// One compiler is used by one thread at a time (its statistics are not shared); several
+// compilers may compile at once on different threads (glslang is initialised once, then
+// thread-safe).
 class ShaderCompiler {
  public:
   // `files`: every file an #include may name (embedded shaders plus generated ones).

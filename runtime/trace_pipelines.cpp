@@ -1,8 +1,11 @@
 #include "runtime/trace_pipelines.h"
 
+#include <algorithm>
 #include <array>
 #include <cstring>
+#include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "runtime/shaders/shared_types.h"
@@ -23,6 +26,47 @@ VulkanHandle<VkShaderModule> createModule(VkDevice device,
       module, [device](VkShaderModule m) { vkDestroyShaderModule(device, m, nullptr); });
 }
 
+// vkCreateRayTracingPipelinesKHR through a deferred operation joined by up to `threads`
+// host threads: a driver that compiles the pipeline's shaders itself (one per material with
+// callables) can then compile them in parallel. A driver that does not defer simply
+// creates the pipeline in the call.
+VkPipeline createRayTracingPipeline(const VulkanContext& context,
+                                    const VkRayTracingPipelineCreateInfoKHR& info,
+                                    std::uint32_t threads) {
+  VkDevice device = context.device();
+  const DeviceFunctions& f = context.functions();
+  VkDeferredOperationKHR operation = VK_NULL_HANDLE;
+  if (threads > 1)
+    checkVk(f.createDeferredOperation(device, nullptr, &operation), "vkCreateDeferredOperationKHR");
+  VulkanHandle<VkDeferredOperationKHR> owned(operation, [device, &f](VkDeferredOperationKHR op) {
+    if (op != VK_NULL_HANDLE)
+      f.destroyDeferredOperation(device, op, nullptr);
+  });
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  VkResult result =
+      f.createRayTracingPipelines(device, operation, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
+  if (result == VK_OPERATION_DEFERRED_KHR) {
+    std::uint32_t concurrency = f.getDeferredOperationMaxConcurrency(device, operation);
+    std::uint32_t count = std::max(1u, std::min(threads, concurrency));
+    auto join = [&] {
+      // VK_THREAD_IDLE_KHR: nothing to do right now, but the operation is not done.
+      while (f.deferredOperationJoin(device, operation) == VK_THREAD_IDLE_KHR)
+        std::this_thread::yield();
+    };
+    std::vector<std::thread> helpers;
+    for (std::uint32_t i = 1; i < count; ++i)
+      helpers.emplace_back(join);
+    join();
+    for (auto& helper : helpers)
+      helper.join();
+    result = f.getDeferredOperationResult(device, operation);
+  } else if (result == VK_OPERATION_NOT_DEFERRED_KHR) {
+    result = VK_SUCCESS;
+  }
+  checkVk(result, "vkCreateRayTracingPipelinesKHR");
+  return pipeline;
+}
+
 VkDeviceSize alignUp(VkDeviceSize value, VkDeviceSize alignment) {
   return (value + alignment - 1) / alignment * alignment;
 }
@@ -30,11 +74,19 @@ VkDeviceSize alignUp(VkDeviceSize value, VkDeviceSize alignment) {
 }  // namespace
 
 TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compiler,
-                             std::uint32_t textureCount)
+                             std::uint32_t textureCount, const MaterialCallables* callables,
+                             std::uint32_t pipelineThreads)
     : context_(context), backend_(context.backend()) {
   VkDevice device = context.device();
   bool query = backend_ == Backend::RayQuery;
-  VkShaderStageFlags stages = query ? VK_SHADER_STAGE_COMPUTE_BIT : VK_SHADER_STAGE_RAYGEN_BIT_KHR;
+  if (query && callables)
+    throw std::invalid_argument(
+        "callable material shaders need the ray-tracing pipeline backend (--backend pipeline); "
+        "the query backend dispatches materials with a switch");
+  // Callables read the textures (mg_SampleTexture) through the same set as the raygen.
+  VkShaderStageFlags stages =
+      query ? VK_SHADER_STAGE_COMPUTE_BIT
+            : VK_SHADER_STAGE_RAYGEN_BIT_KHR | (callables ? VK_SHADER_STAGE_CALLABLE_BIT_KHR : 0);
 
   using gpu::uint;
   std::vector<VkDescriptorSetLayoutBinding> bindings;
@@ -72,8 +124,15 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
 
   std::vector<std::string> defines = {"MG_TEXTURE_COUNT=" + std::to_string(textureCount),
                                       query ? "MG_BACKEND_QUERY=1" : "MG_BACKEND_PIPELINE=1"};
-  if (context.info().subgroupArithmeticStages & stages)
+  if (context.info().subgroupArithmeticStages &
+      (query ? VK_SHADER_STAGE_COMPUTE_BIT : VK_SHADER_STAGE_RAYGEN_BIT_KHR))
     defines.push_back("MG_SUBGROUP_RAY_COUNT=1");
+  std::uint32_t materialRecords = 0;
+  if (callables) {
+    materialRecords = static_cast<std::uint32_t>(callables->shaderForMaterial.size());
+    defines.push_back("MG_MATERIAL_CALLABLES=1");
+    defines.push_back("MG_MATERIAL_COUNT=" + std::to_string(materialRecords));
+  }
   auto destroyPipeline = [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); };
 
   if (query) {
@@ -92,18 +151,30 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
     return;
   }
 
-  // Ray-tracing pipeline: raygen (the path tracer), two misses, one triangle hit group.
-  std::array<VulkanHandle<VkShaderModule>, 4> modules = {
-      createModule(device, compiler.compile({"path_tracer.glsl", ShaderStage::RayGen, defines})),
-      createModule(device, compiler.compile({"trace_miss.rmiss", ShaderStage::Miss, {}})),
-      createModule(device, compiler.compile({"trace_shadow.rmiss", ShaderStage::Miss, {}})),
-      createModule(device, compiler.compile({"trace_hit.rchit", ShaderStage::ClosestHit, {}}))};
-  const VkShaderStageFlagBits stageBits[4] = {
+  // Ray-tracing pipeline: raygen (the path tracer), two misses, one triangle hit group, then
+  // one general group per callable material shader.
+  const std::uint32_t callableCount =
+      callables ? static_cast<std::uint32_t>(callables->spirv.size()) : 0;
+  const std::uint32_t shaderCount = 4 + callableCount;
+  std::vector<VulkanHandle<VkShaderModule>> modules;
+  modules.push_back(
+      createModule(device, compiler.compile({"path_tracer.glsl", ShaderStage::RayGen, defines})));
+  modules.push_back(
+      createModule(device, compiler.compile({"trace_miss.rmiss", ShaderStage::Miss, {}})));
+  modules.push_back(
+      createModule(device, compiler.compile({"trace_shadow.rmiss", ShaderStage::Miss, {}})));
+  modules.push_back(
+      createModule(device, compiler.compile({"trace_hit.rchit", ShaderStage::ClosestHit, {}})));
+  std::vector<VkShaderStageFlagBits> stageBits = {
       VK_SHADER_STAGE_RAYGEN_BIT_KHR, VK_SHADER_STAGE_MISS_BIT_KHR, VK_SHADER_STAGE_MISS_BIT_KHR,
       VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR};
-  std::array<VkPipelineShaderStageCreateInfo, 4> shaderStages{};
-  std::array<VkRayTracingShaderGroupCreateInfoKHR, 4> groups{};
-  for (std::uint32_t i = 0; i < 4; ++i) {
+  for (std::uint32_t i = 0; i < callableCount; ++i) {
+    modules.push_back(createModule(device, callables->spirv[i]));
+    stageBits.push_back(VK_SHADER_STAGE_CALLABLE_BIT_KHR);
+  }
+  std::vector<VkPipelineShaderStageCreateInfo> shaderStages(shaderCount);
+  std::vector<VkRayTracingShaderGroupCreateInfoKHR> groups(shaderCount);
+  for (std::uint32_t i = 0; i < shaderCount; ++i) {
     shaderStages[i] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
     shaderStages[i].stage = stageBits[i];
     shaderStages[i].module = modules[i].get();
@@ -113,45 +184,51 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
     groups[i].closestHitShader = VK_SHADER_UNUSED_KHR;
     groups[i].anyHitShader = VK_SHADER_UNUSED_KHR;
     groups[i].intersectionShader = VK_SHADER_UNUSED_KHR;
-    if (i < 3) {
-      groups[i].type = VK_RAY_TRACING_SHADER_GROUP_TYPE_GENERAL_KHR;
-      groups[i].generalShader = i;
-    } else {
+    if (i == 3) {
       groups[i].type = VK_RAY_TRACING_SHADER_GROUP_TYPE_TRIANGLES_HIT_GROUP_KHR;
       groups[i].closestHitShader = i;
+    } else {
+      groups[i].type = VK_RAY_TRACING_SHADER_GROUP_TYPE_GENERAL_KHR;
+      groups[i].generalShader = i;
     }
   }
   VkRayTracingPipelineCreateInfoKHR info{VK_STRUCTURE_TYPE_RAY_TRACING_PIPELINE_CREATE_INFO_KHR};
-  info.stageCount = 4;
+  info.stageCount = shaderCount;
   info.pStages = shaderStages.data();
-  info.groupCount = 4;
+  info.groupCount = shaderCount;
   info.pGroups = groups.data();
-  info.maxPipelineRayRecursionDepth = 1;  // raygen traces; hit shaders never do
+  // Raygen traces; hit shaders never do. Callables do not count towards recursion (their
+  // stack is part of the driver's default pipeline stack size).
+  info.maxPipelineRayRecursionDepth = 1;
   info.layout = layout;
-  VkPipeline pipeline = VK_NULL_HANDLE;
-  checkVk(context.functions().createRayTracingPipelines(device, VK_NULL_HANDLE, VK_NULL_HANDLE, 1,
-                                                        &info, nullptr, &pipeline),
-          "vkCreateRayTracingPipelinesKHR");
+  VkPipeline pipeline = createRayTracingPipeline(context, info, pipelineThreads);
   pipeline_ = VulkanHandle<VkPipeline>(pipeline, destroyPipeline);
 
-  // Shader-binding table: [raygen][miss, shadow miss][hit], each region base-aligned.
+  // Shader-binding table: [raygen][miss, shadow miss][hit][callable per material id], each
+  // region base-aligned. Scene materials sharing a graph point at the same callable group.
   const auto& rt = context.info().rayTracingProperties;
   std::uint32_t handleSize = rt.shaderGroupHandleSize;
   VkDeviceSize stride = alignUp(handleSize, rt.shaderGroupHandleAlignment);
   VkDeviceSize base = rt.shaderGroupBaseAlignment;
-  std::vector<std::uint8_t> handles(std::size_t(handleSize) * 4);
-  checkVk(context.functions().getRayTracingShaderGroupHandles(device, pipeline, 0, 4,
+  std::vector<std::uint8_t> handles(std::size_t(handleSize) * shaderCount);
+  checkVk(context.functions().getRayTracingShaderGroupHandles(device, pipeline, 0, shaderCount,
                                                               handles.size(), handles.data()),
           "vkGetRayTracingShaderGroupHandlesKHR");
   VkDeviceSize raygenOffset = 0;
   VkDeviceSize missOffset = alignUp(stride, base);
   VkDeviceSize hitOffset = alignUp(missOffset + 2 * stride, base);
-  VkDeviceSize tableSize = hitOffset + stride;
+  VkDeviceSize callableOffset = alignUp(hitOffset + stride, base);
+  VkDeviceSize tableSize = callableOffset + materialRecords * stride;
   std::vector<std::uint8_t> table(tableSize, 0);
   std::memcpy(&table[raygenOffset], &handles[0], handleSize);
   std::memcpy(&table[missOffset], &handles[handleSize], handleSize);
   std::memcpy(&table[missOffset + stride], &handles[2 * handleSize], handleSize);
   std::memcpy(&table[hitOffset], &handles[3 * handleSize], handleSize);
+  for (std::uint32_t m = 0; m < materialRecords; ++m) {
+    std::uint32_t group = 4 + callables->shaderForMaterial[m];
+    std::memcpy(&table[callableOffset + m * stride], &handles[std::size_t(group) * handleSize],
+                handleSize);
+  }
   shaderBindingTable_ = GpuBuffer(
       context, tableSize + base,
       VK_BUFFER_USAGE_SHADER_BINDING_TABLE_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
@@ -162,6 +239,8 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   raygenRegion_ = {tableAddress + raygenOffset, alignUp(stride, base), alignUp(stride, base)};
   missRegion_ = {tableAddress + missOffset, stride, 2 * stride};
   hitRegion_ = {tableAddress + hitOffset, stride, stride};
+  if (materialRecords > 0)
+    callableRegion_ = {tableAddress + callableOffset, stride, materialRecords * stride};
 }
 
 void TracePipeline::record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t width,

@@ -1,6 +1,7 @@
 // The two trace backends on the host side: a compute pipeline running path_tracer.glsl with
 // ray queries, or a ray-tracing pipeline running the same source as raygen with the
-// report-only hit and miss shaders and its shader-binding table. Both share one descriptor
+// report-only hit and miss shaders and its shader-binding table (with, for the callable
+// material dispatch, one callable record per scene material). Both share one descriptor
 // set layout (shared_types.h bindings).
 #pragma once
 
@@ -9,6 +10,7 @@
 #include <vulkan/vulkan.h>
 
 #include "runtime/gpu_buffer.h"
+#include "runtime/material_callables.h"
 #include "runtime/shader_compiler.h"
 #include "runtime/vulkan_context.h"
 #include "runtime/vulkan_handle.h"
@@ -17,7 +19,13 @@ namespace memograph::runtime {
 
 class TracePipeline {
  public:
-  TracePipeline(const VulkanContext& context, ShaderCompiler& compiler, std::uint32_t textureCount);
+  // `callables`: null for the switch dispatch (materials.glsl holds every material); else
+  // the pipeline backend's callable material shaders (the raygen is then compiled with
+  // MG_MATERIAL_CALLABLES). Throws std::invalid_argument for callables on the query backend.
+  // `pipelineThreads`: host threads that may join the driver's ray-tracing pipeline
+  // compile (VK_KHR_deferred_host_operations); 1 creates it on the calling thread alone.
+  TracePipeline(const VulkanContext& context, ShaderCompiler& compiler, std::uint32_t textureCount,
+                const MaterialCallables* callables = nullptr, std::uint32_t pipelineThreads = 1);
 
   VkDescriptorSetLayout descriptorSetLayout() const { return setLayout_.get(); }
   // Binds and launches one thread per pixel.

@@ -447,6 +447,17 @@ VulkanContext::VulkanContext(const ContextOptions& options)
         loadDevice<PFN_vkGetRayTracingShaderGroupHandlesKHR>(
             device, "vkGetRayTracingShaderGroupHandlesKHR");
     functions_.cmdTraceRays = loadDevice<PFN_vkCmdTraceRaysKHR>(device, "vkCmdTraceRaysKHR");
+    functions_.createDeferredOperation =
+        loadDevice<PFN_vkCreateDeferredOperationKHR>(device, "vkCreateDeferredOperationKHR");
+    functions_.destroyDeferredOperation =
+        loadDevice<PFN_vkDestroyDeferredOperationKHR>(device, "vkDestroyDeferredOperationKHR");
+    functions_.getDeferredOperationMaxConcurrency =
+        loadDevice<PFN_vkGetDeferredOperationMaxConcurrencyKHR>(
+            device, "vkGetDeferredOperationMaxConcurrencyKHR");
+    functions_.getDeferredOperationResult =
+        loadDevice<PFN_vkGetDeferredOperationResultKHR>(device, "vkGetDeferredOperationResultKHR");
+    functions_.deferredOperationJoin =
+        loadDevice<PFN_vkDeferredOperationJoinKHR>(device, "vkDeferredOperationJoinKHR");
   }
 
   VkPhysicalDeviceAccelerationStructurePropertiesKHR asProperties{

@@ -41,6 +41,13 @@ struct DeviceFunctions {
   PFN_vkCreateRayTracingPipelinesKHR createRayTracingPipelines = nullptr;
   PFN_vkGetRayTracingShaderGroupHandlesKHR getRayTracingShaderGroupHandles = nullptr;
   PFN_vkCmdTraceRaysKHR cmdTraceRays = nullptr;
+  // VK_KHR_deferred_host_operations (always enabled with acceleration structures): lets
+  // ray-tracing pipeline creation use several host threads.
+  PFN_vkCreateDeferredOperationKHR createDeferredOperation = nullptr;
+  PFN_vkDestroyDeferredOperationKHR destroyDeferredOperation = nullptr;
+  PFN_vkGetDeferredOperationMaxConcurrencyKHR getDeferredOperationMaxConcurrency = nullptr;
+  PFN_vkGetDeferredOperationResultKHR getDeferredOperationResult = nullptr;
+  PFN_vkDeferredOperationJoinKHR deferredOperationJoin = nullptr;
 };
 
 struct DeviceInfo {

@@ -23,11 +23,13 @@ namespace memograph::cli {
 namespace {
 
 constexpr std::string_view kHelp =
-    "usage: memograph bench [builtin:classroom builtin:landscape ...] [options]\n"
+    "usage: memograph bench [builtin:NAME[:KEY=VALUE,...] ...] [options]\n"
     "\n"
     "Renders each scene at each size and prints the median GPU frame time, frames per\n"
     "second and rays per second over the timed frames (after warm-up frames). The camera\n"
-    "follows the scene's built-in camera path unless --static-camera is given.\n"
+    "follows the scene's built-in camera path unless --static-camera is given. Scenes\n"
+    "default to builtin:classroom builtin:landscape; options as in 'render', e.g.\n"
+    "builtin:classroom:octaves=10,layers=3.\n"
     "\n"
     "options:\n"
     "  --sizes LIST          comma-separated WxH sizes (default 1920x1080)\n"
@@ -38,6 +40,7 @@ constexpr std::string_view kHelp =
     "  --static-camera       keep the scene's camera still\n"
     "  --shared-primary      one primary ray per pixel shared by its paths\n"
     "  --backend B           auto, query or pipeline\n"
+    "  --material-dispatch D auto, switch or callable (see 'render --help')\n"
     "  --device N            Vulkan device index\n"
     "  --nodes DIR           node library folder instead of the built-in one\n"
     "  --shader-cache DIR    SPIR-V cache folder\n"
@@ -60,7 +63,8 @@ int runBench(std::span<const std::string_view>) {
 
 int runBench(std::span<const std::string_view> args) {
   std::string sizes = "1920x1080", paths = "6", bounces = "4", frames = "20", warmup = "3",
-              backend = "auto", device = "-1", nodes, shaderCache, csvPath, framesCsv;
+              backend = "auto", device = "-1", nodes, shaderCache, csvPath, framesCsv,
+              materialDispatch = "auto";
   bool help = false, staticCamera = false, sharedPrimary = false;
   ArgumentScanner scanner("bench", args);
   scanner.option("--sizes", &sizes);
@@ -70,6 +74,7 @@ int runBench(std::span<const std::string_view> args) {
   scanner.option("--frames", &frames);
   scanner.option("--warmup", &warmup);
   scanner.option("--backend", &backend);
+  scanner.option("--material-dispatch", &materialDispatch);
   scanner.option("--device", &device);
   scanner.option("--nodes", &nodes);
   scanner.option("--shader-cache", &shaderCache);
@@ -108,6 +113,7 @@ int runBench(std::span<const std::string_view> args) {
   runtime::RendererOptions options;
   try {
     options.context.backend = runtime::parseBackend(backend);
+    options.materialDispatch = runtime::parseMaterialDispatch(materialDispatch);
   } catch (const std::invalid_argument& e) {
     return usageError("bench", e.what());
   }
@@ -123,7 +129,8 @@ int runBench(std::span<const std::string_view> args) {
       return kExitFailure;
     }
     csv << "scene,width,height,paths,rays_per_path,backend,device,frames,median_gpu_ms,fps,"
-           "mrays_per_s,blas_bytes,tlas_bytes,scratch_bytes,materials\n";
+           "mrays_per_s,blas_bytes,tlas_bytes,scratch_bytes,materials,material_dispatch,"
+           "shader_compile_ms,pipeline_create_ms\n";
   }
   try {
     runtime::Renderer renderer(options);
@@ -133,8 +140,19 @@ int runBench(std::span<const std::string_view> args) {
       if (sceneName.rfind("builtin:", 0) != 0)
         return usageError("bench",
                           "bench runs built-in scenes (builtin:NAME), not '" + sceneName + "'");
-      std::string name = sceneName.substr(8);
-      runtime::Scene scene = runtime::makeBuiltinScene(name);
+      std::string error;
+      auto spec = runtime::parseBuiltinSceneSpec(std::string_view(sceneName).substr(8), error);
+      if (!spec)
+        return usageError("bench", error);
+      const std::string& name = spec->name;
+      runtime::Scene scene = runtime::makeBuiltinScene(name, spec->options);
+      // Output label: the whole spec, so runs with different options stay apart; commas
+      // become ';' to keep the CSV's columns.
+      std::string label = sceneName.substr(8);
+      std::replace(label.begin(), label.end(), ',', ';');
+      std::string fileLabel = label;
+      std::replace_if(
+          fileLabel.begin(), fileLabel.end(), [](char c) { return c == ':' || c == ';'; }, '_');
       for (auto [width, height] : sizeList) {
         runtime::RenderSettings settings;
         settings.width = width;
@@ -162,19 +180,22 @@ int runBench(std::span<const std::string_view> args) {
         double medianMs = median(ms), medianMrays = median(mrays);
         double fps = medianMs > 0 ? 1000.0 / medianMs : 0.0;
         const auto& as = result.stats.accelerationStructures;
-        std::cout << name << " " << width << "x" << height << " P=" << p << " L=" << l
+        std::cout << label << " " << width << "x" << height << " P=" << p << " L=" << l
                   << ": median " << medianMs << " ms/frame, " << fps << " fps, " << medianMrays
                   << " Mrays/s (" << timed.size() << " frames; " << result.stats.materialCount
-                  << " materials; BLAS " << as.blasBytes << " B, TLAS " << as.tlasBytes << " B)\n";
+                  << " materials, " << result.stats.materialDispatch << "; pipeline "
+                  << result.stats.pipelineCreateMilliseconds << " ms; BLAS " << as.blasBytes
+                  << " B, TLAS " << as.tlasBytes << " B)\n";
         if (csv) {
-          csv << name << ',' << width << ',' << height << ',' << p << ',' << l << ','
+          csv << label << ',' << width << ',' << height << ',' << p << ',' << l << ','
               << result.stats.backend << ",\"" << result.stats.device << "\"," << timed.size()
               << ',' << medianMs << ',' << fps << ',' << medianMrays << ',' << as.blasBytes << ','
-              << as.tlasBytes << ',' << as.scratchBytes << ',' << result.stats.materialCount
-              << '\n';
+              << as.tlasBytes << ',' << as.scratchBytes << ',' << result.stats.materialCount << ','
+              << result.stats.materialDispatch << ',' << result.stats.shaderCompileMilliseconds
+              << ',' << result.stats.pipelineCreateMilliseconds << '\n';
         }
         if (!framesCsv.empty()) {
-          std::ofstream perFrame(framesCsv + name + "_" + std::to_string(width) + "x" +
+          std::ofstream perFrame(framesCsv + fileLabel + "_" + std::to_string(width) + "x" +
                                  std::to_string(height) + ".csv");
           runtime::writeStatsCsv(perFrame, result.stats);
         }
