@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <thread>
 
@@ -92,6 +93,14 @@ TextureImage loadTextureCore(const std::string& path) {
                              "memograph CLI (OpenImageIO) or convert it to .pfm");
   }
   return TextureImage{{readPfm(p)}};
+}
+
+std::size_t countDistinctMaterialGraphs(const Scene& scene) {
+  std::set<std::pair<std::string, std::string>> graphs;
+  for (const auto& material : scene.materials) {
+    graphs.emplace(material.graphPath, material.graphText);
+  }
+  return graphs.size();
 }
 
 Renderer::Renderer(RendererOptions options)

@@ -44,6 +44,14 @@ struct RendererOptions {
   std::uint32_t shaderCompileThreads = 0;
 };
 
+// Scenes with more distinct material graphs than this render best with per-material callable
+// shaders: one shader holding every graph grows too large to compile quickly (the CLI makes
+// `--backend auto` pick the pipeline backend for them).
+constexpr std::size_t kManyMaterialGraphs = 16;
+
+// Materials that share a graph (same file or same text) count once.
+std::size_t countDistinctMaterialGraphs(const Scene& scene);
+
 struct RenderSettings {
   std::uint32_t width = 64;
   std::uint32_t height = 64;

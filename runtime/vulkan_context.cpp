@@ -300,8 +300,11 @@ VulkanContext::VulkanContext(const ContextOptions& options)
   physicalDevice_ = chosen->device;
 
   backend_ = options.backend;
-  if (backend_ == Backend::Auto)
-    backend_ = chosen->rayQuery ? Backend::RayQuery : Backend::RayTracingPipeline;
+  if (backend_ == Backend::Auto) {
+    const bool pipeline =
+        !chosen->rayQuery || (options.autoPrefersPipeline && chosen->rayTracingPipeline);
+    backend_ = pipeline ? Backend::RayTracingPipeline : Backend::RayQuery;
+  }
   if (backend_ == Backend::RayQuery && !chosen->rayQuery) {
     throw std::runtime_error(std::string("The query backend needs VK_KHR_ray_query, which ") +
                              chosen->properties.deviceName +

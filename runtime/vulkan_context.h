@@ -26,6 +26,9 @@ struct ContextOptions {
   int deviceIndex = -1;     // index into vkEnumeratePhysicalDevices; -1 picks one
   bool validation = false;  // enable VK_LAYER_KHRONOS_validation (error if missing)
   Backend backend = Backend::Auto;
+  // With Backend::Auto: take the pipeline backend when the device has it, else ray query.
+  // Set for scenes with many materials, where per-material callables keep shaders small.
+  bool autoPrefersPipeline = false;
 };
 
 // Entry points of device extensions, loaded per device (no global dispatch state).

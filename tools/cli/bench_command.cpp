@@ -133,9 +133,6 @@ int runBench(std::span<const std::string_view> args) {
            "shader_compile_ms,pipeline_create_ms\n";
   }
   try {
-    runtime::Renderer renderer(options);
-    std::cout << "device: " << renderer.context().info().name << ", backend "
-              << runtime::backendName(renderer.context().backend()) << "\n";
     for (const auto& sceneName : scenes) {
       if (sceneName.rfind("builtin:", 0) != 0)
         return usageError("bench",
@@ -146,6 +143,12 @@ int runBench(std::span<const std::string_view> args) {
         return usageError("bench", error);
       const std::string& name = spec->name;
       runtime::Scene scene = runtime::makeBuiltinScene(name, spec->options);
+      // Each scene gets its own renderer: --backend auto depends on its material count.
+      options.context.autoPrefersPipeline =
+          runtime::countDistinctMaterialGraphs(scene) > runtime::kManyMaterialGraphs;
+      runtime::Renderer renderer(options);
+      std::cout << "device: " << renderer.context().info().name << ", backend "
+                << runtime::backendName(renderer.context().backend()) << "\n";
       // Output label: the whole spec, so runs with different options stay apart; commas
       // become ';' to keep the CSV's columns.
       std::string label = sceneName.substr(8);

@@ -88,7 +88,8 @@ std::optional<compiler::NodeLibrary> loadNodeLibrary(const std::string& director
     }
   } else {
     auto read = compiler::readNodeLibraryDirectory(directory, diagnostics);
-    if (!read) return std::nullopt;
+    if (!read)
+      return std::nullopt;
     files = std::move(*read);
   }
   if (files.empty()) {
@@ -96,7 +97,8 @@ std::optional<compiler::NodeLibrary> loadNodeLibrary(const std::string& director
     return std::nullopt;
   }
   auto library = compiler::NodeLibrary::load(files, diagnostics);
-  if (diagnostics.hasErrors()) return std::nullopt;
+  if (diagnostics.hasErrors())
+    return std::nullopt;
   return library;
 }
 

@@ -45,7 +45,8 @@ constexpr std::string_view kHelp =
     "  --camera-path FILE    one camera per frame: lines 'px py pz  tx ty tz  fov'\n"
     "  --shared-primary      one primary ray through the pixel centre for all P paths\n"
     "  --seed S              random seed (default 0)\n"
-    "  --backend B           auto (default; prefers query), query or pipeline\n"
+    "  --backend B           auto (default: query, or pipeline for scenes of more than 16\n"
+    "                        distinct materials, where it has callables), query, pipeline\n"
     "  --material-dispatch D auto (default), switch or callable: how the path tracer\n"
     "                        reaches each material. switch: every material in the one\n"
     "                        path-tracer shader; callable: one callable shader per material\n"
@@ -224,6 +225,9 @@ int runRender(std::span<const std::string_view> args) {
   };
 
   try {
+    // Many materials: per-material callables (pipeline backend) unless --backend says otherwise.
+    options.context.autoPrefersPipeline =
+        runtime::countDistinctMaterialGraphs(scene) > runtime::kManyMaterialGraphs;
     runtime::Renderer renderer(options);
     runtime::RenderResult result = renderer.render(scene, settings);
     for (const auto& error : renderer.context().validationErrors())
