@@ -147,3 +147,19 @@ TEST(MaterialDispatch, NamesParse) {
 
 }  // namespace
 }  // namespace memograph::runtime
+
+namespace memograph::runtime {
+namespace {
+
+TEST(MaterialDispatch, DistinctGraphsCountSharedGraphsOnce) {
+  Scene scene;
+  scene.materials = {{"a", "", "RoughnessOutput In=0.5;"},
+                     {"b", "", "RoughnessOutput In=0.5;"},
+                     {"c", "", "RoughnessOutput In=0.25;"},
+                     {"d", "graphs/wood.mgraph", ""},
+                     {"e", "graphs/wood.mgraph", ""}};
+  EXPECT_EQ(countDistinctMaterialGraphs(scene), 3u);
+}
+
+}  // namespace
+}  // namespace memograph::runtime

@@ -18,6 +18,18 @@ TEST(VulkanContext, PicksARayTracingDeviceAndNamesIt) {
               backendName(context.backend()), validationLayerAvailable() ? "on" : "absent");
 }
 
+TEST(VulkanContext, AutoBackendPrefersQueryUnlessToldToPreferThePipeline) {
+  ContextOptions options = testing::testOptions().context;
+  options.backend = Backend::Auto;
+  VulkanContext plain(options);
+  if (!plain.info().rayQuery || !plain.info().rayTracingPipeline)
+    GTEST_SKIP() << "the device lacks one of the two backends";
+  EXPECT_EQ(plain.backend(), Backend::RayQuery);
+  options.autoPrefersPipeline = true;
+  VulkanContext manyMaterials(options);
+  EXPECT_EQ(manyMaterials.backend(), Backend::RayTracingPipeline);
+}
+
 TEST(VulkanContext, ValidationErrorsAreCaught) {
   if (!validationLayerAvailable())
     GTEST_SKIP() << "VK_LAYER_KHRONOS_validation not installed";
