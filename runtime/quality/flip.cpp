@@ -119,19 +119,37 @@ struct Plane {
 };
 
 // One separable pass: `kernel` has 2r+1 taps centred on tap r; horizontal or vertical;
-// samples outside the image repeat the border pixel.
+// samples outside the image repeat the border pixel. Rows are processed whole (a padded copy
+// horizontally, row-by-row accumulation vertically) so the inner loops vectorise.
 Plane convolve1d(const Plane& in, const std::vector<double>& kernel, bool horizontal) {
   const int radius = static_cast<int>(kernel.size() / 2);
-  Plane out(in.width, in.height);
-  for (int y = 0; y < in.height; ++y) {
-    for (int x = 0; x < in.width; ++x) {
-      double sum = 0.0;
-      for (int k = -radius; k <= radius; ++k) {
-        const int sx = horizontal ? std::clamp(x + k, 0, in.width - 1) : x;
-        const int sy = horizontal ? y : std::clamp(y + k, 0, in.height - 1);
-        sum += kernel[k + radius] * in.at(sx, sy);
+  const std::vector<float> taps(kernel.begin(), kernel.end());
+  const int width = in.width, height = in.height;
+  Plane out(width, height);
+  if (horizontal) {
+    std::vector<float> padded(static_cast<std::size_t>(width) + 2 * radius);
+    for (int y = 0; y < height; ++y) {
+      const float* row = &in.values[static_cast<std::size_t>(y) * width];
+      for (int i = 0; i < width + 2 * radius; ++i)
+        padded[i] = row[std::clamp(i - radius, 0, width - 1)];
+      float* target = &out.values[static_cast<std::size_t>(y) * width];
+      for (int x = 0; x < width; ++x) {
+        float sum = 0.0f;
+        for (int t = 0; t <= 2 * radius; ++t)
+          sum += taps[t] * padded[x + t];
+        target[x] = sum;
       }
-      out.at(x, y) = static_cast<float>(sum);
+    }
+  } else {
+    for (int y = 0; y < height; ++y) {
+      float* target = &out.values[static_cast<std::size_t>(y) * width];
+      for (int t = 0; t <= 2 * radius; ++t) {
+        const int source = std::clamp(y + t - radius, 0, height - 1);
+        const float* row = &in.values[static_cast<std::size_t>(source) * width];
+        const float tap = taps[t];
+        for (int x = 0; x < width; ++x)
+          target[x] += tap * row[x];
+      }
     }
   }
   return out;
@@ -379,14 +397,25 @@ FlipResult computeFlip(const FlipImageView& reference, const FlipImageView& test
   return result;
 }
 
-float flipPercentile(std::span<const float> values, double fraction) {
-  if (values.empty())
-    return 0.0f;
+std::vector<float> flipPercentiles(std::span<const float> values,
+                                   std::span<const double> fractions) {
   std::vector<float> sorted(values.begin(), values.end());
   std::sort(sorted.begin(), sorted.end());
-  const double rank = std::ceil(std::clamp(fraction, 0.0, 1.0) * sorted.size());
-  const std::size_t index = rank < 1.0 ? 0 : static_cast<std::size_t>(rank) - 1;
-  return sorted[std::min(index, sorted.size() - 1)];
+  std::vector<float> result;
+  for (const double fraction : fractions) {
+    if (sorted.empty()) {
+      result.push_back(0.0f);
+      continue;
+    }
+    const double rank = std::ceil(std::clamp(fraction, 0.0, 1.0) * sorted.size());
+    const std::size_t index = rank < 1.0 ? 0 : static_cast<std::size_t>(rank) - 1;
+    result.push_back(sorted[std::min(index, sorted.size() - 1)]);
+  }
+  return result;
+}
+
+float flipPercentile(std::span<const float> values, double fraction) {
+  return flipPercentiles(values, std::span(&fraction, 1)).front();
 }
 
 std::array<float, 3> magmaSrgb(float t) {

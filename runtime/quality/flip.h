@@ -66,8 +66,11 @@ struct FlipResult {
 FlipResult computeFlip(const FlipImageView& reference, const FlipImageView& test,
                        const FlipOptions& options = {});
 
-// The value below which `fraction` (0..1) of `values` lie (nearest rank on a sorted copy).
+// The value below which `fraction` (0..1) of `values` lie (nearest rank on a sorted copy);
+// the plural sorts once for all `fractions`. Empty `values` give 0.
 float flipPercentile(std::span<const float> values, double fraction);
+std::vector<float> flipPercentiles(std::span<const float> values,
+                                   std::span<const double> fractions);
 
 // The magma colour map the paper shows its error maps in, as sRGB-encoded RGB for t in
 // [0, 1] (clamped): piecewise linear between 11 samples of matplotlib's magma.

@@ -235,6 +235,8 @@ TEST(Flip, Percentiles) {
   EXPECT_EQ(flipPercentile(values, 0.95), 0.5f);
   EXPECT_EQ(flipPercentile(values, 1.0), 0.5f);
   EXPECT_EQ(flipPercentile({}, 0.5), 0.0f);
+  const double fractions[] = {0.0, 0.5, 1.0};
+  EXPECT_EQ(flipPercentiles(values, fractions), (std::vector<float>{0.1f, 0.3f, 0.5f}));
 }
 
 TEST(Flip, MagmaRunsFromBlackToPaleYellow) {

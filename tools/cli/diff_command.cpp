@@ -179,10 +179,11 @@ int runDiff(std::span<const std::string_view> args) {
               referencePath.c_str(), result.width, result.height, ppd);
   std::printf("mean  %.6f\n", result.mean);
   std::printf("max   %.6f\n", result.max);
-  for (const auto& [label, fraction] : {std::pair{"p50", 0.5}, std::pair{"p90", 0.9},
-                                        std::pair{"p95", 0.95}, std::pair{"p99", 0.99}}) {
-    std::printf("%-5s %.6f\n", label, runtime::flipPercentile(result.error, fraction));
-  }
+  static constexpr double kFractions[] = {0.5, 0.9, 0.95, 0.99};
+  static constexpr const char* kLabels[] = {"p50", "p90", "p95", "p99"};
+  const std::vector<float> percentiles = runtime::flipPercentiles(result.error, kFractions);
+  for (std::size_t i = 0; i < percentiles.size(); ++i)
+    std::printf("%-5s %.6f\n", kLabels[i], percentiles[i]);
   std::fflush(stdout);
 
   if (!out.empty()) {
