@@ -45,12 +45,6 @@ constexpr std::string_view kHelp =
     "\n"
     "Exit codes: 0 compared, 1 an image is unreadable or the sizes differ, 2 usage error.\n";
 
-bool parsePositive(const std::string& text, double& out) {
-  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), out);
-  return error == std::errc() && end == text.data() + text.size() && std::isfinite(out) &&
-         out > 0.0;
-}
-
 }  // namespace
 
 #ifndef MEMOGRAPH_HAVE_IO
@@ -68,6 +62,12 @@ int runDiff(std::span<const std::string_view> args) {
 #else
 
 namespace {
+
+bool parsePositive(const std::string& text, double& out) {
+  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), out);
+  return error == std::errc() && end == text.data() + text.size() && std::isfinite(out) &&
+         out > 0.0;
+}
 
 bool linearByExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
