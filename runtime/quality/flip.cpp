@@ -6,8 +6,9 @@
 //   combination:      ΔE = ΔEc^(1 − ΔEf)
 //
 // Comments name the paper's step. Every filter is applied separably with clamp-to-edge
-// borders; the 2D kernels the paper defines are products of 1D Gaussians (or sums of such
-// products), so the separable form is the same kernel.
+// borders (as the authors' published implementation); the 2D kernels the paper defines are
+// products of 1D Gaussians (or sums of such products), so the separable form is the same
+// kernel.
 #include "runtime/quality/flip.h"
 
 #include <algorithm>
