@@ -69,20 +69,23 @@ bool parsePositive(const std::string& text, double& out) {
          out > 0.0;
 }
 
-bool linearByExtension(const std::string& path) {
+std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (auto& c : ext)
     c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+bool linearByExtension(const std::string& path) {
+  const std::string ext = lowerExtension(path);
   return ext == ".exr" || ext == ".hdr" || ext == ".pfm";
 }
 
 std::optional<runtime::FloatImage> readImage(const std::string& path,
                                              compiler::Diagnostics& diagnostics) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (auto& c : ext)
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   // The renderer's own PFM files go through the project's reader (row order, byte order).
-  return ext == ".pfm" ? io::readPfm(path, diagnostics) : io::readImageFloat(path, diagnostics);
+  return lowerExtension(path) == ".pfm" ? io::readPfm(path, diagnostics)
+                                        : io::readImageFloat(path, diagnostics);
 }
 
 float srgbToLinear(float c) {
@@ -132,9 +135,7 @@ int runDiff(std::span<const std::string_view> args) {
   if (encoding != "auto" && encoding != "srgb" && encoding != "linear")
     return usageError("diff", "--encoding must be auto, srgb or linear, not '" + encoding + "'");
   if (!out.empty()) {
-    std::string ext = std::filesystem::path(out).extension().string();
-    for (auto& c : ext)
-      c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const std::string ext = lowerExtension(out);
     if (ext != ".png" && ext != ".exr")
       return usageError("diff", "--out must name a .png or .exr file, not '" + out + "'");
   }
@@ -189,7 +190,7 @@ int runDiff(std::span<const std::string_view> args) {
   if (!out.empty()) {
     runtime::FloatImage map{result.width, result.height,
                             std::vector<float>(result.error.size() * 4, 1.0f)};
-    const bool png = !linearByExtension(out);
+    const bool png = lowerExtension(out) == ".png";
     for (std::size_t i = 0; i < result.error.size(); ++i) {
       float* p = &map.rgba[i * 4];
       if (png) {
