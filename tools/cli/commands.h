@@ -18,6 +18,7 @@ int runCheck(std::span<const std::string_view> args);
 int runNodes(std::span<const std::string_view> args);
 int runRender(std::span<const std::string_view> args);
 int runBench(std::span<const std::string_view> args);
+int runDiff(std::span<const std::string_view> args);
 
 // Every command, in the order `memograph --help` lists them.
 std::span<const Command> commands();

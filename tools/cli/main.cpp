@@ -15,6 +15,7 @@ std::span<const Command> commands() {
       {"nodes", "list the node library with its overloads", runNodes},
       {"render", "path trace a scene to an HDR image", runRender},
       {"bench", "frames and rays per second on the built-in scenes", runBench},
+      {"diff", "perceptual difference of two images (LDR-FLIP) and its error map", runDiff},
   };
   return kCommands;
 }

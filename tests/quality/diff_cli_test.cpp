@@ -1,0 +1,159 @@
+// `memograph diff`: the printed statistics, the error map, and the exit codes (0 compared,
+// 1 unreadable image or size mismatch, 2 usage error).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "tools/io/image_io.h"
+
+namespace fs = std::filesystem;
+
+namespace memograph {
+namespace {
+
+struct CliRun {
+  int exitCode = -1;
+  std::string output;
+};
+
+CliRun runCli(const std::string& arguments) {
+  const std::string command = std::string(MEMOGRAPH_CLI) + " " + arguments + " 2>&1";
+  CliRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe)
+    return run;
+  std::array<char, 4096> buffer;
+  while (const std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
+    run.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+
+// The value printed after `label` at the start of a line ("mean  0.012345").
+double statistic(const std::string& output, const std::string& label) {
+  const auto at = output.find("\n" + label + " ");
+  if (at == std::string::npos)
+    return -1.0;
+  return std::stod(output.substr(at + label.size() + 2));
+}
+
+class DiffCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    directory_ = fs::temp_directory_path() /
+                 ("memograph_diff_" + std::to_string(::getpid()) + "_" +
+                  ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(directory_);
+    fs::create_directories(directory_);
+    // A smooth reference; the test copy has a bright 4x4 square in the middle.
+    runtime::FloatImage reference{kSize, kSize, std::vector<float>(kSize * kSize * 4, 1.0f)};
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        float* p = reference.pixel(x, y);
+        p[0] = 0.1f + 0.5f * x / kSize;
+        p[1] = 0.2f;
+        p[2] = 0.1f + 0.5f * y / kSize;
+      }
+    runtime::FloatImage test = reference;
+    for (int y = 14; y < 18; ++y)
+      for (int x = 14; x < 18; ++x)
+        test.pixel(x, y)[0] = test.pixel(x, y)[1] = test.pixel(x, y)[2] = 1.0f;
+    runtime::FloatImage small{8, 8, std::vector<float>(8 * 8 * 4, 0.5f)};
+    compiler::Diagnostics diagnostics;
+    ASSERT_TRUE(io::writeImage(path("ref.png"), reference, {}, diagnostics));
+    ASSERT_TRUE(io::writeImage(path("copy.png"), reference, {}, diagnostics));
+    ASSERT_TRUE(io::writeImage(path("ref.exr"), reference, {}, diagnostics));
+    ASSERT_TRUE(io::writeImage(path("test.png"), test, {}, diagnostics));
+    ASSERT_TRUE(io::writeImage(path("small.png"), small, {}, diagnostics));
+    std::ofstream(path("broken.png")) << "not a png";
+  }
+  void TearDown() override { fs::remove_all(directory_); }
+
+  std::string path(const std::string& name) const { return (directory_ / name).string(); }
+  std::string diff(const std::string& a, const std::string& b, const std::string& options = "") {
+    return "diff " + path(a) + " " + path(b) + (options.empty() ? "" : " " + options);
+  }
+
+  static constexpr int kSize = 32;
+  fs::path directory_;
+};
+
+// Every run costs the binary's start-up (~0.3 s, OpenImageIO's initialisation), and every
+// test its own process under ctest, so the cases are grouped and kept few.
+
+TEST_F(DiffCliTest, ComparesImagesAndWritesErrorMaps) {
+  // Identical images: exactly zero, at the paper's default viewing conditions.
+  CliRun run = runCli(diff("ref.png", "copy.png"));
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_EQ(statistic(run.output, "mean"), 0.0) << run.output;
+  EXPECT_EQ(statistic(run.output, "max"), 0.0) << run.output;
+  EXPECT_NE(run.output.find("67.02 pixels per degree"), std::string::npos) << run.output;
+
+  // A bright square: statistics in order, and a magma map, dark where nothing changed.
+  run = runCli(diff("ref.png", "test.png", "--out " + path("map.png")));
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  const double mean = statistic(run.output, "mean"), max = statistic(run.output, "max");
+  EXPECT_GT(mean, 0.0);
+  EXPECT_LT(mean, 0.2);
+  EXPECT_GT(max, 0.5);
+  EXPECT_LE(statistic(run.output, "p50"), statistic(run.output, "p90"));
+  EXPECT_LE(statistic(run.output, "p90"), statistic(run.output, "p99"));
+  EXPECT_LE(statistic(run.output, "p99"), max);
+  compiler::Diagnostics diagnostics;
+  const auto map = io::readImageRgba8(path("map.png"), diagnostics);
+  ASSERT_TRUE(map);
+  ASSERT_EQ(map->width, kSize);
+  ASSERT_EQ(map->height, kSize);
+  auto brightness = [&](int x, int y) {
+    const auto* p = &map->rgba[(static_cast<std::size_t>(y) * kSize + x) * 4];
+    return p[0] + p[1] + p[2];
+  };
+  EXPECT_LT(brightness(1, 1), 20);
+  EXPECT_GT(brightness(16, 16), 300);
+
+  // The EXR map holds the raw error as grey; twice the paper's distance is twice its ppd.
+  run = runCli(diff("ref.png", "test.png", "--out " + path("map.exr") + " --monitor-distance 1.4"));
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("134.04 pixels per degree"), std::string::npos) << run.output;
+  const auto raw = io::readImageFloat(path("map.exr"), diagnostics);
+  ASSERT_TRUE(raw);
+  EXPECT_NEAR(raw->pixel(16, 16)[0], statistic(run.output, "max"), 0.05);
+  EXPECT_EQ(raw->pixel(16, 16)[0], raw->pixel(16, 16)[2]);
+
+  // ref.exr holds the linear colours ref.png encodes: the sRGB one is decoded, and only the
+  // PNG's 8-bit rounding differs, a faint difference everywhere (qc = 0.7 lifts it).
+  run = runCli(diff("ref.png", "ref.exr"));
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_GT(statistic(run.output, "mean"), 0.0);
+  EXPECT_LT(statistic(run.output, "mean"), 0.03);
+}
+
+TEST_F(DiffCliTest, BadImagesExitWithOne) {
+  CliRun run = runCli(diff("ref.png", "small.png"));
+  EXPECT_EQ(run.exitCode, 1) << run.output;
+  EXPECT_NE(run.output.find("differ in size"), std::string::npos) << run.output;
+  run = runCli(diff("broken.png", "missing.png", "--out " + path("map.png")));
+  EXPECT_EQ(run.exitCode, 1) << run.output;
+  EXPECT_NE(run.output.find("broken.png"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("missing.png"), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(path("map.png")));
+}
+
+TEST_F(DiffCliTest, UsageErrorsExitWithTwo) {
+  EXPECT_EQ(runCli("diff " + path("ref.png")).exitCode, 2);
+  EXPECT_EQ(runCli(diff("ref.png", "test.png", "--ppd 40 --monitor-width 0.5")).exitCode, 2);
+  EXPECT_EQ(runCli(diff("ref.png", "test.png", "--ppd -3")).exitCode, 2);
+  const CliRun help = runCli("diff --help");
+  EXPECT_EQ(help.exitCode, 0);
+  EXPECT_NE(help.output.find("LDR-FLIP"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace memograph
