@@ -117,4 +117,13 @@ void main(uint3 id : SV_DispatchThreadID) {
   return compile(source, glslang::EShSourceHlsl);
 }
 
+ShaderCheck compileGlslCode(const std::string& code) {
+  return compile("#version 460\n" + code + "\nlayout(local_size_x = 1) in;\nvoid main() {}\n",
+                 glslang::EShSourceGlsl);
+}
+
+ShaderCheck compileHlslCode(const std::string& code) {
+  return compile(code + "\n[numthreads(1, 1, 1)]\nvoid main() {}\n", glslang::EShSourceHlsl);
+}
+
 }  // namespace memograph::testing

@@ -21,4 +21,9 @@ ShaderCheck compileGlslMaterials(const std::vector<std::string>& includes,
 ShaderCheck compileHlslMaterials(const std::vector<std::string>& includes,
                                  const std::vector<std::string>& names);
 
+// Compiles arbitrary shader code (no material call) with an empty compute entry point;
+// glslang still type-checks every function in it.
+ShaderCheck compileGlslCode(const std::string& code);
+ShaderCheck compileHlslCode(const std::string& code);
+
 }  // namespace memograph::testing
