@@ -152,6 +152,15 @@ TEST_F(CliTest, DuplicateMaterialNamesAreRejected) {
   EXPECT_NE(run.output.find("material 'Same' is also defined by"), std::string::npos);
 }
 
+TEST_F(CliTest, RenderReportsAMissingEnvironmentImageBeforeTouchingTheGpu) {
+  const auto run =
+      runCli("render builtin:landscape --environment " + (directory_ / "missing.exr").string() +
+             " --out " + (directory_ / "x.pfm").string());
+  EXPECT_EQ(run.exitCode, 1) << run.output;
+  EXPECT_NE(run.output.find("missing.exr"), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(directory_ / "x.pfm"));
+}
+
 TEST_F(CliTest, RandomBytesNeverCrashTheCompiler) {
   std::string bytes;
   std::uint32_t state = 12345;

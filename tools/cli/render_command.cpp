@@ -43,6 +43,8 @@ constexpr std::string_view kHelp =
     "  --bounces L           rays per path; 1 = primary hit with direct light (default 4)\n"
     "  --frames F            frames; a static camera accumulates them (default 1)\n"
     "  --camera-path FILE    one camera per frame: lines 'px py pz  tx ty tz  fov'\n"
+    "  --environment FILE    equirectangular environment image (linear radiance, e.g. .exr,\n"
+    "                        .hdr) replacing the scene's constant sky\n"
     "  --shared-primary      one primary ray through the pixel centre for all P paths\n"
     "  --seed S              random seed (default 0)\n"
     "  --backend B           auto (default: query, or pipeline for scenes of more than 16\n"
@@ -91,6 +93,8 @@ int runRender(std::span<const std::string_view> args) {
   scanner.option("--bounces", &bounces);
   scanner.option("--frames", &frames);
   scanner.option("--camera-path", &cameraPath);
+  std::string environment;
+  scanner.option("--environment", &environment);
   scanner.option("--seed", &seed);
   scanner.option("--backend", &backend);
   scanner.option("--material-dispatch", &materialDispatch);
@@ -199,6 +203,28 @@ int runRender(std::span<const std::string_view> args) {
     return runtime::TextureImage{{std::move(level)}};
   };
 #endif
+  if (!environment.empty()) {
+#ifdef MEMOGRAPH_HAVE_IO
+    auto image = io::readImageFloat(environment, diagnostics);
+    if (!image) {
+      printDiagnostics(diagnostics);
+      return kExitFailure;
+    }
+    auto& env = scene.environment;
+    env.imagePath = environment;
+    env.imageWidth = static_cast<std::uint32_t>(image->width);
+    env.imageHeight = static_cast<std::uint32_t>(image->height);
+    env.imageRgb.clear();
+    env.imageRgb.reserve(std::size_t(image->width) * image->height * 3);
+    for (std::size_t i = 0; i + 3 < image->rgba.size(); i += 4) {
+      env.imageRgb.insert(env.imageRgb.end(),
+                          {image->rgba[i], image->rgba[i + 1], image->rgba[i + 2]});
+    }
+#else
+    std::cerr << "memograph render: this build reads no images (no OpenImageIO)\n";
+    return kExitFailure;
+#endif
+  }
   if (!cameraPath.empty()) {
 #ifdef MEMOGRAPH_HAVE_SCENES
     auto path = runtime::loadCameraPath(cameraPath, diagnostics);
