@@ -1,6 +1,7 @@
 #include "runtime/renderer.h"
 
 #include <chrono>
+#include <cstring>
 #include <cmath>
 #include <optional>
 #include <set>
@@ -82,6 +83,30 @@ MaterialDispatch resolveMaterialDispatch(MaterialDispatch requested, Backend bac
 
 }  // namespace
 
+const char* cacheModeName(CacheMode mode) {
+  return mode == CacheMode::Texel ? "texel" : "none";
+}
+
+const char* cacheEvictionName(CacheEviction eviction) {
+  return eviction == CacheEviction::Lru ? "lru" : "none";
+}
+
+CacheMode parseCacheMode(const std::string& text) {
+  if (text == "none")
+    return CacheMode::None;
+  if (text == "texel")
+    return CacheMode::Texel;
+  throw std::invalid_argument("unknown cache '" + text + "' (choose none or texel)");
+}
+
+CacheEviction parseCacheEviction(const std::string& text) {
+  if (text == "none")
+    return CacheEviction::None;
+  if (text == "lru")
+    return CacheEviction::Lru;
+  throw std::invalid_argument("unknown eviction policy '" + text + "' (choose none or lru)");
+}
+
 TextureImage loadTextureCore(const std::string& path) {
   std::filesystem::path p(path);
   if (!std::filesystem::exists(p))
@@ -123,6 +148,19 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   stats.raysPerPath = settings.raysPerPath;
 
   MaterialDispatch dispatch = resolveMaterialDispatch(options_.materialDispatch, context.backend());
+  const CacheOptions& cache = options_.cache;
+  const bool texelCache = cache.mode == CacheMode::Texel;
+  if (texelCache) {
+    if (cache.probe < 1 || cache.probe > gpu::kCacheMaxProbe)
+      throw std::invalid_argument("--probe must be 1.." + std::to_string(gpu::kCacheMaxProbe) +
+                                  ", not " + std::to_string(cache.probe));
+    if (cache.entries <= cache.probe)
+      throw std::invalid_argument("--cache-entries (" + std::to_string(cache.entries) +
+                                  ") must exceed the probe distance (" +
+                                  std::to_string(cache.probe) + ")");
+    if (!std::isfinite(cache.mipBias))
+      throw std::invalid_argument("--mip-bias must be finite");
+  }
 
   // Materials: graphs → GLSL, and the textures they name.
   MaterialLinkOptions linkOptions;
@@ -191,8 +229,27 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   // took as long, on one core) and crashes under the validation layer when handed one: keep
   // deferred pipeline creation to GPU drivers, where it can spread the compile.
   std::uint32_t pipelineThreads = context.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1 : threads;
+  // Texel cache (thesis §5.3.1): entries of a key hash, metadata and the largest cacheable
+  // material's written outputs as fp32.
+  std::vector<std::string> cacheDefines;
+  const std::uint32_t cacheValues = std::max(1u, materials.cacheValueCount);
+  const std::uint64_t cacheStride = gpu::kCacheEntryHeader + cacheValues;
+  if (texelCache) {
+    cacheDefines = {"MG_CACHE_TEXEL=1", "MG_CACHE_VALUES=" + std::to_string(cacheValues),
+                    "MG_CACHE_PROBE=" + std::to_string(cache.probe),
+                    "MG_CACHE_EVICTION=" + std::to_string(cache.eviction == CacheEviction::Lru
+                                                              ? gpu::kCacheEvictionLru
+                                                              : gpu::kCacheEvictionNone)};
+    stats.cache = cacheModeName(cache.mode);
+    stats.cacheEviction = cacheEvictionName(cache.eviction);
+    stats.cacheEntries = cache.entries;
+    stats.cacheProbe = cache.probe;
+    stats.cacheValueCount = cacheValues;
+    stats.cacheBytes = std::uint64_t(cache.entries) * cacheStride * sizeof(std::uint32_t);
+  }
   TracePipeline pipeline(context, compiler, textures.count(),
-                         materialCallables ? &*materialCallables : nullptr, pipelineThreads);
+                         materialCallables ? &*materialCallables : nullptr, pipelineThreads,
+                         cacheDefines);
   stats.pipelineCreateMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pipelineStart)
           .count() -
@@ -210,15 +267,21 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   GpuBuffer accumulation(context, accumulationBytes,
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                          VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  GpuBuffer rayCounter(context, sizeof(std::uint32_t),
+  GpuBuffer rayCounter(context, sizeof(gpu::Counters),
                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                            VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   GpuBuffer rayReadback =
-      hostBuffer(context, sizeof(std::uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+      hostBuffer(context, sizeof(gpu::Counters), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  // Without a cache the binding still needs a buffer: one entry nobody reads.
+  VkDeviceSize cacheBytes = texelCache ? VkDeviceSize(stats.cacheBytes)
+                                       : VkDeviceSize(cacheStride * sizeof(std::uint32_t));
+  GpuBuffer cacheBuffer(context, cacheBytes,
+                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
 
-  TraceResources resources{accel.tlas(), &frameBuffer, &accumulation,
-                           &rayCounter,  &buffers,     &textures};
+  TraceResources resources{accel.tlas(), &frameBuffer, &accumulation, &rayCounter,
+                           &cacheBuffer, &buffers,     &textures};
   TraceDescriptorSet descriptors(context, pipeline.descriptorSetLayout(), resources);
   VkDescriptorSet set = descriptors.get();
 
@@ -244,6 +307,9 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                         (buffers.environmentWidth ? gpu::kFlagEnvironmentImage : 0u);
   frame.path = glm::uvec4(settings.pathsPerPixel, settings.raysPerPath, flags, buffers.lightCount);
   frame.environmentSize = glm::uvec4(buffers.environmentWidth, buffers.environmentHeight, 0, 0);
+  std::uint32_t mipBiasBits = 0;
+  std::memcpy(&mipBiasBits, &cache.mipBias, sizeof mipBiasBits);
+  frame.cache = glm::uvec4(texelCache ? cache.entries : 0u, 0u, mipBiasBits, 0u);
 
   Camera previousCamera;
   std::uint32_t sampleIndex = 0;
@@ -259,11 +325,16 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     setCamera(frame, camera, settings.width, settings.height);
     frame.image.z = f;
     frame.environmentSize.z = sampleIndex;
+    frame.cache.y = f + 1u;  // the frame clock of §5.3.3 (0: never used)
     frameBuffer.write(&frame, sizeof frame);
 
     auto start = std::chrono::steady_clock::now();
     context.submitAndWait([&](VkCommandBuffer commands) {
       vkCmdFillBuffer(commands, rayCounter.buffer(), 0, VK_WHOLE_SIZE, 0);
+      // The cache is cleared once, before the first frame: every key kCacheKeyEmpty (0),
+      // every clock 0; the barrier below orders it before the trace.
+      if (f == 0)
+        vkCmdFillBuffer(commands, cacheBuffer.buffer(), 0, VK_WHOLE_SIZE, gpu::kCacheKeyEmpty);
       VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
       barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
       barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
@@ -281,16 +352,19 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
       barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
       vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
                            VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
-      VkBufferCopy copy{0, 0, sizeof(std::uint32_t)};
+      VkBufferCopy copy{0, 0, sizeof(gpu::Counters)};
       vkCmdCopyBuffer(commands, rayCounter.buffer(), rayReadback.buffer(), 1, &copy);
     });
     FrameStats frameStats;
     frameStats.frame = f;
     frameStats.wallMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    std::uint32_t rays = 0;
-    rayReadback.read(&rays, sizeof rays);
-    frameStats.rays = rays;
+    gpu::Counters counters{};
+    rayReadback.read(&counters, sizeof counters);
+    frameStats.rays = counters.rays;
+    frameStats.cacheLookups = counters.cacheLookups;
+    frameStats.cacheHits = counters.cacheHits;
+    frameStats.cacheMisses = counters.cacheMisses;
     if (timestamps) {
       std::uint64_t ticks[2] = {0, 0};
       checkVk(vkGetQueryPoolResults(device, timestampPool.get(), 0, 2, sizeof ticks, ticks,
