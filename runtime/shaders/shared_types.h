@@ -45,9 +45,9 @@ MG_CONSTANT(uint, kFlagEnvironmentImage, 2);
 // key hash H1 of eq. 5.9, then the eviction metadata) followed by the material's written
 // outputs as fp32 bits; the host picks the value count from the largest cacheable material.
 MG_CONSTANT(uint, kCacheEntryHeader, 2);
-MG_CONSTANT(uint, kCacheKeyEmpty, 0u);           // a cleared entry; H1 is never 0
-MG_CONSTANT(uint, kCacheKeyLock, 0xFFFFFFFFu);   // CACHE_LOCK of §5.3.4; H1 is never this
-MG_CONSTANT(uint, kCacheMaxProbe, 16);           // linear probing distance D: 1..16
+MG_CONSTANT(uint, kCacheKeyEmpty, 0u);          // a cleared entry; H1 is never 0
+MG_CONSTANT(uint, kCacheKeyLock, 0xFFFFFFFFu);  // CACHE_LOCK of §5.3.4; H1 is never this
+MG_CONSTANT(uint, kCacheMaxProbe, 16);          // linear probing distance D: 1..16
 // Eviction policies (MG_CACHE_EVICTION): §4.5 / §5.3.3.
 MG_CONSTANT(uint, kCacheEvictionNone, 0);  // insert only into an empty entry
 MG_CONSTANT(uint, kCacheEvictionLru, 1);   // least recently used, frame clock in the metadata
@@ -80,13 +80,14 @@ struct FrameConstants {
   uvec4 path;           // x paths per pixel P, y rays per path L, z flags, w light count
   uvec4 environmentSize;  // x width, y height of the equirectangular image; z sample index
                           // in the accumulation (0 restarts it); w unused
-  uvec4 cache;  // x entries S (0: no cache), y frame clock (frame + 1), z mip bias (float
-                // bits, eq. 5.5), w unused
+  // Texel cache: x entries S (0: no cache), y frame clock (frame + 1), z mip bias of
+  // eq. 5.5 (float bits), w unused.
+  uvec4 cache;
 };
 
 // Counters the shader adds to per frame (binding kBindingRayCounter); cleared per frame.
 struct Counters {
-  uint rays;         // closest-hit and shadow rays traced
+  uint rays;          // closest-hit and shadow rays traced
   uint cacheLookups;  // cache lookups of cacheable materials
   uint cacheHits;
   uint cacheMisses;

@@ -24,6 +24,15 @@ uint g_cacheLookups = 0u;
 uint g_cacheHits = 0u;
 uint g_cacheMisses = 0u;
 
+// The 32-bit PCG hash (O'Neill 2014, in the RXS-M-XS form of Jarzynski and Olano 2020),
+// the hash() of eq. 5.8-5.9; runtime::pcgHash is the host's copy. Defined here, not taken
+// from the node library's prelude, so every node library works with the cache.
+uint cachePcg(uint v) {
+  uint state = v * 747796405u + 2891336453u;
+  uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+
 struct CacheKey {
   uint base;  // first entry of the probe range: I of eq. 5.10
   uint hash;  // H1 of eq. 5.9, stored in the entry; never kCacheKeyEmpty or kCacheKeyLock
@@ -43,13 +52,15 @@ bool cacheKeyFor(uvec4 info, MaterialInputs inputs, out CacheKey key) {
   float level = lMin > 0.0 ? -log2(lMin) + bias : 24.0;
   if (isnan(level) || any(isnan(uv)) || any(isinf(uv))) return false;
   int m = int(clamp(round(level), -24.0, 24.0));
-  // Eq. 5.6-5.7: the nearest texel of level m (clamped into int range).
-  vec2 texel = clamp(round(exp2(float(m)) * uv), vec2(-2147483520.0), vec2(2147483520.0));
-  uint u = uint(int(texel.x));
-  uint v = uint(int(texel.y));
+  // Eq. 5.6-5.7: the nearest texel of level m. Hashed by its float bits, which are exact
+  // for every magnitude (an int conversion would merge all texels past 2^31); -0 and +0
+  // only give the same texel two entries.
+  vec2 texel = round(exp2(float(m)) * uv);
+  uint u = floatBitsToUint(texel.x);
+  uint v = floatBitsToUint(texel.y);
   // Eq. 5.8-5.9: two nested PCG hashes from two independent material ids.
-  uint h0 = mg_pcg(uint(m) ^ mg_pcg(u ^ mg_pcg(v ^ info.y)));
-  uint h1 = mg_pcg(uint(m) ^ mg_pcg(u ^ mg_pcg(v ^ info.z)));
+  uint h0 = cachePcg(uint(m) ^ cachePcg(u ^ cachePcg(v ^ info.y)));
+  uint h1 = cachePcg(uint(m) ^ cachePcg(u ^ cachePcg(v ^ info.z)));
   if (h1 == kCacheKeyEmpty) h1 = 1u;
   if (h1 == kCacheKeyLock) h1 = kCacheKeyLock - 1u;
   // Eq. 5.10: I = H0 mod (S - D); the host guarantees S > D.
@@ -112,6 +123,7 @@ bool cacheRead(CacheKey key, out float values[MG_CACHE_VALUES]) {
   [[unroll]] for (uint d = 0u; d < uint(MG_CACHE_PROBE); ++d) {
     uint offset = cacheEntryOffset(key.base + d);
     if (cacheData[offset] != key.hash) continue;
+    memoryBarrierBuffer();  // key, then values, then key again (§5.3.4)
     for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i)
       values[i] = uintBitsToFloat(cacheData[offset + kCacheEntryHeader + i]);
     memoryBarrierBuffer();

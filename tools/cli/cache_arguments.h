@@ -6,8 +6,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "runtime/renderer.h"
 #include "cli_common.h"
+#include "runtime/renderer.h"
 
 namespace memograph::cli {
 
