@@ -88,7 +88,17 @@ const char* cacheModeName(CacheMode mode) {
 }
 
 const char* cacheEvictionName(CacheEviction eviction) {
-  return eviction == CacheEviction::Lru ? "lru" : "none";
+  switch (eviction) {
+    case CacheEviction::None:
+      return "none";
+    case CacheEviction::Lru:
+      return "lru";
+    case CacheEviction::Lrw:
+      return "lrw";
+    case CacheEviction::Random:
+      return "random";
+  }
+  return "none";
 }
 
 CacheMode parseCacheMode(const std::string& text) {
@@ -104,7 +114,12 @@ CacheEviction parseCacheEviction(const std::string& text) {
     return CacheEviction::None;
   if (text == "lru")
     return CacheEviction::Lru;
-  throw std::invalid_argument("unknown eviction policy '" + text + "' (choose none or lru)");
+  if (text == "lrw")
+    return CacheEviction::Lrw;
+  if (text == "random")
+    return CacheEviction::Random;
+  throw std::invalid_argument("unknown eviction policy '" + text +
+                              "' (choose none, lru, lrw or random)");
 }
 
 TextureImage loadTextureCore(const std::string& path) {
@@ -229,17 +244,19 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   // took as long, on one core) and crashes under the validation layer when handed one: keep
   // deferred pipeline creation to GPU drivers, where it can spread the compile.
   std::uint32_t pipelineThreads = context.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1 : threads;
+  static_assert(static_cast<std::uint32_t>(CacheEviction::Lru) == gpu::kCacheEvictionLru &&
+                static_cast<std::uint32_t>(CacheEviction::Lrw) == gpu::kCacheEvictionLrw &&
+                static_cast<std::uint32_t>(CacheEviction::Random) == gpu::kCacheEvictionRandom);
   // Texel cache (thesis §5.3.1): entries of a key hash, metadata and the largest cacheable
   // material's written outputs as fp32.
   std::vector<std::string> cacheDefines;
   const std::uint32_t cacheValues = std::max(1u, materials.cacheValueCount);
   const std::uint64_t cacheStride = gpu::kCacheEntryHeader + cacheValues;
   if (texelCache) {
-    cacheDefines = {"MG_CACHE_TEXEL=1", "MG_CACHE_VALUES=" + std::to_string(cacheValues),
-                    "MG_CACHE_PROBE=" + std::to_string(cache.probe),
-                    "MG_CACHE_EVICTION=" + std::to_string(cache.eviction == CacheEviction::Lru
-                                                              ? gpu::kCacheEvictionLru
-                                                              : gpu::kCacheEvictionNone)};
+    cacheDefines = {
+        "MG_CACHE_TEXEL=1", "MG_CACHE_VALUES=" + std::to_string(cacheValues),
+        "MG_CACHE_PROBE=" + std::to_string(cache.probe),
+        "MG_CACHE_EVICTION=" + std::to_string(static_cast<std::uint32_t>(cache.eviction))};
     stats.cache = cacheModeName(cache.mode);
     stats.cacheEviction = cacheEvictionName(cache.eviction);
     stats.cacheEntries = cache.entries;

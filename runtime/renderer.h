@@ -30,12 +30,14 @@ TextureImage loadTextureCore(const std::string& path);
 // material, mip level and texel (eq. 5.1-5.10), linear probing over `probe` entries.
 enum class CacheMode { None, Texel };
 // What a miss evicts when its probe range is full (§4.5): none (insert only into empty
-// entries) or the least recently used entry by a frame clock (§5.3.3).
-enum class CacheEviction { None, Lru };
+// entries), the least recently used or least recently written entry by a frame clock
+// (§5.3.3), or a pseudo-random entry. Values are the shader's kCacheEviction*.
+enum class CacheEviction { None = 0, Lru = 1, Lrw = 2, Random = 3 };
 
 const char* cacheModeName(CacheMode mode);
 const char* cacheEvictionName(CacheEviction eviction);
-// Parse "none"/"texel" and "none"/"lru"; throw std::invalid_argument naming the choices.
+// Parse "none"/"texel" and "none"/"lru"/"lrw"/"random"; throw std::invalid_argument naming the
+// choices.
 CacheMode parseCacheMode(const std::string& text);
 CacheEviction parseCacheEviction(const std::string& text);
 

@@ -51,6 +51,8 @@ MG_CONSTANT(uint, kCacheMaxProbe, 16);          // linear probing distance D: 1.
 // Eviction policies (MG_CACHE_EVICTION): §4.5 / §5.3.3.
 MG_CONSTANT(uint, kCacheEvictionNone, 0);  // insert only into an empty entry
 MG_CONSTANT(uint, kCacheEvictionLru, 1);   // least recently used, frame clock in the metadata
+MG_CONSTANT(uint, kCacheEvictionLrw, 2);   // least recently written, frame clock
+MG_CONSTANT(uint, kCacheEvictionRandom, 3);  // a pseudo-random entry of the probe range
 // Bits of a material's output mask (which MaterialOutputs members an entry stores, in this
 // order: baseColor 3 floats, metallic 1, roughness 1, normal 3, emission 3, opacity 1).
 MG_CONSTANT(uint, kCacheOutputBaseColor, 1);

@@ -3,7 +3,7 @@
 // the host defines MG_CACHE_TEXEL, with
 //   MG_CACHE_VALUES    floats per entry (the largest cacheable material's written outputs),
 //   MG_CACHE_PROBE     the linear probing distance D (1..kCacheMaxProbe),
-//   MG_CACHE_EVICTION  kCacheEvictionNone or kCacheEvictionLru.
+//   MG_CACHE_EVICTION  kCacheEviction{None, Lru, Lrw, Random} (0..3).
 // The entry count S, the frame clock and the mip bias come per frame in frame.cache.
 // materials.glsl provides mg_materialCacheInfo[id]: x the output mask (0: not cacheable),
 // y ID0, z ID1 (two independent hashes of the material's graph, eq. 5.8-5.9).
@@ -128,7 +128,7 @@ bool cacheRead(CacheKey key, out float values[MG_CACHE_VALUES]) {
       values[i] = uintBitsToFloat(cacheData[offset + kCacheEntryHeader + i]);
     memoryBarrierBuffer();
     if (cacheData[offset] != key.hash) return false;  // overwritten while reading
-#if MG_CACHE_EVICTION == 1  // kCacheEvictionLru: a read refreshes the frame clock
+#if MG_CACHE_EVICTION == 1  // kCacheEvictionLru: a read refreshes the frame clock (§4.5)
     if (cacheData[offset + 1u] != frame.cache.y) cacheData[offset + 1u] = frame.cache.y;
 #endif
     return true;
@@ -137,8 +137,11 @@ bool cacheRead(CacheKey key, out float values[MG_CACHE_VALUES]) {
 }
 
 // The eviction policy's slot in the probe range (§4.5, §5.3.3), or -1 for "do not insert".
-// Empty entries are taken first by every policy. New policies (random, least recently
-// written, counter clock) add a branch here and their metadata write in cacheWrite.
+// Empty entries are taken first by every policy; then none drops the value, lru and lrw
+// take the oldest frame clock (lru's is refreshed by reads, lrw's only by writes), random
+// a pseudo-random entry (a hash of the key and the frame: no memory access, §4.5). A new
+// policy (e.g. the 64-bit counter clock of §5.3.3) adds a branch here and its metadata
+// write in cacheWrite / cacheRead.
 int cacheChooseSlot(CacheKey key) {
   int oldest = -1;
   uint oldestTime = 0xFFFFFFFFu;
@@ -146,7 +149,7 @@ int cacheChooseSlot(CacheKey key) {
     uint offset = cacheEntryOffset(key.base + d);
     uint stored = cacheData[offset];
     if (stored == kCacheKeyEmpty) return int(d);
-#if MG_CACHE_EVICTION == 1
+#if MG_CACHE_EVICTION == 1 || MG_CACHE_EVICTION == 2
     if (stored != kCacheKeyLock) {
       uint time = cacheData[offset + 1u];
       if (time < oldestTime) {
@@ -156,6 +159,9 @@ int cacheChooseSlot(CacheKey key) {
     }
 #endif
   }
+#if MG_CACHE_EVICTION == 3
+  oldest = int(cachePcg(key.hash ^ cachePcg(frame.cache.y)) % uint(MG_CACHE_PROBE));
+#endif
   return oldest;
 }
 

@@ -184,7 +184,8 @@ TEST(TexelCache, NonCacheableMaterialNeverTouchesTheCache) {
 TEST(TexelCache, FarTooFewEntriesStillRenders) {
   Scene scene = wallScene(stripesGraph(), true);
   RenderResult off = Renderer(cacheOptions(CacheMode::None)).render(scene, settings(3, 3));
-  for (CacheEviction eviction : {CacheEviction::None, CacheEviction::Lru}) {
+  for (CacheEviction eviction :
+       {CacheEviction::None, CacheEviction::Lru, CacheEviction::Lrw, CacheEviction::Random}) {
     // S = D + 1: one probe range, nine entries for hundreds of texels.
     RenderResult on = Renderer(cacheOptions(CacheMode::Texel, Backend::Auto, 9, eviction))
                           .render(scene, settings(3, 3));
@@ -213,7 +214,9 @@ TEST(TexelCache, BadOptionsAreRefused) {
         << entries << " entries, probe " << probe;
   }
   EXPECT_THROW(parseCacheMode("tile"), std::invalid_argument);
-  EXPECT_THROW(parseCacheEviction("random"), std::invalid_argument);
+  EXPECT_THROW(parseCacheEviction("fifo"), std::invalid_argument);
+  EXPECT_EQ(parseCacheEviction("lrw"), CacheEviction::Lrw);
+  EXPECT_EQ(parseCacheEviction("random"), CacheEviction::Random);
 }
 
 }  // namespace

@@ -16,7 +16,8 @@ inline constexpr const char* kCacheHelp =
     "                        §5.3: one hash table of texels of cacheable materials)\n"
     "  --cache-entries N     texel cache entries S (default 1048576)\n"
     "  --probe D             linear probing distance, 1..16 (default 8)\n"
-    "  --eviction E          when a probe range is full: lru (default; frame clock) or none\n"
+    "  --eviction E          when a probe range is full: lru (default), lrw (least recently\n"
+    "                        written; both by frame clock), random, or none\n"
     "  --mip-bias B          added to the cache's mip level (eq. 5.5); positive: finer\n";
 
 struct CacheArguments {
