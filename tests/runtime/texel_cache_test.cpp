@@ -205,6 +205,47 @@ TEST(TexelCache, FarTooFewEntriesStillRenders) {
   }
 }
 
+// Thesis Fig. 6.14's trend: a camera panning along a long wall with a cache of a few frames'
+// texels. Without eviction the hit rate falls once the cache is full (new texels find no
+// empty entry); with lru it stays high (consecutive frames overlap).
+TEST(TexelCache, PanningCameraKeepsItsHitRateOnlyWithEviction) {
+  Scene scene;
+  scene.meshes.push_back(testing::quad(64.0f, 32.0f));
+  scene.materials.push_back({"Wall", "", stripesGraph()});
+  scene.instances.push_back(
+      {0, 0, glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1, 0, 0))});
+  scene.environment.constantRadiance = {0.5f, 0.5f, 0.5f};
+  RenderSettings s = settings(32, 1);
+  for (std::uint32_t f = 0; f < s.frames; ++f) {
+    Camera camera;
+    camera.position = {-20.0f + 0.4f * float(f), 0.0f, 5.0f};
+    camera.target = camera.position - glm::vec3(0.0f, 0.0f, 5.0f);
+    s.cameraPath.push_back(camera);
+  }
+  double early[2], late[2];
+  for (int i = 0; i < 2; ++i) {
+    CacheEviction eviction = i == 0 ? CacheEviction::None : CacheEviction::Lru;
+    RenderResult r =
+        Renderer(cacheOptions(CacheMode::Texel, Backend::Auto, 1024, eviction)).render(scene, s);
+    expectConsistentCounters(r.stats);
+    auto mean = [&](std::size_t from, std::size_t to) {
+      double sum = 0;
+      for (std::size_t f = from; f < to; ++f)
+        sum += r.stats.frames[f].cacheHitRate();
+      return sum / double(to - from);
+    };
+    early[i] = mean(1, 4);
+    late[i] = mean(s.frames - 4, s.frames);
+    std::printf(
+        "panning camera, 1024 entries, eviction %s: hit rate frames 1-3 %.1f %%, last 4 "
+        "frames %.1f %%\n",
+        cacheEvictionName(eviction), 100.0 * early[i], 100.0 * late[i]);
+  }
+  EXPECT_LT(late[0], early[0] - 0.2);   // none decays
+  EXPECT_GT(late[1], early[1] - 0.05);  // lru holds
+  EXPECT_GT(late[1], late[0] + 0.2);
+}
+
 TEST(TexelCache, BadOptionsAreRefused) {
   Scene scene = wallScene(stripesGraph(), false);
   for (auto [entries, probe] : {std::pair{8u, 8u}, std::pair{100u, 0u}, std::pair{100u, 17u}}) {
