@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <sstream>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -244,6 +245,28 @@ TEST(TexelCache, PanningCameraKeepsItsHitRateOnlyWithEviction) {
   EXPECT_LT(late[0], early[0] - 0.2);   // none decays
   EXPECT_GT(late[1], early[1] - 0.05);  // lru holds
   EXPECT_GT(late[1], late[0] + 0.2);
+}
+
+TEST(TexelCache, StatsCsvAppendsTheCacheColumns) {
+  RenderStats stats;
+  stats.cache = "texel";
+  stats.cacheEviction = "lru";
+  stats.cacheEntries = 1024;
+  FrameStats frame;
+  frame.cacheLookups = 200;
+  frame.cacheHits = 150;
+  frame.cacheMisses = 50;
+  stats.frames.push_back(frame);
+  std::ostringstream csv;
+  writeStatsCsv(csv, stats);
+  std::string text = csv.str();
+  std::string header = text.substr(0, text.find('\n'));
+  std::string row = text.substr(header.size() + 1);
+  // Appended after the columns that were there before the cache.
+  EXPECT_NE(header.find("pipeline_create_ms,cache,cache_eviction,cache_entries,cache_probe,"
+                        "cache_bytes,cache_lookups,cache_hits,cache_misses,cache_hit_rate"),
+            std::string::npos);
+  EXPECT_NE(row.find(",texel,lru,1024,0,0,200,150,50,0.75\n"), std::string::npos) << row;
 }
 
 TEST(TexelCache, BadOptionsAreRefused) {
