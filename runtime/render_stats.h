@@ -45,6 +45,7 @@ struct RenderStats {
   std::string cacheEviction;   // "none" or "lru" (empty without a cache)
   std::uint32_t cacheEntries = 0;
   std::uint32_t cacheProbe = 0;
+  std::string cacheReadCheck;         // "key" or "counter" (§5.3.4)
   std::uint32_t cacheValueCount = 0;  // floats per entry
   std::uint64_t cacheBytes = 0;
 

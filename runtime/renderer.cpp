@@ -251,12 +251,17 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   // material's written outputs as fp32.
   std::vector<std::string> cacheDefines;
   const std::uint32_t cacheValues = std::max(1u, materials.cacheValueCount);
-  const std::uint64_t cacheStride = gpu::kCacheEntryHeader + cacheValues;
+  const std::uint64_t cacheStride =
+      (cache.updateCounter ? gpu::kCacheEntryHeaderWithCounter : gpu::kCacheEntryHeader) +
+      cacheValues;
   if (texelCache) {
     cacheDefines = {
         "MG_CACHE_TEXEL=1", "MG_CACHE_VALUES=" + std::to_string(cacheValues),
         "MG_CACHE_PROBE=" + std::to_string(cache.probe),
         "MG_CACHE_EVICTION=" + std::to_string(static_cast<std::uint32_t>(cache.eviction))};
+    if (cache.updateCounter)
+      cacheDefines.push_back("MG_CACHE_UPDATE_COUNTER=1");
+    stats.cacheReadCheck = cache.updateCounter ? "counter" : "key";
     stats.cache = cacheModeName(cache.mode);
     stats.cacheEviction = cacheEvictionName(cache.eviction);
     stats.cacheEntries = cache.entries;

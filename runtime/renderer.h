@@ -47,6 +47,10 @@ struct CacheOptions {
   std::uint32_t probe = 8;           // D, 1..16 (gpu::kCacheMaxProbe)
   float mipBias = 0.0f;              // eq. 5.5; positive: finer texels
   CacheEviction eviction = CacheEviction::Lru;
+  // §5.3.4: false checks a read by reading the key again (the thesis's choice, open to the
+  // A-B-A race); true adds a per-entry update counter that closes it (one more uint per
+  // entry and an atomic per write). Default to be picked from a GPU measurement.
+  bool updateCounter = false;
 };
 
 struct RendererOptions {

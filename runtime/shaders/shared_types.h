@@ -45,6 +45,10 @@ MG_CONSTANT(uint, kFlagEnvironmentImage, 2);
 // key hash H1 of eq. 5.9, then the eviction metadata) followed by the material's written
 // outputs as fp32 bits; the host picks the value count from the largest cacheable material.
 MG_CONSTANT(uint, kCacheEntryHeader, 2);
+// With the update counter (§5.3.4, last paragraph; MG_CACHE_UPDATE_COUNTER) the header has
+// a third uint, bumped by every write, so a reader detects a write even when the key was
+// restored (the A-B-A race of the key-only check).
+MG_CONSTANT(uint, kCacheEntryHeaderWithCounter, 3);
 MG_CONSTANT(uint, kCacheKeyEmpty, 0u);          // a cleared entry; H1 is never 0
 MG_CONSTANT(uint, kCacheKeyLock, 0xFFFFFFFFu);  // CACHE_LOCK of §5.3.4; H1 is never this
 MG_CONSTANT(uint, kCacheMaxProbe, 16);          // linear probing distance D: 1..16

@@ -3,7 +3,8 @@
 // the host defines MG_CACHE_TEXEL, with
 //   MG_CACHE_VALUES    floats per entry (the largest cacheable material's written outputs),
 //   MG_CACHE_PROBE     the linear probing distance D (1..kCacheMaxProbe),
-//   MG_CACHE_EVICTION  kCacheEviction{None, Lru, Lrw, Random} (0..3).
+//   MG_CACHE_EVICTION  kCacheEviction{None, Lru, Lrw, Random} (0..3),
+//   MG_CACHE_UPDATE_COUNTER  (optional) the update-counter read check of §5.3.4.
 // The entry count S, the frame clock and the mip bias come per frame in frame.cache.
 // materials.glsl provides mg_materialCacheInfo[id]: x the output mask (0: not cacheable),
 // y ID0, z ID1 (two independent hashes of the material's graph, eq. 5.8-5.9).
@@ -11,7 +12,12 @@
 #define MG_TEXEL_CACHE_GLSL
 #extension GL_EXT_control_flow_attributes : require
 
-const uint kCacheStride = kCacheEntryHeader + uint(MG_CACHE_VALUES);
+#ifdef MG_CACHE_UPDATE_COUNTER
+const uint kCacheHeader = kCacheEntryHeaderWithCounter;  // key, clock, update counter
+#else
+const uint kCacheHeader = kCacheEntryHeader;  // key, clock
+#endif
+const uint kCacheStride = kCacheHeader + uint(MG_CACHE_VALUES);
 
 // Entries as one flat uint array so the key can be swapped atomically (§5.3.4). Coherent:
 // other invocations of the same dispatch read what this one writes.
@@ -117,17 +123,28 @@ MaterialOutputs cacheUnpack(uint mask, float values[MG_CACHE_VALUES], MaterialIn
 }
 
 // §5.3.3 / §5.3.4: linear search over D entries comparing only keys; on a match, read key,
-// values, key again and report a miss if the key changed meanwhile.
+// values, key again and report a miss if the key changed meanwhile. With the update
+// counter: counter, key, values, key and counter again; a miss if either changed (a write
+// in between bumped the counter even when it restored the key).
 bool cacheRead(CacheKey key, out float values[MG_CACHE_VALUES]) {
   for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;
   [[unroll]] for (uint d = 0u; d < uint(MG_CACHE_PROBE); ++d) {
     uint offset = cacheEntryOffset(key.base + d);
     if (cacheData[offset] != key.hash) continue;
+#ifdef MG_CACHE_UPDATE_COUNTER
+    memoryBarrierBuffer();
+    uint counterBefore = cacheData[offset + 2u];
+    memoryBarrierBuffer();
+    if (cacheData[offset] != key.hash) return false;
+#endif
     memoryBarrierBuffer();  // key, then values, then key again (§5.3.4)
     for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i)
-      values[i] = uintBitsToFloat(cacheData[offset + kCacheEntryHeader + i]);
+      values[i] = uintBitsToFloat(cacheData[offset + kCacheHeader + i]);
     memoryBarrierBuffer();
     if (cacheData[offset] != key.hash) return false;  // overwritten while reading
+#ifdef MG_CACHE_UPDATE_COUNTER
+    if (cacheData[offset + 2u] != counterBefore) return false;  // rewritten, key restored
+#endif
 #if MG_CACHE_EVICTION == 1  // kCacheEvictionLru: a read refreshes the frame clock (§4.5)
     if (cacheData[offset + 1u] != frame.cache.y) cacheData[offset + 1u] = frame.cache.y;
 #endif
@@ -173,9 +190,13 @@ void cacheWrite(CacheKey key, float values[MG_CACHE_VALUES]) {
   if (slot < 0) return;
   uint offset = cacheEntryOffset(key.base + uint(slot));
   if (atomicExchange(cacheData[offset], kCacheKeyLock) == kCacheKeyLock) return;
+#ifdef MG_CACHE_UPDATE_COUNTER
+  atomicAdd(cacheData[offset + 2u], 1u);  // before any value changes (§5.3.4)
+  memoryBarrierBuffer();
+#endif
   cacheData[offset + 1u] = frame.cache.y;
   for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i)
-    cacheData[offset + kCacheEntryHeader + i] = floatBitsToUint(values[i]);
+    cacheData[offset + kCacheHeader + i] = floatBitsToUint(values[i]);
   memoryBarrierBuffer();
   atomicExchange(cacheData[offset], key.hash);
 }

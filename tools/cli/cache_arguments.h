@@ -18,10 +18,13 @@ inline constexpr const char* kCacheHelp =
     "  --probe D             linear probing distance, 1..16 (default 8)\n"
     "  --eviction E          when a probe range is full: lru (default), lrw (least recently\n"
     "                        written; both by frame clock), random, or none\n"
+    "  --cache-read-check C  key (default: read key, values, key; thesis §5.3.4) or counter\n"
+    "                        (an update counter per entry also catches a restored key)\n"
     "  --mip-bias B          added to the cache's mip level (eq. 5.5); positive: finer\n";
 
 struct CacheArguments {
-  std::string cache = "none", entries = "1048576", probe = "8", eviction = "lru", mipBias = "0";
+  std::string cache = "none", entries = "1048576", probe = "8", eviction = "lru", mipBias = "0",
+              readCheck = "key";
 
   void registerWith(ArgumentScanner& scanner) {
     scanner.option("--cache", &cache);
@@ -29,6 +32,7 @@ struct CacheArguments {
     scanner.option("--probe", &probe);
     scanner.option("--eviction", &eviction);
     scanner.option("--mip-bias", &mipBias);
+    scanner.option("--cache-read-check", &readCheck);
   }
 
   // Throws std::invalid_argument with a message for the user.
@@ -36,6 +40,10 @@ struct CacheArguments {
     runtime::CacheOptions options;
     options.mode = runtime::parseCacheMode(cache);
     options.eviction = runtime::parseCacheEviction(eviction);
+    if (readCheck != "key" && readCheck != "counter")
+      throw std::invalid_argument("unknown --cache-read-check '" + readCheck +
+                                  "' (choose key or counter)");
+    options.updateCounter = readCheck == "counter";
     auto whole = [](const std::string& text, const char* name) {
       std::uint32_t value = 0;
       auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
