@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "runtime/shaders/shared_types.h"
+
 // Until the compiler lands on main, the runtime builds without it and says so at run time.
 #if __has_include("compiler/compiler.h")
 #define MG_HAVE_COMPILER 1
@@ -39,6 +41,42 @@ MaterialDispatch parseMaterialDispatch(const std::string& text) {
     return MaterialDispatch::Callable;
   throw std::invalid_argument("unknown material dispatch '" + text +
                               "' (choose auto, switch or callable)");
+}
+
+std::uint32_t pcgHash(std::uint32_t v) {
+  std::uint32_t state = v * 747796405u + 2891336453u;
+  std::uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+
+std::uint32_t cacheOutputMask(const std::vector<std::string>& outputsWritten,
+                              std::uint32_t* valueCount) {
+  struct Output {
+    const char* name;
+    std::uint32_t bit;
+    std::uint32_t floats;
+  };
+  static const Output kOutputs[] = {
+      {"baseColor", gpu::kCacheOutputBaseColor, 3}, {"metallic", gpu::kCacheOutputMetallic, 1},
+      {"roughness", gpu::kCacheOutputRoughness, 1}, {"normal", gpu::kCacheOutputNormal, 3},
+      {"emission", gpu::kCacheOutputEmission, 3},   {"opacity", gpu::kCacheOutputOpacity, 1}};
+  std::uint32_t mask = 0, floats = 0;
+  for (const std::string& name : outputsWritten) {
+    bool known = false;
+    for (const Output& output : kOutputs) {
+      if (name == output.name) {
+        if (!(mask & output.bit))
+          floats += output.floats;
+        mask |= output.bit;
+        known = true;
+      }
+    }
+    if (!known)
+      throw std::runtime_error("material output '" + name + "' is unknown to the texel cache");
+  }
+  if (valueCount)
+    *valueCount = floats;
+  return mask;
 }
 
 #ifndef MG_HAVE_COMPILER
@@ -142,6 +180,11 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
     entry.name = name;
     entry.textureBase = static_cast<int>(linked.texturePaths.size());
     entry.cacheable = compiled->metadata.cacheable;
+    if (entry.cacheable) {
+      entry.cacheOutputMask =
+          cacheOutputMask(compiled->metadata.outputsWritten, &entry.cacheValueCount);
+      linked.cacheValueCount = std::max(linked.cacheValueCount, entry.cacheValueCount);
+    }
     entry.distinctIndex = static_cast<std::uint32_t>(linked.distinct.size());
     for (const auto& texture : compiled->metadata.textures) {
       std::filesystem::path path(texture);
@@ -184,6 +227,23 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
   linked.preludeSource += "#ifndef MG_PRELUDE_GLSL\n#define MG_PRELUDE_GLSL\n";
   linked.preludeSource += library.prelude(compiler::Target::Glsl);
   linked.preludeSource += "#endif  // MG_PRELUDE_GLSL\n";
+
+  // Texel cache (thesis §5.3.2): per scene material its output mask (0: never cached) and
+  // ID0, ID1 of eq. 5.8-5.9, two independent hashes of its distinct graph (materials
+  // sharing a graph and its textures share entries).
+  std::string cacheInfo = "// Texel cache: x output mask (0: not cacheable), y ID0, z ID1.\n";
+  cacheInfo += "const uvec4 mg_materialCacheInfo[" + std::to_string(linked.materials.size()) +
+               "] = uvec4[](\n";
+  for (std::size_t i = 0; i < linked.materials.size(); ++i) {
+    const LinkedMaterial& m = linked.materials[i];
+    std::uint32_t id0 = pcgHash(m.distinctIndex * 2u + 0x3c6ef372u);
+    std::uint32_t id1 = pcgHash(pcgHash(m.distinctIndex * 2u + 1u) ^ 0xa54ff53au);
+    cacheInfo += "    uvec4(" + std::to_string(m.cacheOutputMask) + "u, " + std::to_string(id0) +
+                 "u, " + std::to_string(id1) + "u, 0u)" +
+                 (i + 1 < linked.materials.size() ? ",\n" : ");\n");
+  }
+  out.insert(out.rfind("#endif"), cacheInfo);
+  linked.preludeSource.insert(linked.preludeSource.rfind("#endif"), cacheInfo);
   linked.compileMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return linked;

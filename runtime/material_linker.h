@@ -20,6 +20,10 @@ struct LinkedMaterial {
   std::string name;     // the EvaluateMaterial_<name> it calls
   int textureBase = 0;  // first slot of its textures in LinkedMaterials::texturePaths
   bool cacheable = false;
+  // Texel cache (thesis §5.3.1): which outputs an entry stores (gpu::kCacheOutput* bits of
+  // the graph's written outputs; 0 when not cacheable) and how many floats that is.
+  std::uint32_t cacheOutputMask = 0;
+  std::uint32_t cacheValueCount = 0;
   // Index into LinkedMaterials::distinct: scene materials sharing a graph share one
   // compiled include (and one callable shader).
   std::uint32_t distinctIndex = 0;
@@ -38,6 +42,8 @@ struct LinkedMaterials {
   std::vector<LinkedMaterial> materials;  // parallel to Scene::materials
   std::vector<DistinctMaterial> distinct;
   std::vector<std::string> texturePaths;  // resolved paths, in descriptor-array order
+  // Floats per texel-cache entry: the largest cacheValueCount (0: nothing is cacheable).
+  std::uint32_t cacheValueCount = 0;
   double compileMilliseconds = 0.0;
 };
 
@@ -49,6 +55,14 @@ enum class MaterialDispatch { Auto, Switch, Callable };
 const char* materialDispatchName(MaterialDispatch dispatch);
 // Parses "auto", "switch" or "callable"; throws std::invalid_argument naming the choices.
 MaterialDispatch parseMaterialDispatch(const std::string& text);
+
+// The PCG hash of the shaders' mg_pcg (O'Neill 2014; Jarzynski and Olano 2020), on the host.
+std::uint32_t pcgHash(std::uint32_t v);
+
+// Members of MaterialOutputs named by the compiler's outputsWritten → gpu::kCacheOutput* bits
+// and their float count. Throws std::runtime_error on a name it does not know.
+std::uint32_t cacheOutputMask(const std::vector<std::string>& outputsWritten,
+                              std::uint32_t* valueCount = nullptr);
 
 struct MaterialLinkOptions {
   // A node-library folder that replaces the embedded one (for --nodes DIR); empty: embedded.

@@ -26,7 +26,9 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
   out << "frame,gpu_ms,wall_ms,rays,mrays_per_s,width,height,paths,rays_per_path,backend,"
          "device,blas_count,instances,blas_bytes,blas_bytes_uncompacted,tlas_bytes,"
          "scratch_bytes,as_build_ms,texture_bytes,materials,material_compile_ms,"
-         "shader_compile_ms,shader_cache_hits,material_dispatch,pipeline_create_ms\n";
+         "shader_compile_ms,shader_cache_hits,material_dispatch,pipeline_create_ms,"
+         "cache,cache_eviction,cache_entries,cache_probe,cache_bytes,cache_lookups,cache_hits,"
+         "cache_misses,cache_hit_rate,cache_read_check\n";
   const auto& a = s.accelerationStructures;
   for (const auto& f : s.frames) {
     double mraysPerSecond = f.gpuMilliseconds > 0 ? f.rays / (f.gpuMilliseconds * 1e3) : 0.0;
@@ -37,7 +39,10 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
         << a.tlasBytes << ',' << a.scratchBytes << ',' << a.buildMilliseconds << ','
         << s.textureBytes << ',' << s.materialCount << ',' << s.materialCompileMilliseconds << ','
         << s.shaderCompileMilliseconds << ',' << s.shaderCacheHits << ',' << s.materialDispatch
-        << ',' << s.pipelineCreateMilliseconds << '\n';
+        << ',' << s.pipelineCreateMilliseconds << ',' << s.cache << ',' << s.cacheEviction << ','
+        << s.cacheEntries << ',' << s.cacheProbe << ',' << s.cacheBytes << ',' << f.cacheLookups
+        << ',' << f.cacheHits << ',' << f.cacheMisses << ',' << f.cacheHitRate() << ','
+        << s.cacheReadCheck << '\n';
   }
 }
 

@@ -16,6 +16,11 @@ struct FrameStats {
   double gpuMilliseconds = 0.0;   // between the timestamps around the trace (0 if none)
   double wallMilliseconds = 0.0;  // submit to fence on the host
   std::uint64_t rays = 0;         // closest-hit and shadow rays traced
+  // Texel cache counters (thesis §5.3): lookups of cacheable materials, hits and misses.
+  std::uint64_t cacheLookups = 0;
+  std::uint64_t cacheHits = 0;
+  std::uint64_t cacheMisses = 0;
+  double cacheHitRate() const { return cacheLookups ? double(cacheHits) / cacheLookups : 0.0; }
 };
 
 struct RenderStats {
@@ -36,6 +41,13 @@ struct RenderStats {
   std::string materialDispatch;  // "switch" or "callable"
   // Shader modules and pipeline (the driver's own compile), excluding GLSL → SPIR-V.
   double pipelineCreateMilliseconds = 0.0;
+  std::string cache = "none";  // "none" or "texel"
+  std::string cacheEviction;   // "none" or "lru" (empty without a cache)
+  std::uint32_t cacheEntries = 0;
+  std::uint32_t cacheProbe = 0;
+  std::string cacheReadCheck;         // "key" or "counter" (§5.3.4)
+  std::uint32_t cacheValueCount = 0;  // floats per entry
+  std::uint64_t cacheBytes = 0;
 
   double medianGpuMilliseconds() const;
   std::uint64_t totalRays() const;

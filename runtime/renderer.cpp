@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <optional>
 #include <set>
 #include <stdexcept>
@@ -82,6 +83,45 @@ MaterialDispatch resolveMaterialDispatch(MaterialDispatch requested, Backend bac
 
 }  // namespace
 
+const char* cacheModeName(CacheMode mode) {
+  return mode == CacheMode::Texel ? "texel" : "none";
+}
+
+const char* cacheEvictionName(CacheEviction eviction) {
+  switch (eviction) {
+    case CacheEviction::None:
+      return "none";
+    case CacheEviction::Lru:
+      return "lru";
+    case CacheEviction::Lrw:
+      return "lrw";
+    case CacheEviction::Random:
+      return "random";
+  }
+  return "none";
+}
+
+CacheMode parseCacheMode(const std::string& text) {
+  if (text == "none")
+    return CacheMode::None;
+  if (text == "texel")
+    return CacheMode::Texel;
+  throw std::invalid_argument("unknown cache '" + text + "' (choose none or texel)");
+}
+
+CacheEviction parseCacheEviction(const std::string& text) {
+  if (text == "none")
+    return CacheEviction::None;
+  if (text == "lru")
+    return CacheEviction::Lru;
+  if (text == "lrw")
+    return CacheEviction::Lrw;
+  if (text == "random")
+    return CacheEviction::Random;
+  throw std::invalid_argument("unknown eviction policy '" + text +
+                              "' (choose none, lru, lrw or random)");
+}
+
 TextureImage loadTextureCore(const std::string& path) {
   std::filesystem::path p(path);
   if (!std::filesystem::exists(p))
@@ -123,6 +163,19 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   stats.raysPerPath = settings.raysPerPath;
 
   MaterialDispatch dispatch = resolveMaterialDispatch(options_.materialDispatch, context.backend());
+  const CacheOptions& cache = options_.cache;
+  const bool texelCache = cache.mode == CacheMode::Texel;
+  if (texelCache) {
+    if (cache.probe < 1 || cache.probe > gpu::kCacheMaxProbe)
+      throw std::invalid_argument("--probe must be 1.." + std::to_string(gpu::kCacheMaxProbe) +
+                                  ", not " + std::to_string(cache.probe));
+    if (cache.entries <= cache.probe)
+      throw std::invalid_argument("--cache-entries (" + std::to_string(cache.entries) +
+                                  ") must exceed the probe distance (" +
+                                  std::to_string(cache.probe) + ")");
+    if (!std::isfinite(cache.mipBias))
+      throw std::invalid_argument("--mip-bias must be finite");
+  }
 
   // Materials: graphs → GLSL, and the textures they name.
   MaterialLinkOptions linkOptions;
@@ -191,8 +244,34 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   // took as long, on one core) and crashes under the validation layer when handed one: keep
   // deferred pipeline creation to GPU drivers, where it can spread the compile.
   std::uint32_t pipelineThreads = context.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1 : threads;
+  static_assert(static_cast<std::uint32_t>(CacheEviction::Lru) == gpu::kCacheEvictionLru &&
+                static_cast<std::uint32_t>(CacheEviction::Lrw) == gpu::kCacheEvictionLrw &&
+                static_cast<std::uint32_t>(CacheEviction::Random) == gpu::kCacheEvictionRandom);
+  // Texel cache (thesis §5.3.1): entries of a key hash, metadata and the largest cacheable
+  // material's written outputs as fp32.
+  std::vector<std::string> cacheDefines;
+  const std::uint32_t cacheValues = std::max(1u, materials.cacheValueCount);
+  const std::uint64_t cacheStride =
+      (cache.updateCounter ? gpu::kCacheEntryHeaderWithCounter : gpu::kCacheEntryHeader) +
+      cacheValues;
+  if (texelCache) {
+    cacheDefines = {
+        "MG_CACHE_TEXEL=1", "MG_CACHE_VALUES=" + std::to_string(cacheValues),
+        "MG_CACHE_PROBE=" + std::to_string(cache.probe),
+        "MG_CACHE_EVICTION=" + std::to_string(static_cast<std::uint32_t>(cache.eviction))};
+    if (cache.updateCounter)
+      cacheDefines.push_back("MG_CACHE_UPDATE_COUNTER=1");
+    stats.cacheReadCheck = cache.updateCounter ? "counter" : "key";
+    stats.cache = cacheModeName(cache.mode);
+    stats.cacheEviction = cacheEvictionName(cache.eviction);
+    stats.cacheEntries = cache.entries;
+    stats.cacheProbe = cache.probe;
+    stats.cacheValueCount = cacheValues;
+    stats.cacheBytes = std::uint64_t(cache.entries) * cacheStride * sizeof(std::uint32_t);
+  }
   TracePipeline pipeline(context, compiler, textures.count(),
-                         materialCallables ? &*materialCallables : nullptr, pipelineThreads);
+                         materialCallables ? &*materialCallables : nullptr, pipelineThreads,
+                         cacheDefines);
   stats.pipelineCreateMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pipelineStart)
           .count() -
@@ -210,15 +289,21 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   GpuBuffer accumulation(context, accumulationBytes,
                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
                          VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  GpuBuffer rayCounter(context, sizeof(std::uint32_t),
+  GpuBuffer rayCounter(context, sizeof(gpu::Counters),
                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                            VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   GpuBuffer rayReadback =
-      hostBuffer(context, sizeof(std::uint32_t), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+      hostBuffer(context, sizeof(gpu::Counters), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  // Without a cache the binding still needs a buffer: one entry nobody reads.
+  VkDeviceSize cacheBytes = texelCache ? VkDeviceSize(stats.cacheBytes)
+                                       : VkDeviceSize(cacheStride * sizeof(std::uint32_t));
+  GpuBuffer cacheBuffer(context, cacheBytes,
+                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
 
-  TraceResources resources{accel.tlas(), &frameBuffer, &accumulation,
-                           &rayCounter,  &buffers,     &textures};
+  TraceResources resources{accel.tlas(), &frameBuffer, &accumulation, &rayCounter,
+                           &cacheBuffer, &buffers,     &textures};
   TraceDescriptorSet descriptors(context, pipeline.descriptorSetLayout(), resources);
   VkDescriptorSet set = descriptors.get();
 
@@ -244,6 +329,9 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                         (buffers.environmentWidth ? gpu::kFlagEnvironmentImage : 0u);
   frame.path = glm::uvec4(settings.pathsPerPixel, settings.raysPerPath, flags, buffers.lightCount);
   frame.environmentSize = glm::uvec4(buffers.environmentWidth, buffers.environmentHeight, 0, 0);
+  std::uint32_t mipBiasBits = 0;
+  std::memcpy(&mipBiasBits, &cache.mipBias, sizeof mipBiasBits);
+  frame.cache = glm::uvec4(texelCache ? cache.entries : 0u, 0u, mipBiasBits, 0u);
 
   Camera previousCamera;
   std::uint32_t sampleIndex = 0;
@@ -259,11 +347,16 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     setCamera(frame, camera, settings.width, settings.height);
     frame.image.z = f;
     frame.environmentSize.z = sampleIndex;
+    frame.cache.y = f + 1u;  // the frame clock of §5.3.3 (0: never used)
     frameBuffer.write(&frame, sizeof frame);
 
     auto start = std::chrono::steady_clock::now();
     context.submitAndWait([&](VkCommandBuffer commands) {
       vkCmdFillBuffer(commands, rayCounter.buffer(), 0, VK_WHOLE_SIZE, 0);
+      // The cache is cleared once, before the first frame: every key kCacheKeyEmpty (0),
+      // every clock 0; the barrier below orders it before the trace.
+      if (f == 0)
+        vkCmdFillBuffer(commands, cacheBuffer.buffer(), 0, VK_WHOLE_SIZE, gpu::kCacheKeyEmpty);
       VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
       barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
       barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
@@ -281,16 +374,19 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
       barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
       vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
                            VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
-      VkBufferCopy copy{0, 0, sizeof(std::uint32_t)};
+      VkBufferCopy copy{0, 0, sizeof(gpu::Counters)};
       vkCmdCopyBuffer(commands, rayCounter.buffer(), rayReadback.buffer(), 1, &copy);
     });
     FrameStats frameStats;
     frameStats.frame = f;
     frameStats.wallMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    std::uint32_t rays = 0;
-    rayReadback.read(&rays, sizeof rays);
-    frameStats.rays = rays;
+    gpu::Counters counters{};
+    rayReadback.read(&counters, sizeof counters);
+    frameStats.rays = counters.rays;
+    frameStats.cacheLookups = counters.cacheLookups;
+    frameStats.cacheHits = counters.cacheHits;
+    frameStats.cacheMisses = counters.cacheMisses;
     if (timestamps) {
       std::uint64_t ticks[2] = {0, 0};
       checkVk(vkGetQueryPoolResults(device, timestampPool.get(), 0, 2, sizeof ticks, ticks,

@@ -26,6 +26,33 @@ using TextureLoader = std::function<TextureImage(const std::string& path)>;
 // error that says which tool can convert it.
 TextureImage loadTextureCore(const std::string& path);
 
+// Material graph memoization (thesis §4, §5.3). Texel: one hash table of texels, keyed by
+// material, mip level and texel (eq. 5.1-5.10), linear probing over `probe` entries.
+enum class CacheMode { None, Texel };
+// What a miss evicts when its probe range is full (§4.5): none (insert only into empty
+// entries), the least recently used or least recently written entry by a frame clock
+// (§5.3.3), or a pseudo-random entry. Values are the shader's kCacheEviction*.
+enum class CacheEviction { None = 0, Lru = 1, Lrw = 2, Random = 3 };
+
+const char* cacheModeName(CacheMode mode);
+const char* cacheEvictionName(CacheEviction eviction);
+// Parse "none"/"texel" and "none"/"lru"/"lrw"/"random"; throw std::invalid_argument naming the
+// choices.
+CacheMode parseCacheMode(const std::string& text);
+CacheEviction parseCacheEviction(const std::string& text);
+
+struct CacheOptions {
+  CacheMode mode = CacheMode::None;
+  std::uint32_t entries = 1u << 20;  // S; must exceed `probe`
+  std::uint32_t probe = 8;           // D, 1..16 (gpu::kCacheMaxProbe)
+  float mipBias = 0.0f;              // eq. 5.5; positive: finer texels
+  CacheEviction eviction = CacheEviction::Lru;
+  // §5.3.4: false checks a read by reading the key again (the thesis's choice, open to the
+  // A-B-A race); true adds a per-entry update counter that closes it (one more uint per
+  // entry and an atomic per write). Default to be picked from a GPU measurement.
+  bool updateCounter = false;
+};
+
 struct RendererOptions {
   ContextOptions context;
   bool shaderCache = true;
@@ -42,6 +69,7 @@ struct RendererOptions {
   // Threads compiling callable material shaders and joining the driver's ray-tracing
   // pipeline compile (deferred host operations); 0: one per hardware thread.
   std::uint32_t shaderCompileThreads = 0;
+  CacheOptions cache;  // cleared at the start of every render
 };
 
 // Scenes with more distinct material graphs than this render best with per-material callable

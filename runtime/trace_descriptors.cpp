@@ -13,7 +13,7 @@ TraceDescriptorSet::TraceDescriptorSet(const VulkanContext& context,
   std::vector<VkDescriptorPoolSize> poolSizes = {
       {VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 1},
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8},
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 9},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, r.textures->count()}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1;
@@ -53,6 +53,7 @@ TraceDescriptorSet::TraceDescriptorSet(const VulkanContext& context,
   writeBuffer(gpu::kBindingLights, kStorage, r.scene->lights);
   writeBuffer(gpu::kBindingEnvironment, kStorage, r.scene->environment);
   writeBuffer(gpu::kBindingRayCounter, kStorage, *r.rayCounter);
+  writeBuffer(gpu::kBindingCache, kStorage, *r.cache);
   VkAccelerationStructureKHR tlas = r.tlas;
   VkWriteDescriptorSetAccelerationStructureKHR tlasInfo{
       VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};

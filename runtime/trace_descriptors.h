@@ -17,7 +17,8 @@ struct TraceResources {
   VkAccelerationStructureKHR tlas = VK_NULL_HANDLE;
   const GpuBuffer* frame = nullptr;         // gpu::FrameConstants
   const GpuBuffer* accumulation = nullptr;  // vec4 per pixel
-  const GpuBuffer* rayCounter = nullptr;    // one uint
+  const GpuBuffer* rayCounter = nullptr;    // gpu::Counters
+  const GpuBuffer* cache = nullptr;         // texel-cache entries (a small dummy without)
   const SceneBuffers* scene = nullptr;
   const GpuTextures* textures = nullptr;
 };

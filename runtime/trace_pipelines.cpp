@@ -75,7 +75,8 @@ VkDeviceSize alignUp(VkDeviceSize value, VkDeviceSize alignment) {
 
 TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compiler,
                              std::uint32_t textureCount, const MaterialCallables* callables,
-                             std::uint32_t pipelineThreads)
+                             std::uint32_t pipelineThreads,
+                             const std::vector<std::string>& extraDefines)
     : context_(context), backend_(context.backend()) {
   VkDevice device = context.device();
   bool query = backend_ == Backend::RayQuery;
@@ -104,6 +105,7 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   add(gpu::kBindingEnvironment, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   add(gpu::kBindingTextures, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount);
   add(gpu::kBindingRayCounter, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  add(gpu::kBindingCache, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   setInfo.bindingCount = static_cast<std::uint32_t>(bindings.size());
   setInfo.pBindings = bindings.data();
@@ -133,6 +135,7 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
     defines.push_back("MG_MATERIAL_CALLABLES=1");
     defines.push_back("MG_MATERIAL_COUNT=" + std::to_string(materialRecords));
   }
+  defines.insert(defines.end(), extraDefines.begin(), extraDefines.end());
   auto destroyPipeline = [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); };
 
   if (query) {

@@ -6,6 +6,8 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -24,8 +26,10 @@ class TracePipeline {
   // MG_MATERIAL_CALLABLES). Throws std::invalid_argument for callables on the query backend.
   // `pipelineThreads`: host threads that may join the driver's ray-tracing pipeline
   // compile (VK_KHR_deferred_host_operations); 1 creates it on the calling thread alone.
+  // `extraDefines` go to the path tracer (raygen or compute) only, e.g. the texel cache's.
   TracePipeline(const VulkanContext& context, ShaderCompiler& compiler, std::uint32_t textureCount,
-                const MaterialCallables* callables = nullptr, std::uint32_t pipelineThreads = 1);
+                const MaterialCallables* callables = nullptr, std::uint32_t pipelineThreads = 1,
+                const std::vector<std::string>& extraDefines = {});
 
   VkDescriptorSetLayout descriptorSetLayout() const { return setLayout_.get(); }
   // Binds and launches one thread per pixel.

@@ -54,8 +54,8 @@ layout(set = 0, binding = kBindingLights, std430) readonly buffer LightBlock {
 layout(set = 0, binding = kBindingEnvironment, std430) readonly buffer EnvironmentBlock {
   vec4 environmentTexels[];
 };
-layout(set = 0, binding = kBindingRayCounter, std430) buffer RayCounterBlock {
-  uint rayCount;
+layout(set = 0, binding = kBindingRayCounter, std430) buffer CounterBlock {
+  Counters counters;
 };
 
 const float kRayTMax = 1e30;
@@ -67,7 +67,8 @@ layout(location = kMaterialCallLocation) callableDataEXT MaterialCall materialCa
 // Evaluates the graph of scene material `materialId` in its callable shader. The host
 // defines MG_MATERIAL_COUNT, the callable region's record count; an id past it gets the
 // default outputs, as the switch's default case gives them.
-void evaluateMaterial(uint materialId, MaterialInputs inputs, out MaterialOutputs outputs) {
+void evaluateMaterialDirect(uint materialId, MaterialInputs inputs,
+                            out MaterialOutputs outputs) {
   if (materialId >= uint(MG_MATERIAL_COUNT)) {
     outputs = mg_defaultMaterialOutputs(inputs);
     return;
@@ -80,10 +81,25 @@ void evaluateMaterial(uint materialId, MaterialInputs inputs, out MaterialOutput
 #include "material_textures.glsl"
 
 // Evaluates the graph of scene material `materialId` (thesis §5.2: branch by material).
-void evaluateMaterial(uint materialId, MaterialInputs inputs, out MaterialOutputs outputs) {
+void evaluateMaterialDirect(uint materialId, MaterialInputs inputs,
+                            out MaterialOutputs outputs) {
   evaluateMaterialSwitch(materialId, inputs, outputs);
 }
 #endif
+
+// The texel cache (thesis §5.3) wraps either dispatch: a hit skips the switch case or the
+// executeCallableEXT.
+#ifdef MG_CACHE_TEXEL
+#include "texel_cache.glsl"
+#endif
+
+void evaluateMaterial(uint materialId, MaterialInputs inputs, out MaterialOutputs outputs) {
+#ifdef MG_CACHE_TEXEL
+  evaluateMaterialCached(materialId, inputs, outputs);
+#else
+  evaluateMaterialDirect(materialId, inputs, outputs);
+#endif
+}
 
 // Moves a ray origin off a surface along its geometric normal, scaled to the float
 // precision at that position (Wächter and Binder, Ray Tracing Gems, ch. 6).
@@ -355,9 +371,22 @@ void renderPixel(uvec2 pixel) {
 #ifdef MG_SUBGROUP_RAY_COUNT
   // One atomic per subgroup instead of per thread: counting must not slow the trace.
   uint subgroupRays = subgroupAdd(rays);
-  if (subgroupElect()) atomicAdd(rayCount, subgroupRays);
+  if (subgroupElect()) atomicAdd(counters.rays, subgroupRays);
 #else
-  atomicAdd(rayCount, rays);
+  atomicAdd(counters.rays, rays);
+#endif
+#ifdef MG_CACHE_TEXEL
+#ifdef MG_SUBGROUP_RAY_COUNT
+  uvec3 cacheCounts = subgroupAdd(uvec3(g_cacheLookups, g_cacheHits, g_cacheMisses));
+  if (subgroupElect() && cacheCounts.x > 0u) {
+#else
+  uvec3 cacheCounts = uvec3(g_cacheLookups, g_cacheHits, g_cacheMisses);
+  if (cacheCounts.x > 0u) {
+#endif
+    atomicAdd(counters.cacheLookups, cacheCounts.x);
+    atomicAdd(counters.cacheHits, cacheCounts.y);
+    atomicAdd(counters.cacheMisses, cacheCounts.z);
+  }
 #endif
 }
 

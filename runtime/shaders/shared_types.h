@@ -30,8 +30,9 @@ MG_CONSTANT(uint, kBindingMeshes, 6);
 MG_CONSTANT(uint, kBindingLights, 7);
 MG_CONSTANT(uint, kBindingEnvironment, 8);
 MG_CONSTANT(uint, kBindingTextures, 9);
-MG_CONSTANT(uint, kBindingRayCounter, 10);
-MG_CONSTANT(uint, kBindingCount, 11);
+MG_CONSTANT(uint, kBindingRayCounter, 10);  // gpu::Counters
+MG_CONSTANT(uint, kBindingCache, 11);       // the texel cache's entries (thesis §5.3.1)
+MG_CONSTANT(uint, kBindingCount, 12);
 
 // Compute work-group edge of the ray-query backend.
 MG_CONSTANT(uint, kWorkgroupSize, 8);
@@ -39,6 +40,31 @@ MG_CONSTANT(uint, kWorkgroupSize, 8);
 // FrameConstants::flags bits.
 MG_CONSTANT(uint, kFlagSharedPrimaryRay, 1);
 MG_CONSTANT(uint, kFlagEnvironmentImage, 2);
+
+// Texel cache (thesis §4.2-4.5, §5.3). An entry is kCacheEntryHeader uints (the 32-bit
+// key hash H1 of eq. 5.9, then the eviction metadata) followed by the material's written
+// outputs as fp32 bits; the host picks the value count from the largest cacheable material.
+MG_CONSTANT(uint, kCacheEntryHeader, 2);
+// With the update counter (§5.3.4, last paragraph; MG_CACHE_UPDATE_COUNTER) the header has
+// a third uint, bumped by every write, so a reader detects a write even when the key was
+// restored (the A-B-A race of the key-only check).
+MG_CONSTANT(uint, kCacheEntryHeaderWithCounter, 3);
+MG_CONSTANT(uint, kCacheKeyEmpty, 0u);          // a cleared entry; H1 is never 0
+MG_CONSTANT(uint, kCacheKeyLock, 0xFFFFFFFFu);  // CACHE_LOCK of §5.3.4; H1 is never this
+MG_CONSTANT(uint, kCacheMaxProbe, 16);          // linear probing distance D: 1..16
+// Eviction policies (MG_CACHE_EVICTION): §4.5 / §5.3.3.
+MG_CONSTANT(uint, kCacheEvictionNone, 0);  // insert only into an empty entry
+MG_CONSTANT(uint, kCacheEvictionLru, 1);   // least recently used, frame clock in the metadata
+MG_CONSTANT(uint, kCacheEvictionLrw, 2);   // least recently written, frame clock
+MG_CONSTANT(uint, kCacheEvictionRandom, 3);  // a pseudo-random entry of the probe range
+// Bits of a material's output mask (which MaterialOutputs members an entry stores, in this
+// order: baseColor 3 floats, metallic 1, roughness 1, normal 3, emission 3, opacity 1).
+MG_CONSTANT(uint, kCacheOutputBaseColor, 1);
+MG_CONSTANT(uint, kCacheOutputMetallic, 2);
+MG_CONSTANT(uint, kCacheOutputRoughness, 4);
+MG_CONSTANT(uint, kCacheOutputNormal, 8);
+MG_CONSTANT(uint, kCacheOutputEmission, 16);
+MG_CONSTANT(uint, kCacheOutputOpacity, 32);
 
 // Light::positionOrDirection.w
 MG_CONSTANT(uint, kLightPoint, 0);
@@ -60,6 +86,17 @@ struct FrameConstants {
   uvec4 path;           // x paths per pixel P, y rays per path L, z flags, w light count
   uvec4 environmentSize;  // x width, y height of the equirectangular image; z sample index
                           // in the accumulation (0 restarts it); w unused
+  // Texel cache: x entries S (0: no cache), y frame clock (frame + 1), z mip bias of
+  // eq. 5.5 (float bits), w unused.
+  uvec4 cache;
+};
+
+// Counters the shader adds to per frame (binding kBindingRayCounter); cleared per frame.
+struct Counters {
+  uint rays;          // closest-hit and shadow rays traced
+  uint cacheLookups;  // cache lookups of cacheable materials
+  uint cacheHits;
+  uint cacheMisses;
 };
 
 // One vertex of the global vertex buffer; positions first so the BLAS reads them in place.

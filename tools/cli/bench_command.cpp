@@ -11,6 +11,7 @@
 #include "commands.h"
 
 #ifdef MEMOGRAPH_HAVE_RUNTIME
+#include "cache_arguments.h"
 #include "runtime/renderer.h"
 #endif
 #ifdef MEMOGRAPH_HAVE_SCENES
@@ -67,6 +68,8 @@ int runBench(std::span<const std::string_view> args) {
               materialDispatch = "auto";
   bool help = false, staticCamera = false, sharedPrimary = false;
   ArgumentScanner scanner("bench", args);
+  CacheArguments cacheArguments;
+  cacheArguments.registerWith(scanner);
   scanner.option("--sizes", &sizes);
   scanner.option("--size", &sizes);
   scanner.option("--paths", &paths);
@@ -87,7 +90,7 @@ int runBench(std::span<const std::string_view> args) {
   if (const int code = scanner.scan(scenes); code != kExitOk)
     return code;
   if (help) {
-    std::cout << kHelp;
+    std::cout << kHelp << kCacheHelp;
     return kExitOk;
   }
   if (scenes.empty())
@@ -114,6 +117,7 @@ int runBench(std::span<const std::string_view> args) {
   try {
     options.context.backend = runtime::parseBackend(backend);
     options.materialDispatch = runtime::parseMaterialDispatch(materialDispatch);
+    options.cache = cacheArguments.parse();
   } catch (const std::invalid_argument& e) {
     return usageError("bench", e.what());
   }
@@ -130,7 +134,8 @@ int runBench(std::span<const std::string_view> args) {
     }
     csv << "scene,width,height,paths,rays_per_path,backend,device,frames,median_gpu_ms,fps,"
            "mrays_per_s,blas_bytes,tlas_bytes,scratch_bytes,materials,material_dispatch,"
-           "shader_compile_ms,pipeline_create_ms\n";
+           "shader_compile_ms,pipeline_create_ms,cache,cache_eviction,cache_entries,"
+           "cache_probe,cache_bytes,median_cache_hit_rate\n";
   }
   try {
     for (const auto& sceneName : scenes) {
@@ -169,8 +174,9 @@ int runBench(std::span<const std::string_view> args) {
         runtime::RenderResult result = renderer.render(scene, settings);
         std::vector<runtime::FrameStats> timed(result.stats.frames.begin() + w,
                                                result.stats.frames.end());
-        std::vector<double> ms, mrays;
+        std::vector<double> ms, mrays, hitRates;
         for (const auto& frame : timed) {
+          hitRates.push_back(frame.cacheHitRate());
           ms.push_back(frame.gpuMilliseconds);
           mrays.push_back(frame.gpuMilliseconds > 0 ? frame.rays / (frame.gpuMilliseconds * 1e3)
                                                     : 0);
@@ -181,6 +187,7 @@ int runBench(std::span<const std::string_view> args) {
           return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
         };
         double medianMs = median(ms), medianMrays = median(mrays);
+        double medianHitRate = median(hitRates);
         double fps = medianMs > 0 ? 1000.0 / medianMs : 0.0;
         const auto& as = result.stats.accelerationStructures;
         std::cout << label << " " << width << "x" << height << " P=" << p << " L=" << l
@@ -189,13 +196,21 @@ int runBench(std::span<const std::string_view> args) {
                   << " materials, " << result.stats.materialDispatch << "; pipeline "
                   << result.stats.pipelineCreateMilliseconds << " ms; BLAS " << as.blasBytes
                   << " B, TLAS " << as.tlasBytes << " B)\n";
+        if (result.stats.cache != "none")
+          std::cout << "  cache " << result.stats.cache << " (" << result.stats.cacheEntries
+                    << " entries, D=" << result.stats.cacheProbe << ", eviction "
+                    << result.stats.cacheEviction << ", " << result.stats.cacheBytes
+                    << " B): median hit rate " << 100.0 * medianHitRate << " %\n";
         if (csv) {
           csv << label << ',' << width << ',' << height << ',' << p << ',' << l << ','
               << result.stats.backend << ",\"" << result.stats.device << "\"," << timed.size()
               << ',' << medianMs << ',' << fps << ',' << medianMrays << ',' << as.blasBytes << ','
               << as.tlasBytes << ',' << as.scratchBytes << ',' << result.stats.materialCount << ','
               << result.stats.materialDispatch << ',' << result.stats.shaderCompileMilliseconds
-              << ',' << result.stats.pipelineCreateMilliseconds << '\n';
+              << ',' << result.stats.pipelineCreateMilliseconds << ',' << result.stats.cache << ','
+              << result.stats.cacheEviction << ',' << result.stats.cacheEntries << ','
+              << result.stats.cacheProbe << ',' << result.stats.cacheBytes << ',' << medianHitRate
+              << '\n';
         }
         if (!framesCsv.empty()) {
           std::ofstream perFrame(framesCsv + fileLabel + "_" + std::to_string(width) + "x" +

@@ -13,6 +13,7 @@
 #include "commands.h"
 
 #ifdef MEMOGRAPH_HAVE_RUNTIME
+#include "cache_arguments.h"
 #include "runtime/renderer.h"
 #endif
 #ifdef MEMOGRAPH_HAVE_SCENES
@@ -61,7 +62,7 @@ constexpr std::string_view kHelp =
     "  --nodes DIR           node library folder instead of the built-in one\n"
     "  --shader-cache DIR    SPIR-V cache folder (default $XDG_CACHE_HOME/memograph)\n"
     "  --no-shader-cache     compile every shader\n"
-    "  --stats FILE          per-frame statistics as CSV (GPU ms, rays, AS memory)\n"
+    "  --stats FILE          per-frame statistics as CSV (GPU ms, rays, AS memory, cache)\n"
     "  --validation          enable the Vulkan validation layer\n";
 
 bool parseNumber(const std::string& text, std::uint32_t& out) {
@@ -86,6 +87,8 @@ int runRender(std::span<const std::string_view> args) {
   bool help = false, listDevices = false, sharedPrimary = false, noShaderCache = false,
        validation = false;
   ArgumentScanner scanner("render", args);
+  CacheArguments cacheArguments;
+  cacheArguments.registerWith(scanner);
   scanner.option("--out", &out);
   scanner.option("-o", &out);
   scanner.option("--size", &size);
@@ -112,7 +115,7 @@ int runRender(std::span<const std::string_view> args) {
   if (const int code = scanner.scan(positional); code != kExitOk)
     return code;
   if (help) {
-    std::cout << kHelp;
+    std::cout << kHelp << kCacheHelp;
     return kExitOk;
   }
   if (listDevices) {
@@ -150,6 +153,7 @@ int runRender(std::span<const std::string_view> args) {
   try {
     options.context.backend = runtime::parseBackend(backend);
     options.materialDispatch = runtime::parseMaterialDispatch(materialDispatch);
+    options.cache = cacheArguments.parse();
   } catch (const std::invalid_argument& e) {
     return usageError("render", e.what());
   }
@@ -287,6 +291,13 @@ int runRender(std::span<const std::string_view> args) {
               << result.stats.shadersCompiled << " compiled in "
               << result.stats.shaderCompileMilliseconds << " ms, pipeline "
               << result.stats.pipelineCreateMilliseconds << " ms\n";
+    if (result.stats.cache != "none" && !result.stats.frames.empty()) {
+      const auto& last = result.stats.frames.back();
+      std::cerr << "texel cache: " << result.stats.cacheEntries << " entries ("
+                << result.stats.cacheBytes << " B); last frame " << last.cacheLookups
+                << " lookups, " << last.cacheHits << " hits (" << 100.0 * last.cacheHitRate()
+                << " %)\n";
+    }
   } catch (const std::exception& e) {
     std::cerr << "memograph render: " << e.what() << "\n";
     return kExitFailure;

@@ -1,0 +1,227 @@
+// The texel cache of thesis §4.2-4.5 and §5.3: material graph outputs memoized in one hash
+// table of entries keyed by (material, mip level, texel). Included by path_tracer.glsl when
+// the host defines MG_CACHE_TEXEL, with
+//   MG_CACHE_VALUES    floats per entry (the largest cacheable material's written outputs),
+//   MG_CACHE_PROBE     the linear probing distance D (1..kCacheMaxProbe),
+//   MG_CACHE_EVICTION  kCacheEviction{None, Lru, Lrw, Random} (0..3),
+//   MG_CACHE_UPDATE_COUNTER  (optional) the update-counter read check of §5.3.4.
+// The entry count S, the frame clock and the mip bias come per frame in frame.cache.
+// materials.glsl provides mg_materialCacheInfo[id]: x the output mask (0: not cacheable),
+// y ID0, z ID1 (two independent hashes of the material's graph, eq. 5.8-5.9).
+#ifndef MG_TEXEL_CACHE_GLSL
+#define MG_TEXEL_CACHE_GLSL
+#extension GL_EXT_control_flow_attributes : require
+
+#ifdef MG_CACHE_UPDATE_COUNTER
+const uint kCacheHeader = kCacheEntryHeaderWithCounter;  // key, clock, update counter
+#else
+const uint kCacheHeader = kCacheEntryHeader;  // key, clock
+#endif
+const uint kCacheStride = kCacheHeader + uint(MG_CACHE_VALUES);
+
+// Entries as one flat uint array so the key can be swapped atomically (§5.3.4). Coherent:
+// other invocations of the same dispatch read what this one writes.
+layout(set = 0, binding = kBindingCache, std430) coherent buffer CacheBlock {
+  uint cacheData[];
+};
+
+// Counts of this invocation, added to gpu::Counters once per pixel.
+uint g_cacheLookups = 0u;
+uint g_cacheHits = 0u;
+uint g_cacheMisses = 0u;
+
+// The 32-bit PCG hash (O'Neill 2014, in the RXS-M-XS form of Jarzynski and Olano 2020),
+// the hash() of eq. 5.8-5.9; runtime::pcgHash is the host's copy. Defined here, not taken
+// from the node library's prelude, so every node library works with the cache.
+uint cachePcg(uint v) {
+  uint state = v * 747796405u + 2891336453u;
+  uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+
+struct CacheKey {
+  uint base;  // first entry of the probe range: I of eq. 5.10
+  uint hash;  // H1 of eq. 5.9, stored in the entry; never kCacheKeyEmpty or kCacheKeyLock
+};
+
+// Eq. 5.2-5.7 and 5.8-5.10. Returns false when the hit has no usable texture coordinates
+// (non-finite), which then bypasses the cache.
+bool cacheKeyFor(uvec4 info, MaterialInputs inputs, out CacheKey key) {
+  vec2 uv = inputs.uv.v;
+  // Eq. 5.2-5.4: the shorter footprint axis in texture space (the higher texel density).
+  float lMin = min(length(inputs.uv.x), length(inputs.uv.y));
+  // Eq. 5.5 prints m = round(log2(l_min) + bias) while eq. 5.1 defines m as log2 of the
+  // texel *density*; a texel one footprint wide has density 1 / l_min, so the level is
+  // round(-log2(l_min) + bias) (a larger footprint -> coarser texels; positive bias ->
+  // finer). Without derivatives (lMin 0) the finest level we allow is used.
+  float bias = uintBitsToFloat(frame.cache.z);
+  float level = lMin > 0.0 ? -log2(lMin) + bias : 24.0;
+  if (isnan(level) || any(isnan(uv)) || any(isinf(uv))) return false;
+  int m = int(clamp(round(level), -24.0, 24.0));
+  // Eq. 5.6-5.7: the nearest texel of level m. Hashed by its float bits, which are exact
+  // for every magnitude (an int conversion would merge all texels past 2^31); -0 and +0
+  // only give the same texel two entries.
+  vec2 texel = round(exp2(float(m)) * uv);
+  uint u = floatBitsToUint(texel.x);
+  uint v = floatBitsToUint(texel.y);
+  // Eq. 5.8-5.9: two nested PCG hashes from two independent material ids.
+  uint h0 = cachePcg(uint(m) ^ cachePcg(u ^ cachePcg(v ^ info.y)));
+  uint h1 = cachePcg(uint(m) ^ cachePcg(u ^ cachePcg(v ^ info.z)));
+  if (h1 == kCacheKeyEmpty) h1 = 1u;
+  if (h1 == kCacheKeyLock) h1 = kCacheKeyLock - 1u;
+  // Eq. 5.10: I = H0 mod (S - D); the host guarantees S > D.
+  uint entries = frame.cache.x;
+  key.base = h0 % (entries - uint(MG_CACHE_PROBE));
+  key.hash = h1;
+  return true;
+}
+
+uint cacheEntryOffset(uint entry) { return entry * kCacheStride; }
+
+// The values an entry stores for output mask `mask`, in kCacheOutput* order.
+void cachePack(uint mask, MaterialOutputs o, out float values[MG_CACHE_VALUES]) {
+  uint n = 0u;
+  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;
+  if ((mask & kCacheOutputBaseColor) != 0u) {
+    values[n] = o.baseColor.x; values[n + 1u] = o.baseColor.y; values[n + 2u] = o.baseColor.z;
+    n += 3u;
+  }
+  if ((mask & kCacheOutputMetallic) != 0u) { values[n] = o.metallic; n += 1u; }
+  if ((mask & kCacheOutputRoughness) != 0u) { values[n] = o.roughness; n += 1u; }
+  if ((mask & kCacheOutputNormal) != 0u) {
+    values[n] = o.normal.x; values[n + 1u] = o.normal.y; values[n + 2u] = o.normal.z;
+    n += 3u;
+  }
+  if ((mask & kCacheOutputEmission) != 0u) {
+    values[n] = o.emission.x; values[n + 1u] = o.emission.y; values[n + 2u] = o.emission.z;
+    n += 3u;
+  }
+  if ((mask & kCacheOutputOpacity) != 0u) { values[n] = o.opacity; n += 1u; }
+}
+
+// Outputs from cached values: the members the graph writes from the entry, the rest as the
+// graph would leave them (mg_defaultMaterialOutputs of this hit: its own geometric normal).
+MaterialOutputs cacheUnpack(uint mask, float values[MG_CACHE_VALUES], MaterialInputs inputs) {
+  MaterialOutputs o = mg_defaultMaterialOutputs(inputs);
+  uint n = 0u;
+  if ((mask & kCacheOutputBaseColor) != 0u) {
+    o.baseColor = vec3(values[n], values[n + 1u], values[n + 2u]);
+    n += 3u;
+  }
+  if ((mask & kCacheOutputMetallic) != 0u) { o.metallic = values[n]; n += 1u; }
+  if ((mask & kCacheOutputRoughness) != 0u) { o.roughness = values[n]; n += 1u; }
+  if ((mask & kCacheOutputNormal) != 0u) {
+    o.normal = vec3(values[n], values[n + 1u], values[n + 2u]);
+    n += 3u;
+  }
+  if ((mask & kCacheOutputEmission) != 0u) {
+    o.emission = vec3(values[n], values[n + 1u], values[n + 2u]);
+    n += 3u;
+  }
+  if ((mask & kCacheOutputOpacity) != 0u) { o.opacity = values[n]; n += 1u; }
+  return o;
+}
+
+// §5.3.3 / §5.3.4: linear search over D entries comparing only keys; on a match, read key,
+// values, key again and report a miss if the key changed meanwhile. With the update
+// counter: counter, key, values, key and counter again; a miss if either changed (a write
+// in between bumped the counter even when it restored the key).
+bool cacheRead(CacheKey key, out float values[MG_CACHE_VALUES]) {
+  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;
+  [[unroll]] for (uint d = 0u; d < uint(MG_CACHE_PROBE); ++d) {
+    uint offset = cacheEntryOffset(key.base + d);
+    if (cacheData[offset] != key.hash) continue;
+#ifdef MG_CACHE_UPDATE_COUNTER
+    memoryBarrierBuffer();
+    uint counterBefore = cacheData[offset + 2u];
+    memoryBarrierBuffer();
+    if (cacheData[offset] != key.hash) return false;
+#endif
+    memoryBarrierBuffer();  // key, then values, then key again (§5.3.4)
+    for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i)
+      values[i] = uintBitsToFloat(cacheData[offset + kCacheHeader + i]);
+    memoryBarrierBuffer();
+    if (cacheData[offset] != key.hash) return false;  // overwritten while reading
+#ifdef MG_CACHE_UPDATE_COUNTER
+    if (cacheData[offset + 2u] != counterBefore) return false;  // rewritten, key restored
+#endif
+#if MG_CACHE_EVICTION == 1  // kCacheEvictionLru: a read refreshes the frame clock (§4.5)
+    if (cacheData[offset + 1u] != frame.cache.y) cacheData[offset + 1u] = frame.cache.y;
+#endif
+    return true;
+  }
+  return false;
+}
+
+// The eviction policy's slot in the probe range (§4.5, §5.3.3), or -1 for "do not insert".
+// Empty entries are taken first by every policy; then none drops the value, lru and lrw
+// take the oldest frame clock (lru's is refreshed by reads, lrw's only by writes), random
+// a pseudo-random entry (a hash of the key and the frame: no memory access, §4.5). A new
+// policy (e.g. the 64-bit counter clock of §5.3.3) adds a branch here and its metadata
+// write in cacheWrite / cacheRead.
+int cacheChooseSlot(CacheKey key) {
+  int oldest = -1;
+  uint oldestTime = 0xFFFFFFFFu;
+  [[unroll]] for (uint d = 0u; d < uint(MG_CACHE_PROBE); ++d) {
+    uint offset = cacheEntryOffset(key.base + d);
+    uint stored = cacheData[offset];
+    if (stored == kCacheKeyEmpty) return int(d);
+#if MG_CACHE_EVICTION == 1 || MG_CACHE_EVICTION == 2
+    if (stored != kCacheKeyLock) {
+      uint time = cacheData[offset + 1u];
+      if (time < oldestTime) {
+        oldestTime = time;
+        oldest = int(d);
+      }
+    }
+#endif
+  }
+#if MG_CACHE_EVICTION == 3
+  oldest = int(cachePcg(key.hash ^ cachePcg(frame.cache.y)) % uint(MG_CACHE_PROBE));
+#endif
+  return oldest;
+}
+
+// §5.3.4: lock with an atomic exchange to kCacheKeyLock (a slot already locked is not
+// retried: the value is used by this thread but not cached), write metadata and values,
+// then the key, which unlocks.
+void cacheWrite(CacheKey key, float values[MG_CACHE_VALUES]) {
+  int slot = cacheChooseSlot(key);
+  if (slot < 0) return;
+  uint offset = cacheEntryOffset(key.base + uint(slot));
+  if (atomicExchange(cacheData[offset], kCacheKeyLock) == kCacheKeyLock) return;
+#ifdef MG_CACHE_UPDATE_COUNTER
+  atomicAdd(cacheData[offset + 2u], 1u);  // before any value changes (§5.3.4)
+  memoryBarrierBuffer();
+#endif
+  cacheData[offset + 1u] = frame.cache.y;
+  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i)
+    cacheData[offset + kCacheHeader + i] = floatBitsToUint(values[i]);
+  memoryBarrierBuffer();
+  atomicExchange(cacheData[offset], key.hash);
+}
+
+// Cacheable materials (mask != 0) read the cache and on a miss evaluate and insert;
+// others are evaluated directly and never touch the cache.
+void evaluateMaterialCached(uint materialId, MaterialInputs inputs, out MaterialOutputs outputs) {
+  uvec4 info = materialId < uint(mg_materialCacheInfo.length()) ? mg_materialCacheInfo[materialId]
+                                                                : uvec4(0u);
+  CacheKey key;
+  if (info.x == 0u || frame.cache.x == 0u || !cacheKeyFor(info, inputs, key)) {
+    evaluateMaterialDirect(materialId, inputs, outputs);
+    return;
+  }
+  g_cacheLookups += 1u;
+  float values[MG_CACHE_VALUES];
+  if (cacheRead(key, values)) {
+    g_cacheHits += 1u;
+    outputs = cacheUnpack(info.x, values, inputs);
+    return;
+  }
+  g_cacheMisses += 1u;
+  evaluateMaterialDirect(materialId, inputs, outputs);
+  cachePack(info.x, outputs, values);
+  cacheWrite(key, values);
+}
+
+#endif

@@ -1,0 +1,73 @@
+// The texel cache's command-line options (thesis §5.3), shared by `render` and `bench`.
+#pragma once
+
+#include <charconv>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "cli_common.h"
+#include "runtime/renderer.h"
+
+namespace memograph::cli {
+
+inline constexpr const char* kCacheHelp =
+    "  --cache C             material graph memoization: none (default) or texel (thesis\n"
+    "                        §5.3: one hash table of texels of cacheable materials)\n"
+    "  --cache-entries N     texel cache entries S (default 1048576)\n"
+    "  --probe D             linear probing distance, 1..16 (default 8)\n"
+    "  --eviction E          when a probe range is full: lru (default), lrw (least recently\n"
+    "                        written; both by frame clock), random, or none\n"
+    "  --cache-read-check C  key (default: read key, values, key; thesis §5.3.4) or counter\n"
+    "                        (an update counter per entry also catches a restored key)\n"
+    "  --mip-bias B          added to the cache's mip level (eq. 5.5); positive: finer\n";
+
+struct CacheArguments {
+  std::string cache = "none", entries = "1048576", probe = "8", eviction = "lru", mipBias = "0",
+              readCheck = "key";
+
+  void registerWith(ArgumentScanner& scanner) {
+    scanner.option("--cache", &cache);
+    scanner.option("--cache-entries", &entries);
+    scanner.option("--probe", &probe);
+    scanner.option("--eviction", &eviction);
+    scanner.option("--mip-bias", &mipBias);
+    scanner.option("--cache-read-check", &readCheck);
+  }
+
+  // Throws std::invalid_argument with a message for the user.
+  runtime::CacheOptions parse() const {
+    runtime::CacheOptions options;
+    options.mode = runtime::parseCacheMode(cache);
+    options.eviction = runtime::parseCacheEviction(eviction);
+    if (readCheck != "key" && readCheck != "counter")
+      throw std::invalid_argument("unknown --cache-read-check '" + readCheck +
+                                  "' (choose key or counter)");
+    options.updateCounter = readCheck == "counter";
+    auto whole = [](const std::string& text, const char* name) {
+      std::uint32_t value = 0;
+      auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+      if (error != std::errc() || end != text.data() + text.size())
+        throw std::invalid_argument(std::string(name) + " takes a whole number, not '" + text +
+                                    "'");
+      return value;
+    };
+    options.entries = whole(entries, "--cache-entries");
+    options.probe = whole(probe, "--probe");
+    try {
+      std::size_t used = 0;
+      options.mipBias = std::stof(mipBias, &used);
+      if (used != mipBias.size() || !std::isfinite(options.mipBias))
+        throw std::invalid_argument("");
+    } catch (const std::exception&) {
+      throw std::invalid_argument("--mip-bias takes a number, not '" + mipBias + "'");
+    }
+    if (options.probe < 1 || options.probe > 16)
+      throw std::invalid_argument("--probe must be 1..16");
+    if (options.entries <= options.probe)
+      throw std::invalid_argument("--cache-entries must exceed --probe");
+    return options;
+  }
+};
+
+}  // namespace memograph::cli
