@@ -53,9 +53,9 @@ MG_CONSTANT(uint, kCacheKeyEmpty, 0u);          // a cleared entry; H1 is never 
 MG_CONSTANT(uint, kCacheKeyLock, 0xFFFFFFFFu);  // CACHE_LOCK of §5.3.4; H1 is never this
 MG_CONSTANT(uint, kCacheMaxProbe, 16);          // linear probing distance D: 1..16
 // Eviction policies (MG_CACHE_EVICTION): §4.5 / §5.3.3.
-MG_CONSTANT(uint, kCacheEvictionNone, 0);  // insert only into an empty entry
-MG_CONSTANT(uint, kCacheEvictionLru, 1);   // least recently used, frame clock in the metadata
-MG_CONSTANT(uint, kCacheEvictionLrw, 2);   // least recently written, frame clock
+MG_CONSTANT(uint, kCacheEvictionNone, 0);    // insert only into an empty entry
+MG_CONSTANT(uint, kCacheEvictionLru, 1);     // least recently used, frame clock in the metadata
+MG_CONSTANT(uint, kCacheEvictionLrw, 2);     // least recently written, frame clock
 MG_CONSTANT(uint, kCacheEvictionRandom, 3);  // a pseudo-random entry of the probe range
 // Bits of a material's output mask (which MaterialOutputs members an entry stores, in this
 // order: baseColor 3 floats, metallic 1, roughness 1, normal 3, emission 3, opacity 1).
@@ -77,13 +77,13 @@ MG_CONSTANT(uint, kMeshHasColors, 4);
 
 // Per-frame constants (uniform buffer).
 struct FrameConstants {
-  vec4 cameraPosition;  // xyz; w: pixel spread angle (thesis §2.2, primary cone)
-  vec4 cameraRight;     // xyz scaled by tan(fov/2) * aspect
-  vec4 cameraUp;        // xyz scaled by tan(fov/2)
-  vec4 cameraForward;   // xyz unit; w: time in seconds
-  vec4 environment;     // rgb constant radiance (or scale of the image); w unused
-  uvec4 image;          // x width, y height, z frame index, w seed
-  uvec4 path;           // x paths per pixel P, y rays per path L, z flags, w light count
+  vec4 cameraPosition;    // xyz; w: pixel spread angle (thesis §2.2, primary cone)
+  vec4 cameraRight;       // xyz scaled by tan(fov/2) * aspect
+  vec4 cameraUp;          // xyz scaled by tan(fov/2)
+  vec4 cameraForward;     // xyz unit; w: time in seconds
+  vec4 environment;       // rgb constant radiance (or scale of the image); w unused
+  uvec4 image;            // x width, y height, z frame index, w seed
+  uvec4 path;             // x paths per pixel P, y rays per path L, z flags, w light count
   uvec4 environmentSize;  // x width, y height of the equirectangular image; z sample index
                           // in the accumulation (0 restarts it); w unused
   // Texel cache: x entries S (0: no cache), y frame clock (frame + 1), z mip bias of
