@@ -10,31 +10,17 @@
 
 #include "compiler/compiler.h"
 #include "graph_generator.h"
-#include "memograph/embedded_node_library.h"
+#include "memograph/node_library_loader.h"
 
 namespace {
 
 using namespace memograph;
 
-const compiler::NodeLibrary& testLibrary() {
-  static const compiler::NodeLibrary library = [] {
-    compiler::Diagnostics diagnostics;
-    auto loaded = compiler::NodeLibrary::load(
-        testing::readNodeLibraryFiles(testing::testNodeLibraryDirectory()), diagnostics);
-    if (diagnostics.hasErrors()) {
-      std::fputs(compiler::formatDiagnostics(diagnostics).c_str(), stderr);
-      std::abort();
-    }
-    return loaded;
-  }();
-  return library;
-}
-
 // Parse, resolve, schedule, infer and emit GLSL and HLSL; fails the run on any diagnostic
 // so a broken generator cannot produce a fast, meaningless figure.
 void compileOrFail(benchmark::State& state, const compiler::SourceFile& graph) {
   compiler::Diagnostics diagnostics;
-  auto compiled = compiler::compileMaterial(graph, testLibrary(), {}, diagnostics);
+  auto compiled = compiler::compileMaterial(graph, testing::testNodeLibrary(), {}, diagnostics);
   if (!compiled || !diagnostics.all().empty()) {
     state.SkipWithError(("compile failed: " + compiler::formatDiagnostics(diagnostics)).c_str());
     return;
@@ -48,7 +34,7 @@ void BM_CompileOneGraph(benchmark::State& state) {
   shape.nodeCount = static_cast<std::size_t>(state.range(0));
   shape.seed = 1;
   const compiler::SourceFile graph{"generated.mgraph", testing::generateGraph(shape)};
-  testLibrary();
+  testing::testNodeLibrary();
   for (auto _ : state)
     compileOrFail(state, graph);
   state.counters["nodes/s"] = benchmark::Counter(
@@ -64,7 +50,7 @@ BENCHMARK(BM_CompileOneGraph)
 void BM_CompileGraphSet(benchmark::State& state) {
   const auto graphs = testing::generateGraphSet(static_cast<std::size_t>(state.range(0)),
                                                 static_cast<std::size_t>(state.range(1)), 1);
-  testLibrary();
+  testing::testNodeLibrary();
   for (auto _ : state) {
     for (const auto& graph : graphs)
       compileOrFail(state, graph);
@@ -77,7 +63,9 @@ BENCHMARK(BM_CompileGraphSet)
     ->ReportAggregatesOnly(true);
 
 void BM_LoadTestNodeLibrary(benchmark::State& state) {
-  const auto files = testing::readNodeLibraryFiles(testing::testNodeLibraryDirectory());
+  compiler::Diagnostics sourceDiagnostics;
+  const auto files =
+      *nodes::nodeLibrarySources(testing::testNodeLibraryDirectory(), sourceDiagnostics);
   for (auto _ : state) {
     compiler::Diagnostics diagnostics;
     auto library = compiler::NodeLibrary::load(files, diagnostics);
@@ -93,9 +81,8 @@ BENCHMARK(BM_LoadTestNodeLibrary)
 
 // The real library (nodes/), as every run of `memograph` loads it.
 void BM_LoadEmbeddedNodeLibrary(benchmark::State& state) {
-  std::vector<compiler::SourceFile> files;
-  for (const auto& file : nodes::embeddedNodeLibrary())
-    files.push_back({std::string(file.path), std::string(file.text)});
+  compiler::Diagnostics sourceDiagnostics;
+  const auto files = *nodes::nodeLibrarySources("", sourceDiagnostics);
   for (auto _ : state) {
     compiler::Diagnostics diagnostics;
     auto library = compiler::NodeLibrary::load(files, diagnostics);

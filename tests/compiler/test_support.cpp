@@ -4,45 +4,32 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "compiler/library_files.h"
-#include "memograph/embedded_node_library.h"
+#include "memograph/node_library_loader.h"
 
 namespace memograph::testing {
 
 namespace {
 
-compiler::NodeLibrary loadOrThrow(const std::vector<compiler::SourceFile>& files) {
+compiler::NodeLibrary loadOrThrow(const std::string& directory) {
   compiler::Diagnostics diagnostics;
-  auto library = compiler::NodeLibrary::load(files, diagnostics);
-  if (diagnostics.hasErrors()) {
+  auto library = nodes::loadNodeLibrary(directory, diagnostics);
+  if (!library) {
     throw std::runtime_error("node library failed to load:\n" +
                              compiler::formatDiagnostics(diagnostics));
   }
-  return library;
+  return std::move(*library);
 }
 
 }  // namespace
 
 const compiler::NodeLibrary& testLibrary() {
-  static const compiler::NodeLibrary library = [] {
-    compiler::Diagnostics diagnostics;
-    const auto files = compiler::readNodeLibraryDirectory(
-        std::string(MEMOGRAPH_TEST_DATA_DIR) + "/nodes", diagnostics);
-    if (!files)
-      throw std::runtime_error(compiler::formatDiagnostics(diagnostics));
-    return loadOrThrow(*files);
-  }();
+  static const compiler::NodeLibrary library =
+      loadOrThrow(std::string(MEMOGRAPH_TEST_DATA_DIR) + "/nodes");
   return library;
 }
 
 const compiler::NodeLibrary& realLibrary() {
-  static const compiler::NodeLibrary library = [] {
-    std::vector<compiler::SourceFile> files;
-    for (const auto& f : nodes::embeddedNodeLibrary()) {
-      files.push_back({std::string(f.path), std::string(f.text)});
-    }
-    return loadOrThrow(files);
-  }();
+  static const compiler::NodeLibrary library = loadOrThrow("");
   return library;
 }
 

@@ -15,20 +15,6 @@ namespace {
 
 using namespace memograph;
 
-const compiler::NodeLibrary& testLibrary() {
-  static const compiler::NodeLibrary library = [] {
-    compiler::Diagnostics diagnostics;
-    auto loaded = compiler::NodeLibrary::load(
-        testing::readNodeLibraryFiles(testing::testNodeLibraryDirectory()), diagnostics);
-    if (diagnostics.hasErrors()) {
-      std::fputs(compiler::formatDiagnostics(diagnostics).c_str(), stderr);
-      std::abort();
-    }
-    return loaded;
-  }();
-  return library;
-}
-
 // An error must say where: a line of the file (1 … last line + 1, the end of input) and
 // a column on it.
 bool hasPositionedError(const compiler::Diagnostics& diagnostics,
@@ -50,14 +36,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const compiler::SourceFile file{"fuzz.mgraph",
                                   std::string(reinterpret_cast<const char*>(data), size)};
   compiler::Diagnostics diagnostics;
-  const auto compiled = compiler::compileMaterial(file, testLibrary(), {}, diagnostics);
+  const auto compiled =
+      compiler::compileMaterial(file, testing::testNodeLibrary(), {}, diagnostics);
   const std::string printed = compiler::formatDiagnostics(diagnostics);
   if (!compiled && !hasPositionedError(diagnostics, file)) {
     std::fprintf(stderr, "compile failed without a positioned error:\n%s\n", printed.c_str());
     std::abort();
   }
   compiler::Diagnostics checkDiagnostics;
-  const auto report = compiler::checkMaterial(file, testLibrary(), checkDiagnostics);
+  const auto report = compiler::checkMaterial(file, testing::testNodeLibrary(), checkDiagnostics);
   if (report.has_value() != compiled.has_value()) {
     std::fputs("compileMaterial and checkMaterial disagree on this input\n", stderr);
     std::abort();

@@ -22,17 +22,6 @@
 namespace memograph::compiler {
 namespace {
 
-const NodeLibrary& testLibrary() {
-  static const NodeLibrary library = [] {
-    Diagnostics diagnostics;
-    auto loaded = NodeLibrary::load(
-        testing::readNodeLibraryFiles(testing::testNodeLibraryDirectory()), diagnostics);
-    EXPECT_FALSE(diagnostics.hasErrors()) << formatDiagnostics(diagnostics);
-    return loaded;
-  }();
-  return library;
-}
-
 // splitmix64, so the inputs are the same on every standard library.
 class Random {
  public:
@@ -63,7 +52,7 @@ bool pointsInto(const Diagnostic& d, const SourceFile& file) {
 std::string compileAndCheck(const std::string& name, std::string text) {
   const SourceFile file{name, std::move(text)};
   Diagnostics diagnostics;
-  const auto compiled = compileMaterial(file, testLibrary(), {}, diagnostics);
+  const auto compiled = compileMaterial(file, testing::testNodeLibrary(), {}, diagnostics);
   formatDiagnostics(diagnostics);  // the caret display must cope with any line, too
   if (compiled)
     return {};
@@ -286,13 +275,13 @@ TEST(RegressionInputs, ThousandsOfProblemsKeepABoundedNumberOfDiagnostics) {
   for (const auto& text : {unknownNodes, unreachedNodes}) {
     const SourceFile file{"many.mgraph", text};
     Diagnostics diagnostics;
-    compileMaterial(file, testLibrary(), {}, diagnostics);
+    compileMaterial(file, testing::testNodeLibrary(), {}, diagnostics);
     EXPECT_LE(diagnostics.all().size(), Diagnostics::kMaxKeptPerFile + 1);
     EXPECT_EQ(diagnostics.all().back().message,
               "too many problems in this file; the rest are not shown");
   }
   Diagnostics diagnostics;
-  compileMaterial({"many.mgraph", unknownNodes}, testLibrary(), {}, diagnostics);
+  compileMaterial({"many.mgraph", unknownNodes}, testing::testNodeLibrary(), {}, diagnostics);
   EXPECT_EQ(diagnostics.errorCount(), 20000u) << "errors past the limit must still count";
 }
 
@@ -302,7 +291,7 @@ TEST(RegressionInputs, AHugeUnknownNodeNameIsReportedQuickly) {
   const SourceFile file{"huge.mgraph", std::string(4'000'000, 'X') + ";\n"};
   Diagnostics diagnostics;
   const auto start = std::chrono::steady_clock::now();
-  EXPECT_FALSE(compileMaterial(file, testLibrary(), {}, diagnostics));
+  EXPECT_FALSE(compileMaterial(file, testing::testNodeLibrary(), {}, diagnostics));
   const auto elapsed = std::chrono::steady_clock::now() - start;
   EXPECT_LT(elapsed, std::chrono::seconds(3));
   EXPECT_EQ(diagnostics.errorCount(), 1u);
@@ -313,7 +302,8 @@ TEST(RegressionInputs, AHugeUnknownNodeNameIsReportedQuickly) {
 TEST(RegressionInputs, NumbersOutsideShaderRangesAreErrors) {
   const auto errorFor = [](const std::string& text) {
     Diagnostics diagnostics;
-    const auto compiled = compileMaterial({"range.mgraph", text}, testLibrary(), {}, diagnostics);
+    const auto compiled =
+        compileMaterial({"range.mgraph", text}, testing::testNodeLibrary(), {}, diagnostics);
     return compiled ? std::string("(compiled)") : diagnostics.all().front().message;
   };
   EXPECT_EQ(errorFor("Float1Constant 1e300 Out>1; RoughnessOutput Roughness<1;"),

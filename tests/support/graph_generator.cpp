@@ -1,5 +1,10 @@
 #include "graph_generator.h"
 
+#include <cstdio>
+#include <cstdlib>
+
+#include "compiler/library_files.h"
+
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -478,30 +483,23 @@ std::vector<compiler::SourceFile> generateGraphSet(std::size_t count, std::size_
   return graphs;
 }
 
-std::vector<compiler::SourceFile> readNodeLibraryFiles(const std::string& directory) {
-  namespace fs = std::filesystem;
-  std::vector<compiler::SourceFile> files;
-  std::error_code error;
-  for (fs::recursive_directory_iterator it(directory, error), end; it != end && !error;
-       it.increment(error)) {
-    if (!it->is_regular_file() || it->path().extension() != ".inc")
-      continue;
-    std::ifstream in(it->path(), std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (!in)
-      throw std::runtime_error("cannot read " + it->path().string());
-    files.push_back({fs::relative(it->path(), directory).generic_string(), text.str()});
-  }
-  if (error)
-    throw std::runtime_error("cannot list " + directory + ": " + error.message());
-  std::sort(files.begin(), files.end(),
-            [](const auto& a, const auto& b) { return a.path < b.path; });
-  return files;
-}
-
 std::string testNodeLibraryDirectory() {
   return MEMOGRAPH_TEST_NODES_DIR;
+}
+
+const compiler::NodeLibrary& testNodeLibrary() {
+  static const compiler::NodeLibrary library = [] {
+    compiler::Diagnostics diagnostics;
+    const auto files = compiler::readNodeLibraryDirectory(testNodeLibraryDirectory(), diagnostics);
+    auto loaded = compiler::NodeLibrary::load(files.value_or(std::vector<compiler::SourceFile>{}),
+                                              diagnostics);
+    if (diagnostics.hasErrors()) {
+      std::fputs(compiler::formatDiagnostics(diagnostics).c_str(), stderr);
+      std::abort();
+    }
+    return loaded;
+  }();
+  return library;
 }
 
 }  // namespace memograph::testing

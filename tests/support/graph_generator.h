@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "compiler/node_library.h"
 #include "compiler/source_file.h"
 
 namespace memograph::testing {
@@ -30,12 +31,10 @@ std::string generateGraph(const GraphShape& shape);
 std::vector<compiler::SourceFile> generateGraphSet(std::size_t count, std::size_t nodeCount,
                                                    std::uint64_t firstSeed);
 
-// Every *.inc file under `directory`, named relative to it ("prelude/glsl.inc", "math.inc"),
-// in sorted order: the input NodeLibrary::load expects. Throws std::runtime_error when the
-// directory cannot be read.
-std::vector<compiler::SourceFile> readNodeLibraryFiles(const std::string& directory);
-
 // The test node library's directory (tests/compiler/testdata/nodes in the source tree).
 std::string testNodeLibraryDirectory();
+
+// The test node library, loaded once; aborts with its diagnostics if it does not load.
+const compiler::NodeLibrary& testNodeLibrary();
 
 }  // namespace memograph::testing

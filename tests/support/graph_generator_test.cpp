@@ -11,17 +11,6 @@
 namespace memograph::testing {
 namespace {
 
-const compiler::NodeLibrary& testLibrary() {
-  static const compiler::NodeLibrary library = [] {
-    compiler::Diagnostics diagnostics;
-    auto loaded =
-        compiler::NodeLibrary::load(readNodeLibraryFiles(testNodeLibraryDirectory()), diagnostics);
-    EXPECT_FALSE(diagnostics.hasErrors()) << compiler::formatDiagnostics(diagnostics);
-    return loaded;
-  }();
-  return library;
-}
-
 TEST(GraphGenerator, GraphsCompileWithoutDiagnosticsAndKeepEveryNode) {
   for (const std::size_t nodes : {1, 2, 3, 5, 8, 17, 64, 100, 1000}) {
     const std::uint64_t seeds = nodes >= 1000 ? 3 : 25;
@@ -30,7 +19,7 @@ TEST(GraphGenerator, GraphsCompileWithoutDiagnosticsAndKeepEveryNode) {
         const GraphShape shape{nodes, seed, textures, ""};
         const compiler::SourceFile file{"generated.mgraph", generateGraph(shape)};
         compiler::Diagnostics diagnostics;
-        const auto compiled = compiler::compileMaterial(file, testLibrary(), {}, diagnostics);
+        const auto compiled = compiler::compileMaterial(file, testNodeLibrary(), {}, diagnostics);
         ASSERT_TRUE(compiled && diagnostics.all().empty())
             << nodes << " nodes, seed " << seed << ", textures " << textures << ":\n"
             << compiler::formatDiagnostics(diagnostics) << file.text;
@@ -52,7 +41,7 @@ TEST(GraphGenerator, SameShapeAndSeedGiveTheSameText) {
 TEST(GraphGenerator, LargeGraphsHaveFanOutAndManySources) {
   const compiler::SourceFile file{"generated.mgraph", generateGraph({1000, 7, true, ""})};
   compiler::Diagnostics diagnostics;
-  const auto report = compiler::checkMaterial(file, testLibrary(), diagnostics);
+  const auto report = compiler::checkMaterial(file, testNodeLibrary(), diagnostics);
   ASSERT_TRUE(report) << compiler::formatDiagnostics(diagnostics);
   const auto fannedOut = std::count_if(report->links.begin(), report->links.end(),
                                        [](const auto& link) { return link.consumers.size() > 1; });

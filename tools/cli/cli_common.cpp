@@ -8,9 +8,6 @@
 #include <iostream>
 #include <sstream>
 
-#include "compiler/library_files.h"
-#include "memograph/embedded_node_library.h"
-
 namespace memograph::cli {
 
 namespace fs = std::filesystem;
@@ -77,29 +74,6 @@ std::optional<std::string> readFile(const std::string& path, std::string& error)
     return std::nullopt;
   }
   return text.str();
-}
-
-std::optional<compiler::NodeLibrary> loadNodeLibrary(const std::string& directory,
-                                                     compiler::Diagnostics& diagnostics) {
-  std::vector<compiler::SourceFile> files;
-  if (directory.empty()) {
-    for (const auto& embedded : nodes::embeddedNodeLibrary()) {
-      files.push_back({std::string(embedded.path), std::string(embedded.text)});
-    }
-  } else {
-    auto read = compiler::readNodeLibraryDirectory(directory, diagnostics);
-    if (!read)
-      return std::nullopt;
-    files = std::move(*read);
-  }
-  if (files.empty()) {
-    diagnostics.error("<built-in>", "the built-in node library is empty");
-    return std::nullopt;
-  }
-  auto library = compiler::NodeLibrary::load(files, diagnostics);
-  if (diagnostics.hasErrors())
-    return std::nullopt;
-  return library;
 }
 
 bool writeFilesAtomically(const std::vector<std::pair<std::string, std::string>>& files,

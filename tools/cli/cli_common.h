@@ -10,8 +10,11 @@
 
 #include "compiler/diagnostics.h"
 #include "compiler/node_library.h"
+#include "memograph/node_library_loader.h"
 
 namespace memograph::cli {
+
+using nodes::loadNodeLibrary;  // the node library: embedded, or `--nodes DIR`
 
 // Exit codes: 0 success, 1 the input was bad or something failed, 2 the command line was.
 constexpr int kExitOk = 0;
@@ -45,10 +48,6 @@ class ArgumentScanner {
   std::span<const std::string_view> args_;
   std::vector<Option> options_;
 };
-
-// The node library: the embedded copy, or the *.inc files under `directory` when given.
-std::optional<compiler::NodeLibrary> loadNodeLibrary(const std::string& directory,
-                                                     compiler::Diagnostics& diagnostics);
 
 std::optional<std::string> readFile(const std::string& path, std::string& error);
 
