@@ -20,6 +20,11 @@ struct FrameStats {
   std::uint64_t cacheLookups = 0;
   std::uint64_t cacheHits = 0;
   std::uint64_t cacheMisses = 0;
+  // Tile cache (§5.4.3, §6.7.2): tiles the subgroups computed, how many of those had been
+  // computed already this frame, and misses that evaluated their own hit instead.
+  std::uint64_t cacheTilesComputed = 0;
+  std::uint64_t cacheDuplicateTiles = 0;
+  std::uint64_t cacheTileFallbacks = 0;
   double cacheHitRate() const { return cacheLookups ? double(cacheHits) / cacheLookups : 0.0; }
 };
 
@@ -41,7 +46,8 @@ struct RenderStats {
   std::string materialDispatch;  // "switch" or "callable"
   // Shader modules and pipeline (the driver's own compile), excluding GLSL → SPIR-V.
   double pipelineCreateMilliseconds = 0.0;
-  std::string cache = "none";  // "none" or "texel"
+  std::string cache = "none";  // "none", "texel" or "tile"
+  std::string cacheTile;       // tile cache: "4x4 nearest entry [grouped]"
   std::string cacheEviction;   // "none" or "lru" (empty without a cache)
   std::uint32_t cacheEntries = 0;
   std::uint32_t cacheProbe = 0;

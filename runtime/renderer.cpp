@@ -13,6 +13,7 @@
 #include "runtime/acceleration_structures.h"
 #include "runtime/gpu_buffer.h"
 #include "runtime/gpu_textures.h"
+#include "runtime/material_cache.h"
 #include "runtime/material_callables.h"
 #include "runtime/material_linker.h"
 #include "runtime/scene_upload.h"
@@ -84,7 +85,50 @@ MaterialDispatch resolveMaterialDispatch(MaterialDispatch requested, Backend bac
 }  // namespace
 
 const char* cacheModeName(CacheMode mode) {
-  return mode == CacheMode::Texel ? "texel" : "none";
+  switch (mode) {
+    case CacheMode::None:
+      return "none";
+    case CacheMode::Texel:
+      return "texel";
+    case CacheMode::Tile:
+      return "tile";
+  }
+  return "none";
+}
+
+const char* tileFilterName(TileFilter filter) {
+  return filter == TileFilter::Bilinear ? "bilinear" : "nearest";
+}
+
+const char* tileStorageName(TileStorage storage) {
+  switch (storage) {
+    case TileStorage::Entry:
+      return "entry";
+    case TileStorage::Buffer:
+      return "buffer";
+    case TileStorage::Texture2D:
+      return "texture2d";
+    case TileStorage::Texture3D:
+      return "texture3d";
+  }
+  return "entry";
+}
+
+TileFilter parseTileFilter(const std::string& text) {
+  if (text == "nearest")
+    return TileFilter::Nearest;
+  if (text == "bilinear")
+    return TileFilter::Bilinear;
+  throw std::invalid_argument("unknown tile filter '" + text + "' (choose nearest or bilinear)");
+}
+
+TileStorage parseTileStorage(const std::string& text) {
+  for (TileStorage storage :
+       {TileStorage::Entry, TileStorage::Buffer, TileStorage::Texture2D, TileStorage::Texture3D})
+    if (text == tileStorageName(storage))
+      return storage;
+  throw std::invalid_argument("unknown tile storage '" + text +
+                              "' (choose entry, buffer, texture2d or texture3d)");
 }
 
 const char* cacheEvictionName(CacheEviction eviction) {
@@ -106,7 +150,9 @@ CacheMode parseCacheMode(const std::string& text) {
     return CacheMode::None;
   if (text == "texel")
     return CacheMode::Texel;
-  throw std::invalid_argument("unknown cache '" + text + "' (choose none or texel)");
+  if (text == "tile")
+    return CacheMode::Tile;
+  throw std::invalid_argument("unknown cache '" + text + "' (choose none, texel or tile)");
 }
 
 CacheEviction parseCacheEviction(const std::string& text) {
@@ -164,19 +210,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
 
   MaterialDispatch dispatch = resolveMaterialDispatch(options_.materialDispatch, context.backend());
   const CacheOptions& cache = options_.cache;
-  const bool texelCache = cache.mode == CacheMode::Texel;
-  if (texelCache) {
-    if (cache.probe < 1 || cache.probe > gpu::kCacheMaxProbe)
-      throw std::invalid_argument("--probe must be 1.." + std::to_string(gpu::kCacheMaxProbe) +
-                                  ", not " + std::to_string(cache.probe));
-    if (cache.entries <= cache.probe)
-      throw std::invalid_argument("--cache-entries (" + std::to_string(cache.entries) +
-                                  ") must exceed the probe distance (" +
-                                  std::to_string(cache.probe) + ")");
-    if (!std::isfinite(cache.mipBias))
-      throw std::invalid_argument("--mip-bias must be finite");
-  }
-
+  validateCacheOptions(context, cache);  // before minutes of material compiles
   // Materials: graphs → GLSL, and the textures they name.
   MaterialLinkOptions linkOptions;
   linkOptions.nodeLibraryDirectory = options_.nodeLibraryDirectory;
@@ -247,31 +281,13 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   static_assert(static_cast<std::uint32_t>(CacheEviction::Lru) == gpu::kCacheEvictionLru &&
                 static_cast<std::uint32_t>(CacheEviction::Lrw) == gpu::kCacheEvictionLrw &&
                 static_cast<std::uint32_t>(CacheEviction::Random) == gpu::kCacheEvictionRandom);
-  // Texel cache (thesis §5.3.1): entries of a key hash, metadata and the largest cacheable
-  // material's written outputs as fp32.
-  std::vector<std::string> cacheDefines;
-  const std::uint32_t cacheValues = std::max(1u, materials.cacheValueCount);
-  const std::uint64_t cacheStride =
-      (cache.updateCounter ? gpu::kCacheEntryHeaderWithCounter : gpu::kCacheEntryHeader) +
-      cacheValues;
-  if (texelCache) {
-    cacheDefines = {
-        "MG_CACHE_TEXEL=1", "MG_CACHE_VALUES=" + std::to_string(cacheValues),
-        "MG_CACHE_PROBE=" + std::to_string(cache.probe),
-        "MG_CACHE_EVICTION=" + std::to_string(static_cast<std::uint32_t>(cache.eviction))};
-    if (cache.updateCounter)
-      cacheDefines.push_back("MG_CACHE_UPDATE_COUNTER=1");
-    stats.cacheReadCheck = cache.updateCounter ? "counter" : "key";
-    stats.cache = cacheModeName(cache.mode);
-    stats.cacheEviction = cacheEvictionName(cache.eviction);
-    stats.cacheEntries = cache.entries;
-    stats.cacheProbe = cache.probe;
-    stats.cacheValueCount = cacheValues;
-    stats.cacheBytes = std::uint64_t(cache.entries) * cacheStride * sizeof(std::uint32_t);
-  }
+  // The cache (thesis §5.3.1, §5.4.1): entries of a key hash, metadata and the largest
+  // cacheable material's written outputs (per texel of a tile with the tile cache).
+  MaterialCache materialCache(context, cache, materials.cacheValueCount);
+  materialCache.describe(stats);
   TracePipeline pipeline(context, compiler, textures.count(),
                          materialCallables ? &*materialCallables : nullptr, pipelineThreads,
-                         cacheDefines);
+                         materialCache.defines(), materialCache.tileImageView() != VK_NULL_HANDLE);
   stats.pipelineCreateMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pipelineStart)
           .count() -
@@ -295,15 +311,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   GpuBuffer rayReadback =
       hostBuffer(context, sizeof(gpu::Counters), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-  // Without a cache the binding still needs a buffer: one entry nobody reads.
-  VkDeviceSize cacheBytes = texelCache ? VkDeviceSize(stats.cacheBytes)
-                                       : VkDeviceSize(cacheStride * sizeof(std::uint32_t));
-  GpuBuffer cacheBuffer(context, cacheBytes,
-                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
-                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-
-  TraceResources resources{accel.tlas(), &frameBuffer, &accumulation, &rayCounter,
-                           &cacheBuffer, &buffers,     &textures};
+  TraceResources resources{accel.tlas(),   &frameBuffer, &accumulation, &rayCounter,
+                           &materialCache, &buffers,     &textures};
   TraceDescriptorSet descriptors(context, pipeline.descriptorSetLayout(), resources);
   VkDescriptorSet set = descriptors.get();
 
@@ -331,7 +340,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   frame.environmentSize = glm::uvec4(buffers.environmentWidth, buffers.environmentHeight, 0, 0);
   std::uint32_t mipBiasBits = 0;
   std::memcpy(&mipBiasBits, &cache.mipBias, sizeof mipBiasBits);
-  frame.cache = glm::uvec4(texelCache ? cache.entries : 0u, 0u, mipBiasBits, 0u);
+  frame.cache =
+      glm::uvec4(materialCache.entryCount(), 0u, mipBiasBits, materialCache.tilesPerRow());
 
   Camera previousCamera;
   std::uint32_t sampleIndex = 0;
@@ -353,10 +363,9 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     auto start = std::chrono::steady_clock::now();
     context.submitAndWait([&](VkCommandBuffer commands) {
       vkCmdFillBuffer(commands, rayCounter.buffer(), 0, VK_WHOLE_SIZE, 0);
-      // The cache is cleared once, before the first frame: every key kCacheKeyEmpty (0),
-      // every clock 0; the barrier below orders it before the trace.
-      if (f == 0)
-        vkCmdFillBuffer(commands, cacheBuffer.buffer(), 0, VK_WHOLE_SIZE, gpu::kCacheKeyEmpty);
+      // The cache is cleared once, before the first frame, the tile log before every
+      // frame; the barrier below orders them before the trace.
+      materialCache.recordClears(commands, f == 0);
       VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
       barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
       barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
@@ -387,6 +396,9 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     frameStats.cacheLookups = counters.cacheLookups;
     frameStats.cacheHits = counters.cacheHits;
     frameStats.cacheMisses = counters.cacheMisses;
+    frameStats.cacheTilesComputed = counters.cacheTilesComputed;
+    frameStats.cacheDuplicateTiles = counters.cacheDuplicateTiles;
+    frameStats.cacheTileFallbacks = counters.cacheTileFallbacks;
     if (timestamps) {
       std::uint64_t ticks[2] = {0, 0};
       checkVk(vkGetQueryPoolResults(device, timestampPool.get(), 0, 2, sizeof ticks, ticks,

@@ -26,9 +26,15 @@ using TextureLoader = std::function<TextureImage(const std::string& path)>;
 // error that says which tool can convert it.
 TextureImage loadTextureCore(const std::string& path);
 
-// Material graph memoization (thesis §4, §5.3). Texel: one hash table of texels, keyed by
-// material, mip level and texel (eq. 5.1-5.10), linear probing over `probe` entries.
-enum class CacheMode { None, Texel };
+// Material graph memoization (thesis §4, §5.3-5.4). Texel: one hash table of texels, keyed
+// by material, mip level and texel (eq. 5.1-5.10), linear probing over `probe` entries.
+// Tile: entries are tiles of texels, computed by a whole subgroup on a miss (§5.4.3).
+enum class CacheMode { None, Texel, Tile };
+// How a tile is sampled (§4.6, eq. 5.12-5.15): its nearest texel, or bilinearly from tiles
+// that overlap by one texel.
+enum class TileFilter { Nearest, Bilinear };
+// Where a tile's texels live (§5.4.1). Values are the shader's kTileStorage*.
+enum class TileStorage { Entry = 0, Buffer = 1, Texture2D = 2, Texture3D = 3 };
 // What a miss evicts when its probe range is full (§4.5): none (insert only into empty
 // entries), the least recently used or least recently written entry by a frame clock
 // (§5.3.3), or a pseudo-random entry. Values are the shader's kCacheEviction*.
@@ -36,10 +42,15 @@ enum class CacheEviction { None = 0, Lru = 1, Lrw = 2, Random = 3 };
 
 const char* cacheModeName(CacheMode mode);
 const char* cacheEvictionName(CacheEviction eviction);
+const char* tileFilterName(TileFilter filter);
+const char* tileStorageName(TileStorage storage);
 // Parse "none"/"texel" and "none"/"lru"/"lrw"/"random"; throw std::invalid_argument naming the
 // choices.
 CacheMode parseCacheMode(const std::string& text);
 CacheEviction parseCacheEviction(const std::string& text);
+// "nearest"/"bilinear" and "entry"/"buffer"/"texture2d"/"texture3d", likewise.
+TileFilter parseTileFilter(const std::string& text);
+TileStorage parseTileStorage(const std::string& text);
 
 struct CacheOptions {
   CacheMode mode = CacheMode::None;
@@ -51,6 +62,14 @@ struct CacheOptions {
   // A-B-A race); true adds a per-entry update counter that closes it (one more uint per
   // entry and an atomic per write). Default to be picked from a GPU measurement.
   bool updateCounter = false;
+  // Tile cache (§5.4): texels stored per tile (W x H <= the device's subgroup size; the
+  // thesis's default 4 x 4 needs 16 lanes, lavapipe has 8), the filter, the storage and
+  // §5.4.4's grouping of missing tiles by material. `entries` counts tiles.
+  std::uint32_t tileWidth = 4;
+  std::uint32_t tileHeight = 4;
+  TileFilter tileFilter = TileFilter::Nearest;
+  TileStorage tileStorage = TileStorage::Entry;
+  bool groupByMaterial = false;
 };
 
 struct RendererOptions {

@@ -13,7 +13,8 @@ TraceDescriptorSet::TraceDescriptorSet(const VulkanContext& context,
   std::vector<VkDescriptorPoolSize> poolSizes = {
       {VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 1},
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 9},
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 11},
+      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, r.textures->count()}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1;
@@ -53,7 +54,20 @@ TraceDescriptorSet::TraceDescriptorSet(const VulkanContext& context,
   writeBuffer(gpu::kBindingLights, kStorage, r.scene->lights);
   writeBuffer(gpu::kBindingEnvironment, kStorage, r.scene->environment);
   writeBuffer(gpu::kBindingRayCounter, kStorage, *r.rayCounter);
-  writeBuffer(gpu::kBindingCache, kStorage, *r.cache);
+  writeBuffer(gpu::kBindingCache, kStorage, r.cache->entries());
+  writeBuffer(gpu::kBindingTileTexels, kStorage, r.cache->tileTexels());
+  writeBuffer(gpu::kBindingTileLog, kStorage, r.cache->tileLog());
+  VkDescriptorImageInfo tileImageInfo{VK_NULL_HANDLE, r.cache->tileImageView(),
+                                      VK_IMAGE_LAYOUT_GENERAL};
+  if (tileImageInfo.imageView != VK_NULL_HANDLE) {
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.dstSet = set;
+    write.dstBinding = gpu::kBindingTileImage;
+    write.descriptorCount = 1;
+    write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    write.pImageInfo = &tileImageInfo;
+    writes.push_back(write);
+  }
   VkAccelerationStructureKHR tlas = r.tlas;
   VkWriteDescriptorSetAccelerationStructureKHR tlasInfo{
       VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};

@@ -6,6 +6,7 @@
 
 #include "runtime/gpu_buffer.h"
 #include "runtime/gpu_textures.h"
+#include "runtime/material_cache.h"
 #include "runtime/scene_upload.h"
 #include "runtime/vulkan_context.h"
 #include "runtime/vulkan_handle.h"
@@ -18,7 +19,7 @@ struct TraceResources {
   const GpuBuffer* frame = nullptr;         // gpu::FrameConstants
   const GpuBuffer* accumulation = nullptr;  // vec4 per pixel
   const GpuBuffer* rayCounter = nullptr;    // gpu::Counters
-  const GpuBuffer* cache = nullptr;         // texel-cache entries (a small dummy without)
+  const MaterialCache* cache = nullptr;     // entries, tile texels and log (dummies without)
   const SceneBuffers* scene = nullptr;
   const GpuTextures* textures = nullptr;
 };

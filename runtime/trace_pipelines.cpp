@@ -76,7 +76,7 @@ VkDeviceSize alignUp(VkDeviceSize value, VkDeviceSize alignment) {
 TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compiler,
                              std::uint32_t textureCount, const MaterialCallables* callables,
                              std::uint32_t pipelineThreads,
-                             const std::vector<std::string>& extraDefines)
+                             const std::vector<std::string>& extraDefines, bool tileImage)
     : context_(context), backend_(context.backend()) {
   VkDevice device = context.device();
   bool query = backend_ == Backend::RayQuery;
@@ -106,6 +106,10 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   add(gpu::kBindingTextures, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textureCount);
   add(gpu::kBindingRayCounter, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   add(gpu::kBindingCache, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  add(gpu::kBindingTileTexels, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  add(gpu::kBindingTileLog, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  if (tileImage)
+    add(gpu::kBindingTileImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   setInfo.bindingCount = static_cast<std::uint32_t>(bindings.size());
   setInfo.pBindings = bindings.data();

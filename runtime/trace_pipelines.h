@@ -29,7 +29,7 @@ class TracePipeline {
   // `extraDefines` go to the path tracer (raygen or compute) only, e.g. the texel cache's.
   TracePipeline(const VulkanContext& context, ShaderCompiler& compiler, std::uint32_t textureCount,
                 const MaterialCallables* callables = nullptr, std::uint32_t pipelineThreads = 1,
-                const std::vector<std::string>& extraDefines = {});
+                const std::vector<std::string>& extraDefines = {}, bool tileImage = false);
 
   VkDescriptorSetLayout descriptorSetLayout() const { return setLayout_.get(); }
   // Binds and launches one thread per pixel.

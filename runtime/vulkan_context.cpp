@@ -476,6 +476,9 @@ VulkanContext::VulkanContext(const ContextOptions& options)
   vkGetPhysicalDeviceProperties2(physicalDevice_, &properties2);
   info_.rayTracingProperties.pNext = nullptr;
   info_.subgroupSize = subgroupProperties.subgroupSize;
+  info_.subgroupOperations = subgroupProperties.supportedOperations;
+  info_.subgroupStages = subgroupProperties.supportedStages;
+  info_.limits = properties2.properties.limits;
   constexpr VkSubgroupFeatureFlags kNeeded =
       VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
   if ((subgroupProperties.supportedOperations & kNeeded) == kNeeded)

@@ -66,6 +66,10 @@ struct DeviceInfo {
   std::uint32_t subgroupSize = 1;
   // Stages with basic + arithmetic subgroup operations (lavapipe: not ray-tracing stages).
   VkShaderStageFlags subgroupArithmeticStages = 0;
+  // All subgroup operations and the stages that have them (the tile cache's check).
+  VkSubgroupFeatureFlags subgroupOperations = 0;
+  VkShaderStageFlags subgroupStages = 0;
+  VkPhysicalDeviceLimits limits{};
 };
 
 // Names and ray-tracing support of every device, for --list-devices and error messages.

@@ -87,17 +87,31 @@ void evaluateMaterialDirect(uint materialId, MaterialInputs inputs,
 }
 #endif
 
-// The texel cache (thesis §5.3) wraps either dispatch: a hit skips the switch case or the
-// executeCallableEXT.
-#ifdef MG_CACHE_TEXEL
+// The texel cache (thesis §5.3) or the tile cache (§5.4) wraps either dispatch: a hit skips
+// the switch case or the executeCallableEXT.
+#if defined(MG_CACHE_TILE)
+#include "tile_cache.glsl"
+#elif defined(MG_CACHE_TEXEL)
 #include "texel_cache.glsl"
 #endif
 
-void evaluateMaterial(uint materialId, MaterialInputs inputs, out MaterialOutputs outputs) {
-#ifdef MG_CACHE_TEXEL
+// The material outputs at a hit. Every invocation calls it at the same point of the path
+// loop, `hasHit` false where the path has ended: the tile cache computes missing tiles with
+// the whole subgroup (§5.4.3), and inactive lanes would be unreachable.
+void evaluateMaterial(bool hasHit, uint materialId, MaterialInputs inputs,
+                      out MaterialOutputs outputs) {
+#if defined(MG_CACHE_TILE)
+  evaluateMaterialTiled(hasHit, materialId, inputs, outputs);
+#else
+  if (!hasHit) {
+    outputs = mg_defaultMaterialOutputs(inputs);
+    return;
+  }
+#if defined(MG_CACHE_TEXEL)
   evaluateMaterialCached(materialId, inputs, outputs);
 #else
   evaluateMaterialDirect(materialId, inputs, outputs);
+#endif
 #endif
 }
 
@@ -275,15 +289,19 @@ void primaryRay(uvec2 pixel, vec2 jitter, out vec3 origin, out vec3 direction) {
                         ndc.y * frame.cameraUp.xyz);
 }
 
-// P paths of L rays through one pixel; returns the mean radiance.
-vec3 tracePixel(uvec2 pixel, inout Rng rng, inout uint rays) {
+// P paths of L rays through one pixel; returns the mean radiance. Loops run the same number
+// of iterations in every invocation (a path that ended stays in the loop, inactive) so
+// that evaluateMaterial is reached by the whole subgroup together; `inside` is false for
+// the invocations of a compute work group that lie past the image's edge.
+vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
   uint pathCount = max(frame.path.x, 1u);
   uint rayCountPerPath = frame.path.y;
   bool sharedPrimary = (frame.path.z & kFlagSharedPrimaryRay) != 0u;
 
   vec3 primaryOrigin, primaryDirection;
   HitInfo primaryHit;
-  if (sharedPrimary) {
+  primaryHit.t = -1.0;
+  if (sharedPrimary && inside) {
     primaryRay(pixel, vec2(0.5), primaryOrigin, primaryDirection);
     primaryHit = traceClosest(primaryOrigin, primaryDirection, kRayTMax);
     rays += 1u;
@@ -303,21 +321,28 @@ vec3 tracePixel(uvec2 pixel, inout Rng rng, inout uint rays) {
     cone.spread = frame.cameraPosition.w;
     vec3 throughput = vec3(1.0);
     vec3 radiance = vec3(0.0);
+    bool alive = inside;
     for (uint bounce = 0u; bounce < rayCountPerPath; ++bounce) {
-      HitInfo hit;
-      if (bounce == 0u && sharedPrimary) {
-        hit = primaryHit;
-      } else {
-        hit = traceClosest(origin, direction, kRayTMax);
-        rays += 1u;
+      SurfaceHit s;
+      s.materialId = 0u;
+      if (alive) {
+        HitInfo hit;
+        if (bounce == 0u && sharedPrimary) {
+          hit = primaryHit;
+        } else {
+          hit = traceClosest(origin, direction, kRayTMax);
+          rays += 1u;
+        }
+        if (hit.t < 0.0) {
+          radiance += throughput * environmentRadiance(direction);
+          alive = false;
+        } else {
+          s = surfaceAt(hit, origin, direction, cone);
+        }
       }
-      if (hit.t < 0.0) {
-        radiance += throughput * environmentRadiance(direction);
-        break;
-      }
-      SurfaceHit s = surfaceAt(hit, origin, direction, cone);
       MaterialOutputs m;
-      evaluateMaterial(s.materialId, s.inputs, m);
+      evaluateMaterial(alive, s.materialId, s.inputs, m);
+      if (!alive) continue;
 
       vec3 n = dot(m.normal, m.normal) > 1e-30 ? normalize(m.normal) : s.geometricNormal;
       if (dot(n, s.geometricNormal) < 0.0) n = -n;
@@ -331,7 +356,7 @@ vec3 tracePixel(uvec2 pixel, inout Rng rng, inout uint rays) {
       radiance += throughput * m.emission;
       radiance += throughput *
                   sampleDirectLight(position, s.geometricNormal, toLocal, wo, brdf, rng, rays);
-      if (bounce + 1u == rayCountPerPath) break;
+      if (bounce + 1u == rayCountPerPath) continue;
 
       // BRDF importance sampling of the next direction (eq. 2.9 with the lobe mixture).
       vec3 woLocal = toLocal * wo;
@@ -339,7 +364,10 @@ vec3 tracePixel(uvec2 pixel, inout Rng rng, inout uint rays) {
       vec3 wiLocal = brdfSample(brdf, woLocal, uLobe, rngNext2(rng));
       float pdf = brdfPdf(brdf, woLocal, wiLocal);
       vec3 wi = transpose(toLocal) * wiLocal;
-      if (pdf <= 0.0 || dot(wi, s.geometricNormal) <= 0.0) break;
+      if (pdf <= 0.0 || dot(wi, s.geometricNormal) <= 0.0) {
+        alive = false;
+        continue;
+      }
       throughput *= brdfEvaluateCos(brdf, woLocal, wiLocal) / pdf;
 
       // The cone leaves with its width and a spread grown by roughness (eq. 2.11) and
@@ -359,15 +387,21 @@ vec3 tracePixel(uvec2 pixel, inout Rng rng, inout uint rays) {
   return sum / float(pathCount);
 }
 
-// Traces one pixel and folds it into the running mean of the accumulation buffer.
-void renderPixel(uvec2 pixel) {
+// Traces one pixel and folds it into the running mean of the accumulation buffer. Every
+// invocation comes here (see tracePixel); only those `inside` the image write.
+void renderPixel(uvec2 pixel, bool inside) {
   Rng rng = rngForPixel(pixel, frame.image.z, frame.image.w);
   uint rays = 0u;
-  vec3 radiance = tracePixel(pixel, rng, rays);
   uint index = pixel.y * frame.image.x + pixel.x;
-  uint sampleIndex = frame.environmentSize.z;
-  vec3 previous = sampleIndex == 0u ? vec3(0.0) : accumulation[index].rgb;
-  accumulation[index] = vec4(mix(previous, radiance, 1.0 / float(sampleIndex + 1u)), 1.0);
+#ifdef MG_CACHE_TILE
+  g_invocationId = index;
+#endif
+  vec3 radiance = tracePixel(pixel, inside, rng, rays);
+  if (inside) {
+    uint sampleIndex = frame.environmentSize.z;
+    vec3 previous = sampleIndex == 0u ? vec3(0.0) : accumulation[index].rgb;
+    accumulation[index] = vec4(mix(previous, radiance, 1.0 / float(sampleIndex + 1u)), 1.0);
+  }
 #ifdef MG_SUBGROUP_RAY_COUNT
   // One atomic per subgroup instead of per thread: counting must not slow the trace.
   uint subgroupRays = subgroupAdd(rays);
@@ -375,7 +409,7 @@ void renderPixel(uvec2 pixel) {
 #else
   atomicAdd(counters.rays, rays);
 #endif
-#ifdef MG_CACHE_TEXEL
+#if defined(MG_CACHE_TEXEL) || defined(MG_CACHE_TILE)
 #ifdef MG_SUBGROUP_RAY_COUNT
   uvec3 cacheCounts = subgroupAdd(uvec3(g_cacheLookups, g_cacheHits, g_cacheMisses));
   if (subgroupElect() && cacheCounts.x > 0u) {
@@ -388,17 +422,25 @@ void renderPixel(uvec2 pixel) {
     atomicAdd(counters.cacheMisses, cacheCounts.z);
   }
 #endif
+#ifdef MG_CACHE_TILE
+  // The tile cache needs subgroup operations, so the sums here always have them.
+  uvec3 tileCounts = subgroupAdd(uvec3(g_tilesComputed, g_duplicateTiles, g_tileFallbacks));
+  if (subgroupElect() && any(notEqual(tileCounts, uvec3(0u)))) {
+    atomicAdd(counters.cacheTilesComputed, tileCounts.x);
+    atomicAdd(counters.cacheDuplicateTiles, tileCounts.y);
+    atomicAdd(counters.cacheTileFallbacks, tileCounts.z);
+  }
+#endif
 }
 
 #ifdef MG_BACKEND_QUERY
 layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;
-  if (any(greaterThanEqual(pixel, frame.image.xy))) return;
-  renderPixel(pixel);
+  renderPixel(pixel, all(lessThan(pixel, frame.image.xy)));
 }
 #else
 void main() {
-  renderPixel(gl_LaunchIDEXT.xy);
+  renderPixel(gl_LaunchIDEXT.xy, true);
 }
 #endif

@@ -31,8 +31,11 @@ MG_CONSTANT(uint, kBindingLights, 7);
 MG_CONSTANT(uint, kBindingEnvironment, 8);
 MG_CONSTANT(uint, kBindingTextures, 9);
 MG_CONSTANT(uint, kBindingRayCounter, 10);  // gpu::Counters
-MG_CONSTANT(uint, kBindingCache, 11);       // the texel cache's entries (thesis §5.3.1)
-MG_CONSTANT(uint, kBindingCount, 12);
+MG_CONSTANT(uint, kBindingCache, 11);       // the cache's entries (thesis §5.3.1, §5.4.1)
+MG_CONSTANT(uint, kBindingTileTexels, 12);  // tile cache: texels in a separate buffer
+MG_CONSTANT(uint, kBindingTileLog, 13);     // tile cache: tiles computed this frame (a set)
+MG_CONSTANT(uint, kBindingTileImage, 14);   // tile cache: texels in a 2D or 3D storage image
+MG_CONSTANT(uint, kBindingCount, 15);
 
 // Compute work-group edge of the ray-query backend.
 MG_CONSTANT(uint, kWorkgroupSize, 8);
@@ -66,6 +69,15 @@ MG_CONSTANT(uint, kCacheOutputNormal, 8);
 MG_CONSTANT(uint, kCacheOutputEmission, 16);
 MG_CONSTANT(uint, kCacheOutputOpacity, 32);
 
+// Tile cache (thesis §4.6, §5.4): where a tile's texels live (MG_TILE_STORAGE, §5.4.1).
+MG_CONSTANT(uint, kTileStorageEntry, 0);      // after the key and metadata, in the entry
+MG_CONSTANT(uint, kTileStorageBuffer, 1);     // a separate buffer, entry-major
+MG_CONSTANT(uint, kTileStorageTexture2D, 2);  // a 2D image; value groups side by side in x
+MG_CONSTANT(uint, kTileStorageTexture3D, 3);  // a 3D image; value groups stacked in z
+// The per-frame set of computed tiles that counts duplicates (§6.7.2): a power of two.
+MG_CONSTANT(uint, kTileLogEntries, 1u << 20);
+MG_CONSTANT(uint, kTileLogProbe, 8);
+
 // Light::positionOrDirection.w
 MG_CONSTANT(uint, kLightPoint, 0);
 MG_CONSTANT(uint, kLightDirectional, 1);
@@ -86,8 +98,8 @@ struct FrameConstants {
   uvec4 path;             // x paths per pixel P, y rays per path L, z flags, w light count
   uvec4 environmentSize;  // x width, y height of the equirectangular image; z sample index
                           // in the accumulation (0 restarts it); w unused
-  // Texel cache: x entries S (0: no cache), y frame clock (frame + 1), z mip bias of
-  // eq. 5.5 (float bits), w unused.
+  // Cache: x entries S (0: no cache), y frame clock (frame + 1), z mip bias of eq. 5.5
+  // (float bits), w tiles per row of the tile cache's storage image.
   uvec4 cache;
 };
 
@@ -97,6 +109,13 @@ struct Counters {
   uint cacheLookups;  // cache lookups of cacheable materials
   uint cacheHits;
   uint cacheMisses;
+  // Tile cache (§5.4.3): tiles computed by a subgroup, of which already computed this frame
+  // by another subgroup (§6.7.2), and lookups that missed and evaluated their own hit
+  // because the subgroup could not compute tiles (not all lanes active, or a repack).
+  uint cacheTilesComputed;
+  uint cacheDuplicateTiles;
+  uint cacheTileFallbacks;
+  uint padding;
 };
 
 // One vertex of the global vertex buffer; positions first so the BLAS reads them in place.

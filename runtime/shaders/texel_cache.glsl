@@ -17,7 +17,12 @@ const uint kCacheHeader = kCacheEntryHeaderWithCounter;  // key, clock, update c
 #else
 const uint kCacheHeader = kCacheEntryHeader;  // key, clock
 #endif
-const uint kCacheStride = kCacheHeader + uint(MG_CACHE_VALUES);
+// Words after the header: the values (texel cache), a tile's texels (tile cache stored in
+// the entry) or none (tiles stored elsewhere). The host defines it for the tile cache.
+#ifndef MG_CACHE_ENTRY_WORDS
+#define MG_CACHE_ENTRY_WORDS MG_CACHE_VALUES
+#endif
+const uint kCacheStride = kCacheHeader + uint(MG_CACHE_ENTRY_WORDS);
 
 // Entries as one flat uint array so the key can be swapped atomically (§5.3.4). Coherent:
 // other invocations of the same dispatch read what this one writes.
@@ -44,9 +49,9 @@ struct CacheKey {
   uint hash;  // H1 of eq. 5.9, stored in the entry; never kCacheKeyEmpty or kCacheKeyLock
 };
 
-// Eq. 5.2-5.7 and 5.8-5.10. Returns false when the hit has no usable texture coordinates
-// (non-finite), which then bypasses the cache.
-bool cacheKeyFor(uvec4 info, MaterialInputs inputs, out CacheKey key) {
+// Eq. 5.2-5.5: the mip level m of the cache's virtual texture at this hit. False when the
+// hit has no usable texture coordinates (non-finite), which then bypasses the cache.
+bool cacheMipLevel(MaterialInputs inputs, out int m) {
   vec2 uv = inputs.uv.v;
   // Eq. 5.2-5.4: the shorter footprint axis in texture space (the higher texel density).
   float lMin = min(length(inputs.uv.x), length(inputs.uv.y));
@@ -56,24 +61,36 @@ bool cacheKeyFor(uvec4 info, MaterialInputs inputs, out CacheKey key) {
   // finer). Without derivatives (lMin 0) the finest level we allow is used.
   float bias = uintBitsToFloat(frame.cache.z);
   float level = lMin > 0.0 ? -log2(lMin) + bias : 24.0;
+  m = 0;
   if (isnan(level) || any(isnan(uv)) || any(isinf(uv))) return false;
-  int m = int(clamp(round(level), -24.0, 24.0));
-  // Eq. 5.6-5.7: the nearest texel of level m. Hashed by its float bits, which are exact
-  // for every magnitude (an int conversion would merge all texels past 2^31); -0 and +0
-  // only give the same texel two entries.
-  vec2 texel = round(exp2(float(m)) * uv);
-  uint u = floatBitsToUint(texel.x);
-  uint v = floatBitsToUint(texel.y);
+  m = int(clamp(round(level), -24.0, 24.0));
+  return true;
+}
+
+// Eq. 5.8-5.10 for the cell (texel or tile) `cell` of level m. Cells are hashed by their
+// float bits, which are exact for every magnitude (an int conversion would merge all cells
+// past 2^31); -0 and +0 only give the same cell two entries.
+CacheKey cacheKeyOf(uvec4 info, int m, vec2 cell) {
+  uint u = floatBitsToUint(cell.x);
+  uint v = floatBitsToUint(cell.y);
   // Eq. 5.8-5.9: two nested PCG hashes from two independent material ids.
   uint h0 = cachePcg(uint(m) ^ cachePcg(u ^ cachePcg(v ^ info.y)));
   uint h1 = cachePcg(uint(m) ^ cachePcg(u ^ cachePcg(v ^ info.z)));
   if (h1 == kCacheKeyEmpty) h1 = 1u;
   if (h1 == kCacheKeyLock) h1 = kCacheKeyLock - 1u;
   // Eq. 5.10: I = H0 mod (S - D); the host guarantees S > D.
-  uint entries = frame.cache.x;
-  key.base = h0 % (entries - uint(MG_CACHE_PROBE));
+  CacheKey key;
+  key.base = h0 % (frame.cache.x - uint(MG_CACHE_PROBE));
   key.hash = h1;
-  return true;
+  return key;
+}
+
+// Eq. 5.2-5.10 for the texel cache: the nearest texel of level m (eq. 5.6-5.7).
+bool cacheKeyFor(uvec4 info, MaterialInputs inputs, out CacheKey key) {
+  int m;
+  bool usable = cacheMipLevel(inputs, m);
+  key = cacheKeyOf(info, m, round(exp2(float(m)) * inputs.uv.v));
+  return usable;
 }
 
 uint cacheEntryOffset(uint entry) { return entry * kCacheStride; }
@@ -122,35 +139,59 @@ MaterialOutputs cacheUnpack(uint mask, float values[MG_CACHE_VALUES], MaterialIn
   return o;
 }
 
-// §5.3.3 / §5.3.4: linear search over D entries comparing only keys; on a match, read key,
-// values, key again and report a miss if the key changed meanwhile. With the update
-// counter: counter, key, values, key and counter again; a miss if either changed (a write
-// in between bumped the counter even when it restored the key).
-bool cacheRead(CacheKey key, out float values[MG_CACHE_VALUES]) {
-  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;
+// §5.3.3: linear search over D entries comparing only keys; the entry index or -1.
+int cacheFind(CacheKey key) {
   [[unroll]] for (uint d = 0u; d < uint(MG_CACHE_PROBE); ++d) {
-    uint offset = cacheEntryOffset(key.base + d);
-    if (cacheData[offset] != key.hash) continue;
+    if (cacheData[cacheEntryOffset(key.base + d)] == key.hash) return int(key.base + d);
+  }
+  return -1;
+}
+
+// §5.3.4: a read is key, values, key again, and a miss if the key changed meanwhile. With
+// the update counter: counter, key, values, key and counter again; a miss if either changed
+// (a write in between bumped the counter even when it restored the key). cacheReadBegin
+// comes after the key matched and before the values are loaded; it returns the counter
+// (0 without one) or kCacheKeyLock when the key already changed.
+uint cacheReadBegin(uint entry, CacheKey key) {
+  uint counterBefore = 0u;
 #ifdef MG_CACHE_UPDATE_COUNTER
-    memoryBarrierBuffer();
-    uint counterBefore = cacheData[offset + 2u];
-    memoryBarrierBuffer();
-    if (cacheData[offset] != key.hash) return false;
+  uint offset = cacheEntryOffset(entry);
+  memoryBarrierBuffer();
+  counterBefore = cacheData[offset + 2u];
+  memoryBarrierBuffer();
+  if (cacheData[offset] != key.hash) return kCacheKeyLock;
 #endif
-    memoryBarrierBuffer();  // key, then values, then key again (§5.3.4)
-    for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i)
-      values[i] = uintBitsToFloat(cacheData[offset + kCacheHeader + i]);
-    memoryBarrierBuffer();
-    if (cacheData[offset] != key.hash) return false;  // overwritten while reading
+  memoryBarrierBuffer();  // key, then values
+  return counterBefore;
+}
+
+// After the values were loaded: true when they belong to the key (see cacheReadBegin).
+bool cacheReadValid(uint entry, CacheKey key, uint counterBefore) {
+  uint offset = cacheEntryOffset(entry);
 #ifdef MG_CACHE_UPDATE_COUNTER
-    if (cacheData[offset + 2u] != counterBefore) return false;  // rewritten, key restored
+  if (counterBefore == kCacheKeyLock) return false;
+#endif
+  memoryBarrierBuffer();
+  if (cacheData[offset] != key.hash) return false;  // overwritten while reading
+#ifdef MG_CACHE_UPDATE_COUNTER
+  if (cacheData[offset + 2u] != counterBefore) return false;  // rewritten, key restored
 #endif
 #if MG_CACHE_EVICTION == 1  // kCacheEvictionLru: a read refreshes the frame clock (§4.5)
-    if (cacheData[offset + 1u] != frame.cache.y) cacheData[offset + 1u] = frame.cache.y;
+  if (cacheData[offset + 1u] != frame.cache.y) cacheData[offset + 1u] = frame.cache.y;
 #endif
-    return true;
-  }
-  return false;
+  return true;
+}
+
+// The texel cache's read: the values of `key`, or false on a miss.
+bool cacheRead(CacheKey key, out float values[MG_CACHE_VALUES]) {
+  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;
+  int entry = cacheFind(key);
+  if (entry < 0) return false;
+  uint offset = cacheEntryOffset(uint(entry));
+  uint counterBefore = cacheReadBegin(uint(entry), key);
+  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i)
+    values[i] = uintBitsToFloat(cacheData[offset + kCacheHeader + i]);
+  return cacheReadValid(uint(entry), key, counterBefore);
 }
 
 // The eviction policy's slot in the probe range (§4.5, §5.3.3), or -1 for "do not insert".
@@ -182,23 +223,39 @@ int cacheChooseSlot(CacheKey key) {
   return oldest;
 }
 
-// §5.3.4: lock with an atomic exchange to kCacheKeyLock (a slot already locked is not
-// retried: the value is used by this thread but not cached), write metadata and values,
-// then the key, which unlocks.
-void cacheWrite(CacheKey key, float values[MG_CACHE_VALUES]) {
+// §5.3.4: picks the eviction policy's entry for `key` and locks it with an atomic exchange
+// to kCacheKeyLock. Returns the entry, or -1 when the policy declines or the entry is
+// already locked (not retried: the value is used by this thread but not cached).
+int cacheLock(CacheKey key) {
   int slot = cacheChooseSlot(key);
-  if (slot < 0) return;
-  uint offset = cacheEntryOffset(key.base + uint(slot));
-  if (atomicExchange(cacheData[offset], kCacheKeyLock) == kCacheKeyLock) return;
+  if (slot < 0) return -1;
+  uint entry = key.base + uint(slot);
+  uint offset = cacheEntryOffset(entry);
+  if (atomicExchange(cacheData[offset], kCacheKeyLock) == kCacheKeyLock) return -1;
 #ifdef MG_CACHE_UPDATE_COUNTER
   atomicAdd(cacheData[offset + 2u], 1u);  // before any value changes (§5.3.4)
   memoryBarrierBuffer();
 #endif
+  return int(entry);
+}
+
+// After the values of a locked entry were written: its metadata, then the key, which
+// unlocks it.
+void cacheUnlock(uint entry, CacheKey key) {
+  uint offset = cacheEntryOffset(entry);
   cacheData[offset + 1u] = frame.cache.y;
-  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i)
-    cacheData[offset + kCacheHeader + i] = floatBitsToUint(values[i]);
   memoryBarrierBuffer();
   atomicExchange(cacheData[offset], key.hash);
+}
+
+// The texel cache's insert: lock, values, unlock.
+void cacheWrite(CacheKey key, float values[MG_CACHE_VALUES]) {
+  int entry = cacheLock(key);
+  if (entry < 0) return;
+  uint offset = cacheEntryOffset(uint(entry));
+  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i)
+    cacheData[offset + kCacheHeader + i] = floatBitsToUint(values[i]);
+  cacheUnlock(uint(entry), key);
 }
 
 // Cacheable materials (mask != 0) read the cache and on a miss evaluate and insert;

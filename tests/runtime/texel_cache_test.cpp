@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "cache_test_support.h"
 #include "render_test_support.h"
 #include "runtime/quality/flip.h"
 #include "runtime/shaders/shared_types.h"
@@ -17,73 +18,13 @@
 namespace memograph::runtime {
 namespace {
 
-// Stripes in u and v: depends on uv only, so the compiler marks it cacheable.
-std::string stripesGraph() {
-  return "material Stripes;\nUVInput UV>0;\nWave In<0 Out>1;\nBaseColorOutput Color<1;\n"
-         "RoughnessOutput Roughness=0.7;\n";
-}
-
-// Reads the hit position: not cacheable (thesis §4.2).
-std::string positionGraph() {
-  return "material Positional;\nPositionInput Out>0;\nWave In<0 Out>1;\nBaseColorOutput "
-         "Color<1;\n";
-}
-
-// A striped wall facing the camera (filling the view), and optionally a sphere before it.
-Scene wallScene(const std::string& wallGraph, bool sphere) {
-  Scene scene;
-  scene.meshes.push_back(testing::quad(8.0f, 4.0f));
-  scene.materials.push_back({"Wall", "", wallGraph});
-  // The quad lies in y = 0 with normal +y; a quarter turn about x turns it to face +z.
-  scene.instances.push_back(
-      {0, 0, glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1, 0, 0))});
-  if (sphere) {
-    scene.meshes.push_back(testing::sphere(16));
-    scene.materials.push_back(
-        {"Ball", "", testing::constantGraph("Ball", {0.7f, 0.3f, 0.2f}, 0.3f)});
-    scene.instances.push_back({1, 1, glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 1.5f))});
-  }
-  scene.lights.push_back({LightType::Point, {1, 2, 4}, {0, -1, 0}, glm::vec3(15.0f)});
-  scene.environment.constantRadiance = {0.3f, 0.3f, 0.3f};
-  scene.camera.position = {0, 0, 5};
-  scene.camera.target = {0, 0, 0};
-  return scene;
-}
-
-RendererOptions cacheOptions(CacheMode mode, Backend backend = Backend::Auto,
-                             std::uint32_t entries = 1u << 16,
-                             CacheEviction eviction = CacheEviction::Lru) {
-  RendererOptions options = testing::testOptions(backend);
-  options.cache.mode = mode;
-  options.cache.entries = entries;
-  options.cache.eviction = eviction;
-  return options;
-}
-
-RenderSettings settings(std::uint32_t frames, std::uint32_t raysPerPath, std::uint32_t paths = 1) {
-  RenderSettings s;
-  s.width = 24;
-  s.height = 24;
-  s.pathsPerPixel = paths;
-  s.raysPerPath = raysPerPath;
-  s.frames = frames;
-  s.seed = 5;
-  return s;
-}
-
-double meanFlip(const HdrImage& reference, const HdrImage& test) {
-  FlipImageView a{reference.rgba, int(reference.width), int(reference.height), 4};
-  FlipImageView b{test.rgba, int(test.width), int(test.height), 4};
-  FlipOptions options;
-  options.encoding = FlipEncoding::Linear;
-  return computeFlip(a, b, options).mean;
-}
-
-void expectConsistentCounters(const RenderStats& stats) {
-  for (const FrameStats& f : stats.frames) {
-    EXPECT_EQ(f.cacheHits + f.cacheMisses, f.cacheLookups) << "frame " << f.frame;
-  }
-}
+using testing::cacheOptions;
+using testing::expectConsistentCounters;
+using testing::meanFlip;
+using testing::positionGraph;
+using testing::settings;
+using testing::stripesGraph;
+using testing::wallScene;
 
 TEST(TexelCache, OutputMaskFollowsTheWrittenOutputs) {
   std::uint32_t floats = 0;

@@ -12,19 +12,29 @@
 namespace memograph::cli {
 
 inline constexpr const char* kCacheHelp =
-    "  --cache C             material graph memoization: none (default) or texel (thesis\n"
-    "                        §5.3: one hash table of texels of cacheable materials)\n"
-    "  --cache-entries N     texel cache entries S (default 1048576)\n"
+    "  --cache C             material graph memoization: none (default), texel (thesis\n"
+    "                        §5.3: one hash table of texels of cacheable materials) or tile\n"
+    "                        (§5.4: entries are tiles, computed by a whole subgroup)\n"
+    "  --cache-entries N     cache entries S: texels, or tiles with --cache tile\n"
+    "                        (default 1048576)\n"
     "  --probe D             linear probing distance, 1..16 (default 8)\n"
     "  --eviction E          when a probe range is full: lru (default), lrw (least recently\n"
     "                        written; both by frame clock), random, or none\n"
     "  --cache-read-check C  key (default: read key, values, key; thesis §5.3.4) or counter\n"
     "                        (an update counter per entry also catches a restored key)\n"
-    "  --mip-bias B          added to the cache's mip level (eq. 5.5); positive: finer\n";
+    "  --mip-bias B          added to the cache's mip level (eq. 5.5); positive: finer\n"
+    "  --tile WxH            texels per tile (default 4x4; W*H at most the subgroup size:\n"
+    "                        32 on NVIDIA, 8 on lavapipe)\n"
+    "  --filter F            tile sampling: nearest (default) or bilinear (tiles overlap by\n"
+    "                        one texel, eq. 5.12-5.15)\n"
+    "  --tile-storage S      where texels live (§5.4.1): entry (default), buffer,\n"
+    "                        texture2d or texture3d\n"
+    "  --group-by-material   compute missing tiles of one material together (§5.4.4)\n";
 
 struct CacheArguments {
   std::string cache = "none", entries = "1048576", probe = "8", eviction = "lru", mipBias = "0",
-              readCheck = "key";
+              readCheck = "key", tile = "4x4", filter = "nearest", tileStorage = "entry";
+  bool groupByMaterial = false;
 
   void registerWith(ArgumentScanner& scanner) {
     scanner.option("--cache", &cache);
@@ -33,6 +43,10 @@ struct CacheArguments {
     scanner.option("--eviction", &eviction);
     scanner.option("--mip-bias", &mipBias);
     scanner.option("--cache-read-check", &readCheck);
+    scanner.option("--tile", &tile);
+    scanner.option("--filter", &filter);
+    scanner.option("--tile-storage", &tileStorage);
+    scanner.flag("--group-by-material", &groupByMaterial);
   }
 
   // Throws std::invalid_argument with a message for the user.
@@ -44,6 +58,9 @@ struct CacheArguments {
       throw std::invalid_argument("unknown --cache-read-check '" + readCheck +
                                   "' (choose key or counter)");
     options.updateCounter = readCheck == "counter";
+    options.tileFilter = runtime::parseTileFilter(filter);
+    options.tileStorage = runtime::parseTileStorage(tileStorage);
+    options.groupByMaterial = groupByMaterial;
     auto whole = [](const std::string& text, const char* name) {
       std::uint32_t value = 0;
       auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
@@ -54,6 +71,14 @@ struct CacheArguments {
     };
     options.entries = whole(entries, "--cache-entries");
     options.probe = whole(probe, "--probe");
+    const auto x = tile.find('x');
+    if (x == std::string::npos)
+      throw std::invalid_argument("--tile takes WxH (e.g. 4x4), not '" + tile + "'");
+    options.tileWidth = whole(tile.substr(0, x), "--tile's width");
+    options.tileHeight = whole(tile.substr(x + 1), "--tile's height");
+    if (options.tileWidth == 0 || options.tileHeight == 0 || options.tileWidth > 64 ||
+        options.tileHeight > 64)
+      throw std::invalid_argument("--tile takes sides of 1..64 texels, not '" + tile + "'");
     try {
       std::size_t used = 0;
       options.mipBias = std::stof(mipBias, &used);

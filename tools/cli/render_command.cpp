@@ -293,10 +293,15 @@ int runRender(std::span<const std::string_view> args) {
               << result.stats.pipelineCreateMilliseconds << " ms\n";
     if (result.stats.cache != "none" && !result.stats.frames.empty()) {
       const auto& last = result.stats.frames.back();
-      std::cerr << "texel cache: " << result.stats.cacheEntries << " entries ("
-                << result.stats.cacheBytes << " B); last frame " << last.cacheLookups
-                << " lookups, " << last.cacheHits << " hits (" << 100.0 * last.cacheHitRate()
-                << " %)\n";
+      std::cerr << result.stats.cache << " cache"
+                << (result.stats.cacheTile.empty() ? "" : " (" + result.stats.cacheTile + ")")
+                << ": " << result.stats.cacheEntries << " entries (" << result.stats.cacheBytes
+                << " B); last frame " << last.cacheLookups << " lookups, " << last.cacheHits
+                << " hits (" << 100.0 * last.cacheHitRate() << " %)";
+      if (result.stats.cache == "tile")
+        std::cerr << ", " << last.cacheTilesComputed << " tiles computed ("
+                  << last.cacheDuplicateTiles << " duplicates)";
+      std::cerr << "\n";
     }
   } catch (const std::exception& e) {
     std::cerr << "memograph render: " << e.what() << "\n";

@@ -1,0 +1,236 @@
+#include "runtime/material_cache.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "runtime/shaders/shared_types.h"
+#include "runtime/vulkan_error.h"
+
+namespace memograph::runtime {
+
+namespace {
+
+constexpr VkBufferUsageFlags kStorage =
+    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+
+GpuBuffer deviceBuffer(const VulkanContext& context, VkDeviceSize bytes) {
+  return GpuBuffer(context, std::max<VkDeviceSize>(bytes, 16), kStorage,
+                   VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+}
+
+// The stage the path tracer runs in on this context's backend.
+VkShaderStageFlagBits traceStage(const VulkanContext& context) {
+  return context.backend() == Backend::RayQuery ? VK_SHADER_STAGE_COMPUTE_BIT
+                                                : VK_SHADER_STAGE_RAYGEN_BIT_KHR;
+}
+
+void checkTileOptions(const VulkanContext& context, const CacheOptions& options) {
+  const DeviceInfo& info = context.info();
+  const std::uint32_t texels = options.tileWidth * options.tileHeight;
+  const std::string size =
+      std::to_string(options.tileWidth) + "x" + std::to_string(options.tileHeight);
+  if (options.tileWidth == 0 || options.tileHeight == 0)
+    throw std::invalid_argument("--tile " + size + ": a tile needs at least one texel");
+  if (options.tileFilter == TileFilter::Bilinear &&
+      (options.tileWidth < 2 || options.tileHeight < 2))
+    throw std::invalid_argument("--tile " + size +
+                                " with --filter bilinear: tiles overlap by one texel, so both "
+                                "sides need at least 2 texels");
+  // §5.4.3: one lane per texel of a tile.
+  if (texels > info.subgroupSize)
+    throw std::invalid_argument("--tile " + size + " has " + std::to_string(texels) +
+                                " texels, more than the " + std::to_string(info.subgroupSize) +
+                                " lanes of a subgroup on " + info.name +
+                                " (the subgroup computes a tile with one lane per texel)");
+  constexpr VkSubgroupFeatureFlags kNeeded =
+      VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT |
+      VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_SHUFFLE_BIT |
+      VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
+  const VkShaderStageFlagBits stage = traceStage(context);
+  if ((info.subgroupOperations & kNeeded) != kNeeded || !(info.subgroupStages & stage))
+    throw std::invalid_argument(
+        "--cache tile needs subgroup ballot, shuffle, vote and arithmetic in the " +
+        std::string(stage == VK_SHADER_STAGE_COMPUTE_BIT ? "compute" : "ray-generation") +
+        " stage, which " + info.name + " does not offer" +
+        (stage == VK_SHADER_STAGE_RAYGEN_BIT_KHR ? " (try --backend query)" : ""));
+}
+
+VkFormat imageFormat() {
+  return VK_FORMAT_R32G32B32A32_SFLOAT;
+}
+
+}  // namespace
+
+void validateCacheOptions(const VulkanContext& context, const CacheOptions& options) {
+  if (options.mode == CacheMode::None)
+    return;
+  if (options.probe < 1 || options.probe > gpu::kCacheMaxProbe)
+    throw std::invalid_argument("--probe must be 1.." + std::to_string(gpu::kCacheMaxProbe) +
+                                ", not " + std::to_string(options.probe));
+  if (options.entries <= options.probe)
+    throw std::invalid_argument("--cache-entries (" + std::to_string(options.entries) +
+                                ") must exceed the probe distance (" +
+                                std::to_string(options.probe) + ")");
+  if (!std::isfinite(options.mipBias))
+    throw std::invalid_argument("--mip-bias must be finite");
+  if (options.mode == CacheMode::Tile)
+    checkTileOptions(context, options);
+}
+
+MaterialCache::MaterialCache(const VulkanContext& context, const CacheOptions& options,
+                             std::uint32_t valueCount)
+    : options_(options), valueCount_(std::max(1u, valueCount)) {
+  validateCacheOptions(context, options);
+  const bool tile = options.mode == CacheMode::Tile;
+  const bool enabled = options.mode != CacheMode::None;
+  const std::uint32_t header =
+      options.updateCounter ? gpu::kCacheEntryHeaderWithCounter : gpu::kCacheEntryHeader;
+  const std::uint32_t texels = tile ? options.tileWidth * options.tileHeight : 1;
+  const TileStorage storage = tile ? options.tileStorage : TileStorage::Entry;
+  const std::uint32_t entryWords =
+      storage == TileStorage::Entry ? texels * valueCount_ : 0;  // values after the header
+  const std::uint64_t stride = header + entryWords;
+  entryCount_ = enabled ? options.entries : 0;
+
+  if (enabled) {
+    defines_ = {
+        std::string(tile ? "MG_CACHE_TILE=1" : "MG_CACHE_TEXEL=1"),
+        "MG_CACHE_VALUES=" + std::to_string(valueCount_),
+        "MG_CACHE_PROBE=" + std::to_string(options.probe),
+        "MG_CACHE_EVICTION=" + std::to_string(static_cast<std::uint32_t>(options.eviction))};
+    if (options.updateCounter)
+      defines_.push_back("MG_CACHE_UPDATE_COUNTER=1");
+  }
+  if (tile) {
+    defines_.push_back("MG_CACHE_ENTRY_WORDS=" + std::to_string(entryWords));
+    defines_.push_back("MG_TILE_W=" + std::to_string(options.tileWidth));
+    defines_.push_back("MG_TILE_H=" + std::to_string(options.tileHeight));
+    defines_.push_back("MG_TILE_STORAGE=" + std::to_string(static_cast<std::uint32_t>(storage)));
+    if (options.tileFilter == TileFilter::Bilinear)
+      defines_.push_back("MG_TILE_BILINEAR=1");
+    if (options.groupByMaterial)
+      defines_.push_back("MG_TILE_GROUP_BY_MATERIAL=1");
+  }
+
+  // Without a cache the bindings still need buffers: small ones nobody reads.
+  entries_ = deviceBuffer(context, enabled ? entryCount_ * stride * sizeof(std::uint32_t)
+                                           : stride * sizeof(std::uint32_t));
+  bytes_ = enabled ? entryCount_ * stride * sizeof(std::uint32_t) : 0;
+  const std::uint64_t texelBytes =
+      std::uint64_t(entryCount_) * texels * valueCount_ * sizeof(float);
+  tileTexels_ = deviceBuffer(context, storage == TileStorage::Buffer ? texelBytes : 16);
+  if (storage == TileStorage::Buffer)
+    bytes_ += texelBytes;
+  tileLog_ = deviceBuffer(context, tile ? gpu::kTileLogEntries * sizeof(std::uint32_t) : 16);
+
+  if (storage == TileStorage::Texture2D || storage == TileStorage::Texture3D) {
+    // Four values per image texel; a texel's groups side by side in x (2D) or stacked in z
+    // (3D). Tiles row by row, as square an image as the tile shape allows.
+    const bool is3D = storage == TileStorage::Texture3D;
+    const std::uint32_t groups = (valueCount_ + 3) / 4;
+    const std::uint64_t tileWidth = std::uint64_t(options.tileWidth) * (is3D ? 1 : groups);
+    const std::uint64_t tileHeight = options.tileHeight;
+    std::uint64_t perRow = std::max<std::uint64_t>(
+        1, std::uint64_t(std::ceil(std::sqrt(double(entryCount_) * tileHeight / tileWidth))));
+    perRow = std::min<std::uint64_t>(perRow, entryCount_);
+    const std::uint64_t rows = (entryCount_ + perRow - 1) / perRow;
+    const std::uint64_t width = perRow * tileWidth, height = rows * tileHeight;
+    const VkPhysicalDeviceLimits& limits = context.info().limits;
+    const std::uint64_t maxSide = is3D ? limits.maxImageDimension3D : limits.maxImageDimension2D;
+    if (width > maxSide || height > maxSide || (is3D && groups > maxSide))
+      throw std::invalid_argument("--tile-storage " + std::string(tileStorageName(storage)) + ": " +
+                                  std::to_string(entryCount_) + " tiles need a " +
+                                  std::to_string(width) + "x" + std::to_string(height) +
+                                  (is3D ? "x" + std::to_string(groups) : std::string()) +
+                                  " image, over the device's limit of " + std::to_string(maxSide) +
+                                  " (use fewer --cache-entries or a buffer storage)");
+    tilesPerRow_ = static_cast<std::uint32_t>(perRow);
+    VkFormatProperties formatProperties;
+    vkGetPhysicalDeviceFormatProperties(context.physicalDevice(), imageFormat(), &formatProperties);
+    if (!(formatProperties.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT))
+      throw std::invalid_argument(context.info().name +
+                                  " cannot store RGBA32F storage images (--tile-storage)");
+
+    VkDevice device = context.device();
+    VkImageCreateInfo imageInfo{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+    imageInfo.imageType = is3D ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
+    imageInfo.format = imageFormat();
+    imageInfo.extent = {static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height),
+                        is3D ? groups : 1u};
+    imageInfo.mipLevels = 1;
+    imageInfo.arrayLayers = 1;
+    imageInfo.samples = VK_SAMPLE_COUNT_1_BIT;
+    imageInfo.tiling = VK_IMAGE_TILING_OPTIMAL;
+    imageInfo.usage = VK_IMAGE_USAGE_STORAGE_BIT;
+    imageInfo.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    VkImage image = VK_NULL_HANDLE;
+    checkVk(vkCreateImage(device, &imageInfo, nullptr, &image), "vkCreateImage (tile cache)");
+    image_ =
+        VulkanHandle<VkImage>(image, [device](VkImage i) { vkDestroyImage(device, i, nullptr); });
+    VkMemoryRequirements requirements;
+    vkGetImageMemoryRequirements(device, image, &requirements);
+    VkMemoryAllocateInfo allocate{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    allocate.allocationSize = requirements.size;
+    allocate.memoryTypeIndex =
+        context.findMemoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    checkVk(vkAllocateMemory(device, &allocate, nullptr, &memory),
+            "vkAllocateMemory (tile cache image)");
+    imageMemory_ = VulkanHandle<VkDeviceMemory>(
+        memory, [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
+    checkVk(vkBindImageMemory(device, image, memory, 0), "vkBindImageMemory (tile cache)");
+    bytes_ += requirements.size;
+    VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+    viewInfo.image = image;
+    viewInfo.viewType = is3D ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
+    viewInfo.format = imageFormat();
+    viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    VkImageView view = VK_NULL_HANDLE;
+    checkVk(vkCreateImageView(device, &viewInfo, nullptr, &view), "vkCreateImageView (tile cache)");
+    imageView_ = VulkanHandle<VkImageView>(
+        view, [device](VkImageView v) { vkDestroyImageView(device, v, nullptr); });
+    // The image stays in GENERAL for the shader's loads and stores; its contents need no
+    // clear (a texel is only read under a key that was written after it).
+    context.submitAndWait([&](VkCommandBuffer commands) {
+      VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
+      barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+      barrier.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+      barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+      barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+      barrier.image = image;
+      barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+      vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
+                           VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0, nullptr, 1,
+                           &barrier);
+    });
+    defines_.push_back(std::string("MG_TILE_IMAGE_FORMAT=rgba32f"));
+  }
+}
+
+void MaterialCache::recordClears(VkCommandBuffer commands, bool firstFrame) const {
+  if (firstFrame)
+    vkCmdFillBuffer(commands, entries_.buffer(), 0, VK_WHOLE_SIZE, gpu::kCacheKeyEmpty);
+  if (options_.mode == CacheMode::Tile)
+    vkCmdFillBuffer(commands, tileLog_.buffer(), 0, VK_WHOLE_SIZE, 0);
+}
+
+void MaterialCache::describe(RenderStats& stats) const {
+  if (options_.mode == CacheMode::None)
+    return;
+  stats.cache = cacheModeName(options_.mode);
+  stats.cacheEviction = cacheEvictionName(options_.eviction);
+  stats.cacheEntries = entryCount_;
+  stats.cacheProbe = options_.probe;
+  stats.cacheReadCheck = options_.updateCounter ? "counter" : "key";
+  stats.cacheValueCount = valueCount_;
+  stats.cacheBytes = bytes_;
+  if (options_.mode == CacheMode::Tile)
+    stats.cacheTile =
+        std::to_string(options_.tileWidth) + "x" + std::to_string(options_.tileHeight) + " " +
+        tileFilterName(options_.tileFilter) + " " + tileStorageName(options_.tileStorage) +
+        (options_.groupByMaterial ? " grouped" : "");
+}
+
+}  // namespace memograph::runtime

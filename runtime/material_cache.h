@@ -1,0 +1,67 @@
+// The GPU side of material graph memoization (thesis §5.3-5.4) as one render sets it up:
+// checks the cache options against the device, picks the path tracer's cache defines, and
+// owns the entry buffer, the tile cache's texel buffer or storage image (§5.4.1) and the
+// per-frame log of computed tiles that counts duplicates (§6.7.2).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "runtime/gpu_buffer.h"
+#include "runtime/render_stats.h"
+#include "runtime/renderer.h"
+#include "runtime/vulkan_context.h"
+#include "runtime/vulkan_handle.h"
+
+namespace memograph::runtime {
+
+// Throws std::invalid_argument naming the option when `options` cannot run on the device.
+void validateCacheOptions(const VulkanContext& context, const CacheOptions& options);
+
+class MaterialCache {
+ public:
+  // `valueCount`: floats per texel, the largest cacheable material's written outputs.
+  // Throws std::invalid_argument naming the option when the device cannot run it.
+  MaterialCache(const VulkanContext& context, const CacheOptions& options,
+                std::uint32_t valueCount);
+
+  // MG_CACHE_* / MG_TILE_* for path_tracer.glsl; empty without a cache.
+  const std::vector<std::string>& defines() const { return defines_; }
+  // Entries S for FrameConstants::cache.x (0: no cache) and the storage image's tiles per
+  // row for cache.w.
+  std::uint32_t entryCount() const { return entryCount_; }
+  std::uint32_t tilesPerRow() const { return tilesPerRow_; }
+
+  // Bindings kBindingCache, kBindingTileTexels and kBindingTileLog (small dummies when
+  // unused) and kBindingTileImage (VK_NULL_HANDLE unless tiles live in an image).
+  const GpuBuffer& entries() const { return entries_; }
+  const GpuBuffer& tileTexels() const { return tileTexels_; }
+  const GpuBuffer& tileLog() const { return tileLog_; }
+  VkImageView tileImageView() const { return imageView_.get(); }
+
+  // The clears before a frame's trace: every entry empty (key 0, clock 0) before the first
+  // frame; the tile log before every frame. The caller orders them before the trace.
+  void recordClears(VkCommandBuffer commands, bool firstFrame) const;
+
+  // The cache's settings and memory in the render's statistics.
+  void describe(RenderStats& stats) const;
+
+ private:
+  CacheOptions options_;
+  std::uint32_t valueCount_ = 1;
+  std::uint32_t entryCount_ = 0;
+  std::uint32_t tilesPerRow_ = 0;
+  std::uint64_t bytes_ = 0;
+  std::vector<std::string> defines_;
+  GpuBuffer entries_;
+  GpuBuffer tileTexels_;
+  GpuBuffer tileLog_;
+  VulkanHandle<VkDeviceMemory> imageMemory_;
+  VulkanHandle<VkImage> image_;
+  VulkanHandle<VkImageView> imageView_;
+};
+
+}  // namespace memograph::runtime

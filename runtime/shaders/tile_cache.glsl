@@ -1,0 +1,406 @@
+// The tile cache of thesis §4.6 and §5.4: each hash-table entry holds a tile of
+// MG_TILE_W x MG_TILE_H texels of a material's outputs, keyed by (material, mip level, tile);
+// missing tiles are computed by the whole subgroup together, one texel per lane (§5.4.3).
+// Included by path_tracer.glsl when the host defines MG_CACHE_TILE, with everything
+// texel_cache.glsl takes (values, probe, eviction, update counter) and
+//   MG_TILE_W, MG_TILE_H   texels stored per tile (W * H <= the subgroup size),
+//   MG_TILE_BILINEAR       (optional) bilinear filtering; tiles then overlap by one texel,
+//                          covering (W-1) x (H-1) texel spacings (eq. 5.12-5.15),
+//   MG_TILE_STORAGE        kTileStorage{Entry, Buffer, Texture2D, Texture3D} (§5.4.1),
+//   MG_TILE_IMAGE_FORMAT   the storage image's format qualifier (rgba32f or rgba16f),
+//   MG_TILE_GROUP_BY_MATERIAL (optional) §5.4.4's order of missing tiles,
+//   MG_CACHE_ENTRY_WORDS   the texel words stored in an entry (0 unless kTileStorageEntry).
+// Every lane of the subgroup must call evaluateMaterialTiled together (path_tracer.glsl
+// keeps its loops uniform for that): the texels of a tile are assigned to lanes by index.
+#ifndef MG_TILE_CACHE_GLSL
+#define MG_TILE_CACHE_GLSL
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_vote : require
+#extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_shuffle : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
+
+#include "texel_cache.glsl"
+
+const uint kTileW = uint(MG_TILE_W);
+const uint kTileH = uint(MG_TILE_H);
+const uint kTileTexels = kTileW * kTileH;
+#ifdef MG_TILE_BILINEAR
+// Eq. 5.12-5.15 with bilinear filtering: s is one less than the texels stored, and the
+// texels sit on the corners of the texel grid.
+const vec2 kTileArea = vec2(float(kTileW - 1u), float(kTileH - 1u));
+const vec2 kTexelOffset = vec2(0.0);
+#else
+const vec2 kTileArea = vec2(float(kTileW), float(kTileH));
+const vec2 kTexelOffset = vec2(0.5);  // nearest: a texel's value is its centre's
+#endif
+const uint kNoLane = 0xFFFFFFFFu;
+
+// Counts of this invocation, added to gpu::Counters once per pixel.
+uint g_tilesComputed = 0u;
+uint g_duplicateTiles = 0u;
+uint g_tileFallbacks = 0u;
+// A number unique to this invocation (its pixel), to detect a subgroup repack (below).
+uint g_invocationId = 0u;
+
+// ---- Texel storage (§5.4.1) --------------------------------------------------------------
+
+#if MG_TILE_STORAGE == 0 || MG_TILE_STORAGE == 1
+// Buffers hold a texel's values as consecutive fp32 words.
+#if MG_TILE_STORAGE == 1
+layout(set = 0, binding = kBindingTileTexels, std430) coherent buffer TileTexelBlock {
+  uint tileTexels[];
+};
+#define MG_TILE_WORD(i) tileTexels[i]
+uint tileTexelWord(uint entry, uint texel) {
+  return (entry * kTileTexels + texel) * uint(MG_CACHE_VALUES);
+}
+#else
+#define MG_TILE_WORD(i) cacheData[i]
+uint tileTexelWord(uint entry, uint texel) {
+  return cacheEntryOffset(entry) + kCacheHeader + texel * uint(MG_CACHE_VALUES);
+}
+#endif
+void tileStoreTexel(uint entry, uint texel, float values[MG_CACHE_VALUES]) {
+  uint word = tileTexelWord(entry, texel);
+  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) MG_TILE_WORD(word + i) = floatBitsToUint(values[i]);
+}
+void tileLoadTexel(uint entry, uint texel, out float values[MG_CACHE_VALUES]) {
+  uint word = tileTexelWord(entry, texel);
+  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = uintBitsToFloat(MG_TILE_WORD(word + i));
+}
+#else
+// Images hold four values per texel; a texel's value groups sit side by side in x (2D) or
+// stacked in z (3D). Tiles are laid out row by row, frame.cache.w tiles per row.
+const uint kValueGroups = (uint(MG_CACHE_VALUES) + 3u) / 4u;
+#if MG_TILE_STORAGE == 2
+layout(set = 0, binding = kBindingTileImage, MG_TILE_IMAGE_FORMAT) coherent uniform image2D tileImage;
+ivec2 tileTexelAt(uint entry, uint texel, uint group) {
+  uint tilesPerRow = frame.cache.w;
+  uint x = (entry % tilesPerRow) * kTileW * kValueGroups + group * kTileW + texel % kTileW;
+  uint y = (entry / tilesPerRow) * kTileH + texel / kTileW;
+  return ivec2(x, y);
+}
+#else
+layout(set = 0, binding = kBindingTileImage, MG_TILE_IMAGE_FORMAT) coherent uniform image3D tileImage;
+ivec3 tileTexelAt(uint entry, uint texel, uint group) {
+  uint tilesPerRow = frame.cache.w;
+  uint x = (entry % tilesPerRow) * kTileW + texel % kTileW;
+  uint y = (entry / tilesPerRow) * kTileH + texel / kTileW;
+  return ivec3(x, y, group);
+}
+#endif
+void tileStoreTexel(uint entry, uint texel, float values[MG_CACHE_VALUES]) {
+  for (uint g = 0u; g < kValueGroups; ++g) {
+    vec4 group = vec4(0.0);
+    for (uint c = 0u; c < 4u; ++c)
+      if (4u * g + c < uint(MG_CACHE_VALUES)) group[c] = values[4u * g + c];
+    imageStore(tileImage, tileTexelAt(entry, texel, g), group);
+  }
+}
+void tileLoadTexel(uint entry, uint texel, out float values[MG_CACHE_VALUES]) {
+  for (uint g = 0u; g < kValueGroups; ++g) {
+    vec4 group = imageLoad(tileImage, tileTexelAt(entry, texel, g));
+    for (uint c = 0u; c < 4u; ++c)
+      if (4u * g + c < uint(MG_CACHE_VALUES)) values[4u * g + c] = group[c];
+  }
+}
+#endif
+
+void tileStorageBarrier() {
+#if MG_TILE_STORAGE >= 2
+  memoryBarrierImage();
+#endif
+  memoryBarrierBuffer();
+}
+
+// ---- Keys and filtering (§5.4.2) ---------------------------------------------------------
+
+// A lookup's tile: its key, mip level, position in multiples of the tile size (eq.
+// 5.12-5.13) and the hit's position inside it in texel units, [0, s) (eq. 5.14-5.15 times s).
+struct TileRequest {
+  CacheKey key;
+  int level;
+  vec2 tile;
+  vec2 local;
+};
+
+bool tileRequestFor(uvec4 info, MaterialInputs inputs, out TileRequest request) {
+  bool usable = cacheMipLevel(inputs, request.level);
+  vec2 scaled = exp2(float(request.level)) * inputs.uv.v / kTileArea;
+  request.tile = floor(scaled);
+  request.local = clamp((scaled - request.tile) * kTileArea, vec2(0.0), kTileArea);
+  request.key = cacheKeyOf(info, request.level, request.tile);
+  return usable;
+}
+
+// The texels a lookup at `local` reads and their weights: one for nearest, four bilinear.
+void tileTaps(vec2 local, out uint texels[4], out vec4 weights) {
+#ifdef MG_TILE_BILINEAR
+  uvec2 i0 = uvec2(min(floor(local), kTileArea - 1.0));
+  vec2 f = clamp(local - vec2(i0), 0.0, 1.0);
+  texels[0] = i0.y * kTileW + i0.x;
+  texels[1] = texels[0] + 1u;
+  texels[2] = texels[0] + kTileW;
+  texels[3] = texels[2] + 1u;
+  weights = vec4((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), (1.0 - f.x) * f.y, f.x * f.y);
+#else
+  uvec2 i = uvec2(min(floor(local), kTileArea - 1.0));
+  texels[0] = i.y * kTileW + i.x;
+  texels[1] = texels[0];
+  texels[2] = texels[0];
+  texels[3] = texels[0];
+  weights = vec4(1.0, 0.0, 0.0, 0.0);
+#endif
+}
+
+// §5.3.3-5.3.4 for a tile: find the key, then read the texels the lookup needs between the
+// two key checks and filter them.
+bool tileRead(TileRequest request, out float values[MG_CACHE_VALUES]) {
+  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;
+  int entry = cacheFind(request.key);
+  if (entry < 0) return false;
+  uint texels[4];
+  vec4 weights;
+  tileTaps(request.local, texels, weights);
+  uint counterBefore = cacheReadBegin(uint(entry), request.key);
+#ifdef MG_TILE_BILINEAR
+  [[unroll]] for (uint tap = 0u; tap < 4u; ++tap) {
+    float texel[MG_CACHE_VALUES];
+    tileLoadTexel(uint(entry), texels[tap], texel);
+    for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] += weights[tap] * texel[i];
+  }
+#else
+  tileLoadTexel(uint(entry), texels[0], values);
+#endif
+  return cacheReadValid(uint(entry), request.key, counterBefore);
+}
+
+// §6.7.2: records a computed tile in this frame's set; true when it was there already (a
+// duplicate computed by another subgroup). A full probe range counts nothing.
+layout(set = 0, binding = kBindingTileLog, std430) buffer TileLogBlock {
+  uint tileLog[];
+};
+bool tileLogDuplicate(CacheKey key) {
+  uint base = cachePcg(key.base ^ cachePcg(key.hash));
+  [[unroll]] for (uint d = 0u; d < kTileLogProbe; ++d) {
+    uint slot = (base + d) & (kTileLogEntries - 1u);
+    uint previous = atomicCompSwap(tileLog[slot], 0u, key.hash);
+    if (previous == 0u) return false;
+    if (previous == key.hash) return true;
+  }
+  return false;
+}
+
+// ---- Cooperative computation of missing tiles (§5.4.3) -----------------------------------
+
+// Shuffles a value array from lane `source` (every lane takes part, each with its source).
+void tileShuffleValues(float values[MG_CACHE_VALUES], uint source,
+                       out float result[MG_CACHE_VALUES]) {
+  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) result[i] = subgroupShuffle(values[i], source);
+}
+
+// §5.4.4: the order in which missing tiles are selected. Materials with an even number of
+// requesting lanes come first so tiles of one material pair up in an iteration; the
+// thesis's offset is the high bit here. Without grouping, lanes go in ascending order.
+uint tileSortKey(bool pending, uint materialId) {
+#ifdef MG_TILE_GROUP_BY_MATERIAL
+  uint sortKey = 0xFFFFFFFFu;
+  bool unresolved = pending;
+  while (subgroupAny(unresolved)) {
+    uint first = subgroupBallotFindLSB(subgroupBallot(unresolved));
+    uint material = subgroupShuffle(materialId, first);
+    bool same = unresolved && materialId == material;
+    uint count = subgroupBallotBitCount(subgroupBallot(same));
+    if (same) {
+      sortKey = (materialId & 0x7FFFFFFFu) | ((count & 1u) != 0u ? 0x80000000u : 0u);
+      unresolved = false;
+    }
+  }
+  return sortKey;
+#else
+  return 0u;
+#endif
+}
+
+// Steps 1-8 of §5.4.3, repeated until no lane of the subgroup requests a tile. `request`:
+// this lane missed the cache for `tile` of `materialId`; on return `served` says whether
+// `values` now holds its filtered texel(s), computed by the subgroup.
+void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest tile,
+                        MaterialInputs inputs, inout float values[MG_CACHE_VALUES],
+                        out bool served) {
+  served = false;
+  uint lane = gl_SubgroupInvocationID;
+  // Texels go to lanes by index, so every lane of the subgroup must be here.
+  bool complete = subgroupBallotBitCount(subgroupBallot(true)) == gl_SubgroupSize;
+  if (!complete || kTileTexels > gl_SubgroupSize) {
+    if (request) g_tileFallbacks += 1u;
+    return;
+  }
+  const uint tilesPerIteration = gl_SubgroupSize / kTileTexels;
+  bool pending = request;
+  uint sortKey = tileSortKey(pending, materialId);
+  while (subgroupAny(pending)) {
+    // Steps 1-2: select up to tilesPerIteration tiles; the selected lane broadcasts its tile
+    // and every lane asking for the same tile is served by this slot.
+    uint mySlot = kNoLane;  // the slot of this lane's own tile
+    uint workMaterial = 0u;
+    uvec4 workInfo = uvec4(0u);
+    TileRequest work;
+    work.key.base = 0u;
+    work.key.hash = 0u;
+    work.level = 0;
+    work.tile = vec2(0.0);
+    work.local = vec2(0.0);
+    uint selected = 0u;
+    for (uint slot = 0u; slot < tilesPerIteration; ++slot) {
+      uvec4 candidates = subgroupBallot(pending);
+      if (subgroupBallotBitCount(candidates) == 0u) break;
+#ifdef MG_TILE_GROUP_BY_MATERIAL
+      uint nextKey = subgroupMin(pending ? sortKey : 0xFFFFFFFFu);
+      candidates = subgroupBallot(pending && sortKey == nextKey);
+#endif
+      uint leader = subgroupBallotFindLSB(candidates);
+      uint leaderMaterial = subgroupShuffle(materialId, leader);
+      uvec4 leaderInfo = subgroupShuffle(info, leader);
+      uint leaderBase = subgroupShuffle(tile.key.base, leader);
+      uint leaderHash = subgroupShuffle(tile.key.hash, leader);
+      int leaderLevel = subgroupShuffle(tile.level, leader);
+      vec2 leaderTile = subgroupShuffle(tile.tile, leader);
+
+      if (pending && materialId == leaderMaterial && tile.level == leaderLevel &&
+          all(equal(tile.tile, leaderTile))) {
+        pending = false;
+        mySlot = slot;
+      }
+      if (lane / kTileTexels == slot) {
+        workMaterial = leaderMaterial;
+        workInfo = leaderInfo;
+        work.key.base = leaderBase;
+        work.key.hash = leaderHash;
+        work.level = leaderLevel;
+        work.tile = leaderTile;
+      }
+      selected += 1u;
+    }
+
+    // Steps 3-4: each lane of a selected tile evaluates the graph at its texel, with the
+    // fictional derivatives of eq. 5.16-5.17 (a texel of level m is 2^-m wide).
+    bool worker = lane < selected * kTileTexels;
+    uint texel = lane % kTileTexels;
+    float texelValues[MG_CACHE_VALUES];
+    for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) texelValues[i] = 0.0;
+    if (worker) {
+      float texelSize = exp2(-float(work.level));
+      MaterialInputs texelInputs = inputs;
+      vec2 texelIndex = vec2(float(texel % kTileW), float(texel / kTileW));
+      texelInputs.uv.v = (work.tile * kTileArea + texelIndex + kTexelOffset) * texelSize;
+      texelInputs.uv.x = vec2(texelSize, 0.0);
+      texelInputs.uv.y = vec2(0.0, texelSize);
+
+      MaterialOutputs texelOutputs;
+      evaluateMaterialDirect(workMaterial, texelInputs, texelOutputs);
+      cachePack(workInfo.x, texelOutputs, texelValues);
+    }
+#ifdef MG_MATERIAL_CALLABLES
+    // executeCallableEXT may repack invocations into other subgroups (SPIR-V "invocation
+    // repack instruction"); the exchange below needs the same lanes as before. If the
+    // subgroup changed, nothing is inserted and every requester evaluates its own hit.
+    uint firstBefore = subgroupBroadcastFirst(g_invocationId);
+    bool stable = subgroupAll(gl_SubgroupInvocationID == lane) && subgroupAllEqual(firstBefore);
+    if (!stable) {
+      if (request) g_tileFallbacks += 1u;
+      served = false;
+      return;
+    }
+#endif
+
+    // Step 5: the lane of the top-left texel picks an entry and locks it; its lanes learn
+    // which entry (or none: another writer holds it, or the policy declined).
+    int entry = -1;
+    if (worker && texel == 0u) {
+      g_tilesComputed += 1u;
+      if (tileLogDuplicate(work.key)) g_duplicateTiles += 1u;
+      entry = cacheLock(work.key);
+    }
+    int tileEntry = subgroupShuffle(entry, lane - texel);
+    // Step 6: every lane writes its texel.
+    if (worker && tileEntry >= 0) tileStoreTexel(uint(tileEntry), texel, texelValues);
+    // Each lane's writes are made visible, then the subgroup meets in a ballot (a
+    // synchronizing subgroup operation) before the key goes out. Not subgroupBarrier():
+    // lavapipe runs it as a work-group barrier, which deadlocks or corrupts state when
+    // the subgroups of a work group loop here a different number of times.
+    tileStorageBarrier();
+    subgroupMemoryBarrier();
+    uvec4 writesDone = subgroupBallot(true);
+    // Step 7: the top-left lane writes the metadata and the key, which unlocks the entry.
+    if (worker && texel == 0u && entry >= 0 && writesDone.x != 0u)
+      cacheUnlock(uint(entry), work.key);
+
+    // Step 8: lanes served in this iteration read their texels from the lanes that
+    // computed them (faster than global memory, and correct even when nothing was locked).
+    uint texels[4];
+    vec4 weights;
+    tileTaps(tile.local, texels, weights);
+    bool mine = mySlot != kNoLane;
+    uint first = mine ? mySlot * kTileTexels : lane;
+    float tap[MG_CACHE_VALUES];
+    tileShuffleValues(texelValues, mine ? first + texels[0] : lane, tap);
+#ifdef MG_TILE_BILINEAR
+    float filtered[MG_CACHE_VALUES];
+    for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) filtered[i] = weights[0] * tap[i];
+    [[unroll]] for (uint t = 1u; t < 4u; ++t) {
+      tileShuffleValues(texelValues, mine ? first + texels[t] : lane, tap);
+      for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) filtered[i] += weights[t] * tap[i];
+    }
+    if (mine) values = filtered;
+#else
+    if (mine) values = tap;
+#endif
+    if (mine) served = true;
+  }
+}
+
+// The tile cache's material evaluation. Every lane of the subgroup calls it at the same
+// point; `hasHit` is false for lanes without a hit (their outputs are meaningless).
+// Cacheable materials read their tile; the subgroup computes the missing tiles together;
+// other materials (and lanes the subgroup could not serve) are evaluated directly.
+void evaluateMaterialTiled(bool hasHit, uint materialId, MaterialInputs inputs,
+                           out MaterialOutputs outputs) {
+  uvec4 info = hasHit && materialId < uint(mg_materialCacheInfo.length())
+                   ? mg_materialCacheInfo[materialId]
+                   : uvec4(0u);
+  TileRequest tile;
+  bool cached = info.x != 0u && frame.cache.x != 0u && tileRequestFor(info, inputs, tile);
+  if (!cached) {
+    tile.key.base = 0u;
+    tile.key.hash = 0u;
+    tile.level = 0;
+    tile.tile = vec2(0.0);
+    tile.local = vec2(0.0);
+  }
+  float values[MG_CACHE_VALUES];
+  bool request = false;
+  if (cached) {
+    g_cacheLookups += 1u;
+    if (tileRead(tile, values)) {
+      g_cacheHits += 1u;
+    } else {
+      g_cacheMisses += 1u;
+      request = true;
+    }
+  } else {
+    for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;
+  }
+  bool served;
+  tileComputeMissing(request, materialId, info, tile, inputs, values, served);
+  if (cached && (!request || served)) {
+    outputs = cacheUnpack(info.x, values, inputs);
+  } else if (hasHit) {
+    evaluateMaterialDirect(materialId, inputs, outputs);
+  } else {
+    outputs = mg_defaultMaterialOutputs(inputs);
+  }
+}
+
+#endif
