@@ -11,6 +11,8 @@
 
 namespace memograph::runtime {
 
+// A new per-frame counter also goes into frameCounters() (frame_counters.cpp), which the
+// bench summary reads.
 struct FrameStats {
   std::uint32_t frame = 0;
   double gpuMilliseconds = 0.0;   // between the timestamps around the trace (0 if none)

@@ -1,12 +1,10 @@
 // The memograph CLI as a user runs it: exit codes, messages, all-or-nothing output.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 
+#include "cli_run.h"
 #include "test_support.h"
 
 namespace memograph {
@@ -14,25 +12,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exitCode = -1;
-  std::string output;  // stdout and stderr together
-};
-
-CliRun runCli(const std::string& arguments) {
-  const std::string command = std::string(MEMOGRAPH_CLI) + " " + arguments + " 2>&1";
-  CliRun run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe)
-    return run;
-  std::array<char, 4096> buffer;
-  while (const std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe)) {
-    run.output.append(buffer.data(), n);
-  }
-  const int status = pclose(pipe);
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
+using testing::runCli;
 
 class CliTest : public ::testing::Test {
  protected:

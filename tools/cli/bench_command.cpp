@@ -2,15 +2,19 @@
 // tracer on the built-in scenes, from GPU timestamps, as medians over timed frames after
 // warm-up frames (thesis §6 settings: 1920x1080, P = 6, L = 4).
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <fstream>
 #include <iostream>
+#include <span>
 #include <sstream>
 
 #include "cli_common.h"
 #include "commands.h"
 
 #ifdef MEMOGRAPH_HAVE_RUNTIME
+#include "bench_frames.h"
+#include "bench_summary.h"
 #include "cache_arguments.h"
 #include "runtime/renderer.h"
 #endif
@@ -37,7 +41,13 @@ constexpr std::string_view kHelp =
     "  --paths P             paths per pixel (default 6)\n"
     "  --bounces L           rays per path (default 4)\n"
     "  --frames F            timed frames (default 20)\n"
-    "  --warmup W            untimed frames first (default 3)\n"
+    "  --warmup W            untimed frames first (default 3); they follow the path up to\n"
+    "                        its first camera (the path is a closed loop)\n"
+    "  --camera-frames N     cameras on the path (default F x K): its length in frames\n"
+    "  --frame-stride K      time every K-th camera of the path only (default 1); for runs\n"
+    "                        without a cache, whose frames do not depend on earlier ones\n"
+    "  --label NAME          names the run (letters, digits, '.', '_', '-') in the output,\n"
+    "                        the CSV and the per-frame file name\n"
     "  --static-camera       keep the scene's camera still\n"
     "  --shared-primary      one primary ray per pixel shared by its paths\n"
     "  --backend B           auto, query or pipeline\n"
@@ -46,7 +56,7 @@ constexpr std::string_view kHelp =
     "  --nodes DIR           node library folder instead of the built-in one\n"
     "  --shader-cache DIR    SPIR-V cache folder\n"
     "  --csv FILE            one line per scene and size\n"
-    "  --frames-csv PREFIX   per-frame statistics to PREFIX<scene>_<W>x<H>.csv\n";
+    "  --frames-csv PREFIX   per-frame statistics to PREFIX<scene>[_<label>]_<W>x<H>.csv\n";
 
 bool parseNumber(std::string_view text, std::uint32_t& out) {
   auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), out);
@@ -65,7 +75,7 @@ int runBench(std::span<const std::string_view>) {
 int runBench(std::span<const std::string_view> args) {
   std::string sizes = "1920x1080", paths = "6", bounces = "4", frames = "20", warmup = "3",
               backend = "auto", device = "-1", nodes, shaderCache, csvPath, framesCsv,
-              materialDispatch = "auto";
+              materialDispatch = "auto", cameraFrames, frameStride = "1", runLabel;
   bool help = false, staticCamera = false, sharedPrimary = false;
   ArgumentScanner scanner("bench", args);
   CacheArguments cacheArguments;
@@ -83,6 +93,9 @@ int runBench(std::span<const std::string_view> args) {
   scanner.option("--shader-cache", &shaderCache);
   scanner.option("--csv", &csvPath);
   scanner.option("--frames-csv", &framesCsv);
+  scanner.option("--camera-frames", &cameraFrames);
+  scanner.option("--frame-stride", &frameStride);
+  scanner.option("--label", &runLabel);
   scanner.flag("--static-camera", &staticCamera);
   scanner.flag("--shared-primary", &sharedPrimary);
   scanner.flag("--help", &help);
@@ -102,6 +115,21 @@ int runBench(std::span<const std::string_view> args) {
     return usageError("bench", "--paths, --bounces, --frames (>0) and --warmup take whole numbers");
   if (device != "-1" && !parseNumber(device, deviceIndex))
     return usageError("bench", "--device takes a device index");
+  BenchFramePlan plan{.warmup = w, .timed = f};
+  if (!parseNumber(frameStride, plan.stride) || plan.stride == 0)
+    return usageError("bench", "--frame-stride takes a whole number > 0");
+  plan.pathCameras = f * plan.stride;
+  if (!cameraFrames.empty() &&
+      (!parseNumber(cameraFrames, plan.pathCameras) || plan.pathCameras == 0))
+    return usageError("bench", "--camera-frames takes a whole number > 0");
+  if (staticCamera && (plan.stride != 1 || !cameraFrames.empty()))
+    return usageError(
+        "bench", "--frame-stride and --camera-frames need the camera path, not --static-camera");
+  if (!std::all_of(runLabel.begin(), runLabel.end(), [](char c) {
+        return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-';
+      }))
+    return usageError(
+        "bench", "--label takes letters, digits, '.', '_' and '-' only, not '" + runLabel + "'");
   std::vector<std::pair<std::uint32_t, std::uint32_t> > sizeList;
   std::stringstream sizeStream(sizes);
   for (std::string item; std::getline(sizeStream, item, ',');) {
@@ -121,6 +149,12 @@ int runBench(std::span<const std::string_view> args) {
   } catch (const std::invalid_argument& e) {
     return usageError("bench", e.what());
   }
+  // A cache carries state from frame to frame, so skipping frames would measure another
+  // run, not a sample of this one.
+  if (plan.stride != 1 && options.cache.mode != runtime::CacheMode::None)
+    return usageError("bench",
+                      "--frame-stride needs --cache none: with a cache each frame "
+                      "depends on the frames before it, so every frame must be rendered");
   options.context.deviceIndex = device == "-1" ? -1 : int(deviceIndex);
   options.shaderCacheDirectory = shaderCache;
   options.nodeLibraryDirectory = nodes;
@@ -135,7 +169,8 @@ int runBench(std::span<const std::string_view> args) {
     csv << "scene,width,height,paths,rays_per_path,backend,device,frames,median_gpu_ms,fps,"
            "mrays_per_s,blas_bytes,tlas_bytes,scratch_bytes,materials,material_dispatch,"
            "shader_compile_ms,pipeline_create_ms,cache,cache_eviction,cache_entries,"
-           "cache_probe,cache_bytes,median_cache_hit_rate\n";
+           "cache_probe,cache_bytes,median_cache_hit_rate,label,warmup,frame_stride,camera_frames,"
+        << benchSummaryCsvColumns() << "\n";
   }
   try {
     for (const auto& sceneName : scenes) {
@@ -155,12 +190,21 @@ int runBench(std::span<const std::string_view> args) {
       std::cout << "device: " << renderer.context().info().name << ", backend "
                 << runtime::backendName(renderer.context().backend()) << "\n";
       // Output label: the whole spec, so runs with different options stay apart; commas
-      // become ';' to keep the CSV's columns.
+      // become ';' to keep the CSV's columns. --label adds the variant's name.
       std::string label = sceneName.substr(8);
       std::replace(label.begin(), label.end(), ',', ';');
       std::string fileLabel = label;
       std::replace_if(
           fileLabel.begin(), fileLabel.end(), [](char c) { return c == ':' || c == ';'; }, '_');
+      const std::string shownLabel = runLabel.empty() ? label : label + " [" + runLabel + "]";
+      if (!runLabel.empty())
+        fileLabel += "_" + runLabel;
+      std::vector<runtime::Camera> cameras;
+      if (!staticCamera) {
+        const auto path = runtime::makeBuiltinCameraPath(name, int(plan.pathCameras)).frames;
+        for (std::uint32_t frame = 0; frame < w + f; ++frame)
+          cameras.push_back(path[benchCameraIndex(plan, frame)]);
+      }
       for (auto [width, height] : sizeList) {
         runtime::RenderSettings settings;
         settings.width = width;
@@ -169,48 +213,41 @@ int runBench(std::span<const std::string_view> args) {
         settings.raysPerPath = l;
         settings.frames = w + f;
         settings.sharedPrimaryRay = sharedPrimary;
-        if (!staticCamera)
-          settings.cameraPath = runtime::makeBuiltinCameraPath(name, int(w + f)).frames;
+        settings.cameraPath = cameras;
         runtime::RenderResult result = renderer.render(scene, settings);
-        std::vector<runtime::FrameStats> timed(result.stats.frames.begin() + w,
-                                               result.stats.frames.end());
-        std::vector<double> ms, mrays, hitRates;
-        for (const auto& frame : timed) {
-          hitRates.push_back(frame.cacheHitRate());
-          ms.push_back(frame.gpuMilliseconds);
-          mrays.push_back(frame.gpuMilliseconds > 0 ? frame.rays / (frame.gpuMilliseconds * 1e3)
-                                                    : 0);
-        }
-        auto median = [](std::vector<double> v) {
-          std::sort(v.begin(), v.end());
-          std::size_t n = v.size();
-          return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-        };
-        double medianMs = median(ms), medianMrays = median(mrays);
-        double medianHitRate = median(hitRates);
-        double fps = medianMs > 0 ? 1000.0 / medianMs : 0.0;
+        const auto timed = std::span(result.stats.frames).subspan(w);
+        const TimedFrameSummary summary = summarizeTimedFrames(timed);
+        const double medianMs = summary.medianMilliseconds;
+        const double fps = medianMs > 0 ? 1000.0 / medianMs : 0.0;
         const auto& as = result.stats.accelerationStructures;
-        std::cout << label << " " << width << "x" << height << " P=" << p << " L=" << l
-                  << ": median " << medianMs << " ms/frame, " << fps << " fps, " << medianMrays
-                  << " Mrays/s (" << timed.size() << " frames; " << result.stats.materialCount
-                  << " materials, " << result.stats.materialDispatch << "; pipeline "
+        std::cout << shownLabel << " " << width << "x" << height << " P=" << p << " L=" << l
+                  << ": median " << medianMs << " ms/frame, " << fps << " fps, "
+                  << summary.medianMraysPerSecond << " Mrays/s (" << timed.size() << " frames";
+        if (!staticCamera)
+          std::cout << " of a " << plan.pathCameras << "-camera path, stride " << plan.stride;
+        std::cout << "; " << result.stats.materialCount << " materials, "
+                  << result.stats.materialDispatch << "; pipeline "
                   << result.stats.pipelineCreateMilliseconds << " ms; BLAS " << as.blasBytes
                   << " B, TLAS " << as.tlasBytes << " B)\n";
         if (result.stats.cache != "none")
           std::cout << "  cache " << result.stats.cache << " (" << result.stats.cacheEntries
                     << " entries, D=" << result.stats.cacheProbe << ", eviction "
                     << result.stats.cacheEviction << ", " << result.stats.cacheBytes
-                    << " B): median hit rate " << 100.0 * medianHitRate << " %\n";
+                    << " B): median hit rate " << 100.0 * summary.medianCacheHitRate << " %, total "
+                    << 100.0 * summary.totalCacheHitRate << " %\n";
         if (csv) {
           csv << label << ',' << width << ',' << height << ',' << p << ',' << l << ','
               << result.stats.backend << ",\"" << result.stats.device << "\"," << timed.size()
-              << ',' << medianMs << ',' << fps << ',' << medianMrays << ',' << as.blasBytes << ','
-              << as.tlasBytes << ',' << as.scratchBytes << ',' << result.stats.materialCount << ','
-              << result.stats.materialDispatch << ',' << result.stats.shaderCompileMilliseconds
-              << ',' << result.stats.pipelineCreateMilliseconds << ',' << result.stats.cache << ','
+              << ',' << medianMs << ',' << fps << ',' << summary.medianMraysPerSecond << ','
+              << as.blasBytes << ',' << as.tlasBytes << ',' << as.scratchBytes << ','
+              << result.stats.materialCount << ',' << result.stats.materialDispatch << ','
+              << result.stats.shaderCompileMilliseconds << ','
+              << result.stats.pipelineCreateMilliseconds << ',' << result.stats.cache << ','
               << result.stats.cacheEviction << ',' << result.stats.cacheEntries << ','
-              << result.stats.cacheProbe << ',' << result.stats.cacheBytes << ',' << medianHitRate
-              << '\n';
+              << result.stats.cacheProbe << ',' << result.stats.cacheBytes << ','
+              << summary.medianCacheHitRate << ',' << runLabel << ',' << w << ','
+              << (staticCamera ? 0 : plan.stride) << ',' << (staticCamera ? 0 : plan.pathCameras)
+              << ',' << benchSummaryCsvValues(summary) << '\n';
         }
         if (!framesCsv.empty()) {
           std::ofstream perFrame(framesCsv + fileLabel + "_" + std::to_string(width) + "x" +

@@ -1,0 +1,33 @@
+// What `memograph bench` reports for the timed frames of one run: medians (robust to the
+// odd slow frame) and, for the cache, the total hit rate (hits over lookups summed over the
+// timed frames), which weighs each frame by its lookups as the thesis's tables do.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "runtime/render_stats.h"
+
+namespace memograph::cli {
+
+struct TimedFrameSummary {
+  double medianMilliseconds = 0.0;
+  double medianMraysPerSecond = 0.0;
+  double medianCacheHitRate = 0.0;
+  double totalCacheHitRate = 0.0;  // 0 without lookups
+  std::uint64_t cacheLookups = 0;  // summed over the timed frames
+  std::uint64_t cacheHits = 0;
+  // Median of each of runtime::frameCounters(), in its order.
+  std::vector<double> counterMedians;
+};
+
+TimedFrameSummary summarizeTimedFrames(std::span<const runtime::FrameStats> frames);
+
+// The bench CSV's trailing columns (after the fixed ones of bench_command.cpp) and their
+// values, so the per-frame counters' names come from one place.
+std::string benchSummaryCsvColumns();
+std::string benchSummaryCsvValues(const TimedFrameSummary& summary);
+
+}  // namespace memograph::cli

@@ -1,0 +1,228 @@
+#!/usr/bin/env bash
+# Issue 4's benchmark sweep: the runs behind the project's Tables 6.1-6.3 (thesis §6) at
+# 1920x1080, P = 6, L = 4 over a 300-camera path, in ONE device call of at most 600 s.
+# tools/bundle_issue4.sh copies it to bundle/run_issue4.sh; on the GPU machine:
+#   bash bundle/run_issue4.sh [--tables 6.1,6.1s,6.2,6.3] [--match REGEX] [--budget S]
+# and here, on lavapipe, end to end at a tiny size (64x36, a 4-camera path):
+#   bash tools/issue4/run_issue4.sh --dry-run [--match REGEX]
+#
+# Results under $OUT (the device tool returns 8 files at most, each < 16 MB):
+#   issue4_summary.csv    one `memograph bench --csv` line per run that finished
+#   issue4_frames.tar.gz  every run's per-frame CSV (frames/<scene>_<label>_<W>x<H>.csv)
+#   issue4_steps.tsv      each step: status, seconds, limit, table, scene, label, flags
+#   issue4_log.txt        everything printed;   issue4_env.txt  GPU, driver, bundle commit
+# tools/results/make_tables turns them into docs/results/issue4_tables.md and plots.
+#
+# Order is priority: a step whose time limit no longer fits in what is left of --budget is
+# skipped (and listed as such), so a call always ends in time with the most important
+# figures. Run the rest in later calls with --tables / --match.
+set -uo pipefail
+
+usage() {
+  sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'
+}
+
+dry=0 tables="6.1,6.1s,6.2,6.3" match="" budget=""
+while [ $# -gt 0 ]; do
+  case $1 in
+  --dry-run) dry=1 ;;
+  --tables | --match | --budget)
+    [ $# -ge 2 ] || { echo "run_issue4.sh: $1 needs a value" >&2; exit 2; }
+    case $1 in --tables) tables=$2 ;; --match) match=$2 ;; --budget) budget=$2 ;; esac
+    shift ;;
+  -h | --help) usage; exit 0 ;;
+  *) echo "run_issue4.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  esac
+  shift
+done
+if [ -n "$budget" ] && ! [[ $budget =~ ^[0-9]+$ ]]; then
+  echo "run_issue4.sh: --budget takes whole seconds, not '$budget'" >&2
+  exit 2
+fi
+
+# Variants: one row per run. limit = the step's time limit in seconds on an H100/H200 (about
+# 1.5x the estimate, set-up included); cameras = path length; stride > 1 only without a
+# cache (the bench refuses it otherwise). Labels are the contract with make_tables:
+#   <kind>_s<log2 texels>_<eviction>[-<clock>][_sec]   kind: texel, tile (4x4 nearest),
+#   tilebil (4x4 bilinear); sec: memoization at secondary hits only; none, floor: no cache.
+# Sizes count texels, as the thesis does: a 4x4 tile entry holds 16 (2^24 texels = 2^20 tiles).
+read -r -d '' VARIANTS <<'TABLE'
+# limit table scene      label                 cameras stride flags
+  110   6.1   classroom  none                  300     10     --cache none
+  120   6.1   classroom  texel_s24_lru-counter 300     1      --cache texel --cache-entries 16777216 --eviction lru --clock counter
+  120   6.1   classroom  tile_s24_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter
+  130   6.1   classroom  tilebil_s24_lru-counter 300   1      --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter
+  40    6.1   classroom  floor                 300     10     --cache none --floor-materials
+  20    6.1   landscape  none                  300     10     --cache none
+  60    6.1   landscape  texel_s24_lru-counter 300     1      --cache texel --cache-entries 16777216 --eviction lru --clock counter
+  60    6.1   landscape  tile_s24_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter
+  60    6.1   landscape  tilebil_s24_lru-counter 300   1      --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter
+  20    6.1   landscape  floor                 300     10     --cache none --floor-materials
+  120   6.1s  classroom  texel_s24_lru-counter_sec 300 1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-secondary-only
+  120   6.1s  classroom  tile_s24_lru-counter_sec 300  1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only
+  130   6.1s  classroom  tilebil_s24_lru-counter_sec 300 1    --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only
+  60    6.1s  landscape  texel_s24_lru-counter_sec 300 1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-secondary-only
+  60    6.1s  landscape  tile_s24_lru-counter_sec 300  1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only
+  60    6.1s  landscape  tilebil_s24_lru-counter_sec 300 1    --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only
+# Table 6.2: eviction strategies on the classroom, large (2^23 texels) then small (2^21).
+  120   6.2   classroom  texel_s23_none        300     1      --cache texel --cache-entries 8388608 --eviction none
+  120   6.2   classroom  texel_s23_random      300     1      --cache texel --cache-entries 8388608 --eviction random
+  120   6.2   classroom  texel_s23_lrw-frame   300     1      --cache texel --cache-entries 8388608 --eviction lrw --clock frame
+  120   6.2   classroom  texel_s23_lru-frame   300     1      --cache texel --cache-entries 8388608 --eviction lru --clock frame
+  120   6.2   classroom  texel_s23_lrw-counter 300     1      --cache texel --cache-entries 8388608 --eviction lrw --clock counter
+  120   6.2   classroom  texel_s23_lru-counter 300     1      --cache texel --cache-entries 8388608 --eviction lru --clock counter
+  120   6.2   classroom  tile_s23_none         300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction none
+  120   6.2   classroom  tile_s23_random       300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction random
+  120   6.2   classroom  tile_s23_lrw-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lrw --clock frame
+  120   6.2   classroom  tile_s23_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lru --clock frame
+  120   6.2   classroom  tile_s23_lrw-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lrw --clock counter
+  120   6.2   classroom  tile_s23_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lru --clock counter
+  150   6.2   classroom  texel_s21_none        300     1      --cache texel --cache-entries 2097152 --eviction none
+  150   6.2   classroom  texel_s21_random      300     1      --cache texel --cache-entries 2097152 --eviction random
+  150   6.2   classroom  texel_s21_lrw-frame   300     1      --cache texel --cache-entries 2097152 --eviction lrw --clock frame
+  150   6.2   classroom  texel_s21_lru-frame   300     1      --cache texel --cache-entries 2097152 --eviction lru --clock frame
+  150   6.2   classroom  texel_s21_lrw-counter 300     1      --cache texel --cache-entries 2097152 --eviction lrw --clock counter
+  150   6.2   classroom  texel_s21_lru-counter 300     1      --cache texel --cache-entries 2097152 --eviction lru --clock counter
+  150   6.2   classroom  tile_s21_none         300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction none
+  150   6.2   classroom  tile_s21_random       300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction random
+  150   6.2   classroom  tile_s21_lrw-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lrw --clock frame
+  150   6.2   classroom  tile_s21_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock frame
+  150   6.2   classroom  tile_s21_lrw-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lrw --clock counter
+  150   6.2   classroom  tile_s21_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock counter
+# Table 6.3: cache sizes, LRU with the counter clock (2^21 and 2^23 on the classroom are
+# Table 6.2's lru-counter runs, so they are not repeated here).
+  150   6.3   classroom  texel_s18_lru-counter 300     1      --cache texel --cache-entries 262144 --eviction lru --clock counter
+  150   6.3   classroom  texel_s19_lru-counter 300     1      --cache texel --cache-entries 524288 --eviction lru --clock counter
+  150   6.3   classroom  texel_s20_lru-counter 300     1      --cache texel --cache-entries 1048576 --eviction lru --clock counter
+  150   6.3   classroom  texel_s22_lru-counter 300     1      --cache texel --cache-entries 4194304 --eviction lru --clock counter
+  150   6.3   classroom  tile_s18_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 16384 --eviction lru --clock counter
+  150   6.3   classroom  tile_s19_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 32768 --eviction lru --clock counter
+  150   6.3   classroom  tile_s20_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 65536 --eviction lru --clock counter
+  150   6.3   classroom  tile_s22_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 262144 --eviction lru --clock counter
+  60    6.3   landscape  texel_s18_lru-counter 300     1      --cache texel --cache-entries 262144 --eviction lru --clock counter
+  60    6.3   landscape  texel_s19_lru-counter 300     1      --cache texel --cache-entries 524288 --eviction lru --clock counter
+  60    6.3   landscape  texel_s20_lru-counter 300     1      --cache texel --cache-entries 1048576 --eviction lru --clock counter
+  60    6.3   landscape  texel_s21_lru-counter 300     1      --cache texel --cache-entries 2097152 --eviction lru --clock counter
+  60    6.3   landscape  texel_s22_lru-counter 300     1      --cache texel --cache-entries 4194304 --eviction lru --clock counter
+  60    6.3   landscape  texel_s23_lru-counter 300     1      --cache texel --cache-entries 8388608 --eviction lru --clock counter
+  60    6.3   landscape  tile_s18_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 16384 --eviction lru --clock counter
+  60    6.3   landscape  tile_s19_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 32768 --eviction lru --clock counter
+  60    6.3   landscape  tile_s20_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 65536 --eviction lru --clock counter
+  60    6.3   landscape  tile_s21_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock counter
+  60    6.3   landscape  tile_s22_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 262144 --eviction lru --clock counter
+  60    6.3   landscape  tile_s23_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lru --clock counter
+TABLE
+
+# Settings of a real run and of the dry run. The dry run keeps every variant and flag but
+# renders 64x36 over a 4-camera path (strides become 2), so here on lavapipe it checks the
+# script, the CLI's acceptance of each flag and make_tables end to end, not the figures.
+size=1920x1080 warmup=2 paths=6 bounces=4
+if [ $dry = 1 ]; then
+  size=64x36 warmup=1 paths=1 bounces=2
+  m=${MEMOGRAPH:-build/tools/memograph}
+  OUT=${OUT:-/tmp/issue4_dry}
+  budget=${budget:-1000000}
+else
+  m=bundle/memograph
+  OUT=${OUT:-/tmp/out}
+  budget=${budget:-585} # the device call's 600 s, less packing and set-up
+  for f in .gl/*.deb; do dpkg -x "$f" /; done
+  ldconfig
+  if ! ls /usr/share/vulkan/icd.d/nvidia_icd.json /etc/vulkan/icd.d/nvidia_icd.json >/dev/null 2>&1; then
+    export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
+  fi
+fi
+start=$(date +%s)
+mkdir -p "$OUT"
+work=$(mktemp -d /tmp/issue4.XXXXXX)
+mkdir -p "$work/csv" "$work/frames" "$work/claims" "$work/shaders"
+log="$OUT/issue4_log.txt" steps="$OUT/issue4_steps.tsv"
+: >"$log"
+printf 'status\tseconds\tlimit_s\ttable\tscene\tlabel\tcameras\tstride\tflags\n' >"$steps"
+
+# The rows selected by --tables and --match, in order.
+rows=()
+while IFS= read -r line; do
+  line=${line%%#*}
+  [ -n "${line// /}" ] || continue
+  read -r limit table scene label cameras stride flags <<<"$line"
+  [[ ",$tables," == *",$table,"* ]] || continue
+  [ -z "$match" ] || [[ "$scene/$label" =~ $match ]] || continue
+  rows+=("$limit|$table|$scene|$label|$cameras|$stride|$flags")
+done <<<"$VARIANTS"
+
+# One step: a bench call under its own time limit, skipped when the budget cannot hold it.
+run_step() {
+  local i=$1 device=$2 limit table scene label cameras stride flags
+  IFS='|' read -r limit table scene label cameras stride flags <<<"${rows[$i]}"
+  if [ $dry = 1 ]; then
+    cameras=4 limit=300
+    [ "$stride" -gt 1 ] && stride=2
+  fi
+  local left=$((budget - ($(date +%s) - start)))
+  if [ "$left" -lt "$limit" ]; then
+    echo "== [$table] $scene $label: SKIPPED (needs ${limit} s, ${left} s left)"
+    printf 'skipped\t0\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$limit" "$table" "$scene" "$label" \
+      "$cameras" "$stride" "$flags" >>"$steps"
+    return
+  fi
+  local strideFlags=() deviceFlags=()
+  [ "$stride" -gt 1 ] && strideFlags=(--frame-stride "$stride")
+  [ -n "$device" ] && deviceFlags=(--device "$device")
+  echo "== [$table] $scene $label: $flags (limit ${limit} s)"
+  local t0 status rc
+  t0=$(date +%s)
+  # shellcheck disable=SC2086 # $flags is a list of words from the table
+  timeout "$limit" "$m" bench "builtin:$scene" --sizes "$size" --paths "$paths" \
+    --bounces "$bounces" --warmup "$warmup" --frames $((cameras / stride)) \
+    --camera-frames "$cameras" "${strideFlags[@]}" --label "$label" \
+    --csv "$work/csv/$(printf %03d "$i").csv" --frames-csv "$work/frames/" \
+    --shader-cache "$work/shaders" "${deviceFlags[@]}" $flags
+  rc=$?
+  case $rc in 0) status=ok ;; 124 | 137) status=timeout ;; 2) status=usage ;; *) status=failed ;; esac
+  [ $rc = 0 ] || echo "STEP FAILED ($status, exit $rc): $scene $label"
+  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$status" $(($(date +%s) - t0)) "$limit" \
+    "$table" "$scene" "$label" "$cameras" "$stride" "$flags" >>"$steps"
+}
+
+# One lane per GPU: each takes the next unclaimed step (mkdir is atomic), so the order stays
+# the priority order. DEVICES="0 1" on a 2-GPU machine; one lane, no --device, by default.
+lane() {
+  local device=$1 prefix=$2
+  for i in "${!rows[@]}"; do
+    mkdir "$work/claims/$i" 2>/dev/null || continue
+    run_step "$i" "$device"
+  done 2>&1 | sed -u "s/^/$prefix/" | tee -a "$log"
+}
+if [ -z "${DEVICES+x}" ] && [ $dry = 0 ]; then
+  gpus=$(nvidia-smi -L 2>/dev/null | grep -c '^GPU' || true)
+  DEVICES=""
+  [ "${gpus:-0}" -gt 1 ] && DEVICES=$(seq -s ' ' 0 $((gpus - 1)))
+fi
+{
+  echo "bundle: $(cat bundle/VERSION 2>/dev/null || echo "working tree (dry run)")"
+  nvidia-smi -L 2>/dev/null || true
+  nvidia-smi --query-gpu=name,driver_version,clocks.max.sm --format=csv 2>/dev/null || true
+  "$m" render --list-devices 2>&1 || true
+  echo "settings: $size P=$paths L=$bounces warmup=$warmup budget=${budget}s tables=$tables" \
+    "match='$match' devices='${DEVICES:-}' steps=${#rows[@]}"
+} 2>&1 | tee "$OUT/issue4_env.txt" | tee -a "$log"
+if [ -z "${DEVICES:-}" ]; then
+  lane "" ""
+else
+  for d in $DEVICES; do lane "$d" "[gpu$d] " & done
+  wait
+fi
+
+# One summary CSV (the header once, steps in order) and one archive of per-frame CSVs: the
+# device tool returns 8 files at most.
+first=1
+for f in "$work"/csv/*.csv; do
+  [ -f "$f" ] || continue
+  if [ $first = 1 ]; then cat "$f"; first=0; else tail -n +2 "$f"; fi
+done >"$OUT/issue4_summary.csv"
+tar czf "$OUT/issue4_frames.tar.gz" -C "$work" frames
+echo "== done in $(($(date +%s) - start)) s: $(grep -c $'^ok\t' "$steps") ok," \
+  "$(grep -c $'^skipped\t' "$steps") skipped, $(grep -cvE $'^(ok|skipped|status)\t' "$steps") failed" |
+  tee -a "$log"
+rm -rf "$work"
