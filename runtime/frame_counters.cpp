@@ -9,6 +9,9 @@ std::vector<FrameCounter> frameCounters(const FrameStats& frame) {
       {"cache_lookups", double(frame.cacheLookups)},
       {"cache_hits", double(frame.cacheHits)},
       {"cache_misses", double(frame.cacheMisses)},
+      {"tiles_computed", double(frame.cacheTilesComputed)},
+      {"duplicate_tiles", double(frame.cacheDuplicateTiles)},
+      {"tile_fallbacks", double(frame.cacheTileFallbacks)},
   };
 }
 
