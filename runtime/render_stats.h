@@ -20,6 +20,14 @@ struct FrameStats {
   std::uint64_t cacheLookups = 0;
   std::uint64_t cacheHits = 0;
   std::uint64_t cacheMisses = 0;
+  // Entries in use (ever filled) after this frame: persists across frames, at most S.
+  std::uint64_t cacheOccupancy = 0;
+  // The counter clock after this frame (§5.3.3; 0 with the frame clock): never reset.
+  std::uint64_t cacheClockTicks = 0;
+  // The tile cache's (§5.4): tiles evaluated, and tiles evaluated more than once in the
+  // frame; 0 for the texel cache.
+  std::uint64_t cacheTilesComputed = 0;
+  std::uint64_t cacheDuplicateTiles = 0;
   double cacheHitRate() const { return cacheLookups ? double(cacheHits) / cacheLookups : 0.0; }
 };
 
@@ -38,7 +46,7 @@ struct RenderStats {
   double shaderCompileMilliseconds = 0.0;    // GLSL → SPIR-V (0 when all came from the cache)
   std::uint32_t shaderCacheHits = 0;
   std::uint32_t shadersCompiled = 0;
-  std::string materialDispatch;  // "switch" or "callable"
+  std::string materialDispatch;  // "switch", "callable" or "floor" (no graph evaluated)
   // Shader modules and pipeline (the driver's own compile), excluding GLSL → SPIR-V.
   double pipelineCreateMilliseconds = 0.0;
   std::string cache = "none";  // "none" or "texel"
@@ -47,6 +55,10 @@ struct RenderStats {
   std::uint32_t cacheProbe = 0;
   std::string cacheReadCheck;         // "key" or "counter" (§5.3.4)
   std::uint32_t cacheValueCount = 0;  // floats per entry
+  std::string cacheValueFormat;       // "fp32" or "fp16" (§5.3.1)
+  std::string cacheClock;             // "frame" or "counter" (§5.3.3)
+  bool cacheSnapUv = false;           // misses evaluated at the texel centre (§6.1)
+  bool cacheSecondaryOnly = false;    // primary hits bypass the cache (Fig. 6.6)
   std::uint64_t cacheBytes = 0;
 
   double medianGpuMilliseconds() const;

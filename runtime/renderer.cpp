@@ -83,45 +83,6 @@ MaterialDispatch resolveMaterialDispatch(MaterialDispatch requested, Backend bac
 
 }  // namespace
 
-const char* cacheModeName(CacheMode mode) {
-  return mode == CacheMode::Texel ? "texel" : "none";
-}
-
-const char* cacheEvictionName(CacheEviction eviction) {
-  switch (eviction) {
-    case CacheEviction::None:
-      return "none";
-    case CacheEviction::Lru:
-      return "lru";
-    case CacheEviction::Lrw:
-      return "lrw";
-    case CacheEviction::Random:
-      return "random";
-  }
-  return "none";
-}
-
-CacheMode parseCacheMode(const std::string& text) {
-  if (text == "none")
-    return CacheMode::None;
-  if (text == "texel")
-    return CacheMode::Texel;
-  throw std::invalid_argument("unknown cache '" + text + "' (choose none or texel)");
-}
-
-CacheEviction parseCacheEviction(const std::string& text) {
-  if (text == "none")
-    return CacheEviction::None;
-  if (text == "lru")
-    return CacheEviction::Lru;
-  if (text == "lrw")
-    return CacheEviction::Lrw;
-  if (text == "random")
-    return CacheEviction::Random;
-  throw std::invalid_argument("unknown eviction policy '" + text +
-                              "' (choose none, lru, lrw or random)");
-}
-
 TextureImage loadTextureCore(const std::string& path) {
   std::filesystem::path p(path);
   if (!std::filesystem::exists(p))
@@ -166,24 +127,28 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   const CacheOptions& cache = options_.cache;
   const bool texelCache = cache.mode == CacheMode::Texel;
   if (texelCache) {
-    if (cache.probe < 1 || cache.probe > gpu::kCacheMaxProbe)
-      throw std::invalid_argument("--probe must be 1.." + std::to_string(gpu::kCacheMaxProbe) +
-                                  ", not " + std::to_string(cache.probe));
-    if (cache.entries <= cache.probe)
-      throw std::invalid_argument("--cache-entries (" + std::to_string(cache.entries) +
-                                  ") must exceed the probe distance (" +
-                                  std::to_string(cache.probe) + ")");
-    if (!std::isfinite(cache.mipBias))
-      throw std::invalid_argument("--mip-bias must be finite");
+    validateCacheOptions(cache);
+    if (options_.floorMaterials)
+      throw std::invalid_argument(
+          "--floor-materials evaluates no material graph, so there is nothing to cache; drop "
+          "--cache texel (or --floor-materials)");
+    if (cache.clock == CacheClock::Counter && !context.info().bufferInt64Atomics)
+      throw std::runtime_error(
+          "--clock counter needs 64-bit atomics on storage buffers "
+          "(shaderInt64 and shaderBufferInt64Atomics), which " +
+          context.info().name + " lacks; use --clock frame");
   }
+  if (options_.debugCacheMisses && !texelCache)
+    throw std::invalid_argument("--debug-misses shows texel cache misses; it needs --cache texel");
 
   // Materials: graphs → GLSL, and the textures they name.
   MaterialLinkOptions linkOptions;
   linkOptions.nodeLibraryDirectory = options_.nodeLibraryDirectory;
   LinkedMaterials materials = linkMaterials(scene.materials, linkOptions);
   const std::size_t distinctMaterials = materials.distinct.size();
-  if (dispatch == MaterialDispatch::Switch && context.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU &&
-      options_.cpuSwitchMaterialLimit > 0 && distinctMaterials > options_.cpuSwitchMaterialLimit) {
+  if (dispatch == MaterialDispatch::Switch && !options_.floorMaterials &&
+      context.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU && options_.cpuSwitchMaterialLimit > 0 &&
+      distinctMaterials > options_.cpuSwitchMaterialLimit) {
     // Fail in a second rather than after minutes and gigabytes of LLVM.
     throw std::runtime_error(
         "this scene has " + std::to_string(distinctMaterials) +
@@ -222,8 +187,10 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     cacheDirectory = options_.shaderCacheDirectory.empty() ? defaultShaderCacheDirectory()
                                                            : options_.shaderCacheDirectory;
   }
-  bool callables = dispatch == MaterialDispatch::Callable;
-  stats.materialDispatch = materialDispatchName(dispatch);
+  // The floor run compiles no graph: the prelude (types, defaults) and no callables.
+  const bool floor = options_.floorMaterials;
+  bool callables = dispatch == MaterialDispatch::Callable && !floor;
+  stats.materialDispatch = floor ? "floor" : materialDispatchName(dispatch);
   ShaderCacheStats callableStats;
   std::optional<MaterialCallables> materialCallables;
   if (callables) {
@@ -234,7 +201,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     callableOptions.threads = options_.shaderCompileThreads;
     materialCallables = compileMaterialCallables(materials, callableOptions, callableStats);
   }
-  files["materials.glsl"] = callables ? materials.preludeSource : materials.source;
+  files["materials.glsl"] = callables || floor ? materials.preludeSource : materials.source;
   ShaderCompiler compiler(std::move(files), cacheDirectory);
   auto pipelineStart = std::chrono::steady_clock::now();
   std::uint32_t threads = options_.shaderCompileThreads
@@ -244,34 +211,31 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   // took as long, on one core) and crashes under the validation layer when handed one: keep
   // deferred pipeline creation to GPU drivers, where it can spread the compile.
   std::uint32_t pipelineThreads = context.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1 : threads;
-  static_assert(static_cast<std::uint32_t>(CacheEviction::Lru) == gpu::kCacheEvictionLru &&
-                static_cast<std::uint32_t>(CacheEviction::Lrw) == gpu::kCacheEvictionLrw &&
-                static_cast<std::uint32_t>(CacheEviction::Random) == gpu::kCacheEvictionRandom);
   // Texel cache (thesis §5.3.1): entries of a key hash, metadata and the largest cacheable
-  // material's written outputs as fp32.
-  std::vector<std::string> cacheDefines;
+  // material's written outputs, as fp32 or packed fp16 (cacheValueWords).
   const std::uint32_t cacheValues = std::max(1u, materials.cacheValueCount);
-  const std::uint64_t cacheStride =
-      (cache.updateCounter ? gpu::kCacheEntryHeaderWithCounter : gpu::kCacheEntryHeader) +
-      cacheValues;
+  const std::uint64_t cacheStride = cacheEntryWords(cache, cacheValues);
+  std::vector<std::string> shaderDefines = cacheShaderDefines(cache, cacheValues);
   if (texelCache) {
-    cacheDefines = {
-        "MG_CACHE_TEXEL=1", "MG_CACHE_VALUES=" + std::to_string(cacheValues),
-        "MG_CACHE_PROBE=" + std::to_string(cache.probe),
-        "MG_CACHE_EVICTION=" + std::to_string(static_cast<std::uint32_t>(cache.eviction))};
-    if (cache.updateCounter)
-      cacheDefines.push_back("MG_CACHE_UPDATE_COUNTER=1");
     stats.cacheReadCheck = cache.updateCounter ? "counter" : "key";
     stats.cache = cacheModeName(cache.mode);
     stats.cacheEviction = cacheEvictionName(cache.eviction);
     stats.cacheEntries = cache.entries;
     stats.cacheProbe = cache.probe;
     stats.cacheValueCount = cacheValues;
+    stats.cacheValueFormat = cacheValueFormatName(cache.valueFormat);
+    stats.cacheClock = cacheClockName(cache.clock);
+    stats.cacheSnapUv = cache.snapUv;
+    stats.cacheSecondaryOnly = cache.secondaryOnly;
     stats.cacheBytes = std::uint64_t(cache.entries) * cacheStride * sizeof(std::uint32_t);
   }
+  if (floor)
+    shaderDefines.push_back("MG_MATERIAL_FLOOR=1");
+  if (options_.debugCacheMisses)
+    shaderDefines.push_back("MG_DEBUG_CACHE_MISSES=1");
   TracePipeline pipeline(context, compiler, textures.count(),
                          materialCallables ? &*materialCallables : nullptr, pipelineThreads,
-                         cacheDefines);
+                         shaderDefines);
   stats.pipelineCreateMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pipelineStart)
           .count() -
@@ -352,9 +316,12 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
 
     auto start = std::chrono::steady_clock::now();
     context.submitAndWait([&](VkCommandBuffer commands) {
-      vkCmdFillBuffer(commands, rayCounter.buffer(), 0, VK_WHOLE_SIZE, 0);
       // The cache is cleared once, before the first frame: every key kCacheKeyEmpty (0),
-      // every clock 0; the barrier below orders it before the trace.
+      // every clock 0, and with it the counters that persist (occupancy, counter clock);
+      // the per-frame counters every frame. The barrier below orders both before the trace.
+      vkCmdFillBuffer(commands, rayCounter.buffer(), 0,
+                      f == 0 ? VK_WHOLE_SIZE : gpu::kCountersPerFrameUints * sizeof(std::uint32_t),
+                      0);
       if (f == 0)
         vkCmdFillBuffer(commands, cacheBuffer.buffer(), 0, VK_WHOLE_SIZE, gpu::kCacheKeyEmpty);
       VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
@@ -387,6 +354,10 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     frameStats.cacheLookups = counters.cacheLookups;
     frameStats.cacheHits = counters.cacheHits;
     frameStats.cacheMisses = counters.cacheMisses;
+    frameStats.cacheOccupancy = counters.cacheOccupancy;
+    frameStats.cacheClockTicks = counters.cacheClock;
+    frameStats.cacheTilesComputed = counters.cacheTilesComputed;
+    frameStats.cacheDuplicateTiles = counters.cacheDuplicateTiles;
     if (timestamps) {
       std::uint64_t ticks[2] = {0, 0};
       checkVk(vkGetQueryPoolResults(device, timestampPool.get(), 0, 2, sizeof ticks, ticks,

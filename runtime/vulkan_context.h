@@ -66,6 +66,9 @@ struct DeviceInfo {
   std::uint32_t subgroupSize = 1;
   // Stages with basic + arithmetic subgroup operations (lavapipe: not ray-tracing stages).
   VkShaderStageFlags subgroupArithmeticStages = 0;
+  // shaderInt64 and shaderBufferInt64Atomics, enabled when present: the texel cache's 64-bit
+  // counter clock (thesis §5.3.3) needs both.
+  bool bufferInt64Atomics = false;
 };
 
 // Names and ray-tracing support of every device, for --list-devices and error messages.

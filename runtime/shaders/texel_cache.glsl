@@ -4,8 +4,14 @@
 //   MG_CACHE_VALUES    floats per entry (the largest cacheable material's written outputs),
 //   MG_CACHE_PROBE     the linear probing distance D (1..kCacheMaxProbe),
 //   MG_CACHE_EVICTION  kCacheEviction{None, Lru, Lrw, Random} (0..3),
-//   MG_CACHE_UPDATE_COUNTER  (optional) the update-counter read check of §5.3.4.
-// The entry count S, the frame clock and the mip bias come per frame in frame.cache.
+//   MG_CACHE_UPDATE_COUNTER  (optional) the update-counter read check of §5.3.4,
+//   MG_CACHE_VALUE_FP16      (optional) values as two halves per uint (§5.3.1),
+//   MG_CACHE_CLOCK_COUNTER   (optional) the 64-bit atomic counter clock of §5.3.3 instead of
+//                            the frame clock, with MG_CACHE_CLOCK_SHIFT (bits kept),
+//   MG_CACHE_SNAP_UV         (optional) a miss evaluates the graph at its texel centre (§6.1).
+// The entry count S, the frame clock and the mip bias come per frame in frame.cache. The
+// includer declares `counters` (gpu::Counters at kBindingRayCounter): the occupancy and the
+// counter clock live there.
 // materials.glsl provides mg_materialCacheInfo[id]: x the output mask (0: not cacheable),
 // y ID0, z ID1 (two independent hashes of the material's graph, eq. 5.8-5.9).
 #ifndef MG_TEXEL_CACHE_GLSL
@@ -17,7 +23,15 @@ const uint kCacheHeader = kCacheEntryHeaderWithCounter;  // key, clock, update c
 #else
 const uint kCacheHeader = kCacheEntryHeader;  // key, clock
 #endif
-const uint kCacheStride = kCacheHeader + uint(MG_CACHE_VALUES);
+// Words per entry's values: one per fp32 value, or one per two halves (§5.3.1: 16-bit floats
+// "usually provide sufficient precision" for colours and normals). The tile cache stores
+// its texels through the same cacheStoreValues / cacheLoadValues.
+#ifdef MG_CACHE_VALUE_FP16
+const uint kCacheValueWords = (uint(MG_CACHE_VALUES) + 1u) / 2u;
+#else
+const uint kCacheValueWords = uint(MG_CACHE_VALUES);
+#endif
+const uint kCacheStride = kCacheHeader + kCacheValueWords;
 
 // Entries as one flat uint array so the key can be swapped atomically (§5.3.4). Coherent:
 // other invocations of the same dispatch read what this one writes.
@@ -29,6 +43,8 @@ layout(set = 0, binding = kBindingCache, std430) coherent buffer CacheBlock {
 uint g_cacheLookups = 0u;
 uint g_cacheHits = 0u;
 uint g_cacheMisses = 0u;
+// Whether any lookup of this invocation missed: the debug view of thesis Fig. 6.9.
+bool g_cacheMissed = false;
 
 // The 32-bit PCG hash (O'Neill 2014, in the RXS-M-XS form of Jarzynski and Olano 2020),
 // the hash() of eq. 5.8-5.9; runtime::pcgHash is the host's copy. Defined here, not taken
@@ -40,8 +56,10 @@ uint cachePcg(uint v) {
 }
 
 struct CacheKey {
-  uint base;  // first entry of the probe range: I of eq. 5.10
-  uint hash;  // H1 of eq. 5.9, stored in the entry; never kCacheKeyEmpty or kCacheKeyLock
+  uint base;     // first entry of the probe range: I of eq. 5.10
+  uint hash;     // H1 of eq. 5.9, stored in the entry; never kCacheKeyEmpty or kCacheKeyLock
+  vec2 texelUv;  // the texel's centre (û, v̂ of eq. 5.6-5.7 over 2^m): where a snapped miss
+                 // evaluates the graph (§6.1)
 };
 
 // Eq. 5.2-5.7 and 5.8-5.10. Returns false when the hit has no usable texture coordinates
@@ -62,6 +80,7 @@ bool cacheKeyFor(uvec4 info, MaterialInputs inputs, out CacheKey key) {
   // for every magnitude (an int conversion would merge all texels past 2^31); -0 and +0
   // only give the same texel two entries.
   vec2 texel = round(exp2(float(m)) * uv);
+  key.texelUv = exp2(-float(m)) * texel;  // exact: a power of two times an integer
   uint u = floatBitsToUint(texel.x);
   uint v = floatBitsToUint(texel.y);
   // Eq. 5.8-5.9: two nested PCG hashes from two independent material ids.
@@ -77,6 +96,56 @@ bool cacheKeyFor(uvec4 info, MaterialInputs inputs, out CacheKey key) {
 }
 
 uint cacheEntryOffset(uint entry) { return entry * kCacheStride; }
+
+// Largest finite half: fp16 stores clamp to it, so a bright emission becomes 65504 instead
+// of an infinity that would poison the path.
+const float kCacheHalfMax = 65504.0;
+
+// Writes one entry's values at cacheData[wordOffset ..] as kCacheValueWords words.
+void cacheStoreValues(uint wordOffset, float values[MG_CACHE_VALUES]) {
+#ifdef MG_CACHE_VALUE_FP16
+  for (uint w = 0u; w < kCacheValueWords; ++w) {
+    uint i = 2u * w;
+    // An odd count leaves the last word's high half 0 (index clamped: no read past the end).
+    float high = i + 1u < uint(MG_CACHE_VALUES) ? values[min(i + 1u, uint(MG_CACHE_VALUES) - 1u)]
+                                                : 0.0;
+    vec2 pair = clamp(vec2(values[i], high), vec2(-kCacheHalfMax), vec2(kCacheHalfMax));
+    cacheData[wordOffset + w] = packHalf2x16(pair);
+  }
+#else
+  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i)
+    cacheData[wordOffset + i] = floatBitsToUint(values[i]);
+#endif
+}
+
+// Reads what cacheStoreValues wrote at cacheData[wordOffset ..].
+void cacheLoadValues(uint wordOffset, out float values[MG_CACHE_VALUES]) {
+#ifdef MG_CACHE_VALUE_FP16
+  for (uint w = 0u; w < kCacheValueWords; ++w) {
+    vec2 pair = unpackHalf2x16(cacheData[wordOffset + w]);
+    uint i = 2u * w;
+    values[i] = pair.x;
+    if (i + 1u < uint(MG_CACHE_VALUES)) values[min(i + 1u, uint(MG_CACHE_VALUES) - 1u)] = pair.y;
+  }
+#else
+  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i)
+    values[i] = uintBitsToFloat(cacheData[wordOffset + i]);
+#endif
+}
+
+// The time an access stamps into an entry's metadata (§5.3.3). Frame clock: the host's
+// frame number, the same for every access of a frame. Counter clock: a global 64-bit
+// atomic counter, incremented by every stamping access and never reset between frames;
+// the entry keeps bits MG_CACHE_CLOCK_SHIFT .. +31 of it ("only bits 16 to 48 of a 64-bit
+// counter", §5.3.3), so 32 bits of metadata do not roll over within a session.
+uint cacheClockNow() {
+#ifdef MG_CACHE_CLOCK_COUNTER
+  uint64_t ticks = atomicAdd(counters.cacheClock, uint64_t(1));
+  return uint(ticks >> uint(MG_CACHE_CLOCK_SHIFT));
+#else
+  return frame.cache.y;
+#endif
+}
 
 // The values an entry stores for output mask `mask`, in kCacheOutput* order.
 void cachePack(uint mask, MaterialOutputs o, out float values[MG_CACHE_VALUES]) {
@@ -138,15 +207,18 @@ bool cacheRead(CacheKey key, out float values[MG_CACHE_VALUES]) {
     if (cacheData[offset] != key.hash) return false;
 #endif
     memoryBarrierBuffer();  // key, then values, then key again (§5.3.4)
-    for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i)
-      values[i] = uintBitsToFloat(cacheData[offset + kCacheHeader + i]);
+    cacheLoadValues(offset + kCacheHeader, values);
     memoryBarrierBuffer();
     if (cacheData[offset] != key.hash) return false;  // overwritten while reading
 #ifdef MG_CACHE_UPDATE_COUNTER
     if (cacheData[offset + 2u] != counterBefore) return false;  // rewritten, key restored
 #endif
-#if MG_CACHE_EVICTION == 1  // kCacheEvictionLru: a read refreshes the frame clock (§4.5)
+#if MG_CACHE_EVICTION == 1  // kCacheEvictionLru: a read refreshes the clock (§4.5)
+#ifdef MG_CACHE_CLOCK_COUNTER
+    cacheData[offset + 1u] = cacheClockNow();  // §5.3.3: reads count only for lru
+#else
     if (cacheData[offset + 1u] != frame.cache.y) cacheData[offset + 1u] = frame.cache.y;
+#endif
 #endif
     return true;
   }
@@ -156,9 +228,8 @@ bool cacheRead(CacheKey key, out float values[MG_CACHE_VALUES]) {
 // The eviction policy's slot in the probe range (§4.5, §5.3.3), or -1 for "do not insert".
 // Empty entries are taken first by every policy; then none drops the value, lru and lrw
 // take the oldest frame clock (lru's is refreshed by reads, lrw's only by writes), random
-// a pseudo-random entry (a hash of the key and the frame: no memory access, §4.5). A new
-// policy (e.g. the 64-bit counter clock of §5.3.3) adds a branch here and its metadata
-// write in cacheWrite / cacheRead.
+// a pseudo-random entry (a hash of the key and the frame: no memory access, §4.5). The
+// clock compared is the frame clock or the counter clock's kept bits (cacheClockNow).
 int cacheChooseSlot(CacheKey key) {
   int oldest = -1;
   uint oldestTime = 0xFFFFFFFFu;
@@ -184,25 +255,34 @@ int cacheChooseSlot(CacheKey key) {
 
 // §5.3.4: lock with an atomic exchange to kCacheKeyLock (a slot already locked is not
 // retried: the value is used by this thread but not cached), write metadata and values,
-// then the key, which unlocks.
+// then the key, which unlocks. Locking an empty entry counts it as occupied: a key never
+// returns to empty, so the count only grows and stays at most S.
 void cacheWrite(CacheKey key, float values[MG_CACHE_VALUES]) {
   int slot = cacheChooseSlot(key);
   if (slot < 0) return;
   uint offset = cacheEntryOffset(key.base + uint(slot));
-  if (atomicExchange(cacheData[offset], kCacheKeyLock) == kCacheKeyLock) return;
+  uint previous = atomicExchange(cacheData[offset], kCacheKeyLock);
+  if (previous == kCacheKeyLock) return;
+  if (previous == kCacheKeyEmpty) atomicAdd(counters.cacheOccupancy, 1u);
 #ifdef MG_CACHE_UPDATE_COUNTER
   atomicAdd(cacheData[offset + 2u], 1u);  // before any value changes (§5.3.4)
   memoryBarrierBuffer();
 #endif
-  cacheData[offset + 1u] = frame.cache.y;
-  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i)
-    cacheData[offset + kCacheHeader + i] = floatBitsToUint(values[i]);
+#if MG_CACHE_EVICTION == 1 || MG_CACHE_EVICTION == 2
+  cacheData[offset + 1u] = cacheClockNow();
+#else
+  cacheData[offset + 1u] = frame.cache.y;  // unread by none and random; no counter tick
+#endif
+  cacheStoreValues(offset + kCacheHeader, values);
   memoryBarrierBuffer();
   atomicExchange(cacheData[offset], key.hash);
 }
 
 // Cacheable materials (mask != 0) read the cache and on a miss evaluate and insert;
-// others are evaluated directly and never touch the cache.
+// others are evaluated directly and never touch the cache. With MG_CACHE_SNAP_UV a miss
+// evaluates at the texel centre (§6.1: "rounding the texture coordinates to the nearest
+// cache texel before evaluating"), so an entry holds its texel's value, not that of
+// whichever hit inside the texel came first; this hit then shades with that value too.
 void evaluateMaterialCached(uint materialId, MaterialInputs inputs, out MaterialOutputs outputs) {
   uvec4 info = materialId < uint(mg_materialCacheInfo.length()) ? mg_materialCacheInfo[materialId]
                                                                 : uvec4(0u);
@@ -219,7 +299,14 @@ void evaluateMaterialCached(uint materialId, MaterialInputs inputs, out Material
     return;
   }
   g_cacheMisses += 1u;
+  g_cacheMissed = true;
+#ifdef MG_CACHE_SNAP_UV
+  MaterialInputs snapped = inputs;
+  snapped.uv.v = key.texelUv;
+  evaluateMaterialDirect(materialId, snapped, outputs);
+#else
   evaluateMaterialDirect(materialId, inputs, outputs);
+#endif
   cachePack(info.x, outputs, values);
   cacheWrite(key, values);
 }
