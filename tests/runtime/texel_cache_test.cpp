@@ -13,42 +13,15 @@
 #include "render_test_support.h"
 #include "runtime/quality/flip.h"
 #include "runtime/shaders/shared_types.h"
+#include "texel_cache_scenes.h"
 
 namespace memograph::runtime {
 namespace {
 
-// Stripes in u and v: depends on uv only, so the compiler marks it cacheable.
-std::string stripesGraph() {
-  return "material Stripes;\nUVInput UV>0;\nWave In<0 Out>1;\nBaseColorOutput Color<1;\n"
-         "RoughnessOutput Roughness=0.7;\n";
-}
-
-// Reads the hit position: not cacheable (thesis §4.2).
-std::string positionGraph() {
-  return "material Positional;\nPositionInput Out>0;\nWave In<0 Out>1;\nBaseColorOutput "
-         "Color<1;\n";
-}
-
-// A striped wall facing the camera (filling the view), and optionally a sphere before it.
-Scene wallScene(const std::string& wallGraph, bool sphere) {
-  Scene scene;
-  scene.meshes.push_back(testing::quad(8.0f, 4.0f));
-  scene.materials.push_back({"Wall", "", wallGraph});
-  // The quad lies in y = 0 with normal +y; a quarter turn about x turns it to face +z.
-  scene.instances.push_back(
-      {0, 0, glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1, 0, 0))});
-  if (sphere) {
-    scene.meshes.push_back(testing::sphere(16));
-    scene.materials.push_back(
-        {"Ball", "", testing::constantGraph("Ball", {0.7f, 0.3f, 0.2f}, 0.3f)});
-    scene.instances.push_back({1, 1, glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, 1.5f))});
-  }
-  scene.lights.push_back({LightType::Point, {1, 2, 4}, {0, -1, 0}, glm::vec3(15.0f)});
-  scene.environment.constantRadiance = {0.3f, 0.3f, 0.3f};
-  scene.camera.position = {0, 0, 5};
-  scene.camera.target = {0, 0, 0};
-  return scene;
-}
+using testing::meanFlip;
+using testing::positionGraph;
+using testing::stripesGraph;
+using testing::wallScene;
 
 RendererOptions cacheOptions(CacheMode mode, Backend backend = Backend::Auto,
                              std::uint32_t entries = 1u << 16,
@@ -69,14 +42,6 @@ RenderSettings settings(std::uint32_t frames, std::uint32_t raysPerPath, std::ui
   s.frames = frames;
   s.seed = 5;
   return s;
-}
-
-double meanFlip(const HdrImage& reference, const HdrImage& test) {
-  FlipImageView a{reference.rgba, int(reference.width), int(reference.height), 4};
-  FlipImageView b{test.rgba, int(test.width), int(test.height), 4};
-  FlipOptions options;
-  options.encoding = FlipEncoding::Linear;
-  return computeFlip(a, b, options).mean;
 }
 
 void expectConsistentCounters(const RenderStats& stats) {
@@ -277,7 +242,7 @@ TEST(TexelCache, StatsCsvAppendsTheCacheColumns) {
           "pipeline_create_ms,cache,cache_eviction,cache_entries,cache_probe,"
           "cache_bytes,cache_lookups,cache_hits,cache_misses,cache_hit_rate,cache_read_check"),
       std::string::npos);
-  EXPECT_NE(row.find(",texel,lru,1024,0,0,200,150,50,0.75,key\n"), std::string::npos) << row;
+  EXPECT_NE(row.find(",texel,lru,1024,0,0,200,150,50,0.75,key,"), std::string::npos) << row;
 }
 
 TEST(TexelCache, BadOptionsAreRefused) {
