@@ -118,6 +118,7 @@ int runBench(std::span<const std::string_view> args) {
     options.context.backend = runtime::parseBackend(backend);
     options.materialDispatch = runtime::parseMaterialDispatch(materialDispatch);
     options.cache = cacheArguments.parse();
+    options.floorMaterials = cacheArguments.floorMaterials;
   } catch (const std::invalid_argument& e) {
     return usageError("bench", e.what());
   }
@@ -135,7 +136,8 @@ int runBench(std::span<const std::string_view> args) {
     csv << "scene,width,height,paths,rays_per_path,backend,device,frames,median_gpu_ms,fps,"
            "mrays_per_s,blas_bytes,tlas_bytes,scratch_bytes,materials,material_dispatch,"
            "shader_compile_ms,pipeline_create_ms,cache,cache_eviction,cache_entries,"
-           "cache_probe,cache_bytes,median_cache_hit_rate\n";
+           "cache_probe,cache_bytes,median_cache_hit_rate,cache_value_format,cache_clock,"
+           "cache_snap_uv,cache_secondary_only,last_cache_occupancy\n";
   }
   try {
     for (const auto& sceneName : scenes) {
@@ -199,8 +201,11 @@ int runBench(std::span<const std::string_view> args) {
         if (result.stats.cache != "none")
           std::cout << "  cache " << result.stats.cache << " (" << result.stats.cacheEntries
                     << " entries, D=" << result.stats.cacheProbe << ", eviction "
-                    << result.stats.cacheEviction << ", " << result.stats.cacheBytes
-                    << " B): median hit rate " << 100.0 * medianHitRate << " %\n";
+                    << result.stats.cacheEviction << ", clock " << result.stats.cacheClock << ", "
+                    << result.stats.cacheValueFormat << ", " << result.stats.cacheBytes << " B"
+                    << (result.stats.cacheSnapUv ? ", snapped uv" : "")
+                    << (result.stats.cacheSecondaryOnly ? ", secondary hits only" : "")
+                    << "): median hit rate " << 100.0 * medianHitRate << " %\n";
         if (csv) {
           csv << label << ',' << width << ',' << height << ',' << p << ',' << l << ','
               << result.stats.backend << ",\"" << result.stats.device << "\"," << timed.size()
@@ -210,7 +215,9 @@ int runBench(std::span<const std::string_view> args) {
               << ',' << result.stats.pipelineCreateMilliseconds << ',' << result.stats.cache << ','
               << result.stats.cacheEviction << ',' << result.stats.cacheEntries << ','
               << result.stats.cacheProbe << ',' << result.stats.cacheBytes << ',' << medianHitRate
-              << '\n';
+              << ',' << result.stats.cacheValueFormat << ',' << result.stats.cacheClock << ','
+              << int(result.stats.cacheSnapUv) << ',' << int(result.stats.cacheSecondaryOnly) << ','
+              << (timed.empty() ? 0 : timed.back().cacheOccupancy) << '\n';
         }
         if (!framesCsv.empty()) {
           std::ofstream perFrame(framesCsv + fileLabel + "_" + std::to_string(width) + "x" +

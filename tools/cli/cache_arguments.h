@@ -20,11 +20,24 @@ inline constexpr const char* kCacheHelp =
     "                        written; both by frame clock), random, or none\n"
     "  --cache-read-check C  key (default: read key, values, key; thesis §5.3.4) or counter\n"
     "                        (an update counter per entry also catches a restored key)\n"
-    "  --mip-bias B          added to the cache's mip level (eq. 5.5); positive: finer\n";
+    "  --mip-bias B          added to the cache's mip level (eq. 5.5); positive: finer\n"
+    "  --value-format F      fp32 (default) or fp16: entry values as 32-bit floats or two\n"
+    "                        16-bit halves per word (§5.3.1; half the value memory)\n"
+    "  --clock C             lru/lrw time: frame (default; the frame number) or counter (a\n"
+    "                        64-bit GPU atomic counter bumped per access, §5.3.3; needs\n"
+    "                        64-bit buffer atomics)\n"
+    "  --clock-shift S       counter clock: the entry keeps counter bits S..S+31 (default 16,\n"
+    "                        §5.3.3; 0 for tiny images)\n"
+    "  --snap-uv             evaluate a miss at its texel's centre (§6.1)\n"
+    "  --cache-secondary-only  only bounces >= 1 use the cache; camera hits evaluate\n"
+    "                        their graph directly (§6.1, Fig. 6.6)\n"
+    "  --floor-materials     floor run: every material replaced by constants, no graph\n"
+    "                        evaluated (the cost of a free material; not with a cache)\n";
 
 struct CacheArguments {
   std::string cache = "none", entries = "1048576", probe = "8", eviction = "lru", mipBias = "0",
-              readCheck = "key";
+              readCheck = "key", valueFormat = "fp32", clock = "frame", clockShift = "16";
+  bool snapUv = false, secondaryOnly = false, floorMaterials = false;
 
   void registerWith(ArgumentScanner& scanner) {
     scanner.option("--cache", &cache);
@@ -33,6 +46,12 @@ struct CacheArguments {
     scanner.option("--eviction", &eviction);
     scanner.option("--mip-bias", &mipBias);
     scanner.option("--cache-read-check", &readCheck);
+    scanner.option("--value-format", &valueFormat);
+    scanner.option("--clock", &clock);
+    scanner.option("--clock-shift", &clockShift);
+    scanner.flag("--snap-uv", &snapUv);
+    scanner.flag("--cache-secondary-only", &secondaryOnly);
+    scanner.flag("--floor-materials", &floorMaterials);
   }
 
   // Throws std::invalid_argument with a message for the user.
@@ -40,6 +59,10 @@ struct CacheArguments {
     runtime::CacheOptions options;
     options.mode = runtime::parseCacheMode(cache);
     options.eviction = runtime::parseCacheEviction(eviction);
+    options.valueFormat = runtime::parseCacheValueFormat(valueFormat);
+    options.clock = runtime::parseCacheClock(clock);
+    options.snapUv = snapUv;
+    options.secondaryOnly = secondaryOnly;
     if (readCheck != "key" && readCheck != "counter")
       throw std::invalid_argument("unknown --cache-read-check '" + readCheck +
                                   "' (choose key or counter)");
@@ -54,6 +77,9 @@ struct CacheArguments {
     };
     options.entries = whole(entries, "--cache-entries");
     options.probe = whole(probe, "--probe");
+    options.clockShift = whole(clockShift, "--clock-shift");
+    if (options.clockShift > 32)
+      throw std::invalid_argument("--clock-shift must be 0..32");
     try {
       std::size_t used = 0;
       options.mipBias = std::stof(mipBias, &used);
@@ -66,6 +92,9 @@ struct CacheArguments {
       throw std::invalid_argument("--probe must be 1..16");
     if (options.entries <= options.probe)
       throw std::invalid_argument("--cache-entries must exceed --probe");
+    if (floorMaterials && options.mode != runtime::CacheMode::None)
+      throw std::invalid_argument(
+          "--floor-materials evaluates no material graph; it cannot be combined with --cache");
     return options;
   }
 };
