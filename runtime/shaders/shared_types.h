@@ -68,9 +68,6 @@ MG_CONSTANT(uint, kCacheEvictionNone, 0);    // insert only into an empty entry
 MG_CONSTANT(uint, kCacheEvictionLru, 1);     // least recently used, frame clock in the metadata
 MG_CONSTANT(uint, kCacheEvictionLrw, 2);     // least recently written, frame clock
 MG_CONSTANT(uint, kCacheEvictionRandom, 3);  // a pseudo-random entry of the probe range
-// The counter clock's default shift (MG_CACHE_CLOCK_SHIFT): an entry stores bits 16..47 of
-// the 64-bit access counter, §5.3.3's suggestion (rollover after about 80 hours at 1080p).
-MG_CONSTANT(uint, kCacheClockShiftDefault, 16);
 // Bits of a material's output mask (which MaterialOutputs members an entry stores, in this
 // order: baseColor 3 floats, metallic 1, roughness 1, normal 3, emission 3, opacity 1).
 MG_CONSTANT(uint, kCacheOutputBaseColor, 1);

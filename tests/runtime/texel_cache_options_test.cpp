@@ -44,30 +44,6 @@ RenderSettings settings(std::uint32_t frames, std::uint32_t raysPerPath, std::ui
   return s;
 }
 
-// A camera panning along a long striped wall, as in TexelCache.PanningCamera...: each frame
-// brings new texels, so a 1024-entry cache fills after a few frames.
-struct PanningRun {
-  Scene scene;
-  RenderSettings settings;
-};
-
-PanningRun panningRun() {
-  PanningRun run;
-  run.scene.meshes.push_back(testing::quad(64.0f, 32.0f));
-  run.scene.materials.push_back({"Wall", "", stripesGraph()});
-  run.scene.instances.push_back(
-      {0, 0, glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1, 0, 0))});
-  run.scene.environment.constantRadiance = {0.5f, 0.5f, 0.5f};
-  run.settings = settings(32, 1);
-  for (std::uint32_t f = 0; f < run.settings.frames; ++f) {
-    Camera camera;
-    camera.position = {-20.0f + 0.4f * float(f), 0.0f, 5.0f};
-    camera.target = camera.position - glm::vec3(0.0f, 0.0f, 5.0f);
-    run.settings.cameraPath.push_back(camera);
-  }
-  return run;
-}
-
 double meanHitRate(const RenderStats& stats, std::size_t from, std::size_t to) {
   double sum = 0;
   for (std::size_t f = from; f < to; ++f)
@@ -134,17 +110,18 @@ TEST(TexelCacheOptions, Fp16EntriesAreSmallerAndRenderCloseToFp32) {
 // hit rate on a panning camera where `none` decays, as with the frame clock. Shift 0: the
 // run makes about 20000 accesses, so bits 16.. (the thesis's 1080p choice) would all be 0.
 TEST(TexelCacheOptions, CounterClockLruKeepsItsHitRateOnAPanningCamera) {
-  PanningRun run = panningRun();
+  Scene scene = testing::panningWallScene();
+  RenderSettings panning = testing::panningSettings();
   double early[2], late[2];
   std::uint64_t lastTicks = 0;
   for (int i = 0; i < 2; ++i) {
     RendererOptions options = texelCache(1024, i == 0 ? CacheEviction::None : CacheEviction::Lru);
     options.cache.clock = CacheClock::Counter;
     options.cache.clockShift = 0;
-    RenderResult r = Renderer(options).render(run.scene, run.settings);
+    RenderResult r = Renderer(options).render(scene, panning);
     EXPECT_EQ(r.stats.cacheClock, "counter");
     early[i] = meanHitRate(r.stats, 1, 4);
-    late[i] = meanHitRate(r.stats, run.settings.frames - 4, run.settings.frames);
+    late[i] = meanHitRate(r.stats, panning.frames - 4, panning.frames);
     std::printf(
         "panning camera, 1024 entries, counter clock, eviction %s: hit rate frames 1-3 "
         "%.1f %%, last 4 frames %.1f %%; clock after the last frame %llu\n",

@@ -44,6 +44,34 @@ inline Scene wallScene(const std::string& wallGraph, bool sphere) {
   return scene;
 }
 
+// A camera panning along a long striped wall (thesis Fig. 6.14's setting): 32 frames of
+// 24x24, each bringing new texels, so a 1024-entry cache fills after a few frames.
+inline Scene panningWallScene() {
+  Scene scene;
+  scene.meshes.push_back(quad(64.0f, 32.0f));
+  scene.materials.push_back({"Wall", "", stripesGraph()});
+  scene.instances.push_back(
+      {0, 0, glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1, 0, 0))});
+  scene.environment.constantRadiance = {0.5f, 0.5f, 0.5f};
+  return scene;
+}
+
+inline RenderSettings panningSettings() {
+  RenderSettings s;
+  s.width = 24;
+  s.height = 24;
+  s.raysPerPath = 1;
+  s.frames = 32;
+  s.seed = 5;
+  for (std::uint32_t f = 0; f < s.frames; ++f) {
+    Camera camera;
+    camera.position = {-20.0f + 0.4f * float(f), 0.0f, 5.0f};
+    camera.target = camera.position - glm::vec3(0.0f, 0.0f, 5.0f);
+    s.cameraPath.push_back(camera);
+  }
+  return s;
+}
+
 inline double meanFlip(const HdrImage& reference, const HdrImage& test) {
   FlipImageView a{reference.rgba, int(reference.width), int(reference.height), 4};
   FlipImageView b{test.rgba, int(test.width), int(test.height), 4};

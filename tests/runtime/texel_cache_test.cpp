@@ -183,19 +183,8 @@ TEST(TexelCache, FarTooFewEntriesStillRenders) {
 // texels. Without eviction the hit rate falls once the cache is full (new texels find no
 // empty entry); with lru it stays high (consecutive frames overlap).
 TEST(TexelCache, PanningCameraKeepsItsHitRateOnlyWithEviction) {
-  Scene scene;
-  scene.meshes.push_back(testing::quad(64.0f, 32.0f));
-  scene.materials.push_back({"Wall", "", stripesGraph()});
-  scene.instances.push_back(
-      {0, 0, glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1, 0, 0))});
-  scene.environment.constantRadiance = {0.5f, 0.5f, 0.5f};
-  RenderSettings s = settings(32, 1);
-  for (std::uint32_t f = 0; f < s.frames; ++f) {
-    Camera camera;
-    camera.position = {-20.0f + 0.4f * float(f), 0.0f, 5.0f};
-    camera.target = camera.position - glm::vec3(0.0f, 0.0f, 5.0f);
-    s.cameraPath.push_back(camera);
-  }
+  Scene scene = testing::panningWallScene();
+  RenderSettings s = testing::panningSettings();
   double early[2], late[2];
   for (int i = 0; i < 2; ++i) {
     CacheEviction eviction = i == 0 ? CacheEviction::None : CacheEviction::Lru;

@@ -78,8 +78,6 @@ struct CacheArguments {
     options.entries = whole(entries, "--cache-entries");
     options.probe = whole(probe, "--probe");
     options.clockShift = whole(clockShift, "--clock-shift");
-    if (options.clockShift > 32)
-      throw std::invalid_argument("--clock-shift must be 0..32");
     try {
       std::size_t used = 0;
       options.mipBias = std::stof(mipBias, &used);
@@ -88,10 +86,7 @@ struct CacheArguments {
     } catch (const std::exception&) {
       throw std::invalid_argument("--mip-bias takes a number, not '" + mipBias + "'");
     }
-    if (options.probe < 1 || options.probe > 16)
-      throw std::invalid_argument("--probe must be 1..16");
-    if (options.entries <= options.probe)
-      throw std::invalid_argument("--cache-entries must exceed --probe");
+    runtime::validateCacheOptions(options);  // the renderer's own ranges and messages
     if (floorMaterials && options.mode != runtime::CacheMode::None)
       throw std::invalid_argument(
           "--floor-materials evaluates no material graph; it cannot be combined with --cache");
