@@ -30,13 +30,6 @@ void checkTileOptions(const VulkanContext& context, const CacheOptions& options)
   const std::uint32_t texels = options.tileWidth * options.tileHeight;
   const std::string size =
       std::to_string(options.tileWidth) + "x" + std::to_string(options.tileHeight);
-  if (options.tileWidth == 0 || options.tileHeight == 0)
-    throw std::invalid_argument("--tile " + size + ": a tile needs at least one texel");
-  if (options.tileFilter == TileFilter::Bilinear &&
-      (options.tileWidth < 2 || options.tileHeight < 2))
-    throw std::invalid_argument("--tile " + size +
-                                " with --filter bilinear: tiles overlap by one texel, so both "
-                                "sides need at least 2 texels");
   // §5.4.3: one lane per texel of a tile.
   if (texels > info.subgroupSize)
     throw std::invalid_argument("--tile " + size + " has " + std::to_string(texels) +
@@ -56,24 +49,14 @@ void checkTileOptions(const VulkanContext& context, const CacheOptions& options)
         (stage == VK_SHADER_STAGE_RAYGEN_BIT_KHR ? " (try --backend query)" : ""));
 }
 
-VkFormat imageFormat() {
-  return VK_FORMAT_R32G32B32A32_SFLOAT;
+VkFormat imageFormat(const CacheOptions& options) {
+  return options.valueFormat == CacheValueFormat::Fp16 ? VK_FORMAT_R16G16B16A16_SFLOAT
+                                                       : VK_FORMAT_R32G32B32A32_SFLOAT;
 }
 
 }  // namespace
 
-void validateCacheOptions(const VulkanContext& context, const CacheOptions& options) {
-  if (options.mode == CacheMode::None)
-    return;
-  if (options.probe < 1 || options.probe > gpu::kCacheMaxProbe)
-    throw std::invalid_argument("--probe must be 1.." + std::to_string(gpu::kCacheMaxProbe) +
-                                ", not " + std::to_string(options.probe));
-  if (options.entries <= options.probe)
-    throw std::invalid_argument("--cache-entries (" + std::to_string(options.entries) +
-                                ") must exceed the probe distance (" +
-                                std::to_string(options.probe) + ")");
-  if (!std::isfinite(options.mipBias))
-    throw std::invalid_argument("--mip-bias must be finite");
+void validateCacheOnDevice(const VulkanContext& context, const CacheOptions& options) {
   if (options.mode == CacheMode::Tile)
     checkTileOptions(context, options);
 }
@@ -81,44 +64,22 @@ void validateCacheOptions(const VulkanContext& context, const CacheOptions& opti
 MaterialCache::MaterialCache(const VulkanContext& context, const CacheOptions& options,
                              std::uint32_t valueCount)
     : options_(options), valueCount_(std::max(1u, valueCount)) {
-  validateCacheOptions(context, options);
+  validateCacheOptions(options);
+  validateCacheOnDevice(context, options);
   const bool tile = options.mode == CacheMode::Tile;
   const bool enabled = options.mode != CacheMode::None;
-  const std::uint32_t header =
-      options.updateCounter ? gpu::kCacheEntryHeaderWithCounter : gpu::kCacheEntryHeader;
-  const std::uint32_t texels = tile ? options.tileWidth * options.tileHeight : 1;
+  const std::uint32_t texels = cacheTexelsPerEntry(options);
   const TileStorage storage = tile ? options.tileStorage : TileStorage::Entry;
-  const std::uint32_t entryWords =
-      storage == TileStorage::Entry ? texels * valueCount_ : 0;  // values after the header
-  const std::uint64_t stride = header + entryWords;
+  const std::uint64_t stride = cacheEntryWords(options, valueCount_);
   entryCount_ = enabled ? options.entries : 0;
-
-  if (enabled) {
-    defines_ = {
-        std::string(tile ? "MG_CACHE_TILE=1" : "MG_CACHE_TEXEL=1"),
-        "MG_CACHE_VALUES=" + std::to_string(valueCount_),
-        "MG_CACHE_PROBE=" + std::to_string(options.probe),
-        "MG_CACHE_EVICTION=" + std::to_string(static_cast<std::uint32_t>(options.eviction))};
-    if (options.updateCounter)
-      defines_.push_back("MG_CACHE_UPDATE_COUNTER=1");
-  }
-  if (tile) {
-    defines_.push_back("MG_CACHE_ENTRY_WORDS=" + std::to_string(entryWords));
-    defines_.push_back("MG_TILE_W=" + std::to_string(options.tileWidth));
-    defines_.push_back("MG_TILE_H=" + std::to_string(options.tileHeight));
-    defines_.push_back("MG_TILE_STORAGE=" + std::to_string(static_cast<std::uint32_t>(storage)));
-    if (options.tileFilter == TileFilter::Bilinear)
-      defines_.push_back("MG_TILE_BILINEAR=1");
-    if (options.groupByMaterial)
-      defines_.push_back("MG_TILE_GROUP_BY_MATERIAL=1");
-  }
+  defines_ = cacheShaderDefines(options, valueCount_);
 
   // Without a cache the bindings still need buffers: small ones nobody reads.
   entries_ = deviceBuffer(context, enabled ? entryCount_ * stride * sizeof(std::uint32_t)
                                            : stride * sizeof(std::uint32_t));
   bytes_ = enabled ? entryCount_ * stride * sizeof(std::uint32_t) : 0;
-  const std::uint64_t texelBytes =
-      std::uint64_t(entryCount_) * texels * valueCount_ * sizeof(float);
+  const std::uint64_t texelBytes = std::uint64_t(entryCount_) * texels *
+                                   cacheValueWords(options, valueCount_) * sizeof(std::uint32_t);
   tileTexels_ = deviceBuffer(context, storage == TileStorage::Buffer ? texelBytes : 16);
   if (storage == TileStorage::Buffer)
     bytes_ += texelBytes;
@@ -147,15 +108,17 @@ MaterialCache::MaterialCache(const VulkanContext& context, const CacheOptions& o
                                   " (use fewer --cache-entries or a buffer storage)");
     tilesPerRow_ = static_cast<std::uint32_t>(perRow);
     VkFormatProperties formatProperties;
-    vkGetPhysicalDeviceFormatProperties(context.physicalDevice(), imageFormat(), &formatProperties);
+    vkGetPhysicalDeviceFormatProperties(context.physicalDevice(), imageFormat(options),
+                                        &formatProperties);
     if (!(formatProperties.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT))
-      throw std::invalid_argument(context.info().name +
-                                  " cannot store RGBA32F storage images (--tile-storage)");
+      throw std::invalid_argument(context.info().name + " cannot use " +
+                                  cacheValueFormatName(options.valueFormat) +
+                                  " RGBA storage images (--tile-storage)");
 
     VkDevice device = context.device();
     VkImageCreateInfo imageInfo{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
     imageInfo.imageType = is3D ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
-    imageInfo.format = imageFormat();
+    imageInfo.format = imageFormat(options);
     imageInfo.extent = {static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height),
                         is3D ? groups : 1u};
     imageInfo.mipLevels = 1;
@@ -184,7 +147,7 @@ MaterialCache::MaterialCache(const VulkanContext& context, const CacheOptions& o
     VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     viewInfo.image = image;
     viewInfo.viewType = is3D ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
-    viewInfo.format = imageFormat();
+    viewInfo.format = imageFormat(options);
     viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     VkImageView view = VK_NULL_HANDLE;
     checkVk(vkCreateImageView(device, &viewInfo, nullptr, &view), "vkCreateImageView (tile cache)");
@@ -205,7 +168,6 @@ MaterialCache::MaterialCache(const VulkanContext& context, const CacheOptions& o
                            VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0, nullptr, 1,
                            &barrier);
     });
-    defines_.push_back(std::string("MG_TILE_IMAGE_FORMAT=rgba32f"));
   }
 }
 
@@ -226,6 +188,10 @@ void MaterialCache::describe(RenderStats& stats) const {
   stats.cacheReadCheck = options_.updateCounter ? "counter" : "key";
   stats.cacheValueCount = valueCount_;
   stats.cacheBytes = bytes_;
+  stats.cacheValueFormat = cacheValueFormatName(options_.valueFormat);
+  stats.cacheClock = cacheClockName(options_.clock);
+  stats.cacheSnapUv = options_.snapUv;
+  stats.cacheSecondaryOnly = options_.secondaryOnly;
   if (options_.mode == CacheMode::Tile)
     stats.cacheTile =
         std::to_string(options_.tileWidth) + "x" + std::to_string(options_.tileHeight) + " " +

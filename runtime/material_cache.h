@@ -10,6 +10,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "runtime/cache_options.h"
 #include "runtime/gpu_buffer.h"
 #include "runtime/render_stats.h"
 #include "runtime/renderer.h"
@@ -18,8 +19,9 @@
 
 namespace memograph::runtime {
 
-// Throws std::invalid_argument naming the option when `options` cannot run on the device.
-void validateCacheOptions(const VulkanContext& context, const CacheOptions& options);
+// Throws std::invalid_argument naming the option when `options` cannot run on the device
+// (validateCacheOptions checks what needs no device).
+void validateCacheOnDevice(const VulkanContext& context, const CacheOptions& options);
 
 class MaterialCache {
  public:

@@ -28,8 +28,9 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
          "scratch_bytes,as_build_ms,texture_bytes,materials,material_compile_ms,"
          "shader_compile_ms,shader_cache_hits,material_dispatch,pipeline_create_ms,"
          "cache,cache_eviction,cache_entries,cache_probe,cache_bytes,cache_lookups,cache_hits,"
-         "cache_misses,cache_hit_rate,cache_read_check,cache_tile,tiles_computed,duplicate_tiles,"
-         "tile_fallbacks\n";
+         "cache_misses,cache_hit_rate,cache_read_check,cache_occupancy,cache_tiles_computed,"
+         "cache_duplicate_tiles,cache_value_format,cache_clock,cache_snap_uv,"
+         "cache_secondary_only,cache_clock_ticks,cache_tile,cache_tile_fallbacks\n";
   const auto& a = s.accelerationStructures;
   for (const auto& f : s.frames) {
     double mraysPerSecond = f.gpuMilliseconds > 0 ? f.rays / (f.gpuMilliseconds * 1e3) : 0.0;
@@ -43,8 +44,10 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
         << ',' << s.pipelineCreateMilliseconds << ',' << s.cache << ',' << s.cacheEviction << ','
         << s.cacheEntries << ',' << s.cacheProbe << ',' << s.cacheBytes << ',' << f.cacheLookups
         << ',' << f.cacheHits << ',' << f.cacheMisses << ',' << f.cacheHitRate() << ','
-        << s.cacheReadCheck << ',' << s.cacheTile << ',' << f.cacheTilesComputed << ','
-        << f.cacheDuplicateTiles << ',' << f.cacheTileFallbacks << '\n';
+        << s.cacheReadCheck << ',' << f.cacheOccupancy << ',' << f.cacheTilesComputed << ','
+        << f.cacheDuplicateTiles << ',' << s.cacheValueFormat << ',' << s.cacheClock << ','
+        << int(s.cacheSnapUv) << ',' << int(s.cacheSecondaryOnly) << ',' << f.cacheClockTicks << ','
+        << s.cacheTile << ',' << f.cacheTileFallbacks << '\n';
   }
 }
 

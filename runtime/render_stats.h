@@ -22,6 +22,10 @@ struct FrameStats {
   std::uint64_t cacheLookups = 0;
   std::uint64_t cacheHits = 0;
   std::uint64_t cacheMisses = 0;
+  // Entries in use (ever filled) after this frame: persists across frames, at most S.
+  std::uint64_t cacheOccupancy = 0;
+  // The counter clock after this frame (§5.3.3; 0 with the frame clock): never reset.
+  std::uint64_t cacheClockTicks = 0;
   // Tile cache (§5.4.3, §6.7.2): tiles the subgroups computed, how many of those had been
   // computed already this frame, and misses that evaluated their own hit instead.
   std::uint64_t cacheTilesComputed = 0;
@@ -45,7 +49,7 @@ struct RenderStats {
   double shaderCompileMilliseconds = 0.0;    // GLSL → SPIR-V (0 when all came from the cache)
   std::uint32_t shaderCacheHits = 0;
   std::uint32_t shadersCompiled = 0;
-  std::string materialDispatch;  // "switch" or "callable"
+  std::string materialDispatch;  // "switch", "callable" or "floor" (no graph evaluated)
   // Shader modules and pipeline (the driver's own compile), excluding GLSL → SPIR-V.
   double pipelineCreateMilliseconds = 0.0;
   std::string cache = "none";  // "none", "texel" or "tile"
@@ -55,6 +59,10 @@ struct RenderStats {
   std::uint32_t cacheProbe = 0;
   std::string cacheReadCheck;         // "key" or "counter" (§5.3.4)
   std::uint32_t cacheValueCount = 0;  // floats per entry
+  std::string cacheValueFormat;       // "fp32" or "fp16" (§5.3.1)
+  std::string cacheClock;             // "frame" or "counter" (§5.3.3)
+  bool cacheSnapUv = false;           // misses evaluated at the texel centre (§6.1)
+  bool cacheSecondaryOnly = false;    // primary hits bypass the cache (Fig. 6.6)
   std::uint64_t cacheBytes = 0;
 
   double medianGpuMilliseconds() const;

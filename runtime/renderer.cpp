@@ -84,90 +84,6 @@ MaterialDispatch resolveMaterialDispatch(MaterialDispatch requested, Backend bac
 
 }  // namespace
 
-const char* cacheModeName(CacheMode mode) {
-  switch (mode) {
-    case CacheMode::None:
-      return "none";
-    case CacheMode::Texel:
-      return "texel";
-    case CacheMode::Tile:
-      return "tile";
-  }
-  return "none";
-}
-
-const char* tileFilterName(TileFilter filter) {
-  return filter == TileFilter::Bilinear ? "bilinear" : "nearest";
-}
-
-const char* tileStorageName(TileStorage storage) {
-  switch (storage) {
-    case TileStorage::Entry:
-      return "entry";
-    case TileStorage::Buffer:
-      return "buffer";
-    case TileStorage::Texture2D:
-      return "texture2d";
-    case TileStorage::Texture3D:
-      return "texture3d";
-  }
-  return "entry";
-}
-
-TileFilter parseTileFilter(const std::string& text) {
-  if (text == "nearest")
-    return TileFilter::Nearest;
-  if (text == "bilinear")
-    return TileFilter::Bilinear;
-  throw std::invalid_argument("unknown tile filter '" + text + "' (choose nearest or bilinear)");
-}
-
-TileStorage parseTileStorage(const std::string& text) {
-  for (TileStorage storage :
-       {TileStorage::Entry, TileStorage::Buffer, TileStorage::Texture2D, TileStorage::Texture3D})
-    if (text == tileStorageName(storage))
-      return storage;
-  throw std::invalid_argument("unknown tile storage '" + text +
-                              "' (choose entry, buffer, texture2d or texture3d)");
-}
-
-const char* cacheEvictionName(CacheEviction eviction) {
-  switch (eviction) {
-    case CacheEviction::None:
-      return "none";
-    case CacheEviction::Lru:
-      return "lru";
-    case CacheEviction::Lrw:
-      return "lrw";
-    case CacheEviction::Random:
-      return "random";
-  }
-  return "none";
-}
-
-CacheMode parseCacheMode(const std::string& text) {
-  if (text == "none")
-    return CacheMode::None;
-  if (text == "texel")
-    return CacheMode::Texel;
-  if (text == "tile")
-    return CacheMode::Tile;
-  throw std::invalid_argument("unknown cache '" + text + "' (choose none, texel or tile)");
-}
-
-CacheEviction parseCacheEviction(const std::string& text) {
-  if (text == "none")
-    return CacheEviction::None;
-  if (text == "lru")
-    return CacheEviction::Lru;
-  if (text == "lrw")
-    return CacheEviction::Lrw;
-  if (text == "random")
-    return CacheEviction::Random;
-  throw std::invalid_argument("unknown eviction policy '" + text +
-                              "' (choose none, lru, lrw or random)");
-}
-
 TextureImage loadTextureCore(const std::string& path) {
   std::filesystem::path p(path);
   if (!std::filesystem::exists(p))
@@ -210,14 +126,34 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
 
   MaterialDispatch dispatch = resolveMaterialDispatch(options_.materialDispatch, context.backend());
   const CacheOptions& cache = options_.cache;
-  validateCacheOptions(context, cache);  // before minutes of material compiles
+  const bool cacheOn = cache.mode != CacheMode::None;
+  if (cacheOn) {
+    // Before minutes of material compiles.
+    validateCacheOptions(cache);
+    validateCacheOnDevice(context, cache);
+    if (options_.floorMaterials)
+      throw std::invalid_argument(
+          "--floor-materials evaluates no material graph, so there is nothing to cache; drop "
+          "--cache " +
+          std::string(cacheModeName(cache.mode)) + " (or --floor-materials)");
+    if (cache.clock == CacheClock::Counter && !context.info().bufferInt64Atomics)
+      throw std::runtime_error(
+          "--clock counter needs 64-bit atomics on storage buffers "
+          "(shaderInt64 and shaderBufferInt64Atomics), which " +
+          context.info().name + " lacks; use --clock frame");
+  }
+  if (options_.debugCacheMisses && !cacheOn)
+    throw std::invalid_argument(
+        "--debug-misses shows cache misses; it needs --cache texel or --cache tile");
+
   // Materials: graphs → GLSL, and the textures they name.
   MaterialLinkOptions linkOptions;
   linkOptions.nodeLibraryDirectory = options_.nodeLibraryDirectory;
   LinkedMaterials materials = linkMaterials(scene.materials, linkOptions);
   const std::size_t distinctMaterials = materials.distinct.size();
-  if (dispatch == MaterialDispatch::Switch && context.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU &&
-      options_.cpuSwitchMaterialLimit > 0 && distinctMaterials > options_.cpuSwitchMaterialLimit) {
+  if (dispatch == MaterialDispatch::Switch && !options_.floorMaterials &&
+      context.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU && options_.cpuSwitchMaterialLimit > 0 &&
+      distinctMaterials > options_.cpuSwitchMaterialLimit) {
     // Fail in a second rather than after minutes and gigabytes of LLVM.
     throw std::runtime_error(
         "this scene has " + std::to_string(distinctMaterials) +
@@ -256,8 +192,10 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     cacheDirectory = options_.shaderCacheDirectory.empty() ? defaultShaderCacheDirectory()
                                                            : options_.shaderCacheDirectory;
   }
-  bool callables = dispatch == MaterialDispatch::Callable;
-  stats.materialDispatch = materialDispatchName(dispatch);
+  // The floor run compiles no graph: the prelude (types, defaults) and no callables.
+  const bool floor = options_.floorMaterials;
+  bool callables = dispatch == MaterialDispatch::Callable && !floor;
+  stats.materialDispatch = floor ? "floor" : materialDispatchName(dispatch);
   ShaderCacheStats callableStats;
   std::optional<MaterialCallables> materialCallables;
   if (callables) {
@@ -268,7 +206,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     callableOptions.threads = options_.shaderCompileThreads;
     materialCallables = compileMaterialCallables(materials, callableOptions, callableStats);
   }
-  files["materials.glsl"] = callables ? materials.preludeSource : materials.source;
+  files["materials.glsl"] = callables || floor ? materials.preludeSource : materials.source;
   ShaderCompiler compiler(std::move(files), cacheDirectory);
   auto pipelineStart = std::chrono::steady_clock::now();
   std::uint32_t threads = options_.shaderCompileThreads
@@ -282,12 +220,18 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                 static_cast<std::uint32_t>(CacheEviction::Lrw) == gpu::kCacheEvictionLrw &&
                 static_cast<std::uint32_t>(CacheEviction::Random) == gpu::kCacheEvictionRandom);
   // The cache (thesis §5.3.1, §5.4.1): entries of a key hash, metadata and the largest
-  // cacheable material's written outputs (per texel of a tile with the tile cache).
+  // cacheable material's written outputs (per texel of a tile with the tile cache), as fp32
+  // or packed fp16.
   MaterialCache materialCache(context, cache, materials.cacheValueCount);
   materialCache.describe(stats);
+  std::vector<std::string> shaderDefines = materialCache.defines();
+  if (floor)
+    shaderDefines.push_back("MG_MATERIAL_FLOOR=1");
+  if (options_.debugCacheMisses)
+    shaderDefines.push_back("MG_DEBUG_CACHE_MISSES=1");
   TracePipeline pipeline(context, compiler, textures.count(),
                          materialCallables ? &*materialCallables : nullptr, pipelineThreads,
-                         materialCache.defines(), materialCache.tileImageView() != VK_NULL_HANDLE);
+                         shaderDefines, materialCache.tileImageView() != VK_NULL_HANDLE);
   stats.pipelineCreateMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pipelineStart)
           .count() -
@@ -362,9 +306,13 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
 
     auto start = std::chrono::steady_clock::now();
     context.submitAndWait([&](VkCommandBuffer commands) {
-      vkCmdFillBuffer(commands, rayCounter.buffer(), 0, VK_WHOLE_SIZE, 0);
-      // The cache is cleared once, before the first frame, the tile log before every
-      // frame; the barrier below orders them before the trace.
+      // The cache is cleared once, before the first frame: every key kCacheKeyEmpty (0),
+      // every clock 0, and with it the counters that persist (occupancy, counter clock);
+      // the per-frame counters and the tile log every frame. The barrier below orders them
+      // before the trace.
+      vkCmdFillBuffer(commands, rayCounter.buffer(), 0,
+                      f == 0 ? VK_WHOLE_SIZE : gpu::kCountersPerFrameUints * sizeof(std::uint32_t),
+                      0);
       materialCache.recordClears(commands, f == 0);
       VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
       barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
@@ -396,6 +344,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     frameStats.cacheLookups = counters.cacheLookups;
     frameStats.cacheHits = counters.cacheHits;
     frameStats.cacheMisses = counters.cacheMisses;
+    frameStats.cacheOccupancy = counters.cacheOccupancy;
+    frameStats.cacheClockTicks = counters.cacheClock;
     frameStats.cacheTilesComputed = counters.cacheTilesComputed;
     frameStats.cacheDuplicateTiles = counters.cacheDuplicateTiles;
     frameStats.cacheTileFallbacks = counters.cacheTileFallbacks;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "runtime/cache_options.h"
 #include "runtime/image.h"
 #include "runtime/material_linker.h"
 #include "runtime/render_stats.h"
@@ -25,52 +26,6 @@ using TextureLoader = std::function<TextureImage(const std::string& path)>;
 // The core's own loader: PFM files only (no OpenImageIO in the core); anything else gets an
 // error that says which tool can convert it.
 TextureImage loadTextureCore(const std::string& path);
-
-// Material graph memoization (thesis §4, §5.3-5.4). Texel: one hash table of texels, keyed
-// by material, mip level and texel (eq. 5.1-5.10), linear probing over `probe` entries.
-// Tile: entries are tiles of texels, computed by a whole subgroup on a miss (§5.4.3).
-enum class CacheMode { None, Texel, Tile };
-// How a tile is sampled (§4.6, eq. 5.12-5.15): its nearest texel, or bilinearly from tiles
-// that overlap by one texel.
-enum class TileFilter { Nearest, Bilinear };
-// Where a tile's texels live (§5.4.1). Values are the shader's kTileStorage*.
-enum class TileStorage { Entry = 0, Buffer = 1, Texture2D = 2, Texture3D = 3 };
-// What a miss evicts when its probe range is full (§4.5): none (insert only into empty
-// entries), the least recently used or least recently written entry by a frame clock
-// (§5.3.3), or a pseudo-random entry. Values are the shader's kCacheEviction*.
-enum class CacheEviction { None = 0, Lru = 1, Lrw = 2, Random = 3 };
-
-const char* cacheModeName(CacheMode mode);
-const char* cacheEvictionName(CacheEviction eviction);
-const char* tileFilterName(TileFilter filter);
-const char* tileStorageName(TileStorage storage);
-// Parse "none"/"texel" and "none"/"lru"/"lrw"/"random"; throw std::invalid_argument naming the
-// choices.
-CacheMode parseCacheMode(const std::string& text);
-CacheEviction parseCacheEviction(const std::string& text);
-// "nearest"/"bilinear" and "entry"/"buffer"/"texture2d"/"texture3d", likewise.
-TileFilter parseTileFilter(const std::string& text);
-TileStorage parseTileStorage(const std::string& text);
-
-struct CacheOptions {
-  CacheMode mode = CacheMode::None;
-  std::uint32_t entries = 1u << 20;  // S; must exceed `probe`
-  std::uint32_t probe = 8;           // D, 1..16 (gpu::kCacheMaxProbe)
-  float mipBias = 0.0f;              // eq. 5.5; positive: finer texels
-  CacheEviction eviction = CacheEviction::Lru;
-  // §5.3.4: false checks a read by reading the key again (the thesis's choice, open to the
-  // A-B-A race); true adds a per-entry update counter that closes it (one more uint per
-  // entry and an atomic per write). Default to be picked from a GPU measurement.
-  bool updateCounter = false;
-  // Tile cache (§5.4): texels stored per tile (W x H <= the device's subgroup size; the
-  // thesis's default 4 x 4 needs 16 lanes, lavapipe has 8), the filter, the storage and
-  // §5.4.4's grouping of missing tiles by material. `entries` counts tiles.
-  std::uint32_t tileWidth = 4;
-  std::uint32_t tileHeight = 4;
-  TileFilter tileFilter = TileFilter::Nearest;
-  TileStorage tileStorage = TileStorage::Entry;
-  bool groupByMaterial = false;
-};
 
 struct RendererOptions {
   ContextOptions context;
@@ -89,6 +44,13 @@ struct RendererOptions {
   // pipeline compile (deferred host operations); 0: one per hardware thread.
   std::uint32_t shaderCompileThreads = 0;
   CacheOptions cache;  // cleared at the start of every render
+  // The floor run: every material replaced by constants (a base colour per material id,
+  // roughness 0.5, metallic 0, the geometric normal) and no graph evaluated, for the cost
+  // of a free material (issue 4). Stats say materialDispatch "floor". Not with a cache.
+  bool floorMaterials = false;
+  // Thesis Fig. 6.9: the image shows each frame alone, pixels where a path missed the
+  // cache in red. Needs the texel cache.
+  bool debugCacheMisses = false;
 };
 
 // Scenes with more distinct material graphs than this render best with per-material callable

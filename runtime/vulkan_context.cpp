@@ -362,6 +362,9 @@ VulkanContext::VulkanContext(const ContextOptions& options)
   enable12.bufferDeviceAddress = VK_TRUE;
   enable12.shaderSampledImageArrayNonUniformIndexing = VK_TRUE;
   enable12.hostQueryReset = features12.hostQueryReset;
+  // Optional: only the counter clock uses them, and the renderer names them if missing.
+  info_.bufferInt64Atomics = features2.features.shaderInt64 && features12.shaderBufferInt64Atomics;
+  enable12.shaderBufferInt64Atomics = info_.bufferInt64Atomics;
   VkPhysicalDeviceAccelerationStructureFeaturesKHR enableAs{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
   enableAs.accelerationStructure = VK_TRUE;
@@ -372,6 +375,7 @@ VulkanContext::VulkanContext(const ContextOptions& options)
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
   enablePipeline.rayTracingPipeline = VK_TRUE;
   VkPhysicalDeviceFeatures2 enable2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+  enable2.features.shaderInt64 = info_.bufferInt64Atomics;
   enable2.pNext = &enable12;
   enable12.pNext = &enableAs;
   enableAs.pNext = backend_ == Backend::RayQuery ? static_cast<void*>(&enableQuery)

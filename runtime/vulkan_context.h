@@ -70,6 +70,9 @@ struct DeviceInfo {
   VkSubgroupFeatureFlags subgroupOperations = 0;
   VkShaderStageFlags subgroupStages = 0;
   VkPhysicalDeviceLimits limits{};
+  // shaderInt64 and shaderBufferInt64Atomics, enabled when present: the texel cache's 64-bit
+  // counter clock (thesis §5.3.3) needs both.
+  bool bufferInt64Atomics = false;
 };
 
 // Names and ray-tracing support of every device, for --list-devices and error messages.

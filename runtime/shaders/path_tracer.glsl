@@ -11,11 +11,17 @@
 //   prelude; each material is its own callable shader (material_callable.rcall) at callable
 //   SBT index = material id, so the driver compiles many small shaders instead of one that
 //   holds every graph of the scene (the 88-material classroom did not compile otherwise).
+// A third, MG_MATERIAL_FLOOR, evaluates no graph at all: the floor run's constants.
 #version 460
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_nonuniform_qualifier : require
 #ifdef MG_SUBGROUP_RAY_COUNT
 #extension GL_KHR_shader_subgroup_arithmetic : require
+#endif
+#ifdef MG_CACHE_CLOCK_COUNTER
+// The texel cache's 64-bit counter clock (§5.3.3): gpu::Counters::cacheClock is a uint64_t.
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_shader_atomic_int64 : require
 #endif
 
 #include "shared_types.h"
@@ -60,7 +66,19 @@ layout(set = 0, binding = kBindingRayCounter, std430) buffer CounterBlock {
 
 const float kRayTMax = 1e30;
 
-#ifdef MG_MATERIAL_CALLABLES
+#if defined(MG_MATERIAL_FLOOR)
+// The floor run: every material replaced by constants, no graph evaluated, so the frame
+// time is the path tracer's alone (what a free material would cost). Each material keeps
+// a colour of its own (a hash of its id) so the image still tells materials apart.
+void evaluateMaterialDirect(uint materialId, MaterialInputs inputs,
+                            out MaterialOutputs outputs) {
+  outputs = mg_defaultMaterialOutputs(inputs);  // geometric normal, no emission, opaque
+  uint h = pcgHash(materialId ^ 0x9e3779b9u);
+  outputs.baseColor = vec3(0.2) + 0.6 * vec3(uvec3(h, h >> 8u, h >> 16u) & 255u) / 255.0;
+  outputs.roughness = 0.5;
+  outputs.metallic = 0.0;
+}
+#elif defined(MG_MATERIAL_CALLABLES)
 #include "material_call.glsl"
 layout(location = kMaterialCallLocation) callableDataEXT MaterialCall materialCall;
 
@@ -95,11 +113,21 @@ void evaluateMaterialDirect(uint materialId, MaterialInputs inputs,
 #include "texel_cache.glsl"
 #endif
 
-// The material outputs at a hit. Every invocation calls it at the same point of the path
-// loop, `hasHit` false where the path has ended: the tile cache computes missing tiles with
-// the whole subgroup (§5.4.3), and inactive lanes would be unreachable.
-void evaluateMaterial(bool hasHit, uint materialId, MaterialInputs inputs,
+// The material outputs at a hit of bounce `bounce` (0: the camera ray's). Every invocation
+// calls it at the same point of the path loop, `hasHit` false where the path has ended: the
+// tile cache computes missing tiles with the whole subgroup (§5.4.3), and inactive lanes
+// would be unreachable. With MG_CACHE_SECONDARY_ONLY primary hits skip the cache: §6.1
+// finds the cache's errors "almost exclusively caused by sampling the cache at primary
+// hits" (Fig. 6.6). `bounce` is the same in every lane, so that early return is uniform.
+void evaluateMaterial(bool hasHit, uint materialId, MaterialInputs inputs, uint bounce,
                       out MaterialOutputs outputs) {
+#ifdef MG_CACHE_SECONDARY_ONLY
+  if (bounce == 0u) {
+    if (hasHit) evaluateMaterialDirect(materialId, inputs, outputs);
+    else outputs = mg_defaultMaterialOutputs(inputs);
+    return;
+  }
+#endif
 #if defined(MG_CACHE_TILE)
   evaluateMaterialTiled(hasHit, materialId, inputs, outputs);
 #else
@@ -341,7 +369,7 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
         }
       }
       MaterialOutputs m;
-      evaluateMaterial(alive, s.materialId, s.inputs, m);
+      evaluateMaterial(alive, s.materialId, s.inputs, bounce, m);
       if (!alive) continue;
 
       vec3 n = dot(m.normal, m.normal) > 1e-30 ? normalize(m.normal) : s.geometricNormal;
@@ -398,9 +426,15 @@ void renderPixel(uvec2 pixel, bool inside) {
 #endif
   vec3 radiance = tracePixel(pixel, inside, rng, rays);
   if (inside) {
+#ifdef MG_DEBUG_CACHE_MISSES
+    // Thesis Fig. 6.9: red where a path of this pixel missed the cache in this frame. The
+    // view is this frame's alone (no running mean), so a miss shows in the frame it happened.
+    accumulation[index] = vec4(g_cacheMissed ? vec3(1.0, 0.0, 0.0) : radiance, 1.0);
+#else
     uint sampleIndex = frame.environmentSize.z;
     vec3 previous = sampleIndex == 0u ? vec3(0.0) : accumulation[index].rgb;
     accumulation[index] = vec4(mix(previous, radiance, 1.0 / float(sampleIndex + 1u)), 1.0);
+#endif
   }
 #ifdef MG_SUBGROUP_RAY_COUNT
   // One atomic per subgroup instead of per thread: counting must not slow the trace.

@@ -5,11 +5,13 @@
 #define MEMOGRAPH_SHARED_TYPES_H
 
 #ifdef __cplusplus
+#include <cstddef>
 #include <cstdint>
 
 #include <glm/glm.hpp>
 namespace memograph::runtime::gpu {
 using uint = std::uint32_t;
+using uint64 = std::uint64_t;
 using vec2 = glm::vec2;
 using vec4 = glm::vec4;
 using uvec4 = glm::uvec4;
@@ -17,6 +19,14 @@ using mat4 = glm::mat4;
 #define MG_CONSTANT(type, name, value) inline constexpr type name = value
 #else
 #define MG_CONSTANT(type, name, value) const type name = value
+// The 64-bit counter clock of §5.3.3: a real uint64_t where the shader enables the int64
+// extensions (MG_CACHE_CLOCK_COUNTER), else two uints with the same 8-byte size and
+// alignment, so Counters has one layout either way.
+#ifdef MG_CACHE_CLOCK_COUNTER
+#define uint64 uint64_t
+#else
+#define uint64 uvec2
+#endif
 #endif
 
 // Descriptor set 0 bindings.
@@ -46,7 +56,8 @@ MG_CONSTANT(uint, kFlagEnvironmentImage, 2);
 
 // Texel cache (thesis §4.2-4.5, §5.3). An entry is kCacheEntryHeader uints (the 32-bit
 // key hash H1 of eq. 5.9, then the eviction metadata) followed by the material's written
-// outputs as fp32 bits; the host picks the value count from the largest cacheable material.
+// outputs, as fp32 bits or (MG_CACHE_VALUE_FP16) two halves per uint (§5.3.1); the host
+// picks the value count from the largest cacheable material.
 MG_CONSTANT(uint, kCacheEntryHeader, 2);
 // With the update counter (§5.3.4, last paragraph; MG_CACHE_UPDATE_COUNTER) the header has
 // a third uint, bumped by every write, so a reader detects a write even when the key was
@@ -103,7 +114,9 @@ struct FrameConstants {
   uvec4 cache;
 };
 
-// Counters the shader adds to per frame (binding kBindingRayCounter); cleared per frame.
+// Counters the shader adds to (binding kBindingRayCounter), in vec4-sized groups. The first
+// kCountersPerFrameUints are cleared before every frame; the rest only with the cache,
+// before the first frame.
 struct Counters {
   uint rays;          // closest-hit and shadow rays traced
   uint cacheLookups;  // cache lookups of cacheable materials
@@ -115,8 +128,13 @@ struct Counters {
   uint cacheTilesComputed;
   uint cacheDuplicateTiles;
   uint cacheTileFallbacks;
-  uint padding;
+  uint perFramePad0;
+  // Persistent across frames.
+  uint cacheOccupancy;  // entries ever filled (an empty entry's first write); never falls
+  uint persistentPad0;
+  uint64 cacheClock;  // the 64-bit atomic counter clock of §5.3.3 (MG_CACHE_CLOCK_COUNTER)
 };
+MG_CONSTANT(uint, kCountersPerFrameUints, 8);
 
 // One vertex of the global vertex buffer; positions first so the BLAS reads them in place.
 struct Vertex {
@@ -144,7 +162,11 @@ struct Light {
 };
 
 #ifdef __cplusplus
+static_assert(sizeof(Counters) % 16 == 0 &&
+              offsetof(Counters, cacheOccupancy) == kCountersPerFrameUints * sizeof(uint));
 }  // namespace memograph::runtime::gpu
+#else
+#undef uint64
 #endif
 #undef MG_CONSTANT
 #endif

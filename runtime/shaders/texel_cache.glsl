@@ -4,8 +4,14 @@
 //   MG_CACHE_VALUES    floats per entry (the largest cacheable material's written outputs),
 //   MG_CACHE_PROBE     the linear probing distance D (1..kCacheMaxProbe),
 //   MG_CACHE_EVICTION  kCacheEviction{None, Lru, Lrw, Random} (0..3),
-//   MG_CACHE_UPDATE_COUNTER  (optional) the update-counter read check of §5.3.4.
-// The entry count S, the frame clock and the mip bias come per frame in frame.cache.
+//   MG_CACHE_UPDATE_COUNTER  (optional) the update-counter read check of §5.3.4,
+//   MG_CACHE_VALUE_FP16      (optional) values as two halves per uint (§5.3.1),
+//   MG_CACHE_CLOCK_COUNTER   (optional) the 64-bit atomic counter clock of §5.3.3 instead of
+//                            the frame clock, with MG_CACHE_CLOCK_SHIFT (bits kept),
+//   MG_CACHE_SNAP_UV         (optional) a miss evaluates the graph at its texel centre (§6.1).
+// The entry count S, the frame clock and the mip bias come per frame in frame.cache. The
+// includer declares `counters` (gpu::Counters at kBindingRayCounter): the occupancy and the
+// counter clock live there.
 // materials.glsl provides mg_materialCacheInfo[id]: x the output mask (0: not cacheable),
 // y ID0, z ID1 (two independent hashes of the material's graph, eq. 5.8-5.9).
 #ifndef MG_TEXEL_CACHE_GLSL
@@ -17,12 +23,21 @@ const uint kCacheHeader = kCacheEntryHeaderWithCounter;  // key, clock, update c
 #else
 const uint kCacheHeader = kCacheEntryHeader;  // key, clock
 #endif
-// Words after the header: the values (texel cache), a tile's texels (tile cache stored in
-// the entry) or none (tiles stored elsewhere). The host defines it for the tile cache.
-#ifndef MG_CACHE_ENTRY_WORDS
-#define MG_CACHE_ENTRY_WORDS MG_CACHE_VALUES
+// Words per entry's values: one per fp32 value, or one per two halves (§5.3.1: 16-bit floats
+// "usually provide sufficient precision" for colours and normals). The tile cache stores
+// its texels through the same cacheStoreValues / cacheLoadValues.
+#ifdef MG_CACHE_VALUE_FP16
+const uint kCacheValueWords = (uint(MG_CACHE_VALUES) + 1u) / 2u;
+#else
+const uint kCacheValueWords = uint(MG_CACHE_VALUES);
 #endif
+// Words after the header: one texel's values (texel cache), a tile's texels (tile cache,
+// stored in the entry) or none (tiles stored elsewhere); the tile cache's host defines it.
+#ifdef MG_CACHE_ENTRY_WORDS
 const uint kCacheStride = kCacheHeader + uint(MG_CACHE_ENTRY_WORDS);
+#else
+const uint kCacheStride = kCacheHeader + kCacheValueWords;
+#endif
 
 // Entries as one flat uint array so the key can be swapped atomically (§5.3.4). Coherent:
 // other invocations of the same dispatch read what this one writes.
@@ -34,6 +49,8 @@ layout(set = 0, binding = kBindingCache, std430) coherent buffer CacheBlock {
 uint g_cacheLookups = 0u;
 uint g_cacheHits = 0u;
 uint g_cacheMisses = 0u;
+// Whether any lookup of this invocation missed: the debug view of thesis Fig. 6.9.
+bool g_cacheMissed = false;
 
 // The 32-bit PCG hash (O'Neill 2014, in the RXS-M-XS form of Jarzynski and Olano 2020),
 // the hash() of eq. 5.8-5.9; runtime::pcgHash is the host's copy. Defined here, not taken
@@ -45,8 +62,10 @@ uint cachePcg(uint v) {
 }
 
 struct CacheKey {
-  uint base;  // first entry of the probe range: I of eq. 5.10
-  uint hash;  // H1 of eq. 5.9, stored in the entry; never kCacheKeyEmpty or kCacheKeyLock
+  uint base;     // first entry of the probe range: I of eq. 5.10
+  uint hash;     // H1 of eq. 5.9, stored in the entry; never kCacheKeyEmpty or kCacheKeyLock
+  vec2 texelUv;  // the texel's centre (û, v̂ of eq. 5.6-5.7 over 2^m): where a snapped miss
+                 // evaluates the graph (§6.1)
 };
 
 // Eq. 5.2-5.5: the mip level m of the cache's virtual texture at this hit. False when the
@@ -69,7 +88,7 @@ bool cacheMipLevel(MaterialInputs inputs, out int m) {
 
 // Eq. 5.8-5.10 for the cell (texel or tile) `cell` of level m. Cells are hashed by their
 // float bits, which are exact for every magnitude (an int conversion would merge all cells
-// past 2^31); -0 and +0 only give the same cell two entries.
+// past 2^31); -0 and +0 only give the same cell two entries. texelUv is the caller's.
 CacheKey cacheKeyOf(uvec4 info, int m, vec2 cell) {
   uint u = floatBitsToUint(cell.x);
   uint v = floatBitsToUint(cell.y);
@@ -82,6 +101,7 @@ CacheKey cacheKeyOf(uvec4 info, int m, vec2 cell) {
   CacheKey key;
   key.base = h0 % (frame.cache.x - uint(MG_CACHE_PROBE));
   key.hash = h1;
+  key.texelUv = vec2(0.0);
   return key;
 }
 
@@ -89,11 +109,63 @@ CacheKey cacheKeyOf(uvec4 info, int m, vec2 cell) {
 bool cacheKeyFor(uvec4 info, MaterialInputs inputs, out CacheKey key) {
   int m;
   bool usable = cacheMipLevel(inputs, m);
-  key = cacheKeyOf(info, m, round(exp2(float(m)) * inputs.uv.v));
+  vec2 texel = round(exp2(float(m)) * inputs.uv.v);
+  key = cacheKeyOf(info, m, texel);
+  key.texelUv = exp2(-float(m)) * texel;  // exact: a power of two times an integer
   return usable;
 }
 
 uint cacheEntryOffset(uint entry) { return entry * kCacheStride; }
+
+// Largest finite half: fp16 stores clamp to it, so a bright emission becomes 65504 instead
+// of an infinity that would poison the path.
+const float kCacheHalfMax = 65504.0;
+
+// Word w of a texel's stored values (kCacheValueWords words): one fp32 value, or two halves
+// (an odd count leaves the last word's high half 0).
+uint cacheValueWord(float values[MG_CACHE_VALUES], uint w) {
+#ifdef MG_CACHE_VALUE_FP16
+  uint i = 2u * w;
+  float high = i + 1u < uint(MG_CACHE_VALUES) ? values[min(i + 1u, uint(MG_CACHE_VALUES) - 1u)]
+                                              : 0.0;
+  return packHalf2x16(clamp(vec2(values[i], high), vec2(-kCacheHalfMax), vec2(kCacheHalfMax)));
+#else
+  return floatBitsToUint(values[w]);
+#endif
+}
+
+// The inverse: word w into `values`.
+void cacheValueFromWord(uint word, uint w, inout float values[MG_CACHE_VALUES]) {
+#ifdef MG_CACHE_VALUE_FP16
+  vec2 pair = unpackHalf2x16(word);
+  uint i = 2u * w;
+  values[i] = pair.x;
+  if (i + 1u < uint(MG_CACHE_VALUES)) values[min(i + 1u, uint(MG_CACHE_VALUES) - 1u)] = pair.y;
+#else
+  values[w] = uintBitsToFloat(word);
+#endif
+}
+
+// Writes one texel's values at cacheData[wordOffset ..] as kCacheValueWords words.
+void cacheStoreValues(uint wordOffset, float values[MG_CACHE_VALUES]) {
+  for (uint w = 0u; w < kCacheValueWords; ++w) cacheData[wordOffset + w] = cacheValueWord(values, w);
+}
+
+// Reads what cacheStoreValues wrote at cacheData[wordOffset ..].
+void cacheLoadValues(uint wordOffset, out float values[MG_CACHE_VALUES]) {
+  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;
+  for (uint w = 0u; w < kCacheValueWords; ++w) cacheValueFromWord(cacheData[wordOffset + w], w, values);
+}
+
+// counter", §5.3.3), so 32 bits of metadata do not roll over within a session.
+uint cacheClockNow() {
+#ifdef MG_CACHE_CLOCK_COUNTER
+  uint64_t ticks = atomicAdd(counters.cacheClock, uint64_t(1));
+  return uint(ticks >> uint(MG_CACHE_CLOCK_SHIFT));
+#else
+  return frame.cache.y;
+#endif
+}
 
 // The values an entry stores for output mask `mask`, in kCacheOutput* order.
 void cachePack(uint mask, MaterialOutputs o, out float values[MG_CACHE_VALUES]) {
@@ -166,6 +238,7 @@ uint cacheReadBegin(uint entry, CacheKey key) {
 }
 
 // After the values were loaded: true when they belong to the key (see cacheReadBegin).
+// Under lru a valid read refreshes the entry's clock (§4.5, §5.3.3).
 bool cacheReadValid(uint entry, CacheKey key, uint counterBefore) {
   uint offset = cacheEntryOffset(entry);
 #ifdef MG_CACHE_UPDATE_COUNTER
@@ -176,8 +249,12 @@ bool cacheReadValid(uint entry, CacheKey key, uint counterBefore) {
 #ifdef MG_CACHE_UPDATE_COUNTER
   if (cacheData[offset + 2u] != counterBefore) return false;  // rewritten, key restored
 #endif
-#if MG_CACHE_EVICTION == 1  // kCacheEvictionLru: a read refreshes the frame clock (§4.5)
+#if MG_CACHE_EVICTION == 1  // kCacheEvictionLru
+#ifdef MG_CACHE_CLOCK_COUNTER
+  cacheData[offset + 1u] = cacheClockNow();  // §5.3.3: reads count only for lru
+#else
   if (cacheData[offset + 1u] != frame.cache.y) cacheData[offset + 1u] = frame.cache.y;
+#endif
 #endif
   return true;
 }
@@ -187,19 +264,16 @@ bool cacheRead(CacheKey key, out float values[MG_CACHE_VALUES]) {
   for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;
   int entry = cacheFind(key);
   if (entry < 0) return false;
-  uint offset = cacheEntryOffset(uint(entry));
   uint counterBefore = cacheReadBegin(uint(entry), key);
-  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i)
-    values[i] = uintBitsToFloat(cacheData[offset + kCacheHeader + i]);
+  cacheLoadValues(cacheEntryOffset(uint(entry)) + kCacheHeader, values);
   return cacheReadValid(uint(entry), key, counterBefore);
 }
 
 // The eviction policy's slot in the probe range (§4.5, §5.3.3), or -1 for "do not insert".
 // Empty entries are taken first by every policy; then none drops the value, lru and lrw
 // take the oldest frame clock (lru's is refreshed by reads, lrw's only by writes), random
-// a pseudo-random entry (a hash of the key and the frame: no memory access, §4.5). A new
-// policy (e.g. the 64-bit counter clock of §5.3.3) adds a branch here and its metadata
-// write in cacheWrite / cacheRead.
+// a pseudo-random entry (a hash of the key and the frame: no memory access, §4.5). The
+// clock compared is the frame clock or the counter clock's kept bits (cacheClockNow).
 int cacheChooseSlot(CacheKey key) {
   int oldest = -1;
   uint oldestTime = 0xFFFFFFFFu;
@@ -225,13 +299,17 @@ int cacheChooseSlot(CacheKey key) {
 
 // §5.3.4: picks the eviction policy's entry for `key` and locks it with an atomic exchange
 // to kCacheKeyLock. Returns the entry, or -1 when the policy declines or the entry is
-// already locked (not retried: the value is used by this thread but not cached).
+// already locked (not retried: the value is used by this thread but not cached). Locking
+// an empty entry counts it as occupied: a key never returns to empty, so the count only
+// grows and stays at most S.
 int cacheLock(CacheKey key) {
   int slot = cacheChooseSlot(key);
   if (slot < 0) return -1;
   uint entry = key.base + uint(slot);
   uint offset = cacheEntryOffset(entry);
-  if (atomicExchange(cacheData[offset], kCacheKeyLock) == kCacheKeyLock) return -1;
+  uint previous = atomicExchange(cacheData[offset], kCacheKeyLock);
+  if (previous == kCacheKeyLock) return -1;
+  if (previous == kCacheKeyEmpty) atomicAdd(counters.cacheOccupancy, 1u);
 #ifdef MG_CACHE_UPDATE_COUNTER
   atomicAdd(cacheData[offset + 2u], 1u);  // before any value changes (§5.3.4)
   memoryBarrierBuffer();
@@ -239,11 +317,15 @@ int cacheLock(CacheKey key) {
   return int(entry);
 }
 
-// After the values of a locked entry were written: its metadata, then the key, which
+// After the values of a locked entry were written: its clock, then the key, which
 // unlocks it.
 void cacheUnlock(uint entry, CacheKey key) {
   uint offset = cacheEntryOffset(entry);
-  cacheData[offset + 1u] = frame.cache.y;
+#if MG_CACHE_EVICTION == 1 || MG_CACHE_EVICTION == 2
+  cacheData[offset + 1u] = cacheClockNow();
+#else
+  cacheData[offset + 1u] = frame.cache.y;  // unread by none and random; no counter tick
+#endif
   memoryBarrierBuffer();
   atomicExchange(cacheData[offset], key.hash);
 }
@@ -252,14 +334,15 @@ void cacheUnlock(uint entry, CacheKey key) {
 void cacheWrite(CacheKey key, float values[MG_CACHE_VALUES]) {
   int entry = cacheLock(key);
   if (entry < 0) return;
-  uint offset = cacheEntryOffset(uint(entry));
-  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i)
-    cacheData[offset + kCacheHeader + i] = floatBitsToUint(values[i]);
+  cacheStoreValues(cacheEntryOffset(uint(entry)) + kCacheHeader, values);
   cacheUnlock(uint(entry), key);
 }
 
 // Cacheable materials (mask != 0) read the cache and on a miss evaluate and insert;
-// others are evaluated directly and never touch the cache.
+// others are evaluated directly and never touch the cache. With MG_CACHE_SNAP_UV a miss
+// evaluates at the texel centre (§6.1: "rounding the texture coordinates to the nearest
+// cache texel before evaluating"), so an entry holds its texel's value, not that of
+// whichever hit inside the texel came first; this hit then shades with that value too.
 void evaluateMaterialCached(uint materialId, MaterialInputs inputs, out MaterialOutputs outputs) {
   uvec4 info = materialId < uint(mg_materialCacheInfo.length()) ? mg_materialCacheInfo[materialId]
                                                                 : uvec4(0u);
@@ -276,7 +359,14 @@ void evaluateMaterialCached(uint materialId, MaterialInputs inputs, out Material
     return;
   }
   g_cacheMisses += 1u;
+  g_cacheMissed = true;
+#ifdef MG_CACHE_SNAP_UV
+  MaterialInputs snapped = inputs;
+  snapped.uv.v = key.texelUv;
+  evaluateMaterialDirect(materialId, snapped, outputs);
+#else
   evaluateMaterialDirect(materialId, inputs, outputs);
+#endif
   cachePack(info.x, outputs, values);
   cacheWrite(key, values);
 }

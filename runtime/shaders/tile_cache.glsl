@@ -45,29 +45,28 @@ uint g_invocationId = 0u;
 
 // ---- Texel storage (§5.4.1) --------------------------------------------------------------
 
-#if MG_TILE_STORAGE == 0 || MG_TILE_STORAGE == 1
-// Buffers hold a texel's values as consecutive fp32 words.
-#if MG_TILE_STORAGE == 1
+#if MG_TILE_STORAGE == 0
+// In the entry, after its header: texel t at t * kCacheValueWords (fp32 or fp16 words).
+void tileStoreTexel(uint entry, uint texel, float values[MG_CACHE_VALUES]) {
+  cacheStoreValues(cacheEntryOffset(entry) + kCacheHeader + texel * kCacheValueWords, values);
+}
+void tileLoadTexel(uint entry, uint texel, out float values[MG_CACHE_VALUES]) {
+  cacheLoadValues(cacheEntryOffset(entry) + kCacheHeader + texel * kCacheValueWords, values);
+}
+#elif MG_TILE_STORAGE == 1
+// A separate buffer, entry-major, the same words as in the entry.
 layout(set = 0, binding = kBindingTileTexels, std430) coherent buffer TileTexelBlock {
   uint tileTexels[];
 };
-#define MG_TILE_WORD(i) tileTexels[i]
-uint tileTexelWord(uint entry, uint texel) {
-  return (entry * kTileTexels + texel) * uint(MG_CACHE_VALUES);
-}
-#else
-#define MG_TILE_WORD(i) cacheData[i]
-uint tileTexelWord(uint entry, uint texel) {
-  return cacheEntryOffset(entry) + kCacheHeader + texel * uint(MG_CACHE_VALUES);
-}
-#endif
+uint tileTexelWord(uint entry, uint texel) { return (entry * kTileTexels + texel) * kCacheValueWords; }
 void tileStoreTexel(uint entry, uint texel, float values[MG_CACHE_VALUES]) {
   uint word = tileTexelWord(entry, texel);
-  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) MG_TILE_WORD(word + i) = floatBitsToUint(values[i]);
+  for (uint w = 0u; w < kCacheValueWords; ++w) tileTexels[word + w] = cacheValueWord(values, w);
 }
 void tileLoadTexel(uint entry, uint texel, out float values[MG_CACHE_VALUES]) {
+  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;
   uint word = tileTexelWord(entry, texel);
-  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = uintBitsToFloat(MG_TILE_WORD(word + i));
+  for (uint w = 0u; w < kCacheValueWords; ++w) cacheValueFromWord(tileTexels[word + w], w, values);
 }
 #else
 // Images hold four values per texel; a texel's value groups sit side by side in x (2D) or
@@ -387,6 +386,7 @@ void evaluateMaterialTiled(bool hasHit, uint materialId, MaterialInputs inputs,
       g_cacheHits += 1u;
     } else {
       g_cacheMisses += 1u;
+      g_cacheMissed = true;
       request = true;
     }
   } else {

@@ -141,6 +141,36 @@ TEST_F(CliTest, RenderReportsAMissingEnvironmentImageBeforeTouchingTheGpu) {
   EXPECT_FALSE(fs::exists(directory_ / "x.pfm"));
 }
 
+// Bad cache option values are usage errors (exit 2), refused before any GPU work, and the
+// message names the value and the choices.
+TEST_F(CliTest, RenderAndBenchRefuseBadCacheOptionValues) {
+  const std::string out = " --out " + (directory_ / "x.pfm").string();
+  for (const std::string command : {"render builtin:landscape" + out, std::string("bench")}) {
+    const auto format = runCli(command + " --value-format fp8");
+    EXPECT_EQ(format.exitCode, 2) << format.output;
+    EXPECT_NE(format.output.find("'fp8' (choose fp32 or fp16)"), std::string::npos)
+        << format.output;
+    const auto clock = runCli(command + " --clock x");
+    EXPECT_EQ(clock.exitCode, 2) << clock.output;
+    EXPECT_NE(clock.output.find("'x' (choose frame or counter)"), std::string::npos)
+        << clock.output;
+    EXPECT_EQ(runCli(command + " --clock-shift 40").exitCode, 2);
+    const auto floor = runCli(command + " --floor-materials --cache texel");
+    EXPECT_EQ(floor.exitCode, 2) << floor.output;
+    EXPECT_NE(floor.output.find("--floor-materials"), std::string::npos) << floor.output;
+  }
+  EXPECT_EQ(runCli("render builtin:landscape --debug-misses" + out).exitCode, 2);
+  EXPECT_FALSE(fs::exists(directory_ / "x.pfm"));
+}
+
+TEST_F(CliTest, RenderHelpListsTheCacheOptions) {
+  const auto run = runCli("render --help");
+  EXPECT_EQ(run.exitCode, 0);
+  for (const char* option : {"--value-format", "--clock", "--snap-uv", "--cache-secondary-only",
+                             "--floor-materials", "--debug-misses"})
+    EXPECT_NE(run.output.find(option), std::string::npos) << option;
+}
+
 TEST_F(CliTest, RandomBytesNeverCrashTheCompiler) {
   std::string bytes;
   std::uint32_t state = 12345;

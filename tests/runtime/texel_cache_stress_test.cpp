@@ -34,6 +34,7 @@ constexpr const char* kStressShader = R"(#version 460
 #include "shared_types.h"
 layout(set = 0, binding = kBindingFrame, std140) uniform FrameBlock { FrameConstants frame; };
 layout(set = 0, binding = kBindingRayCounter, std430) buffer ResultBlock {
+  Counters counters;  // texel_cache.glsl counts occupancy here
   uint hits; uint torn; uint writes; uint misses;
 };
 struct float2_D { vec2 v; vec2 x; vec2 y; };
@@ -102,6 +103,8 @@ void main() {
 
 struct StressResult {
   std::uint32_t hits = 0, torn = 0, writes = 0, misses = 0;
+  std::uint32_t occupancy = 0;  // not in the shader's block: read from gpu::Counters
+  std::uint32_t filled = 0;     // non-empty keys in the cache after the run
 };
 
 // mode: 0 the key check, 1 the update counter, 2 unprotected (no lock, no check).
@@ -172,9 +175,10 @@ StressResult runStress(const VulkanContext& context, int mode, std::uint32_t ite
   frame.cache = glm::uvec4(kEntries, 1u, 0u, 0u);
   GpuBuffer frameBuffer = hostBuffer(context, sizeof frame, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
   frameBuffer.write(&frame, sizeof frame);
-  StressResult zero;
-  GpuBuffer results = hostBuffer(context, sizeof zero, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  results.write(&zero, sizeof zero);
+  // gpu::Counters, then the test's counts.
+  std::vector<std::uint8_t> zero(sizeof(gpu::Counters) + sizeof(StressResult), 0);
+  GpuBuffer results = hostBuffer(context, zero.size(), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  results.write(zero.data(), zero.size());
   std::vector<std::uint32_t> emptyCache(std::size_t(kEntries) * (header + kValues), 0u);
   GpuBuffer cache = hostBuffer(context, emptyCache.size() * sizeof(std::uint32_t),
                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
@@ -222,7 +226,14 @@ StressResult runStress(const VulkanContext& context, int mode, std::uint32_t ite
                          0, 1, &barrier, 0, nullptr, 0, nullptr);
   });
   StressResult result;
-  results.read(&result, sizeof result);
+  results.read(&result, sizeof result, sizeof(gpu::Counters));
+  gpu::Counters counters{};
+  results.read(&counters, sizeof counters);
+  result.occupancy = counters.cacheOccupancy;
+  std::vector<std::uint32_t> finalCache(emptyCache.size());
+  cache.read(finalCache.data(), finalCache.size() * sizeof(std::uint32_t));
+  for (std::uint32_t e = 0; e < kEntries; ++e)
+    result.filled += finalCache[std::size_t(e) * (header + kValues)] != gpu::kCacheKeyEmpty;
   return result;
 }
 
@@ -244,6 +255,14 @@ TEST(TexelCacheStress, UpdateCounterGivesNoTornReads) {
     EXPECT_EQ(r.hits + r.misses, kInvocations * iterations);
     EXPECT_GT(r.hits, 0u);
     EXPECT_GT(r.misses, 0u);
+  }
+  // The occupancy counter counts each entry's first fill once: it equals the entries left
+  // non-empty (a key never returns to empty) under thousands of racing writers.
+  for (const StressResult& r : {key, counter}) {
+    std::printf("cache stress: occupancy counter %u, non-empty entries %u of %u\n", r.occupancy,
+                r.filled, kEntries);
+    EXPECT_EQ(r.occupancy, r.filled);
+    EXPECT_GT(r.filled, 0u);
   }
   EXPECT_EQ(counter.torn, 0u);
   // The unprotected protocol's tears show that the harness can see a tear on this device

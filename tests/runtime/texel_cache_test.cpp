@@ -10,10 +10,10 @@
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "cache_test_support.h"
 #include "render_test_support.h"
 #include "runtime/quality/flip.h"
 #include "runtime/shaders/shared_types.h"
+#include "texel_cache_scenes.h"
 
 namespace memograph::runtime {
 namespace {
@@ -22,9 +22,12 @@ using testing::cacheOptions;
 using testing::expectConsistentCounters;
 using testing::meanFlip;
 using testing::positionGraph;
-using testing::settings;
 using testing::stripesGraph;
 using testing::wallScene;
+
+RenderSettings settings(std::uint32_t frames, std::uint32_t raysPerPath, std::uint32_t paths = 1) {
+  return testing::cacheSettings(frames, raysPerPath, paths);
+}
 
 TEST(TexelCache, OutputMaskFollowsTheWrittenOutputs) {
   std::uint32_t floats = 0;
@@ -159,19 +162,8 @@ TEST(TexelCache, FarTooFewEntriesStillRenders) {
 // texels. Without eviction the hit rate falls once the cache is full (new texels find no
 // empty entry); with lru it stays high (consecutive frames overlap).
 TEST(TexelCache, PanningCameraKeepsItsHitRateOnlyWithEviction) {
-  Scene scene;
-  scene.meshes.push_back(testing::quad(64.0f, 32.0f));
-  scene.materials.push_back({"Wall", "", stripesGraph()});
-  scene.instances.push_back(
-      {0, 0, glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1, 0, 0))});
-  scene.environment.constantRadiance = {0.5f, 0.5f, 0.5f};
-  RenderSettings s = settings(32, 1);
-  for (std::uint32_t f = 0; f < s.frames; ++f) {
-    Camera camera;
-    camera.position = {-20.0f + 0.4f * float(f), 0.0f, 5.0f};
-    camera.target = camera.position - glm::vec3(0.0f, 0.0f, 5.0f);
-    s.cameraPath.push_back(camera);
-  }
+  Scene scene = testing::panningWallScene();
+  RenderSettings s = testing::panningSettings();
   double early[2], late[2];
   for (int i = 0; i < 2; ++i) {
     CacheEviction eviction = i == 0 ? CacheEviction::None : CacheEviction::Lru;
@@ -218,7 +210,7 @@ TEST(TexelCache, StatsCsvAppendsTheCacheColumns) {
           "pipeline_create_ms,cache,cache_eviction,cache_entries,cache_probe,"
           "cache_bytes,cache_lookups,cache_hits,cache_misses,cache_hit_rate,cache_read_check"),
       std::string::npos);
-  EXPECT_NE(row.find(",texel,lru,1024,0,0,200,150,50,0.75,key\n"), std::string::npos) << row;
+  EXPECT_NE(row.find(",texel,lru,1024,0,0,200,150,50,0.75,key,"), std::string::npos) << row;
 }
 
 TEST(TexelCache, BadOptionsAreRefused) {
@@ -229,7 +221,7 @@ TEST(TexelCache, BadOptionsAreRefused) {
     EXPECT_THROW(Renderer(options).render(scene, settings(1, 1)), std::invalid_argument)
         << entries << " entries, probe " << probe;
   }
-  EXPECT_THROW(parseCacheMode("tile"), std::invalid_argument);
+  EXPECT_THROW(parseCacheMode("tiles"), std::invalid_argument);
   EXPECT_THROW(parseCacheEviction("fifo"), std::invalid_argument);
   EXPECT_EQ(parseCacheEviction("lrw"), CacheEviction::Lrw);
   EXPECT_EQ(parseCacheEviction("random"), CacheEviction::Random);

@@ -9,8 +9,8 @@
 
 #include <gtest/gtest.h>
 
-#include "cache_test_support.h"
 #include "render_test_support.h"
+#include "texel_cache_scenes.h"
 
 namespace memograph::runtime {
 namespace {
@@ -18,9 +18,12 @@ namespace {
 using testing::cacheOptions;
 using testing::expectConsistentCounters;
 using testing::meanFlip;
-using testing::settings;
 using testing::stripesGraph;
 using testing::wallScene;
+
+RenderSettings settings(std::uint32_t frames, std::uint32_t raysPerPath, std::uint32_t paths = 1) {
+  return testing::cacheSettings(frames, raysPerPath, paths);
+}
 
 RendererOptions tileOptions(std::uint32_t width, std::uint32_t height,
                             TileFilter filter = TileFilter::Nearest,

@@ -146,6 +146,7 @@ int runBench(std::span<const std::string_view> args) {
     options.context.backend = runtime::parseBackend(backend);
     options.materialDispatch = runtime::parseMaterialDispatch(materialDispatch);
     options.cache = cacheArguments.parse();
+    options.floorMaterials = cacheArguments.floorMaterials;
   } catch (const std::invalid_argument& e) {
     return usageError("bench", e.what());
   }
@@ -170,6 +171,7 @@ int runBench(std::span<const std::string_view> args) {
            "mrays_per_s,blas_bytes,tlas_bytes,scratch_bytes,materials,material_dispatch,"
            "shader_compile_ms,pipeline_create_ms,cache,cache_eviction,cache_entries,"
            "cache_probe,cache_bytes,median_cache_hit_rate,label,warmup,frame_stride,camera_frames,"
+           "cache_value_format,cache_clock,cache_snap_uv,cache_secondary_only,cache_tile,"
         << benchSummaryCsvColumns() << "\n";
   }
   try {
@@ -232,8 +234,12 @@ int runBench(std::span<const std::string_view> args) {
         if (result.stats.cache != "none")
           std::cout << "  cache " << result.stats.cache << " (" << result.stats.cacheEntries
                     << " entries, D=" << result.stats.cacheProbe << ", eviction "
-                    << result.stats.cacheEviction << ", " << result.stats.cacheBytes
-                    << " B): median hit rate " << 100.0 * summary.medianCacheHitRate << " %, total "
+                    << result.stats.cacheEviction << ", clock " << result.stats.cacheClock << ", "
+                    << result.stats.cacheValueFormat << ", " << result.stats.cacheBytes << " B"
+                    << (result.stats.cacheTile.empty() ? "" : ", tiles " + result.stats.cacheTile)
+                    << (result.stats.cacheSnapUv ? ", snapped uv" : "")
+                    << (result.stats.cacheSecondaryOnly ? ", secondary hits only" : "")
+                    << "): median hit rate " << 100.0 * summary.medianCacheHitRate << " %, total "
                     << 100.0 * summary.totalCacheHitRate << " %\n";
         if (csv) {
           csv << label << ',' << width << ',' << height << ',' << p << ',' << l << ','
@@ -247,7 +253,9 @@ int runBench(std::span<const std::string_view> args) {
               << result.stats.cacheProbe << ',' << result.stats.cacheBytes << ','
               << summary.medianCacheHitRate << ',' << runLabel << ',' << w << ','
               << (staticCamera ? 0 : plan.stride) << ',' << (staticCamera ? 0 : plan.pathCameras)
-              << ',' << benchSummaryCsvValues(summary) << '\n';
+              << ',' << result.stats.cacheValueFormat << ',' << result.stats.cacheClock << ','
+              << int(result.stats.cacheSnapUv) << ',' << int(result.stats.cacheSecondaryOnly) << ','
+              << result.stats.cacheTile << ',' << benchSummaryCsvValues(summary) << '\n';
         }
         if (!framesCsv.empty()) {
           std::ofstream perFrame(framesCsv + fileLabel + "_" + std::to_string(width) + "x" +

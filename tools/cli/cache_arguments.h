@@ -29,12 +29,25 @@ inline constexpr const char* kCacheHelp =
     "                        one texel, eq. 5.12-5.15)\n"
     "  --tile-storage S      where texels live (§5.4.1): entry (default), buffer,\n"
     "                        texture2d or texture3d\n"
-    "  --group-by-material   compute missing tiles of one material together (§5.4.4)\n";
+    "  --group-by-material   compute missing tiles of one material together (§5.4.4)\n"
+    "  --value-format F      fp32 (default) or fp16: entry values as 32-bit floats or two\n"
+    "                        16-bit halves per word (§5.3.1; half the value memory)\n"
+    "  --clock C             lru/lrw time: frame (default; the frame number) or counter (a\n"
+    "                        64-bit GPU atomic counter bumped per access, §5.3.3; needs\n"
+    "                        64-bit buffer atomics)\n"
+    "  --clock-shift S       counter clock: the entry keeps counter bits S..S+31 (default 16,\n"
+    "                        §5.3.3; 0 for tiny images)\n"
+    "  --snap-uv             evaluate a miss at its texel's centre (§6.1)\n"
+    "  --cache-secondary-only  only bounces >= 1 use the cache; camera hits evaluate\n"
+    "                        their graph directly (§6.1, Fig. 6.6)\n"
+    "  --floor-materials     floor run: every material replaced by constants, no graph\n"
+    "                        evaluated (the cost of a free material; not with a cache)\n";
 
 struct CacheArguments {
   std::string cache = "none", entries = "1048576", probe = "8", eviction = "lru", mipBias = "0",
-              readCheck = "key", tile = "4x4", filter = "nearest", tileStorage = "entry";
-  bool groupByMaterial = false;
+              readCheck = "key", valueFormat = "fp32", clock = "frame", clockShift = "16",
+              tile = "4x4", filter = "nearest", tileStorage = "entry";
+  bool snapUv = false, secondaryOnly = false, floorMaterials = false, groupByMaterial = false;
 
   void registerWith(ArgumentScanner& scanner) {
     scanner.option("--cache", &cache);
@@ -47,6 +60,12 @@ struct CacheArguments {
     scanner.option("--filter", &filter);
     scanner.option("--tile-storage", &tileStorage);
     scanner.flag("--group-by-material", &groupByMaterial);
+    scanner.option("--value-format", &valueFormat);
+    scanner.option("--clock", &clock);
+    scanner.option("--clock-shift", &clockShift);
+    scanner.flag("--snap-uv", &snapUv);
+    scanner.flag("--cache-secondary-only", &secondaryOnly);
+    scanner.flag("--floor-materials", &floorMaterials);
   }
 
   // Throws std::invalid_argument with a message for the user.
@@ -54,6 +73,10 @@ struct CacheArguments {
     runtime::CacheOptions options;
     options.mode = runtime::parseCacheMode(cache);
     options.eviction = runtime::parseCacheEviction(eviction);
+    options.valueFormat = runtime::parseCacheValueFormat(valueFormat);
+    options.clock = runtime::parseCacheClock(clock);
+    options.snapUv = snapUv;
+    options.secondaryOnly = secondaryOnly;
     if (readCheck != "key" && readCheck != "counter")
       throw std::invalid_argument("unknown --cache-read-check '" + readCheck +
                                   "' (choose key or counter)");
@@ -71,14 +94,12 @@ struct CacheArguments {
     };
     options.entries = whole(entries, "--cache-entries");
     options.probe = whole(probe, "--probe");
+    options.clockShift = whole(clockShift, "--clock-shift");
     const auto x = tile.find('x');
     if (x == std::string::npos)
       throw std::invalid_argument("--tile takes WxH (e.g. 4x4), not '" + tile + "'");
     options.tileWidth = whole(tile.substr(0, x), "--tile's width");
     options.tileHeight = whole(tile.substr(x + 1), "--tile's height");
-    if (options.tileWidth == 0 || options.tileHeight == 0 || options.tileWidth > 64 ||
-        options.tileHeight > 64)
-      throw std::invalid_argument("--tile takes sides of 1..64 texels, not '" + tile + "'");
     try {
       std::size_t used = 0;
       options.mipBias = std::stof(mipBias, &used);
@@ -87,10 +108,10 @@ struct CacheArguments {
     } catch (const std::exception&) {
       throw std::invalid_argument("--mip-bias takes a number, not '" + mipBias + "'");
     }
-    if (options.probe < 1 || options.probe > 16)
-      throw std::invalid_argument("--probe must be 1..16");
-    if (options.entries <= options.probe)
-      throw std::invalid_argument("--cache-entries must exceed --probe");
+    runtime::validateCacheOptions(options);  // the renderer's own ranges and messages
+    if (floorMaterials && options.mode != runtime::CacheMode::None)
+      throw std::invalid_argument(
+          "--floor-materials evaluates no material graph; it cannot be combined with --cache");
     return options;
   }
 };

@@ -63,7 +63,9 @@ constexpr std::string_view kHelp =
     "  --shader-cache DIR    SPIR-V cache folder (default $XDG_CACHE_HOME/memograph)\n"
     "  --no-shader-cache     compile every shader\n"
     "  --stats FILE          per-frame statistics as CSV (GPU ms, rays, AS memory, cache)\n"
-    "  --validation          enable the Vulkan validation layer\n";
+    "  --validation          enable the Vulkan validation layer\n"
+    "  --debug-misses        texel cache debug view (thesis Fig. 6.9): each frame alone,\n"
+    "                        red where a path of the pixel missed the cache\n";
 
 bool parseNumber(const std::string& text, std::uint32_t& out) {
   auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), out);
@@ -109,6 +111,8 @@ int runRender(std::span<const std::string_view> args) {
   scanner.flag("--shared-primary", &sharedPrimary);
   scanner.flag("--no-shader-cache", &noShaderCache);
   scanner.flag("--validation", &validation);
+  bool debugMisses = false;
+  scanner.flag("--debug-misses", &debugMisses);
   scanner.flag("--list-devices", &listDevices);
   scanner.flag("--help", &help);
   std::vector<std::string> positional;
@@ -154,11 +158,15 @@ int runRender(std::span<const std::string_view> args) {
     options.context.backend = runtime::parseBackend(backend);
     options.materialDispatch = runtime::parseMaterialDispatch(materialDispatch);
     options.cache = cacheArguments.parse();
+    options.floorMaterials = cacheArguments.floorMaterials;
   } catch (const std::invalid_argument& e) {
     return usageError("render", e.what());
   }
   options.context.deviceIndex = device == "-1" ? -1 : int(deviceIndex);
   options.context.validation = validation;
+  if (debugMisses && options.cache.mode == runtime::CacheMode::None)
+    return usageError("render", "--debug-misses shows cache misses; it needs --cache texel");
+  options.debugCacheMisses = debugMisses;
   options.shaderCache = !noShaderCache;
   options.shaderCacheDirectory = shaderCache;
   options.nodeLibraryDirectory = nodes;
@@ -296,8 +304,10 @@ int runRender(std::span<const std::string_view> args) {
       std::cerr << result.stats.cache << " cache"
                 << (result.stats.cacheTile.empty() ? "" : " (" + result.stats.cacheTile + ")")
                 << ": " << result.stats.cacheEntries << " entries (" << result.stats.cacheBytes
-                << " B); last frame " << last.cacheLookups << " lookups, " << last.cacheHits
-                << " hits (" << 100.0 * last.cacheHitRate() << " %)";
+                << " B, " << result.stats.cacheValueFormat << ", clock " << result.stats.cacheClock
+                << "); last frame " << last.cacheLookups << " lookups, " << last.cacheHits
+                << " hits (" << 100.0 * last.cacheHitRate() << " %), " << last.cacheOccupancy
+                << " entries in use";
       if (result.stats.cache == "tile")
         std::cerr << ", " << last.cacheTilesComputed << " tiles computed ("
                   << last.cacheDuplicateTiles << " duplicates)";

@@ -1,0 +1,92 @@
+// The material graph cache's options (thesis §4, §5.3) and what they turn into: the texel
+// cache's shader defines and its entry size. Shared by the renderer, the CLI and the tests.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace memograph::runtime {
+
+// Material graph memoization (thesis §4, §5.3-5.4). Texel: one hash table of texels, keyed
+// by material, mip level and texel (eq. 5.1-5.10), linear probing over `probe` entries.
+// Tile: entries are tiles of texels, computed by a whole subgroup on a miss (§5.4.3).
+enum class CacheMode { None, Texel, Tile };
+// How a tile is sampled (§4.6, eq. 5.12-5.15): its nearest texel, or bilinearly from tiles
+// that overlap by one texel.
+enum class TileFilter { Nearest, Bilinear };
+// Where a tile's texels live (§5.4.1). Values are the shader's kTileStorage*.
+enum class TileStorage { Entry = 0, Buffer = 1, Texture2D = 2, Texture3D = 3 };
+// What a miss evicts when its probe range is full (§4.5): none (insert only into empty
+// entries), the least recently used or least recently written entry by a clock (§5.3.3),
+// or a pseudo-random entry. Values are the shader's kCacheEviction*.
+enum class CacheEviction { None = 0, Lru = 1, Lrw = 2, Random = 3 };
+// How an entry stores the graph's outputs (§5.3.1): 32-bit floats, or 16-bit floats two to
+// a uint (half the value words; values clamped to ±65504).
+enum class CacheValueFormat { Fp32, Fp16 };
+// The lru/lrw time of §5.3.3: the host's frame counter, or a 64-bit GPU atomic counter
+// bumped by every stamping access (needs shaderBufferInt64Atomics).
+enum class CacheClock { Frame, Counter };
+
+const char* cacheModeName(CacheMode mode);
+const char* cacheEvictionName(CacheEviction eviction);
+const char* cacheValueFormatName(CacheValueFormat format);
+const char* cacheClockName(CacheClock clock);
+const char* tileFilterName(TileFilter filter);
+const char* tileStorageName(TileStorage storage);
+// Parse "none"/"texel", "none"/"lru"/"lrw"/"random", "fp32"/"fp16" and "frame"/"counter";
+// throw std::invalid_argument naming the choices.
+CacheMode parseCacheMode(const std::string& text);
+CacheEviction parseCacheEviction(const std::string& text);
+CacheValueFormat parseCacheValueFormat(const std::string& text);
+CacheClock parseCacheClock(const std::string& text);
+// "nearest"/"bilinear" and "entry"/"buffer"/"texture2d"/"texture3d", likewise.
+TileFilter parseTileFilter(const std::string& text);
+TileStorage parseTileStorage(const std::string& text);
+
+struct CacheOptions {
+  CacheMode mode = CacheMode::None;
+  std::uint32_t entries = 1u << 20;  // S; must exceed `probe`
+  std::uint32_t probe = 8;           // D, 1..16 (gpu::kCacheMaxProbe)
+  float mipBias = 0.0f;              // eq. 5.5; positive: finer texels
+  CacheEviction eviction = CacheEviction::Lru;
+  // §5.3.4: false checks a read by reading the key again (the thesis's choice, open to the
+  // A-B-A race); true adds a per-entry update counter that closes it (one more uint per
+  // entry and an atomic per write). Default to be picked from a GPU measurement.
+  bool updateCounter = false;
+  CacheValueFormat valueFormat = CacheValueFormat::Fp32;
+  CacheClock clock = CacheClock::Frame;
+  // Counter clock: the entry keeps counter bits clockShift..clockShift+31. 16 is §5.3.3's
+  // suggestion for 1080p; tiny images (tests) need 0, or every stamp of a short run is 0.
+  std::uint32_t clockShift = 16;
+  // §6.1: evaluate a miss at its texel's centre, so an entry holds the texel's value.
+  bool snapUv = false;
+  // §6.1, Fig. 6.6: primary hits evaluate their graph directly; only bounces >= 1 cache.
+  bool secondaryOnly = false;
+  // Tile cache (§5.4): texels stored per tile (W x H <= the device's subgroup size; the
+  // thesis's 4 x 4 needs 16 lanes, lavapipe has 8), the filter, the storage and §5.4.4's
+  // grouping of missing tiles by material. `entries` counts tiles.
+  std::uint32_t tileWidth = 4;
+  std::uint32_t tileHeight = 4;
+  TileFilter tileFilter = TileFilter::Nearest;
+  TileStorage tileStorage = TileStorage::Entry;
+  bool groupByMaterial = false;
+};
+
+// Throws std::invalid_argument naming the option (CLI spelling) when out of range.
+void validateCacheOptions(const CacheOptions& options);
+
+// uints per texel's values and per entry (header + the values stored in the entry: one
+// texel's for the texel cache, a tile's with kTileStorageEntry, none for other tile
+// storages) for `valueCount` floats per texel.
+std::uint32_t cacheValueWords(const CacheOptions& options, std::uint32_t valueCount);
+std::uint32_t cacheEntryWords(const CacheOptions& options, std::uint32_t valueCount);
+
+// Texels per entry: 1, or W x H for the tile cache.
+std::uint32_t cacheTexelsPerEntry(const CacheOptions& options);
+
+// The defines texel_cache.glsl, tile_cache.glsl and path_tracer.glsl read (none for
+// CacheMode::None).
+std::vector<std::string> cacheShaderDefines(const CacheOptions& options, std::uint32_t valueCount);
+
+}  // namespace memograph::runtime

@@ -1,0 +1,276 @@
+// The texel cache's options (issue 4) on lavapipe: fp16 values (§5.3.1), the 64-bit counter
+// clock (§5.3.3), texel-centre snapping and secondary-only caching (§6.1), the occupancy
+// counter, the miss view of Fig. 6.9, and the floor run (no graph evaluated).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "render_test_support.h"
+#include "runtime/shaders/shared_types.h"
+#include "texel_cache_scenes.h"
+
+namespace memograph::runtime {
+namespace {
+
+using testing::meanFlip;
+using testing::stripesGraph;
+using testing::wallScene;
+
+RendererOptions texelCache(std::uint32_t entries = 1u << 16,
+                           CacheEviction eviction = CacheEviction::Lru) {
+  RendererOptions options = testing::testOptions();
+  options.cache.mode = CacheMode::Texel;
+  options.cache.entries = entries;
+  options.cache.eviction = eviction;
+  return options;
+}
+
+RendererOptions noCache() {
+  return testing::testOptions();
+}
+
+RenderSettings settings(std::uint32_t frames, std::uint32_t raysPerPath, std::uint32_t paths = 1,
+                        std::uint32_t side = 24) {
+  RenderSettings s;
+  s.width = side;
+  s.height = side;
+  s.pathsPerPixel = paths;
+  s.raysPerPath = raysPerPath;
+  s.frames = frames;
+  s.seed = 5;
+  return s;
+}
+
+double meanHitRate(const RenderStats& stats, std::size_t from, std::size_t to) {
+  double sum = 0;
+  for (std::size_t f = from; f < to; ++f)
+    sum += stats.frames[f].cacheHitRate();
+  return sum / double(to - from);
+}
+
+std::size_t redPixels(const HdrImage& image) {
+  std::size_t red = 0;
+  for (std::size_t i = 0; i + 3 < image.rgba.size(); i += 4)
+    red += image.rgba[i] == 1.0f && image.rgba[i + 1] == 0.0f && image.rgba[i + 2] == 0.0f;
+  return red;
+}
+
+TEST(TexelCacheOptions, EntrySizesAndDefinesFollowTheOptions) {
+  CacheOptions options;
+  options.mode = CacheMode::Texel;
+  EXPECT_EQ(cacheEntryWords(options, 12), gpu::kCacheEntryHeader + 12);
+  options.valueFormat = CacheValueFormat::Fp16;
+  EXPECT_EQ(cacheValueWords(options, 12), 6u);
+  EXPECT_EQ(cacheValueWords(options, 5), 3u);  // the last word's high half unused
+  options.updateCounter = true;
+  EXPECT_EQ(cacheEntryWords(options, 5), gpu::kCacheEntryHeaderWithCounter + 3);
+  options.clock = CacheClock::Counter;
+  options.clockShift = 3;
+  options.snapUv = true;
+  options.secondaryOnly = true;
+  auto defines = cacheShaderDefines(options, 5);
+  for (const char* expected :
+       {"MG_CACHE_VALUE_FP16=1", "MG_CACHE_CLOCK_COUNTER=1", "MG_CACHE_CLOCK_SHIFT=3",
+        "MG_CACHE_SNAP_UV=1", "MG_CACHE_SECONDARY_ONLY=1", "MG_CACHE_UPDATE_COUNTER=1"})
+    EXPECT_NE(std::find(defines.begin(), defines.end(), expected), defines.end()) << expected;
+  options.mode = CacheMode::None;
+  EXPECT_TRUE(cacheShaderDefines(options, 5).empty());
+  EXPECT_THROW(parseCacheValueFormat("fp8"), std::invalid_argument);
+  EXPECT_THROW(parseCacheClock("x"), std::invalid_argument);
+  EXPECT_EQ(parseCacheClock("counter"), CacheClock::Counter);
+}
+
+// §5.3.1: fp16 halves the value words and the picture stays close. Both renders snap uv, so
+// which thread fills an entry does not matter (see the snapping test) and the difference is
+// fp16 rounding alone. Bound: mean LDR-FLIP below 0.005 (the printed figure is the
+// measurement).
+TEST(TexelCacheOptions, Fp16EntriesAreSmallerAndRenderCloseToFp32) {
+  Scene scene = wallScene(stripesGraph(), true);
+  RendererOptions fullOptions = texelCache();
+  fullOptions.cache.snapUv = true;
+  RenderResult fp32 = Renderer(fullOptions).render(scene, settings(6, 3, 2));
+  RendererOptions halfOptions = fullOptions;
+  halfOptions.cache.valueFormat = CacheValueFormat::Fp16;
+  RenderResult fp16 = Renderer(halfOptions).render(scene, settings(6, 3, 2));
+  EXPECT_EQ(fp32.stats.cacheValueFormat, "fp32");
+  EXPECT_EQ(fp16.stats.cacheValueFormat, "fp16");
+  double flip = meanFlip(fp32.image, fp16.image);
+  std::printf(
+      "texel cache fp16 vs fp32: %llu B vs %llu B (%u values per entry), mean LDR-FLIP %.4f, "
+      "last frame hit rates %.2f %% / %.2f %%\n",
+      (unsigned long long)fp16.stats.cacheBytes, (unsigned long long)fp32.stats.cacheBytes,
+      fp16.stats.cacheValueCount, flip, 100.0 * fp16.stats.frames.back().cacheHitRate(),
+      100.0 * fp32.stats.frames.back().cacheHitRate());
+  EXPECT_LT(fp16.stats.cacheBytes, fp32.stats.cacheBytes);
+  EXPECT_GT(fp16.stats.frames.back().cacheHitRate(), 0.9);
+  EXPECT_LT(flip, 0.005);
+}
+
+// §5.3.3's counter clock orders entries by access, across frames: lru with it holds its
+// hit rate on a panning camera where `none` decays, as with the frame clock. Shift 0: the
+// run makes about 20000 accesses, so bits 16.. (the thesis's 1080p choice) would all be 0.
+TEST(TexelCacheOptions, CounterClockLruKeepsItsHitRateOnAPanningCamera) {
+  Scene scene = testing::panningWallScene();
+  RenderSettings panning = testing::panningSettings();
+  double early[2], late[2];
+  std::uint64_t lastTicks = 0;
+  for (int i = 0; i < 2; ++i) {
+    RendererOptions options = texelCache(1024, i == 0 ? CacheEviction::None : CacheEviction::Lru);
+    options.cache.clock = CacheClock::Counter;
+    options.cache.clockShift = 0;
+    RenderResult r = Renderer(options).render(scene, panning);
+    EXPECT_EQ(r.stats.cacheClock, "counter");
+    early[i] = meanHitRate(r.stats, 1, 4);
+    late[i] = meanHitRate(r.stats, panning.frames - 4, panning.frames);
+    std::printf(
+        "panning camera, 1024 entries, counter clock, eviction %s: hit rate frames 1-3 "
+        "%.1f %%, last 4 frames %.1f %%; clock after the last frame %llu\n",
+        cacheEvictionName(options.cache.eviction), 100.0 * early[i], 100.0 * late[i],
+        (unsigned long long)r.stats.frames.back().cacheClockTicks);
+    if (i == 1) {
+      // Never reset: it grows every frame by that frame's lookups (each a hit or a write).
+      for (std::size_t f = 1; f < r.stats.frames.size(); ++f)
+        EXPECT_GT(r.stats.frames[f].cacheClockTicks, r.stats.frames[f - 1].cacheClockTicks);
+      lastTicks = r.stats.frames.back().cacheClockTicks;
+    }
+  }
+  EXPECT_GT(lastTicks, 32u * 24u * 24u / 2u);
+  EXPECT_LT(late[0], early[0] - 0.2);   // none decays
+  EXPECT_GT(late[1], early[1] - 0.05);  // lru holds
+  EXPECT_GT(late[1], late[0] + 0.2);
+}
+
+// §6.1 snapping: a miss evaluates the graph at its texel's centre, so every thread that
+// fills an entry writes the same value and the picture no longer depends on which thread
+// came first: two renders are identical. The hit rate is that of the unsnapped cache.
+TEST(TexelCacheOptions, SnappedUvKeepsTheHitRateAndMakesRendersRepeatable) {
+  Scene scene = wallScene(stripesGraph(), false);
+  RenderResult off = Renderer(noCache()).render(scene, settings(8, 1));
+  RendererOptions options = texelCache();
+  options.cache.snapUv = true;
+  RenderResult a = Renderer(options).render(scene, settings(8, 1));
+  RenderResult b = Renderer(options).render(scene, settings(8, 1));
+  RenderResult unsnapped = Renderer(texelCache()).render(scene, settings(8, 1));
+  EXPECT_TRUE(a.stats.cacheSnapUv);
+  double maxAbs = 0.0;
+  for (std::size_t i = 0; i < a.image.rgba.size(); ++i)
+    maxAbs = std::max(maxAbs, double(std::fabs(a.image.rgba[i] - b.image.rgba[i])));
+  std::printf(
+      "texel cache, snapped uv: last frame hit rate %.2f %% (unsnapped %.2f %%), mean "
+      "LDR-FLIP vs none %.4f (unsnapped %.4f), two snapped renders differ by at most %g\n",
+      100.0 * a.stats.frames.back().cacheHitRate(),
+      100.0 * unsnapped.stats.frames.back().cacheHitRate(), meanFlip(off.image, a.image),
+      meanFlip(off.image, unsnapped.image), maxAbs);
+  EXPECT_GT(a.stats.frames.back().cacheHitRate(), 0.99);
+  EXPECT_LT(meanFlip(off.image, a.image), 0.06);
+  EXPECT_LE(maxAbs, 1e-6);
+}
+
+// §6.1, Fig. 6.6: the cache's error comes almost all from primary hits, so caching only
+// bounces >= 1 is closer to the uncached picture than caching every hit. Enough paths
+// (32x32, P = 4, 8 frames) that the comparison is not noise: the renders share the seed,
+// so the remaining differences are the cache's.
+TEST(TexelCacheOptions, SecondaryOnlyCachingIsCloserToUncachedThanFullCaching) {
+  Scene scene = wallScene(stripesGraph(), true);
+  RenderSettings s = settings(8, 3, 4, 32);
+  RenderResult off = Renderer(noCache()).render(scene, s);
+  RenderResult full = Renderer(texelCache()).render(scene, s);
+  RendererOptions secondaryOptions = texelCache();
+  secondaryOptions.cache.secondaryOnly = true;
+  RenderResult secondary = Renderer(secondaryOptions).render(scene, s);
+  double flipFull = meanFlip(off.image, full.image);
+  double flipSecondary = meanFlip(off.image, secondary.image);
+  const FrameStats& lastFull = full.stats.frames.back();
+  const FrameStats& lastSecondary = secondary.stats.frames.back();
+  std::printf(
+      "mean LDR-FLIP vs no cache: every hit cached %.4f (%llu lookups, %.2f %% hits), "
+      "secondary hits only %.4f (%llu lookups, %.2f %% hits)\n",
+      flipFull, (unsigned long long)lastFull.cacheLookups, 100.0 * lastFull.cacheHitRate(),
+      flipSecondary, (unsigned long long)lastSecondary.cacheLookups,
+      100.0 * lastSecondary.cacheHitRate());
+  EXPECT_TRUE(secondary.stats.cacheSecondaryOnly);
+  EXPECT_GT(lastSecondary.cacheLookups, 0u);
+  EXPECT_LT(lastSecondary.cacheLookups, lastFull.cacheLookups);
+  EXPECT_LT(flipSecondary, flipFull);
+}
+
+// Occupancy: entries ever filled, kept across frames. On a static camera it only grows
+// and stays within S (a 9-entry cache with D = 8 reaches 8: I = H0 mod (S - D) is 0, eq.
+// 5.10). The tile counters stay 0.
+TEST(TexelCacheOptions, OccupancyGrowsMonotonicallyWithinTheEntryCount) {
+  Scene scene = wallScene(stripesGraph(), true);
+  for (std::uint32_t entries : {1u << 16, 9u}) {
+    RenderResult r = Renderer(texelCache(entries)).render(scene, settings(6, 2));
+    std::printf("texel cache of %u entries, static camera: occupancy per frame", entries);
+    for (const FrameStats& f : r.stats.frames)
+      std::printf(" %llu", (unsigned long long)f.cacheOccupancy);
+    std::printf("\n");
+    for (std::size_t f = 0; f < r.stats.frames.size(); ++f) {
+      const FrameStats& frame = r.stats.frames[f];
+      EXPECT_LE(frame.cacheOccupancy, entries);
+      EXPECT_EQ(frame.cacheTilesComputed, 0u);
+      EXPECT_EQ(frame.cacheDuplicateTiles, 0u);
+      if (f > 0)
+        EXPECT_GE(frame.cacheOccupancy, r.stats.frames[f - 1].cacheOccupancy);
+    }
+    EXPECT_GT(r.stats.frames.front().cacheOccupancy, 0u);
+    // Frame 0 misses fill entries: at least one per distinct missed texel, up to S.
+    EXPECT_LE(r.stats.frames.front().cacheOccupancy, r.stats.frames.front().cacheMisses);
+  }
+  RenderResult none = Renderer(noCache()).render(scene, settings(1, 1));
+  EXPECT_EQ(none.stats.frames.back().cacheOccupancy, 0u);
+}
+
+// Fig. 6.9's miss view: a cold cache's first frame is mostly red; after a static camera
+// has warmed the cache (primary hits only), nearly no pixel misses.
+TEST(TexelCacheOptions, DebugViewPaintsMissesRed) {
+  Scene scene = wallScene(stripesGraph(), false);
+  RendererOptions options = texelCache();
+  options.debugCacheMisses = true;
+  RenderResult cold = Renderer(options).render(scene, settings(1, 1));
+  RenderResult warm = Renderer(options).render(scene, settings(10, 1));
+  RenderResult plain = Renderer(texelCache()).render(scene, settings(10, 1));
+  const std::size_t pixels = 24 * 24;
+  std::printf(
+      "miss view: frame 0 of a cold cache %zu of %zu pixels red (%llu misses); frame 9 %zu "
+      "red (%llu misses); normal view %zu red\n",
+      redPixels(cold.image), pixels, (unsigned long long)cold.stats.frames.back().cacheMisses,
+      redPixels(warm.image), (unsigned long long)warm.stats.frames.back().cacheMisses,
+      redPixels(plain.image));
+  EXPECT_GT(redPixels(cold.image), pixels / 2);
+  EXPECT_EQ(redPixels(cold.image), cold.stats.frames.back().cacheMisses);  // L = 1, P = 1
+  EXPECT_LE(redPixels(warm.image), pixels / 100);
+  EXPECT_EQ(redPixels(plain.image), 0u);
+  options.cache.mode = CacheMode::None;
+  EXPECT_THROW(Renderer(options).render(scene, settings(1, 1)), std::invalid_argument);
+}
+
+// The floor run evaluates no graph: no cache lookup, a picture of per-material constants
+// that differs from the real materials, on both dispatches; refused with a cache.
+TEST(TexelCacheOptions, FloorRunReplacesEveryMaterialByConstants) {
+  Scene scene = wallScene(stripesGraph(), true);
+  RenderResult real = Renderer(noCache()).render(scene, settings(2, 2));
+  for (Backend backend : {Backend::RayQuery, Backend::RayTracingPipeline}) {
+    RendererOptions options = testing::testOptions(backend);
+    options.floorMaterials = true;
+    RenderResult floor = Renderer(options).render(scene, settings(2, 2));
+    double flip = meanFlip(real.image, floor.image);
+    std::printf("floor run (%s backend): dispatch %s, mean LDR-FLIP vs the real materials %.4f\n",
+                floor.stats.backend.c_str(), floor.stats.materialDispatch.c_str(), flip);
+    EXPECT_EQ(floor.stats.materialDispatch, "floor");
+    for (const FrameStats& f : floor.stats.frames)
+      EXPECT_EQ(f.cacheLookups, 0u);
+    for (float value : floor.image.rgba)
+      ASSERT_TRUE(std::isfinite(value));
+    EXPECT_GT(flip, 0.05);
+  }
+  RendererOptions cached = texelCache();
+  cached.floorMaterials = true;
+  EXPECT_THROW(Renderer(cached).render(scene, settings(1, 1)), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace memograph::runtime
