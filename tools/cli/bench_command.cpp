@@ -171,8 +171,8 @@ int runBench(std::span<const std::string_view> args) {
            "mrays_per_s,blas_bytes,tlas_bytes,scratch_bytes,materials,material_dispatch,"
            "shader_compile_ms,pipeline_create_ms,cache,cache_eviction,cache_entries,"
            "cache_probe,cache_bytes,median_cache_hit_rate,label,warmup,frame_stride,camera_frames,"
-           "cache_value_format,cache_clock,cache_snap_uv,cache_secondary_only,cache_tile,"
-        << benchSummaryCsvColumns() << "\n";
+        << benchSummaryCsvColumns()
+        << ",cache_value_format,cache_clock,cache_snap_uv,cache_secondary_only,cache_tile\n";
   }
   try {
     for (const auto& sceneName : scenes) {
@@ -253,9 +253,9 @@ int runBench(std::span<const std::string_view> args) {
               << result.stats.cacheProbe << ',' << result.stats.cacheBytes << ','
               << summary.medianCacheHitRate << ',' << runLabel << ',' << w << ','
               << (staticCamera ? 0 : plan.stride) << ',' << (staticCamera ? 0 : plan.pathCameras)
-              << ',' << result.stats.cacheValueFormat << ',' << result.stats.cacheClock << ','
-              << int(result.stats.cacheSnapUv) << ',' << int(result.stats.cacheSecondaryOnly) << ','
-              << result.stats.cacheTile << ',' << benchSummaryCsvValues(summary) << '\n';
+              << ',' << benchSummaryCsvValues(summary) << ',' << result.stats.cacheValueFormat
+              << ',' << result.stats.cacheClock << ',' << int(result.stats.cacheSnapUv) << ','
+              << int(result.stats.cacheSecondaryOnly) << ',' << result.stats.cacheTile << '\n';
         }
         if (!framesCsv.empty()) {
           std::ofstream perFrame(framesCsv + fileLabel + "_" + std::to_string(width) + "x" +
