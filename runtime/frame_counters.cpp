@@ -12,6 +12,7 @@ std::vector<FrameCounter> frameCounters(const FrameStats& frame) {
       {"tiles_computed", double(frame.cacheTilesComputed)},
       {"duplicate_tiles", double(frame.cacheDuplicateTiles)},
       {"tile_fallbacks", double(frame.cacheTileFallbacks)},
+      {"tile_repacks", double(frame.cacheTileRepacks)},
   };
 }
 

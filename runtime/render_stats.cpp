@@ -30,7 +30,8 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
          "cache,cache_eviction,cache_entries,cache_probe,cache_bytes,cache_lookups,cache_hits,"
          "cache_misses,cache_hit_rate,cache_read_check,cache_occupancy,cache_tiles_computed,"
          "cache_duplicate_tiles,cache_value_format,cache_clock,cache_snap_uv,"
-         "cache_secondary_only,cache_clock_ticks,cache_tile,cache_tile_fallbacks\n";
+         "cache_secondary_only,cache_clock_ticks,cache_tile,cache_tile_fallbacks,"
+         "cache_tile_repacks\n";
   const auto& a = s.accelerationStructures;
   for (const auto& f : s.frames) {
     double mraysPerSecond = f.gpuMilliseconds > 0 ? f.rays / (f.gpuMilliseconds * 1e3) : 0.0;

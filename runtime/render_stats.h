@@ -27,10 +27,12 @@ struct FrameStats {
   // The counter clock after this frame (§5.3.3; 0 with the frame clock): never reset.
   std::uint64_t cacheClockTicks = 0;
   // Tile cache (§5.4.3, §6.7.2): tiles the subgroups computed, how many of those had been
-  // computed already this frame, and misses that evaluated their own hit instead.
+  // computed already this frame, and misses that evaluated their own hit instead (too few
+  // active lanes; or a repack across a callable).
   std::uint64_t cacheTilesComputed = 0;
   std::uint64_t cacheDuplicateTiles = 0;
   std::uint64_t cacheTileFallbacks = 0;
+  std::uint64_t cacheTileRepacks = 0;
   double cacheHitRate() const { return cacheLookups ? double(cacheHits) / cacheLookups : 0.0; }
 };
 

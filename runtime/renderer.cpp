@@ -349,6 +349,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     frameStats.cacheTilesComputed = counters.cacheTilesComputed;
     frameStats.cacheDuplicateTiles = counters.cacheDuplicateTiles;
     frameStats.cacheTileFallbacks = counters.cacheTileFallbacks;
+    frameStats.cacheTileRepacks = counters.cacheTileRepacks;
     if (timestamps) {
       std::uint64_t ticks[2] = {0, 0};
       checkVk(vkGetQueryPoolResults(device, timestampPool.get(), 0, 2, sizeof ticks, ticks,

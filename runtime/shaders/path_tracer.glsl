@@ -458,11 +458,13 @@ void renderPixel(uvec2 pixel, bool inside) {
 #endif
 #ifdef MG_CACHE_TILE
   // The tile cache needs subgroup operations, so the sums here always have them.
-  uvec3 tileCounts = subgroupAdd(uvec3(g_tilesComputed, g_duplicateTiles, g_tileFallbacks));
-  if (subgroupElect() && any(notEqual(tileCounts, uvec3(0u)))) {
+  uvec4 tileCounts =
+      subgroupAdd(uvec4(g_tilesComputed, g_duplicateTiles, g_tileFallbacks, g_tileRepacks));
+  if (subgroupElect() && any(notEqual(tileCounts, uvec4(0u)))) {
     atomicAdd(counters.cacheTilesComputed, tileCounts.x);
     atomicAdd(counters.cacheDuplicateTiles, tileCounts.y);
     atomicAdd(counters.cacheTileFallbacks, tileCounts.z);
+    atomicAdd(counters.cacheTileRepacks, tileCounts.w);
   }
 #endif
 }

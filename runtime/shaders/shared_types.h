@@ -123,12 +123,12 @@ struct Counters {
   uint cacheHits;
   uint cacheMisses;
   // Tile cache (§5.4.3): tiles computed by a subgroup, of which already computed this frame
-  // by another subgroup (§6.7.2), and lookups that missed and evaluated their own hit
-  // because the subgroup could not compute tiles (not all lanes active, or a repack).
+  // by another subgroup (§6.7.2), and misses that evaluated their own hit because fewer
+  // lanes than texels were active, or because a callable repacked the subgroup.
   uint cacheTilesComputed;
   uint cacheDuplicateTiles;
   uint cacheTileFallbacks;
-  uint perFramePad0;
+  uint cacheTileRepacks;
   // Persistent across frames.
   uint cacheOccupancy;  // entries ever filled (an empty entry's first write); never falls
   uint persistentPad0;

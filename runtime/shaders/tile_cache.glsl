@@ -40,6 +40,7 @@ const uint kNoLane = 0xFFFFFFFFu;
 uint g_tilesComputed = 0u;
 uint g_duplicateTiles = 0u;
 uint g_tileFallbacks = 0u;
+uint g_tileRepacks = 0u;
 // A number unique to this invocation (its pixel), to detect a subgroup repack (below).
 uint g_invocationId = 0u;
 
@@ -222,6 +223,21 @@ uint tileSortKey(bool pending, uint materialId) {
 #endif
 }
 
+// The lane of the `rank`-th active lane (ranks count the set bits of `activeLanes` from
+// lane 0).
+uint laneOfRank(uvec4 activeLanes, uint rank) {
+  for (uint c = 0u; c < 4u; ++c) {
+    uint bits = activeLanes[c];
+    uint count = uint(bitCount(bits));
+    if (rank < count) {
+      for (uint k = 0u; k < rank; ++k) bits &= bits - 1u;  // drop the lowest set bits
+      return 32u * c + uint(findLSB(bits));
+    }
+    rank -= count;
+  }
+  return gl_SubgroupInvocationID;
+}
+
 // Steps 1-8 of §5.4.3, repeated until no lane of the subgroup requests a tile. `request`:
 // this lane missed the cache for `tile` of `materialId`; on return `served` says whether
 // `values` now holds its filtered texel(s), computed by the subgroup.
@@ -230,13 +246,18 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
                         out bool served) {
   served = false;
   uint lane = gl_SubgroupInvocationID;
-  // Texels go to lanes by index, so every lane of the subgroup must be here.
-  bool complete = subgroupBallotBitCount(subgroupBallot(true)) == gl_SubgroupSize;
-  if (!complete || kTileTexels > gl_SubgroupSize) {
+  // Texels go to the activeLanes lanes by rank: a driver need not reconverge every lane of the
+  // subgroup here (NVIDIA's independent thread scheduling after a divergent trace), and a
+  // shuffle may only read activeLanes lanes. With fewer activeLanes lanes than texels the requesting
+  // lanes evaluate their own hits (counted).
+  uvec4 activeLanes = subgroupBallot(true);
+  uint activeCount = subgroupBallotBitCount(activeLanes);
+  uint rank = subgroupBallotExclusiveBitCount(activeLanes);
+  if (activeCount < kTileTexels) {
     if (request) g_tileFallbacks += 1u;
     return;
   }
-  const uint tilesPerIteration = gl_SubgroupSize / kTileTexels;
+  const uint tilesPerIteration = activeCount / kTileTexels;
   bool pending = request;
   uint sortKey = tileSortKey(pending, materialId);
   while (subgroupAny(pending)) {
@@ -272,7 +293,7 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
         pending = false;
         mySlot = slot;
       }
-      if (lane / kTileTexels == slot) {
+      if (rank / kTileTexels == slot) {
         workMaterial = leaderMaterial;
         workInfo = leaderInfo;
         work.key.base = leaderBase;
@@ -285,8 +306,8 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
 
     // Steps 3-4: each lane of a selected tile evaluates the graph at its texel, with the
     // fictional derivatives of eq. 5.16-5.17 (a texel of level m is 2^-m wide).
-    bool worker = lane < selected * kTileTexels;
-    uint texel = lane % kTileTexels;
+    bool worker = rank < selected * kTileTexels;
+    uint texel = rank % kTileTexels;
     float texelValues[MG_CACHE_VALUES];
     for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) texelValues[i] = 0.0;
     if (worker) {
@@ -306,9 +327,10 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
     // repack instruction"); the exchange below needs the same lanes as before. If the
     // subgroup changed, nothing is inserted and every requester evaluates its own hit.
     uint firstBefore = subgroupBroadcastFirst(g_invocationId);
-    bool stable = subgroupAll(gl_SubgroupInvocationID == lane) && subgroupAllEqual(firstBefore);
+    bool stable = subgroupAll(gl_SubgroupInvocationID == lane) &&
+                  subgroupAllEqual(firstBefore) && all(equal(subgroupBallot(true), activeLanes));
     if (!stable) {
-      if (request) g_tileFallbacks += 1u;
+      if (request) g_tileRepacks += 1u;
       served = false;
       return;
     }
@@ -322,7 +344,7 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
       if (tileLogDuplicate(work.key)) g_duplicateTiles += 1u;
       entry = cacheLock(work.key);
     }
-    int tileEntry = subgroupShuffle(entry, lane - texel);
+    int tileEntry = subgroupShuffle(entry, laneOfRank(activeLanes, rank - texel));
     // Step 6: every lane writes its texel.
     if (worker && tileEntry >= 0) tileStoreTexel(uint(tileEntry), texel, texelValues);
     // Each lane's writes are made visible, then the subgroup meets in a ballot (a
@@ -342,14 +364,14 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
     vec4 weights;
     tileTaps(tile.local, texels, weights);
     bool mine = mySlot != kNoLane;
-    uint first = mine ? mySlot * kTileTexels : lane;
+    uint first = mine ? mySlot * kTileTexels : 0u;
     float tap[MG_CACHE_VALUES];
-    tileShuffleValues(texelValues, mine ? first + texels[0] : lane, tap);
+    tileShuffleValues(texelValues, mine ? laneOfRank(activeLanes, first + texels[0]) : lane, tap);
 #ifdef MG_TILE_BILINEAR
     float filtered[MG_CACHE_VALUES];
     for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) filtered[i] = weights[0] * tap[i];
     [[unroll]] for (uint t = 1u; t < 4u; ++t) {
-      tileShuffleValues(texelValues, mine ? first + texels[t] : lane, tap);
+      tileShuffleValues(texelValues, mine ? laneOfRank(activeLanes, first + texels[t]) : lane, tap);
       for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) filtered[i] += weights[t] * tap[i];
     }
     if (mine) values = filtered;

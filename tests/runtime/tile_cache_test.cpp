@@ -46,6 +46,7 @@ void expectTileCounters(const RenderStats& stats) {
   expectConsistentCounters(stats);
   for (const FrameStats& f : stats.frames) {
     EXPECT_EQ(f.cacheTileFallbacks, 0u) << "frame " << f.frame;
+    EXPECT_EQ(f.cacheTileRepacks, 0u) << "frame " << f.frame;
     EXPECT_LE(f.cacheDuplicateTiles, f.cacheTilesComputed) << "frame " << f.frame;
     // A subgroup computes each requested tile once, so there are at most as many tiles as
     // misses.

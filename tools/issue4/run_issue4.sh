@@ -64,6 +64,12 @@ read -r -d '' VARIANTS <<'TABLE'
   60    6.1s  landscape  texel_s24_lru-counter_sec 300 1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-secondary-only
   60    6.1s  landscape  tile_s24_lru-counter_sec 300  1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only
   60    6.1s  landscape  tilebil_s24_lru-counter_sec 300 1    --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only
+# 6.1b: Table 6.1's variants with a 4x larger cache (2^26 texels = 2^22 4x4 tiles): the
+# classroom's working set overflows 2^24 texels (occupancy reaches S within the path).
+  100   6.1b  classroom  texel_s26_lru-frame   300     1      --cache texel --cache-entries 67108864 --eviction lru --clock frame
+  100   6.1b  classroom  tile_s26_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 4194304 --eviction lru --clock frame
+  100   6.1b  classroom  tilebil_s26_lru-frame 300     1      --cache tile --tile 4x4 --filter bilinear --cache-entries 4194304 --eviction lru --clock frame
+  50    6.1b  landscape  tile_s26_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 4194304 --eviction lru --clock frame
 # Table 6.2: eviction strategies on the classroom, large (2^23 texels) then small (2^21).
   120   6.2   classroom  texel_s23_none        300     1      --cache texel --cache-entries 8388608 --eviction none
   120   6.2   classroom  texel_s23_random      300     1      --cache texel --cache-entries 8388608 --eviction random
