@@ -71,6 +71,9 @@ struct CacheOptions {
   TileFilter tileFilter = TileFilter::Nearest;
   TileStorage tileStorage = TileStorage::Entry;
   bool groupByMaterial = false;
+  // Test hook (no CLI flag): half the lanes of every subgroup skip the tile cache, so the
+  // partial subgroups NVIDIA's raygen has can be exercised on lavapipe.
+  bool testPartialSubgroups = false;
 };
 
 // Throws std::invalid_argument naming the option (CLI spelling) when out of range.

@@ -48,7 +48,7 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
         << s.cacheReadCheck << ',' << f.cacheOccupancy << ',' << f.cacheTilesComputed << ','
         << f.cacheDuplicateTiles << ',' << s.cacheValueFormat << ',' << s.cacheClock << ','
         << int(s.cacheSnapUv) << ',' << int(s.cacheSecondaryOnly) << ',' << f.cacheClockTicks << ','
-        << s.cacheTile << ',' << f.cacheTileFallbacks << '\n';
+        << s.cacheTile << ',' << f.cacheTileFallbacks << ',' << f.cacheTileRepacks << '\n';
   }
 }
 

@@ -330,6 +330,12 @@ void cacheUnlock(uint entry, CacheKey key) {
   atomicExchange(cacheData[offset], key.hash);
 }
 
+// Gives up a locked entry without a value: empty again (it was counted as occupied when
+// it was locked from empty; the occupancy may then overstate by such entries).
+void cacheUnlockEmpty(uint entry) {
+  atomicExchange(cacheData[cacheEntryOffset(entry)], kCacheKeyEmpty);
+}
+
 // The texel cache's insert: lock, values, unlock.
 void cacheWrite(CacheKey key, float values[MG_CACHE_VALUES]) {
   int entry = cacheLock(key);

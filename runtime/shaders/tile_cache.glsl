@@ -30,11 +30,15 @@ const uint kTileTexels = kTileW * kTileH;
 // texels sit on the corners of the texel grid.
 const vec2 kTileArea = vec2(float(kTileW - 1u), float(kTileH - 1u));
 const vec2 kTexelOffset = vec2(0.0);
+const uint kTileTaps = 4u;
 #else
 const vec2 kTileArea = vec2(float(kTileW), float(kTileH));
 const vec2 kTexelOffset = vec2(0.5);  // nearest: a texel's value is its centre's
+const uint kTileTaps = 1u;
 #endif
 const uint kNoLane = 0xFFFFFFFFu;
+// Tiles computed together in one iteration at most (a 32-lane subgroup with 1x1 tiles).
+const uint kMaxTileSlots = 32u;
 
 // Counts of this invocation, added to gpu::Counters once per pixel.
 uint g_tilesComputed = 0u;
@@ -241,37 +245,30 @@ uint laneOfRank(uvec4 activeLanes, uint rank) {
 // Steps 1-8 of §5.4.3, repeated until no lane of the subgroup requests a tile. `request`:
 // this lane missed the cache for `tile` of `materialId`; on return `served` says whether
 // `values` now holds its filtered texel(s), computed by the subgroup.
+// Texels go to the active lanes by rank, not by lane index: a driver need not reconverge
+// every lane here (on NVIDIA a raygen subgroup is often partial after a divergent trace or
+// callable), and a shuffle may only read active lanes. When fewer lanes than a tile's
+// texels are active, the tile is computed in several passes.
 void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest tile,
                         MaterialInputs inputs, inout float values[MG_CACHE_VALUES],
                         out bool served) {
   served = false;
   uint lane = gl_SubgroupInvocationID;
-  // Texels go to the activeLanes lanes by rank: a driver need not reconverge every lane of the
-  // subgroup here (NVIDIA's independent thread scheduling after a divergent trace), and a
-  // shuffle may only read activeLanes lanes. With fewer activeLanes lanes than texels the requesting
-  // lanes evaluate their own hits (counted).
   uvec4 activeLanes = subgroupBallot(true);
   uint activeCount = subgroupBallotBitCount(activeLanes);
   uint rank = subgroupBallotExclusiveBitCount(activeLanes);
-  if (activeCount < kTileTexels) {
-    if (request) g_tileFallbacks += 1u;
-    return;
-  }
-  const uint tilesPerIteration = activeCount / kTileTexels;
+  const uint tilesPerIteration = clamp(activeCount / kTileTexels, 1u, kMaxTileSlots);
   bool pending = request;
   uint sortKey = tileSortKey(pending, materialId);
+  uint taps[4];
+  vec4 weights;
+  tileTaps(tile.local, taps, weights);
   while (subgroupAny(pending)) {
-    // Steps 1-2: select up to tilesPerIteration tiles; the selected lane broadcasts its tile
-    // and every lane asking for the same tile is served by this slot.
-    uint mySlot = kNoLane;  // the slot of this lane's own tile
-    uint workMaterial = 0u;
-    uvec4 workInfo = uvec4(0u);
-    TileRequest work;
-    work.key.base = 0u;
-    work.key.hash = 0u;
-    work.level = 0;
-    work.tile = vec2(0.0);
-    work.local = vec2(0.0);
+    // Steps 1-2: select up to tilesPerIteration tiles, lowest requesting lane first (or
+    // §5.4.4's order); the selected lane broadcasts its tile and every lane asking for the
+    // same tile is served by this slot.
+    uint slotLeader[kMaxTileSlots];
+    uint mySlot = kNoLane;
     uint selected = 0u;
     for (uint slot = 0u; slot < tilesPerIteration; ++slot) {
       uvec4 candidates = subgroupBallot(pending);
@@ -282,103 +279,107 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
 #endif
       uint leader = subgroupBallotFindLSB(candidates);
       uint leaderMaterial = subgroupShuffle(materialId, leader);
-      uvec4 leaderInfo = subgroupShuffle(info, leader);
-      uint leaderBase = subgroupShuffle(tile.key.base, leader);
-      uint leaderHash = subgroupShuffle(tile.key.hash, leader);
       int leaderLevel = subgroupShuffle(tile.level, leader);
       vec2 leaderTile = subgroupShuffle(tile.tile, leader);
-
       if (pending && materialId == leaderMaterial && tile.level == leaderLevel &&
           all(equal(tile.tile, leaderTile))) {
         pending = false;
         mySlot = slot;
       }
-      if (rank / kTileTexels == slot) {
-        workMaterial = leaderMaterial;
-        workInfo = leaderInfo;
-        work.key.base = leaderBase;
-        work.key.hash = leaderHash;
-        work.level = leaderLevel;
-        work.tile = leaderTile;
-      }
+      slotLeader[slot] = leader;
       selected += 1u;
     }
 
-    // Steps 3-4: each lane of a selected tile evaluates the graph at its texel, with the
-    // fictional derivatives of eq. 5.16-5.17 (a texel of level m is 2^-m wide).
-    bool worker = rank < selected * kTileTexels;
-    uint texel = rank % kTileTexels;
-    float texelValues[MG_CACHE_VALUES];
-    for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) texelValues[i] = 0.0;
-    if (worker) {
-      float texelSize = exp2(-float(work.level));
-      MaterialInputs texelInputs = inputs;
-      vec2 texelIndex = vec2(float(texel % kTileW), float(texel / kTileW));
-      texelInputs.uv.v = (work.tile * kTileArea + texelIndex + kTexelOffset) * texelSize;
-      texelInputs.uv.x = vec2(texelSize, 0.0);
-      texelInputs.uv.y = vec2(0.0, texelSize);
-
-      MaterialOutputs texelOutputs;
-      evaluateMaterialDirect(workMaterial, texelInputs, texelOutputs);
-      cachePack(workInfo.x, texelOutputs, texelValues);
-    }
-#ifdef MG_MATERIAL_CALLABLES
-    // executeCallableEXT may repack invocations into other subgroups (SPIR-V "invocation
-    // repack instruction"); the exchange below needs the same lanes as before. If the
-    // subgroup changed, nothing is inserted and every requester evaluates its own hit.
-    uint firstBefore = subgroupBroadcastFirst(g_invocationId);
-    bool stable = subgroupAll(gl_SubgroupInvocationID == lane) &&
-                  subgroupAllEqual(firstBefore) && all(equal(subgroupBallot(true), activeLanes));
-    if (!stable) {
-      if (request) g_tileRepacks += 1u;
-      served = false;
-      return;
-    }
-#endif
-
-    // Step 5: the lane of the top-left texel picks an entry and locks it; its lanes learn
-    // which entry (or none: another writer holds it, or the policy declined).
+    // Step 5 first: the lane of rank s locks an entry for slot s (before any texel is
+    // written, so its texels can be stored as they are computed, pass by pass).
+    uint lockSource = rank < selected ? slotLeader[rank] : lane;
+    CacheKey lockKey;
+    lockKey.base = subgroupShuffle(tile.key.base, lockSource);
+    lockKey.hash = subgroupShuffle(tile.key.hash, lockSource);
+    lockKey.texelUv = vec2(0.0);
     int entry = -1;
-    if (worker && texel == 0u) {
+    if (rank < selected) {
       g_tilesComputed += 1u;
-      if (tileLogDuplicate(work.key)) g_duplicateTiles += 1u;
-      entry = cacheLock(work.key);
+      if (tileLogDuplicate(lockKey)) g_duplicateTiles += 1u;
+      entry = cacheLock(lockKey);
     }
-    int tileEntry = subgroupShuffle(entry, laneOfRank(activeLanes, rank - texel));
-    // Step 6: every lane writes its texel.
-    if (worker && tileEntry >= 0) tileStoreTexel(uint(tileEntry), texel, texelValues);
+
+    // Steps 2-4 and 6, pass by pass: the lane of rank r computes texel p * activeCount + r
+    // of the selected tiles (texel t of slot s is number s * W * H + t), with the fictional
+    // derivatives of eq. 5.16-5.17 (a texel of level m is 2^-m wide), and stores it.
+    // Step 8 inside each pass: lanes served by this iteration take the texels they filter
+    // from the lanes that computed them (correct even when nothing could be locked).
+    const uint total = selected * kTileTexels;
+    const uint passes = (total + activeCount - 1u) / activeCount;
+    bool mine = mySlot != kNoLane;
+    float filtered[MG_CACHE_VALUES];
+    for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) filtered[i] = 0.0;
+    for (uint pass = 0u; pass < passes; ++pass) {
+      uint number = pass * activeCount + rank;
+      bool worker = number < total;
+      uint slot = min(number / kTileTexels, kMaxTileSlots - 1u);
+      uint texel = number % kTileTexels;
+      uint source = worker ? slotLeader[slot] : lane;
+      uint workMaterial = subgroupShuffle(materialId, source);
+      uvec4 workInfo = subgroupShuffle(info, source);
+      int workLevel = subgroupShuffle(tile.level, source);
+      vec2 workTile = subgroupShuffle(tile.tile, source);
+      int tileEntry = subgroupShuffle(entry, worker ? laneOfRank(activeLanes, slot) : lane);
+      float texelValues[MG_CACHE_VALUES];
+      for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) texelValues[i] = 0.0;
+      if (worker) {
+        float texelSize = exp2(-float(workLevel));
+        MaterialInputs texelInputs = inputs;
+        vec2 texelIndex = vec2(float(texel % kTileW), float(texel / kTileW));
+        texelInputs.uv.v = (workTile * kTileArea + texelIndex + kTexelOffset) * texelSize;
+        texelInputs.uv.x = vec2(texelSize, 0.0);
+        texelInputs.uv.y = vec2(0.0, texelSize);
+        MaterialOutputs texelOutputs;
+        evaluateMaterialDirect(workMaterial, texelInputs, texelOutputs);
+        cachePack(workInfo.x, texelOutputs, texelValues);
+      }
+#ifdef MG_MATERIAL_CALLABLES
+      // executeCallableEXT may repack invocations into other subgroups (SPIR-V "invocation
+      // repack instruction"); the exchange needs the same lanes as before. If the subgroup
+      // changed, nothing more is stored, the locked entries go back to empty, and every
+      // requester evaluates its own hit (both counted).
+      uint firstBefore = subgroupBroadcastFirst(g_invocationId);
+      bool stable = subgroupAll(gl_SubgroupInvocationID == lane) &&
+                    subgroupAllEqual(firstBefore) &&
+                    all(equal(subgroupBallot(true), activeLanes));
+      if (!stable) {
+        g_tileRepacks += 1u;
+        if (request && !served) g_tileFallbacks += 1u;
+        if (entry >= 0) cacheUnlockEmpty(uint(entry));
+        served = false;
+        return;
+      }
+#endif
+      if (worker && tileEntry >= 0) tileStoreTexel(uint(tileEntry), texel, texelValues);
+      [[unroll]] for (uint t = 0u; t < kTileTaps; ++t) {
+        uint wanted = mySlot * kTileTexels + taps[t];
+        bool here = mine && wanted / activeCount == pass;
+        float tap[MG_CACHE_VALUES];
+        tileShuffleValues(texelValues, here ? laneOfRank(activeLanes, wanted % activeCount) : lane,
+                          tap);
+        if (here)
+          for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) filtered[i] += weights[t] * tap[i];
+      }
+    }
     // Each lane's writes are made visible, then the subgroup meets in a ballot (a
-    // synchronizing subgroup operation) before the key goes out. Not subgroupBarrier():
-    // lavapipe runs it as a work-group barrier, which deadlocks or corrupts state when
-    // the subgroups of a work group loop here a different number of times.
+    // synchronizing subgroup operation) before the keys go out. Not subgroupBarrier():
+    // lavapipe runs it as a work-group barrier, which corrupted state when the subgroups of
+    // a work group looped here a different number of times.
     tileStorageBarrier();
     subgroupMemoryBarrier();
     uvec4 writesDone = subgroupBallot(true);
-    // Step 7: the top-left lane writes the metadata and the key, which unlocks the entry.
-    if (worker && texel == 0u && entry >= 0 && writesDone.x != 0u)
-      cacheUnlock(uint(entry), work.key);
-
-    // Step 8: lanes served in this iteration read their texels from the lanes that
-    // computed them (faster than global memory, and correct even when nothing was locked).
-    uint texels[4];
-    vec4 weights;
-    tileTaps(tile.local, texels, weights);
-    bool mine = mySlot != kNoLane;
-    uint first = mine ? mySlot * kTileTexels : 0u;
-    float tap[MG_CACHE_VALUES];
-    tileShuffleValues(texelValues, mine ? laneOfRank(activeLanes, first + texels[0]) : lane, tap);
-#ifdef MG_TILE_BILINEAR
-    float filtered[MG_CACHE_VALUES];
-    for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) filtered[i] = weights[0] * tap[i];
-    [[unroll]] for (uint t = 1u; t < 4u; ++t) {
-      tileShuffleValues(texelValues, mine ? laneOfRank(activeLanes, first + texels[t]) : lane, tap);
-      for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) filtered[i] += weights[t] * tap[i];
+    // Step 7: the locking lanes write the metadata and the keys, which unlocks the entries.
+    if (entry >= 0 && writesDone.x + writesDone.y + writesDone.z + writesDone.w != 0u)
+      cacheUnlock(uint(entry), lockKey);
+    if (mine) {
+      values = filtered;
+      served = true;
     }
-    if (mine) values = filtered;
-#else
-    if (mine) values = tap;
-#endif
-    if (mine) served = true;
   }
 }
 
@@ -388,6 +389,15 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
 // other materials (and lanes the subgroup could not serve) are evaluated directly.
 void evaluateMaterialTiled(bool hasHit, uint materialId, MaterialInputs inputs,
                            out MaterialOutputs outputs) {
+#ifdef MG_TILE_TEST_PARTIAL_SUBGROUPS
+  // Test hook: odd lanes leave here, so the rest compute tiles in a partial subgroup (as
+  // NVIDIA's raygen often has them), with several passes per tile when needed.
+  if ((gl_SubgroupInvocationID & 1u) == 1u) {
+    if (hasHit) evaluateMaterialDirect(materialId, inputs, outputs);
+    else outputs = mg_defaultMaterialOutputs(inputs);
+    return;
+  }
+#endif
   uvec4 info = hasHit && materialId < uint(mg_materialCacheInfo.length())
                    ? mg_materialCacheInfo[materialId]
                    : uvec4(0u);
