@@ -2,7 +2,7 @@
 # Issue 4's benchmark sweep: the runs behind the project's Tables 6.1-6.3 (thesis §6) at
 # 1920x1080, P = 6, L = 4 over a 300-camera path, in ONE device call of at most 600 s.
 # tools/bundle_issue4.sh copies it to bundle/run_issue4.sh; on the GPU machine:
-#   bash bundle/run_issue4.sh [--tables 6.1,6.1s,6.2,6.3] [--match REGEX] [--budget S]
+#   bash bundle/run_issue4.sh [--tables 6.1,6.1r,6.1s,6.1b,6.2,6.3] [--match REGEX] [--budget S]
 # and here, on lavapipe, end to end at a tiny size (64x36, a 4-camera path):
 #   bash tools/issue4/run_issue4.sh --dry-run [--match REGEX]
 #
@@ -22,7 +22,7 @@ usage() {
   sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'
 }
 
-dry=0 tables="6.1,6.1s,6.2,6.3" match="" budget=""
+dry=0 tables="6.1,6.1r,6.1s,6.1b,6.2,6.3" match="" budget=""
 while [ $# -gt 0 ]; do
   case $1 in
   --dry-run) dry=1 ;;
@@ -49,74 +49,78 @@ fi
 read -r -d '' VARIANTS <<'TABLE'
 # limit table scene      label                 cameras stride flags
   110   6.1   classroom  none                  300     10     --cache none
-  120   6.1   classroom  texel_s24_lru-counter 300     1      --cache texel --cache-entries 16777216 --eviction lru --clock counter
-  120   6.1   classroom  tile_s24_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter
-  130   6.1   classroom  tilebil_s24_lru-counter 300   1      --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter
+  120   6.1   classroom  texel_s24_lru-counter 300     1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key
+  120   6.1   classroom  tile_s24_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key
+  130   6.1   classroom  tilebil_s24_lru-counter 300   1      --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key
   40    6.1   classroom  floor                 300     10     --cache none --floor-materials
+# 6.1r: §5.3.4's read checks on Table 6.1's classroom variants: key (read the key again, the
+# thesis's) against the update counter (closes the A-B-A race); the default is picked from these.
+  120   6.1r  classroom  texel_s24_lru-counter_rc 300  1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check counter
+  120   6.1r  classroom  tile_s24_lru-counter_rc 300   1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check counter
   20    6.1   landscape  none                  300     10     --cache none
-  60    6.1   landscape  texel_s24_lru-counter 300     1      --cache texel --cache-entries 16777216 --eviction lru --clock counter
-  60    6.1   landscape  tile_s24_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter
-  60    6.1   landscape  tilebil_s24_lru-counter 300   1      --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter
+  60    6.1   landscape  texel_s24_lru-counter 300     1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key
+  60    6.1   landscape  tile_s24_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key
+  60    6.1   landscape  tilebil_s24_lru-counter 300   1      --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key
   20    6.1   landscape  floor                 300     10     --cache none --floor-materials
-  120   6.1s  classroom  texel_s24_lru-counter_sec 300 1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-secondary-only
-  120   6.1s  classroom  tile_s24_lru-counter_sec 300  1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only
-  130   6.1s  classroom  tilebil_s24_lru-counter_sec 300 1    --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only
-  60    6.1s  landscape  texel_s24_lru-counter_sec 300 1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-secondary-only
-  60    6.1s  landscape  tile_s24_lru-counter_sec 300  1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only
-  60    6.1s  landscape  tilebil_s24_lru-counter_sec 300 1    --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only
+  120   6.1s  classroom  texel_s24_lru-counter_sec 300 1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
+  120   6.1s  classroom  tile_s24_lru-counter_sec 300  1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
+  130   6.1s  classroom  tilebil_s24_lru-counter_sec 300 1    --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
+  60    6.1s  landscape  texel_s24_lru-counter_sec 300 1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
+  60    6.1s  landscape  tile_s24_lru-counter_sec 300  1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
+  60    6.1s  landscape  tilebil_s24_lru-counter_sec 300 1    --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
 # 6.1b: Table 6.1's variants with a 4x larger cache (2^26 texels = 2^22 4x4 tiles): the
 # classroom's working set overflows 2^24 texels (occupancy reaches S within the path).
-  100   6.1b  classroom  texel_s26_lru-frame   300     1      --cache texel --cache-entries 67108864 --eviction lru --clock frame
-  100   6.1b  classroom  tile_s26_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 4194304 --eviction lru --clock frame
-  100   6.1b  classroom  tilebil_s26_lru-frame 300     1      --cache tile --tile 4x4 --filter bilinear --cache-entries 4194304 --eviction lru --clock frame
-  50    6.1b  landscape  tile_s26_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 4194304 --eviction lru --clock frame
+  100   6.1b  classroom  texel_s26_lru-frame   300     1      --cache texel --cache-entries 67108864 --eviction lru --clock frame --cache-read-check key
+  100   6.1b  classroom  tile_s26_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 4194304 --eviction lru --clock frame --cache-read-check key
+  100   6.1b  classroom  tilebil_s26_lru-frame 300     1      --cache tile --tile 4x4 --filter bilinear --cache-entries 4194304 --eviction lru --clock frame --cache-read-check key
+  50    6.1b  landscape  tile_s26_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 4194304 --eviction lru --clock frame --cache-read-check key
 # Table 6.2: eviction strategies on the classroom, large (2^23 texels) then small (2^21).
-  120   6.2   classroom  texel_s23_none        300     1      --cache texel --cache-entries 8388608 --eviction none
-  120   6.2   classroom  texel_s23_random      300     1      --cache texel --cache-entries 8388608 --eviction random
-  120   6.2   classroom  texel_s23_lrw-frame   300     1      --cache texel --cache-entries 8388608 --eviction lrw --clock frame
-  120   6.2   classroom  texel_s23_lru-frame   300     1      --cache texel --cache-entries 8388608 --eviction lru --clock frame
-  120   6.2   classroom  texel_s23_lrw-counter 300     1      --cache texel --cache-entries 8388608 --eviction lrw --clock counter
-  120   6.2   classroom  texel_s23_lru-counter 300     1      --cache texel --cache-entries 8388608 --eviction lru --clock counter
-  120   6.2   classroom  tile_s23_none         300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction none
-  120   6.2   classroom  tile_s23_random       300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction random
-  120   6.2   classroom  tile_s23_lrw-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lrw --clock frame
-  120   6.2   classroom  tile_s23_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lru --clock frame
-  120   6.2   classroom  tile_s23_lrw-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lrw --clock counter
-  120   6.2   classroom  tile_s23_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lru --clock counter
-  150   6.2   classroom  texel_s21_none        300     1      --cache texel --cache-entries 2097152 --eviction none
-  150   6.2   classroom  texel_s21_random      300     1      --cache texel --cache-entries 2097152 --eviction random
-  150   6.2   classroom  texel_s21_lrw-frame   300     1      --cache texel --cache-entries 2097152 --eviction lrw --clock frame
-  150   6.2   classroom  texel_s21_lru-frame   300     1      --cache texel --cache-entries 2097152 --eviction lru --clock frame
-  150   6.2   classroom  texel_s21_lrw-counter 300     1      --cache texel --cache-entries 2097152 --eviction lrw --clock counter
-  150   6.2   classroom  texel_s21_lru-counter 300     1      --cache texel --cache-entries 2097152 --eviction lru --clock counter
-  150   6.2   classroom  tile_s21_none         300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction none
-  150   6.2   classroom  tile_s21_random       300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction random
-  150   6.2   classroom  tile_s21_lrw-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lrw --clock frame
-  150   6.2   classroom  tile_s21_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock frame
-  150   6.2   classroom  tile_s21_lrw-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lrw --clock counter
-  150   6.2   classroom  tile_s21_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock counter
+  120   6.2   classroom  texel_s23_none        300     1      --cache texel --cache-entries 8388608 --eviction none --cache-read-check key
+  120   6.2   classroom  texel_s23_random      300     1      --cache texel --cache-entries 8388608 --eviction random --cache-read-check key
+  120   6.2   classroom  texel_s23_lrw-frame   300     1      --cache texel --cache-entries 8388608 --eviction lrw --clock frame --cache-read-check key
+  120   6.2   classroom  texel_s23_lru-frame   300     1      --cache texel --cache-entries 8388608 --eviction lru --clock frame --cache-read-check key
+  120   6.2   classroom  texel_s23_lrw-counter 300     1      --cache texel --cache-entries 8388608 --eviction lrw --clock counter --cache-read-check key
+  120   6.2   classroom  texel_s23_lru-counter 300     1      --cache texel --cache-entries 8388608 --eviction lru --clock counter --cache-read-check key
+  120   6.2   classroom  tile_s23_none         300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction none --cache-read-check key
+  120   6.2   classroom  tile_s23_random       300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction random --cache-read-check key
+  120   6.2   classroom  tile_s23_lrw-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lrw --clock frame --cache-read-check key
+  120   6.2   classroom  tile_s23_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lru --clock frame --cache-read-check key
+  120   6.2   classroom  tile_s23_lrw-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lrw --clock counter --cache-read-check key
+  120   6.2   classroom  tile_s23_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lru --clock counter --cache-read-check key
+  150   6.2   classroom  texel_s21_none        300     1      --cache texel --cache-entries 2097152 --eviction none --cache-read-check key
+  150   6.2   classroom  texel_s21_random      300     1      --cache texel --cache-entries 2097152 --eviction random --cache-read-check key
+  150   6.2   classroom  texel_s21_lrw-frame   300     1      --cache texel --cache-entries 2097152 --eviction lrw --clock frame --cache-read-check key
+  150   6.2   classroom  texel_s21_lru-frame   300     1      --cache texel --cache-entries 2097152 --eviction lru --clock frame --cache-read-check key
+  150   6.2   classroom  texel_s21_lrw-counter 300     1      --cache texel --cache-entries 2097152 --eviction lrw --clock counter --cache-read-check key
+  150   6.2   classroom  texel_s21_lru-counter 300     1      --cache texel --cache-entries 2097152 --eviction lru --clock counter --cache-read-check key
+  150   6.2   classroom  tile_s21_none         300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction none --cache-read-check key
+  150   6.2   classroom  tile_s21_random       300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction random --cache-read-check key
+  150   6.2   classroom  tile_s21_lrw-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lrw --clock frame --cache-read-check key
+  150   6.2   classroom  tile_s21_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock frame --cache-read-check key
+  150   6.2   classroom  tile_s21_lrw-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lrw --clock counter --cache-read-check key
+  150   6.2   classroom  tile_s21_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock counter --cache-read-check key
 # Table 6.3: cache sizes, LRU with the counter clock (2^21 and 2^23 on the classroom are
 # Table 6.2's lru-counter runs, so they are not repeated here).
-  150   6.3   classroom  texel_s18_lru-counter 300     1      --cache texel --cache-entries 262144 --eviction lru --clock counter
-  150   6.3   classroom  texel_s19_lru-counter 300     1      --cache texel --cache-entries 524288 --eviction lru --clock counter
-  150   6.3   classroom  texel_s20_lru-counter 300     1      --cache texel --cache-entries 1048576 --eviction lru --clock counter
-  150   6.3   classroom  texel_s22_lru-counter 300     1      --cache texel --cache-entries 4194304 --eviction lru --clock counter
-  150   6.3   classroom  tile_s18_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 16384 --eviction lru --clock counter
-  150   6.3   classroom  tile_s19_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 32768 --eviction lru --clock counter
-  150   6.3   classroom  tile_s20_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 65536 --eviction lru --clock counter
-  150   6.3   classroom  tile_s22_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 262144 --eviction lru --clock counter
-  60    6.3   landscape  texel_s18_lru-counter 300     1      --cache texel --cache-entries 262144 --eviction lru --clock counter
-  60    6.3   landscape  texel_s19_lru-counter 300     1      --cache texel --cache-entries 524288 --eviction lru --clock counter
-  60    6.3   landscape  texel_s20_lru-counter 300     1      --cache texel --cache-entries 1048576 --eviction lru --clock counter
-  60    6.3   landscape  texel_s21_lru-counter 300     1      --cache texel --cache-entries 2097152 --eviction lru --clock counter
-  60    6.3   landscape  texel_s22_lru-counter 300     1      --cache texel --cache-entries 4194304 --eviction lru --clock counter
-  60    6.3   landscape  texel_s23_lru-counter 300     1      --cache texel --cache-entries 8388608 --eviction lru --clock counter
-  60    6.3   landscape  tile_s18_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 16384 --eviction lru --clock counter
-  60    6.3   landscape  tile_s19_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 32768 --eviction lru --clock counter
-  60    6.3   landscape  tile_s20_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 65536 --eviction lru --clock counter
-  60    6.3   landscape  tile_s21_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock counter
-  60    6.3   landscape  tile_s22_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 262144 --eviction lru --clock counter
-  60    6.3   landscape  tile_s23_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lru --clock counter
+  150   6.3   classroom  texel_s18_lru-counter 300     1      --cache texel --cache-entries 262144 --eviction lru --clock counter --cache-read-check key
+  150   6.3   classroom  texel_s19_lru-counter 300     1      --cache texel --cache-entries 524288 --eviction lru --clock counter --cache-read-check key
+  150   6.3   classroom  texel_s20_lru-counter 300     1      --cache texel --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key
+  150   6.3   classroom  texel_s22_lru-counter 300     1      --cache texel --cache-entries 4194304 --eviction lru --clock counter --cache-read-check key
+  150   6.3   classroom  tile_s18_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 16384 --eviction lru --clock counter --cache-read-check key
+  150   6.3   classroom  tile_s19_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 32768 --eviction lru --clock counter --cache-read-check key
+  150   6.3   classroom  tile_s20_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 65536 --eviction lru --clock counter --cache-read-check key
+  150   6.3   classroom  tile_s22_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 262144 --eviction lru --clock counter --cache-read-check key
+  60    6.3   landscape  texel_s18_lru-counter 300     1      --cache texel --cache-entries 262144 --eviction lru --clock counter --cache-read-check key
+  60    6.3   landscape  texel_s19_lru-counter 300     1      --cache texel --cache-entries 524288 --eviction lru --clock counter --cache-read-check key
+  60    6.3   landscape  texel_s20_lru-counter 300     1      --cache texel --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key
+  60    6.3   landscape  texel_s21_lru-counter 300     1      --cache texel --cache-entries 2097152 --eviction lru --clock counter --cache-read-check key
+  60    6.3   landscape  texel_s22_lru-counter 300     1      --cache texel --cache-entries 4194304 --eviction lru --clock counter --cache-read-check key
+  60    6.3   landscape  texel_s23_lru-counter 300     1      --cache texel --cache-entries 8388608 --eviction lru --clock counter --cache-read-check key
+  60    6.3   landscape  tile_s18_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 16384 --eviction lru --clock counter --cache-read-check key
+  60    6.3   landscape  tile_s19_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 32768 --eviction lru --clock counter --cache-read-check key
+  60    6.3   landscape  tile_s20_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 65536 --eviction lru --clock counter --cache-read-check key
+  60    6.3   landscape  tile_s21_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock counter --cache-read-check key
+  60    6.3   landscape  tile_s22_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 262144 --eviction lru --clock counter --cache-read-check key
+  60    6.3   landscape  tile_s23_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lru --clock counter --cache-read-check key
 TABLE
 
 # Settings of a real run and of the dry run. The dry run keeps every variant and flag but
