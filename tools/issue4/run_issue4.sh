@@ -2,7 +2,7 @@
 # Issue 4's benchmark sweep: the runs behind the project's Tables 6.1-6.3 (thesis §6) at
 # 1920x1080, P = 6, L = 4 over a 300-camera path, in ONE device call of at most 600 s.
 # tools/bundle_issue4.sh copies it to bundle/run_issue4.sh; on the GPU machine:
-#   bash bundle/run_issue4.sh [--tables 6.1,6.1r,6.1s,6.1b,6.2,6.3] [--match REGEX] [--budget S]
+#   bash bundle/run_issue4.sh [--tables 6.1,6.1r,6.1s,6.1b,diag,6.2,6.3] [--match REGEX] [--budget S]
 # and here, on lavapipe, end to end at a tiny size (64x36, a 4-camera path):
 #   bash tools/issue4/run_issue4.sh --dry-run [--match REGEX]
 #
@@ -22,7 +22,7 @@ usage() {
   sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'
 }
 
-dry=0 tables="6.1,6.1r,6.1s,6.1b,6.2,6.3" match="" budget=""
+dry=0 tables="6.1,6.1r,6.1s,6.1b,diag,6.2,6.3" match="" budget=""
 while [ $# -gt 0 ]; do
   case $1 in
   --dry-run) dry=1 ;;
@@ -68,6 +68,16 @@ read -r -d '' VARIANTS <<'TABLE'
   60    6.1s  landscape  texel_s24_lru-counter_sec 300 1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
   60    6.1s  landscape  tile_s24_lru-counter_sec 300  1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
   60    6.1s  landscape  tilebil_s24_lru-counter_sec 300 1    --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
+# diag: where the memoized frame's time over the floor goes. Frame time against misses per
+# frame (make_tables' fit) leaves ~50 ms on the classroom at zero misses; these rows vary
+# one suspect each: value bytes per lookup (fp16 halves them), the callable dispatch (a
+# raygen with call sites keeps more state live; switch evaluates misses inline), the probe
+# loop (D = 1) and the working set (a mip bias of -1: texels twice as wide).
+  120   diag  classroom  texel_s24_lru-counter_fp16 300 1     --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --value-format fp16
+  180   diag  classroom  texel_s24_lru-counter_switch 300 1   --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --material-dispatch switch
+  180   diag  classroom  tile_s24_lru-counter_switch 300 1    --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --material-dispatch switch
+  120   diag  classroom  texel_s24_lru-counter_p1 300  1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --probe 1
+  120   diag  classroom  texel_s24_lru-counter_bias-1 300 1   --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --mip-bias -1
 # 6.1b: Table 6.1's variants with a 4x larger cache (2^26 texels = 2^22 4x4 tiles): the
 # classroom's working set overflows 2^24 texels (occupancy reaches S within the path).
   100   6.1b  classroom  texel_s26_lru-frame   300     1      --cache texel --cache-entries 67108864 --eviction lru --clock frame --cache-read-check key
