@@ -195,6 +195,8 @@ std::vector<std::string> cacheShaderDefines(const CacheOptions& cache, std::uint
       defines.push_back("MG_TILE_BILINEAR=1");
     if (cache.groupByMaterial)
       defines.push_back("MG_TILE_GROUP_BY_MATERIAL=1");
+    if (cache.testRepacks)
+      defines.push_back("MG_TILE_TEST_REPACKS=1");
     if (cache.testPartialSubgroups)
       defines.push_back("MG_TILE_TEST_PARTIAL_SUBGROUPS=1");
     if (cache.tileStorage == TileStorage::Texture2D || cache.tileStorage == TileStorage::Texture3D)

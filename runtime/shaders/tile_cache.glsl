@@ -338,7 +338,7 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
         evaluateMaterialDirect(workMaterial, texelInputs, texelOutputs);
         cachePack(workInfo.x, texelOutputs, texelValues);
       }
-#ifdef MG_MATERIAL_CALLABLES
+#if defined(MG_MATERIAL_CALLABLES) || defined(MG_TILE_TEST_REPACKS)
       // executeCallableEXT may repack invocations into other subgroups (SPIR-V "invocation
       // repack instruction"); the exchange needs the same lanes as before. If the subgroup
       // changed, nothing more is stored, the locked entries go back to empty, and every
@@ -347,6 +347,9 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
       bool stable = subgroupAll(gl_SubgroupInvocationID == lane) &&
                     subgroupAllEqual(firstBefore) &&
                     all(equal(subgroupBallot(true), activeLanes));
+#ifdef MG_TILE_TEST_REPACKS
+      stable = false;  // test hook: every tile computation is given up, as after a repack
+#endif
       if (!stable) {
         g_tileRepacks += 1u;
         if (request && !served) g_tileFallbacks += 1u;

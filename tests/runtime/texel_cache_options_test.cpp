@@ -61,6 +61,9 @@ std::size_t redPixels(const HdrImage& image) {
 TEST(TexelCacheOptions, EntrySizesAndDefinesFollowTheOptions) {
   CacheOptions options;
   options.mode = CacheMode::Texel;
+  EXPECT_TRUE(options.updateCounter);  // the default, from the H200 measurement
+  EXPECT_EQ(cacheEntryWords(options, 12), gpu::kCacheEntryHeaderWithCounter + 12);
+  options.updateCounter = false;
   EXPECT_EQ(cacheEntryWords(options, 12), gpu::kCacheEntryHeader + 12);
   options.valueFormat = CacheValueFormat::Fp16;
   EXPECT_EQ(cacheValueWords(options, 12), 6u);

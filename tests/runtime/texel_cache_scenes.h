@@ -111,6 +111,7 @@ inline RenderSettings cacheSettings(std::uint32_t frames, std::uint32_t raysPerP
 inline void expectConsistentCounters(const RenderStats& stats) {
   for (const FrameStats& f : stats.frames) {
     EXPECT_EQ(f.cacheHits + f.cacheMisses, f.cacheLookups) << "frame " << f.frame;
+    EXPECT_LE(f.cacheOccupancy, stats.cacheEntries) << "frame " << f.frame;
   }
 }
 

@@ -165,6 +165,34 @@ TEST(TileCache, PartialSubgroupsComputeTilesInPasses) {
   }
 }
 
+// A subgroup that changed across the material evaluation (a callable repack: NVIDIA's
+// raygen has hundreds of thousands a frame) gives its tiles up: the locked entries go back
+// to empty and uncounted, every requester evaluates its own hit. With every computation
+// given up (the test hook) nothing is ever cached, the occupancy stays 0 (it overstated S
+// threefold on the H200 before given-up entries were uncounted), and the picture is the
+// uncached one.
+TEST(TileCache, GivenUpTilesLeaveNothingCachedAndNothingCounted) {
+  Scene scene = wallScene(stripesGraph(), true);
+  RenderResult none =
+      Renderer(cacheOptions(CacheMode::None, Backend::RayQuery)).render(scene, settings(3, 2));
+  RendererOptions options = tileOptions(2, 2);
+  options.cache.testRepacks = true;
+  RenderResult given = Renderer(options).render(scene, settings(3, 2));
+  expectConsistentCounters(given.stats);
+  for (const FrameStats& f : given.stats.frames) {
+    EXPECT_GT(f.cacheMisses, 0u) << "frame " << f.frame;
+    EXPECT_EQ(f.cacheHits, 0u) << "frame " << f.frame;
+    EXPECT_GT(f.cacheTilesComputed, 0u) << "frame " << f.frame;
+    EXPECT_GT(f.cacheTileRepacks, 0u) << "frame " << f.frame;
+    EXPECT_EQ(f.cacheTileFallbacks, f.cacheMisses) << "frame " << f.frame;
+    EXPECT_EQ(f.cacheOccupancy, 0u) << "frame " << f.frame;
+  }
+  double flip = meanFlip(none.image, given.image);
+  std::printf("%s, every tile given up: mean LDR-FLIP %.5f vs no cache\n", describe(given).c_str(),
+              flip);
+  EXPECT_LT(flip, 0.001);
+}
+
 // Options the device cannot run are refused before anything compiles, with the reason.
 TEST(TileCache, RefusesTilesLargerThanTheSubgroupAndStagesWithoutSubgroups) {
   Scene scene = wallScene(stripesGraph(), false);

@@ -20,8 +20,8 @@ inline constexpr const char* kCacheHelp =
     "  --probe D             linear probing distance, 1..16 (default 8)\n"
     "  --eviction E          when a probe range is full: lru (default), lrw (least recently\n"
     "                        written; both by frame clock), random, or none\n"
-    "  --cache-read-check C  key (default: read key, values, key; thesis §5.3.4) or counter\n"
-    "                        (an update counter per entry also catches a restored key)\n"
+    "  --cache-read-check C  counter (default: an update counter per entry also catches a\n"
+    "                        key restored meanwhile, §5.3.4) or key (read key, values, key)\n"
     "  --mip-bias B          added to the cache's mip level (eq. 5.5); positive: finer\n"
     "  --tile WxH            texels per tile (default 4x4; W*H at most the subgroup size:\n"
     "                        32 on NVIDIA, 8 on lavapipe)\n"
@@ -45,7 +45,7 @@ inline constexpr const char* kCacheHelp =
 
 struct CacheArguments {
   std::string cache = "none", entries = "1048576", probe = "8", eviction = "lru", mipBias = "0",
-              readCheck = "key", valueFormat = "fp32", clock = "frame", clockShift = "16",
+              readCheck = "counter", valueFormat = "fp32", clock = "frame", clockShift = "16",
               tile = "4x4", filter = "nearest", tileStorage = "entry";
   bool snapUv = false, secondaryOnly = false, floorMaterials = false, groupByMaterial = false;
 
