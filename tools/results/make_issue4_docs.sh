@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Rebuilds docs/results/issue4_tables.md and docs/results/issue4_plots/ from every device
+# call kept under docs/results/: the H100 runs of the first session (issue4_h100/run*), then
+# the H200 calls (issue4_h200/call*), oldest first, so a later call's run of the same scene
+# and label replaces an earlier one (run 1's tile rows predate the rank-based tile
+# computation and are replaced that way).
+#   bash tools/results/make_issue4_docs.sh [--no-png]
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+args=()
+for call in docs/results/issue4_h100/run1 docs/results/issue4_h100/run2 \
+  docs/results/issue4_h200/call1 docs/results/issue4_h200/call2 \
+  docs/results/issue4_h200/call3; do
+  args+=(--summary "${call}_issue4_summary.csv" --frames "${call}_issue4_frames.tar.gz"
+    --steps "${call}_issue4_steps.tsv")
+done
+python3 tools/results/make_tables "${args[@]}" --out docs/results/issue4_tables.md \
+  --plots docs/results/issue4_plots \
+  --title "Issue 4: memoization tables (thesis §6), H100 and H200 calls merged" "$@"
