@@ -131,11 +131,6 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     // Before minutes of material compiles.
     validateCacheOptions(cache);
     validateCacheOnDevice(context, cache);
-    if (options_.floorMaterials)
-      throw std::invalid_argument(
-          "--floor-materials evaluates no material graph, so there is nothing to cache; drop "
-          "--cache " +
-          std::string(cacheModeName(cache.mode)) + " (or --floor-materials)");
     if (cache.clock == CacheClock::Counter && !context.info().bufferInt64Atomics)
       throw std::runtime_error(
           "--clock counter needs 64-bit atomics on storage buffers "

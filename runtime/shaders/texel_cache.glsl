@@ -211,12 +211,20 @@ MaterialOutputs cacheUnpack(uint mask, float values[MG_CACHE_VALUES], MaterialIn
   return o;
 }
 
-// §5.3.3: linear search over D entries comparing only keys; the entry index or -1.
+// §5.3.3: linear search over D entries comparing only keys; the entry index or -1. The D
+// keys are loaded before any is compared, so the loads are independent and in flight
+// together. Compared as each arrives, a hit at probe d could wait for d + 1 loads one after
+// another (a compiler need not speculate a coherent load past the branch), and in a full
+// cache LRU puts keys anywhere in the range.
 int cacheFind(CacheKey key) {
-  [[unroll]] for (uint d = 0u; d < uint(MG_CACHE_PROBE); ++d) {
-    if (cacheData[cacheEntryOffset(key.base + d)] == key.hash) return int(key.base + d);
+  uint stored[MG_CACHE_PROBE];
+  [[unroll]] for (uint d = 0u; d < uint(MG_CACHE_PROBE); ++d)
+    stored[d] = cacheData[cacheEntryOffset(key.base + d)];
+  int found = -1;
+  [[unroll]] for (uint d = uint(MG_CACHE_PROBE); d > 0u; --d) {
+    if (stored[d - 1u] == key.hash) found = int(key.base + d - 1u);
   }
-  return -1;
+  return found;
 }
 
 // §5.3.4: a read is key, values, key again, and a miss if the key changed meanwhile. With

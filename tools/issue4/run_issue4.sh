@@ -78,6 +78,10 @@ read -r -d '' VARIANTS <<'TABLE'
   180   diag  classroom  tile_s24_lru-counter_switch 300 1    --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --material-dispatch switch
   120   diag  classroom  texel_s24_lru-counter_p1 300  1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --probe 1
   120   diag  classroom  texel_s24_lru-counter_bias-1 300 1   --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --mip-bias -1
+# The cache's own cost: the floor's constant materials with the cache on (every lookup as
+# in a real run, every miss free), against the floor without it.
+  40    diag  classroom  floor_texel_s24_lru-counter 300 1    --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --floor-materials
+  40    diag  classroom  floor_tile_s24_lru-counter 300 1     --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --floor-materials
 # 6.1b: Table 6.1's variants with a 4x larger cache (2^26 texels = 2^22 4x4 tiles): the
 # classroom's working set overflows 2^24 texels (occupancy reaches S within the path).
   100   6.1b  classroom  texel_s26_lru-frame   300     1      --cache texel --cache-entries 67108864 --eviction lru --clock frame --cache-read-check key
