@@ -82,6 +82,11 @@ read -r -d '' VARIANTS <<'TABLE'
 # in a real run, every miss free), against the floor without it.
   40    diag  classroom  floor_texel_s24_lru-counter 300 1    --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --floor-materials
   40    diag  classroom  floor_tile_s24_lru-counter 300 1     --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --floor-materials
+# The real materials with (almost) no misses: a static camera after warm-up. Against the
+# floor with the cache (above) this separates what the callables cost by being there from
+# what the misses cost, which the path's runs only give through a fit.
+  120   diag  classroom  texel_s24_lru-counter_static 300 1   --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --static-camera
+  40    diag  classroom  floor_texel_s24_lru-counter_static 300 1 --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --floor-materials --static-camera
 # 6.1b: Table 6.1's variants with a 4x larger cache (2^26 texels = 2^22 4x4 tiles): the
 # classroom's working set overflows 2^24 texels (occupancy reaches S within the path).
   100   6.1b  classroom  texel_s26_lru-frame   300     1      --cache texel --cache-entries 67108864 --eviction lru --clock frame --cache-read-check key
@@ -190,8 +195,10 @@ run_step() {
       "$cameras" "$stride" "$flags" >>"$steps"
     return
   fi
-  local strideFlags=() deviceFlags=()
+  local strideFlags=() deviceFlags=() pathFlags=(--camera-frames "$cameras")
   [ "$stride" -gt 1 ] && strideFlags=(--frame-stride "$stride")
+  # A static camera renders `cameras` frames of the first camera (no path to length).
+  [[ " $flags " == *" --static-camera "* ]] && pathFlags=()
   [ -n "$device" ] && deviceFlags=(--device "$device")
   echo "== [$table] $scene $label: $flags (limit ${limit} s)"
   local t0 status rc
@@ -199,7 +206,7 @@ run_step() {
   # shellcheck disable=SC2086 # $flags is a list of words from the table
   timeout "$limit" "$m" bench "builtin:$scene" --sizes "$size" --paths "$paths" \
     --bounces "$bounces" --warmup "$warmup" --frames $((cameras / stride)) \
-    --camera-frames "$cameras" "${strideFlags[@]}" --label "$label" \
+    "${pathFlags[@]}" "${strideFlags[@]}" --label "$label" \
     --csv "$work/csv/$(printf %03d "$i").csv" --frames-csv "$work/frames/" \
     --shader-cache "$work/shaders" "${deviceFlags[@]}" $flags
   rc=$?
