@@ -1,6 +1,7 @@
 #include "runtime/image.h"
 
 #include <algorithm>
+#include <bit>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -40,58 +41,124 @@ void generateMipChain(TextureImage& texture) {
   }
 }
 
-void writePfm(const std::filesystem::path& path, const HdrImage& image) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out)
-    throw std::runtime_error("cannot write " + path.string());
-  out << "PF\n" << image.width << " " << image.height << "\n-1.0\n";
-  std::vector<float> row(std::size_t(image.width) * 3);
-  for (std::uint32_t y = image.height; y-- > 0;) {
-    for (std::uint32_t x = 0; x < image.width; ++x) {
-      const float* p = image.pixel(x, y);
-      row[x * 3 + 0] = p[0];
-      row[x * 3 + 1] = p[1];
-      row[x * 3 + 2] = p[2];
-    }
-    out.write(reinterpret_cast<const char*>(row.data()), std::streamsize(row.size() * 4));
-  }
-  if (!out)
-    throw std::runtime_error("cannot write " + path.string());
+namespace {
+
+std::uint32_t byteSwap(std::uint32_t v) {
+  return (v >> 24) | ((v >> 8) & 0xff00u) | ((v << 8) & 0xff0000u) | (v << 24);
 }
 
-HdrImage readPfm(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw std::runtime_error("cannot open " + path.string());
-  std::string magic;
-  double scale = 0;
-  HdrImage image;
-  in >> magic >> image.width >> image.height >> scale;
-  in.get();
-  if (!in || (magic != "PF" && magic != "Pf") || image.width == 0 || image.height == 0 ||
-      scale == 0) {
-    throw std::runtime_error(path.string() + ": not a PFM file (expected 'PF' or 'Pf' header)");
+void swapFloats(std::vector<float>& values) {
+  for (float& f : values)
+    f = std::bit_cast<float>(byteSwap(std::bit_cast<std::uint32_t>(f)));
+}
+
+constexpr long long kMaxPfmSide = 65536;
+
+}  // namespace
+
+bool tryWritePfm(const std::filesystem::path& path, const HdrImage& image, std::string& error) {
+  if (image.width == 0 || image.height == 0 ||
+      image.rgba.size() != std::size_t(image.width) * image.height * 4) {
+    error = "cannot write PFM: the image is empty or its size does not match";
+    return false;
   }
-  if (scale > 0)
-    throw std::runtime_error(path.string() + ": big-endian PFM is not supported");
-  int channels = magic == "PF" ? 3 : 1;
-  std::vector<float> data(std::size_t(image.width) * image.height * channels);
-  in.read(reinterpret_cast<char*>(data.data()), std::streamsize(data.size() * 4));
-  if (!in)
-    throw std::runtime_error(path.string() + ": truncated PFM data");
-  image.rgba.resize(std::size_t(image.width) * image.height * 4);
-  for (std::uint32_t y = 0; y < image.height; ++y) {
-    std::uint32_t fileRow = image.height - 1 - y;
+  std::filesystem::path temporary = path;
+  temporary += ".partial";
+  {
+    std::ofstream out(temporary, std::ios::binary);
+    if (!out) {
+      error = "cannot create the file";
+      return false;
+    }
+    out << "PF\n" << image.width << ' ' << image.height << "\n-1.0\n";
+    std::vector<float> row(std::size_t(image.width) * 3);
+    for (std::uint32_t y = image.height; y-- > 0;) {
+      for (std::uint32_t x = 0; x < image.width; ++x) {
+        for (int c = 0; c < 3; ++c)
+          row[x * 3 + c] = image.pixel(x, y)[c];
+      }
+      if constexpr (std::endian::native == std::endian::big)
+        swapFloats(row);
+      out.write(reinterpret_cast<const char*>(row.data()),
+                std::streamsize(row.size() * sizeof(float)));
+    }
+    if (!out.flush()) {
+      out.close();
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+      error = "cannot write the file (disk full?)";
+      return false;
+    }
+  }
+  std::error_code ec;
+  std::filesystem::rename(temporary, path, ec);
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    error = "cannot replace the file: " + ec.message();
+    return false;
+  }
+  return true;
+}
+
+std::optional<HdrImage> tryReadPfm(const std::filesystem::path& path, std::string& error) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    error = "cannot open the PFM file";
+    return std::nullopt;
+  }
+  std::string magic;
+  long long width = 0, height = 0;
+  double scale = 0;
+  in >> magic >> width >> height >> scale;
+  if (!in || (magic != "PF" && magic != "Pf")) {
+    error = "not a PFM file (expected a 'PF' or 'Pf' header)";
+    return std::nullopt;
+  }
+  if (width <= 0 || height <= 0 || width > kMaxPfmSide || height > kMaxPfmSide || scale == 0.0) {
+    error = "bad PFM header: size " + std::to_string(width) + "x" + std::to_string(height) +
+            ", scale must be non-zero";
+    return std::nullopt;
+  }
+  in.get();  // the single whitespace character that ends the header
+  const int channels = magic == "PF" ? 3 : 1;
+  const bool swap = (scale < 0) != (std::endian::native == std::endian::little);
+  HdrImage image;
+  image.width = std::uint32_t(width);
+  image.height = std::uint32_t(height);
+  image.rgba.resize(std::size_t(width) * height * 4);
+  std::vector<float> row(std::size_t(width) * channels);
+  for (std::uint32_t y = image.height; y-- > 0;) {
+    in.read(reinterpret_cast<char*>(row.data()), std::streamsize(row.size() * sizeof(float)));
+    if (!in) {
+      error = "the PFM file is truncated: expected " +
+              std::to_string(width * height * channels * 4) + " bytes of pixels";
+      return std::nullopt;
+    }
+    if (swap)
+      swapFloats(row);
     for (std::uint32_t x = 0; x < image.width; ++x) {
-      const float* s = &data[(std::size_t(fileRow) * image.width + x) * channels];
-      float* d = image.pixel(x, y);
-      d[0] = s[0];
-      d[1] = s[channels == 3 ? 1 : 0];
-      d[2] = s[channels == 3 ? 2 : 0];
-      d[3] = 1.0f;
+      float* p = image.pixel(x, y);
+      for (int c = 0; c < 3; ++c)
+        p[c] = row[x * channels + (channels == 3 ? c : 0)];
+      p[3] = 1.0f;
     }
   }
   return image;
+}
+
+void writePfm(const std::filesystem::path& path, const HdrImage& image) {
+  std::string error;
+  if (!tryWritePfm(path, image, error))
+    throw std::runtime_error(path.string() + ": " + error);
+}
+
+HdrImage readPfm(const std::filesystem::path& path) {
+  std::string error;
+  std::optional<HdrImage> image = tryReadPfm(path, error);
+  if (!image)
+    throw std::runtime_error(path.string() + ": " + error);
+  return std::move(*image);
 }
 
 }  // namespace memograph::runtime

@@ -1,9 +1,11 @@
 // CPU-side float images: the renderer's HDR output, material textures with their mip chain,
-// and the plain float format (PFM) the core can read and write without OpenImageIO.
+// images the io library reads and writes, and the plain float format (PFM) the core can
+// read and write without OpenImageIO.
 #pragma once
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -28,8 +30,18 @@ struct TextureImage {
 // Box-filters level 0 down to 1x1, replacing any levels after the first.
 void generateMipChain(TextureImage& texture);
 
-// Portable float map (PF, RGB, little-endian, rows bottom to top in the file). Alpha is
-// dropped on write and set to 1 on read. Errors throw std::runtime_error naming the file.
+// Portable float map (PFM): "PF" (RGB) or "Pf" (grey), width height, a scale whose sign
+// gives the byte order (negative: little-endian), then 32-bit floats row by row, bottom row
+// first. The project's one PFM reader and writer: the core needs it on the GPU machine,
+// where no image library travels, and the io library's conversions use it too.
+//
+// Writes RGB (alpha dropped) little-endian, to a temporary file next to `path` renamed into
+// place, so a failure leaves no partial file. Reads "PF" and "Pf" in either byte order
+// (grey fills R, G and B), alpha 1, at most 65536 pixels a side. The try* forms return
+// false / nullopt with `error` saying what is wrong (without the path); the others throw
+// std::runtime_error("<path>: <error>").
+bool tryWritePfm(const std::filesystem::path& path, const HdrImage& image, std::string& error);
+std::optional<HdrImage> tryReadPfm(const std::filesystem::path& path, std::string& error);
 void writePfm(const std::filesystem::path& path, const HdrImage& image);
 HdrImage readPfm(const std::filesystem::path& path);
 

@@ -13,7 +13,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using compiler::Diagnostics;
-using runtime::FloatImage;
+using runtime::HdrImage;
 
 class ImageIoTest : public ::testing::Test {
  protected:
@@ -30,8 +30,8 @@ class ImageIoTest : public ::testing::Test {
 };
 
 // A 5×3 image with distinct values per pixel and channel, some above 1.
-FloatImage gradient() {
-  FloatImage image{5, 3, {}};
+HdrImage gradient() {
+  HdrImage image{5, 3, {}};
   for (int y = 0; y < 3; ++y) {
     for (int x = 0; x < 5; ++x) {
       image.rgba.insert(image.rgba.end(), {0.1f * x, 0.3f * y, 1.5f * x * y, 0.25f * (x % 4)});
@@ -52,7 +52,7 @@ TEST(ToSrgb8, EncodesTheSrgbCurveAfterExposureAndTonemap) {
 }
 
 TEST_F(ImageIoTest, PngStoresSrgb8AndReadsBackAsRgba8) {
-  const FloatImage image = gradient();
+  const HdrImage image = gradient();
   Diagnostics diagnostics;
   ASSERT_TRUE(writeImage(file("out.png"), image, {}, diagnostics))
       << compiler::formatDiagnostics(diagnostics);
@@ -74,7 +74,7 @@ TEST_F(ImageIoTest, PngStoresSrgb8AndReadsBackAsRgba8) {
 }
 
 TEST_F(ImageIoTest, ExrRoundTripsFloatsExactly) {
-  const FloatImage image = gradient();
+  const HdrImage image = gradient();
   Diagnostics diagnostics;
   ASSERT_TRUE(writeImage(file("out.exr"), image, {}, diagnostics))
       << compiler::formatDiagnostics(diagnostics);
@@ -85,7 +85,7 @@ TEST_F(ImageIoTest, ExrRoundTripsFloatsExactly) {
 }
 
 TEST_F(ImageIoTest, PfmRoundTripsAndConvertsToPng) {
-  FloatImage image = gradient();
+  HdrImage image = gradient();
   Diagnostics diagnostics;
   ASSERT_TRUE(writePfm(file("frame.pfm"), image, diagnostics));
   const auto back = readPfm(file("frame.pfm"), diagnostics);
@@ -156,7 +156,7 @@ TEST_F(ImageIoTest, UnreadableImagesAreErrorsNotCrashes) {
 TEST_F(ImageIoTest, WriteRefusesUnknownExtensionsAndBadImagesLeavingNoFile) {
   Diagnostics diagnostics;
   EXPECT_FALSE(writeImage(file("out.bmp"), gradient(), {}, diagnostics));
-  FloatImage wrong = gradient();
+  HdrImage wrong = gradient();
   wrong.rgba.pop_back();
   EXPECT_FALSE(writeImage(file("out.png"), wrong, {}, diagnostics));
   EXPECT_FALSE(writeImage((dir / "no" / "such" / "dir.png").string(), gradient(), {}, diagnostics));

@@ -191,8 +191,8 @@ int main(int argc, char** argv) {
   const glm::vec3 up = glm::cross(right, forward);
   const float tanHalf = std::tan(glm::radians(camera.verticalFovDegrees) * 0.5f);
   const float aspect = static_cast<float>(width) / height;
-  runtime::FloatImage image{width, height,
-                            std::vector<float>(static_cast<std::size_t>(width) * height * 4)};
+  runtime::HdrImage image{std::uint32_t(width), std::uint32_t(height),
+                          std::vector<float>(static_cast<std::size_t>(width) * height * 4)};
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       const float sx = (2.0f * (x + 0.5f) / width - 1.0f) * tanHalf * aspect;

@@ -53,7 +53,7 @@ class DiffCliTest : public ::testing::Test {
     fs::remove_all(directory_);
     fs::create_directories(directory_);
     // A smooth reference; the test copy has a bright 4x4 square in the middle.
-    runtime::FloatImage reference{kSize, kSize, std::vector<float>(kSize * kSize * 4, 1.0f)};
+    runtime::HdrImage reference{kSize, kSize, std::vector<float>(kSize * kSize * 4, 1.0f)};
     for (int y = 0; y < kSize; ++y)
       for (int x = 0; x < kSize; ++x) {
         float* p = reference.pixel(x, y);
@@ -61,11 +61,11 @@ class DiffCliTest : public ::testing::Test {
         p[1] = 0.2f;
         p[2] = 0.1f + 0.5f * y / kSize;
       }
-    runtime::FloatImage test = reference;
+    runtime::HdrImage test = reference;
     for (int y = 14; y < 18; ++y)
       for (int x = 14; x < 18; ++x)
         test.pixel(x, y)[0] = test.pixel(x, y)[1] = test.pixel(x, y)[2] = 1.0f;
-    runtime::FloatImage small{8, 8, std::vector<float>(8 * 8 * 4, 0.5f)};
+    runtime::HdrImage small{8, 8, std::vector<float>(8 * 8 * 4, 0.5f)};
     compiler::Diagnostics diagnostics;
     ASSERT_TRUE(io::writeImage(path("ref.png"), reference, {}, diagnostics));
     ASSERT_TRUE(io::writeImage(path("copy.png"), reference, {}, diagnostics));

@@ -216,8 +216,9 @@ TEST(TexelCacheOptions, OccupancyGrowsMonotonicallyWithinTheEntryCount) {
       EXPECT_LE(frame.cacheOccupancy, entries);
       EXPECT_EQ(frame.cacheTilesComputed, 0u);
       EXPECT_EQ(frame.cacheDuplicateTiles, 0u);
-      if (f > 0)
+      if (f > 0) {
         EXPECT_GE(frame.cacheOccupancy, r.stats.frames[f - 1].cacheOccupancy);
+      }
     }
     EXPECT_GT(r.stats.frames.front().cacheOccupancy, 0u);
     // Frame 0 misses fill entries: at least one per distinct missed texel, up to S.

@@ -81,8 +81,8 @@ bool linearByExtension(const std::string& path) {
   return ext == ".exr" || ext == ".hdr" || ext == ".pfm";
 }
 
-std::optional<runtime::FloatImage> readImage(const std::string& path,
-                                             compiler::Diagnostics& diagnostics) {
+std::optional<runtime::HdrImage> readImage(const std::string& path,
+                                           compiler::Diagnostics& diagnostics) {
   // The renderer's own PFM files go through the project's reader (row order, byte order).
   return lowerExtension(path) == ".pfm" ? io::readPfm(path, diagnostics)
                                         : io::readImageFloat(path, diagnostics);
@@ -172,8 +172,8 @@ int runDiff(std::span<const std::string_view> args) {
   }
 
   const runtime::FlipResult result =
-      runtime::computeFlip({reference->rgba, reference->width, reference->height, 4},
-                           {test->rgba, test->width, test->height, 4},
+      runtime::computeFlip({reference->rgba, int(reference->width), int(reference->height), 4},
+                           {test->rgba, int(test->width), int(test->height), 4},
                            {.pixelsPerDegree = ppd, .encoding = flipEncoding});
 
   std::printf("LDR-FLIP of %s against %s (%dx%d, %.2f pixels per degree)\n", testPath.c_str(),
@@ -188,8 +188,8 @@ int runDiff(std::span<const std::string_view> args) {
   std::fflush(stdout);
 
   if (!out.empty()) {
-    runtime::FloatImage map{result.width, result.height,
-                            std::vector<float>(result.error.size() * 4, 1.0f)};
+    runtime::HdrImage map{std::uint32_t(result.width), std::uint32_t(result.height),
+                          std::vector<float>(result.error.size() * 4, 1.0f)};
     const bool png = lowerExtension(out) == ".png";
     for (std::size_t i = 0; i < result.error.size(); ++i) {
       float* p = &map.rgba[i * 4];

@@ -210,9 +210,7 @@ int runRender(std::span<const std::string_view> args) {
     auto image = io::readImageFloat(path, textureDiagnostics);
     if (!image)
       throw std::runtime_error(compiler::formatDiagnostics(textureDiagnostics));
-    runtime::HdrImage level{std::uint32_t(image->width), std::uint32_t(image->height),
-                            std::move(image->rgba)};
-    return runtime::TextureImage{{std::move(level)}};
+    return runtime::TextureImage{{std::move(*image)}};
   };
 #endif
   if (!environment.empty()) {
@@ -276,9 +274,7 @@ int runRender(std::span<const std::string_view> args) {
       runtime::writePfm(temporary, result.image);
     } else {
 #ifdef MEMOGRAPH_HAVE_IO
-      runtime::FloatImage image{int(result.image.width), int(result.image.height),
-                                std::move(result.image.rgba)};
-      if (!io::writeImage(temporary, image, io::LdrOptions{}, diagnostics)) {
+      if (!io::writeImage(temporary, result.image, io::LdrOptions{}, diagnostics)) {
         printDiagnostics(diagnostics);
         return kExitFailure;
       }

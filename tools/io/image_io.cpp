@@ -92,9 +92,9 @@ std::uint8_t toSrgb8(float linear, const LdrOptions& ldr) {
   return static_cast<std::uint8_t>(std::lround(std::clamp(srgb, 0.0f, 1.0f) * 255.0f));
 }
 
-bool writeImage(const std::string& path, const runtime::FloatImage& image, const LdrOptions& ldr,
+bool writeImage(const std::string& path, const runtime::HdrImage& image, const LdrOptions& ldr,
                 compiler::Diagnostics& diagnostics) {
-  if (image.width <= 0 || image.height <= 0 ||
+  if (image.width == 0 || image.height == 0 ||
       image.rgba.size() != static_cast<std::size_t>(image.width) * image.height * 4) {
     diagnostics.error(path, "cannot write an empty image, or one whose size does not match");
     return false;
@@ -162,13 +162,15 @@ std::optional<Rgba8Image> readImageRgba8(const std::string& path,
   return image;
 }
 
-std::optional<runtime::FloatImage> readImageFloat(const std::string& path,
-                                                  compiler::Diagnostics& diagnostics) {
-  runtime::FloatImage image;
-  if (!readRgba<float>(path, OIIO::TypeDesc::FLOAT, 1.0f, image.width, image.height, image.rgba,
-                       diagnostics)) {
+std::optional<runtime::HdrImage> readImageFloat(const std::string& path,
+                                                compiler::Diagnostics& diagnostics) {
+  runtime::HdrImage image;
+  int width = 0, height = 0;
+  if (!readRgba<float>(path, OIIO::TypeDesc::FLOAT, 1.0f, width, height, image.rgba, diagnostics)) {
     return std::nullopt;
   }
+  image.width = std::uint32_t(width);
+  image.height = std::uint32_t(height);
   return image;
 }
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "compiler/diagnostics.h"
-#include "runtime/scenes/float_image.h"
+#include "runtime/image.h"
 
 namespace memograph::io {
 
@@ -35,13 +35,13 @@ struct LdrOptions {
 // Writes by extension: .png (8-bit sRGB via `ldr`), .exr (32-bit float, linear, `ldr`
 // ignored). Writes to a temporary file next to `path` and renames it, so an error leaves
 // no partial file. Returns false after adding an error naming the path.
-bool writeImage(const std::string& path, const runtime::FloatImage& image, const LdrOptions& ldr,
+bool writeImage(const std::string& path, const runtime::HdrImage& image, const LdrOptions& ldr,
                 compiler::Diagnostics& diagnostics);
 
 // Reads any format OpenImageIO knows as RGBA (missing channels: grey→RGB, alpha 1).
 std::optional<Rgba8Image> readImageRgba8(const std::string& path,
                                          compiler::Diagnostics& diagnostics);
-std::optional<runtime::FloatImage> readImageFloat(const std::string& path,
+std::optional<runtime::HdrImage> readImageFloat(const std::string& path,
                                                   compiler::Diagnostics& diagnostics);
 
 // Reads a PFM written by the renderer and writes it as `outPath` (.png or .exr).
