@@ -87,6 +87,12 @@ read -r -d '' VARIANTS <<'TABLE'
 # what the misses cost, which the path's runs only give through a fit.
   120   diag  classroom  texel_s24_lru-counter_static 300 1   --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --static-camera
   40    diag  classroom  floor_texel_s24_lru-counter_static 300 1 --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --floor-materials --static-camera
+# Thesis §5.1: one primary ray shared by the P paths of a pixel (`--shared-primary`), which
+# makes a primary hit one lookup (or evaluation) instead of P: secondary-only caching then
+# evaluates P times fewer primary graphs.
+  110   diag  classroom  none_shared           300     10     --cache none --shared-primary
+  120   diag  classroom  texel_s24_lru-counter_shared 300 1   --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --shared-primary
+  120   diag  classroom  texel_s24_lru-counter_sec_shared 300 1 --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --cache-secondary-only --shared-primary
 # 6.1b: Table 6.1's variants with a 4x larger cache (2^26 texels = 2^22 4x4 tiles): the
 # classroom's working set overflows 2^24 texels (occupancy reaches S within the path).
   100   6.1b  classroom  texel_s26_lru-frame   300     1      --cache texel --cache-entries 67108864 --eviction lru --clock frame --cache-read-check key
