@@ -157,6 +157,10 @@ TEST_F(CliTest, RenderAndBenchRefuseBadCacheOptionValues) {
     EXPECT_EQ(runCli(command + " --clock-shift 40").exitCode, 2);
     const auto probe = runCli(command + " --floor-materials --cache texel --probe 17");
     EXPECT_EQ(probe.exitCode, 2) << probe.output;
+    const auto device = runCli(command + " --device x");  // shared renderer options
+    EXPECT_EQ(device.exitCode, 2) << device.output;
+    EXPECT_NE(device.output.find("--device takes a device index"), std::string::npos)
+        << device.output;
   }
   EXPECT_EQ(runCli("render builtin:landscape --debug-misses" + out).exitCode, 2);
   EXPECT_FALSE(fs::exists(directory_ / "x.pfm"));

@@ -15,7 +15,7 @@
 #ifdef MEMOGRAPH_HAVE_RUNTIME
 #include "bench_frames.h"
 #include "bench_summary.h"
-#include "cache_arguments.h"
+#include "renderer_arguments.h"
 #include "runtime/renderer.h"
 #endif
 #ifdef MEMOGRAPH_HAVE_SCENES
@@ -58,11 +58,6 @@ constexpr std::string_view kHelp =
     "  --csv FILE            one line per scene and size\n"
     "  --frames-csv PREFIX   per-frame statistics to PREFIX<scene>[_<label>]_<W>x<H>.csv\n";
 
-bool parseNumber(std::string_view text, std::uint32_t& out) {
-  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), out);
-  return error == std::errc() && end == text.data() + text.size();
-}
-
 }  // namespace
 
 #if !defined(MEMOGRAPH_HAVE_RUNTIME) || !defined(MEMOGRAPH_HAVE_SCENES)
@@ -73,31 +68,24 @@ int runBench(std::span<const std::string_view>) {
 #else
 
 int runBench(std::span<const std::string_view> args) {
-  std::string sizes = "1920x1080", paths = "6", bounces = "4", frames = "20", warmup = "3",
-              backend = "auto", device = "-1", nodes, shaderCache, csvPath, framesCsv,
-              materialDispatch = "auto", cameraFrames, frameStride = "1", runLabel;
-  bool help = false, staticCamera = false, sharedPrimary = false;
+  std::string sizes = "1920x1080", paths = "6", bounces = "4", frames = "20", warmup = "3", csvPath,
+              framesCsv, cameraFrames, frameStride = "1", runLabel;
+  bool help = false, staticCamera = false;
   ArgumentScanner scanner("bench", args);
-  CacheArguments cacheArguments;
-  cacheArguments.registerWith(scanner);
+  RendererArguments rendererArguments;
+  rendererArguments.registerWith(scanner);
   scanner.option("--sizes", &sizes);
   scanner.option("--size", &sizes);
   scanner.option("--paths", &paths);
   scanner.option("--bounces", &bounces);
   scanner.option("--frames", &frames);
   scanner.option("--warmup", &warmup);
-  scanner.option("--backend", &backend);
-  scanner.option("--material-dispatch", &materialDispatch);
-  scanner.option("--device", &device);
-  scanner.option("--nodes", &nodes);
-  scanner.option("--shader-cache", &shaderCache);
   scanner.option("--csv", &csvPath);
   scanner.option("--frames-csv", &framesCsv);
   scanner.option("--camera-frames", &cameraFrames);
   scanner.option("--frame-stride", &frameStride);
   scanner.option("--label", &runLabel);
   scanner.flag("--static-camera", &staticCamera);
-  scanner.flag("--shared-primary", &sharedPrimary);
   scanner.flag("--help", &help);
   std::vector<std::string> scenes;
   if (const int code = scanner.scan(scenes); code != kExitOk)
@@ -109,12 +97,10 @@ int runBench(std::span<const std::string_view> args) {
   if (scenes.empty())
     scenes = {"builtin:classroom", "builtin:landscape"};
 
-  std::uint32_t p = 0, l = 0, f = 0, w = 0, deviceIndex = 0;
+  std::uint32_t p = 0, l = 0, f = 0, w = 0;
   if (!parseNumber(paths, p) || !parseNumber(bounces, l) || !parseNumber(frames, f) ||
       !parseNumber(warmup, w) || f == 0)
     return usageError("bench", "--paths, --bounces, --frames (>0) and --warmup take whole numbers");
-  if (device != "-1" && !parseNumber(device, deviceIndex))
-    return usageError("bench", "--device takes a device index");
   BenchFramePlan plan{.warmup = w, .timed = f};
   if (!parseNumber(frameStride, plan.stride) || plan.stride == 0)
     return usageError("bench", "--frame-stride takes a whole number > 0");
@@ -143,10 +129,7 @@ int runBench(std::span<const std::string_view> args) {
 
   runtime::RendererOptions options;
   try {
-    options.context.backend = runtime::parseBackend(backend);
-    options.materialDispatch = runtime::parseMaterialDispatch(materialDispatch);
-    options.cache = cacheArguments.parse();
-    options.floorMaterials = cacheArguments.floorMaterials;
+    options = rendererArguments.parse();
   } catch (const std::invalid_argument& e) {
     return usageError("bench", e.what());
   }
@@ -156,9 +139,6 @@ int runBench(std::span<const std::string_view> args) {
     return usageError("bench",
                       "--frame-stride needs --cache none: with a cache each frame "
                       "depends on the frames before it, so every frame must be rendered");
-  options.context.deviceIndex = device == "-1" ? -1 : int(deviceIndex);
-  options.shaderCacheDirectory = shaderCache;
-  options.nodeLibraryDirectory = nodes;
 
   std::ofstream csv;
   if (!csvPath.empty()) {
@@ -214,7 +194,7 @@ int runBench(std::span<const std::string_view> args) {
         settings.pathsPerPixel = p;
         settings.raysPerPath = l;
         settings.frames = w + f;
-        settings.sharedPrimaryRay = sharedPrimary;
+        settings.sharedPrimaryRay = rendererArguments.sharedPrimary;
         settings.cameraPath = cameras;
         runtime::RenderResult result = renderer.render(scene, settings);
         const auto timed = std::span(result.stats.frames).subspan(w);

@@ -1,7 +1,6 @@
 // The texel cache's command-line options (thesis §5.3), shared by `render` and `bench`.
 #pragma once
 
-#include <charconv>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -87,8 +86,7 @@ struct CacheArguments {
     options.groupByMaterial = groupByMaterial;
     auto whole = [](const std::string& text, const char* name) {
       std::uint32_t value = 0;
-      auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-      if (error != std::errc() || end != text.data() + text.size())
+      if (!parseNumber(text, value))
         throw std::invalid_argument(std::string(name) + " takes a whole number, not '" + text +
                                     "'");
       return value;

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +17,11 @@ int usageError(std::string_view command, std::string_view message) {
   std::cerr << "memograph " << command << ": " << message << "\n"
             << "Run 'memograph " << command << " --help' for usage.\n";
   return kExitUsage;
+}
+
+bool parseNumber(std::string_view text, std::uint32_t& out) {
+  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), out);
+  return error == std::errc() && end == text.data() + text.size();
 }
 
 int ArgumentScanner::scan(std::vector<std::string>& positional) {

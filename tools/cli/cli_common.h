@@ -1,6 +1,7 @@
 // Shared pieces of the memograph commands: argument scanning, the node library, files.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <optional>
 #include <span>
@@ -23,6 +24,9 @@ constexpr int kExitUsage = 2;
 
 // A usage error: prints "memograph <command>: message" and a pointer to --help.
 int usageError(std::string_view command, std::string_view message);
+
+// A whole number in 0..2^32-1, all of `text`: true and `out` set, or false.
+bool parseNumber(std::string_view text, std::uint32_t& out);
 
 // Walks `args`: options with a value (`--target glsl` or `--target=glsl`), flags, and
 // positional arguments. Unknown options are usage errors.

@@ -13,7 +13,7 @@
 #include "commands.h"
 
 #ifdef MEMOGRAPH_HAVE_RUNTIME
-#include "cache_arguments.h"
+#include "renderer_arguments.h"
 #include "runtime/renderer.h"
 #endif
 #ifdef MEMOGRAPH_HAVE_SCENES
@@ -67,11 +67,6 @@ constexpr std::string_view kHelp =
     "  --debug-misses        texel cache debug view (thesis Fig. 6.9): each frame alone,\n"
     "                        red where a path of the pixel missed the cache\n";
 
-bool parseNumber(const std::string& text, std::uint32_t& out) {
-  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), out);
-  return error == std::errc() && end == text.data() + text.size();
-}
-
 }  // namespace
 
 #ifndef MEMOGRAPH_HAVE_RUNTIME
@@ -84,13 +79,11 @@ int runRender(std::span<const std::string_view>) {
 
 int runRender(std::span<const std::string_view> args) {
   std::string out, size = "640x360", paths = "1", bounces = "4", frames = "1", cameraPath,
-                   seed = "0", backend = "auto", device = "-1", materials, nodes, shaderCache,
-                   stats, materialDispatch = "auto";
-  bool help = false, listDevices = false, sharedPrimary = false, noShaderCache = false,
-       validation = false;
+                   seed = "0", materials, stats;
+  bool help = false, listDevices = false, noShaderCache = false, validation = false;
   ArgumentScanner scanner("render", args);
-  CacheArguments cacheArguments;
-  cacheArguments.registerWith(scanner);
+  RendererArguments rendererArguments;
+  rendererArguments.registerWith(scanner);
   scanner.option("--out", &out);
   scanner.option("-o", &out);
   scanner.option("--size", &size);
@@ -101,14 +94,8 @@ int runRender(std::span<const std::string_view> args) {
   std::string environment;
   scanner.option("--environment", &environment);
   scanner.option("--seed", &seed);
-  scanner.option("--backend", &backend);
-  scanner.option("--material-dispatch", &materialDispatch);
-  scanner.option("--device", &device);
   scanner.option("--materials", &materials);
-  scanner.option("--nodes", &nodes);
-  scanner.option("--shader-cache", &shaderCache);
   scanner.option("--stats", &stats);
-  scanner.flag("--shared-primary", &sharedPrimary);
   scanner.flag("--no-shader-cache", &noShaderCache);
   scanner.flag("--validation", &validation);
   bool debugMisses = false;
@@ -137,13 +124,10 @@ int runRender(std::span<const std::string_view> args) {
   if (x == std::string::npos || !parseNumber(size.substr(0, x), settings.width) ||
       !parseNumber(size.substr(x + 1), settings.height))
     return usageError("render", "--size must be WxH, e.g. 1920x1080, not '" + size + "'");
-  std::uint32_t deviceIndex = 0;
   if (!parseNumber(paths, settings.pathsPerPixel) || !parseNumber(bounces, settings.raysPerPath) ||
       !parseNumber(frames, settings.frames) || !parseNumber(seed, settings.seed))
     return usageError("render", "--paths, --bounces, --frames and --seed take whole numbers");
-  if (device != "-1" && !parseNumber(device, deviceIndex))
-    return usageError("render", "--device takes a device index (see --list-devices)");
-  settings.sharedPrimaryRay = sharedPrimary;
+  settings.sharedPrimaryRay = rendererArguments.sharedPrimary;
 
   const std::string extension = std::filesystem::path(out).extension().string();
 #ifndef MEMOGRAPH_HAVE_IO
@@ -155,21 +139,15 @@ int runRender(std::span<const std::string_view> args) {
 
   runtime::RendererOptions options;
   try {
-    options.context.backend = runtime::parseBackend(backend);
-    options.materialDispatch = runtime::parseMaterialDispatch(materialDispatch);
-    options.cache = cacheArguments.parse();
-    options.floorMaterials = cacheArguments.floorMaterials;
+    options = rendererArguments.parse();
   } catch (const std::invalid_argument& e) {
     return usageError("render", e.what());
   }
-  options.context.deviceIndex = device == "-1" ? -1 : int(deviceIndex);
   options.context.validation = validation;
   if (debugMisses && options.cache.mode == runtime::CacheMode::None)
     return usageError("render", "--debug-misses shows cache misses; it needs --cache texel");
   options.debugCacheMisses = debugMisses;
   options.shaderCache = !noShaderCache;
-  options.shaderCacheDirectory = shaderCache;
-  options.nodeLibraryDirectory = nodes;
 
   // The scene: built-in, or a file through the io module.
   runtime::Scene scene;
