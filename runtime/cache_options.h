@@ -75,8 +75,9 @@ struct CacheOptions {
   // Test hook (no CLI flag): half the lanes of every subgroup skip the tile cache, so the
   // partial subgroups NVIDIA's raygen has can be exercised on lavapipe.
   bool testPartialSubgroups = false;
-  // Test hook (no CLI flag): every tile computation is given up as after a callable
-  // repack (NVIDIA's raygen has many), so that path runs on lavapipe's query backend.
+  // Test hook (no CLI flag): after each texel evaluation half the lanes look as if they
+  // came back from another subgroup (NVIDIA's raygen regroups lanes across callables), so
+  // the repack check and its give-up path run on lavapipe's query backend.
   bool testRepacks = false;
 };
 

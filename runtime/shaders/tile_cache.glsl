@@ -327,6 +327,10 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
       int tileEntry = subgroupShuffle(entry, worker ? laneOfRank(activeLanes, slot) : lane);
       float texelValues[MG_CACHE_VALUES];
       for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) texelValues[i] = 0.0;
+#if defined(MG_MATERIAL_CALLABLES) || defined(MG_TILE_TEST_REPACKS)
+      // Who this subgroup is before the evaluation: its first lane's invocation.
+      uint firstBefore = subgroupBroadcastFirst(g_invocationId);
+#endif
       if (worker) {
         float texelSize = exp2(-float(workLevel));
         MaterialInputs texelInputs = inputs;
@@ -340,16 +344,20 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
       }
 #if defined(MG_MATERIAL_CALLABLES) || defined(MG_TILE_TEST_REPACKS)
       // executeCallableEXT may repack invocations into other subgroups (SPIR-V "invocation
-      // repack instruction"); the exchange needs the same lanes as before. If the subgroup
-      // changed, nothing more is stored, the locked entries go back to empty, and every
-      // requester evaluates its own hit (both counted).
-      uint firstBefore = subgroupBroadcastFirst(g_invocationId);
+      // repack instruction"); the exchange needs the same invocations in the same lanes as
+      // before: every lane at its old index, all from the same subgroup (the same first
+      // invocation before the call), the same lanes active. If not, nothing more is stored,
+      // the locked entries go back to empty, and every requester evaluates its own hit (both
+      // counted).
+#ifdef MG_TILE_TEST_REPACKS
+      // Test hook: as if the upper half of the lanes came back from the call out of another
+      // subgroup, at the same lane indices and with the same lanes active (a regrouping only
+      // the identity check can tell), so every tile computation is given up.
+      if (gl_SubgroupInvocationID >= gl_SubgroupSize / 2u) firstBefore += 1u;
+#endif
       bool stable = subgroupAll(gl_SubgroupInvocationID == lane) &&
                     subgroupAllEqual(firstBefore) &&
                     all(equal(subgroupBallot(true), activeLanes));
-#ifdef MG_TILE_TEST_REPACKS
-      stable = false;  // test hook: every tile computation is given up, as after a repack
-#endif
       if (!stable) {
         g_tileRepacks += 1u;
         if (request && !served) g_tileFallbacks += 1u;
