@@ -93,6 +93,11 @@ read -r -d '' VARIANTS <<'TABLE'
   110   diag  classroom  none_shared           300     10     --cache none --shared-primary
   120   diag  classroom  texel_s24_lru-counter_shared 300 1   --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --shared-primary
   120   diag  classroom  texel_s24_lru-counter_sec_shared 300 1 --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --cache-secondary-only --shared-primary
+# Tile repacks on NVIDIA (docs/runtime.md): §5.4.4's grouping pairs tiles of one material
+# in an iteration, so a pass's lanes call one callable; whether the driver then regroups
+# lanes less shows in the repack and fallback counters.
+  120   diag  classroom  tile_s24_lru-counter_group 300 1     --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --group-by-material
+  40    diag  classroom  floor_tile_s24_lru-counter_group 300 1 --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --group-by-material --floor-materials
 # 6.1b: Table 6.1's variants with a 4x larger cache (2^26 texels = 2^22 4x4 tiles): the
 # classroom's working set overflows 2^24 texels (occupancy reaches S within the path).
   100   6.1b  classroom  texel_s26_lru-frame   300     1      --cache texel --cache-entries 67108864 --eviction lru --clock frame --cache-read-check key
