@@ -221,8 +221,8 @@ int cacheFind(CacheKey key) {
   [[unroll]] for (uint d = 0u; d < uint(MG_CACHE_PROBE); ++d)
     stored[d] = cacheData[cacheEntryOffset(key.base + d)];
   int found = -1;
-  [[unroll]] for (uint d = uint(MG_CACHE_PROBE); d > 0u; --d) {
-    if (stored[d - 1u] == key.hash) found = int(key.base + d - 1u);
+  [[unroll]] for (uint d = 0u; d < uint(MG_CACHE_PROBE); ++d) {
+    if (found < 0 && stored[d] == key.hash) found = int(key.base + d);
   }
   return found;
 }

@@ -246,19 +246,18 @@ int runRender(std::span<const std::string_view> args) {
     runtime::RenderResult result = renderer.render(scene, settings);
     for (const auto& error : renderer.context().validationErrors())
       std::cerr << "validation: " << error << "\n";
-    // Write to a temporary name and rename, so a failure leaves no partial file.
-    std::string temporary = out + ".partial" + extension;
+    // Both writers go through a temporary file and rename it, so a failure leaves no
+    // partial file.
     if (extension == ".pfm") {
-      runtime::writePfm(temporary, result.image);
+      runtime::writePfm(out, result.image);
     } else {
 #ifdef MEMOGRAPH_HAVE_IO
-      if (!io::writeImage(temporary, result.image, io::LdrOptions{}, diagnostics)) {
+      if (!io::writeImage(out, result.image, io::LdrOptions{}, diagnostics)) {
         printDiagnostics(diagnostics);
         return kExitFailure;
       }
 #endif
     }
-    std::filesystem::rename(temporary, out);
     if (!stats.empty()) {
       std::ofstream csv(stats);
       if (!csv) {

@@ -42,7 +42,7 @@ bool writeImage(const std::string& path, const runtime::HdrImage& image, const L
 std::optional<Rgba8Image> readImageRgba8(const std::string& path,
                                          compiler::Diagnostics& diagnostics);
 std::optional<runtime::HdrImage> readImageFloat(const std::string& path,
-                                                  compiler::Diagnostics& diagnostics);
+                                                compiler::Diagnostics& diagnostics);
 
 // Reads a PFM written by the renderer and writes it as `outPath` (.png or .exr).
 bool convertPfm(const std::string& pfmPath, const std::string& outPath, const LdrOptions& ldr,
