@@ -9,6 +9,7 @@ packages=(
   libvulkan-dev vulkan-tools vulkan-validationlayers spirv-tools
   libglm-dev libopenimageio-dev openimageio-tools libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  python3
 )
 # lavapipe with ray tracing comes only from bookworm-backports (../shared/GPU.md).
 backports_mesa=mesa-vulkan-drivers

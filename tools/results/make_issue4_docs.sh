@@ -10,7 +10,9 @@ cd "$(dirname "$0")/../.."
 args=()
 for call in docs/results/issue4_h100/run1 docs/results/issue4_h100/run2 \
   docs/results/issue4_h200/call1 docs/results/issue4_h200/call2 \
-  docs/results/issue4_h200/call3 docs/results/issue4_h200/call4; do
+  docs/results/issue4_h200/call3 docs/results/issue4_h200/call4 \
+  docs/results/issue4_h200/call5 docs/results/issue4_h200/call6 \
+  docs/results/issue4_h200/call7 docs/results/issue4_h200/call8; do
   args+=(--summary "${call}_issue4_summary.csv" --frames "${call}_issue4_frames.tar.gz"
     --steps "${call}_issue4_steps.tsv")
 done
