@@ -119,6 +119,18 @@ TileStorage parseTileStorage(const std::string& text) {
                               "' (choose entry, buffer, texture2d or texture3d)");
 }
 
+const char* tileFillName(TileFill fill) {
+  return fill == TileFill::Deferred ? "deferred" : "subgroup";
+}
+
+TileFill parseTileFill(const std::string& text) {
+  if (text == "subgroup")
+    return TileFill::Subgroup;
+  if (text == "deferred")
+    return TileFill::Deferred;
+  throw std::invalid_argument("unknown --tile-fill '" + text + "' (choose subgroup or deferred)");
+}
+
 void validateCacheOptions(const CacheOptions& cache) {
   if (cache.probe < 1 || cache.probe > gpu::kCacheMaxProbe)
     throw std::invalid_argument("--probe must be 1.." + std::to_string(gpu::kCacheMaxProbe) +
@@ -139,6 +151,13 @@ void validateCacheOptions(const CacheOptions& cache) {
       throw std::invalid_argument("--tile " + size +
                                   " with --filter bilinear: tiles overlap by one texel, so both "
                                   "sides need at least 2 texels");
+    if (cache.groupByMaterial && cache.tileFill == TileFill::Deferred)
+      throw std::invalid_argument(
+          "--group-by-material orders the tiles a subgroup computes (--tile-fill subgroup); "
+          "the deferred fill computes each queued tile on its own");
+    if (cache.tileQueue < 1 || cache.tileQueue > (1u << 24))
+      throw std::invalid_argument("--tile-queue must be 1..16777216 tiles, not " +
+                                  std::to_string(cache.tileQueue));
   }
   if (cache.clockShift > 32)
     throw std::invalid_argument("--clock-shift must be 0..32, not " +
@@ -195,6 +214,10 @@ std::vector<std::string> cacheShaderDefines(const CacheOptions& cache, std::uint
       defines.push_back("MG_TILE_BILINEAR=1");
     if (cache.groupByMaterial)
       defines.push_back("MG_TILE_GROUP_BY_MATERIAL=1");
+    if (cache.tileFill == TileFill::Deferred) {
+      defines.push_back("MG_TILE_FILL_DEFERRED=1");
+      defines.push_back("MG_TILE_QUEUE_CAPACITY=" + std::to_string(cache.tileQueue));
+    }
     if (cache.testRepacks)
       defines.push_back("MG_TILE_TEST_REPACKS=1");
     if (cache.testPartialSubgroups)

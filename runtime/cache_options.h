@@ -27,6 +27,13 @@ enum class CacheValueFormat { Fp32, Fp16 };
 // The lru/lrw time of §5.3.3: the host's frame counter, or a 64-bit GPU atomic counter
 // bumped by every stamping access (needs shaderBufferInt64Atomics).
 enum class CacheClock { Frame, Counter };
+// Who computes a missing tile (§5.4.3). Subgroup: the thesis's eight steps, the requesting
+// subgroup computes it at once, one texel per lane. Deferred: the first request of a frame
+// locks an entry and queues the tile, evaluates its own hit directly (as a texel-cache miss
+// does), and a second pass after the frame's trace computes every queued tile, one
+// invocation per texel, and publishes it for the next frame. The second pass needs no lane
+// to survive a callable in place, which NVIDIA's raygen does not guarantee (docs/runtime.md).
+enum class TileFill { Subgroup, Deferred };
 
 const char* cacheModeName(CacheMode mode);
 const char* cacheEvictionName(CacheEviction eviction);
@@ -34,6 +41,7 @@ const char* cacheValueFormatName(CacheValueFormat format);
 const char* cacheClockName(CacheClock clock);
 const char* tileFilterName(TileFilter filter);
 const char* tileStorageName(TileStorage storage);
+const char* tileFillName(TileFill fill);
 // Parse "none"/"texel", "none"/"lru"/"lrw"/"random", "fp32"/"fp16" and "frame"/"counter";
 // throw std::invalid_argument naming the choices.
 CacheMode parseCacheMode(const std::string& text);
@@ -43,6 +51,8 @@ CacheClock parseCacheClock(const std::string& text);
 // "nearest"/"bilinear" and "entry"/"buffer"/"texture2d"/"texture3d", likewise.
 TileFilter parseTileFilter(const std::string& text);
 TileStorage parseTileStorage(const std::string& text);
+// "subgroup"/"deferred".
+TileFill parseTileFill(const std::string& text);
 
 struct CacheOptions {
   CacheMode mode = CacheMode::None;
@@ -72,6 +82,10 @@ struct CacheOptions {
   TileFilter tileFilter = TileFilter::Nearest;
   TileStorage tileStorage = TileStorage::Entry;
   bool groupByMaterial = false;
+  TileFill tileFill = TileFill::Subgroup;
+  // Deferred fill: tiles queued per frame at most; a request past it evaluates its hit
+  // and queues nothing (counted as a fallback). 32 bytes each.
+  std::uint32_t tileQueue = 1u << 16;
   // Test hook (no CLI flag): half the lanes of every subgroup skip the tile cache, so the
   // partial subgroups NVIDIA's raygen has can be exercised on lavapipe.
   bool testPartialSubgroups = false;

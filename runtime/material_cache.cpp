@@ -30,8 +30,9 @@ void checkTileOptions(const VulkanContext& context, const CacheOptions& options)
   const std::uint32_t texels = options.tileWidth * options.tileHeight;
   const std::string size =
       std::to_string(options.tileWidth) + "x" + std::to_string(options.tileHeight);
-  // §5.4.3: one lane per texel of a tile.
-  if (texels > info.subgroupSize)
+  // §5.4.3: one lane per texel of a tile (the deferred fill has one invocation per texel
+  // and no such limit).
+  if (options.tileFill == TileFill::Subgroup && texels > info.subgroupSize)
     throw std::invalid_argument("--tile " + size + " has " + std::to_string(texels) +
                                 " texels, more than the " + std::to_string(info.subgroupSize) +
                                 " lanes of a subgroup on " + info.name +
@@ -41,12 +42,14 @@ void checkTileOptions(const VulkanContext& context, const CacheOptions& options)
       VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_SHUFFLE_BIT |
       VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
   const VkShaderStageFlagBits stage = traceStage(context);
-  if ((info.subgroupOperations & kNeeded) != kNeeded || !(info.subgroupStages & stage))
+  if (options.tileFill == TileFill::Subgroup &&
+      ((info.subgroupOperations & kNeeded) != kNeeded || !(info.subgroupStages & stage)))
     throw std::invalid_argument(
         "--cache tile needs subgroup ballot, shuffle, vote and arithmetic in the " +
         std::string(stage == VK_SHADER_STAGE_COMPUTE_BIT ? "compute" : "ray-generation") +
         " stage, which " + info.name + " does not offer" +
-        (stage == VK_SHADER_STAGE_RAYGEN_BIT_KHR ? " (try --backend query)" : ""));
+        (stage == VK_SHADER_STAGE_RAYGEN_BIT_KHR ? " (try --backend query or --tile-fill deferred)"
+                                                 : ""));
 }
 
 VkFormat imageFormat(const CacheOptions& options) {
@@ -84,6 +87,14 @@ MaterialCache::MaterialCache(const VulkanContext& context, const CacheOptions& o
   if (storage == TileStorage::Buffer)
     bytes_ += texelBytes;
   tileLog_ = deviceBuffer(context, tile ? gpu::kTileLogEntries * sizeof(std::uint32_t) : 16);
+  const bool deferred = tile && options.tileFill == TileFill::Deferred;
+  const std::uint64_t queueBytes =
+      sizeof(gpu::TileQueueHeader) + std::uint64_t(options.tileQueue) * sizeof(gpu::TileFillItem);
+  tileQueue_ = deviceBuffer(context, deferred ? queueBytes : sizeof(gpu::TileQueueHeader));
+  if (deferred) {
+    bytes_ += queueBytes;
+    tileQueueCapacity_ = options.tileQueue;
+  }
 
   if (storage == TileStorage::Texture2D || storage == TileStorage::Texture3D) {
     // Four values per image texel; a texel's groups side by side in x (2D) or stacked in z
@@ -174,8 +185,11 @@ MaterialCache::MaterialCache(const VulkanContext& context, const CacheOptions& o
 void MaterialCache::recordClears(VkCommandBuffer commands, bool firstFrame) const {
   if (firstFrame)
     vkCmdFillBuffer(commands, entries_.buffer(), 0, VK_WHOLE_SIZE, gpu::kCacheKeyEmpty);
-  if (options_.mode == CacheMode::Tile)
+  if (options_.mode == CacheMode::Tile) {
     vkCmdFillBuffer(commands, tileLog_.buffer(), 0, VK_WHOLE_SIZE, 0);
+    // The deferred fill's queue: only its count (each queued item is written whole).
+    vkCmdFillBuffer(commands, tileQueue_.buffer(), 0, sizeof(gpu::TileQueueHeader), 0);
+  }
 }
 
 void MaterialCache::describe(RenderStats& stats) const {
@@ -196,7 +210,10 @@ void MaterialCache::describe(RenderStats& stats) const {
     stats.cacheTile =
         std::to_string(options_.tileWidth) + "x" + std::to_string(options_.tileHeight) + " " +
         tileFilterName(options_.tileFilter) + " " + tileStorageName(options_.tileStorage) +
-        (options_.groupByMaterial ? " grouped" : "");
+        (options_.groupByMaterial ? " grouped" : "") +
+        (options_.tileFill == TileFill::Deferred
+             ? " deferred (queue " + std::to_string(options_.tileQueue) + ")"
+             : "");
 }
 
 }  // namespace memograph::runtime

@@ -1,7 +1,8 @@
 // The GPU side of material graph memoization (thesis §5.3-5.4) as one render sets it up:
 // checks the cache options against the device, picks the path tracer's cache defines, and
-// owns the entry buffer, the tile cache's texel buffer or storage image (§5.4.1) and the
-// per-frame log of computed tiles that counts duplicates (§6.7.2).
+// owns the entry buffer, the tile cache's texel buffer or storage image (§5.4.1), the
+// per-frame log of computed tiles that counts duplicates (§6.7.2) and the deferred fill's
+// queue of missing tiles.
 #pragma once
 
 #include <cstdint>
@@ -42,10 +43,15 @@ class MaterialCache {
   const GpuBuffer& entries() const { return entries_; }
   const GpuBuffer& tileTexels() const { return tileTexels_; }
   const GpuBuffer& tileLog() const { return tileLog_; }
+  // Binding kBindingTileQueue: the deferred fill's queue (a small dummy otherwise), and the
+  // tiles it holds at most (0 without the deferred fill: no fill pass to record).
+  const GpuBuffer& tileQueue() const { return tileQueue_; }
+  std::uint32_t tileQueueCapacity() const { return tileQueueCapacity_; }
   VkImageView tileImageView() const { return imageView_.get(); }
 
   // The clears before a frame's trace: every entry empty (key 0, clock 0) before the first
-  // frame; the tile log before every frame. The caller orders them before the trace.
+  // frame; the tile log and the fill queue's count before every frame. The caller orders them
+  // before the trace.
   void recordClears(VkCommandBuffer commands, bool firstFrame) const;
 
   // The cache's settings and memory in the render's statistics.
@@ -61,6 +67,8 @@ class MaterialCache {
   GpuBuffer entries_;
   GpuBuffer tileTexels_;
   GpuBuffer tileLog_;
+  GpuBuffer tileQueue_;
+  std::uint32_t tileQueueCapacity_ = 0;
   VulkanHandle<VkDeviceMemory> imageMemory_;
   VulkanHandle<VkImage> image_;
   VulkanHandle<VkImageView> imageView_;

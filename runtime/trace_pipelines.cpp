@@ -76,8 +76,9 @@ VkDeviceSize alignUp(VkDeviceSize value, VkDeviceSize alignment) {
 TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compiler,
                              std::uint32_t textureCount, const MaterialCallables* callables,
                              std::uint32_t pipelineThreads,
-                             const std::vector<std::string>& extraDefines, bool tileImage)
-    : context_(context), backend_(context.backend()) {
+                             const std::vector<std::string>& extraDefines, bool tileImage,
+                             bool tileFillPass)
+    : context_(context), backend_(context.backend()), tileFillPass_(tileFillPass) {
   VkDevice device = context.device();
   bool query = backend_ == Backend::RayQuery;
   if (query && callables)
@@ -108,6 +109,7 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   add(gpu::kBindingCache, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   add(gpu::kBindingTileTexels, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   add(gpu::kBindingTileLog, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  add(gpu::kBindingTileQueue, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   if (tileImage)
     add(gpu::kBindingTileImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
@@ -141,6 +143,9 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   }
   defines.insert(defines.end(), extraDefines.begin(), extraDefines.end());
   auto destroyPipeline = [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); };
+  // The deferred tile fill's pass: the same source and defines, entered at the fill.
+  std::vector<std::string> fillDefines = defines;
+  fillDefines.push_back("MG_TILE_FILL_PASS=1");
 
   if (query) {
     auto module =
@@ -155,14 +160,24 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
     checkVk(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
             "vkCreateComputePipelines");
     pipeline_ = VulkanHandle<VkPipeline>(pipeline, destroyPipeline);
+    if (tileFillPass) {
+      auto fillModule = createModule(
+          device, compiler.compile({"path_tracer.glsl", ShaderStage::Compute, fillDefines}));
+      info.stage.module = fillModule.get();
+      checkVk(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
+              "vkCreateComputePipelines (tile fill)");
+      fillPipeline_ = VulkanHandle<VkPipeline>(pipeline, destroyPipeline);
+    }
     return;
   }
 
-  // Ray-tracing pipeline: raygen (the path tracer), two misses, one triangle hit group, then
-  // one general group per callable material shader.
+  // Ray-tracing pipeline: raygen (the path tracer), two misses, one triangle hit group, the
+  // deferred tile fill's raygen when asked for, then one general group per callable
+  // material shader (the fill calls them too).
   const std::uint32_t callableCount =
       callables ? static_cast<std::uint32_t>(callables->spirv.size()) : 0;
-  const std::uint32_t shaderCount = 4 + callableCount;
+  const std::uint32_t firstCallable = tileFillPass ? 5 : 4;
+  const std::uint32_t shaderCount = firstCallable + callableCount;
   std::vector<VulkanHandle<VkShaderModule>> modules;
   modules.push_back(
       createModule(device, compiler.compile({"path_tracer.glsl", ShaderStage::RayGen, defines})));
@@ -175,6 +190,11 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   std::vector<VkShaderStageFlagBits> stageBits = {
       VK_SHADER_STAGE_RAYGEN_BIT_KHR, VK_SHADER_STAGE_MISS_BIT_KHR, VK_SHADER_STAGE_MISS_BIT_KHR,
       VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR};
+  if (tileFillPass) {
+    modules.push_back(createModule(
+        device, compiler.compile({"path_tracer.glsl", ShaderStage::RayGen, fillDefines})));
+    stageBits.push_back(VK_SHADER_STAGE_RAYGEN_BIT_KHR);
+  }
   for (std::uint32_t i = 0; i < callableCount; ++i) {
     modules.push_back(createModule(device, callables->spirv[i]));
     stageBits.push_back(VK_SHADER_STAGE_CALLABLE_BIT_KHR);
@@ -211,8 +231,9 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   VkPipeline pipeline = createRayTracingPipeline(context, info, pipelineThreads);
   pipeline_ = VulkanHandle<VkPipeline>(pipeline, destroyPipeline);
 
-  // Shader-binding table: [raygen][miss, shadow miss][hit][callable per material id], each
-  // region base-aligned. Scene materials sharing a graph point at the same callable group.
+  // Shader-binding table: [raygen][miss, shadow miss][hit][fill raygen][callable per
+  // material id], each region base-aligned. Scene materials sharing a graph point at the
+  // same callable group.
   const auto& rt = context.info().rayTracingProperties;
   std::uint32_t handleSize = rt.shaderGroupHandleSize;
   VkDeviceSize stride = alignUp(handleSize, rt.shaderGroupHandleAlignment);
@@ -224,15 +245,18 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   VkDeviceSize raygenOffset = 0;
   VkDeviceSize missOffset = alignUp(stride, base);
   VkDeviceSize hitOffset = alignUp(missOffset + 2 * stride, base);
-  VkDeviceSize callableOffset = alignUp(hitOffset + stride, base);
+  VkDeviceSize fillOffset = alignUp(hitOffset + stride, base);
+  VkDeviceSize callableOffset = tileFillPass ? alignUp(fillOffset + stride, base) : fillOffset;
   VkDeviceSize tableSize = callableOffset + materialRecords * stride;
   std::vector<std::uint8_t> table(tableSize, 0);
   std::memcpy(&table[raygenOffset], &handles[0], handleSize);
   std::memcpy(&table[missOffset], &handles[handleSize], handleSize);
   std::memcpy(&table[missOffset + stride], &handles[2 * handleSize], handleSize);
   std::memcpy(&table[hitOffset], &handles[3 * handleSize], handleSize);
+  if (tileFillPass)
+    std::memcpy(&table[fillOffset], &handles[4 * handleSize], handleSize);
   for (std::uint32_t m = 0; m < materialRecords; ++m) {
-    std::uint32_t group = 4 + callables->shaderForMaterial[m];
+    std::uint32_t group = firstCallable + callables->shaderForMaterial[m];
     std::memcpy(&table[callableOffset + m * stride], &handles[std::size_t(group) * handleSize],
                 handleSize);
   }
@@ -246,6 +270,8 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   raygenRegion_ = {tableAddress + raygenOffset, alignUp(stride, base), alignUp(stride, base)};
   missRegion_ = {tableAddress + missOffset, stride, 2 * stride};
   hitRegion_ = {tableAddress + hitOffset, stride, stride};
+  if (tileFillPass)
+    fillRaygenRegion_ = {tableAddress + fillOffset, alignUp(stride, base), alignUp(stride, base)};
   if (materialRecords > 0)
     callableRegion_ = {tableAddress + callableOffset, stride, materialRecords * stride};
 }
@@ -265,6 +291,29 @@ void TracePipeline::record(VkCommandBuffer commands, VkDescriptorSet set, std::u
                           &set, 0, nullptr);
   context_.functions().cmdTraceRays(commands, &raygenRegion_, &missRegion_, &hitRegion_,
                                     &callableRegion_, width, height, 1);
+}
+
+// One invocation per texel of every queue slot, laid out kFillRowInvocations to a row; the
+// slots past the frame's count return at once (a fixed launch needs no count read back or
+// indirect dispatch: about a million empty invocations for the default 65536 4x4 slots).
+void TracePipeline::recordTileFill(VkCommandBuffer commands, VkDescriptorSet set,
+                                   std::uint64_t invocations) const {
+  if (!tileFillPass_)
+    return;
+  const std::uint32_t rows = static_cast<std::uint32_t>(
+      (invocations + gpu::kFillRowInvocations - 1) / gpu::kFillRowInvocations);
+  if (backend_ == Backend::RayQuery) {
+    vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, fillPipeline_.get());
+    vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set, 0,
+                            nullptr);
+    vkCmdDispatch(commands, gpu::kFillRowInvocations / gpu::kFillWorkgroupSize, rows, 1);
+    return;
+  }
+  vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipeline_.get());
+  vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, layout_.get(), 0, 1,
+                          &set, 0, nullptr);
+  context_.functions().cmdTraceRays(commands, &fillRaygenRegion_, &missRegion_, &hitRegion_,
+                                    &callableRegion_, gpu::kFillRowInvocations, rows, 1);
 }
 
 }  // namespace memograph::runtime

@@ -27,26 +27,36 @@ class TracePipeline {
   // `pipelineThreads`: host threads that may join the driver's ray-tracing pipeline
   // compile (VK_KHR_deferred_host_operations); 1 creates it on the calling thread alone.
   // `extraDefines` go to the path tracer (raygen or compute) only, e.g. the texel cache's.
+  // `tileFillPass`: also build the deferred tile fill's pass (the same source with
+  // MG_TILE_FILL_PASS: a second raygen of this pipeline, or a second compute pipeline).
   TracePipeline(const VulkanContext& context, ShaderCompiler& compiler, std::uint32_t textureCount,
                 const MaterialCallables* callables = nullptr, std::uint32_t pipelineThreads = 1,
-                const std::vector<std::string>& extraDefines = {}, bool tileImage = false);
+                const std::vector<std::string>& extraDefines = {}, bool tileImage = false,
+                bool tileFillPass = false);
 
   VkDescriptorSetLayout descriptorSetLayout() const { return setLayout_.get(); }
   // Binds and launches one thread per pixel.
   void record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t width,
               std::uint32_t height) const;
+  // Binds and launches the deferred tile fill's pass over `invocations` (queue slots times
+  // texels per tile); nothing without the pass. The caller orders it after the trace.
+  void recordTileFill(VkCommandBuffer commands, VkDescriptorSet set,
+                      std::uint64_t invocations) const;
 
  private:
   const VulkanContext& context_;
   Backend backend_;
+  bool tileFillPass_ = false;
   VulkanHandle<VkDescriptorSetLayout> setLayout_;
   VulkanHandle<VkPipelineLayout> layout_;
   VulkanHandle<VkPipeline> pipeline_;
+  VulkanHandle<VkPipeline> fillPipeline_;  // query backend: the tile fill's compute pipeline
   GpuBuffer shaderBindingTable_;
   VkStridedDeviceAddressRegionKHR raygenRegion_{};
   VkStridedDeviceAddressRegionKHR missRegion_{};
   VkStridedDeviceAddressRegionKHR hitRegion_{};
   VkStridedDeviceAddressRegionKHR callableRegion_{};
+  VkStridedDeviceAddressRegionKHR fillRaygenRegion_{};
 };
 
 }  // namespace memograph::runtime

@@ -457,10 +457,16 @@ void renderPixel(uvec2 pixel, bool inside) {
   }
 #endif
 #ifdef MG_CACHE_TILE
-  // The tile cache needs subgroup operations, so the sums here always have them.
+  // The subgroup computation of tiles needs subgroup operations, so its sums have them; the
+  // deferred fill runs without (lavapipe's raygen has none).
+#if defined(MG_SUBGROUP_RAY_COUNT) || !defined(MG_TILE_FILL_DEFERRED)
   uvec4 tileCounts =
       subgroupAdd(uvec4(g_tilesComputed, g_duplicateTiles, g_tileFallbacks, g_tileRepacks));
   if (subgroupElect() && any(notEqual(tileCounts, uvec4(0u)))) {
+#else
+  uvec4 tileCounts = uvec4(g_tilesComputed, g_duplicateTiles, g_tileFallbacks, g_tileRepacks);
+  if (any(notEqual(tileCounts, uvec4(0u)))) {
+#endif
     atomicAdd(counters.cacheTilesComputed, tileCounts.x);
     atomicAdd(counters.cacheDuplicateTiles, tileCounts.y);
     atomicAdd(counters.cacheTileFallbacks, tileCounts.z);
@@ -469,7 +475,20 @@ void renderPixel(uvec2 pixel, bool inside) {
 #endif
 }
 
+#if defined(MG_TILE_FILL_PASS)
+// The deferred tile fill's pass (tile_cache.glsl), launched after the frame's trace: one
+// invocation per texel of a queue slot, kFillRowInvocations to a row.
 #ifdef MG_BACKEND_QUERY
+layout(local_size_x = kFillWorkgroupSize) in;
+void main() {
+  tileFillTexel(gl_GlobalInvocationID.y * kFillRowInvocations + gl_GlobalInvocationID.x);
+}
+#else
+void main() {
+  tileFillTexel(gl_LaunchIDEXT.y * kFillRowInvocations + gl_LaunchIDEXT.x);
+}
+#endif
+#elif defined(MG_BACKEND_QUERY)
 layout(local_size_x = kWorkgroupSize, local_size_y = kWorkgroupSize) in;
 void main() {
   uvec2 pixel = gl_GlobalInvocationID.xy;

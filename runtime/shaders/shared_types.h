@@ -45,10 +45,15 @@ MG_CONSTANT(uint, kBindingCache, 11);       // the cache's entries (thesis §5.3
 MG_CONSTANT(uint, kBindingTileTexels, 12);  // tile cache: texels in a separate buffer
 MG_CONSTANT(uint, kBindingTileLog, 13);     // tile cache: tiles computed this frame (a set)
 MG_CONSTANT(uint, kBindingTileImage, 14);   // tile cache: texels in a 2D or 3D storage image
-MG_CONSTANT(uint, kBindingCount, 15);
+MG_CONSTANT(uint, kBindingTileQueue, 15);   // tile cache, deferred fill: the missing tiles
+MG_CONSTANT(uint, kBindingCount, 16);
 
 // Compute work-group edge of the ray-query backend.
 MG_CONSTANT(uint, kWorkgroupSize, 8);
+// The deferred tile fill's launch: rows of kFillRowInvocations (one per texel of a queue
+// slot), compute work groups of kFillWorkgroupSize along a row.
+MG_CONSTANT(uint, kFillRowInvocations, 4096);
+MG_CONSTANT(uint, kFillWorkgroupSize, 64);
 
 // FrameConstants::flags bits.
 MG_CONSTANT(uint, kFlagSharedPrimaryRay, 1);
@@ -89,6 +94,25 @@ MG_CONSTANT(uint, kTileStorageTexture3D, 3);  // a 3D image; value groups stacke
 MG_CONSTANT(uint, kTileLogEntries, 1u << 20);
 MG_CONSTANT(uint, kTileLogProbe, 8);
 
+// The deferred tile fill's queue (binding kBindingTileQueue): a header, then one item per
+// missing tile, written whole by the request that locked its entry; the fill pass runs one
+// invocation per texel and the last of a tile's invocations publishes it.
+struct TileQueueHeader {
+  uint count;  // items requested this frame; those past the capacity were not stored
+  uint pad0;
+  uint pad1;
+  uint pad2;
+};
+struct TileFillItem {
+  uint entry;       // the locked entry
+  uint keyBase;     // CacheKey::base and ::hash, to publish the entry under
+  uint keyHash;
+  uint materialId;
+  uint level;       // the tile's mip level (int bits)
+  uint tileX;       // the tile's position in multiples of the tile size (float bits)
+  uint tileY;
+  uint texelsDone;  // texels stored so far (atomic); the one that makes it W*H publishes
+};
 // Light::positionOrDirection.w
 MG_CONSTANT(uint, kLightPoint, 0);
 MG_CONSTANT(uint, kLightDirectional, 1);
@@ -162,6 +186,7 @@ struct Light {
 };
 
 #ifdef __cplusplus
+static_assert(sizeof(TileQueueHeader) == 16 && sizeof(TileFillItem) == 32);
 static_assert(sizeof(Counters) % 16 == 0 &&
               offsetof(Counters, cacheOccupancy) == kCountersPerFrameUints * sizeof(uint));
 }  // namespace memograph::runtime::gpu

@@ -9,16 +9,22 @@
 //   MG_TILE_STORAGE        kTileStorage{Entry, Buffer, Texture2D, Texture3D} (§5.4.1),
 //   MG_TILE_IMAGE_FORMAT   the storage image's format qualifier (rgba32f or rgba16f),
 //   MG_TILE_GROUP_BY_MATERIAL (optional) §5.4.4's order of missing tiles,
+//   MG_TILE_FILL_DEFERRED  (optional) missing tiles are queued and computed by a second
+//                          pass (MG_TILE_FILL_PASS: tileFillTexel), not by the subgroup;
+//                          MG_TILE_QUEUE_CAPACITY tiles a frame at most,
 //   MG_CACHE_ENTRY_WORDS   the texel words stored in an entry (0 unless kTileStorageEntry).
 // Every lane of the subgroup must call evaluateMaterialTiled together (path_tracer.glsl
 // keeps its loops uniform for that): the texels of a tile are assigned to lanes by index.
 #ifndef MG_TILE_CACHE_GLSL
 #define MG_TILE_CACHE_GLSL
+#ifndef MG_TILE_FILL_DEFERRED
+// The subgroup computation of §5.4.3; the deferred fill needs no subgroup operation.
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_KHR_shader_subgroup_ballot : require
 #extension GL_KHR_shader_subgroup_shuffle : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
+#endif
 
 #include "texel_cache.glsl"
 
@@ -196,6 +202,97 @@ bool tileLogDuplicate(CacheKey key) {
   return false;
 }
 
+// Eq. 5.16-5.17: `inputs` at texel `texel` of the tile at `tile` (in multiples of the tile
+// size) of mip level `level`: its uv (a texel of level m is 2^-m wide; nearest: its centre,
+// bilinear: its corner) and the fictional derivatives of one texel along u and along v.
+MaterialInputs tileTexelInputs(MaterialInputs inputs, int level, vec2 tile, uint texel) {
+  float texelSize = exp2(-float(level));
+  vec2 texelIndex = vec2(float(texel % kTileW), float(texel / kTileW));
+  inputs.uv.v = (tile * kTileArea + texelIndex + kTexelOffset) * texelSize;
+  inputs.uv.x = vec2(texelSize, 0.0);
+  inputs.uv.y = vec2(0.0, texelSize);
+  return inputs;
+}
+
+#ifdef MG_TILE_FILL_DEFERRED
+// ---- Deferred computation of missing tiles ------------------------------------------------
+// The subgroup computation below needs every lane back in place after the material's
+// evaluation, which a callable does not promise (NVIDIA's raygen regroups lanes, and the
+// tile is then given up). Deferred, a request only queues its tile; a second pass after
+// the frame's trace computes each queued tile with one invocation per texel and no lane
+// exchanging anything, and publishes it for the next frame.
+
+layout(set = 0, binding = kBindingTileQueue, std430) coherent buffer TileQueueBlock {
+  TileQueueHeader tileQueueHeader;
+  TileFillItem tileQueue[];
+};
+const uint kTileQueueCapacity = uint(MG_TILE_QUEUE_CAPACITY);
+
+// Queues the tile of a missed lookup once per frame: the first request (the tile log is
+// this frame's set of queued tiles) locks an entry and writes the queue item; a full queue
+// gives the entry back. The requester evaluates its own hit either way.
+void tileEnqueue(uint materialId, TileRequest tile) {
+  if (tileLogDuplicate(tile.key)) return;
+  int entry = cacheLock(tile.key);
+  if (entry < 0) return;
+  uint slot = atomicAdd(tileQueueHeader.count, 1u);
+  if (slot >= kTileQueueCapacity) {
+    cacheUnlockEmpty(uint(entry));
+    g_tileFallbacks += 1u;
+    return;
+  }
+  g_tilesComputed += 1u;
+  tileQueue[slot].entry = uint(entry);
+  tileQueue[slot].keyBase = tile.key.base;
+  tileQueue[slot].keyHash = tile.key.hash;
+  tileQueue[slot].materialId = materialId;
+  tileQueue[slot].level = uint(tile.level);
+  tileQueue[slot].tileX = floatBitsToUint(tile.tile.x);
+  tileQueue[slot].tileY = floatBitsToUint(tile.tile.y);
+  tileQueue[slot].texelsDone = 0u;
+}
+
+#ifdef MG_TILE_FILL_PASS
+// The fill pass: invocation i computes texel i % (W*H) of queue slot i / (W*H), stores it,
+// and the last of a tile's invocations to finish publishes the entry (its key unlocks it).
+// Cacheable materials read nothing but uv (§4.2), so the other inputs are placeholders.
+void tileFillTexel(uint invocation) {
+  uint slot = invocation / kTileTexels;
+  uint texel = invocation % kTileTexels;
+  if (slot >= min(tileQueueHeader.count, kTileQueueCapacity)) return;
+  TileFillItem item = tileQueue[slot];
+  MaterialInputs inputs;
+  inputs.position.v = vec3(0.0);
+  inputs.position.x = vec3(0.0);
+  inputs.position.y = vec3(0.0);
+  inputs.normal = vec3(0.0, 0.0, 1.0);
+  inputs.tangent = vec3(1.0, 0.0, 0.0);
+  inputs.bitangentSign = vec3(1.0, 0.0, 0.0);
+  inputs.vertexColor = vec4(1.0);
+  inputs.view = vec3(0.0, 0.0, 1.0);
+  inputs.time = frame.cameraForward.w;
+  inputs.textureBase = 0;
+  vec2 tile = vec2(uintBitsToFloat(item.tileX), uintBitsToFloat(item.tileY));
+  inputs = tileTexelInputs(inputs, int(item.level), tile, texel);
+  MaterialOutputs outputs;
+  evaluateMaterialDirect(item.materialId, inputs, outputs);
+  float values[MG_CACHE_VALUES];
+  cachePack(mg_materialCacheInfo[item.materialId].x, outputs, values);
+  tileStoreTexel(item.entry, texel, values);
+  tileStorageBarrier();
+  if (atomicAdd(tileQueue[slot].texelsDone, 1u) == kTileTexels - 1u) {
+    // Every texel of the tile was stored (and made visible) before its count went up.
+    memoryBarrierBuffer();
+    CacheKey key;
+    key.base = item.keyBase;
+    key.hash = item.keyHash;
+    key.texelUv = vec2(0.0);
+    cacheUnlock(item.entry, key);
+  }
+}
+#endif
+#else
+
 // ---- Cooperative computation of missing tiles (§5.4.3) -----------------------------------
 
 // Shuffles a value array from lane `source` (every lane takes part, each with its source).
@@ -332,14 +429,9 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
       uint firstBefore = subgroupBroadcastFirst(g_invocationId);
 #endif
       if (worker) {
-        float texelSize = exp2(-float(workLevel));
-        MaterialInputs texelInputs = inputs;
-        vec2 texelIndex = vec2(float(texel % kTileW), float(texel / kTileW));
-        texelInputs.uv.v = (workTile * kTileArea + texelIndex + kTexelOffset) * texelSize;
-        texelInputs.uv.x = vec2(texelSize, 0.0);
-        texelInputs.uv.y = vec2(0.0, texelSize);
         MaterialOutputs texelOutputs;
-        evaluateMaterialDirect(workMaterial, texelInputs, texelOutputs);
+        evaluateMaterialDirect(workMaterial, tileTexelInputs(inputs, workLevel, workTile, texel),
+                               texelOutputs);
         cachePack(workInfo.x, texelOutputs, texelValues);
       }
 #if defined(MG_MATERIAL_CALLABLES) || defined(MG_TILE_TEST_REPACKS)
@@ -394,6 +486,8 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
   }
 }
 
+#endif  // MG_TILE_FILL_DEFERRED
+
 // The tile cache's material evaluation. Every lane of the subgroup calls it at the same
 // point; `hasHit` is false for lanes without a hit (their outputs are meaningless).
 // Cacheable materials read their tile; the subgroup computes the missing tiles together;
@@ -435,8 +529,12 @@ void evaluateMaterialTiled(bool hasHit, uint materialId, MaterialInputs inputs,
   } else {
     for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;
   }
-  bool served;
+  bool served = false;
+#ifdef MG_TILE_FILL_DEFERRED
+  if (request) tileEnqueue(materialId, tile);
+#else
   tileComputeMissing(request, materialId, info, tile, inputs, values, served);
+#endif
   if (cached && (!request || served)) {
     outputs = cacheUnpack(info.x, values, inputs);
   } else if (hasHit) {

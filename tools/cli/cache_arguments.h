@@ -23,12 +23,17 @@ inline constexpr const char* kCacheHelp =
     "                        key restored meanwhile, §5.3.4) or key (read key, values, key)\n"
     "  --mip-bias B          added to the cache's mip level (eq. 5.5); positive: finer\n"
     "  --tile WxH            texels per tile (default 4x4; W*H at most the subgroup size:\n"
-    "                        32 on NVIDIA, 8 on lavapipe)\n"
+    "                        32 on NVIDIA, 8 on lavapipe, with --tile-fill subgroup)\n"
     "  --filter F            tile sampling: nearest (default) or bilinear (tiles overlap by\n"
     "                        one texel, eq. 5.12-5.15)\n"
     "  --tile-storage S      where texels live (§5.4.1): entry (default), buffer,\n"
     "                        texture2d or texture3d\n"
     "  --group-by-material   compute missing tiles of one material together (§5.4.4)\n"
+    "  --tile-fill F         who computes a missing tile: subgroup (default; §5.4.3, at\n"
+    "                        once, one texel per lane) or deferred (queued; a second pass\n"
+    "                        after the frame computes it for the next frame, and the\n"
+    "                        requester evaluates its own hit)\n"
+    "  --tile-queue N        deferred fill: tiles queued per frame at most (default 65536)\n"
     "  --value-format F      fp32 (default) or fp16: entry values as 32-bit floats or two\n"
     "                        16-bit halves per word (§5.3.1; half the value memory)\n"
     "  --clock C             lru/lrw time: frame (default; the frame number) or counter (a\n"
@@ -46,7 +51,8 @@ inline constexpr const char* kCacheHelp =
 struct CacheArguments {
   std::string cache = "none", entries = "1048576", probe = "8", eviction = "lru", mipBias = "0",
               readCheck = "counter", valueFormat = "fp32", clock = "frame", clockShift = "16",
-              tile = "4x4", filter = "nearest", tileStorage = "entry";
+              tile = "4x4", filter = "nearest", tileStorage = "entry", tileFill = "subgroup",
+              tileQueue = "65536";
   bool snapUv = false, secondaryOnly = false, floorMaterials = false, groupByMaterial = false;
 
   void registerWith(ArgumentScanner& scanner) {
@@ -60,6 +66,8 @@ struct CacheArguments {
     scanner.option("--filter", &filter);
     scanner.option("--tile-storage", &tileStorage);
     scanner.flag("--group-by-material", &groupByMaterial);
+    scanner.option("--tile-fill", &tileFill);
+    scanner.option("--tile-queue", &tileQueue);
     scanner.option("--value-format", &valueFormat);
     scanner.option("--clock", &clock);
     scanner.option("--clock-shift", &clockShift);
@@ -84,6 +92,7 @@ struct CacheArguments {
     options.tileFilter = runtime::parseTileFilter(filter);
     options.tileStorage = runtime::parseTileStorage(tileStorage);
     options.groupByMaterial = groupByMaterial;
+    options.tileFill = runtime::parseTileFill(tileFill);
     auto whole = [](const std::string& text, const char* name) {
       std::uint32_t value = 0;
       if (!parseNumber(text, value))
@@ -94,6 +103,7 @@ struct CacheArguments {
     options.entries = whole(entries, "--cache-entries");
     options.probe = whole(probe, "--probe");
     options.clockShift = whole(clockShift, "--clock-shift");
+    options.tileQueue = whole(tileQueue, "--tile-queue");
     const auto x = tile.find('x');
     if (x == std::string::npos)
       throw std::invalid_argument("--tile takes WxH (e.g. 4x4), not '" + tile + "'");

@@ -98,6 +98,15 @@ read -r -d '' VARIANTS <<'TABLE'
 # lanes less shows in the repack and fallback counters.
   120   diag  classroom  tile_s24_lru-counter_group 300 1     --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --group-by-material
   40    diag  classroom  floor_tile_s24_lru-counter_group 300 1 --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --group-by-material --floor-materials
+# The deferred tile fill (--tile-fill deferred): a missed tile is queued and computed by a
+# second pass after the frame, one invocation per texel, so no lane has to come back from a
+# callable in place (the repacks above). Against the subgroup rows: the large cache, the
+# small one whose subgroup rows ran past 150 s, the landscape, and the floor (its own cost).
+  120   diag  classroom  tile_s24_lru-counter_deferred 300 1  --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --tile-fill deferred
+  40    diag  classroom  floor_tile_s24_lru-counter_deferred 300 1 --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --tile-fill deferred --floor-materials
+  60    diag  landscape  tile_s24_lru-counter_deferred 300 1  --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --tile-fill deferred
+  150   diag  classroom  tile_s21_lru-counter_deferred 300 1  --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock counter --cache-read-check key --tile-fill deferred
+  150   diag  classroom  tile_s21_random_deferred 300 1       --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction random --cache-read-check key --tile-fill deferred
 # 6.1b: Table 6.1's variants with a 4x larger cache (2^26 texels = 2^22 4x4 tiles): the
 # classroom's working set overflows 2^24 texels (occupancy reaches S within the path).
   100   6.1b  classroom  texel_s26_lru-frame   300     1      --cache texel --cache-entries 67108864 --eviction lru --clock frame --cache-read-check key
