@@ -371,6 +371,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     if (settings.onFrame)
       settings.onFrame(frameStats);
     ++sampleIndex;
+    if (settings.continueAfterFrame && !settings.continueAfterFrame(frameStats))
+      break;  // the image is the accumulation of the frames rendered so far
   }
 
   // Read the accumulated image back.

@@ -74,6 +74,9 @@ struct RenderSettings {
   std::vector<Camera> cameraPath;
   float secondsPerFrame = 1.0f / 30.0f;  // MaterialInputs::time advances by this per frame
   std::function<void(const FrameStats&)> onFrame;  // progress reporting
+  // Asked after each frame; false ends the render there (RenderStats::frames then holds
+  // fewer than `frames`), e.g. a benchmark's time limit.
+  std::function<bool(const FrameStats&)> continueAfterFrame;
 };
 
 struct RenderResult {

@@ -1,11 +1,13 @@
 // `memograph bench`'s options for the memoization sweeps (issue 4): a frame stride is
-// refused with a cache, and --label names the per-frame file so variants do not collide.
+// refused with a cache, --label names the per-frame file so variants do not collide, and
+// --time-limit stops a run that would take too long and says so.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 
 #include "cli_run.h"
 
@@ -56,6 +58,46 @@ TEST(BenchCliTest, LabelNamesThePerFrameFileAndTheCsvLine) {
             std::string::npos)
       << header;
   EXPECT_NE(line.find(",floor_x2,0,2,4,"), std::string::npos) << line;
+  fs::remove_all(directory);
+}
+
+// --time-limit stops a run after the frame that reaches it (here 0 s: after the first,
+// a warm-up frame), reports what it covers and marks the CSV line; a bad value is a usage
+// error. Without reaching the limit a run is complete (stopped_early 0).
+TEST(BenchCliTest, TimeLimitStopsARunAndSaysSo) {
+  if (!benchAvailable())
+    GTEST_SKIP() << "this memograph has no renderer";
+  const fs::path directory =
+      fs::temp_directory_path() / ("memograph_bench_limit_" + std::to_string(::getpid()));
+  fs::remove_all(directory);
+  fs::create_directories(directory);
+  const std::string common =
+      "bench builtin:landscape --size 16x9 --paths 1 --bounces 1 "
+      "--warmup 1 --shader-cache " +
+      (directory / "shaders").string();
+  const auto stopped =
+      runCli(common + " --frames 50 --time-limit 0 --csv " + (directory / "stopped.csv").string());
+  ASSERT_EQ(stopped.exitCode, 0) << stopped.output;
+  EXPECT_NE(stopped.output.find("stopped by --time-limit 0 s after 1 of 51 frames (0 of 50 timed)"),
+            std::string::npos)
+      << stopped.output;
+  const auto complete = runCli(common + " --frames 2 --time-limit 3600 --csv " +
+                               (directory / "complete.csv").string());
+  ASSERT_EQ(complete.exitCode, 0) << complete.output;
+  EXPECT_EQ(complete.output.find("stopped by"), std::string::npos) << complete.output;
+  auto lines = [](const fs::path& path) {
+    std::ifstream in(path);
+    std::string header, line;
+    std::getline(in, header);
+    std::getline(in, line);
+    return std::pair{header, line};
+  };
+  auto [header, stoppedLine] = lines(directory / "stopped.csv");
+  EXPECT_TRUE(header.ends_with(",frames_requested,stopped_early")) << header;
+  EXPECT_TRUE(stoppedLine.ends_with(",50,1")) << stoppedLine;
+  EXPECT_TRUE(lines(directory / "complete.csv").second.ends_with(",2,0"));
+  EXPECT_EQ(runCli("bench builtin:landscape --time-limit -1").exitCode, 2);
+  EXPECT_EQ(runCli("bench builtin:landscape --time-limit soon").exitCode, 2);
   fs::remove_all(directory);
 }
 

@@ -4,8 +4,11 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <chrono>
+#include <cmath>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <span>
 #include <sstream>
 
@@ -48,6 +51,10 @@ constexpr std::string_view kHelp =
     "                        without a cache, whose frames do not depend on earlier ones\n"
     "  --label NAME          names the run (letters, digits, '.', '_', '-') in the output,\n"
     "                        the CSV and the per-frame file name\n"
+    "  --time-limit S        stop a run (a scene at a size) once its frames have taken S\n"
+    "                        seconds of wall time; the summary then covers the timed frames\n"
+    "                        rendered so far and says it stopped early (CSV: stopped_early,\n"
+    "                        frames_requested)\n"
     "  --static-camera       keep the scene's camera still\n"
     "  --shared-primary      one primary ray per pixel shared by its paths\n"
     "  --backend B           auto, query or pipeline\n"
@@ -69,7 +76,7 @@ int runBench(std::span<const std::string_view>) {
 
 int runBench(std::span<const std::string_view> args) {
   std::string sizes = "1920x1080", paths = "6", bounces = "4", frames = "20", warmup = "3", csvPath,
-              framesCsv, cameraFrames, frameStride = "1", runLabel;
+              framesCsv, cameraFrames, frameStride = "1", runLabel, timeLimit;
   bool help = false, staticCamera = false;
   ArgumentScanner scanner("bench", args);
   RendererArguments rendererArguments;
@@ -85,6 +92,7 @@ int runBench(std::span<const std::string_view> args) {
   scanner.option("--camera-frames", &cameraFrames);
   scanner.option("--frame-stride", &frameStride);
   scanner.option("--label", &runLabel);
+  scanner.option("--time-limit", &timeLimit);
   scanner.flag("--static-camera", &staticCamera);
   scanner.flag("--help", &help);
   std::vector<std::string> scenes;
@@ -116,6 +124,15 @@ int runBench(std::span<const std::string_view> args) {
       }))
     return usageError(
         "bench", "--label takes letters, digits, '.', '_' and '-' only, not '" + runLabel + "'");
+  double timeLimitSeconds = -1.0;  // none
+  if (!timeLimit.empty()) {
+    const char* end = timeLimit.data() + timeLimit.size();
+    auto [stop, error] = std::from_chars(timeLimit.data(), end, timeLimitSeconds);
+    if (error != std::errc() || stop != end || !(timeLimitSeconds >= 0.0) ||
+        !std::isfinite(timeLimitSeconds))
+      return usageError("bench",
+                        "--time-limit takes seconds (a number >= 0), not '" + timeLimit + "'");
+  }
   std::vector<std::pair<std::uint32_t, std::uint32_t> > sizeList;
   std::stringstream sizeStream(sizes);
   for (std::string item; std::getline(sizeStream, item, ',');) {
@@ -152,7 +169,8 @@ int runBench(std::span<const std::string_view> args) {
            "shader_compile_ms,pipeline_create_ms,cache,cache_eviction,cache_entries,"
            "cache_probe,cache_bytes,median_cache_hit_rate,label,warmup,frame_stride,camera_frames,"
         << benchSummaryCsvColumns()
-        << ",cache_value_format,cache_clock,cache_snap_uv,cache_secondary_only,cache_tile\n";
+        << ",cache_value_format,cache_clock,cache_snap_uv,cache_secondary_only,cache_tile,"
+           "frames_requested,stopped_early\n";
   }
   try {
     for (const auto& sceneName : scenes) {
@@ -196,8 +214,23 @@ int runBench(std::span<const std::string_view> args) {
         settings.frames = w + f;
         settings.sharedPrimaryRay = rendererArguments.sharedPrimary;
         settings.cameraPath = cameras;
+        if (timeLimitSeconds >= 0.0) {
+          // Wall time from the first frame on (scene upload and pipeline creation are not
+          // counted: they happen before it).
+          settings.continueAfterFrame = [first =
+                                             std::optional<std::chrono::steady_clock::time_point>(),
+                                         timeLimitSeconds](const runtime::FrameStats& f) mutable {
+            const auto now = std::chrono::steady_clock::now();
+            if (!first)
+              first = now - std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                std::chrono::duration<double, std::milli>(f.wallMilliseconds));
+            return std::chrono::duration<double>(now - *first).count() < timeLimitSeconds;
+          };
+        }
         runtime::RenderResult result = renderer.render(scene, settings);
-        const auto timed = std::span(result.stats.frames).subspan(w);
+        const bool stoppedEarly = result.stats.frames.size() < settings.frames;
+        const auto timed = std::span(result.stats.frames)
+                               .subspan(std::min<std::size_t>(w, result.stats.frames.size()));
         const TimedFrameSummary summary = summarizeTimedFrames(timed);
         const double medianMs = summary.medianMilliseconds;
         const double fps = medianMs > 0 ? 1000.0 / medianMs : 0.0;
@@ -211,6 +244,10 @@ int runBench(std::span<const std::string_view> args) {
                   << result.stats.materialDispatch << "; pipeline "
                   << result.stats.pipelineCreateMilliseconds << " ms; BLAS " << as.blasBytes
                   << " B, TLAS " << as.tlasBytes << " B)\n";
+        if (stoppedEarly)
+          std::cout << "  stopped by --time-limit " << timeLimit << " s after "
+                    << result.stats.frames.size() << " of " << settings.frames << " frames ("
+                    << timed.size() << " of " << f << " timed): the figures cover those only\n";
         if (result.stats.cache != "none")
           std::cout << "  cache " << result.stats.cache << " (" << result.stats.cacheEntries
                     << " entries, D=" << result.stats.cacheProbe << ", eviction "
@@ -235,7 +272,8 @@ int runBench(std::span<const std::string_view> args) {
               << (staticCamera ? 0 : plan.stride) << ',' << (staticCamera ? 0 : plan.pathCameras)
               << ',' << benchSummaryCsvValues(summary) << ',' << result.stats.cacheValueFormat
               << ',' << result.stats.cacheClock << ',' << int(result.stats.cacheSnapUv) << ','
-              << int(result.stats.cacheSecondaryOnly) << ',' << result.stats.cacheTile << '\n';
+              << int(result.stats.cacheSecondaryOnly) << ',' << result.stats.cacheTile << ',' << f
+              << ',' << int(stoppedEarly) << '\n';
         }
         if (!framesCsv.empty()) {
           std::ofstream perFrame(framesCsv + fileLabel + "_" + std::to_string(width) + "x" +

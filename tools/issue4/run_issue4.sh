@@ -9,7 +9,8 @@
 # Results under $OUT (the device tool returns 8 files at most, each < 16 MB):
 #   issue4_summary.csv    one `memograph bench --csv` line per run that finished
 #   issue4_frames.tar.gz  every run's per-frame CSV (frames/<scene>_<label>_<W>x<H>.csv)
-#   issue4_steps.tsv      each step: status, seconds, limit, table, scene, label, flags
+#   issue4_steps.tsv      each step: status (ok, partial: stopped by its time limit with the
+#                         frames so far, timeout, skipped, failed), seconds, limit, table, scene, label, flags
 #   issue4_log.txt        everything printed;   issue4_env.txt  GPU, driver, bundle commit
 # tools/results/make_tables turns them into docs/results/issue4_tables.md and plots.
 #
@@ -215,7 +216,10 @@ run_step() {
       "$cameras" "$stride" "$flags" >>"$steps"
     return
   fi
-  local strideFlags=() deviceFlags=() pathFlags=(--camera-frames "$cameras")
+  local strideFlags=() deviceFlags=() pathFlags=(--camera-frames "$cameras") limitFlags=()
+  # The bench stops itself 25 s (set-up: scene, pipeline) before the step's limit, so a run
+  # too slow for its limit still reports the frames it rendered (status "partial").
+  [ "$limit" -gt 40 ] && limitFlags=(--time-limit $((limit - 25)))
   [ "$stride" -gt 1 ] && strideFlags=(--frame-stride "$stride")
   # A static camera renders `cameras` frames of the first camera (no path to length).
   [[ " $flags " == *" --static-camera "* ]] && pathFlags=()
@@ -226,11 +230,15 @@ run_step() {
   # shellcheck disable=SC2086 # $flags is a list of words from the table
   timeout "$limit" "$m" bench "builtin:$scene" --sizes "$size" --paths "$paths" \
     --bounces "$bounces" --warmup "$warmup" --frames $((cameras / stride)) \
-    "${pathFlags[@]}" "${strideFlags[@]}" --label "$label" \
+    "${pathFlags[@]}" "${strideFlags[@]}" "${limitFlags[@]}" --label "$label" \
     --csv "$work/csv/$(printf %03d "$i").csv" --frames-csv "$work/frames/" \
     --shader-cache "$work/shaders" "${deviceFlags[@]}" $flags
   rc=$?
   case $rc in 0) status=ok ;; 124 | 137) status=timeout ;; 2) status=usage ;; *) status=failed ;; esac
+  # The summary line's last column: stopped_early (by --time-limit).
+  if [ $status = ok ] && tail -n 1 "$work/csv/$(printf %03d "$i").csv" | grep -q ',1$'; then
+    status=partial
+  fi
   [ $rc = 0 ] || echo "STEP FAILED ($status, exit $rc): $scene $label"
   printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$status" $(($(date +%s) - t0)) "$limit" \
     "$table" "$scene" "$label" "$cameras" "$stride" "$flags" >>"$steps"
@@ -274,6 +282,7 @@ for f in "$work"/csv/*.csv; do
 done >"$OUT/issue4_summary.csv"
 tar czf "$OUT/issue4_frames.tar.gz" -C "$work" frames
 echo "== done in $(($(date +%s) - start)) s: $(grep -c $'^ok\t' "$steps") ok," \
-  "$(grep -c $'^skipped\t' "$steps") skipped, $(grep -cvE $'^(ok|skipped|status)\t' "$steps") failed" |
+  "$(grep -c $'^partial\t' "$steps") partial, $(grep -c $'^skipped\t' "$steps") skipped," \
+  "$(grep -cvE $'^(ok|partial|skipped|status)\t' "$steps") failed" |
   tee -a "$log"
 rm -rf "$work"

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Tests of tools/results/make_tables on small made-up calls: merging calls (a later run of a
 label wins), marking runs made on another device than most, saying "timed out" for a run
-whose step ran past its limit, and refusing bad input with exit 1 or 2.
+whose step ran past its limit and how many frames a run stopped by its time limit covers,
+and refusing bad input with exit 1 or 2.
 Run: python3 tools/results/make_tables_test.py  (ctest runs it as tools.make_tables)."""
 import csv
 import os
@@ -12,15 +13,19 @@ import unittest
 
 MAKE_TABLES = os.path.join(os.path.dirname(os.path.abspath(__file__)), "make_tables")
 COLUMNS = ["scene", "label", "device", "width", "height", "paths", "rays_per_path",
-           "median_gpu_ms", "cache", "total_cache_hit_rate", "warmup", "frame_stride"]
+           "median_gpu_ms", "cache", "total_cache_hit_rate", "warmup", "frame_stride", "frames",
+           "frames_requested", "stopped_early"]
 
 
 def write_summary(path, runs):
     with open(path, "w", newline="") as f:
         writer = csv.DictWriter(f, fieldnames=COLUMNS)
         writer.writeheader()
-        for scene, label, device, ms, hit in runs:
-            writer.writerow({"scene": scene, "label": label, "device": device, "width": 1920,
+        for scene, label, device, ms, hit, *timed in runs:
+            frames = timed[0] if timed else 300
+            writer.writerow({"frames": frames, "frames_requested": 300,
+                             "stopped_early": int(frames < 300),
+                             "scene": scene, "label": label, "device": device, "width": 1920,
                              "height": 1080, "paths": 6, "rays_per_path": 4,
                              "median_gpu_ms": ms, "cache": "none" if hit is None else "texel",
                              "total_cache_hit_rate": "" if hit is None else hit,
@@ -60,7 +65,9 @@ class MakeTablesTest(unittest.TestCase):
             ("classroom", "texel_s23_lru-counter", "H200", 999.0, 0.5)])
         write_summary(self.path("b.csv"), [
             ("classroom", "texel_s23_lru-counter", "H200", 123.4, 0.996),
-            ("classroom", "texel_s23_lrw-frame", "H200", 174.0, 0.97)])
+            ("classroom", "texel_s23_lrw-frame", "H200", 174.0, 0.97),
+            ("classroom", "texel_s21_random", "H200", 350.0, 0.88, 120),
+            ("classroom", "texel_s21_none", "H200", 0.0, 0.0, 0)])
         write_steps(self.path("a.tsv"), [("timeout", 150, "classroom", "tile_s23_random"),
                                          ("timeout", 120, "classroom", "tile_s23_none")])
         write_steps(self.path("b.tsv"), [("ok", 120, "classroom", "tile_s23_none")])
@@ -69,7 +76,11 @@ class MakeTablesTest(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         with open(self.path("t.md")) as f:
             text = f.read()
-        self.assertIn("Device: H200 (3 runs); † = run on another device: H100 (1 runs)", text)
+        self.assertIn("Device: H200 (5 runs); † = run on another device: H100 (1 runs)", text)
+        small = "### Small cache"
+        # Runs stopped by bench's --time-limit say how many frames their figures cover.
+        self.assertEqual(self.table_line(text, "Random", small)[1], "350.0 (120 of 300 frames)")
+        self.assertEqual(self.table_line(text, "No eviction", small)[1], "stopped in warm-up")
         large = "### Large cache"
         # The later call's run replaces the earlier one.
         self.assertEqual(self.table_line(text, "LRU counter", large)[1:3], ["123.4", "99.600 %"])
