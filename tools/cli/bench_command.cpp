@@ -56,12 +56,6 @@ constexpr std::string_view kHelp =
     "                        rendered so far and says it stopped early (CSV: stopped_early,\n"
     "                        frames_requested)\n"
     "  --static-camera       keep the scene's camera still\n"
-    "  --shared-primary      one primary ray per pixel shared by its paths\n"
-    "  --backend B           auto, query or pipeline\n"
-    "  --material-dispatch D auto, switch or callable (see 'render --help')\n"
-    "  --device N            Vulkan device index\n"
-    "  --nodes DIR           node library folder instead of the built-in one\n"
-    "  --shader-cache DIR    SPIR-V cache folder\n"
     "  --csv FILE            one line per scene and size\n"
     "  --frames-csv PREFIX   per-frame statistics to PREFIX<scene>[_<label>]_<W>x<H>.csv\n";
 
@@ -99,7 +93,7 @@ int runBench(std::span<const std::string_view> args) {
   if (const int code = scanner.scan(scenes); code != kExitOk)
     return code;
   if (help) {
-    std::cout << kHelp << kCacheHelp;
+    std::cout << kHelp << kRendererHelp << kCacheHelp;
     return kExitOk;
   }
   if (scenes.empty())

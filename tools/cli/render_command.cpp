@@ -46,21 +46,9 @@ constexpr std::string_view kHelp =
     "  --camera-path FILE    one camera per frame: lines 'px py pz  tx ty tz  fov'\n"
     "  --environment FILE    equirectangular environment image (linear radiance, e.g. .exr,\n"
     "                        .hdr) replacing the scene's constant sky\n"
-    "  --shared-primary      one primary ray through the pixel centre for all P paths\n"
     "  --seed S              random seed (default 0)\n"
-    "  --backend B           auto (default: query, or pipeline for scenes of more than 16\n"
-    "                        distinct materials, where it has callables), query, pipeline\n"
-    "  --material-dispatch D auto (default), switch or callable: how the path tracer\n"
-    "                        reaches each material. switch: every material in the one\n"
-    "                        path-tracer shader; callable: one callable shader per material\n"
-    "                        (pipeline backend only; keeps many-material scenes such as\n"
-    "                        the classroom compilable). auto: callable on the pipeline\n"
-    "                        backend, switch on the query backend\n"
-    "  --device N            Vulkan device index (see --list-devices)\n"
     "  --list-devices        print the Vulkan devices and their ray-tracing support\n"
     "  --materials DIR       folder of .mgraph graphs for a scene file's materials\n"
-    "  --nodes DIR           node library folder instead of the built-in one\n"
-    "  --shader-cache DIR    SPIR-V cache folder (default $XDG_CACHE_HOME/memograph)\n"
     "  --no-shader-cache     compile every shader\n"
     "  --stats FILE          per-frame statistics as CSV (GPU ms, rays, AS memory, cache)\n"
     "  --validation          enable the Vulkan validation layer\n"
@@ -106,7 +94,7 @@ int runRender(std::span<const std::string_view> args) {
   if (const int code = scanner.scan(positional); code != kExitOk)
     return code;
   if (help) {
-    std::cout << kHelp << kCacheHelp;
+    std::cout << kHelp << kRendererHelp << kCacheHelp;
     return kExitOk;
   }
   if (listDevices) {

@@ -1,6 +1,7 @@
 // The renderer's command-line options that `render` and `bench` share: trace backend,
 // material dispatch, device, node library, shader cache folder, shared primary ray, and
-// the material cache's options (cache_arguments.h). Each command keeps its own help text.
+// the material cache's options (cache_arguments.h), with their help text (each command
+// prints its own options, then kRendererHelp, then kCacheHelp).
 #pragma once
 
 #include <stdexcept>
@@ -11,6 +12,21 @@
 #include "runtime/renderer.h"
 
 namespace memograph::cli {
+
+inline constexpr const char* kRendererHelp =
+    "  --backend B           auto (default: query, or pipeline for scenes of more than 16\n"
+    "                        distinct materials, where it has callables), query, pipeline\n"
+    "  --material-dispatch D auto (default), switch or callable: how the path tracer\n"
+    "                        reaches each material. switch: every material in the one\n"
+    "                        path-tracer shader; callable: one callable shader per material\n"
+    "                        (pipeline backend only; keeps many-material scenes such as\n"
+    "                        the classroom compilable). auto: callable on the pipeline\n"
+    "                        backend, switch on the query backend\n"
+    "  --device N            Vulkan device index (render --list-devices lists them)\n"
+    "  --nodes DIR           node library folder instead of the built-in one\n"
+    "  --shader-cache DIR    SPIR-V cache folder (default $XDG_CACHE_HOME/memograph)\n"
+    "  --shared-primary      one primary ray through the pixel centre for all P paths of a\n"
+    "                        pixel (thesis §5.1)\n";
 
 struct RendererArguments {
   CacheArguments cache;
