@@ -52,6 +52,31 @@ void checkTileOptions(const VulkanContext& context, const CacheOptions& options)
                                                  : ""));
 }
 
+// The deferred fill's launch (TracePipeline::recordTileFill): one invocation per texel of
+// every queue slot, in rows of kFillRowInvocations; the device must take that many.
+void checkTileFillLaunch(const VulkanContext& context, const CacheOptions& options) {
+  const DeviceInfo& info = context.info();
+  const std::uint64_t invocations =
+      std::uint64_t(options.tileQueue) * options.tileWidth * options.tileHeight;
+  const std::uint64_t rows =
+      (invocations + gpu::kFillRowInvocations - 1) / gpu::kFillRowInvocations;
+  const bool compute = traceStage(context) == VK_SHADER_STAGE_COMPUTE_BIT;
+  const std::uint64_t maxRows = compute ? info.limits.maxComputeWorkGroupCount[1]
+                                        : std::uint64_t(info.limits.maxComputeWorkGroupCount[1]) *
+                                              info.limits.maxComputeWorkGroupSize[1];
+  const std::uint64_t maxInvocations =
+      compute ? maxRows * gpu::kFillRowInvocations
+              : info.rayTracingProperties.maxRayDispatchInvocationCount;
+  if (rows > maxRows || invocations > maxInvocations)
+    throw std::invalid_argument(
+        "--tile-queue " + std::to_string(options.tileQueue) + " with --tile " +
+        std::to_string(options.tileWidth) + "x" + std::to_string(options.tileHeight) +
+        " needs a fill pass of " + std::to_string(invocations) + " invocations, more than " +
+        info.name + " launches at once (" +
+        std::to_string(std::min(maxInvocations, maxRows * gpu::kFillRowInvocations)) +
+        "): use a shorter queue or smaller tiles");
+}
+
 VkFormat imageFormat(const CacheOptions& options) {
   return options.valueFormat == CacheValueFormat::Fp16 ? VK_FORMAT_R16G16B16A16_SFLOAT
                                                        : VK_FORMAT_R32G32B32A32_SFLOAT;
@@ -62,6 +87,8 @@ VkFormat imageFormat(const CacheOptions& options) {
 void validateCacheOnDevice(const VulkanContext& context, const CacheOptions& options) {
   if (options.mode == CacheMode::Tile)
     checkTileOptions(context, options);
+  if (options.mode == CacheMode::Tile && options.tileFill == TileFill::Deferred)
+    checkTileFillLaunch(context, options);
 }
 
 MaterialCache::MaterialCache(const VulkanContext& context, const CacheOptions& options,

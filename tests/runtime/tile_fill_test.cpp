@@ -132,8 +132,18 @@ TEST(TileFill, AFullQueueLeavesTheRestToEvaluateTheirHits) {
   EXPECT_LT(flip, 0.06);
 }
 
-// What the deferred fill does not combine with is refused with the reason.
-TEST(TileFill, RefusesGroupingByMaterialAndAnEmptyQueue) {
+// What the deferred fill does not combine with is refused with the reason; so is a fill
+// pass larger than the device launches (65536 slots of 64x64 texels: 2^28 invocations in
+// 65536 rows of 4096, one row more than a compute dispatch may have).
+TEST(TileFill, RefusesGroupingByMaterialAnEmptyQueueAndAnOversizedFill) {
+  Renderer huge(deferredOptions(Backend::RayQuery, 64, 64));
+  try {
+    huge.render(wallScene(stripesGraph(), false), cacheSettings(1, 1));
+    ADD_FAILURE() << "a fill pass of 2^28 invocations was launched";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--tile-queue 65536 with --tile 64x64"), std::string::npos)
+        << e.what();
+  }
   CacheOptions cache;
   cache.mode = CacheMode::Tile;
   cache.tileFill = TileFill::Deferred;
