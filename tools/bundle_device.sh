@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds the GPU-machine bundle: bundle/memograph (renderer + compiler + built-in scenes,
 # glslang and the C++ runtime linked statically; no OpenImageIO, no assimp) and
-# bundle/run_device.sh, the command the `device` tool runs. The only non-system library the
+# bundle/run_device.sh, the command the `device` tool runs (with bundle/device_env.sh, the
+# Vulkan set-up it and the issue-4 scripts source). The only non-system library the
 # binary needs is libvulkan.so.1, which travels as Debian packages in .gl/ (the recipe of
 # the device tool's README). Everything stays under 64 MiB.
 #
@@ -46,17 +47,14 @@ if ! ls .gl/libvulkan1_*.deb .gl/libglvnd0_*.deb >/dev/null 2>&1; then
   (cd .gl && apt-get $o download libvulkan1 libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2)
 fi
 
+cp tools/device_env.sh "$bundle/device_env.sh"
 cat >"$bundle/run_device.sh" <<'RUN'
 #!/usr/bin/env bash
 # Runs on the GPU machine: installs the carried Vulkan loader, then the smoke test, the
 # renders and the benchmarks of issue 3. Everything it measures lands in $OUT: 8 files at
 # most (the device tool's limit), each under 16 MB.
 set -uo pipefail
-for f in .gl/*.deb; do dpkg -x "$f" /; done
-ldconfig
-if ! ls /usr/share/vulkan/icd.d/nvidia_icd.json /etc/vulkan/icd.d/nvidia_icd.json >/dev/null 2>&1; then
-  export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
-fi
+source bundle/device_env.sh
 OUT=${OUT:-/tmp/out}
 mkdir -p "$OUT"
 m=bundle/memograph

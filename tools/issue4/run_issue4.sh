@@ -176,11 +176,7 @@ else
   m=bundle/memograph
   OUT=${OUT:-/tmp/out}
   budget=${budget:-585} # the device call's 600 s, less packing and set-up
-  for f in .gl/*.deb; do dpkg -x "$f" /; done
-  ldconfig
-  if ! ls /usr/share/vulkan/icd.d/nvidia_icd.json /etc/vulkan/icd.d/nvidia_icd.json >/dev/null 2>&1; then
-    export VK_DRIVER_FILES=/usr/local/nvidia/share/vulkan/icd.d/nvidia_icd.json
-  fi
+  source bundle/device_env.sh
 fi
 start=$(date +%s)
 mkdir -p "$OUT"
