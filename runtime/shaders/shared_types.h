@@ -148,7 +148,8 @@ struct Counters {
   uint cacheMisses;
   // Tile cache (§5.4.3): tiles computed by a subgroup, of which already computed this frame
   // by another subgroup (§6.7.2), and misses that evaluated their own hit because fewer
-  // lanes than texels were active, or because a callable repacked the subgroup.
+  // lanes than texels were active, or because a callable repacked the subgroup. With the
+  // deferred fill: tiles queued, 0, requests that found the queue full, 0.
   uint cacheTilesComputed;
   uint cacheDuplicateTiles;
   uint cacheTileFallbacks;

@@ -108,20 +108,27 @@ TEST(TileCache, BilinearIsCloserToUncachedThanNearest) {
 }
 
 // §5.4.1's four layouts store the same texels: identical pictures (the computation and the
-// order of writes do not depend on the layout), and the image layouts report their memory.
+// order of writes do not depend on the layout), with either fill, and the image layouts
+// report their memory.
 TEST(TileCache, EveryStorageLayoutGivesThePicture) {
   Scene scene = wallScene(stripesGraph(), true);
-  RenderResult entry = Renderer(tileOptions(4, 2)).render(scene, settings(3, 2));
-  for (TileStorage storage :
-       {TileStorage::Buffer, TileStorage::Texture2D, TileStorage::Texture3D}) {
-    RenderResult other =
-        Renderer(tileOptions(4, 2, TileFilter::Nearest, storage)).render(scene, settings(3, 2));
-    expectTileCounters(other.stats);
-    double flip = meanFlip(entry.image, other.image);
-    std::printf("%s: %llu bytes, mean LDR-FLIP %.5f vs entry storage\n", describe(other).c_str(),
-                (unsigned long long)other.stats.cacheBytes, flip);
-    EXPECT_LT(flip, 1e-3) << tileStorageName(storage);
-    EXPECT_GT(other.stats.cacheBytes, entry.stats.cacheBytes / 4) << tileStorageName(storage);
+  // Both fills: the subgroup's and the deferred pass's stores (docs/runtime.md).
+  for (TileFill fill : {TileFill::Subgroup, TileFill::Deferred}) {
+    RendererOptions entryOptions = tileOptions(4, 2);
+    entryOptions.cache.tileFill = fill;
+    RenderResult entry = Renderer(entryOptions).render(scene, settings(3, 2));
+    for (TileStorage storage :
+         {TileStorage::Buffer, TileStorage::Texture2D, TileStorage::Texture3D}) {
+      RendererOptions options = tileOptions(4, 2, TileFilter::Nearest, storage);
+      options.cache.tileFill = fill;
+      RenderResult other = Renderer(options).render(scene, settings(3, 2));
+      expectTileCounters(other.stats);
+      double flip = meanFlip(entry.image, other.image);
+      std::printf("%s: %llu bytes, mean LDR-FLIP %.5f vs entry storage\n", describe(other).c_str(),
+                  (unsigned long long)other.stats.cacheBytes, flip);
+      EXPECT_LT(flip, 1e-3) << tileStorageName(storage) << " " << tileFillName(fill);
+      EXPECT_GT(other.stats.cacheBytes, entry.stats.cacheBytes / 4) << tileStorageName(storage);
+    }
   }
 }
 
