@@ -257,7 +257,11 @@ if [ -z "${DEVICES+x}" ] && [ $dry = 0 ]; then
   [ "${gpus:-0}" -gt 1 ] && DEVICES=$(seq -s ' ' 0 $((gpus - 1)))
 fi
 {
-  echo "bundle: $(cat bundle/VERSION 2>/dev/null || echo "working tree (dry run)")"
+  if [ $dry = 1 ]; then
+    echo "bundle: none, the working tree's build (dry run)"
+  else
+    echo "bundle: $(cat bundle/VERSION 2>/dev/null || echo "no bundle/VERSION")"
+  fi
   nvidia-smi -L 2>/dev/null || true
   nvidia-smi --query-gpu=name,driver_version,clocks.max.sm --format=csv 2>/dev/null || true
   "$m" render --list-devices 2>&1 || true
