@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 
 #include "runtime/vulkan_error.h"
 
@@ -23,6 +24,12 @@ GpuBuffer::GpuBuffer(const VulkanContext& context, VkDeviceSize size, VkBufferUs
 
   VkMemoryRequirements requirements;
   vkGetBufferMemoryRequirements(device, buffer, &requirements);
+  // Past the device's largest allocation vkAllocateMemory may fail or (lavapipe) crash.
+  const VkDeviceSize largest = context.info().maxMemoryAllocationSize;
+  if (largest > 0 && requirements.size > largest)
+    throw std::runtime_error("a GPU buffer of " + std::to_string(requirements.size) +
+                             " bytes is larger than the largest single allocation of " +
+                             context.info().name + " (" + std::to_string(largest) + " bytes)");
   VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
   flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
   VkMemoryAllocateInfo allocate{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};

@@ -104,6 +104,17 @@ MaterialCache::MaterialCache(const VulkanContext& context, const CacheOptions& o
   entryCount_ = enabled ? options.entries : 0;
   defines_ = cacheShaderDefines(options, valueCount_);
 
+  // One buffer holds all entries: it must fit the device's largest allocation (checked here
+  // to name the option; GpuBuffer checks every buffer).
+  const std::uint64_t largest = context.info().maxMemoryAllocationSize;
+  const std::uint64_t entryBytes = stride * sizeof(std::uint32_t);
+  if (enabled && largest > 0 && std::uint64_t(entryCount_) * entryBytes > largest)
+    throw std::invalid_argument("--cache-entries " + std::to_string(entryCount_) + " needs " +
+                                std::to_string(std::uint64_t(entryCount_) * entryBytes) +
+                                " bytes in one buffer, more than the largest allocation of " +
+                                context.info().name + " (" + std::to_string(largest) +
+                                " bytes): use at most " + std::to_string(largest / entryBytes) +
+                                " entries");
   // Without a cache the bindings still need buffers: small ones nobody reads.
   entries_ = deviceBuffer(context, enabled ? entryCount_ * stride * sizeof(std::uint32_t)
                                            : stride * sizeof(std::uint32_t));

@@ -475,6 +475,9 @@ VulkanContext::VulkanContext(const ContextOptions& options)
   VkPhysicalDeviceSubgroupProperties subgroupProperties{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
   info_.rayTracingProperties.pNext = &subgroupProperties;
+  VkPhysicalDeviceMaintenance3Properties maintenance3{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+  subgroupProperties.pNext = &maintenance3;
   VkPhysicalDeviceProperties2 properties2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
   properties2.pNext = &asProperties;
   vkGetPhysicalDeviceProperties2(physicalDevice_, &properties2);
@@ -483,6 +486,7 @@ VulkanContext::VulkanContext(const ContextOptions& options)
   info_.subgroupOperations = subgroupProperties.supportedOperations;
   info_.subgroupStages = subgroupProperties.supportedStages;
   info_.limits = properties2.properties.limits;
+  info_.maxMemoryAllocationSize = maintenance3.maxMemoryAllocationSize;
   constexpr VkSubgroupFeatureFlags kNeeded =
       VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
   if ((subgroupProperties.supportedOperations & kNeeded) == kNeeded)

@@ -70,6 +70,9 @@ struct DeviceInfo {
   VkSubgroupFeatureFlags subgroupOperations = 0;
   VkShaderStageFlags subgroupStages = 0;
   VkPhysicalDeviceLimits limits{};
+  // The largest single allocation (Vulkan 1.1, VkPhysicalDeviceMaintenance3Properties):
+  // lavapipe's is 2 GiB, and it crashed on a larger one instead of failing.
+  VkDeviceSize maxMemoryAllocationSize = 0;
   // shaderInt64 and shaderBufferInt64Atomics, enabled when present: the texel cache's 64-bit
   // counter clock (thesis §5.3.3) needs both.
   bool bufferInt64Atomics = false;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <sstream>
+#include <string>
 
 #include <gtest/gtest.h>
 #include <glm/gtc/matrix_transform.hpp>
@@ -220,6 +221,17 @@ TEST(TexelCache, BadOptionsAreRefused) {
     options.cache.probe = probe;
     EXPECT_THROW(Renderer(options).render(scene, settings(1, 1)), std::invalid_argument)
         << entries << " entries, probe " << probe;
+  }
+  // More entries than one allocation of the device holds (lavapipe: 2 GiB; 2^31 entries of
+  // at least 12 bytes exceed any device's) is refused before allocating, naming the option
+  // (lavapipe crashed in vkAllocateMemory before this check).
+  Renderer huge(cacheOptions(CacheMode::Texel, Backend::Auto, 1u << 31));
+  try {
+    huge.render(scene, settings(1, 1));
+    ADD_FAILURE() << "a cache of 2^31 entries was allocated";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--cache-entries 2147483648"), std::string::npos)
+        << e.what();
   }
   EXPECT_THROW(parseCacheMode("tiles"), std::invalid_argument);
   EXPECT_THROW(parseCacheEviction("fifo"), std::invalid_argument);
