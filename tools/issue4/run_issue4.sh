@@ -169,7 +169,8 @@ TABLE
 # lavapipe it checks the script, the CLI's acceptance of each flag and make_tables end to
 # end, not the figures. lavapipe refuses two kinds of row, as it should: the classroom's
 # subgroup-fill tile rows (its 88 materials need the pipeline backend, whose raygen has no
-# subgroup operations on lavapipe) and the switch rows (88 materials in one shader).
+# subgroup operations on lavapipe), the switch rows (88 materials in one shader) and the
+# classroom's 2^26-texel rows (more than lavapipe's 2 GiB allocation).
 size=1920x1080 warmup=2 paths=6 bounces=4
 if [ $dry = 1 ]; then
   size=64x36 warmup=1 paths=1 bounces=2
