@@ -184,8 +184,12 @@ int runBench(std::span<const std::string_view> args) {
       options.context.autoPrefersPipeline =
           runtime::countDistinctMaterialGraphs(scene) > runtime::kManyMaterialGraphs;
       runtime::Renderer renderer(options);
-      std::cout << "device: " << renderer.context().info().name << ", backend "
-                << runtime::backendName(renderer.context().backend()) << "\n";
+      // The memory limits a cache size runs into (recorded with the figures).
+      const auto& device = renderer.context().info();
+      std::cout << "device: " << device.name << ", backend "
+                << runtime::backendName(renderer.context().backend()) << " (largest allocation "
+                << (device.maxMemoryAllocationSize >> 20) << " MiB, storage-buffer range "
+                << (device.limits.maxStorageBufferRange >> 20) << " MiB)\n";
       // Output label: the whole spec, so runs with different options stay apart; commas
       // become ';' to keep the CSV's columns. --label adds the variant's name.
       std::string label = sceneName.substr(8);
