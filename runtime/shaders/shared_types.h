@@ -104,12 +104,12 @@ struct TileQueueHeader {
   uint pad2;
 };
 struct TileFillItem {
-  uint entry;       // the locked entry
-  uint keyBase;     // CacheKey::base and ::hash, to publish the entry under
+  uint entry;    // the locked entry
+  uint keyBase;  // CacheKey::base and ::hash, to publish the entry under
   uint keyHash;
   uint materialId;
-  uint level;       // the tile's mip level (int bits)
-  uint tileX;       // the tile's position in multiples of the tile size (float bits)
+  uint level;  // the tile's mip level (int bits)
+  uint tileX;  // the tile's position in multiples of the tile size (float bits)
   uint tileY;
   uint texelsDone;  // texels stored so far (atomic); the one that makes it W*H publishes
 };
