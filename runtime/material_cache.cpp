@@ -14,9 +14,28 @@ namespace {
 constexpr VkBufferUsageFlags kStorage =
     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 
-GpuBuffer deviceBuffer(const VulkanContext& context, VkDeviceSize bytes) {
+// A cache buffer of `bytes`, refused before allocating when one allocation of the device
+// cannot hold it (lavapipe crashed in vkAllocateMemory past its 2 GiB), naming the option
+// that sized it. GpuBuffer checks every buffer too, but cannot name the option.
+GpuBuffer deviceBuffer(const VulkanContext& context, std::uint64_t bytes,
+                       const std::string& sizedBy = "") {
+  const std::uint64_t largest = context.info().maxMemoryAllocationSize;
+  if (largest > 0 && bytes > largest)
+    throw std::invalid_argument(sizedBy + " needs " + std::to_string(bytes) +
+                                " bytes in one buffer, more than the largest allocation of " +
+                                context.info().name + " (" + std::to_string(largest) + " bytes)");
   return GpuBuffer(context, std::max<VkDeviceSize>(bytes, 16), kStorage,
                    VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+}
+
+// The deferred fill's launch: one invocation per texel of every queue slot, in rows of
+// kFillRowInvocations (0 rows: no fill pass).
+std::uint32_t fillRows(const CacheOptions& options) {
+  if (options.mode != CacheMode::Tile || options.tileFill != TileFill::Deferred)
+    return 0;
+  const std::uint64_t invocations = std::uint64_t(options.tileQueue) * cacheTexelsPerEntry(options);
+  return std::uint32_t(std::min<std::uint64_t>(
+      (invocations + gpu::kFillRowInvocations - 1) / gpu::kFillRowInvocations, 0xFFFFFFFFu));
 }
 
 // The stage the path tracer runs in on this context's backend.
@@ -52,29 +71,26 @@ void checkTileOptions(const VulkanContext& context, const CacheOptions& options)
                                                  : ""));
 }
 
-// The deferred fill's launch (TracePipeline::recordTileFill): one invocation per texel of
-// every queue slot, in rows of kFillRowInvocations; the device must take that many.
+// The device must launch the deferred fill's rows in one go.
 void checkTileFillLaunch(const VulkanContext& context, const CacheOptions& options) {
   const DeviceInfo& info = context.info();
-  const std::uint64_t invocations =
-      std::uint64_t(options.tileQueue) * options.tileWidth * options.tileHeight;
-  const std::uint64_t rows =
-      (invocations + gpu::kFillRowInvocations - 1) / gpu::kFillRowInvocations;
+  const std::uint64_t rows = fillRows(options);
   const bool compute = traceStage(context) == VK_SHADER_STAGE_COMPUTE_BIT;
   const std::uint64_t maxRows = compute ? info.limits.maxComputeWorkGroupCount[1]
                                         : std::uint64_t(info.limits.maxComputeWorkGroupCount[1]) *
                                               info.limits.maxComputeWorkGroupSize[1];
   const std::uint64_t maxInvocations =
-      compute ? maxRows * gpu::kFillRowInvocations
-              : info.rayTracingProperties.maxRayDispatchInvocationCount;
+      std::min(maxRows * gpu::kFillRowInvocations,
+               compute ? ~std::uint64_t(0)
+                       : std::uint64_t(info.rayTracingProperties.maxRayDispatchInvocationCount));
+  const std::uint64_t invocations = rows * gpu::kFillRowInvocations;
   if (rows > maxRows || invocations > maxInvocations)
-    throw std::invalid_argument(
-        "--tile-queue " + std::to_string(options.tileQueue) + " with --tile " +
-        std::to_string(options.tileWidth) + "x" + std::to_string(options.tileHeight) +
-        " needs a fill pass of " + std::to_string(invocations) + " invocations, more than " +
-        info.name + " launches at once (" +
-        std::to_string(std::min(maxInvocations, maxRows * gpu::kFillRowInvocations)) +
-        "): use a shorter queue or smaller tiles");
+    throw std::invalid_argument("--tile-queue " + std::to_string(options.tileQueue) +
+                                " with --tile " + std::to_string(options.tileWidth) + "x" +
+                                std::to_string(options.tileHeight) + " needs a fill pass of " +
+                                std::to_string(invocations) + " invocations, more than " +
+                                info.name + " launches at once (" + std::to_string(maxInvocations) +
+                                "): use a shorter queue or smaller tiles");
 }
 
 VkFormat imageFormat(const CacheOptions& options) {
@@ -104,35 +120,28 @@ MaterialCache::MaterialCache(const VulkanContext& context, const CacheOptions& o
   entryCount_ = enabled ? options.entries : 0;
   defines_ = cacheShaderDefines(options, valueCount_);
 
-  // One buffer holds all entries: it must fit the device's largest allocation (checked here
-  // to name the option; GpuBuffer checks every buffer).
-  const std::uint64_t largest = context.info().maxMemoryAllocationSize;
-  const std::uint64_t entryBytes = stride * sizeof(std::uint32_t);
-  if (enabled && largest > 0 && std::uint64_t(entryCount_) * entryBytes > largest)
-    throw std::invalid_argument("--cache-entries " + std::to_string(entryCount_) + " needs " +
-                                std::to_string(std::uint64_t(entryCount_) * entryBytes) +
-                                " bytes in one buffer, more than the largest allocation of " +
-                                context.info().name + " (" + std::to_string(largest) +
-                                " bytes): use at most " + std::to_string(largest / entryBytes) +
-                                " entries");
   // Without a cache the bindings still need buffers: small ones nobody reads.
-  entries_ = deviceBuffer(context, enabled ? entryCount_ * stride * sizeof(std::uint32_t)
-                                           : stride * sizeof(std::uint32_t));
+  entries_ = deviceBuffer(context,
+                          enabled ? std::uint64_t(entryCount_) * stride * sizeof(std::uint32_t)
+                                  : stride * sizeof(std::uint32_t),
+                          "--cache-entries " + std::to_string(entryCount_));
   bytes_ = enabled ? entryCount_ * stride * sizeof(std::uint32_t) : 0;
   const std::uint64_t texelBytes = std::uint64_t(entryCount_) * texels *
                                    cacheValueWords(options, valueCount_) * sizeof(std::uint32_t);
-  tileTexels_ = deviceBuffer(context, storage == TileStorage::Buffer ? texelBytes : 16);
+  tileTexels_ = deviceBuffer(
+      context, storage == TileStorage::Buffer ? texelBytes : 16,
+      "--cache-entries " + std::to_string(entryCount_) + " with --tile-storage buffer");
   if (storage == TileStorage::Buffer)
     bytes_ += texelBytes;
   tileLog_ = deviceBuffer(context, tile ? gpu::kTileLogEntries * sizeof(std::uint32_t) : 16);
   const bool deferred = tile && options.tileFill == TileFill::Deferred;
   const std::uint64_t queueBytes =
       sizeof(gpu::TileQueueHeader) + std::uint64_t(options.tileQueue) * sizeof(gpu::TileFillItem);
-  tileQueue_ = deviceBuffer(context, deferred ? queueBytes : sizeof(gpu::TileQueueHeader));
-  if (deferred) {
+  tileQueue_ = deviceBuffer(context, deferred ? queueBytes : sizeof(gpu::TileQueueHeader),
+                            "--tile-queue " + std::to_string(options.tileQueue));
+  if (deferred)
     bytes_ += queueBytes;
-    tileQueueCapacity_ = options.tileQueue;
-  }
+  tileFillRows_ = fillRows(options);
 
   if (storage == TileStorage::Texture2D || storage == TileStorage::Texture3D) {
     // Four values per image texel; a texel's groups side by side in x (2D) or stacked in z
@@ -226,7 +235,8 @@ void MaterialCache::recordClears(VkCommandBuffer commands, bool firstFrame) cons
   if (options_.mode == CacheMode::Tile) {
     vkCmdFillBuffer(commands, tileLog_.buffer(), 0, VK_WHOLE_SIZE, 0);
     // The deferred fill's queue: only its count (each queued item is written whole).
-    vkCmdFillBuffer(commands, tileQueue_.buffer(), 0, sizeof(gpu::TileQueueHeader), 0);
+    if (tileFillRows_ > 0)
+      vkCmdFillBuffer(commands, tileQueue_.buffer(), 0, sizeof(gpu::TileQueueHeader), 0);
   }
 }
 

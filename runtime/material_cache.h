@@ -44,9 +44,10 @@ class MaterialCache {
   const GpuBuffer& tileTexels() const { return tileTexels_; }
   const GpuBuffer& tileLog() const { return tileLog_; }
   // Binding kBindingTileQueue: the deferred fill's queue (a small dummy otherwise), and the
-  // tiles it holds at most (0 without the deferred fill: no fill pass to record).
+  // fill pass's launch: rows of gpu::kFillRowInvocations invocations, one per texel of
+  // every queue slot (0 without the deferred fill: no fill pass).
   const GpuBuffer& tileQueue() const { return tileQueue_; }
-  std::uint32_t tileQueueCapacity() const { return tileQueueCapacity_; }
+  std::uint32_t tileFillRows() const { return tileFillRows_; }
   VkImageView tileImageView() const { return imageView_.get(); }
 
   // The clears before a frame's trace: every entry empty (key 0, clock 0) before the first
@@ -68,7 +69,7 @@ class MaterialCache {
   GpuBuffer tileTexels_;
   GpuBuffer tileLog_;
   GpuBuffer tileQueue_;
-  std::uint32_t tileQueueCapacity_ = 0;
+  std::uint32_t tileFillRows_ = 0;
   VulkanHandle<VkDeviceMemory> imageMemory_;
   VulkanHandle<VkImage> image_;
   VulkanHandle<VkImageView> imageView_;

@@ -227,9 +227,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   TracePipeline pipeline(context, compiler, textures.count(),
                          materialCallables ? &*materialCallables : nullptr, pipelineThreads,
                          shaderDefines, materialCache.tileImageView() != VK_NULL_HANDLE,
-                         materialCache.tileQueueCapacity() > 0);
-  const std::uint64_t tileFillInvocations =
-      std::uint64_t(materialCache.tileQueueCapacity()) * cacheTexelsPerEntry(cache);
+                         materialCache.tileFillRows() > 0);
   stats.pipelineCreateMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pipelineStart)
           .count() -
@@ -323,7 +321,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
         vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestampPool.get(), 0);
       }
       pipeline.record(commands, set, settings.width, settings.height);
-      if (tileFillInvocations > 0) {
+      if (materialCache.tileFillRows() > 0) {
         // The deferred tile fill computes the tiles the trace queued (its stores, queue and
         // locks ordered after the trace's); the frame's time includes it.
         barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
@@ -331,7 +329,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
         vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
                              VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0, nullptr, 0,
                              nullptr);
-        pipeline.recordTileFill(commands, set, tileFillInvocations);
+        pipeline.recordTileFill(commands, set, materialCache.tileFillRows());
       }
       if (timestamps)
         vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestampPool.get(), 1);

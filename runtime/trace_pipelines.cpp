@@ -293,15 +293,14 @@ void TracePipeline::record(VkCommandBuffer commands, VkDescriptorSet set, std::u
                                     &callableRegion_, width, height, 1);
 }
 
-// One invocation per texel of every queue slot, laid out kFillRowInvocations to a row; the
-// slots past the frame's count return at once (a fixed launch needs no count read back or
-// indirect dispatch: about a million empty invocations for the default 65536 4x4 slots).
+// `rows` rows of kFillRowInvocations invocations, one per texel of every queue slot (from
+// MaterialCache::tileFillRows); the slots past the frame's count return at once (a fixed
+// launch needs no count read back or indirect dispatch: about a million empty invocations
+// for the default 65536 4x4 slots).
 void TracePipeline::recordTileFill(VkCommandBuffer commands, VkDescriptorSet set,
-                                   std::uint64_t invocations) const {
-  if (!tileFillPass_)
+                                   std::uint32_t rows) const {
+  if (!tileFillPass_ || rows == 0)
     return;
-  const std::uint32_t rows = static_cast<std::uint32_t>(
-      (invocations + gpu::kFillRowInvocations - 1) / gpu::kFillRowInvocations);
   if (backend_ == Backend::RayQuery) {
     vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, fillPipeline_.get());
     vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set, 0,

@@ -38,10 +38,10 @@ class TracePipeline {
   // Binds and launches one thread per pixel.
   void record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t width,
               std::uint32_t height) const;
-  // Binds and launches the deferred tile fill's pass over `invocations` (queue slots times
-  // texels per tile); nothing without the pass. The caller orders it after the trace.
-  void recordTileFill(VkCommandBuffer commands, VkDescriptorSet set,
-                      std::uint64_t invocations) const;
+  // Binds and launches the deferred tile fill's pass: `rows` rows of
+  // gpu::kFillRowInvocations (MaterialCache::tileFillRows); nothing without the pass. The
+  // caller orders it after the trace.
+  void recordTileFill(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t rows) const;
 
  private:
   const VulkanContext& context_;
