@@ -3,9 +3,7 @@
 // warm-up frames (thesis §6 settings: 1920x1080, P = 6, L = 4).
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <chrono>
-#include <cmath>
 #include <fstream>
 #include <iostream>
 #include <span>
@@ -122,14 +120,9 @@ int runBench(std::span<const std::string_view> args) {
   // own (the issue-4 sweep's per-step timeout) gets figures back however long set-up took.
   const auto start = std::chrono::steady_clock::now();
   double timeLimitSeconds = -1.0;  // none
-  if (!timeLimit.empty()) {
-    const char* end = timeLimit.data() + timeLimit.size();
-    auto [stop, error] = std::from_chars(timeLimit.data(), end, timeLimitSeconds);
-    if (error != std::errc() || stop != end || !(timeLimitSeconds >= 0.0) ||
-        !std::isfinite(timeLimitSeconds))
-      return usageError("bench",
-                        "--time-limit takes seconds (a number >= 0), not '" + timeLimit + "'");
-  }
+  if (!timeLimit.empty() && (!parseReal(timeLimit, timeLimitSeconds) || timeLimitSeconds < 0.0))
+    return usageError("bench",
+                      "--time-limit takes seconds (a number >= 0), not '" + timeLimit + "'");
   std::vector<std::pair<std::uint32_t, std::uint32_t> > sizeList;
   std::stringstream sizeStream(sizes);
   for (std::string item; std::getline(sizeStream, item, ',');) {

@@ -109,14 +109,10 @@ struct CacheArguments {
       throw std::invalid_argument("--tile takes WxH (e.g. 4x4), not '" + tile + "'");
     options.tileWidth = whole(tile.substr(0, x), "--tile's width");
     options.tileHeight = whole(tile.substr(x + 1), "--tile's height");
-    try {
-      std::size_t used = 0;
-      options.mipBias = std::stof(mipBias, &used);
-      if (used != mipBias.size() || !std::isfinite(options.mipBias))
-        throw std::invalid_argument("");
-    } catch (const std::exception&) {
-      throw std::invalid_argument("--mip-bias takes a number, not '" + mipBias + "'");
-    }
+    double bias = 0.0;
+    if (!parseReal(mipBias, bias) || std::abs(bias) > 64.0)
+      throw std::invalid_argument("--mip-bias takes a number (-64..64), not '" + mipBias + "'");
+    options.mipBias = float(bias);
     runtime::validateCacheOptions(options);  // the renderer's own ranges and messages
     return options;
   }

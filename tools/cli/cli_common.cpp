@@ -3,6 +3,7 @@
 #include <unistd.h>
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -22,6 +23,15 @@ int usageError(std::string_view command, std::string_view message) {
 bool parseNumber(std::string_view text, std::uint32_t& out) {
   auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), out);
   return error == std::errc() && end == text.data() + text.size();
+}
+
+bool parseReal(std::string_view text, double& out) {
+  double value = 0.0;
+  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
+    return false;
+  out = value;
+  return true;
 }
 
 int ArgumentScanner::scan(std::vector<std::string>& positional) {

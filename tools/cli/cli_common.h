@@ -27,6 +27,8 @@ int usageError(std::string_view command, std::string_view message);
 
 // A whole number in 0..2^32-1, all of `text`: true and `out` set, or false.
 bool parseNumber(std::string_view text, std::uint32_t& out);
+// A finite real number, all of `text` ("1.5", "-2", "1e-3"): true and `out` set, or false.
+bool parseReal(std::string_view text, double& out);
 
 // Walks `args`: options with a value (`--target glsl` or `--target=glsl`), flags, and
 // positional arguments. Unknown options are usage errors.

@@ -3,7 +3,6 @@
 // maximum and a few percentiles, and writes the per-pixel error map (magma colour map).
 #include <algorithm>
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -64,9 +63,7 @@ int runDiff(std::span<const std::string_view> args) {
 namespace {
 
 bool parsePositive(const std::string& text, double& out) {
-  auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), out);
-  return error == std::errc() && end == text.data() + text.size() && std::isfinite(out) &&
-         out > 0.0;
+  return parseReal(text, out) && out > 0.0;
 }
 
 std::string lowerExtension(const std::string& path) {
