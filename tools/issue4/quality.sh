@@ -3,10 +3,11 @@
 # static camera and compared with LDR-FLIP (`memograph diff`) against the same render
 # without a cache and the same seed. A second uncached render with another seed gives the
 # scale: what another noise pattern alone changes at this sample count.
-#   bash tools/issue4/quality.sh         here on lavapipe (after tools/build.sh; ~7 min),
+#   bash tools/issue4/quality.sh         here on lavapipe (after tools/build.sh; 8 min measured),
 #                                        small images; writes
 #                                        docs/results/issue4_quality_lavapipe.md
-#   bash bundle/quality.sh --gpu         on the GPU machine (tools/bundle_issue4.sh; ~4 min):
+#   bash bundle/quality.sh --gpu         on the GPU machine (tools/bundle_issue4.sh; about 4 min
+#                                        estimated, not yet run there):
 #                                        1920x1080, P = 6, L = 4 on the pipeline backend
 #                                        with callables (what the tables time), the tile
 #                                        cache with 4x4 tiles, subgroup and deferred fill;
@@ -17,7 +18,7 @@ gpu=0
 case ${1:-} in
 --gpu) gpu=1 ;;
 "") ;;
--h | --help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+-h | --help) sed -n '2,15p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
 *) echo "quality.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
 esac
 if [ $gpu = 1 ]; then
