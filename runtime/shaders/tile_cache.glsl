@@ -13,8 +13,9 @@
 //                          pass (MG_TILE_FILL_PASS: tileFillTexel), not by the subgroup;
 //                          MG_TILE_QUEUE_CAPACITY tiles a frame at most,
 //   MG_CACHE_ENTRY_WORDS   the texel words stored in an entry (0 unless kTileStorageEntry).
-// Every lane of the subgroup must call evaluateMaterialTiled together (path_tracer.glsl
-// keeps its loops uniform for that): the texels of a tile are assigned to lanes by index.
+// With the subgroup fill every lane of the subgroup must call evaluateMaterialTiled
+// together (path_tracer.glsl keeps its loops uniform for that): the texels of a tile are
+// assigned to lanes by rank. The deferred fill has no such need.
 #ifndef MG_TILE_CACHE_GLSL
 #define MG_TILE_CACHE_GLSL
 #ifndef MG_TILE_FILL_DEFERRED
