@@ -10,6 +10,7 @@
 #include <fstream>
 #include <string>
 
+#include "runtime/image.h"
 #include "tools/io/image_io.h"
 
 namespace fs = std::filesystem;
@@ -73,6 +74,8 @@ class DiffCliTest : public ::testing::Test {
     ASSERT_TRUE(io::writeImage(path("test.png"), test, {}, diagnostics));
     ASSERT_TRUE(io::writeImage(path("small.png"), small, {}, diagnostics));
     std::ofstream(path("broken.png")) << "not a png";
+    runtime::writePfm(path("ref.pfm"), reference);
+    runtime::writePfm(path("test.pfm"), test);
   }
   void TearDown() override { fs::remove_all(directory_); }
 
@@ -135,6 +138,23 @@ TEST_F(DiffCliTest, ComparesImagesAndWritesErrorMaps) {
   EXPECT_LT(statistic(run.output, "mean"), 0.03);
 }
 
+// The renderer's PFM output is compared with the core's reader and the map written with its
+// writer: the path the GPU bundle (built without OpenImageIO) takes.
+TEST_F(DiffCliTest, ComparesPfmRendersAndWritesAPfmMap) {
+  CliRun run = runCli(diff("ref.pfm", "ref.pfm"));
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_EQ(statistic(run.output, "mean"), 0.0) << run.output;
+
+  run = runCli(diff("ref.pfm", "test.pfm", "--out " + path("map.pfm")));
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_GT(statistic(run.output, "mean"), 0.0) << run.output;
+  const runtime::HdrImage map = runtime::readPfm(path("map.pfm"));
+  ASSERT_EQ(map.width, std::uint32_t(kSize));
+  EXPECT_GT(map.pixel(15, 15)[0], 0.1f);  // inside the bright square
+  EXPECT_EQ(map.pixel(0, 0)[0], 0.0f);
+  EXPECT_EQ(map.pixel(15, 15)[0], map.pixel(15, 15)[2]);  // grey
+}
+
 TEST_F(DiffCliTest, BadImagesExitWithOne) {
   CliRun run = runCli(diff("ref.png", "small.png"));
   EXPECT_EQ(run.exitCode, 1) << run.output;
@@ -150,6 +170,7 @@ TEST_F(DiffCliTest, UsageErrorsExitWithTwo) {
   EXPECT_EQ(runCli("diff " + path("ref.png")).exitCode, 2);
   EXPECT_EQ(runCli(diff("ref.png", "test.png", "--ppd 40 --monitor-width 0.5")).exitCode, 2);
   EXPECT_EQ(runCli(diff("ref.png", "test.png", "--ppd -3")).exitCode, 2);
+  EXPECT_EQ(runCli(diff("ref.png", "test.png", "--out " + path("map.tif"))).exitCode, 2);
   const CliRun help = runCli("diff --help");
   EXPECT_EQ(help.exitCode, 0);
   EXPECT_NE(help.output.find("LDR-FLIP"), std::string::npos);

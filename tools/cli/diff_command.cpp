@@ -7,15 +7,18 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <stdexcept>
+#include <string>
 
 #include "cli_common.h"
 #include "commands.h"
 #include "runtime/quality/flip.h"
 
+#include "runtime/image.h"
+
 #ifdef MEMOGRAPH_HAVE_IO
 #include "tools/io/image_io.h"
-#include "tools/io/pfm.h"
 #endif
 
 namespace memograph::cli {
@@ -31,8 +34,8 @@ constexpr std::string_view kHelp =
     "90th, 95th and 99th percentiles of the per-pixel error. See docs/flip.md.\n"
     "\n"
     "options:\n"
-    "  --out MAP                 write the error map: .png colour-mapped (magma), .exr the\n"
-    "                            raw error in [0, 1] as grey\n"
+    "  --out MAP                 write the error map: .png colour-mapped (magma), .exr or\n"
+    "                            .pfm the raw error in [0, 1] as grey\n"
     "  --ppd N                   observer's pixels per degree (default 67.02: 0.7 m from a\n"
     "                            0.7 m wide 3840-pixel monitor)\n"
     "  --monitor-distance M      or compute it: viewing distance in metres (default 0.7)\n"
@@ -42,23 +45,12 @@ constexpr std::string_view kHelp =
     "                            or linear, for both images; linear values are clamped to\n"
     "                            [0, 1] (LDR-FLIP: tonemap HDR renders first)\n"
     "\n"
+    "PFM files (the renderer's --out) are read and written by every build; other formats\n"
+    "need the io module (OpenImageIO), which the GPU bundle is built without.\n"
+    "\n"
     "Exit codes: 0 compared, 1 an image is unreadable or the sizes differ, 2 usage error.\n";
 
 }  // namespace
-
-#ifndef MEMOGRAPH_HAVE_IO
-int runDiff(std::span<const std::string_view> args) {
-  for (const auto& arg : args) {
-    if (arg == "--help") {
-      std::cout << kHelp;
-      return kExitOk;
-    }
-  }
-  std::cerr << "memograph diff: this build reads no image files (configured without the io "
-               "module, so without OpenImageIO)\n";
-  return kExitFailure;
-}
-#else
 
 namespace {
 
@@ -78,11 +70,44 @@ bool linearByExtension(const std::string& path) {
   return ext == ".exr" || ext == ".hdr" || ext == ".pfm";
 }
 
+constexpr const char* kNeedsIo =
+    "this build reads and writes only .pfm images (configured without the io module, so "
+    "without OpenImageIO)";
+
 std::optional<runtime::HdrImage> readImage(const std::string& path,
                                            compiler::Diagnostics& diagnostics) {
-  // The renderer's own PFM files go through the project's reader (row order, byte order).
-  return lowerExtension(path) == ".pfm" ? io::readPfm(path, diagnostics)
-                                        : io::readImageFloat(path, diagnostics);
+  // The renderer's own PFM files go through the project's reader (row order, byte order),
+  // which every build has: the GPU bundle compares its renders without OpenImageIO.
+  if (lowerExtension(path) == ".pfm") {
+    std::string error;
+    std::optional<runtime::HdrImage> image = runtime::tryReadPfm(path, error);
+    if (!image)
+      diagnostics.error(path, error);
+    return image;
+  }
+#ifdef MEMOGRAPH_HAVE_IO
+  return io::readImageFloat(path, diagnostics);
+#else
+  diagnostics.error(path, kNeedsIo);
+  return std::nullopt;
+#endif
+}
+
+bool writeImage(const std::string& path, const runtime::HdrImage& image,
+                compiler::Diagnostics& diagnostics) {
+  if (lowerExtension(path) == ".pfm") {
+    std::string error;
+    if (runtime::tryWritePfm(path, image, error))
+      return true;
+    diagnostics.error(path, error);
+    return false;
+  }
+#ifdef MEMOGRAPH_HAVE_IO
+  return io::writeImage(path, image, io::LdrOptions{}, diagnostics);
+#else
+  diagnostics.error(path, kNeedsIo);
+  return false;
+#endif
 }
 
 float srgbToLinear(float c) {
@@ -133,8 +158,8 @@ int runDiff(std::span<const std::string_view> args) {
     return usageError("diff", "--encoding must be auto, srgb or linear, not '" + encoding + "'");
   if (!out.empty()) {
     const std::string ext = lowerExtension(out);
-    if (ext != ".png" && ext != ".exr")
-      return usageError("diff", "--out must name a .png or .exr file, not '" + out + "'");
+    if (ext != ".png" && ext != ".exr" && ext != ".pfm")
+      return usageError("diff", "--out must name a .png, .exr or .pfm file, not '" + out + "'");
   }
 
   const std::string& referencePath = positional[0];
@@ -199,14 +224,12 @@ int runDiff(std::span<const std::string_view> args) {
         p[0] = p[1] = p[2] = result.error[i];
       }
     }
-    if (!io::writeImage(out, map, io::LdrOptions{}, diagnostics)) {
+    if (!writeImage(out, map, diagnostics)) {
       printDiagnostics(diagnostics);
       return kExitFailure;
     }
   }
   return kExitOk;
 }
-
-#endif
 
 }  // namespace memograph::cli
