@@ -325,6 +325,19 @@ uint tileSortKey(bool pending, uint materialId) {
 #endif
 }
 
+// How many lanes of `lanes` are below `lane`: its rank when it is one of them.
+uint rankOfLane(uvec4 lanes, uint lane) {
+  uint count = 0u;
+  for (uint c = 0u; c < 4u; ++c) {
+    uint first = 32u * c;
+    uint below = lane >= first + 32u ? 0xFFFFFFFFu : lane <= first ? 0u : (1u << (lane - first)) - 1u;
+    count += uint(bitCount(lanes[c] & below));
+  }
+  return count;
+}
+
+bool laneIn(uvec4 lanes, uint lane) { return ((lanes[lane / 32u] >> (lane % 32u)) & 1u) != 0u; }
+
 // The lane of the `rank`-th active lane (ranks count the set bits of `activeLanes` from
 // lane 0).
 uint laneOfRank(uvec4 activeLanes, uint rank) {
@@ -397,32 +410,42 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
     lockKey.texelUv = vec2(0.0);
     int entry = -1;
     if (rank < selected) {
-      g_tilesComputed += 1u;
-      if (tileLogDuplicate(lockKey)) g_duplicateTiles += 1u;
       entry = cacheLock(lockKey);
+      if (entry >= 0 && tileLogDuplicate(lockKey)) g_duplicateTiles += 1u;
     }
+    // Only tiles with a locked entry are computed. A slot the policy declined (none, with
+    // its probe range full) or another subgroup holds locked could not be stored: its
+    // W x H evaluations would serve only this subgroup's requesters, who evaluate their own
+    // hits instead, one evaluation each, as a texel-cache miss does (the thesis computes
+    // such tiles anyway; with no eviction and a full cache that made every tile miss cost
+    // a whole tile).
+    uvec4 lockedLanes = subgroupBallot(entry >= 0);
+    uint lockedCount = subgroupBallotBitCount(lockedLanes);
+    uint mySlotLane = mySlot != kNoLane ? laneOfRank(activeLanes, mySlot) : lane;
+    bool mine = mySlot != kNoLane && laneIn(lockedLanes, mySlotLane);
+    uint myComputed = rankOfLane(lockedLanes, mySlotLane);
 
     // Steps 2-4 and 6, pass by pass: the lane of rank r computes texel p * activeCount + r
-    // of the selected tiles (texel t of slot s is number s * W * H + t), with the fictional
-    // derivatives of eq. 5.16-5.17 (a texel of level m is 2^-m wide), and stores it.
-    // Step 8 inside each pass: lanes served by this iteration take the texels they filter
-    // from the lanes that computed them (correct even when nothing could be locked).
-    const uint total = selected * kTileTexels;
+    // of the locked tiles (texel t of the c-th locked slot is number c * W * H + t), with
+    // the fictional derivatives of eq. 5.16-5.17 (a texel of level m is 2^-m wide), and
+    // stores it. Step 8 inside each pass: lanes served by this iteration take the texels
+    // they filter from the lanes that computed them.
+    const uint total = lockedCount * kTileTexels;
     const uint passes = (total + activeCount - 1u) / activeCount;
-    bool mine = mySlot != kNoLane;
     float filtered[MG_CACHE_VALUES];
     for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) filtered[i] = 0.0;
     for (uint pass = 0u; pass < passes; ++pass) {
       uint number = pass * activeCount + rank;
       bool worker = number < total;
-      uint slot = min(number / kTileTexels, kMaxTileSlots - 1u);
+      uint slotLane = laneOfRank(lockedLanes, min(number / kTileTexels, kMaxTileSlots - 1u));
+      uint slot = min(rankOfLane(activeLanes, slotLane), kMaxTileSlots - 1u);
       uint texel = number % kTileTexels;
       uint source = worker ? slotLeader[slot] : lane;
       uint workMaterial = subgroupShuffle(materialId, source);
       uvec4 workInfo = subgroupShuffle(info, source);
       int workLevel = subgroupShuffle(tile.level, source);
       vec2 workTile = subgroupShuffle(tile.tile, source);
-      int tileEntry = subgroupShuffle(entry, worker ? laneOfRank(activeLanes, slot) : lane);
+      int tileEntry = subgroupShuffle(entry, worker ? slotLane : lane);
       float texelValues[MG_CACHE_VALUES];
       for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) texelValues[i] = 0.0;
 #if defined(MG_MATERIAL_CALLABLES) || defined(MG_TILE_TEST_REPACKS)
@@ -430,6 +453,8 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
       uint firstBefore = subgroupBroadcastFirst(g_invocationId);
 #endif
       if (worker) {
+        // Counted where it happens: the lane that evaluates a tile's first texel.
+        if (texel == 0u) g_tilesComputed += 1u;
         MaterialOutputs texelOutputs;
         evaluateMaterialDirect(workMaterial, tileTexelInputs(inputs, workLevel, workTile, texel),
                                texelOutputs);
@@ -461,7 +486,7 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
 #endif
       if (worker && tileEntry >= 0) tileStoreTexel(uint(tileEntry), texel, texelValues);
       [[unroll]] for (uint t = 0u; t < kTileTaps; ++t) {
-        uint wanted = mySlot * kTileTexels + taps[t];
+        uint wanted = myComputed * kTileTexels + taps[t];
         bool here = mine && wanted / activeCount == pass;
         float tap[MG_CACHE_VALUES];
         tileShuffleValues(texelValues, here ? laneOfRank(activeLanes, wanted % activeCount) : lane,

@@ -172,6 +172,45 @@ TEST(TileCache, PartialSubgroupsComputeTilesInPasses) {
   }
 }
 
+// A tile whose entry cannot be locked (no eviction and a full probe range, or another
+// subgroup holds it) is not computed: nothing could store it, so its requesters evaluate
+// their own hits, one evaluation each instead of the tile's W x H. A 64-tile cache without
+// eviction is full after frame 0; from then on no tile is computed (the counter counts the
+// evaluations of tiles' first texels, so computing unstorable tiles would show), lookups
+// still hit the tiles it holds, and the picture stays within the tile cache's bound of the
+// uncached one. Before the change every missed tile was computed: 2x2, about 1500 tiles a
+// frame here.
+TEST(TileCache, AFullCacheWithoutEvictionComputesNoTiles) {
+  Scene scene = wallScene(stripesGraph(), true);
+  RenderResult none =
+      Renderer(cacheOptions(CacheMode::None, Backend::RayQuery)).render(scene, settings(3, 2));
+  RendererOptions options = tileOptions(2, 2);
+  options.cache.eviction = CacheEviction::None;
+  options.cache.entries = 64;
+  RenderResult full = Renderer(options).render(scene, settings(3, 2));
+  expectConsistentCounters(full.stats);
+  ASSERT_EQ(full.stats.frames.size(), 3u);
+  EXPECT_GT(full.stats.frames.front().cacheTilesComputed, 0u);
+  for (std::size_t i = 1; i < full.stats.frames.size(); ++i) {
+    const FrameStats& f = full.stats.frames[i];
+    // Full: every probe range the frame's tiles reach (I = H0 mod (S - D) never reaches
+    // the last entry).
+    EXPECT_EQ(f.cacheOccupancy, full.stats.frames.front().cacheOccupancy) << "frame " << f.frame;
+    EXPECT_GE(f.cacheOccupancy, 60u) << "frame " << f.frame;
+    EXPECT_GT(f.cacheMisses, 0u) << "frame " << f.frame;
+    EXPECT_GT(f.cacheHits, 0u) << "frame " << f.frame;
+    EXPECT_EQ(f.cacheTilesComputed, 0u) << "frame " << f.frame;
+    EXPECT_EQ(f.cacheTileFallbacks, 0u) << "frame " << f.frame;
+  }
+  double flip = meanFlip(none.image, full.image);
+  std::printf(
+      "%s, 64 tiles, no eviction: frame 1 %llu misses, %llu tiles computed; mean "
+      "LDR-FLIP %.4f vs no cache\n",
+      describe(full).c_str(), (unsigned long long)full.stats.frames[1].cacheMisses,
+      (unsigned long long)full.stats.frames[1].cacheTilesComputed, flip);
+  EXPECT_LT(flip, 0.06);
+}
+
 // A subgroup that changed across the material evaluation (a callable repack: NVIDIA's
 // raygen has hundreds of thousands a frame) gives its tiles up: the locked entries go back
 // to empty and uncounted, every requester evaluates its own hit. With every computation
