@@ -15,8 +15,10 @@ constexpr VkBufferUsageFlags kStorage =
     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 
 // A cache buffer of `bytes`, refused before allocating when one allocation of the device
-// cannot hold it (lavapipe crashed in vkAllocateMemory past its 2 GiB), naming the option
-// that sized it. GpuBuffer checks every buffer too, but cannot name the option.
+// cannot hold it (lavapipe crashed in vkAllocateMemory past its 2 GiB) or one storage-buffer
+// binding cannot address it (binding more is invalid usage, which lavapipe does not catch),
+// naming the option that sized it. GpuBuffer checks the allocation of every buffer too, but
+// cannot name the option.
 GpuBuffer deviceBuffer(const VulkanContext& context, std::uint64_t bytes,
                        const std::string& sizedBy = "") {
   const std::uint64_t largest = context.info().maxMemoryAllocationSize;
@@ -24,8 +26,28 @@ GpuBuffer deviceBuffer(const VulkanContext& context, std::uint64_t bytes,
     throw std::invalid_argument(sizedBy + " needs " + std::to_string(bytes) +
                                 " bytes in one buffer, more than the largest allocation of " +
                                 context.info().name + " (" + std::to_string(largest) + " bytes)");
+  const std::uint64_t range = context.info().limits.maxStorageBufferRange;
+  if (range > 0 && bytes > range)
+    throw std::invalid_argument(sizedBy + " needs " + std::to_string(bytes) +
+                                " bytes in one storage buffer, more than the " +
+                                std::to_string(range) + "-byte storage-buffer range of " +
+                                context.info().name + " (the most one binding may address)");
   return GpuBuffer(context, std::max<VkDeviceSize>(bytes, 16), kStorage,
                    VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+}
+
+// S: the given --cache-entries, or kDefaultCacheEntries halved while `bytesPerEntry` times
+// the count exceeds the device's storage-buffer range (never below twice the probe
+// distance; deviceBuffer refuses what still does not fit).
+std::uint32_t entryCountFor(const VulkanContext& context, const CacheOptions& options,
+                            std::uint64_t bytesPerEntry) {
+  if (options.entries != 0)
+    return options.entries;
+  const std::uint64_t range = context.info().limits.maxStorageBufferRange;
+  std::uint32_t count = kDefaultCacheEntries;
+  while (range > 0 && count * bytesPerEntry > range && count / 2 > 2 * options.probe)
+    count /= 2;
+  return count;
 }
 
 // The deferred fill's launch: one invocation per texel of every queue slot, in rows of
@@ -117,7 +139,14 @@ MaterialCache::MaterialCache(const VulkanContext& context, const CacheOptions& o
   const std::uint32_t texels = cacheTexelsPerEntry(options);
   const TileStorage storage = tile ? options.tileStorage : TileStorage::Entry;
   const std::uint64_t stride = cacheEntryWords(options, valueCount_);
-  entryCount_ = enabled ? options.entries : 0;
+  const std::uint64_t texelBytesPerEntry =
+      std::uint64_t(texels) * cacheValueWords(options, valueCount_) * sizeof(std::uint32_t);
+  entryCount_ =
+      enabled ? entryCountFor(context, options,
+                              std::max(stride * sizeof(std::uint32_t),
+                                       storage == TileStorage::Buffer ? texelBytesPerEntry : 0))
+              : 0;
+  entriesFitted_ = enabled && options.entries == 0 && entryCount_ != kDefaultCacheEntries;
   defines_ = cacheShaderDefines(options, valueCount_);
 
   // Without a cache the bindings still need buffers: small ones nobody reads.
@@ -126,8 +155,7 @@ MaterialCache::MaterialCache(const VulkanContext& context, const CacheOptions& o
                                   : stride * sizeof(std::uint32_t),
                           "--cache-entries " + std::to_string(entryCount_));
   bytes_ = enabled ? entryCount_ * stride * sizeof(std::uint32_t) : 0;
-  const std::uint64_t texelBytes = std::uint64_t(entryCount_) * texels *
-                                   cacheValueWords(options, valueCount_) * sizeof(std::uint32_t);
+  const std::uint64_t texelBytes = std::uint64_t(entryCount_) * texelBytesPerEntry;
   tileTexels_ = deviceBuffer(
       context, storage == TileStorage::Buffer ? texelBytes : 16,
       "--cache-entries " + std::to_string(entryCount_) + " with --tile-storage buffer");
@@ -246,6 +274,7 @@ void MaterialCache::describe(RenderStats& stats) const {
   stats.cache = cacheModeName(options_.mode);
   stats.cacheEviction = cacheEvictionName(options_.eviction);
   stats.cacheEntries = entryCount_;
+  stats.cacheEntriesFitted = entriesFitted_;
   stats.cacheProbe = options_.probe;
   stats.cacheReadCheck = options_.updateCounter ? "counter" : "key";
   stats.cacheValueCount = valueCount_;

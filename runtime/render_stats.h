@@ -58,6 +58,8 @@ struct RenderStats {
   std::string cacheTile;       // tile cache: "4x4 nearest entry [grouped]"
   std::string cacheEviction;   // "none" or "lru" (empty without a cache)
   std::uint32_t cacheEntries = 0;
+  // The default entry count was halved to fit the device's storage-buffer range.
+  bool cacheEntriesFitted = false;
   std::uint32_t cacheProbe = 0;
   std::string cacheReadCheck;         // "key" or "counter" (§5.3.4)
   std::uint32_t cacheValueCount = 0;  // floats per entry

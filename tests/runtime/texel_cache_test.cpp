@@ -239,5 +239,53 @@ TEST(TexelCache, BadOptionsAreRefused) {
   EXPECT_EQ(parseCacheEviction("random"), CacheEviction::Random);
 }
 
+// The default entry count (CacheOptions::entries 0) is halved until the cache fits one
+// storage-buffer binding of the device (binding more is invalid usage that lavapipe does not
+// catch: its range is 128 MiB, less than the landscape's default 4x2 tile cache); a given
+// count that does not fit is refused, naming the option. 64x64 tiles (deferred fill) need
+// at least 48 KiB an entry, so 2^20 of them fit no device's binding.
+TEST(TexelCache, DefaultEntriesFitTheStorageBufferRange) {
+  Scene scene = wallScene(stripesGraph(), false);
+  RendererOptions options = cacheOptions(CacheMode::Tile, Backend::RayQuery, 0);
+  options.cache.tileWidth = options.cache.tileHeight = 64;
+  options.cache.tileFill = TileFill::Deferred;
+  options.cache.tileQueue = 64;
+  Renderer fitted(options);
+  const DeviceInfo& info = fitted.context().info();
+  const std::uint64_t range = info.limits.maxStorageBufferRange;
+  RenderResult result = fitted.render(scene, settings(2, 1));
+  const std::uint64_t queueBytes = sizeof(gpu::TileQueueHeader) + 64 * sizeof(gpu::TileFillItem);
+  const std::uint64_t entryBytes = result.stats.cacheBytes - queueBytes;
+  std::printf("default tile cache of 64x64 texels: %u entries, %llu bytes (range %llu)\n",
+              result.stats.cacheEntries, (unsigned long long)entryBytes, (unsigned long long)range);
+  EXPECT_TRUE(result.stats.cacheEntriesFitted);
+  EXPECT_LT(result.stats.cacheEntries, kDefaultCacheEntries);
+  EXPECT_LE(entryBytes, range);
+  EXPECT_GT(2 * entryBytes, range);  // halved no further than needed
+  EXPECT_GT(result.stats.frames.back().cacheHits, 0u);
+
+  options.cache.entries = kDefaultCacheEntries;
+  try {
+    Renderer(options).render(scene, settings(1, 1));
+    ADD_FAILURE() << "2^20 tiles of 64x64 texels were bound";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--cache-entries 1048576"), std::string::npos) << e.what();
+  }
+  // A texel cache one entry (at least 16 bytes) past the range: where the range is smaller
+  // than the largest allocation (lavapipe), the range is what refuses it.
+  const auto entries = static_cast<std::uint32_t>(range / 16 + 1);
+  try {
+    Renderer(cacheOptions(CacheMode::Texel, Backend::RayQuery, entries))
+        .render(scene, settings(1, 1));
+    ADD_FAILURE() << entries << " texel entries were bound";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--cache-entries " + std::to_string(entries)),
+              std::string::npos)
+        << e.what();
+    if (range < info.maxMemoryAllocationSize)
+      EXPECT_NE(std::string(e.what()).find("storage-buffer range"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace memograph::runtime

@@ -236,7 +236,10 @@ int runBench(std::span<const std::string_view> args) {
                     << timed.size() << " of " << f << " timed): the figures cover those only\n";
         if (result.stats.cache != "none")
           std::cout << "  cache " << result.stats.cache << " (" << result.stats.cacheEntries
-                    << " entries, D=" << result.stats.cacheProbe << ", eviction "
+                    << " entries"
+                    << (result.stats.cacheEntriesFitted ? " (the default, fitted to the device)"
+                                                        : "")
+                    << ", D=" << result.stats.cacheProbe << ", eviction "
                     << result.stats.cacheEviction << ", clock " << result.stats.cacheClock << ", "
                     << result.stats.cacheValueFormat << ", " << result.stats.cacheBytes << " B"
                     << (result.stats.cacheTile.empty() ? "" : ", tiles " + result.stats.cacheTile)

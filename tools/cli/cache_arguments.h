@@ -15,7 +15,8 @@ inline constexpr const char* kCacheHelp =
     "                        §5.3: one hash table of texels of cacheable materials) or tile\n"
     "                        (§5.4: entries are tiles, computed by a whole subgroup)\n"
     "  --cache-entries N     cache entries S: texels, or tiles with --cache tile\n"
-    "                        (default 1048576)\n"
+    "                        (default 1048576, halved until the cache fits one storage\n"
+    "                        buffer of the device: 128 MiB on lavapipe; output says so)\n"
     "  --probe D             linear probing distance, 1..16 (default 8)\n"
     "  --eviction E          when a probe range is full: lru (default), lrw (least recently\n"
     "                        written; both by frame clock), random, or none\n"
@@ -53,7 +54,7 @@ inline constexpr const char* kCacheHelp =
     "                        cache's own cost: the same lookups, misses that cost nothing\n";
 
 struct CacheArguments {
-  std::string cache = "none", entries = "1048576", probe = "8", eviction = "lru", mipBias = "0",
+  std::string cache = "none", entries = "", probe = "8", eviction = "lru", mipBias = "0",
               readCheck = "counter", valueFormat = "fp32", clock = "frame", clockShift = "16",
               tile = "4x4", filter = "nearest", tileStorage = "entry", tileFill = "subgroup",
               tileQueue = "65536";
@@ -104,7 +105,10 @@ struct CacheArguments {
                                     "'");
       return value;
     };
-    options.entries = whole(entries, "--cache-entries");
+    options.entries = entries.empty() ? 0 : whole(entries, "--cache-entries");
+    if (!entries.empty() && options.entries == 0)  // 0 in CacheOptions means the default
+      throw std::invalid_argument("--cache-entries (0) must exceed the probe distance (" + probe +
+                                  ")");
     options.probe = whole(probe, "--probe");
     options.clockShift = whole(clockShift, "--clock-shift");
     options.tileQueue = whole(tileQueue, "--tile-queue");
