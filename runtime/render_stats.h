@@ -36,6 +36,18 @@ struct FrameStats {
   double cacheHitRate() const { return cacheLookups ? double(cacheHits) / cacheLookups : 0.0; }
 };
 
+// The ray-tracing pipeline's stack (VK_KHR_ray_tracing_pipeline, "Ray Tracing Pipeline
+// Stack"), bytes per invocation: the drivers' figures per shader and what the pipeline is set
+// to. All 0 on the query backend.
+struct RayTracingStack {
+  std::uint32_t raygen = 0;  // the larger of the path tracer and the fill pass
+  std::uint32_t closestHit = 0;
+  std::uint32_t miss = 0;           // the larger of the two misses
+  std::uint32_t callableMax = 0;    // the largest material callable
+  std::uint32_t driverDefault = 0;  // the spec's default: raygen + max(hit, miss) + 2 x callable
+  std::uint32_t pipeline = 0;       // what is set: raygen + max(hit, miss, callable)
+};
+
 struct RenderStats {
   std::string device;
   std::string backend;
@@ -54,9 +66,10 @@ struct RenderStats {
   std::string materialDispatch;  // "switch", "callable" or "floor" (no graph evaluated)
   // Shader modules and pipeline (the driver's own compile), excluding GLSL → SPIR-V.
   double pipelineCreateMilliseconds = 0.0;
-  std::string cache = "none";  // "none", "texel" or "tile"
-  std::string cacheTile;       // tile cache: "4x4 nearest entry [grouped]"
-  std::string cacheEviction;   // "none" or "lru" (empty without a cache)
+  RayTracingStack rayTracingStack;  // pipeline backend only
+  std::string cache = "none";       // "none", "texel" or "tile"
+  std::string cacheTile;            // tile cache: "4x4 nearest entry [grouped]"
+  std::string cacheEviction;        // "none" or "lru" (empty without a cache)
   std::uint32_t cacheEntries = 0;
   // The default entry count was halved to fit the device's storage-buffer range.
   bool cacheEntriesFitted = false;

@@ -228,6 +228,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                          materialCallables ? &*materialCallables : nullptr, pipelineThreads,
                          shaderDefines, materialCache.tileImageView() != VK_NULL_HANDLE,
                          materialCache.tileFillRows() > 0);
+  stats.rayTracingStack = pipeline.stack();
   stats.pipelineCreateMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pipelineStart)
           .count() -

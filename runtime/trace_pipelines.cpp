@@ -224,12 +224,39 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   info.pStages = shaderStages.data();
   info.groupCount = shaderCount;
   info.pGroups = groups.data();
-  // Raygen traces; hit shaders never do. Callables do not count towards recursion (their
-  // stack is part of the driver's default pipeline stack size).
+  // Raygen traces; hit shaders never do. Callables do not count towards recursion.
   info.maxPipelineRayRecursionDepth = 1;
   info.layout = layout;
+  // The stack size is set per launch (below), not left to the spec's default.
+  const VkDynamicState stackState = VK_DYNAMIC_STATE_RAY_TRACING_PIPELINE_STACK_SIZE_KHR;
+  VkPipelineDynamicStateCreateInfo dynamicState{
+      VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+  dynamicState.dynamicStateCount = 1;
+  dynamicState.pDynamicStates = &stackState;
+  info.pDynamicState = &dynamicState;
   VkPipeline pipeline = createRayTracingPipeline(context, info, pipelineThreads);
   pipeline_ = VulkanHandle<VkPipeline>(pipeline, destroyPipeline);
+
+  // The pipeline stack. The spec's default assumes callables may be called from hit and
+  // miss shaders while a ray is traced (raygen + max(hit, miss) + 2 x the largest callable).
+  // Here only the raygens call callables, never while a trace is in flight, and neither
+  // hits, misses nor callables call anything: raygen + max(hit, miss, callable) is enough.
+  const auto groupStack = [&](std::uint32_t group, VkShaderGroupShaderKHR shader) {
+    return static_cast<std::uint32_t>(
+        context.functions().getRayTracingShaderGroupStackSize(device, pipeline, group, shader));
+  };
+  stack_.raygen = groupStack(0, VK_SHADER_GROUP_SHADER_GENERAL_KHR);
+  if (tileFillPass)
+    stack_.raygen = std::max(stack_.raygen, groupStack(4, VK_SHADER_GROUP_SHADER_GENERAL_KHR));
+  stack_.miss = std::max(groupStack(1, VK_SHADER_GROUP_SHADER_GENERAL_KHR),
+                         groupStack(2, VK_SHADER_GROUP_SHADER_GENERAL_KHR));
+  stack_.closestHit = groupStack(3, VK_SHADER_GROUP_SHADER_CLOSEST_HIT_KHR);
+  for (std::uint32_t i = 0; i < callableCount; ++i)
+    stack_.callableMax = std::max(
+        stack_.callableMax, groupStack(firstCallable + i, VK_SHADER_GROUP_SHADER_GENERAL_KHR));
+  const std::uint32_t traced = std::max(stack_.closestHit, stack_.miss);
+  stack_.driverDefault = stack_.raygen + traced + 2 * stack_.callableMax;
+  stack_.pipeline = stack_.raygen + std::max(traced, stack_.callableMax);
 
   // Shader-binding table: [raygen][miss, shadow miss][hit][fill raygen][callable per
   // material id], each region base-aligned. Scene materials sharing a graph point at the
@@ -286,11 +313,16 @@ void TracePipeline::record(VkCommandBuffer commands, VkDescriptorSet set, std::u
                   (height + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize, 1);
     return;
   }
-  vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipeline_.get());
-  vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, layout_.get(), 0, 1,
-                          &set, 0, nullptr);
+  bindRayTracing(commands, set);
   context_.functions().cmdTraceRays(commands, &raygenRegion_, &missRegion_, &hitRegion_,
                                     &callableRegion_, width, height, 1);
+}
+
+void TracePipeline::bindRayTracing(VkCommandBuffer commands, VkDescriptorSet set) const {
+  vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipeline_.get());
+  context_.functions().cmdSetRayTracingPipelineStackSize(commands, stack_.pipeline);
+  vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, layout_.get(), 0, 1,
+                          &set, 0, nullptr);
 }
 
 // `rows` rows of kFillRowInvocations invocations, one per texel of every queue slot (from
@@ -308,9 +340,7 @@ void TracePipeline::recordTileFill(VkCommandBuffer commands, VkDescriptorSet set
     vkCmdDispatch(commands, gpu::kFillRowInvocations / gpu::kFillWorkgroupSize, rows, 1);
     return;
   }
-  vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, pipeline_.get());
-  vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, layout_.get(), 0, 1,
-                          &set, 0, nullptr);
+  bindRayTracing(commands, set);
   context_.functions().cmdTraceRays(commands, &fillRaygenRegion_, &missRegion_, &hitRegion_,
                                     &callableRegion_, gpu::kFillRowInvocations, rows, 1);
 }

@@ -13,6 +13,7 @@
 
 #include "runtime/gpu_buffer.h"
 #include "runtime/material_callables.h"
+#include "runtime/render_stats.h"
 #include "runtime/shader_compiler.h"
 #include "runtime/vulkan_context.h"
 #include "runtime/vulkan_handle.h"
@@ -42,6 +43,7 @@ class TracePipeline {
   // gpu::kFillRowInvocations (MaterialCache::tileFillRows); nothing without the pass. The
   // caller orders it after the trace.
   void recordTileFill(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t rows) const;
+  const RayTracingStack& stack() const { return stack_; }
 
  private:
   const VulkanContext& context_;
@@ -57,6 +59,9 @@ class TracePipeline {
   VkStridedDeviceAddressRegionKHR hitRegion_{};
   VkStridedDeviceAddressRegionKHR callableRegion_{};
   VkStridedDeviceAddressRegionKHR fillRaygenRegion_{};
+  RayTracingStack stack_;
+
+  void bindRayTracing(VkCommandBuffer commands, VkDescriptorSet set) const;
 };
 
 }  // namespace memograph::runtime

@@ -454,6 +454,12 @@ VulkanContext::VulkanContext(const ContextOptions& options)
         loadDevice<PFN_vkGetRayTracingShaderGroupHandlesKHR>(
             device, "vkGetRayTracingShaderGroupHandlesKHR");
     functions_.cmdTraceRays = loadDevice<PFN_vkCmdTraceRaysKHR>(device, "vkCmdTraceRaysKHR");
+    functions_.getRayTracingShaderGroupStackSize =
+        loadDevice<PFN_vkGetRayTracingShaderGroupStackSizeKHR>(
+            device, "vkGetRayTracingShaderGroupStackSizeKHR");
+    functions_.cmdSetRayTracingPipelineStackSize =
+        loadDevice<PFN_vkCmdSetRayTracingPipelineStackSizeKHR>(
+            device, "vkCmdSetRayTracingPipelineStackSizeKHR");
     functions_.createDeferredOperation =
         loadDevice<PFN_vkCreateDeferredOperationKHR>(device, "vkCreateDeferredOperationKHR");
     functions_.destroyDeferredOperation =

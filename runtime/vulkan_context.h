@@ -44,6 +44,8 @@ struct DeviceFunctions {
   PFN_vkCreateRayTracingPipelinesKHR createRayTracingPipelines = nullptr;
   PFN_vkGetRayTracingShaderGroupHandlesKHR getRayTracingShaderGroupHandles = nullptr;
   PFN_vkCmdTraceRaysKHR cmdTraceRays = nullptr;
+  PFN_vkGetRayTracingShaderGroupStackSizeKHR getRayTracingShaderGroupStackSize = nullptr;
+  PFN_vkCmdSetRayTracingPipelineStackSizeKHR cmdSetRayTracingPipelineStackSize = nullptr;
   // VK_KHR_deferred_host_operations (always enabled with acceleration structures): lets
   // ray-tracing pipeline creation use several host threads.
   PFN_vkCreateDeferredOperationKHR createDeferredOperation = nullptr;

@@ -1,5 +1,6 @@
 // One path-tracer source, two backends: the ray-query compute shader and the ray-tracing
 // pipeline must give the same image for the same seed; and a seed fixes the image exactly.
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -103,6 +104,22 @@ TEST(BackendEquivalence, QueryAndPipelineGiveTheSameImage) {
   EXPECT_LE(callables.maxUlps, 16);
   EXPECT_EQ(query.stats.totalRays(), pipelineSwitch.stats.totalRays());
   EXPECT_EQ(query.stats.totalRays(), pipelineCallable.stats.totalRays());
+
+  // The pipeline's stack is set to what these shaders need, raygen + the largest of what it
+  // calls (only the raygen calls callables, and never during a trace), not the spec's
+  // default, which adds twice the largest callable on top of the hit shaders (lavapipe:
+  // 8 against 16 bytes). The images above were rendered with it.
+  const RayTracingStack& stack = pipelineCallable.stats.rayTracingStack;
+  std::printf("ray-tracing stack %u B (default %u B; raygen %u, hit %u, miss %u, callable %u)\n",
+              stack.pipeline, stack.driverDefault, stack.raygen, stack.closestHit, stack.miss,
+              stack.callableMax);
+  EXPECT_EQ(stack.pipeline,
+            stack.raygen + std::max({stack.closestHit, stack.miss, stack.callableMax}));
+  EXPECT_EQ(stack.driverDefault,
+            stack.raygen + std::max(stack.closestHit, stack.miss) + 2 * stack.callableMax);
+  EXPECT_GT(stack.callableMax, 0u);
+  EXPECT_LT(stack.pipeline, stack.driverDefault);
+  EXPECT_EQ(query.stats.rayTracingStack.driverDefault, 0u);
 }
 
 TEST(Determinism, SameSeedGivesIdenticalBytesAndOtherSeedsDiffer) {

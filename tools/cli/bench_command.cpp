@@ -230,6 +230,11 @@ int runBench(std::span<const std::string_view> args) {
                   << result.stats.materialDispatch << "; pipeline "
                   << result.stats.pipelineCreateMilliseconds << " ms; BLAS " << as.blasBytes
                   << " B, TLAS " << as.tlasBytes << " B)\n";
+        if (const auto& stack = result.stats.rayTracingStack; stack.driverDefault > 0)
+          std::cout << "  ray-tracing stack " << stack.pipeline << " B an invocation (the spec's "
+                    << "default " << stack.driverDefault << " B; raygen " << stack.raygen
+                    << ", hit " << stack.closestHit << ", miss " << stack.miss
+                    << ", largest callable " << stack.callableMax << ")\n";
         if (stoppedEarly)
           std::cout << "  stopped by --time-limit " << timeLimit << " s after "
                     << result.stats.frames.size() << " of " << settings.frames << " frames ("
