@@ -66,6 +66,7 @@ struct CacheKey {
   uint hash;     // H1 of eq. 5.9, stored in the entry; never kCacheKeyEmpty or kCacheKeyLock
   vec2 texelUv;  // the texel's centre (û, v̂ of eq. 5.6-5.7 over 2^m): where a snapped miss
                  // evaluates the graph (§6.1)
+  float texelSize;  // 2^-m: a texel's width in uv, the snapped evaluation's footprint
 };
 
 // Eq. 5.2-5.5: the mip level m of the cache's virtual texture at this hit. False when the
@@ -102,6 +103,7 @@ CacheKey cacheKeyOf(uvec4 info, int m, vec2 cell) {
   key.base = h0 % (frame.cache.x - uint(MG_CACHE_PROBE));
   key.hash = h1;
   key.texelUv = vec2(0.0);
+  key.texelSize = 0.0;
   return key;
 }
 
@@ -111,7 +113,8 @@ bool cacheKeyFor(uvec4 info, MaterialInputs inputs, out CacheKey key) {
   bool usable = cacheMipLevel(inputs, m);
   vec2 texel = round(exp2(float(m)) * inputs.uv.v);
   key = cacheKeyOf(info, m, texel);
-  key.texelUv = exp2(-float(m)) * texel;  // exact: a power of two times an integer
+  key.texelSize = exp2(-float(m));
+  key.texelUv = key.texelSize * texel;  // exact: a power of two times an integer
   return usable;
 }
 
@@ -359,8 +362,10 @@ void cacheWrite(CacheKey key, float values[MG_CACHE_VALUES]) {
 // Cacheable materials (mask != 0) read the cache and on a miss evaluate and insert;
 // others are evaluated directly and never touch the cache. With MG_CACHE_SNAP_UV a miss
 // evaluates at the texel centre (§6.1: "rounding the texture coordinates to the nearest
-// cache texel before evaluating"), so an entry holds its texel's value, not that of
-// whichever hit inside the texel came first; this hit then shades with that value too.
+// cache texel before evaluating") with the fictional derivatives of one texel along u and v
+// (eq. 5.16-5.17, as the tile cache computes its texels), so an entry holds its texel's
+// value, not that of whichever hit inside the texel came first (its footprint picks an image
+// texture's mip level); this hit then shades with that value too.
 void evaluateMaterialCached(uint materialId, MaterialInputs inputs, out MaterialOutputs outputs) {
   uvec4 info = materialId < uint(mg_materialCacheInfo.length()) ? mg_materialCacheInfo[materialId]
                                                                 : uvec4(0u);
@@ -381,6 +386,8 @@ void evaluateMaterialCached(uint materialId, MaterialInputs inputs, out Material
 #ifdef MG_CACHE_SNAP_UV
   MaterialInputs snapped = inputs;
   snapped.uv.v = key.texelUv;
+  snapped.uv.x = vec2(key.texelSize, 0.0);
+  snapped.uv.y = vec2(0.0, key.texelSize);
   evaluateMaterialDirect(materialId, snapped, outputs);
 #else
   evaluateMaterialDirect(materialId, inputs, outputs);

@@ -231,7 +231,11 @@ TEST(TileCache, GivenUpTilesLeaveNothingCachedAndNothingCounted) {
     EXPECT_EQ(f.cacheHits, 0u) << "frame " << f.frame;
     EXPECT_GT(f.cacheTilesComputed, 0u) << "frame " << f.frame;
     EXPECT_GT(f.cacheTileRepacks, 0u) << "frame " << f.frame;
-    EXPECT_EQ(f.cacheTileFallbacks, f.cacheMisses) << "frame " << f.frame;
+    // Every miss evaluates its own hit: a given-up tile's requesters are fallbacks; the rare
+    // requester whose tile could not even be locked (another subgroup held the entry at that
+    // instant) evaluates its hit uncounted.
+    EXPECT_GT(f.cacheTileFallbacks, 0u) << "frame " << f.frame;
+    EXPECT_LE(f.cacheTileFallbacks, f.cacheMisses) << "frame " << f.frame;
     EXPECT_EQ(f.cacheOccupancy, 0u) << "frame " << f.frame;
   }
   double flip = meanFlip(none.image, given.image);
