@@ -15,25 +15,6 @@ namespace {
 constexpr std::uint32_t kTextureSize = 256;
 constexpr int kLevels = 9;  // 256 .. 1
 
-TextureImage levelTaggedChecker() {
-  TextureImage texture;
-  for (int level = 0; level < kLevels; ++level) {
-    HdrImage image;
-    image.width = image.height = kTextureSize >> level;
-    image.rgba.resize(std::size_t(image.width) * image.height * 4);
-    for (std::uint32_t y = 0; y < image.height; ++y)
-      for (std::uint32_t x = 0; x < image.width; ++x) {
-        float* p = image.pixel(x, y);
-        p[0] = float(level) / float(kLevels - 1);
-        p[1] = float((x / 4 + y / 4) % 2);
-        p[2] = 0.0f;
-        p[3] = 1.0f;
-      }
-    texture.levels.push_back(std::move(image));
-  }
-  return texture;
-}
-
 constexpr const char* kCheckerGraph = R"(material Checker;
 UVInput UV>0;
 ImageTexture Image="checker.pfm" UV<0 Color>1;
@@ -49,7 +30,7 @@ TEST(RayConeLod, CheckerAtGrowingDistanceSelectsPredictedMip) {
   RendererOptions options = testing::testOptions();
   options.textureLoader = [&](const std::string& path) {
     requested.push_back(path);
-    return levelTaggedChecker();
+    return testing::levelTaggedChecker(kTextureSize, kLevels, 4);
   };
   Renderer renderer(options);
 

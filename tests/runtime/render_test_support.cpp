@@ -1,5 +1,6 @@
 #include "render_test_support.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -75,6 +76,25 @@ double meanChannel(const HdrImage& image, int c, int x0, int y0, int x1, int y1)
     for (int x = x0; x < x1; ++x, ++n)
       sum += image.pixel(x, y)[c];
   return n ? sum / n : 0.0;
+}
+
+TextureImage levelTaggedChecker(std::uint32_t size, int levels, std::uint32_t period) {
+  TextureImage texture;
+  for (int level = 0; level < levels; ++level) {
+    HdrImage image;
+    image.width = image.height = std::max(1u, size >> level);
+    image.rgba.resize(std::size_t(image.width) * image.height * 4);
+    for (std::uint32_t y = 0; y < image.height; ++y)
+      for (std::uint32_t x = 0; x < image.width; ++x) {
+        float* p = image.pixel(x, y);
+        p[0] = levels > 1 ? float(level) / float(levels - 1) : 0.0f;
+        p[1] = float((x / period + y / period) % 2);
+        p[2] = 0.0f;
+        p[3] = 1.0f;
+      }
+    texture.levels.push_back(std::move(image));
+  }
+  return texture;
 }
 
 }  // namespace memograph::runtime::testing

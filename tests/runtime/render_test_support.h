@@ -28,4 +28,9 @@ std::string constantGraph(const std::string& name, glm::vec3 baseColor, float ro
 // Mean of channel `c` over the pixels in [x0,x1) x [y0,y1).
 double meanChannel(const HdrImage& image, int c, int x0, int y0, int x1, int y1);
 
+// A `size`-texel square texture with `levels` mip levels, each its own red value
+// (level / (levels - 1)) under a green checker of `period`-texel squares, so the red channel
+// of a sample reads back the (blended) mip level it used.
+TextureImage levelTaggedChecker(std::uint32_t size, int levels, std::uint32_t period);
+
 }  // namespace memograph::runtime::testing

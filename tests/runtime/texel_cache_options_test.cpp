@@ -183,22 +183,7 @@ TEST(TexelCacheOptions, SnappedTexelsUseTheTexelsFootprint) {
   RendererOptions options = texelCache();
   options.cache.snapUv = true;
   options.textureLoader = [](const std::string&) {
-    TextureImage texture;
-    for (int level = 0; level < kLevels; ++level) {
-      HdrImage image;
-      image.width = image.height = 64u >> level;
-      image.rgba.resize(std::size_t(image.width) * image.height * 4);
-      for (std::uint32_t y = 0; y < image.height; ++y)
-        for (std::uint32_t x = 0; x < image.width; ++x) {
-          float* p = image.pixel(x, y);
-          p[0] = float(level) / float(kLevels - 1);
-          p[1] = float((x / 2 + y / 2) % 2);
-          p[2] = 0.0f;
-          p[3] = 1.0f;
-        }
-      texture.levels.push_back(std::move(image));
-    }
-    return texture;
+    return testing::levelTaggedChecker(64, kLevels, 2);
   };
   Scene scene = wallScene(
       "material Levels;\nUVInput UV>0;\nImageTexture Image=\"levels.pfm\" "
