@@ -1,3 +1,5 @@
+// Only the bench command (which needs the runtime) uses these summaries.
+#ifdef MEMOGRAPH_HAVE_RUNTIME
 #include "bench_summary.h"
 
 #include <algorithm>
@@ -60,3 +62,5 @@ std::string benchSummaryCsvValues(const TimedFrameSummary& summary) {
 }
 
 }  // namespace memograph::cli
+
+#endif  // MEMOGRAPH_HAVE_RUNTIME

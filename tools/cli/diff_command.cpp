@@ -14,8 +14,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "runtime/quality/flip.h"
-
-#include "runtime/image.h"
+#include "tools/io/pfm.h"
 
 #ifdef MEMOGRAPH_HAVE_IO
 #include "tools/io/image_io.h"
@@ -78,13 +77,8 @@ std::optional<runtime::HdrImage> readImage(const std::string& path,
                                            compiler::Diagnostics& diagnostics) {
   // The renderer's own PFM files go through the project's reader (row order, byte order),
   // which every build has: the GPU bundle compares its renders without OpenImageIO.
-  if (lowerExtension(path) == ".pfm") {
-    std::string error;
-    std::optional<runtime::HdrImage> image = runtime::tryReadPfm(path, error);
-    if (!image)
-      diagnostics.error(path, error);
-    return image;
-  }
+  if (lowerExtension(path) == ".pfm")
+    return io::readPfm(path, diagnostics);
 #ifdef MEMOGRAPH_HAVE_IO
   return io::readImageFloat(path, diagnostics);
 #else
@@ -95,13 +89,8 @@ std::optional<runtime::HdrImage> readImage(const std::string& path,
 
 bool writeImage(const std::string& path, const runtime::HdrImage& image,
                 compiler::Diagnostics& diagnostics) {
-  if (lowerExtension(path) == ".pfm") {
-    std::string error;
-    if (runtime::tryWritePfm(path, image, error))
-      return true;
-    diagnostics.error(path, error);
-    return false;
-  }
+  if (lowerExtension(path) == ".pfm")
+    return io::writePfm(path, image, diagnostics);
 #ifdef MEMOGRAPH_HAVE_IO
   return io::writeImage(path, image, io::LdrOptions{}, diagnostics);
 #else
