@@ -118,6 +118,16 @@ bool cacheKeyFor(uvec4 info, MaterialInputs inputs, out CacheKey key) {
   return usable;
 }
 
+// Eq. 5.16-5.17: `inputs` at `uv` with the fictional footprint of one texel `texelSize` wide
+// along u and along v instead of the hit's: how a texel's value is computed, so it does not
+// depend on which hit asked first (the snapped texel cache and the tile cache).
+MaterialInputs texelInputs(MaterialInputs inputs, vec2 uv, float texelSize) {
+  inputs.uv.v = uv;
+  inputs.uv.x = vec2(texelSize, 0.0);
+  inputs.uv.y = vec2(0.0, texelSize);
+  return inputs;
+}
+
 uint cacheEntryOffset(uint entry) { return entry * kCacheStride; }
 
 // Largest finite half: fp16 stores clamp to it, so a bright emission becomes 65504 instead
@@ -384,11 +394,7 @@ void evaluateMaterialCached(uint materialId, MaterialInputs inputs, out Material
   g_cacheMisses += 1u;
   g_cacheMissed = true;
 #ifdef MG_CACHE_SNAP_UV
-  MaterialInputs snapped = inputs;
-  snapped.uv.v = key.texelUv;
-  snapped.uv.x = vec2(key.texelSize, 0.0);
-  snapped.uv.y = vec2(0.0, key.texelSize);
-  evaluateMaterialDirect(materialId, snapped, outputs);
+  evaluateMaterialDirect(materialId, texelInputs(inputs, key.texelUv, key.texelSize), outputs);
 #else
   evaluateMaterialDirect(materialId, inputs, outputs);
 #endif

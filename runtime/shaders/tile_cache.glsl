@@ -203,16 +203,14 @@ bool tileLogDuplicate(CacheKey key) {
   return false;
 }
 
-// Eq. 5.16-5.17: `inputs` at texel `texel` of the tile at `tile` (in multiples of the tile
-// size) of mip level `level`: its uv (a texel of level m is 2^-m wide; nearest: its centre,
-// bilinear: its corner) and the fictional derivatives of one texel along u and along v.
+// `inputs` at texel `texel` of the tile at `tile` (in multiples of the tile size) of mip
+// level `level`: its uv (a texel of level m is 2^-m wide; nearest: its centre, bilinear: its
+// corner) with one texel's footprint (texelInputs, eq. 5.16-5.17).
 MaterialInputs tileTexelInputs(MaterialInputs inputs, int level, vec2 tile, uint texel) {
   float texelSize = exp2(-float(level));
   vec2 texelIndex = vec2(float(texel % kTileW), float(texel / kTileW));
-  inputs.uv.v = (tile * kTileArea + texelIndex + kTexelOffset) * texelSize;
-  inputs.uv.x = vec2(texelSize, 0.0);
-  inputs.uv.y = vec2(0.0, texelSize);
-  return inputs;
+  return texelInputs(inputs, (tile * kTileArea + texelIndex + kTexelOffset) * texelSize,
+                     texelSize);
 }
 
 #ifdef MG_TILE_FILL_DEFERRED
@@ -484,7 +482,7 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
         return;
       }
 #endif
-      if (worker && tileEntry >= 0) tileStoreTexel(uint(tileEntry), texel, texelValues);
+      if (worker) tileStoreTexel(uint(tileEntry), texel, texelValues);  // only locked tiles
       [[unroll]] for (uint t = 0u; t < kTileTaps; ++t) {
         uint wanted = myComputed * kTileTexels + taps[t];
         bool here = mine && wanted / activeCount == pass;
