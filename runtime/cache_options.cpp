@@ -135,8 +135,8 @@ void validateCacheOptions(const CacheOptions& cache) {
   if (cache.probe < 1 || cache.probe > gpu::kCacheMaxProbe)
     throw std::invalid_argument("--probe must be 1.." + std::to_string(gpu::kCacheMaxProbe) +
                                 ", not " + std::to_string(cache.probe));
-  if (cache.entries != 0 && cache.entries <= cache.probe)
-    throw std::invalid_argument("--cache-entries (" + std::to_string(cache.entries) +
+  if (cache.entries && *cache.entries <= cache.probe)
+    throw std::invalid_argument("--cache-entries (" + std::to_string(*cache.entries) +
                                 ") must exceed the probe distance (" + std::to_string(cache.probe) +
                                 ")");
   if (!std::isfinite(cache.mipBias))

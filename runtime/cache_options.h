@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -54,17 +55,17 @@ TileStorage parseTileStorage(const std::string& text);
 // "subgroup"/"deferred".
 TileFill parseTileFill(const std::string& text);
 
-// The entry count S when CacheOptions::entries is 0 (as many tiles as texels with --cache
+// The entry count S when CacheOptions::entries is unset (as many tiles as texels with --cache
 // tile: 2^20 tiles of 4x4 hold 2^24 texels, Table 6.1's size).
 inline constexpr std::uint32_t kDefaultCacheEntries = 1u << 20;
 
 struct CacheOptions {
   CacheMode mode = CacheMode::None;
-  // S; must exceed `probe`. 0: kDefaultCacheEntries, halved while a buffer holding the
+  // S; must exceed `probe`. Unset: kDefaultCacheEntries, halved while a buffer holding the
   // entries would exceed the device's storage-buffer range (the most one binding may
   // address: 128 MiB on lavapipe, where 2^20 tiles of 4x2 texels do not fit); a given
   // count that does not fit is refused.
-  std::uint32_t entries = 0;
+  std::optional<std::uint32_t> entries;
   std::uint32_t probe = 8;  // D, 1..16 (gpu::kCacheMaxProbe)
   float mipBias = 0.0f;     // eq. 5.5; positive: finer texels
   CacheEviction eviction = CacheEviction::Lru;

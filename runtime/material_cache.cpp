@@ -41,8 +41,8 @@ GpuBuffer deviceBuffer(const VulkanContext& context, std::uint64_t bytes,
 // distance; deviceBuffer refuses what still does not fit).
 std::uint32_t entryCountFor(const VulkanContext& context, const CacheOptions& options,
                             std::uint64_t bytesPerEntry) {
-  if (options.entries != 0)
-    return options.entries;
+  if (options.entries)
+    return *options.entries;
   const std::uint64_t range = context.info().limits.maxStorageBufferRange;
   std::uint32_t count = kDefaultCacheEntries;
   while (range > 0 && count * bytesPerEntry > range && count / 2 > 2 * options.probe)
@@ -146,7 +146,6 @@ MaterialCache::MaterialCache(const VulkanContext& context, const CacheOptions& o
                               std::max(stride * sizeof(std::uint32_t),
                                        storage == TileStorage::Buffer ? texelBytesPerEntry : 0))
               : 0;
-  entriesFitted_ = enabled && options.entries == 0 && entryCount_ != kDefaultCacheEntries;
   defines_ = cacheShaderDefines(options, valueCount_);
 
   // Without a cache the bindings still need buffers: small ones nobody reads.
@@ -274,7 +273,7 @@ void MaterialCache::describe(RenderStats& stats) const {
   stats.cache = cacheModeName(options_.mode);
   stats.cacheEviction = cacheEvictionName(options_.eviction);
   stats.cacheEntries = entryCount_;
-  stats.cacheEntriesFitted = entriesFitted_;
+  stats.cacheEntriesFitted = !options_.entries && entryCount_ != kDefaultCacheEntries;
   stats.cacheProbe = options_.probe;
   stats.cacheReadCheck = options_.updateCounter ? "counter" : "key";
   stats.cacheValueCount = valueCount_;

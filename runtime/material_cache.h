@@ -62,7 +62,6 @@ class MaterialCache {
   CacheOptions options_;
   std::uint32_t valueCount_ = 1;
   std::uint32_t entryCount_ = 0;
-  bool entriesFitted_ = false;  // the default count, halved to fit the storage-buffer range
   std::uint32_t tilesPerRow_ = 0;
   std::uint64_t bytes_ = 0;
   std::vector<std::string> defines_;

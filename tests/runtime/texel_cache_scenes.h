@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -85,7 +86,7 @@ inline double meanFlip(const HdrImage& reference, const HdrImage& test) {
 }
 
 inline RendererOptions cacheOptions(CacheMode mode, Backend backend = Backend::Auto,
-                                    std::uint32_t entries = 1u << 16,
+                                    std::optional<std::uint32_t> entries = 1u << 16,
                                     CacheEviction eviction = CacheEviction::Lru) {
   RendererOptions options = testOptions(backend);
   options.cache.mode = mode;

@@ -239,14 +239,14 @@ TEST(TexelCache, BadOptionsAreRefused) {
   EXPECT_EQ(parseCacheEviction("random"), CacheEviction::Random);
 }
 
-// The default entry count (CacheOptions::entries 0) is halved until the cache fits one
+// The default entry count (CacheOptions::entries unset) is halved until the cache fits one
 // storage-buffer binding of the device (binding more is invalid usage that lavapipe does not
 // catch: its range is 128 MiB, less than the landscape's default 4x2 tile cache); a given
 // count that does not fit is refused, naming the option. 64x64 tiles (deferred fill) need
 // at least 48 KiB an entry, so 2^20 of them fit no device's binding.
 TEST(TexelCache, DefaultEntriesFitTheStorageBufferRange) {
   Scene scene = wallScene(stripesGraph(), false);
-  RendererOptions options = cacheOptions(CacheMode::Tile, Backend::RayQuery, 0);
+  RendererOptions options = cacheOptions(CacheMode::Tile, Backend::RayQuery, std::nullopt);
   options.cache.tileWidth = options.cache.tileHeight = 64;
   options.cache.tileFill = TileFill::Deferred;
   options.cache.tileQueue = 64;

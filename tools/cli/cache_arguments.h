@@ -106,10 +106,8 @@ struct CacheArguments {
                                     "'");
       return value;
     };
-    options.entries = entries.empty() ? 0 : whole(entries, "--cache-entries");
-    if (!entries.empty() && options.entries == 0)  // 0 in CacheOptions means the default
-      throw std::invalid_argument("--cache-entries (0) must exceed the probe distance (" + probe +
-                                  ")");
+    if (!entries.empty())
+      options.entries = whole(entries, "--cache-entries");
     options.probe = whole(probe, "--probe");
     options.clockShift = whole(clockShift, "--clock-shift");
     options.tileQueue = whole(tileQueue, "--tile-queue");
