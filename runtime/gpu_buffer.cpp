@@ -9,6 +9,22 @@
 
 namespace memograph::runtime {
 
+void checkBufferSize(const VulkanContext& context, std::uint64_t bytes, const std::string& what,
+                     bool storageBinding) {
+  const DeviceInfo& info = context.info();
+  if (info.maxMemoryAllocationSize > 0 && bytes > info.maxMemoryAllocationSize)
+    throw std::invalid_argument(what + " needs " + std::to_string(bytes) +
+                                " bytes in one buffer, more than the largest allocation of " +
+                                info.name + " (" + std::to_string(info.maxMemoryAllocationSize) +
+                                " bytes)");
+  const std::uint64_t range = info.limits.maxStorageBufferRange;
+  if (storageBinding && range > 0 && bytes > range)
+    throw std::invalid_argument(what + " needs " + std::to_string(bytes) +
+                                " bytes in one storage buffer, more than the " +
+                                std::to_string(range) + "-byte storage-buffer range of " +
+                                info.name + " (the most one binding may address)");
+}
+
 GpuBuffer::GpuBuffer(const VulkanContext& context, VkDeviceSize size, VkBufferUsageFlags usage,
                      VkMemoryPropertyFlags memory)
     : size_(size) {
@@ -24,12 +40,7 @@ GpuBuffer::GpuBuffer(const VulkanContext& context, VkDeviceSize size, VkBufferUs
 
   VkMemoryRequirements requirements;
   vkGetBufferMemoryRequirements(device, buffer, &requirements);
-  // Past the device's largest allocation vkAllocateMemory may fail or (lavapipe) crash.
-  const VkDeviceSize largest = context.info().maxMemoryAllocationSize;
-  if (largest > 0 && requirements.size > largest)
-    throw std::runtime_error("a GPU buffer of " + std::to_string(requirements.size) +
-                             " bytes is larger than the largest single allocation of " +
-                             context.info().name + " (" + std::to_string(largest) + " bytes)");
+  checkBufferSize(context, requirements.size, "a GPU buffer", false);
   VkMemoryAllocateFlagsInfo flags{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
   flags.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
   VkMemoryAllocateInfo allocate{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 
 #include <vulkan/vulkan.h>
 
@@ -36,6 +37,14 @@ class GpuBuffer {
   VkDeviceAddress address_ = 0;
   void* mapped_ = nullptr;
 };
+
+// Refuses (std::invalid_argument) a buffer of `bytes` the device cannot hold in one
+// allocation (past it vkAllocateMemory may fail or, on lavapipe, crash) or, when it is bound
+// whole as a storage buffer, address in one binding (maxStorageBufferRange: binding more is
+// invalid usage, which lavapipe does not catch). `what` names the buffer in the message,
+// e.g. the option that sized it.
+void checkBufferSize(const VulkanContext& context, std::uint64_t bytes, const std::string& what,
+                     bool storageBinding);
 
 // A device-local buffer holding `bytes` (at least 16 bytes, so empty arrays still bind).
 GpuBuffer uploadBuffer(const VulkanContext& context, const void* data, std::size_t bytes,

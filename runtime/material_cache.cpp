@@ -14,24 +14,12 @@ namespace {
 constexpr VkBufferUsageFlags kStorage =
     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT;
 
-// A cache buffer of `bytes`, refused before allocating when one allocation of the device
-// cannot hold it (lavapipe crashed in vkAllocateMemory past its 2 GiB) or one storage-buffer
-// binding cannot address it (binding more is invalid usage, which lavapipe does not catch),
-// naming the option that sized it. GpuBuffer checks the allocation of every buffer too, but
-// cannot name the option.
+// A cache buffer of `bytes`, checked before allocating (checkBufferSize) under the name of
+// the option that sized it: the descriptor set checks every binding again, later and
+// without the option's name.
 GpuBuffer deviceBuffer(const VulkanContext& context, std::uint64_t bytes,
-                       const std::string& sizedBy = "") {
-  const std::uint64_t largest = context.info().maxMemoryAllocationSize;
-  if (largest > 0 && bytes > largest)
-    throw std::invalid_argument(sizedBy + " needs " + std::to_string(bytes) +
-                                " bytes in one buffer, more than the largest allocation of " +
-                                context.info().name + " (" + std::to_string(largest) + " bytes)");
-  const std::uint64_t range = context.info().limits.maxStorageBufferRange;
-  if (range > 0 && bytes > range)
-    throw std::invalid_argument(sizedBy + " needs " + std::to_string(bytes) +
-                                " bytes in one storage buffer, more than the " +
-                                std::to_string(range) + "-byte storage-buffer range of " +
-                                context.info().name + " (the most one binding may address)");
+                       const std::string& sizedBy) {
+  checkBufferSize(context, bytes, sizedBy, true);
   return GpuBuffer(context, std::max<VkDeviceSize>(bytes, 16), kStorage,
                    VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
 }
@@ -160,7 +148,8 @@ MaterialCache::MaterialCache(const VulkanContext& context, const CacheOptions& o
       "--cache-entries " + std::to_string(entryCount_) + " with --tile-storage buffer");
   if (storage == TileStorage::Buffer)
     bytes_ += texelBytes;
-  tileLog_ = deviceBuffer(context, tile ? gpu::kTileLogEntries * sizeof(std::uint32_t) : 16);
+  tileLog_ = deviceBuffer(context, tile ? gpu::kTileLogEntries * sizeof(std::uint32_t) : 16,
+                          "the tile log");
   const bool deferred = tile && options.tileFill == TileFill::Deferred;
   const std::uint64_t queueBytes =
       sizeof(gpu::TileQueueHeader) + std::uint64_t(options.tileQueue) * sizeof(gpu::TileFillItem);

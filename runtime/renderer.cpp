@@ -124,6 +124,15 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   stats.pathsPerPixel = settings.pathsPerPixel;
   stats.raysPerPath = settings.raysPerPath;
 
+  // The image is one storage buffer of 4 floats a pixel: refused before anything compiles
+  // when the device cannot bind it whole.
+  const std::uint64_t accumulationBytes =
+      std::uint64_t(settings.width) * settings.height * sizeof(glm::vec4);
+  checkBufferSize(context, accumulationBytes,
+                  "a " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
+                      " image (16 bytes a pixel)",
+                  true);
+
   MaterialDispatch dispatch = resolveMaterialDispatch(options_.materialDispatch, context.backend());
   const CacheOptions& cache = options_.cache;
   const bool cacheOn = cache.mode != CacheMode::None;
@@ -240,7 +249,6 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
 
   // Per-render buffers.
   std::size_t pixelCount = std::size_t(settings.width) * settings.height;
-  VkDeviceSize accumulationBytes = pixelCount * sizeof(glm::vec4);
   GpuBuffer frameBuffer =
       hostBuffer(context, sizeof(gpu::FrameConstants), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
   GpuBuffer accumulation(context, accumulationBytes,

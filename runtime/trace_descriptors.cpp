@@ -34,7 +34,13 @@ TraceDescriptorSet::TraceDescriptorSet(const VulkanContext& context,
   std::vector<VkWriteDescriptorSet> writes;
   std::vector<VkDescriptorBufferInfo> bufferInfos;
   bufferInfos.reserve(16);
-  auto writeBuffer = [&](std::uint32_t binding, VkDescriptorType type, const GpuBuffer& buffer) {
+  // Each buffer is bound whole: a storage buffer must fit the device's storage-buffer range
+  // (the cache's buffers were checked earlier under their options' names; this also covers
+  // the scene's).
+  auto writeBuffer = [&](std::uint32_t binding, VkDescriptorType type, const GpuBuffer& buffer,
+                         const char* what) {
+    if (type == VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)
+      checkBufferSize(context, buffer.size(), what, true);
     bufferInfos.push_back({buffer.buffer(), 0, VK_WHOLE_SIZE});
     VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     write.dstSet = set;
@@ -45,19 +51,21 @@ TraceDescriptorSet::TraceDescriptorSet(const VulkanContext& context,
     writes.push_back(write);
   };
   constexpr auto kStorage = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  writeBuffer(gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, *r.frame);
-  writeBuffer(gpu::kBindingAccumulation, kStorage, *r.accumulation);
-  writeBuffer(gpu::kBindingVertices, kStorage, r.scene->vertices);
-  writeBuffer(gpu::kBindingIndices, kStorage, r.scene->indices);
-  writeBuffer(gpu::kBindingInstances, kStorage, r.scene->instances);
-  writeBuffer(gpu::kBindingMeshes, kStorage, r.scene->meshes);
-  writeBuffer(gpu::kBindingLights, kStorage, r.scene->lights);
-  writeBuffer(gpu::kBindingEnvironment, kStorage, r.scene->environment);
-  writeBuffer(gpu::kBindingRayCounter, kStorage, *r.rayCounter);
-  writeBuffer(gpu::kBindingCache, kStorage, r.cache->entries());
-  writeBuffer(gpu::kBindingTileTexels, kStorage, r.cache->tileTexels());
-  writeBuffer(gpu::kBindingTileLog, kStorage, r.cache->tileLog());
-  writeBuffer(gpu::kBindingTileQueue, kStorage, r.cache->tileQueue());
+  writeBuffer(gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, *r.frame,
+              "the frame constants");
+  writeBuffer(gpu::kBindingAccumulation, kStorage, *r.accumulation,
+              "the image being rendered (16 bytes a pixel)");
+  writeBuffer(gpu::kBindingVertices, kStorage, r.scene->vertices, "the scene's vertices");
+  writeBuffer(gpu::kBindingIndices, kStorage, r.scene->indices, "the scene's indices");
+  writeBuffer(gpu::kBindingInstances, kStorage, r.scene->instances, "the scene's instances");
+  writeBuffer(gpu::kBindingMeshes, kStorage, r.scene->meshes, "the scene's meshes");
+  writeBuffer(gpu::kBindingLights, kStorage, r.scene->lights, "the scene's lights");
+  writeBuffer(gpu::kBindingEnvironment, kStorage, r.scene->environment, "the environment");
+  writeBuffer(gpu::kBindingRayCounter, kStorage, *r.rayCounter, "the counters");
+  writeBuffer(gpu::kBindingCache, kStorage, r.cache->entries(), "the cache entries");
+  writeBuffer(gpu::kBindingTileTexels, kStorage, r.cache->tileTexels(), "the tile texels");
+  writeBuffer(gpu::kBindingTileLog, kStorage, r.cache->tileLog(), "the tile log");
+  writeBuffer(gpu::kBindingTileQueue, kStorage, r.cache->tileQueue(), "the tile queue");
   VkDescriptorImageInfo tileImageInfo{VK_NULL_HANDLE, r.cache->tileImageView(),
                                       VK_IMAGE_LAYOUT_GENERAL};
   if (tileImageInfo.imageView != VK_NULL_HANDLE) {

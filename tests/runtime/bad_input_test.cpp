@@ -89,6 +89,14 @@ TEST_F(BadInput, EmptySceneAndBadSettingsAreRejected) {
   settings.width = 0;
   EXPECT_NE(messageOf<std::invalid_argument>(renderer, oneQuad(), settings).find("image size"),
             std::string::npos);
+  // The largest image the settings allow is one 4 GiB buffer of 4 floats a pixel: more than
+  // any device here binds (lavapipe: 128 MiB storage-buffer range; the H200: 4094 MiB per
+  // allocation). Refused before anything compiles, naming the image.
+  settings = tiny();
+  settings.width = settings.height = 16384;
+  EXPECT_NE(messageOf<std::invalid_argument>(renderer, oneQuad(), settings)
+                .find("16384x16384 image (16 bytes a pixel) needs 4294967296 bytes"),
+            std::string::npos);
   Scene scene = oneQuad();
   scene.camera.target = scene.camera.position;
   EXPECT_NE(messageOf<std::invalid_argument>(renderer, scene, tiny()).find("camera"),
