@@ -103,7 +103,8 @@ read -r -d '' VARIANTS <<'TABLE'
 # The deferred tile fill (--tile-fill deferred): a missed tile is queued and computed by a
 # second pass after the frame, one invocation per texel, so no lane has to come back from a
 # callable in place (the repacks above). Against the subgroup rows: the large cache, the
-# small one whose subgroup rows ran past 150 s, the landscape, and the floor (its own cost).
+# small one (2^17 tiles, where it loses: a frame's tiles no longer fit), the landscape, and
+# the floor (its own cost).
   120   diag  classroom  tile_s24_lru-counter_deferred 300 1  --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --tile-fill deferred
   40    diag  classroom  floor_tile_s24_lru-counter_deferred 300 1 --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --tile-fill deferred --floor-materials
   60    diag  landscape  tile_s24_lru-counter_deferred 300 1  --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --tile-fill deferred
