@@ -145,7 +145,7 @@ TEST_F(CliTest, RenderReportsAMissingEnvironmentImageBeforeTouchingTheGpu) {
 // message names the value and the choices.
 TEST_F(CliTest, RenderAndBenchRefuseBadCacheOptionValues) {
   const std::string out = " --out " + (directory_ / "x.pfm").string();
-  for (const std::string command : {"render builtin:landscape" + out, std::string("bench")}) {
+  for (const std::string& command : {"render builtin:landscape" + out, std::string("bench")}) {
     const auto format = runCli(command + " --value-format fp8");
     EXPECT_EQ(format.exitCode, 2) << format.output;
     EXPECT_NE(format.output.find("'fp8' (choose fp32 or fp16)"), std::string::npos)

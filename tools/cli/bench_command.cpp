@@ -183,6 +183,9 @@ int runBench(std::span<const std::string_view> args) {
                 << runtime::backendName(renderer.context().backend()) << " (largest allocation "
                 << (device.maxMemoryAllocationSize >> 20) << " MiB, storage-buffer range "
                 << (device.limits.maxStorageBufferRange >> 20) << " MiB)\n";
+      // Flushed line by line: a sweep reads this log through a pipe, and a step that dies
+      // (a timeout, a crash in the driver) must still show how far it got.
+      std::cout.flush();
       // Output label: the whole spec, so runs with different options stay apart; commas
       // become ';' to keep the CSV's columns. --label adds the variant's name.
       std::string label = sceneName.substr(8);
@@ -252,6 +255,7 @@ int runBench(std::span<const std::string_view> args) {
                     << (result.stats.cacheSecondaryOnly ? ", secondary hits only" : "")
                     << "): median hit rate " << 100.0 * summary.medianCacheHitRate << " %, total "
                     << 100.0 * summary.totalCacheHitRate << " %\n";
+        std::cout.flush();
         if (csv) {
           csv << label << ',' << width << ',' << height << ',' << p << ',' << l << ','
               << result.stats.backend << ",\"" << result.stats.device << "\"," << timed.size()

@@ -5,6 +5,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "crash_report.h"
 
 namespace memograph::cli {
 
@@ -39,6 +40,7 @@ void printUsage(std::ostream& out) {
 
 int main(int argc, char** argv) {
   using namespace memograph::cli;
+  installCrashReport();
   std::vector<std::string_view> args(argv + 1, argv + argc);
   if (args.empty()) {
     printUsage(std::cerr);

@@ -1,0 +1,64 @@
+// Fatal-signal report: signal name and backtrace on stderr, then the default action.
+#include "crash_report.h"
+
+#include <execinfo.h>
+#include <signal.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <initializer_list>
+
+namespace memograph::cli {
+
+namespace {
+
+void writeText(const char* text) {
+  // write(2) is async-signal-safe; a short write of a diagnostic is not worth a retry loop.
+  [[maybe_unused]] auto written = ::write(STDERR_FILENO, text, std::strlen(text));
+}
+
+const char* signalName(int signal) {
+  switch (signal) {
+    case SIGSEGV:
+      return "SIGSEGV (invalid memory access)";
+    case SIGBUS:
+      return "SIGBUS (bus error)";
+    case SIGILL:
+      return "SIGILL (illegal instruction)";
+    case SIGFPE:
+      return "SIGFPE (arithmetic fault)";
+    default:
+      return "(another)";
+  }
+}
+
+void reportFatalSignal(int signal) {
+  writeText("memograph: fatal signal ");
+  writeText(signalName(signal));
+  writeText(
+      " (a bug in memograph or the Vulkan driver; please report it with the command "
+      "line). Call stack:\n");
+  void* frames[64];
+  const int count = ::backtrace(frames, 64);
+  ::backtrace_symbols_fd(frames, count, STDERR_FILENO);
+  // SA_RESETHAND restored the default action: re-raising ends the process with the signal's
+  // status, as without the handler.
+  ::raise(signal);
+}
+
+}  // namespace
+
+void installCrashReport() {
+  // backtrace() loads libgcc's unwinder on first use, which allocates: do it now, not
+  // inside the handler.
+  void* warmUp[1];
+  ::backtrace(warmUp, 1);
+  struct sigaction action {};
+  action.sa_handler = reportFatalSignal;
+  action.sa_flags = SA_RESETHAND;
+  sigemptyset(&action.sa_mask);
+  for (int signal : {SIGSEGV, SIGBUS, SIGILL, SIGFPE})
+    ::sigaction(signal, &action, nullptr);
+}
+
+}  // namespace memograph::cli
