@@ -97,11 +97,14 @@ if [ $gpu = 1 ]; then
   where="Static camera, 1920×1080, P = 6, L = 4, 8 frames, pipeline backend with callables;
 texel cache 2^24 entries, tile cache 2^20 4×4 tiles"
   write_header
-  # Table 6.1's size: 2^24 texels (2^20 4x4 tiles, the default entry count).
+  # Table 6.1's size: 2^24 texels (2^20 4x4 tiles, the default entry count). The mip bias -1
+  # rows are the picture price of the hit-rate diagnostic (texels twice as wide).
   gpuVariants=("texel:--cache texel --cache-entries 16777216"
     "texel-secondary:--cache texel --cache-entries 16777216 --cache-secondary-only"
     "tile4x4:--cache tile --tile 4x4" "tile4x4-bilinear:--cache tile --tile 4x4 --filter bilinear"
-    "tile4x4-deferred:--cache tile --tile 4x4 --tile-fill deferred")
+    "tile4x4-deferred:--cache tile --tile 4x4 --tile-fill deferred"
+    "texel-bias-1:--cache texel --cache-entries 16777216 --mip-bias -1"
+    "tile4x4-bias-1:--cache tile --tile 4x4 --mip-bias -1")
   for scene in classroom landscape; do
     settings=(--size 1920x1080 --paths 6 --bounces 4 --frames 8 --backend pipeline)
     variants "$scene" "${gpuVariants[@]}"

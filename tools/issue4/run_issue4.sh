@@ -294,10 +294,11 @@ else
 fi
 
 # One summary CSV (the header once, steps in order) and one archive of per-frame CSVs: the
-# device tool returns 8 files at most.
+# device tool returns 8 files at most. A step that crashed may leave an empty CSV (its
+# header still in the stream's buffer): skipped, so the next step's header is the one kept.
 first=1
 for f in "$work"/csv/*.csv; do
-  [ -f "$f" ] || continue
+  [ -s "$f" ] || continue
   if [ $first = 1 ]; then cat "$f"; first=0; else tail -n +2 "$f"; fi
 done >"$OUT/issue4_summary.csv"
 tar czf "$OUT/issue4_frames.tar.gz" -C "$work" frames
