@@ -93,8 +93,9 @@ void checkTileFillLaunch(const VulkanContext& context, const CacheOptions& optio
       std::min(maxRows * gpu::kFillRowInvocations,
                compute ? ~std::uint64_t(0)
                        : std::uint64_t(info.rayTracingProperties.maxRayDispatchInvocationCount));
+  // maxInvocations is at most maxRows rows: one comparison covers both limits.
   const std::uint64_t invocations = rows * gpu::kFillRowInvocations;
-  if (rows > maxRows || invocations > maxInvocations)
+  if (invocations > maxInvocations)
     throw std::invalid_argument("--tile-queue " + std::to_string(options.tileQueue) +
                                 " with --tile " + std::to_string(options.tileWidth) + "x" +
                                 std::to_string(options.tileHeight) + " needs a fill pass of " +
@@ -137,11 +138,10 @@ MaterialCache::MaterialCache(const VulkanContext& context, const CacheOptions& o
   defines_ = cacheShaderDefines(options, valueCount_);
 
   // Without a cache the bindings still need buffers: small ones nobody reads.
-  entries_ = deviceBuffer(context,
-                          enabled ? std::uint64_t(entryCount_) * stride * sizeof(std::uint32_t)
-                                  : stride * sizeof(std::uint32_t),
+  const std::uint64_t entryBytes = std::uint64_t(entryCount_) * stride * sizeof(std::uint32_t);
+  entries_ = deviceBuffer(context, enabled ? entryBytes : stride * sizeof(std::uint32_t),
                           "--cache-entries " + std::to_string(entryCount_));
-  bytes_ = enabled ? entryCount_ * stride * sizeof(std::uint32_t) : 0;
+  bytes_ = entryBytes;  // 0 without a cache (no entries)
   const std::uint64_t texelBytes = std::uint64_t(entryCount_) * texelBytesPerEntry;
   tileTexels_ = deviceBuffer(
       context, storage == TileStorage::Buffer ? texelBytes : 16,

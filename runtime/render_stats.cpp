@@ -4,6 +4,11 @@
 
 namespace memograph::runtime {
 
+std::string RenderStats::cacheEntriesText() const {
+  return std::to_string(cacheEntries) + " entries" +
+         (cacheEntriesFitted ? " (the default, fitted to the device)" : "");
+}
+
 double RenderStats::medianGpuMilliseconds() const {
   if (frames.empty())
     return 0.0;

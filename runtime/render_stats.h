@@ -84,6 +84,9 @@ struct RenderStats {
 
   double medianGpuMilliseconds() const;
   std::uint64_t totalRays() const;
+  // "1048576 entries", saying when the default count was fitted to the device (what
+  // `render` and `bench` print).
+  std::string cacheEntriesText() const;
 };
 
 // One header line, then one line per frame; set-up figures repeat on every line so each

@@ -141,12 +141,12 @@ bool instanceLayerPresent(const char* name) {
                      [&](const auto& l) { return std::strcmp(l.layerName, name) == 0; });
 }
 
+// Loads device entry point `name` into `function` (its PFN type deduced from the field).
 template <typename T>
-T loadDevice(VkDevice device, const char* name) {
-  auto function = reinterpret_cast<T>(vkGetDeviceProcAddr(device, name));
+void loadDevice(VkDevice device, const char* name, T& function) {
+  function = reinterpret_cast<T>(vkGetDeviceProcAddr(device, name));
   if (!function)
     throw std::runtime_error(std::string("Vulkan entry point missing: ") + name);
-  return function;
 }
 
 }  // namespace
@@ -430,47 +430,32 @@ VulkanContext::VulkanContext(const ContextOptions& options)
   commandPool_ = VulkanHandle<VkCommandPool>(
       pool, [device](VkCommandPool p) { vkDestroyCommandPool(device, p, nullptr); });
 
-  functions_.createAccelerationStructure =
-      loadDevice<PFN_vkCreateAccelerationStructureKHR>(device, "vkCreateAccelerationStructureKHR");
-  functions_.destroyAccelerationStructure = loadDevice<PFN_vkDestroyAccelerationStructureKHR>(
-      device, "vkDestroyAccelerationStructureKHR");
-  functions_.getAccelerationStructureBuildSizes =
-      loadDevice<PFN_vkGetAccelerationStructureBuildSizesKHR>(
-          device, "vkGetAccelerationStructureBuildSizesKHR");
-  functions_.cmdBuildAccelerationStructures = loadDevice<PFN_vkCmdBuildAccelerationStructuresKHR>(
-      device, "vkCmdBuildAccelerationStructuresKHR");
-  functions_.cmdCopyAccelerationStructure = loadDevice<PFN_vkCmdCopyAccelerationStructureKHR>(
-      device, "vkCmdCopyAccelerationStructureKHR");
-  functions_.cmdWriteAccelerationStructuresProperties =
-      loadDevice<PFN_vkCmdWriteAccelerationStructuresPropertiesKHR>(
-          device, "vkCmdWriteAccelerationStructuresPropertiesKHR");
-  functions_.getAccelerationStructureDeviceAddress =
-      loadDevice<PFN_vkGetAccelerationStructureDeviceAddressKHR>(
-          device, "vkGetAccelerationStructureDeviceAddressKHR");
+  loadDevice(device, "vkCreateAccelerationStructureKHR", functions_.createAccelerationStructure);
+  loadDevice(device, "vkDestroyAccelerationStructureKHR", functions_.destroyAccelerationStructure);
+  loadDevice(device, "vkGetAccelerationStructureBuildSizesKHR",
+             functions_.getAccelerationStructureBuildSizes);
+  loadDevice(device, "vkCmdBuildAccelerationStructuresKHR",
+             functions_.cmdBuildAccelerationStructures);
+  loadDevice(device, "vkCmdCopyAccelerationStructureKHR", functions_.cmdCopyAccelerationStructure);
+  loadDevice(device, "vkCmdWriteAccelerationStructuresPropertiesKHR",
+             functions_.cmdWriteAccelerationStructuresProperties);
+  loadDevice(device, "vkGetAccelerationStructureDeviceAddressKHR",
+             functions_.getAccelerationStructureDeviceAddress);
   if (backend_ == Backend::RayTracingPipeline) {
-    functions_.createRayTracingPipelines =
-        loadDevice<PFN_vkCreateRayTracingPipelinesKHR>(device, "vkCreateRayTracingPipelinesKHR");
-    functions_.getRayTracingShaderGroupHandles =
-        loadDevice<PFN_vkGetRayTracingShaderGroupHandlesKHR>(
-            device, "vkGetRayTracingShaderGroupHandlesKHR");
-    functions_.cmdTraceRays = loadDevice<PFN_vkCmdTraceRaysKHR>(device, "vkCmdTraceRaysKHR");
-    functions_.getRayTracingShaderGroupStackSize =
-        loadDevice<PFN_vkGetRayTracingShaderGroupStackSizeKHR>(
-            device, "vkGetRayTracingShaderGroupStackSizeKHR");
-    functions_.cmdSetRayTracingPipelineStackSize =
-        loadDevice<PFN_vkCmdSetRayTracingPipelineStackSizeKHR>(
-            device, "vkCmdSetRayTracingPipelineStackSizeKHR");
-    functions_.createDeferredOperation =
-        loadDevice<PFN_vkCreateDeferredOperationKHR>(device, "vkCreateDeferredOperationKHR");
-    functions_.destroyDeferredOperation =
-        loadDevice<PFN_vkDestroyDeferredOperationKHR>(device, "vkDestroyDeferredOperationKHR");
-    functions_.getDeferredOperationMaxConcurrency =
-        loadDevice<PFN_vkGetDeferredOperationMaxConcurrencyKHR>(
-            device, "vkGetDeferredOperationMaxConcurrencyKHR");
-    functions_.getDeferredOperationResult =
-        loadDevice<PFN_vkGetDeferredOperationResultKHR>(device, "vkGetDeferredOperationResultKHR");
-    functions_.deferredOperationJoin =
-        loadDevice<PFN_vkDeferredOperationJoinKHR>(device, "vkDeferredOperationJoinKHR");
+    loadDevice(device, "vkCreateRayTracingPipelinesKHR", functions_.createRayTracingPipelines);
+    loadDevice(device, "vkGetRayTracingShaderGroupHandlesKHR",
+               functions_.getRayTracingShaderGroupHandles);
+    loadDevice(device, "vkCmdTraceRaysKHR", functions_.cmdTraceRays);
+    loadDevice(device, "vkGetRayTracingShaderGroupStackSizeKHR",
+               functions_.getRayTracingShaderGroupStackSize);
+    loadDevice(device, "vkCmdSetRayTracingPipelineStackSizeKHR",
+               functions_.cmdSetRayTracingPipelineStackSize);
+    loadDevice(device, "vkCreateDeferredOperationKHR", functions_.createDeferredOperation);
+    loadDevice(device, "vkDestroyDeferredOperationKHR", functions_.destroyDeferredOperation);
+    loadDevice(device, "vkGetDeferredOperationMaxConcurrencyKHR",
+               functions_.getDeferredOperationMaxConcurrency);
+    loadDevice(device, "vkGetDeferredOperationResultKHR", functions_.getDeferredOperationResult);
+    loadDevice(device, "vkDeferredOperationJoinKHR", functions_.deferredOperationJoin);
   }
 
   VkPhysicalDeviceAccelerationStructurePropertiesKHR asProperties{

@@ -18,14 +18,42 @@ namespace fs = std::filesystem;
 
 using testing::runCli;
 
-// A build without the renderer (no Vulkan SDK) has a bench that only says so.
-bool benchAvailable() {
-  return runCli("bench --help").exitCode == 0;
-}
+// Each test gets a scratch folder (removed afterwards, failed assertions or not); a build
+// without the renderer (no Vulkan SDK) has a bench that only says so, and skips.
+class BenchCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (runCli("bench --help").exitCode != 0)
+      GTEST_SKIP() << "this memograph has no renderer";
+    directory_ = fs::temp_directory_path() /
+                 ("memograph_bench_cli_" + std::to_string(::getpid()) + "_" +
+                  ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(directory_);
+    fs::create_directories(directory_);
+  }
+  void TearDown() override {
+    if (!directory_.empty())
+      fs::remove_all(directory_);
+  }
+  std::string path(const std::string& name) const { return (directory_ / name).string(); }
+  // The smallest run: the landscape at 16x9, one path of one bounce, its own shader cache.
+  std::string smallRun() const {
+    return "bench builtin:landscape --size 16x9 --paths 1 --bounces 1 --shader-cache " +
+           path("shaders");
+  }
+  // A summary CSV's header and first line.
+  static std::pair<std::string, std::string> headerAndFirstLine(const std::string& csv) {
+    std::ifstream in(csv);
+    std::string header, line;
+    std::getline(in, header);
+    std::getline(in, line);
+    return {header, line};
+  }
 
-TEST(BenchCliTest, FrameStrideWithACacheIsAUsageError) {
-  if (!benchAvailable())
-    GTEST_SKIP() << "this memograph has no renderer";
+  fs::path directory_;
+};
+
+TEST_F(BenchCliTest, FrameStrideWithACacheIsAUsageError) {
   const auto run = runCli("bench builtin:landscape --cache texel --frame-stride 10");
   EXPECT_EQ(run.exitCode, 2) << run.output;
   EXPECT_NE(run.output.find("--frame-stride needs --cache none"), std::string::npos) << run.output;
@@ -34,71 +62,40 @@ TEST(BenchCliTest, FrameStrideWithACacheIsAUsageError) {
   EXPECT_EQ(runCli("bench builtin:landscape --label 'a/b'").exitCode, 2);
 }
 
-TEST(BenchCliTest, LabelNamesThePerFrameFileAndTheCsvLine) {
-  if (!benchAvailable())
-    GTEST_SKIP() << "this memograph has no renderer";
-  const fs::path directory =
-      fs::temp_directory_path() / ("memograph_bench_cli_" + std::to_string(::getpid()));
-  fs::remove_all(directory);
-  fs::create_directories(directory);
+TEST_F(BenchCliTest, LabelNamesThePerFrameFileAndTheCsvLine) {
   // The smallest strided run: 2 timed frames of a 4-camera path.
-  const auto run = runCli(
-      "bench builtin:landscape --size 16x9 --paths 1 --bounces 1 --frames 2 "
-      "--warmup 0 --frame-stride 2 --label floor_x2 --csv " +
-      (directory / "summary.csv").string() + " --frames-csv " + (directory / "f_").string() +
-      " --shader-cache " + (directory / "shaders").string());
+  const auto run = runCli(smallRun() + " --frames 2 --warmup 0 --frame-stride 2 --label floor_x2" +
+                          " --csv " + path("summary.csv") + " --frames-csv " + path("f_"));
   ASSERT_EQ(run.exitCode, 0) << run.output;
   EXPECT_NE(run.output.find("landscape [floor_x2] 16x9"), std::string::npos) << run.output;
-  EXPECT_TRUE(fs::exists(directory / "f_landscape_floor_x2_16x9.csv"));
-  std::ifstream summary(directory / "summary.csv");
-  std::string header, line;
-  std::getline(summary, header);
-  std::getline(summary, line);
+  EXPECT_TRUE(fs::exists(directory_ / "f_landscape_floor_x2_16x9.csv"));
+  const auto [header, line] = headerAndFirstLine(path("summary.csv"));
   EXPECT_NE(header.find(",label,warmup,frame_stride,camera_frames,total_cache_hit_rate"),
             std::string::npos)
       << header;
   EXPECT_NE(line.find(",floor_x2,0,2,4,"), std::string::npos) << line;
-  fs::remove_all(directory);
 }
 
 // --time-limit stops a run after the frame that reaches it (here 0 s: after the first,
 // a warm-up frame), reports what it covers and marks the CSV line; a bad value is a usage
 // error. Without reaching the limit a run is complete (stopped_early 0).
-TEST(BenchCliTest, TimeLimitStopsARunAndSaysSo) {
-  if (!benchAvailable())
-    GTEST_SKIP() << "this memograph has no renderer";
-  const fs::path directory =
-      fs::temp_directory_path() / ("memograph_bench_limit_" + std::to_string(::getpid()));
-  fs::remove_all(directory);
-  fs::create_directories(directory);
-  const std::string common =
-      "bench builtin:landscape --size 16x9 --paths 1 --bounces 1 "
-      "--warmup 1 --shader-cache " +
-      (directory / "shaders").string();
+TEST_F(BenchCliTest, TimeLimitStopsARunAndSaysSo) {
   const auto stopped =
-      runCli(common + " --frames 50 --time-limit 0 --csv " + (directory / "stopped.csv").string());
+      runCli(smallRun() + " --warmup 1 --frames 50 --time-limit 0 --csv " + path("stopped.csv"));
   ASSERT_EQ(stopped.exitCode, 0) << stopped.output;
   EXPECT_NE(stopped.output.find("stopped by --time-limit 0 s after 1 of 51 frames (0 of 50 timed)"),
             std::string::npos)
       << stopped.output;
-  const auto complete = runCli(common + " --frames 2 --time-limit 3600 --csv " +
-                               (directory / "complete.csv").string());
+  const auto complete =
+      runCli(smallRun() + " --warmup 1 --frames 2 --time-limit 3600 --csv " + path("complete.csv"));
   ASSERT_EQ(complete.exitCode, 0) << complete.output;
   EXPECT_EQ(complete.output.find("stopped by"), std::string::npos) << complete.output;
-  auto lines = [](const fs::path& path) {
-    std::ifstream in(path);
-    std::string header, line;
-    std::getline(in, header);
-    std::getline(in, line);
-    return std::pair{header, line};
-  };
-  auto [header, stoppedLine] = lines(directory / "stopped.csv");
+  const auto [header, stoppedLine] = headerAndFirstLine(path("stopped.csv"));
   EXPECT_TRUE(header.ends_with(",frames_requested,stopped_early")) << header;
   EXPECT_TRUE(stoppedLine.ends_with(",50,1")) << stoppedLine;
-  EXPECT_TRUE(lines(directory / "complete.csv").second.ends_with(",2,0"));
+  EXPECT_TRUE(headerAndFirstLine(path("complete.csv")).second.ends_with(",2,0"));
   EXPECT_EQ(runCli("bench builtin:landscape --time-limit -1").exitCode, 2);
   EXPECT_EQ(runCli("bench builtin:landscape --time-limit soon").exitCode, 2);
-  fs::remove_all(directory);
 }
 
 }  // namespace

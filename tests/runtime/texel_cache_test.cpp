@@ -282,8 +282,9 @@ TEST(TexelCache, DefaultEntriesFitTheStorageBufferRange) {
     EXPECT_NE(std::string(e.what()).find("--cache-entries " + std::to_string(entries)),
               std::string::npos)
         << e.what();
-    if (range < info.maxMemoryAllocationSize)
+    if (range < info.maxMemoryAllocationSize) {
       EXPECT_NE(std::string(e.what()).find("storage-buffer range"), std::string::npos) << e.what();
+    }
   }
 }
 

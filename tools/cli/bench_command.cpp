@@ -243,10 +243,7 @@ int runBench(std::span<const std::string_view> args) {
                     << result.stats.frames.size() << " of " << settings.frames << " frames ("
                     << timed.size() << " of " << f << " timed): the figures cover those only\n";
         if (result.stats.cache != "none")
-          std::cout << "  cache " << result.stats.cache << " (" << result.stats.cacheEntries
-                    << " entries"
-                    << (result.stats.cacheEntriesFitted ? " (the default, fitted to the device)"
-                                                        : "")
+          std::cout << "  cache " << result.stats.cache << " (" << result.stats.cacheEntriesText()
                     << ", D=" << result.stats.cacheProbe << ", eviction "
                     << result.stats.cacheEviction << ", clock " << result.stats.cacheClock << ", "
                     << result.stats.cacheValueFormat << ", " << result.stats.cacheBytes << " B"

@@ -264,12 +264,11 @@ int runRender(std::span<const std::string_view> args) {
       const auto& last = result.stats.frames.back();
       std::cerr << result.stats.cache << " cache"
                 << (result.stats.cacheTile.empty() ? "" : " (" + result.stats.cacheTile + ")")
-                << ": " << result.stats.cacheEntries << " entries"
-                << (result.stats.cacheEntriesFitted ? " (the default, fitted to the device)" : "")
-                << " (" << result.stats.cacheBytes << " B, " << result.stats.cacheValueFormat
-                << ", clock " << result.stats.cacheClock << "); last frame " << last.cacheLookups
-                << " lookups, " << last.cacheHits << " hits (" << 100.0 * last.cacheHitRate()
-                << " %), " << last.cacheOccupancy << " entries in use";
+                << ": " << result.stats.cacheEntriesText() << " (" << result.stats.cacheBytes
+                << " B, " << result.stats.cacheValueFormat << ", clock " << result.stats.cacheClock
+                << "); last frame " << last.cacheLookups << " lookups, " << last.cacheHits
+                << " hits (" << 100.0 * last.cacheHitRate() << " %), " << last.cacheOccupancy
+                << " entries in use";
       if (result.stats.cache == "tile")
         std::cerr << ", " << last.cacheTilesComputed << " tiles computed ("
                   << last.cacheDuplicateTiles << " duplicates)";
