@@ -67,8 +67,8 @@ read -r -d '' VARIANTS <<'TABLE'
   120   6.1s  classroom  tile_s24_lru-counter_sec 300  1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
   130   6.1s  classroom  tilebil_s24_lru-counter_sec 300 1    --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
   60    6.1s  landscape  texel_s24_lru-counter_sec 300 1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
-  60    6.1s  landscape  tile_s24_lru-counter_sec 300  1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
-  60    6.1s  landscape  tilebil_s24_lru-counter_sec 300 1    --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
+  90    6.1s  landscape  tile_s24_lru-counter_sec 300  1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
+  90    6.1s  landscape  tilebil_s24_lru-counter_sec 300 1    --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
 # diag: where the memoized frame's time over the floor goes. Frame time against misses per
 # frame (make_tables' fit) leaves ~50 ms on the classroom at zero misses; these rows vary
 # one suspect each: value bytes per lookup (fp16 halves them), the callable dispatch (a
@@ -141,10 +141,10 @@ read -r -d '' VARIANTS <<'TABLE'
   150   6.2   classroom  texel_s21_lrw-counter 300     1      --cache texel --cache-entries 2097152 --eviction lrw --clock counter --cache-read-check key
   150   6.2   classroom  texel_s21_lru-counter 300     1      --cache texel --cache-entries 2097152 --eviction lru --clock counter --cache-read-check key
   150   6.2   classroom  tile_s21_none         300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction none --cache-read-check key
-  150   6.2   classroom  tile_s21_random       300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction random --cache-read-check key
-  150   6.2   classroom  tile_s21_lrw-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lrw --clock frame --cache-read-check key
+  190   6.2   classroom  tile_s21_random       300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction random --cache-read-check key
+  250   6.2   classroom  tile_s21_lrw-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lrw --clock frame --cache-read-check key
   150   6.2   classroom  tile_s21_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock frame --cache-read-check key
-  150   6.2   classroom  tile_s21_lrw-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lrw --clock counter --cache-read-check key
+  280   6.2   classroom  tile_s21_lrw-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lrw --clock counter --cache-read-check key
   150   6.2   classroom  tile_s21_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock counter --cache-read-check key
 # Table 6.3: cache sizes, LRU with the counter clock (2^21 and 2^23 on the classroom are
 # Table 6.2's lru-counter runs, so they are not repeated here).
