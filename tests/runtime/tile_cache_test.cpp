@@ -211,6 +211,56 @@ TEST(TileCache, AFullCacheWithoutEvictionComputesNoTiles) {
   EXPECT_LT(flip, 0.06);
 }
 
+// Step 8 of §5.4.3: a lane served by its subgroup filters the texels the other lanes computed
+// for its own tile. Those must be the texels the tile stores, so a pixel shades the same
+// whether its tile was computed this frame (values exchanged between lanes) or read from the
+// cache. Both renders end on the same camera with the same frame index and seed (the image is
+// that last frame: accumulation restarts when the camera moves); before it, one looks away
+// from the wall (its last frame computes every tile: exchange), the other looks at it from a
+// hair's breadth away (its last frame reads tiles stored the frame before). 2x2 tiles put two
+// tiles in each 8-lane subgroup, so a lane that took the other slot's texels would show.
+// Only requesters whose tile another subgroup held locked at that instant evaluate their own
+// hit instead (rare on lavapipe): at most 1 % of the pixels may differ.
+TEST(TileCache, ExchangedTexelsEqualTheStoredTexels) {
+  Scene scene = wallScene(stripesGraph(), false);
+  const Camera wall = scene.camera;
+  Camera away = wall;
+  away.target = wall.position + (wall.position - wall.target);
+  Camera beside = wall;
+  beside.position.x += 1e-4f;
+  const RendererOptions options = tileOptions(2, 2);
+  auto lastFrameAfter = [&](const Camera& first) {
+    RenderSettings s = settings(2, 1);
+    s.cameraPath = {first, wall};
+    return Renderer(options).render(scene, s);
+  };
+  const RenderResult exchanged = lastFrameAfter(away);
+  const RenderResult stored = lastFrameAfter(beside);
+  const FrameStats& computing = exchanged.stats.frames.back();
+  const FrameStats& reading = stored.stats.frames.back();
+  EXPECT_EQ(exchanged.stats.frames.front().cacheLookups, 0u);  // nothing cached before
+  // Every lookup of the last frame misses unless a subgroup before it in the frame stored
+  // its tile.
+  EXPECT_GT(computing.cacheMisses, 0u);
+  EXPECT_GT(computing.cacheTilesComputed, 0u);
+  EXPECT_GT(reading.cacheHitRate(), 0.9);
+  std::size_t differing = 0;
+  const std::size_t pixels = exchanged.image.rgba.size() / 4;
+  for (std::size_t i = 0; i < pixels; ++i)
+    for (int c = 0; c < 3; ++c)
+      if (exchanged.image.rgba[4 * i + c] != stored.image.rgba[4 * i + c]) {
+        ++differing;
+        break;
+      }
+  std::printf(
+      "%s: last frame %llu misses, %llu tiles computed (exchanged) against %.2f %% hits "
+      "(stored); %zu of %zu pixels differ\n",
+      describe(exchanged).c_str(), (unsigned long long)computing.cacheMisses,
+      (unsigned long long)computing.cacheTilesComputed, 100.0 * reading.cacheHitRate(), differing,
+      pixels);
+  EXPECT_LE(differing, pixels / 100);
+}
+
 // A subgroup that changed across the material evaluation (a callable repack: NVIDIA's
 // raygen has hundreds of thousands a frame) gives its tiles up: the locked entries go back
 // to empty and uncounted, every requester evaluates its own hit. With every computation
