@@ -323,24 +323,11 @@ uint tileSortKey(bool pending, uint materialId) {
 #endif
 }
 
-// How many lanes of `lanes` are below `lane`: its rank when it is one of them.
-uint rankOfLane(uvec4 lanes, uint lane) {
-  uint count = 0u;
+// The lane of the `rank`-th set bit of the ballot `lanes`, counting from lane 0; the calling
+// lane itself when `lanes` has no more than `rank` bits set.
+uint laneOfRank(uvec4 lanes, uint rank) {
   for (uint c = 0u; c < 4u; ++c) {
-    uint first = 32u * c;
-    uint below = lane >= first + 32u ? 0xFFFFFFFFu : lane <= first ? 0u : (1u << (lane - first)) - 1u;
-    count += uint(bitCount(lanes[c] & below));
-  }
-  return count;
-}
-
-bool laneIn(uvec4 lanes, uint lane) { return ((lanes[lane / 32u] >> (lane % 32u)) & 1u) != 0u; }
-
-// The lane of the `rank`-th active lane (ranks count the set bits of `activeLanes` from
-// lane 0).
-uint laneOfRank(uvec4 activeLanes, uint rank) {
-  for (uint c = 0u; c < 4u; ++c) {
-    uint bits = activeLanes[c];
+    uint bits = lanes[c];
     uint count = uint(bitCount(bits));
     if (rank < count) {
       for (uint k = 0u; k < rank; ++k) bits &= bits - 1u;  // drop the lowest set bits
@@ -406,6 +393,11 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
     lockKey.base = subgroupShuffle(tile.key.base, lockSource);
     lockKey.hash = subgroupShuffle(tile.key.hash, lockSource);
     lockKey.texelUv = vec2(0.0);
+    // The locking lane also holds the rest of its slot's request, for the workers to read.
+    uint slotMaterial = subgroupShuffle(materialId, lockSource);
+    uvec4 slotInfo = subgroupShuffle(info, lockSource);
+    int slotLevel = subgroupShuffle(tile.level, lockSource);
+    vec2 slotTile = subgroupShuffle(tile.tile, lockSource);
     int entry = -1;
     if (rank < selected) {
       entry = cacheLock(lockKey);
@@ -419,9 +411,11 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
     // a whole tile).
     uvec4 lockedLanes = subgroupBallot(entry >= 0);
     uint lockedCount = subgroupBallotBitCount(lockedLanes);
+    // A served lane's slot was locked by the lane of rank mySlot; that lane's rank among the
+    // locking lanes is the slot's place among the computed tiles.
     uint mySlotLane = mySlot != kNoLane ? laneOfRank(activeLanes, mySlot) : lane;
-    bool mine = mySlot != kNoLane && laneIn(lockedLanes, mySlotLane);
-    uint myComputed = rankOfLane(lockedLanes, mySlotLane);
+    bool mine = mySlot != kNoLane && subgroupBallotBitExtract(lockedLanes, mySlotLane);
+    uint myComputed = subgroupShuffle(subgroupBallotExclusiveBitCount(lockedLanes), mySlotLane);
 
     // Steps 2-4 and 6, pass by pass: the lane of rank r computes texel p * activeCount + r
     // of the locked tiles (texel t of the c-th locked slot is number c * W * H + t), with
@@ -435,15 +429,15 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
     for (uint pass = 0u; pass < passes; ++pass) {
       uint number = pass * activeCount + rank;
       bool worker = number < total;
-      uint slotLane = laneOfRank(lockedLanes, min(number / kTileTexels, kMaxTileSlots - 1u));
-      uint slot = min(rankOfLane(activeLanes, slotLane), kMaxTileSlots - 1u);
+      // The lane that locked this texel's tile (for lanes without work, any active lane:
+      // laneOfRank past the last rank gives the lane itself).
+      uint slotLane = laneOfRank(lockedLanes, number / kTileTexels);
       uint texel = number % kTileTexels;
-      uint source = worker ? slotLeader[slot] : lane;
-      uint workMaterial = subgroupShuffle(materialId, source);
-      uvec4 workInfo = subgroupShuffle(info, source);
-      int workLevel = subgroupShuffle(tile.level, source);
-      vec2 workTile = subgroupShuffle(tile.tile, source);
-      int tileEntry = subgroupShuffle(entry, worker ? slotLane : lane);
+      uint workMaterial = subgroupShuffle(slotMaterial, slotLane);
+      uvec4 workInfo = subgroupShuffle(slotInfo, slotLane);
+      int workLevel = subgroupShuffle(slotLevel, slotLane);
+      vec2 workTile = subgroupShuffle(slotTile, slotLane);
+      int tileEntry = subgroupShuffle(entry, slotLane);
       float texelValues[MG_CACHE_VALUES];
       for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) texelValues[i] = 0.0;
 #if defined(MG_MATERIAL_CALLABLES) || defined(MG_TILE_TEST_REPACKS)
