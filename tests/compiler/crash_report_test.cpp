@@ -18,7 +18,7 @@ TEST(CrashReportTest, AFatalSignalIsNamedWithACallStackAndStillEndsTheProcess) {
         std::raise(SIGSEGV);
       },
       ::testing::KilledBySignal(SIGSEGV),
-      "memograph: fatal signal SIGSEGV \\(invalid memory access\\).*Call stack:");
+      "memograph: fatal signal SIGSEGV \\(Segmentation fault\\).*Call stack:");
   // The stack names this executable's frames (module and offset, for addr2line).
   EXPECT_EXIT(
       {
@@ -26,7 +26,7 @@ TEST(CrashReportTest, AFatalSignalIsNamedWithACallStackAndStillEndsTheProcess) {
         std::raise(SIGBUS);
       },
       ::testing::KilledBySignal(SIGBUS),
-      "SIGBUS \\(bus error\\)(.|\n)*memograph_compiler_tests\\(");
+      "SIGBUS \\(Bus error\\)(.|\n)*memograph_compiler_tests\\(");
 }
 
 TEST(CrashReportTest, WithoutASignalNothingIsPrinted) {

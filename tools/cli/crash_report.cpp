@@ -17,27 +17,16 @@ void writeText(const char* text) {
   [[maybe_unused]] auto written = ::write(STDERR_FILENO, text, std::strlen(text));
 }
 
-const char* signalName(int signal) {
-  switch (signal) {
-    case SIGSEGV:
-      return "SIGSEGV (invalid memory access)";
-    case SIGBUS:
-      return "SIGBUS (bus error)";
-    case SIGILL:
-      return "SIGILL (illegal instruction)";
-    case SIGFPE:
-      return "SIGFPE (arithmetic fault)";
-    default:
-      return "(another)";
-  }
-}
-
 void reportFatalSignal(int signal) {
-  writeText("memograph: fatal signal ");
-  writeText(signalName(signal));
+  // glibc's own names ("SEGV", "Segmentation fault"): lookups in static tables, no locale
+  // and no allocation, unlike strsignal().
+  writeText("memograph: fatal signal SIG");
+  writeText(sigabbrev_np(signal));
+  writeText(" (");
+  writeText(sigdescr_np(signal));
   writeText(
-      " (a bug in memograph or the Vulkan driver; please report it with the command "
-      "line). Call stack:\n");
+      "): a bug in memograph or the Vulkan driver; please report it with the command line. "
+      "Call stack:\n");
   void* frames[64];
   const int count = ::backtrace(frames, 64);
   ::backtrace_symbols_fd(frames, count, STDERR_FILENO);
