@@ -17,7 +17,8 @@ for call in docs/results/issue4_h100/run1 docs/results/issue4_h100/run2 \
   docs/results/issue4_h200/call11 docs/results/issue4_h200/call12 \
   docs/results/issue4_h200/call13 docs/results/issue4_h200/call14 \
   docs/results/issue4_h200/call15 docs/results/issue4_h200/call17 \
-  docs/results/issue4_h200/call18 docs/results/issue4_h200/call19; do
+  docs/results/issue4_h200/call18 docs/results/issue4_h200/call19 \
+  docs/results/issue4_h200/call20; do
   args+=(--summary "${call}_issue4_summary.csv" --frames "${call}_issue4_frames.tar.gz"
     --steps "${call}_issue4_steps.tsv")
 done
