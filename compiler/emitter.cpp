@@ -56,6 +56,25 @@ std::string variableName(const ResolvedGraph& graph, std::size_t node, std::size
   return "unused" + std::to_string(node) + "_" + graph.nodes[node].type->sockets[socket].name;
 }
 
+// A constant table argument is a local variable filled entry by entry: the one spelling of
+// an array-holding struct that GLSL and HLSL both accept (no initializer lists in GLSL, no
+// struct constructors in HLSL).
+std::string tableName(std::size_t node, const std::string& socket) {
+  return "table" + std::to_string(node) + "_" + socket;
+}
+
+std::string tableDefinition(const std::string& name, const Literal& value) {
+  std::string out = "  Table " + name + ";\n";
+  const Type entry{BaseType::Float4, false};
+  for (int i = 0; i < kTableEntries; ++i) {
+    Literal rgba;
+    rgba.kind = Literal::Kind::Tuple;
+    rgba.components.assign(value.components.begin() + 4 * i, value.components.begin() + 4 * i + 4);
+    out += "  " + name + ".v[" + std::to_string(i) + "] = " + formatConstant(rgba, entry) + ";\n";
+  }
+  return out;
+}
+
 std::string constantExpression(const Literal& value, Type type) {
   if (type.base == BaseType::TextureRef) {
     return std::to_string(static_cast<long long>(value.components.at(0)));
@@ -105,6 +124,17 @@ std::string emitMaterial(const EmitInput& in, Target target) {
   }
   for (const std::size_t node : in.order) {
     const auto& resolved = in.graph.nodes[node];
+    const auto& overload = resolved.type->overloads[*in.chosen[node]];
+    for (std::size_t s = 0; s < resolved.type->sockets.size(); ++s) {
+      if (overload.socketTypes[s].base == BaseType::Table && resolved.inputs[s] &&
+          resolved.inputs[s]->kind != InputSource::Kind::Link) {
+        out += tableDefinition(tableName(node, resolved.type->sockets[s].name),
+                               resolved.inputs[s]->constant);
+      }
+    }
+  }
+  for (const std::size_t node : in.order) {
+    const auto& resolved = in.graph.nodes[node];
     const auto& type = *resolved.type;
     const auto& overload = type.overloads[*in.chosen[node]];
     const auto& function = in.library.functions()[overload.function];
@@ -125,7 +155,8 @@ std::string emitMaterial(const EmitInput& in, Target target) {
       }
       const InputSource& source = *resolved.inputs[s];
       if (source.kind != InputSource::Kind::Link) {
-        argument = constantExpression(source.constant, wanted);
+        argument = wanted.base == BaseType::Table ? tableName(node, type.sockets[s].name)
+                                                  : constantExpression(source.constant, wanted);
         continue;
       }
       const auto& producer = in.graph.nodes[source.producer];

@@ -12,9 +12,9 @@ namespace memograph::compiler {
 
 // A constant written in the graph: a number, a tuple `(0.8, 0.2, 0.1)` or a string.
 struct Literal {
-  enum class Kind { Number, Tuple, String };
+  enum class Kind { Number, Tuple, String, Table };
   Kind kind = Kind::Number;
-  std::vector<double> components;  // Number: one; Tuple: two to four
+  std::vector<double> components;  // Number: one; Tuple: two to four; Table: kTableNumbers
   bool isInteger = false;          // Number written without '.' or exponent
   std::string text;                // String: the unquoted text
   SourceLocation location;

@@ -83,6 +83,10 @@ class Lexer {
         return single(TokenKind::LeftParen);
       case ')':
         return single(TokenKind::RightParen);
+      case '[':
+        return single(TokenKind::LeftBracket);
+      case ']':
+        return single(TokenKind::RightBracket);
       case ',':
         return single(TokenKind::Comma);
       case ';':
@@ -185,6 +189,10 @@ std::string_view tokenKindName(TokenKind kind) {
       return "'('";
     case TokenKind::RightParen:
       return "')'";
+    case TokenKind::LeftBracket:
+      return "'['";
+    case TokenKind::RightBracket:
+      return "']'";
     case TokenKind::Comma:
       return "','";
     case TokenKind::Semicolon:

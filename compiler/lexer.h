@@ -14,11 +14,13 @@ enum class TokenKind {
   Identifier,
   Number,
   String,
-  Less,        // <
-  Greater,     // >
-  Equals,      // =
-  LeftParen,   // (
-  RightParen,  // )
+  Less,          // <
+  Greater,       // >
+  Equals,        // =
+  LeftParen,     // (
+  RightParen,    // )
+  LeftBracket,   // [
+  RightBracket,  // ]
   Comma,
   Semicolon,
   Invalid,  // an unexpected byte, or an unterminated string

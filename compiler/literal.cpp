@@ -63,6 +63,8 @@ Type literalType(const Literal& literal) {
   switch (literal.kind) {
     case Literal::Kind::String:
       return Type{BaseType::TextureRef, false};
+    case Literal::Kind::Table:
+      return Type{BaseType::Table, false};
     case Literal::Kind::Tuple:
       return Type::floatOfWidth(static_cast<int>(literal.components.size()), false);
     case Literal::Kind::Number:

@@ -3,12 +3,16 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "compiler/material_interface.h"
+
 namespace memograph::compiler {
 
 namespace {
 
 // Orders names as MaterialInputs/MaterialOutputs declare them, so lists read naturally.
-void sortByDeclaration(std::vector<std::string>& names, const std::vector<std::string>& order) {
+template <std::size_t N>
+void sortByDeclaration(std::vector<std::string>& names,
+                       const std::array<std::string_view, N>& order) {
   std::sort(names.begin(), names.end(), [&](const std::string& a, const std::string& b) {
     return std::find(order.begin(), order.end(), a) < std::find(order.begin(), order.end(), b);
   });
@@ -73,10 +77,8 @@ MaterialMetadata collectMetadata(const ResolvedGraph& graph, const std::vector<s
     if (overload.derivativeInputs + overload.derivativeOutputs > 0)
       meta.needsDerivatives = true;
   }
-  sortByDeclaration(meta.inputsUsed,
-                    {"uv", "position", "normal", "tangent", "vertexColor", "view", "time"});
-  sortByDeclaration(meta.outputsWritten,
-                    {"baseColor", "metallic", "roughness", "normal", "emission", "opacity"});
+  sortByDeclaration(meta.inputsUsed, kMaterialInputNames);
+  sortByDeclaration(meta.outputsWritten, kMaterialOutputNames);
   // Thesis §4.2: a cache keyed by (material, uv, mip) is only correct when nothing but the
   // texture coordinates varies across the surface.
   meta.cacheable = std::all_of(meta.inputsUsed.begin(), meta.inputsUsed.end(),

@@ -8,6 +8,7 @@
 
 #include "compiler/library_scanner.h"
 #include "compiler/literal.h"
+#include "compiler/material_interface.h"
 
 namespace memograph::compiler {
 
@@ -122,15 +123,13 @@ struct Annotations {
 };
 
 bool isKnownInput(std::string_view name) {
-  static const std::set<std::string, std::less<>> known = {
-      "uv", "position", "normal", "tangent", "vertexColor", "view", "time"};
-  return known.contains(name);
+  return std::find(kMaterialInputNames.begin(), kMaterialInputNames.end(), name) !=
+         kMaterialInputNames.end();
 }
 
 bool isKnownOutput(std::string_view name) {
-  static const std::set<std::string, std::less<>> known = {"baseColor", "metallic", "roughness",
-                                                           "normal",    "emission", "opacity"};
-  return known.contains(name);
+  return std::find(kMaterialOutputNames.begin(), kMaterialOutputNames.end(), name) !=
+         kMaterialOutputNames.end();
 }
 
 class Loader {
@@ -307,8 +306,8 @@ class Loader {
         diagnostics_.error(file, item.location,
                            "node '" + item.name + "' has parameter '" + raw[i].name +
                                "' of type '" + raw[i].type +
-                               "'; sockets are float, float2/3/4 (optionally _D), int or "
-                               "TextureRef");
+                               "'; sockets are float, float2/3/4 (optionally _D), int, "
+                               "TextureRef or Table");
         return false;
       }
       function.parameters.push_back(Parameter{raw[i].direction, *type, raw[i].name});
@@ -329,6 +328,14 @@ class Loader {
         diagnostics_.error(file, item.location,
                            "socket '" + raw[i].name + "' of '" + item.name +
                                "' is inout; sockets are `in` (inputs) or `out` (outputs)");
+        return false;
+      }
+      // Tables and texture slots come only from literals: no node can produce one.
+      if (raw[i].direction == Direction::Out &&
+          (type->base == BaseType::Table || type->base == BaseType::TextureRef)) {
+        diagnostics_.error(file, item.location,
+                           "output '" + raw[i].name + "' of '" + item.name + "' is a " +
+                               type->name() + "; tables and textures can only be inputs");
         return false;
       }
       if (kReservedNames.contains(raw[i].name)) {

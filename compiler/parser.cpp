@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "compiler/lexer.h"
+#include "compiler/types.h"
 
 namespace memograph::compiler {
 
@@ -102,7 +103,8 @@ class Parser {
         return socketBinding(node);
       case TokenKind::Number:
       case TokenKind::String:
-      case TokenKind::LeftParen: {
+      case TokenKind::LeftParen:
+      case TokenKind::LeftBracket: {
         Literal value;
         if (!literal(value))
           return false;
@@ -211,8 +213,10 @@ class Parser {
       out.components = {value};
       return true;
     }
+    if (token.kind == TokenKind::LeftBracket)
+      return table(out);
     if (token.kind != TokenKind::LeftParen) {
-      error(token, "expected a value (number, (x, y, …) tuple or \"string\"), found " +
+      error(token, "expected a value (number, (x, y, …) tuple, [table] or \"string\"), found " +
                        std::string(tokenKindName(token.kind)));
       return false;
     }
@@ -246,6 +250,45 @@ class Parser {
     if (out.components.size() < 2 || out.components.size() > 4) {
       error(token,
             "a tuple has 2 to 4 components; this one has " + std::to_string(out.components.size()));
+      return false;
+    }
+    return true;
+  }
+
+  // `[ n n n … ]`: a lookup table of kTableEntries RGBA entries (ramps, curves), numbers
+  // separated by white space or commas.
+  bool table(Literal& out) {
+    const Token& open = take();
+    out.kind = Literal::Kind::Table;
+    while (peek().kind != TokenKind::RightBracket) {
+      const Token& component = peek();
+      if (component.kind == TokenKind::Comma) {
+        take();
+        continue;
+      }
+      if (component.kind != TokenKind::Number) {
+        error(component, "expected a number or ']' in the table, found " +
+                             std::string(tokenKindName(component.kind)));
+        return false;
+      }
+      take();
+      double value = 0;
+      bool isInteger = false;
+      if (!number(component, value, isInteger))
+        return false;
+      // Bounded before the size check so a runaway table costs no more than a full one.
+      if (out.components.size() == static_cast<std::size_t>(kTableNumbers)) {
+        error(component, "a table has " + std::to_string(kTableNumbers) + " numbers (" +
+                             std::to_string(kTableEntries) + " RGBA entries); this one has more");
+        return false;
+      }
+      out.components.push_back(value);
+    }
+    take();
+    if (out.components.size() != static_cast<std::size_t>(kTableNumbers)) {
+      error(open, "a table has " + std::to_string(kTableNumbers) + " numbers (" +
+                      std::to_string(kTableEntries) + " RGBA entries); this one has " +
+                      std::to_string(out.components.size()));
       return false;
     }
     return true;

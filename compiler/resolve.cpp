@@ -29,6 +29,15 @@ bool isTextureSocket(const NodeType& type, std::size_t socket) {
   return !type.overloads.empty();
 }
 
+// Whether every overload of the socket takes a Table (bracket literals bind only there).
+bool isTableSocket(const NodeType& type, std::size_t socket) {
+  for (const auto& overload : type.overloads) {
+    if (overload.socketTypes[socket].base != BaseType::Table)
+      return false;
+  }
+  return !type.overloads.empty();
+}
+
 bool isIntSocket(const NodeType& type, std::size_t socket) {
   for (const auto& overload : type.overloads) {
     if (overload.socketTypes[socket].base != BaseType::Int)
@@ -261,6 +270,16 @@ class Resolver {
                                             "' takes a texture path in quotes, e.g. \"wood.png\""
                                       : "input '" + name + "' of '" + type.name +
                                             "' takes a number or a (x, y, …) tuple, not a string");
+      return;
+    }
+    const bool wantsTable = isTableSocket(type, socket);
+    if (wantsTable != (value.kind == Literal::Kind::Table)) {
+      diagnostics_.error(
+          file_, value.location,
+          wantsTable ? "input '" + name + "' of '" + type.name + "' takes a table: [ " +
+                           std::to_string(kTableNumbers) + " numbers ] (" +
+                           std::to_string(kTableEntries) + " RGBA entries)"
+                     : "input '" + name + "' of '" + type.name + "' does not take a [table]");
       return;
     }
     if (isIntSocket(type, socket) && !isShaderInt(value)) {

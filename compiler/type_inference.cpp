@@ -13,6 +13,8 @@ std::optional<Cost> constantCost(const Literal& value, Type to) {
   switch (value.kind) {
     case Literal::Kind::String:
       return to.base == BaseType::TextureRef ? std::optional(Cost{}) : std::nullopt;
+    case Literal::Kind::Table:
+      return to.base == BaseType::Table ? std::optional(Cost{}) : std::nullopt;
     case Literal::Kind::Number:
       if (to.base == BaseType::Int)
         return isShaderInt(value) ? std::optional(Cost{}) : std::nullopt;
@@ -73,15 +75,15 @@ class TypeSet {
  private:
   static constexpr unsigned kBaseTypeCount = static_cast<unsigned>(BaseType::Outputs) + 1;
   static constexpr unsigned kTypeCount = 2 * kBaseTypeCount;
-  static_assert(kTypeCount <= 16, "TypeSet holds its bits in 16 bits");
+  static_assert(kTypeCount <= 32, "TypeSet holds its bits in 32 bits");
 
-  static std::uint16_t bit(Type type) {
-    return static_cast<std::uint16_t>(
+  static std::uint32_t bit(Type type) {
+    return static_cast<std::uint32_t>(
         1u << (2 * static_cast<unsigned>(type.base) + (type.derivatives ? 1 : 0)));
   }
   static Type typeAt(unsigned i) { return Type{static_cast<BaseType>(i / 2), i % 2 == 1}; }
 
-  std::uint16_t bits_ = 0;
+  std::uint32_t bits_ = 0;
 };
 
 std::string joinTypes(const std::set<Type>& types) {

@@ -6,13 +6,14 @@
 namespace memograph::compiler {
 
 namespace {
-constexpr std::array<std::pair<std::string_view, BaseType>, 8> kSpellings{{
+constexpr std::array<std::pair<std::string_view, BaseType>, 9> kSpellings{{
     {"float", BaseType::Float},
     {"float2", BaseType::Float2},
     {"float3", BaseType::Float3},
     {"float4", BaseType::Float4},
     {"int", BaseType::Int},
     {"TextureRef", BaseType::TextureRef},
+    {"Table", BaseType::Table},
     {"MaterialInputs", BaseType::Inputs},
     {"MaterialOutputs", BaseType::Outputs},
 }};

@@ -11,7 +11,12 @@ namespace memograph::compiler {
 // The two shading languages the compiler emits.
 enum class Target { Glsl, Hlsl };
 
-enum class BaseType { Float, Float2, Float3, Float4, Int, TextureRef, Inputs, Outputs };
+// Table: a constant lookup table of kTableEntries float4s (Cycles' ramp and curve tables,
+// RAMP_TABLE_SIZE), bound only from a bracket literal; prelude `struct Table`.
+enum class BaseType { Float, Float2, Float3, Float4, Int, TextureRef, Table, Inputs, Outputs };
+
+inline constexpr int kTableEntries = 256;
+inline constexpr int kTableNumbers = kTableEntries * 4;
 
 struct Type {
   BaseType base = BaseType::Float;
@@ -38,7 +43,8 @@ struct Type {
   }
   bool isFloat() const { return width() > 0; }
   bool isContext() const { return base == BaseType::Inputs || base == BaseType::Outputs; }
-  // The spelling in shader code: "float3", "float3_D", "int", "TextureRef", "MaterialInputs".
+  // The spelling in shader code: "float3", "float3_D", "int", "TextureRef", "Table",
+  // "MaterialInputs".
   std::string name() const;
 
   static std::optional<Type> parse(std::string_view spelling);

@@ -152,6 +152,43 @@ TEST(Emitter, SeveralMaterialsCoexistInOneShader) {
   EXPECT_TRUE(hlslCheck.ok) << hlslCheck.log;
 }
 
+std::string tableLiteral() {
+  std::string table = "[";
+  for (int i = 0; i < 256; ++i)
+    table += std::to_string(i) + " 0.5 0 1\n";
+  return table + "]";
+}
+
+TEST(Emitter, TableLiteralsBecomeLocalsFilledEntryByEntryForBothTargets) {
+  const auto run =
+      compileText("UVInput UV>1;\nSquash In<1 Out>2;\nRampLookup Fac<2 Ramp=" + tableLiteral() +
+                  " Color>3;\nBaseColorOutput Color<3;\n");
+  ASSERT_TRUE(run.material) << run.messages();
+  const auto& glsl = run.material->glsl;
+  EXPECT_NE(glsl.find("Table table2_Ramp;"), std::string::npos);
+  EXPECT_NE(glsl.find("table2_Ramp.v[255] = float4(255.0, 0.5, 0.0, 1.0);"), std::string::npos);
+  EXPECT_NE(glsl.find("RampLookup(link2, table2_Ramp, link3);"), std::string::npos);
+  const auto glslCheck = testing::compileGlslMaterials({glsl}, {run.material->metadata.name});
+  EXPECT_TRUE(glslCheck.ok) << glslCheck.log;
+  const auto hlslCheck =
+      testing::compileHlslMaterials({run.material->hlsl}, {run.material->metadata.name});
+  EXPECT_TRUE(hlslCheck.ok) << hlslCheck.log;
+}
+
+TEST(Emitter, TableSocketsTakeOnlyTablesAndTablesOnlyTableSockets) {
+  const auto number =
+      compileText("RampLookup Fac=0.5 Ramp=1.0 Color>3;\nBaseColorOutput Color<3;\n");
+  EXPECT_FALSE(number.material);
+  EXPECT_NE(number.messages().find("takes a table: [ 1024 numbers ]"), std::string::npos)
+      << number.messages();
+  const auto misplaced =
+      compileText("RampLookup Fac=" + tableLiteral() + " Ramp=" + tableLiteral() +
+                  " Color>3;\nBaseColorOutput Color<3;\n");
+  EXPECT_FALSE(misplaced.material);
+  EXPECT_NE(misplaced.messages().find("does not take a [table]"), std::string::npos)
+      << misplaced.messages();
+}
+
 TEST(Emitter, GlslangCheckCanFail) {
   const auto broken =
       testing::compileGlslMaterials({"void EvaluateMaterial_X(int) { oops; }"}, {"X"});

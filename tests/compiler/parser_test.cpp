@@ -156,5 +156,39 @@ TEST(Parser, StopsAfterTooManyErrors) {
   EXPECT_LE(diagnostics.errorCount(), 21u);
 }
 
+TEST(Parser, TableLiteralsHoldExactly1024Numbers) {
+  std::string numbers;
+  for (int i = 0; i < 1024; ++i)
+    numbers += (i % 7 == 0 ? ", " : " ") + std::to_string(i);
+  Diagnostics ok;
+  const auto graph = parse("RampLookup Ramp=[" + numbers + "] Color>1;", ok);
+  ASSERT_EQ(ok.errorCount(), 0u);
+  ASSERT_EQ(graph.nodes.size(), 1u);
+  const auto& table = graph.nodes[0].constants.at(0).value;
+  EXPECT_EQ(table.kind, Literal::Kind::Table);
+  ASSERT_EQ(table.components.size(), 1024u);
+  EXPECT_EQ(table.components[1023], 1023.0);
+
+  Diagnostics shortTable;
+  parse("RampLookup Ramp=[1 2 3] Color>1;", shortTable);
+  ASSERT_EQ(shortTable.errorCount(), 1u);
+  EXPECT_NE(formatDiagnostics(shortTable)
+                .find("1:17: error: a table has 1024 numbers (256 RGBA entries); "
+                      "this one has 3"),
+            std::string::npos)
+      << formatDiagnostics(shortTable);
+
+  Diagnostics longTable;
+  parse("RampLookup Ramp=[" + numbers + " 5] Color>1;", longTable);
+  EXPECT_NE(formatDiagnostics(longTable).find("this one has more"), std::string::npos)
+      << formatDiagnostics(longTable);
+
+  Diagnostics unclosed;
+  parse("RampLookup Ramp=[1 2 ; Color>1;", unclosed);
+  EXPECT_NE(formatDiagnostics(unclosed).find("expected a number or ']' in the table, found ';'"),
+            std::string::npos)
+      << formatDiagnostics(unclosed);
+}
+
 }  // namespace
 }  // namespace memograph::compiler
