@@ -5,8 +5,10 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstring>
 #include <initializer_list>
+#include <vector>
 
 namespace memograph::cli {
 
@@ -42,9 +44,16 @@ void installCrashReport() {
   // inside the handler.
   void* warmUp[1];
   ::backtrace(warmUp, 1);
+  // A stack overflow (deep recursion in a scene importer, say) leaves no stack for the
+  // handler: it runs on its own stack, allocated once and kept for the process's life.
+  static std::vector<char> alternateStack(std::max<std::size_t>(SIGSTKSZ, 64 * 1024));
+  stack_t stack{};
+  stack.ss_sp = alternateStack.data();
+  stack.ss_size = alternateStack.size();
+  ::sigaltstack(&stack, nullptr);
   struct sigaction action {};
   action.sa_handler = reportFatalSignal;
-  action.sa_flags = SA_RESETHAND;
+  action.sa_flags = SA_RESETHAND | SA_ONSTACK;
   sigemptyset(&action.sa_mask);
   for (int signal : {SIGSEGV, SIGBUS, SIGILL, SIGFPE})
     ::sigaction(signal, &action, nullptr);
