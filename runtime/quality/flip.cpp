@@ -354,8 +354,8 @@ FlipResult computeFlip(const FlipImageView& reference, const FlipImageView& test
   }
   const double ppd =
       options.pixelsPerDegree == 0.0 ? defaultPixelsPerDegree() : options.pixelsPerDegree;
-  if (!(ppd > 0.0) || !std::isfinite(ppd))
-    throw std::invalid_argument("FLIP: pixels per degree must be positive and finite");
+  if (!(ppd >= kMinPixelsPerDegree && ppd <= kMaxPixelsPerDegree))
+    throw std::invalid_argument("FLIP: pixels per degree must be from 1 to 1000");
 
   const Opponent ref = toOpponent(reference, options.encoding);
   const Opponent tst = toOpponent(test, options.encoding);

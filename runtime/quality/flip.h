@@ -32,6 +32,11 @@ double pixelsPerDegree(double distance, double width, double resolution);
 // The paper's default observer: 0.7 m from a 0.7 m wide 3840-pixel monitor, ≈ 67.02 ppd.
 double defaultPixelsPerDegree();
 
+// The observers computeFlip accepts. The CSF filter's radius, and with it the cost (radius x
+// pixels), grows with ppd: 1000 covers a 3840-pixel, 0.7 m monitor seen from 10 m.
+inline constexpr double kMinPixelsPerDegree = 1.0;
+inline constexpr double kMaxPixelsPerDegree = 1000.0;
+
 enum class FlipEncoding {
   Srgb,    // channel values are sRGB-encoded (8-bit files, displayed images)
   Linear,  // channel values are linear RGB; clamped to [0, 1] (LDR-FLIP)

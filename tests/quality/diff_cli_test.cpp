@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include "runtime/image.h"
@@ -76,6 +77,9 @@ class DiffCliTest : public ::testing::Test {
     std::ofstream(path("broken.png")) << "not a png";
     runtime::writePfm(path("ref.pfm"), reference);
     runtime::writePfm(path("test.pfm"), test);
+    runtime::HdrImage withNan = reference;
+    withNan.pixel(3, 5)[1] = std::numeric_limits<float>::quiet_NaN();
+    runtime::writePfm(path("nan.pfm"), withNan);
   }
   void TearDown() override { fs::remove_all(directory_); }
 
@@ -164,12 +168,25 @@ TEST_F(DiffCliTest, BadImagesExitWithOne) {
   EXPECT_NE(run.output.find("broken.png"), std::string::npos) << run.output;
   EXPECT_NE(run.output.find("missing.png"), std::string::npos) << run.output;
   EXPECT_FALSE(fs::exists(path("map.png")));
+  // A NaN pixel is named, not averaged into `mean nan`.
+  run = runCli(diff("ref.pfm", "nan.pfm"));
+  EXPECT_EQ(run.exitCode, 1) << run.output;
+  EXPECT_NE(run.output.find("nan.pfm: error: pixel (3, 5) is not a finite number (NaN)"),
+            std::string::npos)
+      << run.output;
 }
 
 TEST_F(DiffCliTest, UsageErrorsExitWithTwo) {
   EXPECT_EQ(runCli("diff " + path("ref.png")).exitCode, 2);
   EXPECT_EQ(runCli(diff("ref.png", "test.png", "--ppd 40 --monitor-width 0.5")).exitCode, 2);
   EXPECT_EQ(runCli(diff("ref.png", "test.png", "--ppd -3")).exitCode, 2);
+  // The CSF filter's cost grows with ppd: 1e7 once ran 83 s and 1e12 crashed.
+  for (const char* observer : {"--ppd 1e12", "--ppd 1e7", "--ppd 1001", "--ppd 0.5",
+                               "--monitor-distance 1e10", "--monitor-resolution 1e-3"}) {
+    const CliRun run = runCli(diff("ref.png", "test.png", observer));
+    EXPECT_EQ(run.exitCode, 2) << observer << "\n" << run.output;
+    EXPECT_NE(run.output.find("outside 1 to 1000"), std::string::npos) << run.output;
+  }
   EXPECT_EQ(runCli(diff("ref.png", "test.png", "--out " + path("map.tif"))).exitCode, 2);
   const CliRun help = runCli("diff --help");
   EXPECT_EQ(help.exitCode, 0);

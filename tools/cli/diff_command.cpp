@@ -35,8 +35,8 @@ constexpr std::string_view kHelp =
     "options:\n"
     "  --out MAP                 write the error map: .png colour-mapped (magma), .exr or\n"
     "                            .pfm the raw error in [0, 1] as grey\n"
-    "  --ppd N                   observer's pixels per degree (default 67.02: 0.7 m from a\n"
-    "                            0.7 m wide 3840-pixel monitor)\n"
+    "  --ppd N                   observer's pixels per degree, 1 to 1000 (default 67.02:\n"
+    "                            0.7 m from a 0.7 m wide 3840-pixel monitor)\n"
     "  --monitor-distance M      or compute it: viewing distance in metres (default 0.7)\n"
     "  --monitor-width M         monitor width in metres (default 0.7)\n"
     "  --monitor-resolution PX   monitor width in pixels (default 3840)\n"
@@ -143,6 +143,14 @@ int runDiff(std::span<const std::string_view> args) {
       return usageError("diff", "--monitor-resolution must be a positive number of pixels");
     ppd = runtime::pixelsPerDegree(distance, width, resolution);
   }
+  // Checked here, before any image is read, so a mistyped value is a usage error at once.
+  if (!(ppd >= runtime::kMinPixelsPerDegree && ppd <= runtime::kMaxPixelsPerDegree)) {
+    char range[96];
+    std::snprintf(range, sizeof range, "%.3g pixels per degree, outside %g to %g", ppd,
+                  runtime::kMinPixelsPerDegree, runtime::kMaxPixelsPerDegree);
+    return usageError("diff",
+                      std::string(monitor ? "the --monitor-* options give " : "--ppd is ") + range);
+  }
   if (encoding != "auto" && encoding != "srgb" && encoding != "linear")
     return usageError("diff", "--encoding must be auto, srgb or linear, not '" + encoding + "'");
   if (!out.empty()) {
@@ -159,6 +167,19 @@ int runDiff(std::span<const std::string_view> args) {
   if (!reference || !test) {
     printDiagnostics(diagnostics);
     return kExitFailure;
+  }
+  // FLIP of a NaN is NaN, and it would print `mean nan`: say where the bad pixel is instead.
+  for (const auto& [path, image] : {std::pair{&referencePath, &*reference}, {&testPath, &*test}}) {
+    for (std::size_t i = 0; i < image->rgba.size(); ++i) {
+      if (i % 4 != 3 && !std::isfinite(image->rgba[i])) {
+        const std::size_t pixel = i / 4;
+        std::cerr << *path << ": error: pixel (" << pixel % image->width << ", "
+                  << pixel / image->width << ") is not a finite number ("
+                  << (std::isnan(image->rgba[i]) ? "NaN" : "infinite")
+                  << "); FLIP compares finite colours\n";
+        return kExitFailure;
+      }
+    }
   }
   if (reference->width != test->width || reference->height != test->height) {
     std::cerr << "memograph diff: the images differ in size: " << referencePath << " is "
