@@ -2,7 +2,7 @@
 # Builds the GPU-machine bundle: bundle/memograph (renderer + compiler + built-in scenes,
 # glslang and the C++ runtime linked statically; no OpenImageIO, no assimp) and
 # bundle/run_device.sh, the command the `device` tool runs (with bundle/device_env.sh, the
-# Vulkan set-up it and the issue-4 scripts source). The only non-system library the
+# Vulkan set-up it and the memoization scripts source). The only non-system library the
 # binary needs is libvulkan.so.1, which travels as Debian packages in .gl/ (the recipe of
 # the device tool's README). Everything stays under 64 MiB.
 #
@@ -51,7 +51,7 @@ cp tools/device_env.sh "$bundle/device_env.sh"
 cat >"$bundle/run_device.sh" <<'RUN'
 #!/usr/bin/env bash
 # Runs on the GPU machine: installs the carried Vulkan loader, then the smoke test, the
-# renders and the benchmarks of issue 3. Everything it measures lands in $OUT: 8 files at
+# renders and the path tracer's benchmarks. Everything it measures lands in $OUT: 8 files at
 # most (the device tool's limit), each under 16 MB.
 set -uo pipefail
 source bundle/device_env.sh

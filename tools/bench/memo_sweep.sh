@@ -1,18 +1,18 @@
 #!/usr/bin/env bash
-# Issue 4's benchmark sweep: the runs behind the project's Tables 6.1-6.3 (thesis §6) at
-# 1920x1080, P = 6, L = 4 over a 300-camera path, in ONE device call of at most 600 s.
-# tools/bundle_issue4.sh copies it to bundle/run_issue4.sh; on the GPU machine:
-#   bash bundle/run_issue4.sh [--tables 6.1,6.1r,6.1s,6.1b,diag,6.2,6.3] [--match REGEX] [--budget S]
+# The memoization benchmark sweep: the runs behind the project's Tables 6.1-6.3 (thesis §6)
+# at 1920x1080, P = 6, L = 4 over a 300-camera path, in ONE device call of at most 600 s.
+# tools/bundle_memo_sweep.sh copies it to bundle/memo_sweep.sh; on the GPU machine:
+#   bash bundle/memo_sweep.sh [--tables 6.1,6.1r,6.1s,6.1b,diag,6.2,6.3] [--match REGEX] [--budget S]
 # and here, on lavapipe, end to end at a tiny size (64x36, a 4-camera path):
-#   bash tools/issue4/run_issue4.sh --dry-run [--match REGEX]
+#   bash tools/bench/memo_sweep.sh --dry-run [--match REGEX]
 #
 # Results under $OUT (the device tool returns 8 files at most, each < 16 MB):
-#   issue4_summary.csv    one `memograph bench --csv` line per run that finished
-#   issue4_frames.tar.gz  every run's per-frame CSV (frames/<scene>_<label>_<W>x<H>.csv)
-#   issue4_steps.tsv      each step: status (ok, partial: stopped by its time limit with the
-#                         frames so far, timeout, skipped, failed), seconds, limit, table, scene, label, flags
-#   issue4_log.txt        everything printed;   issue4_env.txt  GPU, driver, bundle commit
-# tools/results/make_tables turns them into docs/results/issue4_tables.md and plots.
+#   summary.csv    one `memograph bench --csv` line per run that finished
+#   frames.tar.gz  every run's per-frame CSV (frames/<scene>_<label>_<W>x<H>.csv)
+#   steps.tsv      each step: status (ok, partial: stopped by its time limit with the
+#                  frames so far, timeout, skipped, failed), seconds, limit, table, scene, label, flags
+#   log.txt        everything printed;   env.txt  GPU, driver, bundle commit
+# tools/results/make_tables turns them into docs/results/memoization_tables.md and plots.
 #
 # Order is priority: a step whose time limit no longer fits in what is left of --budget is
 # skipped (and listed as such), so a call always ends in time with the most important
@@ -28,16 +28,16 @@ while [ $# -gt 0 ]; do
   case $1 in
   --dry-run) dry=1 ;;
   --tables | --match | --budget)
-    [ $# -ge 2 ] || { echo "run_issue4.sh: $1 needs a value" >&2; exit 2; }
+    [ $# -ge 2 ] || { echo "memo_sweep.sh: $1 needs a value" >&2; exit 2; }
     case $1 in --tables) tables=$2 ;; --match) match=$2 ;; --budget) budget=$2 ;; esac
     shift ;;
   -h | --help) usage; exit 0 ;;
-  *) echo "run_issue4.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+  *) echo "memo_sweep.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
   shift
 done
 if [ -n "$budget" ] && ! [[ $budget =~ ^[0-9]+$ ]]; then
-  echo "run_issue4.sh: --budget takes whole seconds, not '$budget'" >&2
+  echo "memo_sweep.sh: --budget takes whole seconds, not '$budget'" >&2
   exit 2
 fi
 
@@ -181,7 +181,7 @@ size=1920x1080 warmup=2 paths=6 bounces=4
 if [ $dry = 1 ]; then
   size=64x36 warmup=1 paths=1 bounces=2
   m=${MEMOGRAPH:-build/tools/memograph}
-  OUT=${OUT:-/tmp/issue4_dry}
+  OUT=${OUT:-/tmp/memo_sweep_dry}
   budget=${budget:-1000000}
 else
   m=bundle/memograph
@@ -191,9 +191,9 @@ else
 fi
 start=$(date +%s)
 mkdir -p "$OUT"
-work=$(mktemp -d /tmp/issue4.XXXXXX)
+work=$(mktemp -d /tmp/memo_sweep.XXXXXX)
 mkdir -p "$work/csv" "$work/frames" "$work/claims" "$work/shaders"
-log="$OUT/issue4_log.txt" steps="$OUT/issue4_steps.tsv"
+log="$OUT/log.txt" steps="$OUT/steps.tsv"
 : >"$log"
 printf 'status\tseconds\tlimit_s\ttable\tscene\tlabel\tcameras\tstride\tflags\n' >"$steps"
 
@@ -285,7 +285,7 @@ fi
   "$m" render --list-devices 2>&1 || true
   echo "settings: $size P=$paths L=$bounces warmup=$warmup budget=${budget}s tables=$tables" \
     "match='$match' devices='${DEVICES:-}' steps=${#rows[@]}"
-} 2>&1 | tee "$OUT/issue4_env.txt" | tee -a "$log"
+} 2>&1 | tee "$OUT/env.txt" | tee -a "$log"
 if [ -z "${DEVICES:-}" ]; then
   lane "" ""
 else
@@ -300,8 +300,8 @@ first=1
 for f in "$work"/csv/*.csv; do
   [ -s "$f" ] || continue
   if [ $first = 1 ]; then cat "$f"; first=0; else tail -n +2 "$f"; fi
-done >"$OUT/issue4_summary.csv"
-tar czf "$OUT/issue4_frames.tar.gz" -C "$work" frames
+done >"$OUT/summary.csv"
+tar czf "$OUT/frames.tar.gz" -C "$work" frames
 echo "== done in $(($(date +%s) - start)) s: $(grep -c $'^ok\t' "$steps") ok," \
   "$(grep -c $'^partial\t' "$steps") partial, $(grep -c $'^skipped\t' "$steps") skipped," \
   "$(grep -cvE $'^(ok|partial|skipped|status)\t' "$steps") failed" |

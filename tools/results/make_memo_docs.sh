@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Rebuilds docs/results/memoization_tables.md and docs/results/memoization_plots/ from every
+# device call kept under docs/results/: the H100 runs of the first session
+# (memoization_h100/run*), then the H200 calls (memoization_h200/call*), oldest first, so a
+# later call's run of the same scene and label replaces an earlier one (run 1's tile rows
+# predate the rank-based tile computation and are replaced that way).
+#   bash tools/results/make_memo_docs.sh [--no-png]
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+args=()
+for call in docs/results/memoization_h100/run1 docs/results/memoization_h100/run2 \
+  docs/results/memoization_h200/call1 docs/results/memoization_h200/call2 \
+  docs/results/memoization_h200/call3 docs/results/memoization_h200/call4 \
+  docs/results/memoization_h200/call5 docs/results/memoization_h200/call6 \
+  docs/results/memoization_h200/call7 docs/results/memoization_h200/call8 \
+  docs/results/memoization_h200/call9 docs/results/memoization_h200/call10 \
+  docs/results/memoization_h200/call11 docs/results/memoization_h200/call12 \
+  docs/results/memoization_h200/call13 docs/results/memoization_h200/call14 \
+  docs/results/memoization_h200/call15 docs/results/memoization_h200/call17 \
+  docs/results/memoization_h200/call18 docs/results/memoization_h200/call19 \
+  docs/results/memoization_h200/call20; do
+  args+=(--summary "${call}_summary.csv" --frames "${call}_frames.tar.gz"
+    --steps "${call}_steps.tsv")
+done
+python3 tools/results/make_tables "${args[@]}" --out docs/results/memoization_tables.md \
+  --plots docs/results/memoization_plots \
+  --title "Memoization tables (thesis §6), H100 and H200 calls merged" "$@"
