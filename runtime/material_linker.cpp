@@ -59,7 +59,8 @@ std::uint32_t cacheOutputMask(const std::vector<std::string>& outputsWritten,
   static const Output kOutputs[] = {
       {"baseColor", gpu::kCacheOutputBaseColor, 3}, {"metallic", gpu::kCacheOutputMetallic, 1},
       {"roughness", gpu::kCacheOutputRoughness, 1}, {"normal", gpu::kCacheOutputNormal, 3},
-      {"emission", gpu::kCacheOutputEmission, 3},   {"opacity", gpu::kCacheOutputOpacity, 1}};
+      {"emission", gpu::kCacheOutputEmission, 3},   {"opacity", gpu::kCacheOutputOpacity, 1},
+      {"specular", gpu::kCacheOutputSpecular, 1}};
   std::uint32_t mask = 0, floats = 0;
   for (const std::string& name : outputsWritten) {
     bool known = false;

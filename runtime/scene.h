@@ -19,6 +19,11 @@ struct Mesh {
   std::vector<glm::vec4> tangents;     // xyz tangent along +u, w handedness; may be empty
   std::vector<glm::vec4> colors;       // empty: no vertex colors
   std::vector<std::uint32_t> indices;  // three per triangle
+  // Blender's texture space (Generated coordinates), when the scene says it (the Blender
+  // scene export's sidecar); otherwise the object-space bounds are used.
+  bool hasTextureSpace = false;
+  glm::vec3 textureSpaceLocation{0.0f};
+  glm::vec3 textureSpaceSize{1.0f};
 };
 
 // A placed copy of a mesh with one material.
@@ -36,13 +41,17 @@ struct MaterialRef {
   std::string graphText;  // inline graph source (built-in scenes)
 };
 
-enum class LightType : std::uint32_t { Point = 0, Directional = 1 };
+enum class LightType : std::uint32_t { Point = 0, Directional = 1, Spot = 2 };
 
 struct Light {
   LightType type = LightType::Point;
   glm::vec3 position{0.0f};                // point lights
   glm::vec3 direction{0.0f, -1.0f, 0.0f};  // directional lights: direction the light travels
-  glm::vec3 intensity{1.0f};  // point: W/sr (radiant intensity); directional: irradiance
+  glm::vec3 intensity{1.0f};  // point, spot: W/sr (radiant intensity); directional: irradiance
+  // Spot lights (Cycles 3.4's spot_light_attenuation): cos of half the cone angle and the
+  // smoothing width in cosine, (1 - cosHalfAngle) * blend; direction is the cone's axis.
+  float spotCosHalfAngle = -1.0f;
+  float spotSmooth = 0.0f;
 };
 
 struct Camera {
@@ -56,6 +65,8 @@ struct Camera {
 struct Environment {
   glm::vec3 constantRadiance{0.0f};  // used when imageRgb is empty
   std::string imagePath;
+  float imageStrength = 1.0f;    // multiplies the image when it is loaded (Blender's Strength)
+  float imageUOffset = 0.0f;     // added to u when it is loaded (Blender's equirect starts at -x)
   glm::vec3 sunDirection{0.0f};  // unused unless a directional light is derived from it
   // The loaded equirectangular image (filled by the importer at the edge; the core renderer
   // reads no image files): linear RGB floats, rows top (zenith) to bottom, u = 0 at -z.

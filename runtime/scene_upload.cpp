@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "runtime/material_linker.h"
 #include "runtime/shaders/shared_types.h"
 
 namespace memograph::runtime {
@@ -74,6 +75,26 @@ void validateScene(const Scene& scene) {
                                 "' was named but not loaded (the importer fills imageRgb)");
 }
 
+TextureSpace autoTextureSpace(const Mesh& mesh) {
+  TextureSpace space;
+  if (mesh.positions.empty())
+    return space;
+  glm::vec3 lo = mesh.positions[0], hi = mesh.positions[0];
+  for (const glm::vec3& p : mesh.positions) {
+    lo = glm::min(lo, p);
+    hi = glm::max(hi, p);
+  }
+  space.location = 0.5f * (lo + hi);
+  space.size = 0.5f * (hi - lo);
+  for (int k = 0; k < 3; ++k) {
+    if (space.size[k] == 0.0f)
+      space.size[k] = 1.0f;
+    else if (space.size[k] < 1e-5f)
+      space.size[k] = 1e-5f;
+  }
+  return space;
+}
+
 SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene) {
   validateScene(scene);
   SceneBuffers out;
@@ -99,25 +120,49 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene) {
       vertices.push_back(vertex);
     }
     indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
-    meshes.push_back({glm::uvec4(g.firstVertex, g.firstIndex, flags, g.triangleCount)});
+    gpu::Mesh gm;
+    gm.ranges = glm::uvec4(g.firstVertex, g.firstIndex, flags, g.triangleCount);
+    TextureSpace space = autoTextureSpace(mesh);
+    if (mesh.hasTextureSpace) {
+      space.location = mesh.textureSpaceLocation;
+      space.size = mesh.textureSpaceSize;
+      for (int k = 0; k < 3; ++k)
+        if (space.size[k] == 0.0f)
+          space.size[k] = 1.0f;
+    }
+    gm.textureSpaceLocation = glm::vec4(space.location, 0.0f);
+    gm.textureSpaceSize = glm::vec4(space.size, 0.0f);
+    meshes.push_back(gm);
     out.geometry.push_back(g);
   }
   std::vector<gpu::Instance> instances;
   for (const Instance& instance : scene.instances) {
     gpu::Instance gi;
     gi.objectToWorld = instance.objectToWorld;
-    gi.normalToWorld = glm::transpose(glm::inverse(instance.objectToWorld));
+    gi.worldToObject = glm::inverse(instance.objectToWorld);
+    gi.normalToWorld = glm::transpose(gi.worldToObject);
     gi.ids = glm::uvec4(instance.mesh, instance.material, 0, 0);
+    // Object Info's Random: 24 bits of a PCG hash of the instance index (Blender hashes
+    // the object's name; the index is what a memograph scene has).
+    const auto index = static_cast<std::uint32_t>(instances.size());
+    gi.objectInfo =
+        glm::vec4(float(pcgHash(index ^ 0x5bd1e995u) >> 8) * (1.0f / 16777216.0f), 0, 0, 0);
     instances.push_back(gi);
     out.placements.push_back({instance.mesh, instance.objectToWorld});
   }
   std::vector<gpu::Light> lights;
   for (const Light& light : scene.lights) {
     gpu::Light gl;
-    bool point = light.type == LightType::Point;
-    gl.positionOrDirection = glm::vec4(point ? light.position : light.direction,
-                                       float(point ? gpu::kLightPoint : gpu::kLightDirectional));
+    bool point = light.type != LightType::Directional;
+    const std::uint32_t type = light.type == LightType::Point  ? gpu::kLightPoint
+                               : light.type == LightType::Spot ? gpu::kLightSpot
+                                                               : gpu::kLightDirectional;
+    gl.positionOrDirection = glm::vec4(point ? light.position : light.direction, float(type));
     gl.intensity = glm::vec4(light.intensity, 0.0f);
+    const glm::vec3 axis = glm::length(light.direction) > 0.0f ? glm::normalize(light.direction)
+                                                               : glm::vec3(0.0f, -1.0f, 0.0f);
+    gl.spot = glm::vec4(axis, light.spotCosHalfAngle);
+    gl.spotSmooth = glm::vec4(light.spotSmooth, 0.0f, 0.0f, 0.0f);
     lights.push_back(gl);
   }
   std::vector<glm::vec4> environment(1, glm::vec4(0.0f));

@@ -31,4 +31,14 @@ struct SceneBuffers {
 
 SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene);
 
+// Blender's automatic texture space of a mesh (BKE_mesh_texspace_calc), which Generated
+// coordinates map to [0, 1]^3: the centre of the object-space bounding box and half its
+// extent, a zero half extent replaced by 1 and one below 1e-5 raised to 1e-5. An empty
+// mesh gets location 0, size 1.
+struct TextureSpace {
+  glm::vec3 location{0.0f};
+  glm::vec3 size{1.0f};
+};
+TextureSpace autoTextureSpace(const Mesh& mesh);
+
 }  // namespace memograph::runtime

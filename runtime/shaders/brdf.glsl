@@ -3,8 +3,10 @@
 // distribution (2.7); directions sampled from the GGX visible normals (Heitz 2018).
 
 const float kPi = 3.14159265358979;
-// Reflectance at normal incidence of dielectrics in the metallic workflow.
-const float kDielectricF0 = 0.04;
+// Reflectance at normal incidence of dielectrics in the metallic workflow, per unit of the
+// material's specular output: F0 = 0.08 * specular, Blender's Principled BSDF convention
+// (specular 0.5, its default, gives the usual 0.04).
+const float kDielectricF0PerSpecular = 0.08;
 
 struct BrdfParameters {
   vec3 diffuse;  // k_d of eq. 2.2, already weighted by the dielectric share
@@ -12,13 +14,15 @@ struct BrdfParameters {
   float alpha;   // GGX alpha = perceptual roughness^2
 };
 
-BrdfParameters brdfFromMaterial(vec3 baseColor, float metallic, float roughness) {
+BrdfParameters brdfFromMaterial(vec3 baseColor, float metallic, float roughness,
+                                float specular) {
   BrdfParameters brdf;
   metallic = clamp(metallic, 0.0, 1.0);
+  float dielectricF0 = clamp(kDielectricF0PerSpecular * specular, 0.0, 1.0);
   // The diffuse share is what the dielectric specular layer does not reflect at normal
   // incidence, so an albedo-1 dielectric reflects about 1 in total (white furnace).
-  brdf.diffuse = baseColor * (1.0 - metallic) * (1.0 - kDielectricF0);
-  brdf.f0 = mix(vec3(kDielectricF0), baseColor, metallic);
+  brdf.diffuse = baseColor * (1.0 - metallic) * (1.0 - dielectricF0);
+  brdf.f0 = mix(vec3(dielectricF0), baseColor, metallic);
   float r = clamp(roughness, 0.02, 1.0);
   brdf.alpha = r * r;
   return brdf;

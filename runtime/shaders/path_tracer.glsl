@@ -219,6 +219,11 @@ SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
   if (!(dot(ng, ng) > 1e-30)) ng = dot(n, n) > 1e-30 ? n : -direction;
   ng = normalize(ng);
   n = dot(n, n) > 1e-30 ? normalize(n) : ng;
+  // The front face winds counter-clockwise in object space; a mirroring transform reverses
+  // the winding of the world-space vertices, so the face normal flips with it (Blender's
+  // Geometry Backfacing).
+  vec3 front = determinant(mat3(toWorld)) < 0.0 ? -ng : ng;
+  bool backfacing = dot(front, direction) > 0.0;
   // Two-sided surfaces: both normals face the ray.
   if (dot(ng, direction) > 0.0) ng = -ng;
   if (dot(n, ng) < 0.0) n = -n;
@@ -273,6 +278,22 @@ SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
   s.inputs.view = -direction;
   s.inputs.time = frame.cameraForward.w;
   s.inputs.textureBase = 0;  // set per material by the switch case or the callable
+
+  // Object space (Blender's Object and Generated coordinates, Object Info): the hit and its
+  // footprint axes through the inverse transform, then the mesh's texture space.
+  mat4 toObject = instance.worldToObject;
+  s.inputs.objectPosition.v = (toObject * vec4(position, 1.0)).xyz;
+  s.inputs.objectPosition.x = mat3(toObject) * axis1;
+  s.inputs.objectPosition.y = mat3(toObject) * axis2;
+  vec3 toGenerated = 0.5 / mesh.textureSpaceSize.xyz;
+  s.inputs.generated.v =
+      (s.inputs.objectPosition.v - mesh.textureSpaceLocation.xyz) * toGenerated + 0.5;
+  s.inputs.generated.x = s.inputs.objectPosition.x * toGenerated;
+  s.inputs.generated.y = s.inputs.objectPosition.y * toGenerated;
+  s.inputs.geometricNormal = ng;
+  s.inputs.objectLocation = toWorld[3].xyz;
+  s.inputs.objectRandom = instance.objectInfo.x;
+  s.inputs.backfacing = backfacing ? 1.0 : 0.0;
   return s;
 }
 
@@ -287,12 +308,23 @@ vec3 sampleDirectLight(vec3 position, vec3 ng, mat3 toLocal, vec3 wo, BrdfParame
   vec3 wi;
   float distance;
   vec3 incident;
-  if (uint(light.positionOrDirection.w) == kLightPoint) {
+  uint lightType = uint(light.positionOrDirection.w);
+  if (lightType != kLightDirectional) {
     vec3 toLight = light.positionOrDirection.xyz - position;
     float d2 = max(dot(toLight, toLight), 1e-12);
     distance = sqrt(d2);
     wi = toLight / distance;
     incident = light.intensity.rgb / d2;  // radiant intensity over distance squared
+    if (lightType == kLightSpot) {
+      // Cycles 3.4's spot_light_attenuation: the cosine to the axis, cut at the cone and
+      // smoothstepped over the blend width.
+      float attenuation = dot(-wi, light.spot.xyz);
+      if (attenuation <= light.spot.w) return vec3(0.0);
+      float t = attenuation - light.spot.w;
+      float smoothWidth = light.spotSmooth.x;
+      if (t < smoothWidth && smoothWidth != 0.0) attenuation *= smoothstep(0.0, smoothWidth, t);
+      incident *= attenuation;
+    }
   } else {
     wi = -normalize(light.positionOrDirection.xyz);
     distance = kRayTMax;
@@ -378,7 +410,7 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
       basisAround(n, t, b);
       mat3 toLocal = transpose(mat3(t, b, n));
       vec3 wo = -direction;
-      BrdfParameters brdf = brdfFromMaterial(m.baseColor, m.metallic, m.roughness);
+      BrdfParameters brdf = brdfFromMaterial(m.baseColor, m.metallic, m.roughness, m.specular);
       vec3 position = s.inputs.position.v;
 
       radiance += throughput * m.emission;

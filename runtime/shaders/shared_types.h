@@ -1,5 +1,5 @@
 // GPU structs, binding indices and constants shared by the host (C++) and the path tracer
-// (GLSL): one definition, so the two sides cannot drift apart (ARCHITECTURE.md).
+// (GLSL): one definition, so the two sides cannot drift apart (docs/architecture.md).
 // Every struct is laid out in vec4-sized fields so std140/std430 and C++ agree.
 #ifndef MEMOGRAPH_SHARED_TYPES_H
 #define MEMOGRAPH_SHARED_TYPES_H
@@ -77,13 +77,15 @@ MG_CONSTANT(uint, kCacheEvictionLru, 1);     // least recently used, frame clock
 MG_CONSTANT(uint, kCacheEvictionLrw, 2);     // least recently written, frame clock
 MG_CONSTANT(uint, kCacheEvictionRandom, 3);  // a pseudo-random entry of the probe range
 // Bits of a material's output mask (which MaterialOutputs members an entry stores, in this
-// order: baseColor 3 floats, metallic 1, roughness 1, normal 3, emission 3, opacity 1).
+// order: baseColor 3 floats, metallic 1, roughness 1, normal 3, emission 3, opacity 1,
+// specular 1; specular came last, so the older members kept their places).
 MG_CONSTANT(uint, kCacheOutputBaseColor, 1);
 MG_CONSTANT(uint, kCacheOutputMetallic, 2);
 MG_CONSTANT(uint, kCacheOutputRoughness, 4);
 MG_CONSTANT(uint, kCacheOutputNormal, 8);
 MG_CONSTANT(uint, kCacheOutputEmission, 16);
 MG_CONSTANT(uint, kCacheOutputOpacity, 32);
+MG_CONSTANT(uint, kCacheOutputSpecular, 64);
 
 // Tile cache (thesis §4.6, §5.4): where a tile's texels live (MG_TILE_STORAGE, §5.4.1).
 MG_CONSTANT(uint, kTileStorageEntry, 0);      // after the key and metadata, in the entry
@@ -116,6 +118,7 @@ struct TileFillItem {
 // Light::positionOrDirection.w
 MG_CONSTANT(uint, kLightPoint, 0);
 MG_CONSTANT(uint, kLightDirectional, 1);
+MG_CONSTANT(uint, kLightSpot, 2);
 
 // Mesh::flags bits.
 MG_CONSTANT(uint, kMeshHasUvs, 1);
@@ -172,18 +175,27 @@ struct Vertex {
 // One mesh's range in the global vertex and index buffers.
 struct Mesh {
   uvec4 ranges;  // x first vertex, y first index, z flags, w triangle count
+  // Blender's automatic texture space of the mesh (Generated coordinates): xyz the centre
+  // of its object-space bounding box and half its extent (a zero extent becomes 1);
+  // Generated = (objectPosition - location) / (2 size) + 0.5. w unused.
+  vec4 textureSpaceLocation;
+  vec4 textureSpaceSize;
 };
 
 // One placed instance; the TLAS's custom index points here.
 struct Instance {
   mat4 objectToWorld;
   mat4 normalToWorld;  // inverse transpose of objectToWorld
+  mat4 worldToObject;  // inverse of objectToWorld (Object coordinates)
   uvec4 ids;           // x mesh, y material, z/w unused
+  vec4 objectInfo;     // x: random in [0, 1) (a hash of the instance index); yzw unused
 };
 
 struct Light {
   vec4 positionOrDirection;  // xyz; w: kLightPoint or kLightDirectional (as float)
-  vec4 intensity;            // rgb: W/sr (point) or irradiance (directional)
+  vec4 intensity;            // rgb: W/sr (point, spot) or irradiance (directional)
+  vec4 spot;                 // spot: xyz cone axis (unit), w cos of the half angle
+  vec4 spotSmooth;           // spot: x smoothing width in cosine ((1 - cos) * blend)
 };
 
 #ifdef __cplusplus

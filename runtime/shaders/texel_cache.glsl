@@ -170,6 +170,10 @@ void cacheLoadValues(uint wordOffset, out float values[MG_CACHE_VALUES]) {
   for (uint w = 0u; w < kCacheValueWords; ++w) cacheValueFromWord(cacheData[wordOffset + w], w, values);
 }
 
+// The time an access stamps into an entry's metadata (§5.3.3). Frame clock: the host's
+// frame number, the same for every access of a frame. Counter clock: a global 64-bit
+// atomic counter, incremented by every stamping access and never reset between frames;
+// the entry keeps bits MG_CACHE_CLOCK_SHIFT .. +31 of it ("only bits 16 to 48 of a 64-bit
 // counter", §5.3.3), so 32 bits of metadata do not roll over within a session.
 uint cacheClockNow() {
 #ifdef MG_CACHE_CLOCK_COUNTER
@@ -199,6 +203,7 @@ void cachePack(uint mask, MaterialOutputs o, out float values[MG_CACHE_VALUES]) 
     n += 3u;
   }
   if ((mask & kCacheOutputOpacity) != 0u) { values[n] = o.opacity; n += 1u; }
+  if ((mask & kCacheOutputSpecular) != 0u) { values[n] = o.specular; n += 1u; }
 }
 
 // Outputs from cached values: the members the graph writes from the entry, the rest as the
@@ -221,6 +226,7 @@ MaterialOutputs cacheUnpack(uint mask, float values[MG_CACHE_VALUES], MaterialIn
     n += 3u;
   }
   if ((mask & kCacheOutputOpacity) != 0u) { o.opacity = values[n]; n += 1u; }
+  if ((mask & kCacheOutputSpecular) != 0u) { o.specular = values[n]; n += 1u; }
   return o;
 }
 

@@ -41,11 +41,12 @@ struct float2_D { vec2 v; vec2 x; vec2 y; };
 struct MaterialInputs { float2_D uv; };
 struct MaterialOutputs {
   vec3 baseColor; float metallic; float roughness; vec3 normal; vec3 emission; float opacity;
+  float specular;
 };
 MaterialOutputs mg_defaultMaterialOutputs(MaterialInputs inputs) {
   MaterialOutputs o;
   o.baseColor = vec3(0.0); o.metallic = 0.0; o.roughness = 0.0; o.normal = vec3(0.0);
-  o.emission = vec3(0.0); o.opacity = 1.0;
+  o.emission = vec3(0.0); o.opacity = 1.0; o.specular = 0.5;
   return o;
 }
 const uvec4 mg_materialCacheInfo[1] = uvec4[](uvec4(0u));

@@ -19,6 +19,8 @@ int runNodes(std::span<const std::string_view> args);
 int runRender(std::span<const std::string_view> args);
 int runBench(std::span<const std::string_view> args);
 int runDiff(std::span<const std::string_view> args);
+int runBake(std::span<const std::string_view> args);
+int runImportBlender(std::span<const std::string_view> args);
 
 // Every command, in the order `memograph --help` lists them.
 std::span<const Command> commands();

@@ -1,10 +1,12 @@
 // memograph: the command-line front end. Dispatches to one command per file.
+#include <filesystem>
 #include <iostream>
 #include <string_view>
 #include <vector>
 
 #include "cli_common.h"
 #include "commands.h"
+#include "compiler/input_file.h"
 #include "crash_report.h"
 
 namespace memograph::cli {
@@ -16,7 +18,10 @@ std::span<const Command> commands() {
       {"nodes", "list the node library with its overloads", runNodes},
       {"render", "path trace a scene to an HDR image", runRender},
       {"bench", "frames and rays per second on the built-in scenes", runBench},
+      {"bake", "evaluate materials over their UV square into one image per output", runBake},
       {"diff", "perceptual difference of two images (LDR-FLIP) and its error map", runDiff},
+      {"import-blender", "export a .blend file's materials as graphs (runs Blender)",
+       runImportBlender},
   };
   return kCommands;
 }
@@ -28,8 +33,9 @@ void printUsage(std::ostream& out) {
          "memograph compiles material graphs to GLSL and HLSL (and renders them).\n\n"
          "commands:\n";
   for (const auto& command : commands()) {
-    out << "  " << command.name << std::string(10 - command.name.size(), ' ') << command.summary
-        << "\n";
+    out << "  " << command.name
+        << std::string(command.name.size() < 10 ? 10 - command.name.size() : 1, ' ')
+        << command.summary << "\n";
   }
   out << "\nRun 'memograph <command> --help' for a command's options.\n";
 }
@@ -56,6 +62,12 @@ int main(int argc, char** argv) {
         return command.run(std::span(args).subspan(1));
       } catch (const std::bad_alloc&) {
         std::cerr << "memograph " << command.name << ": out of memory\n";
+        return kExitFailure;
+      } catch (const std::filesystem::filesystem_error& e) {
+        // A file problem (a symlink loop, an over-long name) is bad input, not an internal
+        // error: name the file and the cause.
+        std::cerr << "memograph " << command.name << ": " << e.path1().string() << ": "
+                  << memograph::files::describeFileError(e.code()) << "\n";
         return kExitFailure;
       } catch (const std::exception& e) {
         std::cerr << "memograph " << command.name << ": internal error: " << e.what() << "\n";

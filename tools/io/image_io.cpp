@@ -6,6 +6,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "compiler/input_file.h"
 #include "tools/io/pfm.h"
 
 namespace memograph::io {
@@ -40,8 +41,9 @@ float tonemap(float x, Tonemap curve) {
 template <typename T>
 bool readRgba(const std::string& path, OIIO::TypeDesc type, T alphaOne, int& width, int& height,
               std::vector<T>& rgba, compiler::Diagnostics& diagnostics) {
-  if (!fs::is_regular_file(path)) {
-    diagnostics.error(path, fs::exists(path) ? "not a regular file" : "no such image file");
+  std::string fileError;
+  if (!files::checkInputFile(path, files::kMaxImageFileBytes, "images", fileError)) {
+    diagnostics.error(path, fileError);
     return false;
   }
   // Keep colour and alpha as stored: OpenImageIO would otherwise premultiply PNG colours.
@@ -60,13 +62,29 @@ bool readRgba(const std::string& path, OIIO::TypeDesc type, T alphaOne, int& wid
     diagnostics.error(path, "the image has no pixels");
     return false;
   }
-  std::vector<T> raw(static_cast<std::size_t>(width) * height * channels);
+  // The header's size is checked before any allocation: a few bytes may declare gigapixels.
+  if (std::uint64_t(width) * std::uint64_t(height) > files::kMaxImagePixels || channels > 64) {
+    diagnostics.error(path, "the image declares " + std::to_string(width) + "x" +
+                                std::to_string(height) + " pixels with " +
+                                std::to_string(channels) + " channels, over the limit of " +
+                                std::to_string(files::kMaxImagePixels) +
+                                " pixels and 64 channels (docs/limits.md)");
+    return false;
+  }
+  std::vector<T> raw;
+  try {
+    raw.resize(static_cast<std::size_t>(width) * height * channels);
+    rgba.resize(static_cast<std::size_t>(width) * height * 4);
+  } catch (const std::bad_alloc&) {
+    diagnostics.error(path, "not enough memory for the image's " + std::to_string(width) + "x" +
+                                std::to_string(height) + " pixels");
+    return false;
+  }
   if (!in->read_image(0, 0, 0, channels, type, raw.data())) {
     diagnostics.error(path, "cannot decode the image: " + in->geterror());
     return false;
   }
   in->close();
-  rgba.resize(static_cast<std::size_t>(width) * height * 4);
   for (std::size_t p = 0; p < static_cast<std::size_t>(width) * height; ++p) {
     const T* s = &raw[p * channels];
     T* d = &rgba[p * 4];
@@ -94,6 +112,12 @@ std::uint8_t toSrgb8(float linear, const LdrOptions& ldr) {
 
 bool writeImage(const std::string& path, const runtime::HdrImage& image, const LdrOptions& ldr,
                 compiler::Diagnostics& diagnostics) {
+  files::StagedFile staged;
+  return stageImage(path, image, ldr, staged, diagnostics) && commitImage(staged, diagnostics);
+}
+
+bool stageImage(const std::string& path, const runtime::HdrImage& image, const LdrOptions& ldr,
+                files::StagedFile& staged, compiler::Diagnostics& diagnostics) {
   if (image.width == 0 || image.height == 0 ||
       image.rgba.size() != static_cast<std::size_t>(image.width) * image.height * 4) {
     diagnostics.error(path, "cannot write an empty image, or one whose size does not match");
@@ -105,13 +129,14 @@ bool writeImage(const std::string& path, const runtime::HdrImage& image, const L
         .notes.push_back("write .png (8-bit sRGB) or .exr (float)");
     return false;
   }
-  // The temporary keeps the extension: OpenImageIO picks the format from it.
-  const fs::path target(path);
-  std::string temporaryName = ".";  // appended, not operator+: GCC 12 bug 105329
-  temporaryName += target.stem().string();
-  temporaryName += ".partial";
-  temporaryName += ext;
-  const fs::path temporary = target.parent_path() / temporaryName;
+  // A unique temporary (files::StagedFile) that keeps the extension: OpenImageIO picks the
+  // format from it, and concurrent writers of one path never share it.
+  std::string error;
+  if (!staged.create(path, error)) {
+    diagnostics.error(path, error);
+    return false;
+  }
+  const std::string temporary = staged.temporaryPath().string();
   auto out = OIIO::ImageOutput::create(path);
   if (!out) {
     diagnostics.error(path, "cannot create an image writer: " + OIIO::geterror());
@@ -129,24 +154,74 @@ bool writeImage(const std::string& path, const runtime::HdrImage& image, const L
     spec.attribute("oiio:ColorSpace", "sRGB");
     // Our colours are not premultiplied: without this the PNG writer divides by alpha.
     spec.attribute("oiio:UnassociatedAlpha", 1);
-    ok = out->open(temporary.string(), spec) &&
-         out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) && out->close();
+    ok = out->open(temporary, spec) && out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) &&
+         out->close();
   } else {
     OIIO::ImageSpec spec(image.width, image.height, 4, OIIO::TypeDesc::FLOAT);
     spec.attribute("oiio:ColorSpace", "Linear");
-    ok = out->open(temporary.string(), spec) &&
-         out->write_image(OIIO::TypeDesc::FLOAT, image.rgba.data()) && out->close();
+    ok = out->open(temporary, spec) && out->write_image(OIIO::TypeDesc::FLOAT, image.rgba.data()) &&
+         out->close();
   }
-  std::error_code ec;
   if (!ok) {
-    diagnostics.error(path, "cannot write the image: " + out->geterror());
-    fs::remove(temporary, ec);
+    const std::string cause = out->geterror();
+    diagnostics.error(path, "cannot write the image" + (cause.empty() ? "" : ": " + cause));
+    staged.discard();
     return false;
   }
-  fs::rename(temporary, target, ec);
-  if (ec) {
-    fs::remove(temporary, ec);
-    diagnostics.error(path, "cannot replace the file: " + ec.message());
+  // OpenImageIO reports some write errors (a full disk) only through the stream: fsync
+  // finds them before the rename.
+  if (!staged.sync(error)) {
+    diagnostics.error(path, error);
+    staged.discard();
+    return false;
+  }
+  return true;
+}
+
+bool commitImage(files::StagedFile& staged, compiler::Diagnostics& diagnostics) {
+  std::string error;
+  if (!staged.commit(error)) {
+    diagnostics.error(staged.target().string(), error);
+    return false;
+  }
+  return true;
+}
+
+bool writeRgbImage(const std::string& path, std::uint32_t width, std::uint32_t height,
+                   const std::vector<float>& rgb, RgbEncoding encoding,
+                   compiler::Diagnostics& diagnostics) {
+  if (width == 0 || height == 0 || rgb.size() != std::size_t(width) * height * 3) {
+    diagnostics.error(path, "cannot write an empty image, or one whose size does not match");
+    return false;
+  }
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) {
+    diagnostics.error(path, "cannot create an image writer: " + OIIO::geterror());
+    return false;
+  }
+  bool ok = false;
+  if (encoding == RgbEncoding::Float) {
+    OIIO::ImageSpec spec(int(width), int(height), 3, OIIO::TypeDesc::FLOAT);
+    spec.attribute("oiio:ColorSpace", "Linear");
+    ok = out->open(path, spec) && out->write_image(OIIO::TypeDesc::FLOAT, rgb.data()) &&
+         out->close();
+  } else {
+    std::vector<std::uint8_t> pixels(rgb.size());
+    for (std::size_t i = 0; i < rgb.size(); ++i) {
+      pixels[i] =
+          encoding == RgbEncoding::Srgb8
+              ? toSrgb8(rgb[i], LdrOptions{})
+              : static_cast<std::uint8_t>(std::lround(std::clamp(rgb[i], 0.0f, 1.0f) * 255.0f));
+    }
+    OIIO::ImageSpec spec(int(width), int(height), 3, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:ColorSpace", encoding == RgbEncoding::Srgb8 ? "sRGB" : "Linear");
+    ok = out->open(path, spec) && out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) &&
+         out->close();
+  }
+  if (!ok) {
+    diagnostics.error(path, "cannot write the image: " + out->geterror());
+    std::error_code ec;
+    fs::remove(path, ec);
     return false;
   }
   return true;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "compiler/diagnostics.h"
+#include "runtime/atomic_file.h"
 #include "runtime/image.h"
 
 namespace memograph::io {
@@ -33,10 +34,29 @@ struct LdrOptions {
 };
 
 // Writes by extension: .png (8-bit sRGB via `ldr`), .exr (32-bit float, linear, `ldr`
-// ignored). Writes to a temporary file next to `path` and renames it, so an error leaves
-// no partial file. Returns false after adding an error naming the path.
+// ignored). Writes to a unique temporary file next to `path` and renames it
+// (files::StagedFile), so an error leaves no partial file and concurrent writers of one
+// path leave one complete image. Returns false after adding an error naming the path.
 bool writeImage(const std::string& path, const runtime::HdrImage& image, const LdrOptions& ldr,
                 compiler::Diagnostics& diagnostics);
+// writeImage in two steps, for outputs committed as a set (files::commitFileSet): the
+// image is written to `staged`'s temporary, and commitImage renames it into place.
+bool stageImage(const std::string& path, const runtime::HdrImage& image, const LdrOptions& ldr,
+                files::StagedFile& staged, compiler::Diagnostics& diagnostics);
+bool commitImage(files::StagedFile& staged, compiler::Diagnostics& diagnostics);
+
+// How writeRgbImage stores its floats: 32-bit float (.exr), or 8-bit (.png) either
+// sRGB-encoded (colours) or linear (data: scalars, encoded normals); 8-bit values are
+// clamped to [0, 1] and rounded.
+enum class RgbEncoding { Float, Srgb8, Linear8 };
+
+// Writes `rgb` (width*height*3 floats, top row first) straight to `path` as .exr (RGB,
+// 32-bit float, values exact) or .png (RGB, 8-bit): no temporary file, so callers that
+// commit several files as a set (memograph bake) write temporaries and rename them.
+// Returns false after adding an error naming the path.
+bool writeRgbImage(const std::string& path, std::uint32_t width, std::uint32_t height,
+                   const std::vector<float>& rgb, RgbEncoding encoding,
+                   compiler::Diagnostics& diagnostics);
 
 // Reads any format OpenImageIO knows as RGBA (missing channels: grey→RGB, alpha 1).
 std::optional<Rgba8Image> readImageRgba8(const std::string& path,

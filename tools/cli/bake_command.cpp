@@ -1,0 +1,438 @@
+// memograph bake GRAPH|DIR... --size WxH --out DIR: evaluates every output a material
+// writes over its UV square and writes one image per output (docs/bake.md).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <set>
+#include <sstream>
+
+#include "cli_common.h"
+#include "commands.h"
+#include "compiler/compiler.h"
+#include "runtime/atomic_file.h"
+#include "runtime/image.h"
+
+#ifdef MEMOGRAPH_HAVE_RUNTIME
+#include "runtime/material_baker.h"
+#include "runtime/renderer.h"
+#include "runtime/shader_compiler.h"
+#endif
+#ifdef MEMOGRAPH_HAVE_IO
+#include "tools/io/image_io.h"
+#endif
+
+namespace memograph::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::string_view kHelp =
+    "usage: memograph bake GRAPH|DIR... --size WxH --out DIR [options]\n"
+    "\n"
+    "Evaluates each material graph (a DIR means every .mgraph in it) at the pixel centres\n"
+    "of its UV square and writes one image per output the material writes:\n"
+    "DIR/<Material>_<output>.<ext>, output one of baseColor, metallic, roughness, specular,\n"
+    "normal, emission, opacity. Pixel (i, j) is uv ((i + 0.5) / W, (j + 0.5) / H); j = 0 is\n"
+    "v near 0 (Blender's img.pixels row 0).\n"
+    "\n"
+    "The material sits on a plane spanning the bounds in x and y at their centre in z\n"
+    "(default: Blender's default plane, position = object = (2u-1, 2v-1, 0)), normal,\n"
+    "geometric normal and view +Z, tangent +X, Generated coordinates from Blender's\n"
+    "automatic texture space of the bounds, vertex colour 1, time 0.\n"
+    "\n"
+    "Files: every image is RGB; scalars are grey (R = G = B).\n"
+    "  exr  32-bit float, exact values; the first stored row is the top (v near 1)\n"
+    "  pfm  32-bit float, exact values; PFM stores the bottom row first, so the file's\n"
+    "       first row is j = 0 (v near 0), Blender's img.pixels order\n"
+    "  png  8-bit, top row first: baseColor and emission sRGB-encoded, scalars linear,\n"
+    "       normal encoded as 0.5 * n + 0.5; values clamped to [0, 1]\n"
+    "A material's files are written together or not at all; a graph that fails writes\n"
+    "nothing while the others still bake (exit status 1 if any failed).\n"
+    "\n"
+    "options:\n"
+    "  --size WxH        image size in pixels (required)\n"
+    "  --out DIR         output directory, created if missing (required)\n"
+    "  --format F        exr, png or pfm (default exr; pfm in builds without OpenImageIO)\n"
+    "  --bounds X0,Y0,Z0,X1,Y1,Z1\n"
+    "                    the object's bounding box (default -1,-1,0,1,1,0)\n"
+    "  --nodes DIR       use the node library in DIR instead of the built-in one\n"
+    "  --device N        Vulkan device index (render --list-devices lists them)\n"
+    "  --quiet           print only errors\n";
+
+bool parseBounds(const std::string& text, std::array<float, 3>& lo, std::array<float, 3>& hi) {
+  std::array<double, 6> values{};
+  std::size_t start = 0;
+  for (int k = 0; k < 6; ++k) {
+    const std::size_t comma = text.find(',', start);
+    if ((k < 5) != (comma != std::string::npos))
+      return false;
+    const std::string_view item = std::string_view(text).substr(
+        start, comma == std::string::npos ? std::string::npos : comma - start);
+    // Finite as floats too: the shader computes in float.
+    if (!parseReal(item, values[k]) || std::abs(values[k]) > 1e30)
+      return false;
+    start = comma + 1;
+  }
+  for (int k = 0; k < 3; ++k) {
+    if (values[k] > values[k + 3])
+      return false;
+    lo[k] = float(values[k]);
+    hi[k] = float(values[k + 3]);
+  }
+  return true;
+}
+
+// The graphs named on the command line: files as given, folders as their .mgraph files in
+// name order. A folder without one is an error of its own.
+std::vector<std::string> expandInputs(const std::vector<std::string>& inputs,
+                                      compiler::Diagnostics& diagnostics) {
+  std::vector<std::string> files;
+  for (const auto& input : inputs) {
+    std::error_code ec;
+    if (!fs::is_directory(input, ec)) {
+      files.push_back(input);
+      continue;
+    }
+    std::vector<std::string> found;
+    for (const auto& entry : fs::directory_iterator(input, ec)) {
+      if (entry.path().extension() == ".mgraph" && !entry.is_directory())
+        found.push_back(entry.path().string());
+    }
+    if (ec)
+      diagnostics.error(input, "cannot list the folder: " + ec.message());
+    else if (found.empty())
+      diagnostics.error(input, "the folder holds no .mgraph file");
+    std::sort(found.begin(), found.end());
+    files.insert(files.end(), found.begin(), found.end());
+  }
+  return files;
+}
+
+#ifdef MEMOGRAPH_HAVE_RUNTIME
+
+enum class OutputKind { Colour, Scalar, Normal };
+
+// One output image of a material in the writers' row order: `rgb` top row first.
+struct OutputImage {
+  std::string output;
+  OutputKind kind = OutputKind::Colour;
+  std::vector<float> rgb;
+};
+
+std::vector<OutputImage> outputImages(const runtime::BakeOutputs& baked,
+                                      const std::vector<std::string>& written) {
+  const std::uint32_t w = baked.width, h = baked.height;
+  std::vector<OutputImage> images;
+  for (const auto& name : written) {
+    const std::vector<std::array<float, 3>>* colour = nullptr;
+    const std::vector<float>* scalar = nullptr;
+    OutputKind kind = OutputKind::Colour;
+    if (name == "baseColor") {
+      colour = &baked.baseColor;
+    } else if (name == "emission") {
+      colour = &baked.emission;
+    } else if (name == "normal") {
+      colour = &baked.normal;
+      kind = OutputKind::Normal;
+    } else if (name == "metallic") {
+      scalar = &baked.metallic;
+    } else if (name == "roughness") {
+      scalar = &baked.roughness;
+    } else if (name == "specular") {
+      scalar = &baked.specular;
+    } else if (name == "opacity") {
+      scalar = &baked.opacity;
+    } else {
+      throw std::runtime_error("the material writes '" + name +
+                               "', an output this bake does not know");
+    }
+    if (scalar)
+      kind = OutputKind::Scalar;
+    OutputImage image{name, kind, std::vector<float>(std::size_t(w) * h * 3)};
+    // Baked row j (v near 0 first) is the image's row h - 1 - j (top row first).
+    for (std::uint32_t j = 0; j < h; ++j) {
+      for (std::uint32_t i = 0; i < w; ++i) {
+        const std::size_t from = std::size_t(j) * w + i;
+        float* to = &image.rgb[(std::size_t(h - 1 - j) * w + i) * 3];
+        for (int c = 0; c < 3; ++c)
+          to[c] = colour ? (*colour)[from][c] : (*scalar)[from];
+      }
+    }
+    images.push_back(std::move(image));
+  }
+  return images;
+}
+
+// Writes one image into the staged (temporary) file `file`; the target's extension is the
+// format.
+bool stageOutputImage(files::StagedFile& file, const std::string& format, std::uint32_t width,
+                      std::uint32_t height, const OutputImage& image,
+                      compiler::Diagnostics& diagnostics) {
+  const std::string target = file.target().string();
+  std::string error;
+  if (format == "pfm") {
+    runtime::HdrImage hdr;
+    hdr.width = width;
+    hdr.height = height;
+    hdr.rgba.resize(std::size_t(width) * height * 4);
+    for (std::size_t p = 0; p < std::size_t(width) * height; ++p) {
+      for (int c = 0; c < 3; ++c)
+        hdr.rgba[p * 4 + c] = image.rgb[p * 3 + c];
+      hdr.rgba[p * 4 + 3] = 1.0f;
+    }
+    if (!file.write(runtime::encodePfm(hdr), error)) {
+      diagnostics.error(target, error);
+      return false;
+    }
+    return true;
+  }
+#ifdef MEMOGRAPH_HAVE_IO
+  const std::string temporary = file.temporaryPath().string();
+  bool ok = false;
+  if (format == "png" && image.kind == OutputKind::Normal) {
+    std::vector<float> encoded(image.rgb.size());
+    for (std::size_t k = 0; k < encoded.size(); ++k)
+      encoded[k] = 0.5f * image.rgb[k] + 0.5f;
+    ok =
+        io::writeRgbImage(temporary, width, height, encoded, io::RgbEncoding::Linear8, diagnostics);
+  } else if (format == "png") {
+    ok = io::writeRgbImage(
+        temporary, width, height, image.rgb,
+        image.kind == OutputKind::Colour ? io::RgbEncoding::Srgb8 : io::RgbEncoding::Linear8,
+        diagnostics);
+  } else {
+    ok =
+        io::writeRgbImage(temporary, width, height, image.rgb, io::RgbEncoding::Float, diagnostics);
+  }
+  if (ok && !file.sync(error)) {
+    diagnostics.error(target, error);
+    ok = false;
+  }
+  return ok;
+#else
+  diagnostics.error(target, "this build writes only .pfm (no OpenImageIO)");
+  return false;
+#endif
+}
+
+// Writes a material's images as one set through the project's atomic output path
+// (files::StagedFile, files::commitFileSet): every image is staged first; only when all
+// were written are they renamed into place, and a rename failing part-way restores the
+// files already replaced. A failure leaves no temporary behind.
+bool writeMaterialImages(const std::string& outDir, const std::string& material,
+                         const std::string& format, std::uint32_t width, std::uint32_t height,
+                         const std::vector<OutputImage>& images, std::vector<std::string>& written,
+                         compiler::Diagnostics& diagnostics) {
+  std::vector<files::StagedFile> staged;
+  for (const auto& image : images) {
+    const fs::path target = fs::path(outDir) / (material + "_" + image.output + "." + format);
+    files::StagedFile file;
+    std::string error;
+    if (!file.create(target, error)) {
+      diagnostics.error(target.string(), error);
+      return false;
+    }
+    if (!stageOutputImage(file, format, width, height, image, diagnostics))
+      return false;
+    staged.push_back(std::move(file));
+  }
+  std::string error;
+  if (!files::commitFileSet(staged, error)) {
+    diagnostics.error(outDir, error);
+    return false;
+  }
+  for (const auto& file : staged)
+    written.push_back(file.target().string());
+  return true;
+}
+
+runtime::TextureImage loadTexture(const std::string& path) {
+#ifdef MEMOGRAPH_HAVE_IO
+  compiler::Diagnostics textureDiagnostics;
+  auto image = io::readImageFloat(path, textureDiagnostics);
+  if (!image)
+    throw std::runtime_error(compiler::formatDiagnostics(textureDiagnostics));
+  return runtime::TextureImage{{std::move(*image)}};
+#else
+  return runtime::loadTextureCore(path);
+#endif
+}
+
+#endif  // MEMOGRAPH_HAVE_RUNTIME
+
+}  // namespace
+
+int runBake(std::span<const std::string_view> args) {
+  std::string size, outDir, format, bounds, nodesDir, device = "-1";
+  bool help = false, quiet = false;
+  ArgumentScanner scanner("bake", args);
+  scanner.option("--size", &size);
+  scanner.option("--out", &outDir);
+  scanner.option("-o", &outDir);
+  scanner.option("--format", &format);
+  scanner.option("--bounds", &bounds);
+  scanner.option("--nodes", &nodesDir);
+  scanner.option("--device", &device);
+  scanner.flag("--quiet", &quiet);
+  scanner.flag("--help", &help);
+  std::vector<std::string> inputs;
+  if (const int code = scanner.scan(inputs); code != kExitOk)
+    return code;
+  if (help) {
+    std::cout << kHelp;
+    return kExitOk;
+  }
+  if (inputs.empty())
+    return usageError("bake", "no graph files or folders given");
+  if (outDir.empty())
+    return usageError("bake", "--out DIR is required");
+  if (size.empty())
+    return usageError("bake", "--size WxH is required");
+#ifdef MEMOGRAPH_HAVE_IO
+  if (format.empty())
+    format = "exr";
+  if (format != "exr" && format != "png" && format != "pfm")
+    return usageError("bake", "--format must be exr, png or pfm, not '" + format + "'");
+#else
+  if (format.empty())
+    format = "pfm";
+  if (format != "pfm")
+    return usageError("bake",
+                      "this build writes only --format pfm (no OpenImageIO), not '" + format + "'");
+#endif
+#ifndef MEMOGRAPH_HAVE_RUNTIME
+  std::cerr << "memograph bake: this build has no Vulkan runtime\n";
+  return kExitFailure;
+#else
+  runtime::BakeSettings settings;
+  if (std::string error; !parseImageSize(size, settings.width, settings.height, error))
+    return usageError("bake", "--size: " + error);
+  if (!bounds.empty() && !parseBounds(bounds, settings.boundsMin, settings.boundsMax))
+    return usageError("bake",
+                      "--bounds takes six numbers xmin,ymin,zmin,xmax,ymax,zmax with each min "
+                      "<= max, not '" +
+                          bounds + "'");
+  std::uint32_t deviceIndex = 0;
+  if (device != "-1" && !parseNumber(device, deviceIndex))
+    return usageError("bake", "--device takes a device index, not '" + device + "'");
+
+  compiler::Diagnostics setup;
+  const auto library = loadNodeLibrary(nodesDir, setup);
+  if (!library) {
+    printDiagnostics(setup);
+    return kExitFailure;
+  }
+  const std::vector<std::string> files = expandInputs(inputs, setup);
+  printDiagnostics(setup);
+  bool anyFailed = setup.hasErrors();
+
+  std::error_code ec;
+  fs::create_directories(outDir, ec);
+  if (ec || !fs::is_directory(outDir)) {
+    std::cerr << "memograph bake: " << outDir << ": cannot create the folder"
+              << (ec ? " (" + ec.message() + ")" : std::string()) << "\n";
+    return kExitFailure;
+  }
+
+  compiler::CompileOptions options;
+  options.emitGlsl = true;
+  options.emitHlsl = false;
+  std::unique_ptr<runtime::MaterialBaker> baker;
+  std::string deviceError;
+  std::set<std::string> names;
+  const std::size_t total = files.size();
+  std::size_t failed = 0;
+  for (std::size_t index = 0; index < total; ++index) {
+    const std::string& path = files[index];
+    const std::string prefix = "[" + std::to_string(index + 1) + "/" + std::to_string(total) + "] ";
+    compiler::Diagnostics diagnostics;
+    std::string label = fs::path(path).stem().string();
+    auto fail = [&](const std::string& message) {
+      ++failed;
+      std::cerr << prefix << label << " ... failed\n";
+      printDiagnostics(diagnostics);
+      if (!message.empty())
+        std::cerr << message << "\n";
+    };
+    std::string error;
+    const auto text = readFile(path, error);
+    if (!text) {
+      diagnostics.error(path, error);
+      fail("");
+      continue;
+    }
+    const compiler::SourceFile source{path, *text};
+    const auto material = compiler::compileMaterial(source, *library, options, diagnostics);
+    if (!material) {
+      fail("");
+      continue;
+    }
+    const std::string& name = material->metadata.name;
+    label = name;
+    if (!names.insert(name).second) {
+      diagnostics.error(path, "material '" + name +
+                                  "' was already baked from another graph in this call; "
+                                  "rename one (file name or `material Name;`)");
+      fail("");
+      continue;
+    }
+    std::vector<std::string> written;
+    try {
+      if (!baker && deviceError.empty()) {
+        try {
+          runtime::ContextOptions context;
+          context.deviceIndex = device == "-1" ? -1 : int(deviceIndex);
+          baker = std::make_unique<runtime::MaterialBaker>(context,
+                                                           runtime::defaultShaderCacheDirectory());
+        } catch (const std::exception& e) {
+          deviceError = std::string("no Vulkan device: ") + e.what();
+        }
+      }
+      if (!baker)
+        throw std::runtime_error(deviceError);
+      runtime::BakeMaterial bakeMaterial;
+      bakeMaterial.name = name;
+      bakeMaterial.glsl = material->glsl;
+      const fs::path base = fs::path(path).parent_path();
+      for (const auto& texture : material->metadata.textures) {
+        fs::path texturePath(texture);
+        if (texturePath.is_relative() && !base.empty())
+          texturePath = base / texturePath;
+        bakeMaterial.textures.push_back(loadTexture(texturePath.string()));
+      }
+      const runtime::BakeOutputs baked = baker->bake(bakeMaterial, settings);
+      const auto images = outputImages(baked, material->metadata.outputsWritten);
+      if (!writeMaterialImages(outDir, name, format, settings.width, settings.height, images,
+                               written, diagnostics)) {
+        fail("");
+        continue;
+      }
+    } catch (const std::exception& e) {
+      fail(std::string("memograph bake: ") + path + ": " + e.what());
+      continue;
+    }
+    printDiagnostics(diagnostics);  // warnings
+    if (!quiet) {
+      std::cerr << prefix << name << " ... ok";
+      if (written.empty())
+        std::cerr << " (writes no output)";
+      std::cerr << "\n";
+      for (const auto& file : written)
+        std::cout << "wrote " << file << "\n";
+    }
+  }
+  if (failed > 0) {
+    std::cerr << "memograph bake: " << failed << " of " << total << " material"
+              << (total == 1 ? "" : "s") << " failed"
+              << (failed == total ? "; nothing written" : "; the others were written") << "\n";
+  }
+  if (failed > 0 || anyFailed)
+    return kExitFailure;
+  return kExitOk;
+#endif
+}
+
+}  // namespace memograph::cli
