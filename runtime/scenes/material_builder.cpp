@@ -1,8 +1,8 @@
 #include "runtime/scenes/material_builder.h"
 
 // Node and socket names as declared in nodes/*.inc (docs/nodes.md): math.inc (Mul, Add,
-// Fract, MapRange, Mix), converter.inc (ColorRamp), inputs.inc, outputs.inc, and the
-// texture families (NoiseTexture, VoronoiTexture, CheckerTexture, BrickTexture).
+// Fract, MapRange, Mix), converter.inc (ColorRamp4), inputs.inc, outputs.inc, and the
+// texture families (NoiseTexture, VoronoiTexture, CheckerTextureFiltered, BrickTexture).
 namespace memograph::runtime {
 namespace {
 using A = GraphArg;
@@ -90,7 +90,7 @@ GraphLink MaterialBuilder::voronoiColor(GraphLink vector, float scale) {
 
 GraphLink MaterialBuilder::checker(GraphLink vector, float scale) {
   const GraphLink fac = graph_.newLink();
-  graph_.node("CheckerTexture",
+  graph_.node("CheckerTextureFiltered",
               {A::in("Vector", vector), A::constant("Scale", scale), A::out("Fac", fac)});
   return fac;
 }
@@ -104,7 +104,7 @@ GraphLink MaterialBuilder::brick(GraphLink vector, float scale, float mortarSize
 
 GraphLink MaterialBuilder::ramp(GraphLink fac, float p0, glm::vec3 c0, float p1, glm::vec3 c1) {
   const GraphLink color = graph_.newLink();
-  graph_.node("ColorRamp",
+  graph_.node("ColorRamp4",
               {A::in("Fac", fac), A::constant("Pos0", p0), A::constant("Color0", c0),
                A::constant("Pos1", p1), A::constant("Color1", c1), A::out("Color", color)});
   return color;

@@ -1,0 +1,88 @@
+"""One per-node Cycles comparison case (issue 13, Acceptance).
+
+A case names one Blender shader node, its settings, its constant inputs and the inputs that
+vary over the UV plane; the harness (../build_and_bake.py inside Blender, ../compare_nodes.py
+outside) puts the chosen output on an Emission shader, bakes it with Cycles and with
+`memograph bake`, and compares the two 64x64 images per channel.
+
+This module is imported both by Blender's Python (3.10, no numpy) and by the system
+python3: keep it standard-library only and never import bpy here. Family modules import it
+as `from .case import Case`.
+"""
+from dataclasses import dataclass, field
+import re
+from typing import Any, Callable, Dict, Optional
+
+# Default tolerance by kind: the issue's ceilings (max abs error per channel).
+TOLERANCE = {'analytic': 1e-3, 'noise': 1e-2}
+
+# What a `drive` entry may be (see Case.drive):
+#   'uv3'                         (u, v, 0) from Texture Coordinate UV
+#   ('uv3', scale, offset)        (u, v, 0) * scale + offset; scale/offset: number or 3-tuple
+#                                 (Vector Math MULTIPLY_ADD after Texture Coordinate UV)
+#   'u' | 'v'                     the scalar u or v (Separate XYZ of UV)
+#   ('u'|'v', offset, scale)      offset + scale * u  (Separate XYZ + Math MULTIPLY_ADD)
+#   'generated' | 'object' | 'normal' | 'uv'   a Texture Coordinate output as is
+#   (one of those coordinate names, scale, offset)  scaled like 'uv3'
+VECTOR_SOURCES = ('uv3', 'uv', 'generated', 'object', 'normal')
+SCALAR_SOURCES = ('u', 'v')
+
+_NAME = re.compile(r'^[A-Za-z_][A-Za-z0-9_]*$')
+
+
+@dataclass
+class Case:
+    name: str                      # unique over all families; a valid identifier, no '__'
+    node: str                      # Blender node type, e.g. 'ShaderNodeTexNoise'
+    props: Dict[str, Any] = field(default_factory=dict)    # node properties: enum names, bools, ...
+    inputs: Dict[str, Any] = field(default_factory=dict)   # constant input values by identifier or name
+    drive: Dict[str, Any] = field(default_factory=dict)    # inputs driven per pixel (see above)
+    output: Optional[str] = None   # output identifier or name; None: the first enabled output
+    tolerance: Optional[float] = None  # None: TOLERANCE[kind]
+    kind: str = 'analytic'         # 'analytic' | 'noise' (noise, Voronoi, Musgrave)
+    # Settings that are not simple props, run in Blender after props and inputs:
+    # extra(node) or extra(node, node_tree) (e.g. ColorRamp stops, curve points).
+    extra: Optional[Callable[..., None]] = None
+    note: str = ''                 # free text shown in the table (e.g. why a tolerance differs)
+    family: str = ''               # filled in by discovery: the module's name
+
+    @property
+    def max_error(self) -> float:
+        if self.tolerance is not None:
+            return float(self.tolerance)
+        return TOLERANCE[self.kind]
+
+    def mode(self) -> str:
+        """A short text for the table's mode column: the props, sorted."""
+        if not self.props:
+            return '-'
+        return ', '.join('%s=%s' % (k, v) for k, v in sorted(self.props.items()))
+
+    def validate(self) -> None:
+        if not _NAME.match(self.name) or '__' in self.name:
+            raise ValueError('case name %r must be an identifier without "__" (it becomes the '
+                             'material name)' % self.name)
+        if self.kind not in TOLERANCE:
+            raise ValueError('case %s: kind must be one of %s' % (self.name, sorted(TOLERANCE)))
+        for sock, spec in self.drive.items():
+            if not drive_ok(spec):
+                raise ValueError('case %s: bad drive for %r: %r' % (self.name, sock, spec))
+
+
+def _num_or_vec(x) -> bool:
+    if isinstance(x, (int, float)):
+        return True
+    return isinstance(x, (tuple, list)) and len(x) == 3 and all(
+        isinstance(c, (int, float)) for c in x)
+
+
+def drive_ok(spec) -> bool:
+    if isinstance(spec, str):
+        return spec in VECTOR_SOURCES or spec in SCALAR_SOURCES
+    if isinstance(spec, tuple) and len(spec) == 3:
+        src, a, b = spec
+        if src in SCALAR_SOURCES:
+            return isinstance(a, (int, float)) and isinstance(b, (int, float))
+        if src in VECTOR_SOURCES:
+            return _num_or_vec(a) and _num_or_vec(b)
+    return False

@@ -1,0 +1,453 @@
+#!/usr/bin/env python3
+"""Unit tests of the Blender exporter's pure-Python parts with fake node objects (no Blender):
+the spec loader, literals and names, graph walking (groups, reroutes, muted nodes, invalid
+and disabled links, implicit conversions) and the Blender 4.x branches that cannot run on
+the Blender 3.4 installed here (Principled v2 sockets, 4.1 Noise types, 4.x-only inputs).
+
+    python3 tests/blender/exporter_unit_test.py
+"""
+
+import os
+import sys
+import tempfile
+import textwrap
+import unittest
+
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, '..', '..', 'tools', 'blender'))
+
+from memograph_export import compat, exporter, graph, mgraph, shaders, writers  # noqa: E402
+from memograph_export.spec import NodeSpec, SpecError, load_specs  # noqa: E402
+
+# -- fakes ------------------------------------------------------------------------------
+
+
+class Sock:
+    def __init__(self, identifier, type_, default=None, name=None, enabled=True,
+                 is_output=False):
+        self.identifier = identifier
+        self.name = name or identifier
+        self.type = type_
+        if default is not None:
+            self.default_value = default
+        self.enabled = enabled
+        self.is_output = is_output
+        self.node = None
+
+    def as_pointer(self):
+        return id(self)
+
+
+class Prop:
+    def __init__(self, type_, items=()):
+        self.type = type_
+        self.enum_items = [type('I', (), {'identifier': i})() for i in items]
+
+
+class RNA:
+    def __init__(self, props):
+        self.properties = props
+
+
+class Node:
+    def __init__(self, bl_idname, name, inputs=(), outputs=(), mute=False, props=None,
+                 rna=None, **attrs):
+        self.bl_idname = bl_idname
+        self.bl_label = bl_idname
+        self.name = name
+        self.inputs = list(inputs)
+        self.outputs = list(outputs)
+        for s in self.outputs:
+            s.is_output = True
+        for s in self.inputs + self.outputs:
+            s.node = self
+        self.mute = mute
+        self.internal_links = []
+        self.bl_rna = RNA(rna or {})
+        for k, v in (props or {}).items():
+            setattr(self, k, v)
+        for k, v in attrs.items():
+            setattr(self, k, v)
+
+
+class ILink:
+    def __init__(self, from_socket, to_socket):
+        self.from_socket = from_socket
+        self.to_socket = to_socket
+
+
+class NLink:
+    def __init__(self, a, b, valid=True, muted=False):
+        self.from_node, self.from_socket = a.node, a
+        self.to_node, self.to_socket = b.node, b
+        self.is_valid = valid
+        self.is_muted = muted
+
+
+class Tree:
+    def __init__(self):
+        self.nodes = []
+        self.links = []
+
+    def add(self, node):
+        self.nodes.append(node)
+        return node
+
+    def link(self, a, b, **kw):
+        self.links.append(NLink(a, b, **kw))
+
+
+class Material:
+    def __init__(self, name, tree):
+        self.name = name
+        self.node_tree = tree
+        self.use_nodes = True
+
+
+def output_node(tree):
+    return tree.add(Node('ShaderNodeOutputMaterial', 'Material Output',
+                         [Sock('Surface', 'SHADER'), Sock('Volume', 'SHADER'),
+                          Sock('Displacement', 'VECTOR', (0, 0, 0))],
+                         target='ALL', is_active_output=True))
+
+
+def emission(tree, name='Emission'):
+    return tree.add(Node('ShaderNodeEmission', name,
+                         [Sock('Color', 'RGBA', (1, 1, 1, 1)), Sock('Strength', 'VALUE', 1.0)],
+                         [Sock('Emission', 'SHADER')]))
+
+
+def math_node(name, a=0.5, mute=False):
+    n = Node('ShaderNodeMath', name,
+             [Sock('Value', 'VALUE', a), Sock('Value_001', 'VALUE', 0.5),
+              Sock('Value_002', 'VALUE', 0.5, enabled=False)],
+             [Sock('Value', 'VALUE', 0.0)], mute=mute,
+             rna={'operation': Prop('ENUM', ['ADD', 'SUBTRACT', 'MULTIPLY'])},
+             operation='MULTIPLY', use_clamp=False)
+    n.internal_links = [ILink(n.inputs[0], n.outputs[0])]
+    return n
+
+
+MATH_SPEC = {'ShaderNodeMath': NodeSpec('Math', {'Value': 'A', 'Value_001': 'B',
+                                                 'Value_002': 'C'},
+                                        {'Value': 'Value'}, props={'operation': 'Operation'})}
+
+
+def export(mats, table=None):
+    out = tempfile.mkdtemp(prefix='mgexp')
+    if table is None:
+        table = writers.build_table(dict(MATH_SPEC))
+    result = exporter.export_materials(mats, out, table=table)
+    texts = []
+    for f in result.files:
+        with open(f, encoding='utf-8') as fh:
+            texts.append(fh.read())
+    return result, texts
+
+
+def body(text):
+    return [l for l in text.splitlines() if l and not l.startswith('#')]
+
+
+# -- tests ------------------------------------------------------------------------------
+
+
+class SpecLoaderTest(unittest.TestCase):
+    def make_pkg(self, files):
+        root = tempfile.mkdtemp(prefix='mgspec')
+        pkg = os.path.join(root, 'fakespecs_%d' % id(files))
+        os.makedirs(pkg)
+        open(os.path.join(pkg, '__init__.py'), 'w').close()
+        for name, text in files.items():
+            with open(os.path.join(pkg, name), 'w') as f:
+                f.write(textwrap.dedent(text))
+        sys.path.insert(0, root)
+        return os.path.basename(pkg)
+
+    def test_merges_modules(self):
+        pkg = self.make_pkg({
+            'a.py': "from memograph_export.spec import NodeSpec\n"
+                    "NODES = {'ShaderNodeA': NodeSpec('A', {}, {})}\n",
+            'b.py': "from memograph_export.spec import NodeSpec\n"
+                    "NODES = {'ShaderNodeB': NodeSpec(lambda n: 'B', {'X': 'X'}, {})}\n"})
+        specs = load_specs(pkg)
+        self.assertEqual(sorted(specs), ['ShaderNodeA', 'ShaderNodeB'])
+
+    def test_duplicate_is_an_error(self):
+        pkg = self.make_pkg({
+            'a.py': "from memograph_export.spec import NodeSpec\n"
+                    "NODES = {'ShaderNodeA': NodeSpec('A', {}, {})}\n",
+            'b.py': "from memograph_export.spec import NodeSpec\n"
+                    "NODES = {'ShaderNodeA': NodeSpec('A2', {}, {})}\n"})
+        with self.assertRaisesRegex(SpecError, 'defined twice'):
+            load_specs(pkg)
+
+    def test_bad_spec(self):
+        with self.assertRaises(SpecError):
+            NodeSpec('A', {}, {}, implicit_vector='nonsense')
+        with self.assertRaises(SpecError):
+            NodeSpec(3, {}, {})
+
+    def test_custom_writer_conflict(self):
+        with self.assertRaisesRegex(SpecError, 'custom writer'):
+            writers.build_table({'ShaderNodeValToRGB': NodeSpec('ColorRamp', {}, {})})
+
+    def test_real_specs_load(self):
+        specs = load_specs()  # every family file in the tree must import and not collide
+        writers.build_table(specs)
+
+
+class LiteralTest(unittest.TestCase):
+    def test_numbers(self):
+        self.assertEqual(mgraph.format_number(0.1), '0.100000001')
+        self.assertEqual(mgraph.format_number(-0.0), '0')
+        self.assertEqual(mgraph.format_number(float('inf')), '3.40282347e+38')
+        self.assertEqual(mgraph.format_number(2.0), '2')
+
+    def test_names(self):
+        self.assertEqual(mgraph.sanitize_identifier('My Mat.001'), 'My_Mat_001')
+        self.assertEqual(mgraph.sanitize_identifier('a__b'), 'a_b')
+        self.assertEqual(mgraph.sanitize_identifier('1x'), 'M1x')
+        self.assertEqual(mgraph.sanitize_identifier('***'), 'Material')
+        names = exporter.unique_names([Material('a b', None), Material('a.b', None)])
+        self.assertEqual(names, {'a b': 'a_b', 'a.b': 'a_b_2'})
+
+    def test_table(self):
+        text = mgraph.format_literal(mgraph.Literal([0.5] * 1024, 'table'))
+        self.assertTrue(text.startswith('[') and text.endswith(']'))
+        self.assertEqual(len(text.replace('[', ' ').replace(']', ' ').split()), 1024)
+
+
+class GraphTest(unittest.TestCase):
+    def test_reroute_mute_group_conversions(self):
+        # Material: Value(0.25) -> reroute -> muted Math -> Group[ inner Math x ] ->
+        # Emission.Strength; a colour -> Emission.Color through an RGB node.
+        inner = Tree()
+        gin = inner.add(Node('NodeGroupInput', 'Group Input', [],
+                             [Sock('Input_1', 'VALUE', 0.0), Sock('Input_2', 'RGBA')]))
+        gout = inner.add(Node('NodeGroupOutput', 'Group Output',
+                              [Sock('Output_1', 'VALUE', 0.0), Sock('Output_2', 'VALUE', 0.0)],
+                              is_active_output=True))
+        m_in = inner.add(math_node('Inner Math'))
+        inner.link(gin.outputs[0], m_in.inputs[0])
+        inner.link(m_in.outputs[0], gout.inputs[0])
+        inner.link(gin.outputs[1], gout.inputs[1])  # colour into a float group output
+
+        tree = Tree()
+        out = output_node(tree)
+        em = emission(tree)
+        val = tree.add(Node('ShaderNodeValue', 'Value', [], [Sock('Value', 'VALUE', 0.25)]))
+        rr = tree.add(Node('NodeReroute', 'Reroute', [Sock('Input', 'VALUE')],
+                           [Sock('Output', 'VALUE')]))
+        muted = tree.add(math_node('Muted Math', mute=True))
+        group = tree.add(Node('ShaderNodeGroup', 'Group',
+                              [Sock('Input_1', 'VALUE', 0.0),
+                               Sock('Input_2', 'RGBA', (0.2, 0.4, 0.6, 1.0))],
+                              [Sock('Output_1', 'VALUE'), Sock('Output_2', 'VALUE')],
+                              node_tree=inner))
+        vec = tree.add(Node('ShaderNodeCombineXYZ', 'Combine', [], [Sock('Vector', 'VECTOR')]))
+        m2 = tree.add(math_node('Averaged'))
+        tree.link(val.outputs[0], rr.inputs[0])
+        tree.link(rr.outputs[0], muted.inputs[0])
+        tree.link(muted.outputs[0], group.inputs[0])
+        tree.link(group.outputs[0], m2.inputs[1])
+        tree.link(vec.outputs[0], m2.inputs[0])          # vector -> float: average
+        tree.link(m2.outputs[0], em.inputs[1])
+        tree.link(group.outputs[1], em.inputs[0])         # colour -> float -> colour
+        tree.link(em.outputs[0], out.inputs[0])
+        result, (text,) = export([Material('Mat', tree)])
+        lines = body(text)
+        self.assertEqual(lines[0], 'material Mat;')
+        joined = '\n'.join(lines)
+        # The muted Math and the reroute vanish; the Value node has no writer here, so its
+        # output becomes its default 0.25 and the inner Math reads it directly.
+        self.assertIn('Math A=0.25 B=0.5 Operation=2 Value>2;', joined)
+        self.assertEqual(joined.count('Math '), 2)
+        self.assertIn('VectorAverage Vector=(0, 0, 0) Value>', joined)  # CombineXYZ unknown
+        self.assertIn('RGBToBW Color=(0.200000003, 0.400000006, 0.600000024) Val>', joined)
+        self.assertIn('EmissionOutput Color<', joined)
+        self.assertIn('BaseColorOutput In=(0, 0, 0);', joined)
+        msgs = [w[2] for w in result.warnings]
+        self.assertTrue(any('ShaderNodeValue' in m and '0.25' in m for m in msgs), msgs)
+        self.assertTrue(any('ShaderNodeCombineXYZ' in m for m in msgs), msgs)
+        labels = {w[1] for w in result.warnings}
+        self.assertIn('Value', labels)
+
+    def test_invalid_disabled_and_muted_links(self):
+        tree = Tree()
+        out = output_node(tree)
+        em = emission(tree)
+        m = tree.add(math_node('M', a=0.75))
+        m2 = tree.add(math_node('M2', a=0.125))
+        tree.link(m.outputs[0], em.inputs[1], valid=False)      # ignored
+        tree.link(m2.outputs[0], m.inputs[2])                   # to a disabled socket
+        tree.link(m2.outputs[0], em.inputs[0], muted=True)      # muted link
+        tree.link(em.outputs[0], out.inputs[0])
+        result, (text,) = export([Material('Mat', tree)])
+        self.assertNotIn('Math', text)
+        self.assertIn('EmissionOutput Color=(1, 1, 1) Strength=1;', text)
+
+    def test_muted_output_without_internal_link(self):
+        tree = Tree()
+        out = output_node(tree)
+        em = emission(tree)
+        m = tree.add(math_node('M', mute=True))
+        m.internal_links = []
+        tree.link(m.outputs[0], em.inputs[1])
+        tree.link(em.outputs[0], out.inputs[0])
+        _, (text,) = export([Material('Mat', tree)])
+        self.assertIn('Strength=1;', text)  # the consumer's own value
+
+    def test_deterministic(self):
+        tree = Tree()
+        out = output_node(tree)
+        em = emission(tree)
+        m = tree.add(math_node('M'))
+        tree.link(m.outputs[0], em.inputs[1])
+        tree.link(m.outputs[0], em.inputs[0])
+        tree.link(em.outputs[0], out.inputs[0])
+        _, (a,) = export([Material('Mat', tree)])
+        _, (b,) = export([Material('Mat', tree)])
+        self.assertEqual(a, b)
+        self.assertEqual(a.count('Math '), 1)
+
+    def test_no_output_node_is_an_error(self):
+        tree = Tree()
+        emission(tree)
+        result, texts = export([Material('Mat', tree)])
+        self.assertEqual(texts, [])
+        self.assertIn('no Material Output', result.errors[0][1])
+
+
+def principled_v2(tree):
+    """A Blender 4.x Principled BSDF (v2 socket names)."""
+    names = [('Base Color', 'RGBA', (0.8, 0.8, 0.8, 1)), ('Metallic', 'VALUE', 0.0),
+             ('Roughness', 'VALUE', 0.5), ('IOR', 'VALUE', 1.5), ('Alpha', 'VALUE', 1.0),
+             ('Normal', 'VECTOR', (0, 0, 0)), ('Subsurface Weight', 'VALUE', 0.0),
+             ('Specular IOR Level', 'VALUE', 0.5), ('Specular Tint', 'RGBA', (1, 1, 1, 1)),
+             ('Coat Weight', 'VALUE', 0.3), ('Sheen Weight', 'VALUE', 0.0),
+             ('Emission Color', 'RGBA', (1, 0.5, 0, 1)), ('Emission Strength', 'VALUE', 2.0),
+             ('Transmission Weight', 'VALUE', 0.0)]
+    return tree.add(Node('ShaderNodeBsdfPrincipled', 'Principled BSDF',
+                         [Sock(n, t, d) for n, t, d in names], [Sock('BSDF', 'SHADER')]))
+
+
+class SpecWriterTest(unittest.TestCase):
+    def test_uncarried_input_and_output_are_reported(self):
+        tree = Tree()
+        out = output_node(tree)
+        em = emission(tree)
+        src = tree.add(math_node('Src'))
+        node = tree.add(Node('ShaderNodeX', 'X', [Sock('In', 'VALUE', 1.0),
+                                                  Sock('Extra', 'VALUE', 2.0)],
+                             [Sock('Out', 'VALUE', 0.5), Sock('Other', 'VALUE', 0.25)]))
+        tree.link(src.outputs[0], node.inputs[1])  # linked but not in the spec
+        tree.link(node.outputs[1], em.inputs[1])   # an output the spec does not map
+        tree.link(node.outputs[0], em.inputs[0])
+        tree.link(em.outputs[0], out.inputs[0])
+        table = dict(MATH_SPEC)
+        table['ShaderNodeX'] = NodeSpec('Xn', {'In': 'In'}, {'Out': 'Out'})
+        result, (text,) = export([Material('Mat', tree)], writers.build_table(table))
+        msgs = ' | '.join(w[2] for w in result.warnings)
+        self.assertIn("input 'Extra' is linked but the exporter does not carry it", msgs)
+        self.assertIn("output 'Other' is not carried: its default 0.25 is used instead", msgs)
+        self.assertIn('Xn In=1 Out>0;', text)
+        self.assertIn('Strength=0.25', text)
+        self.assertNotIn('Math', text)  # only the ignored input read it
+
+
+class Blender4Test(unittest.TestCase):
+    def test_principled_v2(self):
+        tree = Tree()
+        out = output_node(tree)
+        p = principled_v2(tree)
+        tree.link(p.outputs[0], out.inputs[0])
+        result, (text,) = export([Material('Mat', tree)])
+        self.assertIn('PrincipledOutput BaseColor=(0.800000012, 0.800000012, 0.800000012) '
+                      'Metallic=0 Roughness=0.5 Specular=0.5 Emission=(1, 0.5, 0) '
+                      'EmissionStrength=2 Alpha=1;', text)
+        msgs = ' | '.join(w[2] for w in result.warnings)
+        self.assertIn('Specular IOR Level', msgs)
+        self.assertIn('Clearcoat/Coat = 0.3 is not carried', msgs)
+        self.assertNotIn('Specular Tint', msgs)  # white tint = off in 4.x
+
+    def test_noise_types_and_new_inputs(self):
+        tree = Tree()
+        out = output_node(tree)
+        em = emission(tree)
+        noise = tree.add(Node('ShaderNodeTexNoise', 'Noise',
+                              [Sock('Vector', 'VECTOR', (0, 0, 0)), Sock('Scale', 'VALUE', 5.0),
+                               Sock('Lacunarity', 'VALUE', 3.0)],
+                              [Sock('Fac', 'VALUE')], noise_type='RIDGED_MULTIFRACTAL',
+                              normalize=True))
+        tree.link(noise.outputs[0], em.inputs[1])
+        tree.link(em.outputs[0], out.inputs[0])
+        spec = {'ShaderNodeTexNoise': NodeSpec('NoiseTexture', {'Vector': 'Vector',
+                                                                 'Scale': 'Scale'},
+                                               {'Fac': 'Fac'}, implicit_vector='generated')}
+        result, (text,) = export([Material('Mat', tree)], writers.build_table(spec))
+        msgs = ' | '.join(w[2] for w in result.warnings)
+        self.assertIn('RIDGED_MULTIFRACTAL', msgs)
+        self.assertIn('Lacunarity = 3 (Blender 4.x input) is not carried', msgs)
+        self.assertIn('TextureCoordinate Generated>0;', text)
+        self.assertIn('NoiseTexture Vector<0 Scale=5 Fac>1;', text)
+        self.assertIn('NoiseTexture computes Blender 3.4\'s fBm normalisation', msgs)
+        # A spec that carries Lacunarity: no warning for it.
+        spec['ShaderNodeTexNoise'].inputs['Lacunarity'] = 'Lacunarity'
+        result, (text,) = export([Material('Mat', tree)], writers.build_table(spec))
+        self.assertNotIn('Lacunarity = 3', ' | '.join(w[2] for w in result.warnings))
+        self.assertIn('Lacunarity=3', text)
+
+    def test_find_input_fallbacks(self):
+        n = Node('X', 'x', [Sock('Emission Color', 'RGBA', (1, 1, 1, 1)),
+                           Sock('Specular', 'VALUE', 0.5, enabled=False)])
+        self.assertEqual(compat.find_input(n, 'Emission', 'Emission Color'), 'Emission Color')
+        self.assertIsNone(compat.find_input(n, 'Specular'))
+
+
+class ShaderTest(unittest.TestCase):
+    def test_mix_add_and_approximations(self):
+        tree = Tree()
+        out = output_node(tree)
+        diff = tree.add(Node('ShaderNodeBsdfDiffuse', 'Diffuse',
+                             [Sock('Color', 'RGBA', (0.5, 0.1, 0.1, 1)),
+                              Sock('Roughness', 'VALUE', 0.0),
+                              Sock('Normal', 'VECTOR', (0, 0, 0))], [Sock('BSDF', 'SHADER')]))
+        gl = tree.add(Node('ShaderNodeBsdfGlossy', 'Glossy',
+                           [Sock('Color', 'RGBA', (0.9, 0.9, 0.9, 1)),
+                            Sock('Roughness', 'VALUE', 0.2),
+                            Sock('Normal', 'VECTOR', (0, 0, 0))], [Sock('BSDF', 'SHADER')],
+                           distribution='GGX'))
+        mix = tree.add(Node('ShaderNodeMixShader', 'Mix',
+                            [Sock('Fac', 'VALUE', 0.25), Sock('Shader', 'SHADER'),
+                             Sock('Shader_001', 'SHADER')], [Sock('Shader', 'SHADER')]))
+        em = emission(tree)
+        add = tree.add(Node('ShaderNodeAddShader', 'Add',
+                            [Sock('Shader', 'SHADER'), Sock('Shader_001', 'SHADER')],
+                            [Sock('Shader', 'SHADER')]))
+        holdout = tree.add(Node('ShaderNodeHoldout', 'Holdout', [], [Sock('Holdout', 'SHADER')]))
+        tree.link(diff.outputs[0], mix.inputs[1])
+        tree.link(gl.outputs[0], mix.inputs[2])
+        tree.link(mix.outputs[0], add.inputs[0])
+        tree.link(em.outputs[0], add.inputs[1])
+        tree.link(add.outputs[0], out.inputs[0])
+        result, (text,) = export([Material('Mat', tree)])
+        self.assertIn('Saturate In=0.25 Out>0;', text)
+        self.assertIn('Mix A=(0.5, 0.100000001, 0.100000001) B=(0.899999976, 0.899999976, '
+                      '0.899999976) Factor<0 Out>1;', text)
+        self.assertIn('PrincipledOutput', text)
+        msgs = ' | '.join(w[2] for w in result.warnings)
+        for what in ('Diffuse BSDF approximated', 'Glossy BSDF approximated',
+                     'Mix Shader approximated', 'Add Shader approximated'):
+            self.assertIn(what, msgs)
+        # An unsupported shader: a warning and the defaults.
+        tree.links[-1] = NLink(holdout.outputs[0], out.inputs[0])
+        result, (text,) = export([Material('Mat2', tree)])
+        self.assertIn('ShaderNodeHoldout is not supported', result.warnings[0][2])
+        self.assertIn('PrincipledOutput BaseColor=(0.800000012, 0.800000012, 0.800000012)',
+                      text)
+
+
+if __name__ == '__main__':
+    unittest.main()

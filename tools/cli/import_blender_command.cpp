@@ -1,0 +1,309 @@
+// memograph import-blender SCENE.blend --out DIR [--blender PATH] [--materials NAME...]:
+// runs Blender headless with the memograph exporter (tools/blender/export_memograph.py) and
+// writes one .mgraph per material into DIR (docs/blender.md).
+#include <fcntl.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli_common.h"
+#include "commands.h"
+
+extern char** environ;
+
+namespace memograph::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::string_view kHelp =
+    "usage: memograph import-blender SCENE.blend --out DIR [--blender PATH]\n"
+    "                                [--materials NAME...]\n"
+    "\n"
+    "Exports the materials of a Blender file as memograph graphs: runs Blender headless\n"
+    "(`blender -b SCENE.blend --python export_memograph.py -- --out DIR`) and writes one\n"
+    ".mgraph per material into DIR, images into DIR/textures/ and DIR/index.json (Blender's\n"
+    "material names -> graph files). Warnings (nodes memograph approximates or cannot carry)\n"
+    "are printed on stderr. See docs/blender.md.\n"
+    "\n"
+    "options:\n"
+    "  --out DIR            output folder (created)\n"
+    "  --blender PATH       the Blender executable (default: `blender` on PATH)\n"
+    "  --materials NAME...  only these materials (default: all)\n"
+    "  --scene              also write the scene: DIR/scene.gltf (Blender's glTF exporter,\n"
+    "                       lights and active camera) and DIR/scene.memograph (what glTF\n"
+    "                       drops: world, area lights, texture spaces); then\n"
+    "                       `memograph render DIR/scene.gltf --materials DIR` renders it\n"
+    "  --verbose            also show Blender's own output\n"
+    "\n"
+    "exit status: 0 written (warnings allowed), 1 Blender is missing, the .blend cannot be\n"
+    "read or a material cannot be exported, 2 a usage error.\n";
+
+// The directory of the running binary (for the installed/build-tree exporter script).
+std::optional<fs::path> executableDir() {
+  std::error_code ec;
+  auto self = fs::read_symlink("/proc/self/exe", ec);
+  if (ec)
+    return std::nullopt;
+  return self.parent_path();
+}
+
+// Where the exporter script is, in order: $MEMOGRAPH_BLENDER_EXPORTER; beside the binary in
+// a build tree (<build>/tools/blender/, copied by tools/blender/CMakeLists.txt); installed
+// (<prefix>/share/memograph/blender/); the source tree this binary was configured from.
+std::optional<fs::path> findExporterScript(std::vector<std::string>& tried) {
+  std::vector<fs::path> candidates;
+  if (const char* env = std::getenv("MEMOGRAPH_BLENDER_EXPORTER"); env && *env)
+    candidates.emplace_back(env);
+  if (auto dir = executableDir()) {
+    candidates.push_back(*dir / "blender" / "export_memograph.py");
+    candidates.push_back(*dir / ".." / "share" / "memograph" / "blender" / "export_memograph.py");
+  }
+#ifdef MEMOGRAPH_BLENDER_EXPORTER_SOURCE
+  candidates.emplace_back(MEMOGRAPH_BLENDER_EXPORTER_SOURCE);
+#endif
+  for (const auto& c : candidates) {
+    tried.push_back(c.string());
+    std::error_code ec;
+    if (fs::is_regular_file(c, ec))
+      return fs::weakly_canonical(c, ec);
+  }
+  return std::nullopt;
+}
+
+bool isExecutableFile(const fs::path& path) {
+  std::error_code ec;
+  return fs::is_regular_file(path, ec) && ::access(path.c_str(), X_OK) == 0;
+}
+
+std::optional<fs::path> findOnPath(const std::string& name) {
+  if (name.find('/') != std::string::npos)
+    return isExecutableFile(name) ? std::optional<fs::path>(name) : std::nullopt;
+  const char* path = std::getenv("PATH");
+  std::string_view rest = path ? path : "/usr/local/bin:/usr/bin:/bin";
+  while (true) {
+    auto colon = rest.find(':');
+    std::string dir(rest.substr(0, colon));
+    fs::path candidate = fs::path(dir.empty() ? "." : dir) / name;
+    if (isExecutableFile(candidate))
+      return candidate;
+    if (colon == std::string_view::npos)
+      break;
+    rest.remove_prefix(colon + 1);
+  }
+  return std::nullopt;
+}
+
+// Checks the file header so that a wrong file gets a clear error before Blender starts
+// (Blender would print its own message and go on with an empty scene). A .blend starts
+// with "BLENDER"; saved compressed it is gzip (Blender < 3.0) or Zstandard (3.0+).
+std::string checkBlendFile(const fs::path& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec))
+    return "no such file";
+  if (!fs::is_regular_file(path, ec))
+    return "not a regular file";
+  std::ifstream in(path, std::ios::binary);
+  std::array<unsigned char, 7> head{};
+  in.read(reinterpret_cast<char*>(head.data()), head.size());
+  if (in.gcount() < 4)
+    return "not a .blend file (too short)";
+  if (std::memcmp(head.data(), "BLENDER", 7) == 0)
+    return {};
+  if (head[0] == 0x1f && head[1] == 0x8b)
+    return {};  // gzip
+  if (head[0] == 0x28 && head[1] == 0xb5 && head[2] == 0x2f && head[3] == 0xfd)
+    return {};  // zstd
+  return "not a .blend file (no BLENDER header)";
+}
+
+// Blender's own stdout is mostly a banner and "Read blend:"; show only what matters
+// unless --verbose: the exporter's summary and Blender's error lines (a bad .blend).
+bool interestingBlenderLine(std::string_view line) {
+  for (std::string_view prefix :
+       {"memograph:", "error:", "Error", "ERROR", "Warning: unable", "Traceback", "Segmentation"}) {
+    if (line.substr(0, prefix.size()) == prefix)
+      return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+int runImportBlender(std::span<const std::string_view> args) {
+  std::string outDir, blender;
+  std::vector<std::string> positional, materials;
+  bool verbose = false;
+  bool withScene = false;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    std::string_view a = args[i];
+    auto value = [&](std::string& out) -> bool {
+      if (auto eq = a.find('='); eq != std::string_view::npos) {
+        out = std::string(a.substr(eq + 1));
+        return true;
+      }
+      if (i + 1 >= args.size())
+        return false;
+      out = std::string(args[++i]);
+      return true;
+    };
+    if (a == "--help" || a == "-h") {
+      std::cout << kHelp;
+      return kExitOk;
+    } else if (a == "--out" || a.starts_with("--out=")) {
+      if (!value(outDir))
+        return usageError("import-blender", "--out needs a folder");
+    } else if (a == "--blender" || a.starts_with("--blender=")) {
+      if (!value(blender))
+        return usageError("import-blender", "--blender needs a path");
+    } else if (a == "--materials") {
+      while (i + 1 < args.size() && !args[i + 1].starts_with("--"))
+        materials.emplace_back(args[++i]);
+      if (materials.empty())
+        return usageError("import-blender", "--materials needs at least one name");
+    } else if (a == "--verbose") {
+      verbose = true;
+    } else if (a == "--scene") {
+      withScene = true;
+    } else if (a.starts_with("-")) {
+      return usageError("import-blender", "unknown option '" + std::string(a) + "'");
+    } else {
+      positional.emplace_back(a);
+    }
+  }
+  if (positional.size() != 1)
+    return usageError("import-blender",
+                      positional.empty() ? "no .blend file given" : "give exactly one .blend file");
+  if (outDir.empty())
+    return usageError("import-blender", "--out DIR is required");
+
+  const fs::path blend = positional[0];
+  if (auto problem = checkBlendFile(blend); !problem.empty()) {
+    std::cerr << "memograph import-blender: " << blend.string() << ": " << problem << "\n";
+    return kExitFailure;
+  }
+  std::optional<fs::path> blenderPath;
+  if (!blender.empty()) {
+    blenderPath = findOnPath(blender);
+    if (!blenderPath) {
+      std::cerr << "memograph import-blender: --blender " << blender
+                << ": not an executable file\n";
+      return kExitFailure;
+    }
+  } else {
+    blenderPath = findOnPath("blender");
+    if (!blenderPath) {
+      std::cerr << "memograph import-blender: Blender was not found on PATH. Install it "
+                   "(Debian: `apt install blender`; tools/setup.sh does) or pass --blender "
+                   "PATH.\n";
+      return kExitFailure;
+    }
+  }
+  std::vector<std::string> tried;
+  auto script = findExporterScript(tried);
+  if (!script) {
+    std::cerr << "memograph import-blender: the exporter script export_memograph.py was not "
+                 "found; looked at:\n";
+    for (const auto& t : tried)
+      std::cerr << "  " << t << "\n";
+    std::cerr << "set MEMOGRAPH_BLENDER_EXPORTER to its path\n";
+    return kExitFailure;
+  }
+
+  std::error_code ec;
+  const fs::path absOut = fs::absolute(outDir, ec);
+  std::vector<std::string> argv = {blenderPath->string(),
+                                   "-b",
+                                   "--factory-startup",
+                                   fs::absolute(blend, ec).string(),
+                                   "--python-exit-code",
+                                   "1",
+                                   "--python",
+                                   script->string(),
+                                   "--",
+                                   "--out",
+                                   absOut.string()};
+  if (withScene)
+    argv.emplace_back("--scene");
+  if (!materials.empty()) {
+    argv.emplace_back("--materials");
+    argv.insert(argv.end(), materials.begin(), materials.end());
+  }
+  std::vector<char*> cargv;
+  for (auto& s : argv)
+    cargv.push_back(s.data());
+  cargv.push_back(nullptr);
+
+  int pipeFds[2];
+  if (::pipe(pipeFds) != 0) {
+    std::cerr << "memograph import-blender: pipe: " << std::strerror(errno) << "\n";
+    return kExitFailure;
+  }
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, pipeFds[1], STDOUT_FILENO);
+  posix_spawn_file_actions_addclose(&actions, pipeFds[0]);
+  posix_spawn_file_actions_addclose(&actions, pipeFds[1]);
+  pid_t pid = 0;
+  const int spawned = posix_spawn(&pid, cargv[0], &actions, nullptr, cargv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  ::close(pipeFds[1]);
+  if (spawned != 0) {
+    ::close(pipeFds[0]);
+    std::cerr << "memograph import-blender: cannot run " << argv[0] << ": "
+              << std::strerror(spawned) << "\n";
+    return kExitFailure;
+  }
+  // Blender's stdout, line by line (stderr, where the exporter's warnings go, is shared).
+  std::string pending;
+  std::array<char, 4096> buffer{};
+  while (true) {
+    const ssize_t n = ::read(pipeFds[0], buffer.data(), buffer.size());
+    if (n < 0 && errno == EINTR)
+      continue;
+    if (n <= 0)
+      break;
+    pending.append(buffer.data(), static_cast<std::size_t>(n));
+    std::size_t nl;
+    while ((nl = pending.find('\n')) != std::string::npos) {
+      std::string line = pending.substr(0, nl);
+      pending.erase(0, nl + 1);
+      if (verbose || interestingBlenderLine(line))
+        std::cout << line << "\n" << std::flush;
+    }
+  }
+  if (!pending.empty() && (verbose || interestingBlenderLine(pending)))
+    std::cout << pending << "\n";
+  ::close(pipeFds[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFSIGNALED(status)) {
+    std::cerr << "memograph import-blender: Blender ended with signal " << WTERMSIG(status) << " ("
+              << strsignal(WTERMSIG(status)) << ")\n";
+    return kExitFailure;
+  }
+  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 1;
+  if (code != 0) {
+    std::cerr << "memograph import-blender: the export failed (Blender exit status " << code
+              << ")\n";
+    return kExitFailure;
+  }
+  return kExitOk;
+}
+
+}  // namespace memograph::cli
