@@ -2,10 +2,14 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+
+#include "compiler/input_file.h"
+#include "runtime/atomic_file.h"
 
 namespace memograph::runtime {
 
@@ -56,85 +60,109 @@ constexpr long long kMaxPfmSide = 65536;
 
 }  // namespace
 
+std::string encodePfm(const HdrImage& image) {
+  std::string bytes =
+      "PF\n" + std::to_string(image.width) + ' ' + std::to_string(image.height) + "\n-1.0\n";
+  const std::size_t header = bytes.size();
+  bytes.resize(header + std::size_t(image.width) * image.height * 3 * sizeof(float));
+  std::vector<float> row(std::size_t(image.width) * 3);
+  std::size_t offset = header;
+  for (std::uint32_t y = image.height; y-- > 0;) {
+    for (std::uint32_t x = 0; x < image.width; ++x) {
+      for (int c = 0; c < 3; ++c)
+        row[x * 3 + c] = image.pixel(x, y)[c];
+    }
+    if constexpr (std::endian::native == std::endian::big)
+      swapFloats(row);
+    std::memcpy(bytes.data() + offset, row.data(), row.size() * sizeof(float));
+    offset += row.size() * sizeof(float);
+  }
+  return bytes;
+}
+
 bool tryWritePfm(const std::filesystem::path& path, const HdrImage& image, std::string& error) {
   if (image.width == 0 || image.height == 0 ||
       image.rgba.size() != std::size_t(image.width) * image.height * 4) {
     error = "cannot write PFM: the image is empty or its size does not match";
     return false;
   }
-  std::filesystem::path temporary = path;
-  temporary += ".partial";
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    if (!out) {
-      error = "cannot create the file";
-      return false;
-    }
-    out << "PF\n" << image.width << ' ' << image.height << "\n-1.0\n";
-    std::vector<float> row(std::size_t(image.width) * 3);
-    for (std::uint32_t y = image.height; y-- > 0;) {
-      for (std::uint32_t x = 0; x < image.width; ++x) {
-        for (int c = 0; c < 3; ++c)
-          row[x * 3 + c] = image.pixel(x, y)[c];
-      }
-      if constexpr (std::endian::native == std::endian::big)
-        swapFloats(row);
-      out.write(reinterpret_cast<const char*>(row.data()),
-                std::streamsize(row.size() * sizeof(float)));
-    }
-    if (!out.flush()) {
-      out.close();
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      error = "cannot write the file (disk full?)";
-      return false;
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    error = "cannot replace the file: " + ec.message();
-    return false;
-  }
-  return true;
+  return files::writeFileAtomically(path, encodePfm(image), error);
 }
 
 std::optional<HdrImage> tryReadPfm(const std::filesystem::path& path, std::string& error) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    error = "cannot open the PFM file";
+  const auto bytes = files::readInputFile(path, files::kMaxImageFileBytes, "images", error);
+  if (!bytes)
     return std::nullopt;
-  }
+  return tryParsePfm(*bytes, error);
+}
+
+std::optional<HdrImage> tryParsePfm(std::string_view data, std::string& error) {
+  const std::string_view* bytes = &data;
+  std::istringstream in{std::string(data)};
+  // The header: "PF" or "Pf", whitespace, width, height, scale, one whitespace character.
   std::string magic;
-  long long width = 0, height = 0;
-  double scale = 0;
-  in >> magic >> width >> height >> scale;
-  if (!in || (magic != "PF" && magic != "Pf")) {
-    error = "not a PFM file (expected a 'PF' or 'Pf' header)";
+  in >> magic;
+  if (magic != "PF" && magic != "Pf") {
+    error = bytes->empty() ? "the PFM file is empty"
+                           : "not a PFM file: it starts with '" +
+                                 magic.substr(0, std::min<std::size_t>(magic.size(), 8)) +
+                                 "', not 'PF' (colour) or 'Pf' (grey)";
     return std::nullopt;
   }
-  if (width <= 0 || height <= 0 || width > kMaxPfmSide || height > kMaxPfmSide || scale == 0.0) {
-    error = "bad PFM header: size " + std::to_string(width) + "x" + std::to_string(height) +
-            ", scale must be non-zero";
+  long long width = 0, height = 0;
+  if (!(in >> width >> height)) {
+    error = "bad PFM header: after '" + magic + "' expected the width and height as numbers";
+    return std::nullopt;
+  }
+  double scale = 0;
+  if (!(in >> scale)) {
+    error =
+        "bad PFM header: after the size expected the scale (a number, negative for "
+        "little-endian)";
+    return std::nullopt;
+  }
+  if (width <= 0 || height <= 0 || width > kMaxPfmSide || height > kMaxPfmSide) {
+    error = "bad PFM header: the size " + std::to_string(width) + "x" + std::to_string(height) +
+            " is not within 1.." + std::to_string(kMaxPfmSide) + " a side";
+    return std::nullopt;
+  }
+  if (std::uint64_t(width) * std::uint64_t(height) > files::kMaxImagePixels) {
+    error = "the PFM image is " + std::to_string(width) + "x" + std::to_string(height) +
+            ", over the limit of " + std::to_string(files::kMaxImagePixels) +
+            " pixels (docs/limits.md)";
+    return std::nullopt;
+  }
+  if (scale == 0.0 || !std::isfinite(scale)) {
+    error = "bad PFM header: the scale must be a non-zero number (its sign gives the byte order)";
     return std::nullopt;
   }
   in.get();  // the single whitespace character that ends the header
   const int channels = magic == "PF" ? 3 : 1;
+  // Checked against the file before allocating: a header cannot make us allocate more
+  // than the file holds.
+  const std::uint64_t expected = std::uint64_t(width) * height * channels * sizeof(float);
+  // A header that ends the file leaves the stream failed (tellg -1): no pixels follow.
+  const std::streamoff position = in.tellg();
+  const std::uint64_t header =
+      position < 0 ? bytes->size() : std::min<std::uint64_t>(position, bytes->size());
+  const std::uint64_t available = bytes->size() - header;
+  if (available < expected) {
+    error = "the PFM file is truncated: its header declares " + std::to_string(width) + "x" +
+            std::to_string(height) + (channels == 3 ? " RGB" : " grey") + ", " +
+            std::to_string(expected) + " bytes of pixels, but " + std::to_string(available) +
+            " follow the header";
+    return std::nullopt;
+  }
   const bool swap = (scale < 0) != (std::endian::native == std::endian::little);
   HdrImage image;
   image.width = std::uint32_t(width);
   image.height = std::uint32_t(height);
   image.rgba.resize(std::size_t(width) * height * 4);
   std::vector<float> row(std::size_t(width) * channels);
+  const char* pixels = bytes->data() + header;
   for (std::uint32_t y = image.height; y-- > 0;) {
-    in.read(reinterpret_cast<char*>(row.data()), std::streamsize(row.size() * sizeof(float)));
-    if (!in) {
-      error = "the PFM file is truncated: expected " +
-              std::to_string(width * height * channels * 4) + " bytes of pixels";
-      return std::nullopt;
-    }
+    std::memcpy(row.data(), pixels, row.size() * sizeof(float));
+    pixels += row.size() * sizeof(float);
     if (swap)
       swapFloats(row);
     for (std::uint32_t x = 0; x < image.width; ++x) {

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace memograph::runtime {
@@ -35,13 +36,18 @@ void generateMipChain(TextureImage& texture);
 // first. The project's one PFM reader and writer: the core needs it on the GPU machine,
 // where no image library travels, and the io library's conversions use it too.
 //
-// Writes RGB (alpha dropped) little-endian, to a temporary file next to `path` renamed into
-// place, so a failure leaves no partial file. Reads "PF" and "Pf" in either byte order
-// (grey fills R, G and B), alpha 1, at most 65536 pixels a side. The try* forms return
-// false / nullopt with `error` saying what is wrong (without the path); the others throw
+// Writes RGB (alpha dropped) little-endian through files::writeFileAtomically (a unique
+// temporary renamed into place), so a failure leaves no partial file. Reads "PF" and "Pf" in either
+// byte order (grey fills R, G and B), alpha 1, at most 65536 pixels a side and
+// files::kMaxImagePixels in all; only regular files up to files::kMaxImageFileBytes. The try* forms
+// return false / nullopt with `error` saying what is wrong (without the path); the others throw
 // std::runtime_error("<path>: <error>").
 bool tryWritePfm(const std::filesystem::path& path, const HdrImage& image, std::string& error);
+// The bytes tryWritePfm writes (for callers staging several files as one set).
+std::string encodePfm(const HdrImage& image);
 std::optional<HdrImage> tryReadPfm(const std::filesystem::path& path, std::string& error);
+// tryReadPfm's parser on bytes in memory (the fuzz target).
+std::optional<HdrImage> tryParsePfm(std::string_view bytes, std::string& error);
 void writePfm(const std::filesystem::path& path, const HdrImage& image);
 HdrImage readPfm(const std::filesystem::path& path);
 

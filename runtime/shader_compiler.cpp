@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
+#include <iostream>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -12,12 +13,14 @@
 #include <glslang/SPIRV/GlslangToSpv.h>
 #include <glslang/build_info.h>
 
+#include "runtime/atomic_file.h"
+
 namespace memograph::runtime {
 
 namespace {
 
 // Bump when anything about how SPIR-V is produced changes without the sources changing.
-constexpr const char* kCacheFormat = "memograph-spirv-1";
+constexpr const char* kCacheFormat = "memograph-spirv-2";  // 2: entries have a header
 
 EShLanguage toGlslang(ShaderStage stage) {
   switch (stage) {
@@ -86,39 +89,99 @@ class MapIncluder : public glslang::TShader::Includer {
   const std::map<std::string, std::string>& files_;
 };
 
-std::vector<std::uint32_t> readCache(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary | std::ios::ate);
-  if (!in)
-    return {};
-  auto size = static_cast<std::size_t>(in.tellg());
-  if (size == 0 || size % 4 != 0)
-    return {};
-  std::vector<std::uint32_t> words(size / 4);
-  in.seekg(0);
-  in.read(reinterpret_cast<char*>(words.data()), std::streamsize(size));
-  if (!in || words[0] != 0x07230203u)
-    return {};  // SPIR-V magic
-  return words;
+// A cache entry: a header of kCacheHeaderWords words (magic, format, SPIR-V word count,
+// 64-bit FNV-1a of the SPIR-V bytes as two words), then the SPIR-V. A truncated or corrupt
+// entry (a full disk, a crash of an older version, a disk error) is found by the length and
+// the checksum, dropped with a warning and recompiled, instead of reaching the driver
+// (VK_ERROR_INVALID_SHADER_NV, -13, on every later run: issue 14).
+constexpr std::uint32_t kCacheMagic = 0x4353474du;  // "MGSC"
+constexpr std::uint32_t kCacheVersion = 2;
+constexpr std::size_t kCacheHeaderWords = 5;
+constexpr std::uint32_t kSpirvMagic = 0x07230203u;
+// No shader of ours comes near this; a larger file is not a cache entry of ours.
+constexpr std::uintmax_t kMaxCacheEntryBytes = 64u << 20;
+
+std::uint64_t checksum(const std::vector<std::uint32_t>& words, std::size_t first) {
+  std::uint64_t hash = 14695981039346656037ull;
+  for (std::size_t i = first; i < words.size(); ++i) {
+    for (int b = 0; b < 4; ++b) {
+      hash ^= (words[i] >> (8 * b)) & 0xffu;
+      hash *= 1099511628211ull;
+    }
+  }
+  return hash;
 }
 
-void writeCache(const std::filesystem::path& path, const std::vector<std::uint32_t>& words) {
+// Why an entry is unusable, or empty when it is good.
+std::string validateCache(const std::vector<std::uint32_t>& words) {
+  if (words.size() <= kCacheHeaderWords)
+    return "shorter than its header";
+  if (words[0] != kCacheMagic || words[1] != kCacheVersion)
+    return "not a memograph cache entry of this version";
+  if (words[2] != words.size() - kCacheHeaderWords)
+    return "truncated: " + std::to_string(words.size() - kCacheHeaderWords) + " of " +
+           std::to_string(words[2]) + " SPIR-V words";
+  const std::uint64_t sum = checksum(words, kCacheHeaderWords);
+  if (words[3] != std::uint32_t(sum) || words[4] != std::uint32_t(sum >> 32))
+    return "checksum mismatch";
+  if (words[kCacheHeaderWords] != kSpirvMagic)
+    return "no SPIR-V magic number";
+  return {};
+}
+
+void dropCache(const std::filesystem::path& path, const std::string& why) {
+  std::cerr << "memograph: warning: shader cache entry " << path.string() << " is corrupt (" << why
+            << "); removed, the shader is compiled again\n";
+  std::error_code ignored;
+  std::filesystem::remove(path, ignored);
+}
+
+std::vector<std::uint32_t> readCache(const std::filesystem::path& path) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status))
+    return {};  // not cached yet
+  if (!std::filesystem::is_regular_file(status))
+    return {};  // not ours to remove (a folder or a device someone put there)
+  const auto size = std::filesystem::file_size(path, ec);
+  if (ec)
+    return {};
+  if (size % 4 != 0 || size > kMaxCacheEntryBytes) {
+    dropCache(path, size % 4 != 0 ? "its size is not a whole number of words" : "too large");
+    return {};
+  }
+  std::vector<std::uint32_t> words(size / 4);
+  std::ifstream in(path, std::ios::binary);
+  in.read(reinterpret_cast<char*>(words.data()), std::streamsize(size));
+  if (!in)
+    return {};  // unreadable now (a race with a writer's rename is impossible: renames are
+                // atomic); compile without touching it
+  if (const std::string why = validateCache(words); !why.empty()) {
+    dropCache(path, why);
+    return {};
+  }
+  return {words.begin() + kCacheHeaderWords, words.end()};
+}
+
+void writeCache(const std::filesystem::path& path, const std::vector<std::uint32_t>& spirv) {
   std::error_code error;
   std::filesystem::create_directories(path.parent_path(), error);
   if (error)
     return;  // the cache is an optimisation; a read-only disk just disables it
-  auto temporary = path;
-  temporary += ".tmp" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count());
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    if (!out)
-      return;
-    out.write(reinterpret_cast<const char*>(words.data()), std::streamsize(words.size() * 4));
-    if (!out)
-      return;
-  }
-  std::filesystem::rename(temporary, path, error);  // atomic: readers see all or nothing
-  if (error)
-    std::filesystem::remove(temporary, error);
+  std::vector<std::uint32_t> words(kCacheHeaderWords);
+  words.insert(words.end(), spirv.begin(), spirv.end());
+  const std::uint64_t sum = checksum(words, kCacheHeaderWords);
+  words[0] = kCacheMagic;
+  words[1] = kCacheVersion;
+  words[2] = std::uint32_t(spirv.size());
+  words[3] = std::uint32_t(sum);
+  words[4] = std::uint32_t(sum >> 32);
+  // A unique temporary, fsynced, renamed (files::writeFileAtomically): readers see all or
+  // nothing, and a failed write (a full disk) removes its temporary.
+  std::string ignored;
+  files::writeFileAtomically(
+      path, std::string_view(reinterpret_cast<const char*>(words.data()), words.size() * 4),
+      ignored);
 }
 
 }  // namespace

@@ -10,6 +10,8 @@ packages=(
   libglm-dev libopenimageio-dev openimageio-tools libassimp-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3
+  blender  # 3.4: the reference for the Blender node tests (tests/blender/) and the exporter
+  python3-numpy  # Blender's glTF exporter (io_scene_gltf2, scene export) imports numpy
 )
 # lavapipe with ray tracing comes only from bookworm-backports (../shared/GPU.md).
 backports_mesa=mesa-vulkan-drivers
@@ -30,14 +32,11 @@ fi
 
 backports_file=/etc/apt/sources.list.d/memograph-backports.sources
 if ! grep -rqs "bookworm-backports" /etc/apt/sources.list /etc/apt/sources.list.d/; then
+  # The archive and keyring of the machine's own Debian entries (a mirror, a proxy), not a
+  # fixed host: tools/apt_backports_source.sh, tested by its _test.sh.
   echo "setup: adding the bookworm-backports suite ($backports_file)"
-  sudo_if_needed tee "$backports_file" >/dev/null <<'SRC'
-Types: deb
-URIs: http://deb.debian.org/debian
-Suites: bookworm-backports
-Components: main
-Signed-By: /usr/share/keyrings/debian-archive-keyring.gpg
-SRC
+  bash "$(dirname "${BASH_SOURCE[0]}")/apt_backports_source.sh" |
+    sudo_if_needed tee "$backports_file" >/dev/null
 fi
 
 export DEBIAN_FRONTEND=noninteractive

@@ -1,5 +1,7 @@
 #include "runtime/scenes/camera_path.h"
 
+#include "compiler/input_file.h"
+
 #include <charconv>
 #include <cmath>
 #include <fstream>
@@ -125,18 +127,15 @@ std::optional<CameraPath> parseCameraPath(const compiler::SourceFile& file,
 
 std::optional<CameraPath> loadCameraPath(const std::string& path,
                                          compiler::Diagnostics& diagnostics) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    diagnostics.error(path, "cannot open the camera-path file");
+  // A regular file within the text limit only: a FIFO or /dev/zero must not hang or
+  // exhaust memory (docs/limits.md).
+  std::string error;
+  auto text = files::readInputFile(path, files::kMaxTextFileBytes, "camera paths", error);
+  if (!text) {
+    diagnostics.error(path, "cannot read the camera-path file: " + error);
     return std::nullopt;
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) {
-    diagnostics.error(path, "cannot read the camera-path file");
-    return std::nullopt;
-  }
-  return parseCameraPath(compiler::SourceFile{path, text.str()}, diagnostics);
+  return parseCameraPath(compiler::SourceFile{path, std::move(*text)}, diagnostics);
 }
 
 std::string formatCameraPath(const CameraPath& path, std::string_view headerComment) {

@@ -126,7 +126,7 @@ TEST_F(ImageIoTest, BadPfmFilesGiveClearErrors) {
   };
   EXPECT_NE(error("text.pfm").find("not a PFM file"), std::string::npos);
   EXPECT_NE(error("short.pfm").find("truncated"), std::string::npos);
-  EXPECT_NE(error("absent.pfm").find("cannot open"), std::string::npos);
+  EXPECT_NE(error("absent.pfm").find("no such file"), std::string::npos);
 }
 
 TEST_F(ImageIoTest, GreyImagesExpandToRgbaWithOpaqueAlpha) {
@@ -149,8 +149,8 @@ TEST_F(ImageIoTest, UnreadableImagesAreErrorsNotCrashes) {
   EXPECT_FALSE(readImageRgba8(dir.string(), diagnostics).has_value());
   ASSERT_EQ(diagnostics.errorCount(), 3u);
   EXPECT_EQ(diagnostics.all()[0].file, file("fake.png"));
-  EXPECT_NE(diagnostics.all()[1].message.find("no such image file"), std::string::npos);
-  EXPECT_NE(diagnostics.all()[2].message.find("not a regular file"), std::string::npos);
+  EXPECT_NE(diagnostics.all()[1].message.find("no such file"), std::string::npos);
+  EXPECT_NE(diagnostics.all()[2].message.find("is a folder"), std::string::npos);
 }
 
 TEST_F(ImageIoTest, WriteRefusesUnknownExtensionsAndBadImagesLeavingNoFile) {

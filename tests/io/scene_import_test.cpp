@@ -271,7 +271,7 @@ TEST_F(SceneImportTest, MissingFileIsAnError) {
   Diagnostics diagnostics;
   EXPECT_FALSE(importScene((dir / "nothing.gltf").string(), "", diagnostics).has_value());
   ASSERT_EQ(diagnostics.errorCount(), 1u);
-  EXPECT_EQ(diagnostics.all()[0].message, "no such scene file");
+  EXPECT_EQ(diagnostics.all()[0].message, "no such file");
 }
 
 TEST_F(SceneImportTest, MissingMaterialsFolderIsAnError) {

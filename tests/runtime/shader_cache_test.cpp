@@ -1,6 +1,10 @@
 // The SPIR-V disk cache: a second start with the same sources compiles nothing; a changed
 // source (another material) misses.
+#include <unistd.h>
+
 #include <filesystem>
+#include <fstream>
+#include <map>
 
 #include <gtest/gtest.h>
 
@@ -72,6 +76,57 @@ TEST(ShaderCache, EachCallableMaterialHasItsOwnEntry) {
       "callable cache: first start compiled %u, second loaded %u, one changed material "
       "compiled %u\n",
       first.stats.shadersCompiled, second.stats.shaderCacheHits, third.stats.shadersCompiled);
+  std::filesystem::remove_all(directory);
+}
+
+// Issue 14: a truncated or corrupt entry used to reach the driver on every later run. It
+// is now dropped (with a warning), compiled again and rewritten; no temporaries are left.
+TEST(ShaderCache, CorruptEntriesAreDroppedAndRecompiled) {
+  const auto directory = std::filesystem::temp_directory_path() /
+                         ("memograph-corrupt-cache-test-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(directory);
+  const std::map<std::string, std::string> sources = {
+      {"tiny.comp", "#version 460\nlayout(local_size_x = 1) in;\nvoid main() {}\n"}};
+  const ShaderCompileRequest request{"tiny.comp", ShaderStage::Compute, {}};
+  std::vector<std::uint32_t> reference;
+  {
+    ShaderCompiler compiler(sources, directory);
+    reference = compiler.compile(request);
+    EXPECT_EQ(compiler.stats().compiled, 1u);
+  }
+  std::vector<std::filesystem::path> entries;
+  for (const auto& e : std::filesystem::directory_iterator(directory))
+    entries.push_back(e.path());
+  ASSERT_EQ(entries.size(), 1u);
+  const auto entry = entries[0];
+  ASSERT_EQ(entry.extension(), ".spv");
+  const auto goodSize = std::filesystem::file_size(entry);
+  auto corruptWith = [&](auto change) {
+    change();
+    ShaderCompiler compiler(sources, directory);
+    EXPECT_EQ(compiler.compile(request), reference);
+    EXPECT_EQ(compiler.stats().hits, 0u);
+    EXPECT_EQ(compiler.stats().compiled, 1u);
+    // Repaired: the next start loads it.
+    ShaderCompiler again(sources, directory);
+    EXPECT_EQ(again.compile(request), reference);
+    EXPECT_EQ(again.stats().hits, 1u);
+    EXPECT_EQ(std::filesystem::file_size(entry), goodSize);
+  };
+  corruptWith([&] { std::filesystem::resize_file(entry, goodSize - 8); });  // truncated
+  corruptWith([&] { std::filesystem::resize_file(entry, goodSize - 3); });  // not whole words
+  corruptWith([&] {                                                         // a flipped byte
+    std::fstream f(entry, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(std::streamoff(goodSize - 5));
+    f.put('\x5a');
+  });
+  corruptWith([&] { std::ofstream(entry, std::ios::trunc); });  // empty
+  std::size_t files = 0;
+  for (const auto& e : std::filesystem::directory_iterator(directory)) {
+    EXPECT_EQ(e.path().extension(), ".spv") << e.path();
+    ++files;
+  }
+  EXPECT_EQ(files, 1u);
   std::filesystem::remove_all(directory);
 }
 

@@ -82,7 +82,7 @@ TEST(CameraPath, MissingFileIsAnErrorNamingIt) {
   EXPECT_FALSE(loadCameraPath("/nonexistent/walk.campath", diagnostics).has_value());
   ASSERT_EQ(diagnostics.errorCount(), 1u);
   EXPECT_EQ(compiler::formatDiagnostic(diagnostics.all()[0]),
-            "/nonexistent/walk.campath: error: cannot open the camera-path file\n");
+            "/nonexistent/walk.campath: error: cannot read the camera-path file: no such file\n");
 }
 
 TEST(CameraPath, FormatRoundTripsExactly) {

@@ -11,6 +11,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "runtime/atomic_file.h"
 
 #ifdef MEMOGRAPH_HAVE_RUNTIME
 #include "bench_frames.h"
@@ -99,8 +100,9 @@ int runBench(std::span<const std::string_view> args) {
 
   std::uint32_t p = 0, l = 0, f = 0, w = 0;
   if (!parseNumber(paths, p) || !parseNumber(bounces, l) || !parseNumber(frames, f) ||
-      !parseNumber(warmup, w) || f == 0)
-    return usageError("bench", "--paths, --bounces, --frames (>0) and --warmup take whole numbers");
+      !parseNumber(warmup, w) || f == 0 || p == 0 || l == 0)
+    return usageError("bench",
+                      "--paths, --bounces, --frames (each > 0) and --warmup take whole numbers");
   BenchFramePlan plan{.warmup = w, .timed = f};
   if (!parseNumber(frameStride, plan.stride) || plan.stride == 0)
     return usageError("bench", "--frame-stride takes a whole number > 0");
@@ -126,14 +128,23 @@ int runBench(std::span<const std::string_view> args) {
   std::vector<std::pair<std::uint32_t, std::uint32_t> > sizeList;
   std::stringstream sizeStream(sizes);
   for (std::string item; std::getline(sizeStream, item, ',');) {
-    auto x = item.find('x');
     std::uint32_t width = 0, height = 0;
-    if (x == std::string::npos || !parseNumber(std::string_view(item).substr(0, x), width) ||
-        !parseNumber(std::string_view(item).substr(x + 1), height))
-      return usageError("bench", "--sizes takes WxH[,WxH...], not '" + item + "'");
+    std::string error;
+    if (!parseImageSize(item, width, height, error))
+      return usageError("bench", "--sizes takes WxH[,WxH...]: " + error);
     sizeList.push_back({width, height});
   }
-
+  if (sizeList.empty())
+    return usageError("bench", "--sizes needs at least one WxH, e.g. 1920x1080");
+  // Every scene name is checked before anything is rendered or written.
+  for (const auto& sceneName : scenes) {
+    if (sceneName.rfind("builtin:", 0) != 0)
+      return usageError("bench",
+                        "bench runs built-in scenes (builtin:NAME), not '" + sceneName + "'");
+    std::string error;
+    if (!runtime::parseBuiltinSceneSpec(std::string_view(sceneName).substr(8), error))
+      return usageError("bench", error);
+  }
   runtime::RendererOptions options;
   try {
     options = rendererArguments.parse();
@@ -147,13 +158,23 @@ int runBench(std::span<const std::string_view> args) {
                       "--frame-stride needs --cache none: with a cache each frame "
                       "depends on the frames before it, so every frame must be rendered");
 
-  std::ofstream csv;
+  // Outputs are checked before any work, and written whole at the end (files::): an
+  // existing --csv is not truncated by a run that then fails.
   if (!csvPath.empty()) {
-    csv.open(csvPath);
-    if (!csv) {
-      std::cerr << "memograph bench: cannot write " << csvPath << "\n";
+    if (const int code = checkOutputFile("bench", csvPath); code != kExitOk)
+      return code;
+  }
+  if (!framesCsv.empty()) {
+    // PREFIX names a folder and the start of file names: that folder must exist.
+    std::string error;
+    if (!files::checkOutputPath(framesCsv + "frames.csv", error)) {
+      std::cerr << "memograph bench: --frames-csv " << framesCsv << ": " << error << "\n";
       return kExitFailure;
     }
+  }
+  std::ostringstream csv;
+  std::vector<std::pair<std::string, std::string> > outputs;
+  if (!csvPath.empty()) {
     csv << "scene,width,height,paths,rays_per_path,backend,device,frames,median_gpu_ms,fps,"
            "mrays_per_s,blas_bytes,tlas_bytes,scratch_bytes,materials,material_dispatch,"
            "shader_compile_ms,pipeline_create_ms,cache,cache_eviction,cache_entries,"
@@ -164,13 +185,8 @@ int runBench(std::span<const std::string_view> args) {
   }
   try {
     for (const auto& sceneName : scenes) {
-      if (sceneName.rfind("builtin:", 0) != 0)
-        return usageError("bench",
-                          "bench runs built-in scenes (builtin:NAME), not '" + sceneName + "'");
       std::string error;
       auto spec = runtime::parseBuiltinSceneSpec(std::string_view(sceneName).substr(8), error);
-      if (!spec)
-        return usageError("bench", error);
       const std::string& name = spec->name;
       runtime::Scene scene = runtime::makeBuiltinScene(name, spec->options);
       // Each scene gets its own renderer: --backend auto depends on its material count.
@@ -253,7 +269,7 @@ int runBench(std::span<const std::string_view> args) {
                     << "): median hit rate " << 100.0 * summary.medianCacheHitRate << " %, total "
                     << 100.0 * summary.totalCacheHitRate << " %\n";
         std::cout.flush();
-        if (csv) {
+        if (!csvPath.empty()) {
           csv << label << ',' << width << ',' << height << ',' << p << ',' << l << ','
               << result.stats.backend << ",\"" << result.stats.device << "\"," << timed.size()
               << ',' << medianMs << ',' << fps << ',' << summary.medianMraysPerSecond << ','
@@ -271,14 +287,23 @@ int runBench(std::span<const std::string_view> args) {
               << ',' << int(stoppedEarly) << '\n';
         }
         if (!framesCsv.empty()) {
-          std::ofstream perFrame(framesCsv + fileLabel + "_" + std::to_string(width) + "x" +
-                                 std::to_string(height) + ".csv");
+          std::ostringstream perFrame;
           runtime::writeStatsCsv(perFrame, result.stats);
+          outputs.emplace_back(framesCsv + fileLabel + "_" + std::to_string(width) + "x" +
+                                   std::to_string(height) + ".csv",
+                               perFrame.str());
         }
       }
     }
   } catch (const std::exception& e) {
     std::cerr << "memograph bench: " << e.what() << "\n";
+    return kExitFailure;
+  }
+  if (!csvPath.empty())
+    outputs.emplace_back(csvPath, csv.str());
+  std::string error;
+  if (!writeFilesAtomically(outputs, error)) {
+    std::cerr << "memograph bench: " << error << "\n";
     return kExitFailure;
   }
   return kExitOk;

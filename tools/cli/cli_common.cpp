@@ -1,6 +1,5 @@
 #include "cli_common.h"
 
-#include <unistd.h>
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -9,6 +8,9 @@
 #include <fstream>
 #include <iostream>
 #include <sstream>
+
+#include "compiler/input_file.h"
+#include "runtime/atomic_file.h"
 
 namespace memograph::cli {
 
@@ -31,6 +33,27 @@ bool parseReal(std::string_view text, double& out) {
   if (error != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
     return false;
   out = value;
+  return true;
+}
+
+bool parseImageSize(std::string_view text, std::uint32_t& width, std::uint32_t& height,
+                    std::string& error) {
+  const auto x = text.find('x');
+  if (x == std::string_view::npos || !parseNumber(text.substr(0, x), width) ||
+      !parseNumber(text.substr(x + 1), height)) {
+    error = "expected WxH, e.g. 1920x1080, not '" + std::string(text) + "'";
+    return false;
+  }
+  if (width == 0 || height == 0 || width > kMaxImageSide || height > kMaxImageSide) {
+    error = "'" + std::string(text) + "': each side must be 1 to " + std::to_string(kMaxImageSide) +
+            " pixels";
+    return false;
+  }
+  if (std::uint64_t(width) * height > files::kMaxImagePixels) {
+    error = "'" + std::string(text) + "' is over the limit of " +
+            std::to_string(files::kMaxImagePixels) + " pixels";
+    return false;
+  }
   return true;
 }
 
@@ -72,57 +95,22 @@ int ArgumentScanner::scan(std::vector<std::string>& positional) {
 }
 
 std::optional<std::string> readFile(const std::string& path, std::string& error) {
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) {
-    error = path + ": is a directory, not a file";
-    return std::nullopt;
-  }
-  std::ifstream stream(path, std::ios::binary);
-  if (!stream) {
-    error = path + ": cannot open (" +
-            (fs::exists(path, ec) ? "permission denied" : "no such file") + ")";
-    return std::nullopt;
-  }
-  std::ostringstream text;
-  text << stream.rdbuf();
-  if (stream.bad()) {
-    error = path + ": read failed";
-    return std::nullopt;
-  }
-  return text.str();
+  // Regular files up to the text limit only: a FIFO, /dev/zero or a huge file is refused
+  // before reading (docs/limits.md).
+  return files::readInputFile(path, files::kMaxTextFileBytes, "graphs", error);
 }
 
 bool writeFilesAtomically(const std::vector<std::pair<std::string, std::string>>& files,
                           std::string& error) {
-  std::vector<std::string> temporaries;
-  auto cleanUp = [&] {
-    std::error_code ignored;
-    for (const auto& t : temporaries)
-      fs::remove(t, ignored);
-  };
-  for (const auto& [path, contents] : files) {
-    const std::string temporary = path + ".tmp" + std::to_string(::getpid());
-    std::ofstream stream(temporary, std::ios::binary | std::ios::trunc);
-    if (stream)
-      temporaries.push_back(temporary);
-    stream << contents;
-    stream.close();
-    if (!stream) {
-      error = path + ": cannot write";
-      cleanUp();
-      return false;
-    }
-  }
-  for (std::size_t i = 0; i < files.size(); ++i) {
-    std::error_code ec;
-    fs::rename(temporaries[i], files[i].first, ec);
-    if (ec) {
-      error = files[i].first + ": cannot write (" + ec.message() + ")";
-      cleanUp();
-      return false;
-    }
-  }
-  return true;
+  return files::writeFileSet(files, error);
+}
+
+int checkOutputFile(std::string_view command, const std::string& path) {
+  std::string error;
+  if (files::checkOutputPath(path, error))
+    return kExitOk;
+  std::cerr << "memograph " << command << ": " << path << ": " << error << "\n";
+  return kExitFailure;
 }
 
 void printDiagnostics(const compiler::Diagnostics& diagnostics) {

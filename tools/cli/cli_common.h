@@ -30,6 +30,12 @@ bool parseNumber(std::string_view text, std::uint32_t& out);
 // A finite real number, all of `text` ("1.5", "-2", "1e-3"): true and `out` set, or false.
 bool parseReal(std::string_view text, double& out);
 
+// An image size "WxH" for render and bench: each side 1..kMaxImageSide, and at most
+// files::kMaxImagePixels pixels (docs/limits.md). False with `error` saying why.
+constexpr std::uint32_t kMaxImageSide = 16384;
+bool parseImageSize(std::string_view text, std::uint32_t& width, std::uint32_t& height,
+                    std::string& error);
+
 // Walks `args`: options with a value (`--target glsl` or `--target=glsl`), flags, and
 // positional arguments. Unknown options are usage errors.
 class ArgumentScanner {
@@ -55,12 +61,20 @@ class ArgumentScanner {
   std::vector<Option> options_;
 };
 
+// A text input (graph): a regular file of at most files::kMaxTextFileBytes, or nullopt
+// with `error` saying why (without the path: callers' diagnostics name it).
 std::optional<std::string> readFile(const std::string& path, std::string& error);
 
-// Writes every (path, contents) pair or none: each goes to a temporary file first and all
-// are renamed into place only when every write succeeded.
+// Writes every (path, contents) pair or none (files::writeFileSet): unique temporaries,
+// then renamed as a set under a lock on the folder, with the previous versions restored
+// if a rename fails part-way.
 bool writeFilesAtomically(const std::vector<std::pair<std::string, std::string>>& files,
                           std::string& error);
+
+// Checks, before any work, that `path` can be written as an output file (files::
+// checkOutputPath: not a folder, in an existing folder). kExitOk, or kExitFailure after
+// printing "memograph <command>: <path>: <why>".
+int checkOutputFile(std::string_view command, const std::string& path);
 
 void printDiagnostics(const compiler::Diagnostics& diagnostics);
 

@@ -50,6 +50,14 @@ int runCompile(std::span<const std::string_view> args) {
   if (files.empty())
     return usageError("compile", "no input files");
 
+  // The output folder is checked before any work: a file in its place is an error now, not
+  // after compiling everything.
+  if (std::error_code ec;
+      std::filesystem::exists(outputDir, ec) && !std::filesystem::is_directory(outputDir, ec)) {
+    std::cerr << "memograph compile: " << outputDir << ": exists and is not a folder\n";
+    return kExitFailure;
+  }
+
   compiler::Diagnostics diagnostics;
   const auto library = loadNodeLibrary(nodesDir, diagnostics);
   if (!library) {
@@ -95,8 +103,11 @@ int runCompile(std::span<const std::string_view> args) {
   std::error_code ec;
   std::filesystem::create_directories(outputDir, ec);
   std::string error;
+  // All files or none (files::writeFileSet): a failure part-way restores the files already
+  // replaced, and concurrent compiles into one folder commit one after the other.
   if (ec || !writeFilesAtomically(outputs, error)) {
-    std::cerr << "memograph compile: " << (ec ? outputDir + ": " + ec.message() : error) << "\n";
+    std::cerr << "memograph compile: " << (ec ? outputDir + ": " + ec.message() : error)
+              << "; nothing written\n";
     return kExitFailure;
   }
   if (!quiet) {

@@ -157,6 +157,8 @@ int runDiff(std::span<const std::string_view> args) {
     const std::string ext = lowerExtension(out);
     if (ext != ".png" && ext != ".exr" && ext != ".pfm")
       return usageError("diff", "--out must name a .png, .exr or .pfm file, not '" + out + "'");
+    if (const int code = checkOutputFile("diff", out); code != kExitOk)
+      return code;
   }
 
   const std::string& referencePath = positional[0];

@@ -4,13 +4,15 @@
 #include <unistd.h>
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
+#include <sstream>
 
 #include "cli_common.h"
 #include "commands.h"
+#include "runtime/atomic_file.h"
 
 #ifdef MEMOGRAPH_HAVE_RUNTIME
 #include "renderer_arguments.h"
@@ -108,22 +110,37 @@ int runRender(std::span<const std::string_view> args) {
     return usageError("render", "--out FILE is required");
 
   runtime::RenderSettings settings;
-  auto x = size.find('x');
-  if (x == std::string::npos || !parseNumber(size.substr(0, x), settings.width) ||
-      !parseNumber(size.substr(x + 1), settings.height))
-    return usageError("render", "--size must be WxH, e.g. 1920x1080, not '" + size + "'");
+  if (std::string error; !parseImageSize(size, settings.width, settings.height, error))
+    return usageError("render", "--size: " + error);
   if (!parseNumber(paths, settings.pathsPerPixel) || !parseNumber(bounces, settings.raysPerPath) ||
-      !parseNumber(frames, settings.frames) || !parseNumber(seed, settings.seed))
-    return usageError("render", "--paths, --bounces, --frames and --seed take whole numbers");
+      !parseNumber(frames, settings.frames) || !parseNumber(seed, settings.seed) ||
+      settings.pathsPerPixel == 0 || settings.raysPerPath == 0 || settings.frames == 0)
+    return usageError("render",
+                      "--paths, --bounces and --frames take whole numbers > 0, --seed a whole "
+                      "number");
   settings.sharedPrimaryRay = rendererArguments.sharedPrimary;
 
-  const std::string extension = std::filesystem::path(out).extension().string();
+  // Every output is checked before any work: its format (a usage error), then its folder.
+  std::string extension = std::filesystem::path(out).extension().string();
+  for (auto& c : extension)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
 #ifndef MEMOGRAPH_HAVE_IO
   if (extension != ".pfm")
     return usageError("render",
                       "this build writes only .pfm (no OpenImageIO); convert it "
                       "with 'memograph' built with the io module");
+#else
+  if (extension != ".pfm" && extension != ".png" && extension != ".exr")
+    return usageError("render", "--out must name a .pfm, .png or .exr file, not '" + out + "'");
 #endif
+  if (const int code = checkOutputFile("render", out); code != kExitOk)
+    return code;
+  if (!stats.empty()) {
+    if (const int code = checkOutputFile("render", stats); code != kExitOk)
+      return code;
+    if (std::filesystem::path(stats) == std::filesystem::path(out))
+      return usageError("render", "--stats and --out name the same file");
+  }
 
   runtime::RendererOptions options;
   try {
@@ -179,6 +196,15 @@ int runRender(std::span<const std::string_view> args) {
     return runtime::TextureImage{{std::move(*image)}};
   };
 #endif
+  // A scene may name its own environment image (the Blender export's world): --environment
+  // replaces it.
+  float environmentStrength = 1.0f, environmentUOffset = 0.0f;
+  if (environment.empty() && !scene.environment.imagePath.empty() &&
+      scene.environment.imageRgb.empty()) {
+    environment = scene.environment.imagePath;
+    environmentStrength = scene.environment.imageStrength;
+    environmentUOffset = scene.environment.imageUOffset;
+  }
   if (!environment.empty()) {
 #ifdef MEMOGRAPH_HAVE_IO
     auto image = io::readImageFloat(environment, diagnostics);
@@ -192,9 +218,15 @@ int runRender(std::span<const std::string_view> args) {
     env.imageHeight = static_cast<std::uint32_t>(image->height);
     env.imageRgb.clear();
     env.imageRgb.reserve(std::size_t(image->width) * image->height * 3);
-    for (std::size_t i = 0; i + 3 < image->rgba.size(); i += 4) {
-      env.imageRgb.insert(env.imageRgb.end(),
-                          {image->rgba[i], image->rgba[i + 1], image->rgba[i + 2]});
+    const std::size_t w = image->width,
+                      shift = std::size_t(std::lround(environmentUOffset * float(w))) % (w ? w : 1);
+    for (std::size_t y = 0; y < std::size_t(image->height); ++y) {
+      for (std::size_t x = 0; x < w; ++x) {
+        const std::size_t i = 4 * (y * w + (x + shift) % w);
+        env.imageRgb.insert(env.imageRgb.end(), {environmentStrength * image->rgba[i],
+                                                 environmentStrength * image->rgba[i + 1],
+                                                 environmentStrength * image->rgba[i + 2]});
+      }
     }
 #else
     std::cerr << "memograph render: this build reads no images (no OpenImageIO)\n";
@@ -234,25 +266,36 @@ int runRender(std::span<const std::string_view> args) {
     runtime::RenderResult result = renderer.render(scene, settings);
     for (const auto& error : renderer.context().validationErrors())
       std::cerr << "validation: " << error << "\n";
-    // Both writers go through a temporary file and rename it, so a failure leaves no
-    // partial file.
+    // The image and the statistics are one output set (files::commitFileSet): both are
+    // written, or neither, so a failing --stats no longer leaves the image behind.
+    std::vector<files::StagedFile> staged(1);
+    std::string error;
     if (extension == ".pfm") {
-      runtime::writePfm(out, result.image);
+      if (!staged[0].create(out, error) ||
+          !staged[0].write(runtime::encodePfm(result.image), error)) {
+        std::cerr << "memograph render: " << out << ": " << error << "\n";
+        return kExitFailure;
+      }
     } else {
 #ifdef MEMOGRAPH_HAVE_IO
-      if (!io::writeImage(out, result.image, io::LdrOptions{}, diagnostics)) {
+      if (!io::stageImage(out, result.image, io::LdrOptions{}, staged[0], diagnostics)) {
         printDiagnostics(diagnostics);
         return kExitFailure;
       }
 #endif
     }
     if (!stats.empty()) {
-      std::ofstream csv(stats);
-      if (!csv) {
-        std::cerr << "memograph render: cannot write " << stats << "\n";
+      std::ostringstream csv;
+      runtime::writeStatsCsv(csv, result.stats);
+      staged.emplace_back();
+      if (!staged[1].create(stats, error) || !staged[1].write(csv.str(), error)) {
+        std::cerr << "memograph render: " << stats << ": " << error << "\n";
         return kExitFailure;
       }
-      runtime::writeStatsCsv(csv, result.stats);
+    }
+    if (!files::commitFileSet(staged, error)) {
+      std::cerr << "memograph render: " << error << "\n";
+      return kExitFailure;
     }
     std::cerr << "rendered " << out << " on " << result.stats.device << " (" << result.stats.backend
               << ", " << result.stats.materialDispatch << " materials): median "

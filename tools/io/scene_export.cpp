@@ -9,6 +9,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "runtime/atomic_file.h"
+
 namespace memograph::io {
 namespace {
 
@@ -204,22 +206,9 @@ bool exportSceneGltf(const runtime::Scene& scene, const std::string& path,
           ", \"uri\": \"data:application/octet-stream;base64," + base64(buffers.bytes) +
           "\"}]\n}\n";
 
-  const std::string temporary = path + ".partial";
-  {
-    std::ofstream out(temporary, std::ios::binary);
-    if (!out || !(out << json) || !out.flush()) {
-      out.close();
-      std::error_code ec;
-      std::filesystem::remove(temporary, ec);
-      diagnostics.error(path, "cannot write the file");
-      return false;
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) {
-    std::filesystem::remove(temporary, ec);
-    diagnostics.error(path, "cannot replace the file: " + ec.message());
+  std::string error;
+  if (!files::writeFileAtomically(path, json, error)) {
+    diagnostics.error(path, error);
     return false;
   }
   return true;

@@ -3,16 +3,21 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
+#include <sstream>
 
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
+#include <glm/gtc/constants.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "compiler/input_file.h"
 #include "runtime/scenes/material_recipes.h"
 #include "runtime/scenes/mesh_builder.h"
 #include "runtime/scenes/scene_validation.h"
+#include "tools/io/gltf_precheck.h"
 
 namespace memograph::io {
 namespace {
@@ -100,6 +105,126 @@ std::string fileSafe(std::string name) {
   return name;
 }
 
+// The Blender scene export's sidecar (docs/blender.md, "Scene export"): what glTF drops,
+// one statement per line, read from <scene stem>.memograph beside the glTF.
+struct AreaLight {
+  float sizeX = 1.0f, sizeY = 1.0f, power = 0.0f;
+  glm::vec3 color{1.0f};
+  glm::mat4 objectToWorld{1.0f};  // Blender's matrix_world (z up)
+  std::string name;
+};
+struct TextureSpaceLine {
+  glm::vec3 location{0.0f}, size{1.0f};
+  std::string mesh;
+};
+struct Sidecar {
+  bool present = false;
+  bool zUp = false;
+  float lightScale = 1.0f;  // glTF intensity -> W/sr or W/m²: 1 / 683 for lighting SPEC
+  std::string camera;
+  bool hasWorld = false;
+  glm::vec3 worldColor{0.0f};
+  float worldStrength = 1.0f;
+  std::string worldImage;  // relative to the glTF's folder
+  std::vector<TextureSpaceLine> textureSpaces;
+  std::vector<AreaLight> areas;
+};
+
+std::string restOfLine(std::istringstream& s) {
+  std::string rest;
+  std::getline(s >> std::ws, rest);
+  return rest;
+}
+
+bool readSidecar(const std::string& gltfPath, Sidecar& out, compiler::Diagnostics& diagnostics) {
+  const fs::path file = fs::path(gltfPath).replace_extension(".memograph");
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec))
+    return true;
+  std::ifstream in(file);
+  std::string line;
+  int lineNo = 0;
+  out.present = true;
+  auto bad = [&](const std::string& why) {
+    diagnostics.error(file.string(), "line " + std::to_string(lineNo) + ": " + why);
+    return false;
+  };
+  while (std::getline(in, line)) {
+    ++lineNo;
+    if (line.empty() || line[0] == '#')
+      continue;
+    std::istringstream s(line);
+    std::string word;
+    s >> word;
+    if (lineNo == 1) {
+      int version = 0;
+      if (word != "memograph-blender-scene" || !(s >> version) || version != 1)
+        return bad("expected 'memograph-blender-scene 1'");
+    } else if (word == "up") {
+      std::string axis;
+      s >> axis;
+      out.zUp = axis == "z";
+    } else if (word == "lighting") {
+      std::string mode;
+      float lumens = 0.0f;
+      if (!(s >> mode))
+        return bad("lighting needs a mode");
+      if (mode == "SPEC") {
+        if (!(s >> lumens) || !(lumens > 0.0f))
+          return bad("lighting SPEC needs the lumens per watt");
+        out.lightScale = 1.0f / lumens;
+      } else if (mode != "COMPAT" && mode != "RAW") {
+        return bad("unknown lighting mode '" + mode + "'");
+      }
+    } else if (word == "camera") {
+      out.camera = restOfLine(s);
+    } else if (word == "world") {
+      std::string kind, strengthWord;
+      s >> kind;
+      out.hasWorld = true;
+      if (kind == "color") {
+        if (!(s >> out.worldColor.r >> out.worldColor.g >> out.worldColor.b >> strengthWord >>
+              out.worldStrength))
+          return bad("world color needs r g b strength s");
+      } else if (kind == "image") {
+        if (!(s >> strengthWord >> out.worldStrength))
+          return bad("world image needs strength s and a path");
+        out.worldImage = restOfLine(s);
+      } else {
+        return bad("unknown world kind '" + kind + "'");
+      }
+    } else if (word == "texspace") {
+      TextureSpaceLine t;
+      if (!(s >> t.location.x >> t.location.y >> t.location.z >> t.size.x >> t.size.y >> t.size.z))
+        return bad("texspace needs six numbers and a mesh name");
+      t.mesh = restOfLine(s);
+      out.textureSpaces.push_back(t);
+    } else if (word == "area") {
+      AreaLight a;
+      std::string shape;
+      if (!(s >> shape >> a.sizeX >> a.sizeY >> a.power >> a.color.r >> a.color.g >> a.color.b))
+        return bad("area needs shape, two sizes, power and a colour");
+      for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r)
+          if (!(s >> a.objectToWorld[c][r]))
+            return bad("area needs a 4x4 matrix (16 numbers, column-major)");
+      if (shape == "DISK" || shape == "ELLIPSE") {  // a quad of the same area
+        a.sizeX *= std::sqrt(glm::pi<float>()) * 0.5f;
+        a.sizeY *= std::sqrt(glm::pi<float>()) * 0.5f;
+      }
+      a.name = restOfLine(s);
+      out.areas.push_back(a);
+    }  // unknown statements are ignored: later versions may add some
+  }
+  return true;
+}
+
+// Blender's z-up world to memograph's y-up: (x, y, z) -> (x, z, -y), as glTF's +Y up.
+glm::mat4 zUpToYUp() {
+  return glm::mat4(glm::vec4(1, 0, 0, 0), glm::vec4(0, 0, -1, 0), glm::vec4(0, 1, 0, 0),
+                   glm::vec4(0, 0, 0, 1));
+}
+
 struct Importer {
   const aiScene& in;
   std::string path;
@@ -111,6 +236,8 @@ struct Importer {
   std::map<std::string, glm::mat4> nodeWorld;    // node name → world transform
   std::map<unsigned, std::uint32_t> materialOf;  // assimp material → scene material
   int missingMaterial = -1;
+  float lightScale = 1.0f;
+  std::string cameraName;
 
   std::uint32_t material(unsigned assimpIndex) {
     if (auto it = materialOf.find(assimpIndex); it != materialOf.end())
@@ -174,13 +301,23 @@ struct Importer {
       runtime::Light light;
       // assimp folds glTF's intensity into the colour; the renderer takes it as W/sr (point)
       // or W/m² (directional) without photometric conversion.
-      light.intensity = {l.mColorDiffuse.r, l.mColorDiffuse.g, l.mColorDiffuse.b};
+      light.intensity =
+          lightScale * glm::vec3{l.mColorDiffuse.r, l.mColorDiffuse.g, l.mColorDiffuse.b};
       switch (l.mType) {
-        case aiLightSource_SPOT:
-          warn(diagnostics, path,
-               "light '" + std::string(l.mName.C_Str()) +
-                   "' is a spot light: imported as a point light");
-          [[fallthrough]];
+        case aiLightSource_SPOT: {
+          // glTF's cones from Blender's spot size and blend (io_scene_gltf2: outer = size/2,
+          // inner = outer (1 - blend)), back to Cycles' spot_angle and spot_smooth.
+          light.type = runtime::LightType::Spot;
+          light.position =
+              glm::vec3(world * glm::vec4(isGltf() ? glm::vec3(0.0f) : toGlm(l.mPosition), 1.0f));
+          const glm::vec3 d = glm::vec3(world * glm::vec4(toGlm(l.mDirection), 0.0f));
+          light.direction = glm::length(d) > 0.0f ? glm::normalize(d) : glm::vec3(0, -1, 0);
+          const float outer = std::clamp(l.mAngleOuterCone, 1e-4f, glm::pi<float>());
+          const float blend = std::clamp((outer - l.mAngleInnerCone) / outer, 0.0f, 1.0f);
+          light.spotCosHalfAngle = std::cos(outer);
+          light.spotSmooth = (1.0f - light.spotCosHalfAngle) * blend;
+          break;
+        }
         case aiLightSource_POINT:
           light.type = runtime::LightType::Point;
           light.position = glm::vec3(world * glm::vec4(toGlm(l.mPosition), 1.0f));
@@ -210,7 +347,11 @@ struct Importer {
            "the file has " + std::to_string(in.mNumCameras) + " cameras; using the first, '" +
                std::string(in.mCameras[0]->mName.C_Str()) + "'");
     }
-    const aiCamera& c = *in.mCameras[0];
+    unsigned chosen = 0;
+    for (unsigned i = 0; i < in.mNumCameras; ++i)
+      if (!cameraName.empty() && cameraName == in.mCameras[i]->mName.C_Str())
+        chosen = i;
+    const aiCamera& c = *in.mCameras[chosen];
     const glm::mat4 world = worldOf(c.mName);
     runtime::Camera& camera = scene.camera;
     // assimp 5.2's glTF reader copies the node's translation into mPosition although the
@@ -252,19 +393,70 @@ struct Importer {
   }
 };
 
+// World, texture spaces and area lights (emissive quads) from the sidecar.
+void applySidecar(Scene& scene, const Sidecar& side, const glm::mat4& root, const fs::path& dir) {
+  if (side.hasWorld) {
+    if (side.worldImage.empty()) {
+      scene.environment.constantRadiance = side.worldColor * side.worldStrength;
+    } else {
+      scene.environment.imagePath = (dir / side.worldImage).string();
+      scene.environment.imageStrength = side.worldStrength;
+      // Blender's equirectangular u starts at -x (z up); memograph's at -z (y up): a quarter
+      // turn (docs/blender.md).
+      scene.environment.imageUOffset = 0.25f;
+    }
+  }
+  for (runtime::Mesh& mesh : scene.meshes) {
+    for (const TextureSpaceLine& t : side.textureSpaces) {
+      // assimp names a glTF mesh's primitives "<mesh>", "<mesh>-1", ...
+      const bool same =
+          mesh.name == t.mesh || (mesh.name.size() > t.mesh.size() + 1 &&
+                                  mesh.name.starts_with(t.mesh) && mesh.name[t.mesh.size()] == '-');
+      if (same) {
+        mesh.hasTextureSpace = true;
+        mesh.textureSpaceLocation = t.location;
+        mesh.textureSpaceSize = t.size;
+      }
+    }
+  }
+  for (const AreaLight& a : side.areas) {
+    // Cycles 3.4 gives an area light of power P and area A the radiance P / (4 A) on its
+    // front (-z) side (measured: docs/blender.md, Light units).
+    const float area = std::max(a.sizeX * a.sizeY, 1e-8f);
+    runtime::Mesh quad;
+    quad.name = "area light " + a.name;
+    const float hx = 0.5f * a.sizeX, hy = 0.5f * a.sizeY;
+    quad.positions = {{-hx, -hy, 0}, {hx, -hy, 0}, {hx, hy, 0}, {-hx, hy, 0}};
+    quad.normals.assign(4, glm::vec3(0, 0, -1));
+    quad.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    quad.indices = {0, 2, 1, 0, 3, 2};  // counter-clockwise seen from -z
+    runtime::computeTangents(quad);
+    scene.meshes.push_back(std::move(quad));
+    runtime::EmitterParams params;
+    params.radiance = a.color * (a.power / (4.0f * area));
+    params.baseColor = glm::vec3(0.0f);
+    const std::string materialName = "mg_area_light_" + std::to_string(scene.materials.size());
+    scene.materials.push_back(
+        runtime::MaterialRef{materialName, {}, runtime::emitterGraph(materialName, params)});
+    scene.instances.push_back(runtime::Instance{
+        static_cast<std::uint32_t>(scene.meshes.size() - 1),
+        static_cast<std::uint32_t>(scene.materials.size() - 1), root * a.objectToWorld});
+  }
+}
+
 }  // namespace
 
 std::optional<Scene> importScene(const std::string& path, const std::string& materialsDir,
                                  compiler::Diagnostics& diagnostics) {
   std::error_code ec;
-  if (!fs::exists(path, ec)) {
-    diagnostics.error(path, "no such scene file");
+  std::string fileError;
+  if (!files::checkInputFile(path, files::kMaxSceneFileBytes, "scenes", fileError)) {
+    diagnostics.error(path, fileError);
     return std::nullopt;
   }
-  if (!fs::is_regular_file(path, ec)) {
-    diagnostics.error(path, "not a regular file");
+  // What assimp would trust (declared lengths, indices, hierarchy depth) is checked first.
+  if (!precheckGltf(path, diagnostics))
     return std::nullopt;
-  }
   if (!materialsDir.empty() && !fs::is_directory(materialsDir, ec)) {
     diagnostics.error(materialsDir, "the materials folder does not exist");
     return std::nullopt;
@@ -301,13 +493,21 @@ std::optional<Scene> importScene(const std::string& path, const std::string& mat
     diagnostics.error(path, "the scene has no triangle meshes");
     return std::nullopt;
   }
-  imp.visit(*in->mRootNode, glm::mat4(1.0f));
+  Sidecar sidecar;
+  if (imp.isGltf() && !readSidecar(path, sidecar, diagnostics))
+    return std::nullopt;
+  imp.lightScale = sidecar.lightScale;
+  imp.cameraName = sidecar.camera;
+  const glm::mat4 root = sidecar.zUp ? zUpToYUp() : glm::mat4(1.0f);
+  imp.visit(*in->mRootNode, root);
   if (imp.scene.instances.empty()) {
     diagnostics.error(path, "no node of the scene places a mesh");
     return std::nullopt;
   }
   imp.convertLights();
   imp.convertCamera();
+  if (sidecar.present)
+    applySidecar(imp.scene, sidecar, root, fs::path(path).parent_path());
   // assimp validated its own structure; this checks what the renderer relies on.
   if (!runtime::validateScene(imp.scene, path, diagnostics))
     return std::nullopt;

@@ -1,0 +1,251 @@
+#!/usr/bin/env python3
+"""Runs the memograph CLI over the adversarial corpus (issue 14; docs/limits.md).
+
+For every input it asserts: the exit code (1 bad input, 2 usage) and the message shape,
+no crash (a signal fails the test), a time bound (TIMEOUT_S) and a memory bound (RLIMIT_AS
+in the child), and, on failure, the output folder untouched. Usage: run_corpus.py MEMOGRAPH
+"""
+import concurrent.futures
+import hashlib
+import os
+import re
+import resource
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+TIMEOUT_S = 20
+MEMORY_BYTES = 3 << 30  # address space: a 4 GiB allocation from a 28-byte header fails
+
+sys.path.insert(0, HERE)
+import make_scenes  # noqa: E402
+
+
+def limit_memory():
+    resource.setrlimit(resource.RLIMIT_AS, (MEMORY_BYTES, MEMORY_BYTES))
+    resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
+
+
+def snapshot(folder):
+    state = {}
+    for root, dirs, files in os.walk(folder):
+        for name in dirs + files:
+            path = os.path.join(root, name)
+            rel = os.path.relpath(path, folder)
+            if os.path.isfile(path) and not os.path.islink(path):
+                with open(path, "rb") as f:
+                    state[rel] = hashlib.sha256(f.read()).hexdigest()
+            else:
+                state[rel] = "dir"
+    return state
+
+
+def prepare(work):
+    """Inputs that cannot be committed: special files, links, large or generated files."""
+    gen = os.path.join(work, "gen")
+    os.makedirs(gen)
+    os.mkfifo(os.path.join(gen, "fifo.mgraph"))
+    os.mkfifo(os.path.join(gen, "fifo.campath"))
+    os.mkfifo(os.path.join(gen, "fifo.pfm"))
+    os.mkfifo(os.path.join(gen, "fifo.gltf"))
+    os.symlink("loop_b.mgraph", os.path.join(gen, "loop_a.mgraph"))
+    os.symlink("loop_a.mgraph", os.path.join(gen, "loop_b.mgraph"))
+    os.symlink("loop_b.pfm", os.path.join(gen, "loop_a.pfm"))
+    os.symlink("loop_a.pfm", os.path.join(gen, "loop_b.pfm"))
+    os.makedirs(os.path.join(gen, "folder.mgraph"))
+    with open(os.path.join(gen, "big.mgraph"), "wb") as f:
+        f.truncate(17 << 20)  # over the 16 MiB text limit, sparse
+    with open(os.path.join(gen, "big.campath"), "wb") as f:
+        f.truncate(17 << 20)
+    lib = os.path.join(gen, "types_10k")
+    os.makedirs(os.path.join(lib, "prelude"))
+    with open(os.path.join(lib, "prelude", "common.inc"), "w") as f:
+        f.write("struct Unused { float x; };\n")
+    with open(os.path.join(lib, "nodes.inc"), "w") as f:
+        types = ", ".join("float" for _ in range(10000))
+        f.write("/// @types T = %s\nvoid Copy(in T In, out T Out) { Out = In; }\n" % types)
+    make_scenes.main(os.path.join(gen, "scenes"))
+    return gen
+
+
+def cases(gen):
+    c = os.path.join(HERE, "camera_paths")
+    g = os.path.join(HERE, "graphs")
+    i = os.path.join(HERE, "images")
+    n = os.path.join(HERE, "nodelibs")
+    s = os.path.join(gen, "scenes")
+    valid = os.path.join(g, "valid.mgraph")
+    long_name = "x" * 300 + ".mgraph"
+    # (name, argv after `memograph`, exit code, regex the stderr must match)
+    out = [
+        ("usage: no command", [], 2, r"usage: memograph"),
+        ("usage: unknown command", ["frobnicate"], 2, r"unknown command"),
+        ("usage: unknown option", ["compile", "--frob", valid], 2, r"unknown option"),
+        ("usage: missing value", ["compile", valid, "-o"], 2, r"needs a value"),
+        ("usage: bad target", ["compile", valid, "--target", "spirv", "-o", "out"], 2,
+         r"--target"),
+        ("usage: render size 0x0", ["render", "builtin:landscape", "--size", "0x0", "--out",
+                                    "out/x.png"], 2, r"--size"),
+        ("usage: render size huge", ["render", "builtin:landscape", "--size", "100000x100000",
+                                     "--out", "out/x.png"], 2, r"--size"),
+        ("usage: render paths 0", ["render", "builtin:landscape", "--paths", "0", "--out",
+                                   "out/x.png"], 2, r"--paths"),
+        ("usage: render frames -1", ["render", "builtin:landscape", "--frames", "-1", "--out",
+                                     "out/x.png"], 2, r"--frames"),
+        ("usage: render bad extension", ["render", "builtin:landscape", "--out", "out/x.bmp"],
+         2, r"--out must name"),
+        ("usage: render probe 0", ["render", "builtin:landscape", "--cache", "texel",
+                                   "--probe", "0", "--out", "out/x.png"], 2, r"probe"),
+        ("usage: bench sizes empty", ["bench", "builtin:landscape", "--sizes", ""], 2,
+         r"--sizes"),
+        ("usage: bench sizes 0x5", ["bench", "builtin:landscape", "--sizes", "0x5"], 2,
+         r"--sizes"),
+        ("usage: bench scene file", ["bench", "scene.gltf", "--csv", "out/keep.txt"], 2,
+         r"built-in"),
+        ("usage: bench csv kept", ["bench", "--paths", "x", "--csv", "out/keep.txt"], 2,
+         r"--paths"),
+        ("usage: diff ppd 1e12", ["diff", os.path.join(i, "ok_2x2.pfm"),
+                                  os.path.join(i, "ok_2x2.pfm"), "--ppd", "1e12"], 2, r"ppd"),
+        ("usage: diff out extension", ["diff", os.path.join(i, "ok_2x2.pfm"),
+                                       os.path.join(i, "ok_2x2.pfm"), "--out", "out/x.gif"], 2,
+         r"--out"),
+        ("output: render out is a folder", ["render", "builtin:landscape", "--out",
+                                            "out/sub.png"], 1, r"is a folder"),
+        ("output: render missing folder", ["render", "builtin:landscape", "--out",
+                                           "out/missing/x.png"], 1, r"does not exist"),
+        ("output: render stats missing folder", ["render", "builtin:landscape", "--out",
+                                                 "out/x.png", "--stats", "out/missing/s.csv"],
+         1, r"does not exist"),
+        ("output: bench frames-csv missing folder", ["bench", "builtin:landscape",
+                                                     "--frames-csv", "out/missing/"], 1,
+         r"does not exist"),
+        ("output: compile into a file", ["compile", valid, "-o", "out/keep.txt"], 1,
+         r"not a folder"),
+        ("output: diff out missing folder", ["diff", os.path.join(i, "ok_2x2.pfm"),
+                                             os.path.join(i, "ok_2x2.pfm"), "--out",
+                                             "out/missing/x.png"], 1, r"does not exist"),
+        ("file: graph FIFO", ["compile", os.path.join(gen, "fifo.mgraph"), "-o", "out"], 1,
+         r"not a regular file \(a FIFO\)"),
+        ("file: graph /dev/zero", ["compile", "/dev/zero", "-o", "out"], 1,
+         r"not a regular file"),
+        ("file: graph symlink loop", ["compile", os.path.join(gen, "loop_a.mgraph"), "-o",
+                                      "out"], 1, r"symbolic link loop"),
+        ("file: graph name too long", ["compile", os.path.join(gen, long_name), "-o", "out"],
+         1, r"name is too long"),
+        ("file: graph is a folder", ["compile", os.path.join(gen, "folder.mgraph"), "-o",
+                                     "out"], 1, r"is a folder"),
+        ("file: graph missing", ["compile", os.path.join(gen, "missing.mgraph"), "-o", "out"],
+         1, r"no such file"),
+        ("limit: graph over 16 MiB", ["compile", os.path.join(gen, "big.mgraph"), "-o", "out"],
+         1, r"over the limit of 16 MiB"),
+        ("limit: @types 10k", ["compile", valid, "--nodes", os.path.join(gen, "types_10k"),
+                               "-o", "out"], 1, r"@types lists 10000 types"),
+        ("camera: FIFO", ["render", "builtin:landscape", "--camera-path",
+                          os.path.join(gen, "fifo.campath"), "--out", "out/x.png"], 1,
+         r"FIFO"),
+        ("camera: /dev/zero", ["render", "builtin:landscape", "--camera-path", "/dev/zero",
+                               "--out", "out/x.png"], 1, r"not a regular file"),
+        ("camera: over 16 MiB", ["render", "builtin:landscape", "--camera-path",
+                                 os.path.join(gen, "big.campath"), "--out", "out/x.png"], 1,
+         r"over the limit"),
+        ("image: PFM FIFO", ["diff", os.path.join(gen, "fifo.pfm"),
+                             os.path.join(i, "ok_2x2.pfm")], 1, r"FIFO"),
+        ("image: PFM symlink loop", ["diff", os.path.join(gen, "loop_a.pfm"),
+                                     os.path.join(i, "ok_2x2.pfm")], 1, r"symbolic link loop"),
+        ("image: sizes differ", ["diff", os.path.join(i, "ok_1x1.pfm"),
+                                 os.path.join(i, "ok_2x2.pfm"), "--out", "out/x.png"], 1,
+         r"differ in size"),
+        ("scene: FIFO", ["render", os.path.join(gen, "fifo.gltf"), "--out", "out/x.png"], 1,
+         r"FIFO"),
+    ]
+    for name in sorted(os.listdir(os.path.join(HERE, "graphs"))):
+        if name != "valid.mgraph":
+            out.append(("graph: " + name, ["compile", os.path.join(g, name), valid, "-o", "out"],
+                        1, r":\d+:\d+: error: "))
+    for name, pattern in [("no_prelude", r"no prelude/"), ("inc_folder", r"is a folder"),
+                          ("bad_types", r"@types"), ("empty", r"no \.inc files")]:
+        out.append(("node library: " + name, ["compile", valid, "--nodes",
+                                              os.path.join(n, name), "-o", "out"], 1, pattern))
+    for name in sorted(os.listdir(c)):
+        out.append(("camera: " + name, ["render", "builtin:landscape", "--camera-path",
+                                        os.path.join(c, name), "--out", "out/x.png"], 1,
+                    r"error: "))
+    for name in sorted(os.listdir(i)):
+        if not name.startswith("ok_"):
+            out.append(("image: " + name, ["diff", os.path.join(i, name),
+                                           os.path.join(i, "ok_2x2.pfm"), "--out",
+                                           "out/x.png"], 1, r"error: "))
+    for name in sorted(os.listdir(s)):
+        if not name.startswith("valid"):
+            out.append(("scene: " + name, ["render", os.path.join(s, name), "--out",
+                                           "out/x.png", "--size", "8x8"], 1, r"error: "))
+    return out
+
+
+def run_case(memograph, work, index, case):
+    """Runs one input; returns (a line for the log, a failure message or None)."""
+    name, argv, code, pattern = case
+    run_dir = os.path.join(work, "run%d" % index)
+    os.makedirs(os.path.join(run_dir, "out", "sub.png"))
+    with open(os.path.join(run_dir, "out", "keep.txt"), "w") as f:
+        f.write("must survive a failed command\n")
+    before = snapshot(os.path.join(run_dir, "out"))
+    env = dict(os.environ, XDG_CACHE_HOME=os.path.join(work, "cache"))
+    t0 = time.monotonic()
+    try:
+        result = subprocess.run([memograph] + argv, cwd=run_dir, env=env, capture_output=True,
+                                timeout=TIMEOUT_S, preexec_fn=limit_memory)
+    except subprocess.TimeoutExpired:
+        return name + ": timeout", "%s: no answer within %d s" % (name, TIMEOUT_S)
+    elapsed = time.monotonic() - t0
+    stderr = result.stderr.decode("utf-8", "replace")
+    problems = []
+    if result.returncode < 0:
+        problems.append("crashed with signal %d" % -result.returncode)
+    elif result.returncode != code:
+        problems.append("exit %d, expected %d" % (result.returncode, code))
+    if not re.search(pattern, stderr):
+        problems.append("stderr does not match /%s/" % pattern)
+    if "internal error" in stderr or ": Success" in stderr:
+        problems.append("an internal-error message")
+    if result.returncode != 0 and snapshot(os.path.join(run_dir, "out")) != before:
+        problems.append("the output folder changed")
+    first = stderr.strip().splitlines()[0][:150] if stderr.strip() else ""
+    line = "%-45s exit %d %5.2f s  %s" % (name, result.returncode, elapsed, first)
+    if problems:
+        return line, "%s: %s\n    stderr: %s" % (name, "; ".join(problems), stderr.strip()[:600])
+    return line, None
+
+
+def main():
+    memograph = os.path.abspath(sys.argv[1])
+    work = tempfile.mkdtemp(prefix="memograph-adversarial-")
+    failures = []
+    start = time.monotonic()
+    try:
+        gen = prepare(work)
+        all_cases = cases(gen)
+        # Independent runs, several at a time: the bound is per run, not for the sum.
+        with concurrent.futures.ThreadPoolExecutor(max_workers=6) as pool:
+            results = list(pool.map(lambda c: run_case(memograph, work, *c),
+                                    enumerate(all_cases)))
+        for line, problem in results:
+            print(line)
+            if problem:
+                failures.append(problem)
+        print("\n%d inputs in %.1f s" % (len(all_cases), time.monotonic() - start))
+    finally:
+        shutil.rmtree(work, ignore_errors=True)
+    if failures:
+        print("\n%d failures:" % len(failures))
+        for f in failures:
+            print("  " + f)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,682 @@
+#include "tools/io/gltf_precheck.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string_view>
+#include <vector>
+
+#include "compiler/input_file.h"
+
+namespace memograph::io {
+namespace {
+
+// A JSON value. Long strings (embedded base64 buffers) are not kept: nothing checked here
+// reads them, and copying them would double the memory of a large file.
+struct Json {
+  enum class Kind { Null, Bool, Number, String, Array, Object };
+  Kind kind = Kind::Null;
+  double number = 0.0;
+  std::string string;
+  std::vector<Json> items;
+  // An object's members as two parallel lists: std::pair<std::string, Json> would need
+  // Json complete here (vector alone may hold an incomplete type).
+  std::vector<std::string> keys;
+  std::vector<Json> values;
+
+  const Json* get(std::string_view key) const {
+    if (kind != Kind::Object)
+      return nullptr;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      if (keys[i] == key)
+        return &values[i];
+    }
+    return nullptr;
+  }
+  std::size_t size() const { return kind == Kind::Array ? items.size() : 0; }
+};
+
+// Recursive descent, but never deeper than kMaxJsonDepth: the recursion is bounded.
+class JsonParser {
+ public:
+  explicit JsonParser(std::string_view text) : text_(text) {}
+
+  bool parse(Json& out, std::string& error) {
+    if (!value(out, 0)) {
+      error = error_ + " (at byte " + std::to_string(pos_) + " of the JSON)";
+      return false;
+    }
+    skipSpace();
+    if (pos_ != text_.size()) {
+      error = "text after the JSON value (at byte " + std::to_string(pos_) + ")";
+      return false;
+    }
+    return true;
+  }
+
+ private:
+  void skipSpace() {
+    while (pos_ < text_.size() && (text_[pos_] == ' ' || text_[pos_] == '\n' ||
+                                   text_[pos_] == '\r' || text_[pos_] == '\t'))
+      ++pos_;
+  }
+  bool fail(std::string message) {
+    error_ = std::move(message);
+    return false;
+  }
+  bool literal(std::string_view word) {
+    if (text_.substr(pos_, word.size()) != word)
+      return fail("invalid JSON");
+    pos_ += word.size();
+    return true;
+  }
+  bool string(std::string& out, bool keepLong = false) {
+    ++pos_;  // the opening quote
+    const std::size_t start = pos_;
+    while (pos_ < text_.size() && text_[pos_] != '"') {
+      if (text_[pos_] == '\\')
+        ++pos_;
+      ++pos_;
+    }
+    if (pos_ >= text_.size())
+      return fail("unterminated string");
+    if (keepLong || pos_ - start <= 1024)
+      out.assign(text_.substr(start, pos_ - start));
+    ++pos_;
+    return true;
+  }
+  // `keepLong`: keep the string however long (buffer URIs, decoded to check indices).
+  bool value(Json& out, int depth, bool keepLong = false) {
+    if (depth > kMaxJsonDepth)
+      return fail("the JSON is nested more than " + std::to_string(kMaxJsonDepth) +
+                  " levels deep, over the limit (docs/limits.md)");
+    skipSpace();
+    if (pos_ >= text_.size())
+      return fail("unexpected end of the JSON");
+    const char c = text_[pos_];
+    if (c == '{') {
+      out.kind = Json::Kind::Object;
+      ++pos_;
+      skipSpace();
+      if (pos_ < text_.size() && text_[pos_] == '}') {
+        ++pos_;
+        return true;
+      }
+      for (;;) {
+        skipSpace();
+        if (pos_ >= text_.size() || text_[pos_] != '"')
+          return fail("expected a member name");
+        std::string key;
+        if (!string(key))
+          return false;
+        skipSpace();
+        if (pos_ >= text_.size() || text_[pos_] != ':')
+          return fail("expected ':'");
+        ++pos_;
+        const bool uri = key == "uri";
+        out.keys.push_back(std::move(key));
+        out.values.emplace_back();
+        if (!value(out.values.back(), depth + 1, uri))
+          return false;
+        skipSpace();
+        if (pos_ < text_.size() && text_[pos_] == ',') {
+          ++pos_;
+          continue;
+        }
+        if (pos_ < text_.size() && text_[pos_] == '}') {
+          ++pos_;
+          return true;
+        }
+        return fail("expected ',' or '}'");
+      }
+    }
+    if (c == '[') {
+      out.kind = Json::Kind::Array;
+      ++pos_;
+      skipSpace();
+      if (pos_ < text_.size() && text_[pos_] == ']') {
+        ++pos_;
+        return true;
+      }
+      for (;;) {
+        out.items.emplace_back();
+        if (!value(out.items.back(), depth + 1))
+          return false;
+        skipSpace();
+        if (pos_ < text_.size() && text_[pos_] == ',') {
+          ++pos_;
+          continue;
+        }
+        if (pos_ < text_.size() && text_[pos_] == ']') {
+          ++pos_;
+          return true;
+        }
+        return fail("expected ',' or ']'");
+      }
+    }
+    if (c == '"') {
+      out.kind = Json::Kind::String;
+      return string(out.string, keepLong);
+    }
+    if (c == 't' || c == 'f') {
+      out.kind = Json::Kind::Bool;
+      out.number = c == 't';
+      return literal(c == 't' ? "true" : "false");
+    }
+    if (c == 'n')
+      return literal("null");
+    const std::size_t start = pos_;
+    while (pos_ < text_.size() && std::strchr("+-0123456789.eE", text_[pos_]) != nullptr)
+      ++pos_;
+    if (pos_ == start)
+      return fail("invalid JSON");
+    out.kind = Json::Kind::Number;
+    out.number = std::strtod(std::string(text_.substr(start, pos_ - start)).c_str(), nullptr);
+    return true;
+  }
+
+  std::string_view text_;
+  std::size_t pos_ = 0;
+  std::string error_;
+};
+
+std::uint32_t readU32(const std::string& bytes, std::size_t at) {
+  return std::uint32_t(std::uint8_t(bytes[at])) | std::uint32_t(std::uint8_t(bytes[at + 1])) << 8 |
+         std::uint32_t(std::uint8_t(bytes[at + 2])) << 16 |
+         std::uint32_t(std::uint8_t(bytes[at + 3])) << 24;
+}
+
+class Checker {
+ public:
+  Checker(const Json& root, const std::string& path, std::string_view binChunk,
+          compiler::Diagnostics& diagnostics)
+      : root_(root), path_(path), binChunk_(binChunk), diagnostics_(diagnostics) {}
+
+  bool run() {
+    const Json& nodes = array("nodes");
+    checkHierarchy(nodes);
+    for (std::size_t s = 0; s < array("scenes").size(); ++s) {
+      if (const Json* list = array("scenes").items[s].get("nodes")) {
+        for (const Json& n : list->items)
+          index(n, "nodes", "scenes[" + std::to_string(s) + "].nodes");
+      }
+    }
+    if (const Json* scene = root_.get("scene"))
+      index(*scene, "scenes", "scene");
+    for (std::size_t a = 0; a < array("accessors").size(); ++a)
+      checkAccessor(array("accessors").items[a], "accessors[" + std::to_string(a) + "]");
+    for (std::size_t v = 0; v < array("bufferViews").size(); ++v)
+      checkView(array("bufferViews").items[v], "bufferViews[" + std::to_string(v) + "]");
+    // Index values are read only once every range above is known to be good.
+    const bool rangesGood = ok_;
+    for (std::size_t m = 0; m < array("meshes").size(); ++m)
+      checkMesh(array("meshes").items[m], "meshes[" + std::to_string(m) + "]", rangesGood);
+    for (std::size_t t = 0; t < array("textures").size(); ++t) {
+      const Json& texture = array("textures").items[t];
+      const std::string where = "textures[" + std::to_string(t) + "]";
+      if (const Json* source = texture.get("source"))
+        index(*source, "images", where + ".source");
+      if (const Json* sampler = texture.get("sampler"))
+        index(*sampler, "samplers", where + ".sampler");
+    }
+    for (std::size_t i = 0; i < array("images").size(); ++i) {
+      if (const Json* view = array("images").items[i].get("bufferView"))
+        index(*view, "bufferViews", "images[" + std::to_string(i) + "].bufferView");
+    }
+    for (std::size_t m = 0; m < array("materials").size(); ++m)
+      checkTextureReferences(array("materials").items[m], "materials[" + std::to_string(m) + "]",
+                             0);
+    return ok_;
+  }
+
+ private:
+  const Json& array(const char* name) {
+    static const Json empty;
+    const Json* value = root_.get(name);
+    return value && value->kind == Json::Kind::Array ? *value : empty;
+  }
+  void error(const std::string& message) {
+    if (errors_++ < 10)  // enough to fix the file; a generated one may have millions
+      diagnostics_.error(path_, message);
+    ok_ = false;
+  }
+  // An index into the top-level array `into`: a whole number in range.
+  bool index(const Json& value, const char* into, const std::string& where) {
+    const std::size_t count = array(into).size();
+    if (value.kind != Json::Kind::Number || value.number < 0 ||
+        value.number != std::floor(value.number) || value.number >= double(count)) {
+      error(where + " is " +
+            (value.kind == Json::Kind::Number ? format(value.number) : "not a number") +
+            ", out of range: the file has " + std::to_string(count) + " " + into);
+      return false;
+    }
+    return true;
+  }
+  static std::string format(double v) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.17g", v);
+    return buffer;
+  }
+  // A whole number in [lo, hi]: byte offsets, lengths, strides and counts (2^53 bounds
+  // what a double holds exactly, and keeps every cast to an integer defined).
+  static bool whole(double v, double lo = 0.0, double hi = 9007199254740992.0) {
+    return v >= lo && v <= hi && v == std::floor(v);
+  }
+  static double numberOr(const Json* value, double fallback) {
+    return value && value->kind == Json::Kind::Number ? value->number : fallback;
+  }
+
+  // Whether a node's own transform collapses space (zero scale, a zero quaternion, a
+  // singular or non-finite matrix): a camera under it sees nothing.
+  static bool degenerate(const Json& node) {
+    if (const Json* scale = node.get("scale"); scale && scale->size() == 3) {
+      for (const Json& s : scale->items) {
+        if (s.kind != Json::Kind::Number || !std::isfinite(s.number) || std::abs(s.number) < 1e-12)
+          return true;
+      }
+    }
+    if (const Json* rotation = node.get("rotation"); rotation && rotation->size() == 4) {
+      double norm = 0.0;
+      for (const Json& r : rotation->items)
+        norm += r.number * r.number;
+      if (!(norm > 1e-12) || !std::isfinite(norm))
+        return true;
+    }
+    if (const Json* matrix = node.get("matrix"); matrix && matrix->size() == 16) {
+      double m[16];
+      for (int i = 0; i < 16; ++i) {
+        m[i] = matrix->items[i].number;
+        if (!std::isfinite(m[i]))
+          return true;
+      }
+      // Column-major: the upper 3x3 is m[0..2], m[4..6], m[8..10].
+      const double det = m[0] * (m[5] * m[10] - m[6] * m[9]) - m[4] * (m[1] * m[10] - m[2] * m[9]) +
+                         m[8] * (m[1] * m[6] - m[2] * m[5]);
+      if (!(std::abs(det) > 1e-18))
+        return true;
+    }
+    return false;
+  }
+
+  // Without recursion: parents first, then the depth of each node by walking up.
+  void checkHierarchy(const Json& nodes) {
+    const std::size_t n = nodes.size();
+    std::vector<std::int64_t> parent(n, -1);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Json& node = nodes.items[i];
+      const std::string where = "nodes[" + std::to_string(i) + "]";
+      if (const Json* mesh = node.get("mesh"))
+        index(*mesh, "meshes", where + ".mesh");
+      if (const Json* camera = node.get("camera"))
+        index(*camera, "cameras", where + ".camera");
+      if (const Json* skin = node.get("skin"))
+        index(*skin, "skins", where + ".skin");
+      const Json* children = node.get("children");
+      if (!children)
+        continue;
+      for (const Json& child : children->items) {
+        if (!index(child, "nodes", where + ".children"))
+          continue;
+        const auto c = static_cast<std::size_t>(child.number);
+        if (parent[c] != -1 || c == i) {
+          error("nodes[" + std::to_string(c) +
+                "] has more than one parent (or is its own "
+                "child); a glTF node hierarchy is a tree");
+          continue;
+        }
+        parent[c] = std::int64_t(i);
+      }
+    }
+    if (!ok_)
+      return;
+    // Depths by walking up from each node, memoised; a walk longer than n is a cycle.
+    std::vector<int> depth(n, 0);  // 0: not known yet
+    std::vector<std::size_t> chain;
+    for (std::size_t i = 0; i < n; ++i) {
+      chain.clear();
+      std::size_t at = i;
+      while (depth[at] == 0 && parent[at] != -1 && chain.size() <= n) {
+        chain.push_back(at);
+        at = std::size_t(parent[at]);
+      }
+      if (chain.size() > n) {
+        error("the node hierarchy has a cycle through nodes[" + std::to_string(i) + "]");
+        return;
+      }
+      int d = depth[at] == 0 ? 1 : depth[at];
+      depth[at] = d;
+      for (auto it = chain.rbegin(); it != chain.rend(); ++it)
+        depth[*it] = ++d;
+      if (d > kMaxNodeDepth) {
+        error("the node hierarchy is " + std::to_string(d) + " levels deep at nodes[" +
+              std::to_string(i) + "], over the limit of " + std::to_string(kMaxNodeDepth) +
+              " (docs/limits.md)");
+        return;
+      }
+    }
+    // A camera whose node or an ancestor collapses space renders an all-black image.
+    for (std::size_t i = 0; i < n; ++i) {
+      if (!nodes.items[i].get("camera"))
+        continue;
+      for (std::int64_t at = std::int64_t(i); at != -1; at = parent[std::size_t(at)]) {
+        if (degenerate(nodes.items[std::size_t(at)])) {
+          error("the camera of nodes[" + std::to_string(i) + "] is under a degenerate transform " +
+                "(zero scale, zero rotation or a singular matrix) at nodes[" + std::to_string(at) +
+                "]: it would see nothing");
+          break;
+        }
+      }
+    }
+  }
+
+  void checkMesh(const Json& mesh, const std::string& where, bool readIndices) {
+    const Json* primitives = mesh.get("primitives");
+    if (!primitives)
+      return;
+    for (std::size_t p = 0; p < primitives->size(); ++p) {
+      const Json& primitive = primitives->items[p];
+      const std::string at = where + ".primitives[" + std::to_string(p) + "]";
+      if (const Json* attributes = primitive.get("attributes")) {
+        for (std::size_t i = 0; i < attributes->keys.size(); ++i)
+          index(attributes->values[i], "accessors", at + ".attributes." + attributes->keys[i]);
+      }
+      if (const Json* indices = primitive.get("indices"))
+        index(*indices, "accessors", at + ".indices");
+      if (const Json* material = primitive.get("material"))
+        index(*material, "materials", at + ".material");
+      if (readIndices && ok_)
+        checkIndexValues(primitive, at);
+    }
+  }
+
+  // assimp drops a triangle with a vertex index past the vertex count without a word (an
+  // incomplete mesh, exit 0): the index values are read here and checked.
+  void checkIndexValues(const Json& primitive, const std::string& at) {
+    const Json* indices = primitive.get("indices");
+    const Json* attributes = primitive.get("attributes");
+    const Json* position = attributes ? attributes->get("POSITION") : nullptr;
+    if (!indices || !position)
+      return;
+    const Json& accessor = array("accessors").items[std::size_t(indices->number)];
+    const double vertices =
+        numberOr(array("accessors").items[std::size_t(position->number)].get("count"), 0);
+    const Json* viewIndex = accessor.get("bufferView");
+    if (!viewIndex)
+      return;
+    const Json& view = array("bufferViews").items[std::size_t(viewIndex->number)];
+    const std::string* buffer = bufferBytes(std::size_t(numberOr(view.get("buffer"), 0)));
+    if (!buffer)
+      return;  // an external or unreadable buffer: assimp reports it
+    const std::uint64_t size = componentBytes(numberOr(accessor.get("componentType"), 0));
+    const double countValue = numberOr(accessor.get("count"), 0);
+    const double strideValue = numberOr(view.get("byteStride"), double(size));
+    const double startValue =
+        numberOr(view.get("byteOffset"), 0) + numberOr(accessor.get("byteOffset"), 0);
+    // Checked above already; again here so that no cast below can be undefined.
+    if (size == 0 || !whole(countValue) || !whole(strideValue, 1) || !whole(startValue))
+      return;
+    const auto count = std::uint64_t(countValue);
+    const auto stride = std::max(std::uint64_t(strideValue), size);
+    const auto start = std::uint64_t(startValue);
+    for (std::uint64_t i = 0; i < count; ++i) {
+      const std::uint64_t at8 = start + i * stride;
+      if (at8 + size > buffer->size())
+        return;  // the buffer is shorter than declared: assimp reports it
+      std::uint64_t value = 0;
+      for (std::uint64_t b = 0; b < size; ++b)
+        value |= std::uint64_t(std::uint8_t((*buffer)[at8 + b])) << (8 * b);
+      if (double(value) >= vertices) {
+        error(at + ".indices: index " + std::to_string(i) + " is " + std::to_string(value) +
+              ", out of range: the primitive has " + format(vertices) + " vertices");
+        return;
+      }
+    }
+  }
+
+  // A buffer's bytes: the .glb BIN chunk, or a base64 data: URI; nullptr for others.
+  const std::string* bufferBytes(std::size_t b) {
+    if (b >= array("buffers").size())
+      return nullptr;
+    if (decoded_.size() < array("buffers").size())
+      decoded_.resize(array("buffers").size());
+    auto& slot = decoded_[b];
+    if (slot.first)
+      return &slot.second;  // empty when not readable here: nothing is checked
+    slot.first = true;
+    const Json* uri = array("buffers").items[b].get("uri");
+    if (!uri) {
+      slot.second.assign(binChunk_);
+      return &slot.second;
+    }
+    const std::string& text = uri->string;
+    const auto comma = text.find(',');
+    if (text.rfind("data:", 0) != 0 || comma == std::string::npos || comma < 7 ||
+        text.compare(comma - 7, 7, ";base64") != 0)
+      return &slot.second;
+    slot.second = base64(std::string_view(text).substr(comma + 1));
+    return &slot.second;
+  }
+
+  static std::string base64(std::string_view text) {
+    std::string out;
+    out.reserve(text.size() / 4 * 3);
+    std::uint32_t bits = 0;
+    int count = 0;
+    for (char c : text) {
+      int v;
+      if (c >= 'A' && c <= 'Z')
+        v = c - 'A';
+      else if (c >= 'a' && c <= 'z')
+        v = c - 'a' + 26;
+      else if (c >= '0' && c <= '9')
+        v = c - '0' + 52;
+      else if (c == '+' || c == '-')
+        v = 62;
+      else if (c == '/' || c == '_')
+        v = 63;
+      else
+        continue;  // padding, whitespace
+      bits = (bits << 6) | std::uint32_t(v);
+      if (++count == 4) {
+        out.push_back(char(bits >> 16));
+        out.push_back(char(bits >> 8));
+        out.push_back(char(bits));
+        bits = 0;
+        count = 0;
+      }
+    }
+    if (count == 3) {
+      out.push_back(char(bits >> 10));
+      out.push_back(char(bits >> 2));
+    } else if (count == 2) {
+      out.push_back(char(bits >> 4));
+    }
+    return out;
+  }
+
+  static std::uint64_t componentBytes(double type) {
+    switch (static_cast<int>(type)) {
+      case 5120:
+      case 5121:
+        return 1;
+      case 5122:
+      case 5123:
+        return 2;
+      case 5125:
+      case 5126:
+        return 4;
+      default:
+        return 0;
+    }
+  }
+  static std::uint64_t components(const std::string& type) {
+    if (type == "SCALAR")
+      return 1;
+    if (type == "VEC2")
+      return 2;
+    if (type == "VEC3")
+      return 3;
+    if (type == "VEC4" || type == "MAT2")
+      return 4;
+    if (type == "MAT3")
+      return 9;
+    if (type == "MAT4")
+      return 16;
+    return 0;
+  }
+
+  void checkAccessor(const Json& accessor, const std::string& where) {
+    const double count = numberOr(accessor.get("count"), -1);
+    const std::uint64_t bytes = componentBytes(numberOr(accessor.get("componentType"), 0));
+    const Json* type = accessor.get("type");
+    const std::uint64_t n = type ? components(type->string) : 0;
+    if (count < 0 || count != std::floor(count) || bytes == 0 || n == 0) {
+      error(where + " needs a whole count >= 0, a known componentType and type");
+      return;
+    }
+    const Json* view = accessor.get("bufferView");
+    if (!view)
+      return;  // all zeros (or sparse): nothing to read out of range
+    if (!index(*view, "bufferViews", where + ".bufferView"))
+      return;
+    const Json& bufferView = array("bufferViews").items[std::size_t(view->number)];
+    const std::uint64_t element = bytes * n;
+    const double stride = numberOr(bufferView.get("byteStride"), double(element));
+    const double offset = numberOr(accessor.get("byteOffset"), 0);
+    const double length = numberOr(bufferView.get("byteLength"), 0);
+    const double end = count == 0 ? offset : offset + (count - 1) * stride + double(element);
+    if (!whole(offset) || !whole(stride) || !whole(count) || end > length) {
+      error(where + " reads bytes " + format(offset) + " to " + format(end) +
+            " of a buffer view of " + format(length) + " bytes: out of range");
+    }
+  }
+
+  void checkView(const Json& view, const std::string& where) {
+    const Json* buffer = view.get("buffer");
+    if (!buffer || !index(*buffer, "buffers", where + ".buffer"))
+      return;
+    const double offset = numberOr(view.get("byteOffset"), 0);
+    const double length = numberOr(view.get("byteLength"), -1);
+    // The glTF specification's range for a stride; 0 would make readers loop in place.
+    if (const Json* stride = view.get("byteStride");
+        stride && !whole(numberOr(stride, -1), 4, 252)) {
+      error(where + ".byteStride must be a whole number from 4 to 252");
+      return;
+    }
+    const double bufferLength =
+        numberOr(array("buffers").items[std::size_t(buffer->number)].get("byteLength"), 0);
+    if (!whole(offset) || !whole(length) || offset + length > bufferLength) {
+      error(where + " covers bytes " + format(offset) + " to " + format(offset + length) +
+            " of a buffer of " + format(bufferLength) + " bytes: out of range");
+    }
+  }
+
+  // Texture references ({"index": i} under a member named *Texture) anywhere in a material.
+  void checkTextureReferences(const Json& value, const std::string& where, int depth) {
+    if (depth > kMaxJsonDepth)
+      return;
+    for (std::size_t i = 0; i < value.keys.size(); ++i) {
+      const std::string& name = value.keys[i];
+      const Json& member = value.values[i];
+      if (member.kind != Json::Kind::Object)
+        continue;
+      if (name.size() >= 7 && name.compare(name.size() - 7, 7, "Texture") == 0) {
+        if (const Json* i = member.get("index"))
+          index(*i, "textures", where + "." + name + ".index");
+      }
+      checkTextureReferences(member, where + "." + name, depth + 1);
+    }
+  }
+
+  const Json& root_;
+  const std::string& path_;
+  std::string_view binChunk_;
+  compiler::Diagnostics& diagnostics_;
+  std::vector<std::pair<bool, std::string>> decoded_;  // (tried, bytes) per buffer
+  bool ok_ = true;
+  int errors_ = 0;
+};
+
+}  // namespace
+
+bool precheckGltfBytes(const std::string& path, const std::string& bytes, bool glb,
+                       compiler::Diagnostics& diagnostics) {
+  std::string_view json = bytes;
+  std::string_view binChunk;
+  if (glb) {
+    // 12-byte header (magic, version, length), then chunks of (length, type, data).
+    if (bytes.size() < 20 || bytes.compare(0, 4, "glTF") != 0) {
+      diagnostics.error(path, "not a binary glTF file (no 'glTF' header)");
+      return false;
+    }
+    const std::uint32_t version = readU32(bytes, 4);
+    const std::uint32_t length = readU32(bytes, 8);
+    if (version != 2) {
+      diagnostics.error(
+          path, "binary glTF version " + std::to_string(version) + "; only version 2 is read");
+      return false;
+    }
+    if (length > bytes.size()) {
+      diagnostics.error(path, "the .glb header declares " + std::to_string(length) +
+                                  " bytes, but the file has " + std::to_string(bytes.size()));
+      return false;
+    }
+    const std::uint32_t jsonLength = readU32(bytes, 12);
+    if (readU32(bytes, 16) != 0x4E4F534Au) {  // "JSON"
+      diagnostics.error(path, "the first .glb chunk is not JSON");
+      return false;
+    }
+    if (std::uint64_t(jsonLength) + 20 > length) {
+      diagnostics.error(path, "the .glb JSON chunk declares " + std::to_string(jsonLength) +
+                                  " bytes, more than the " + std::to_string(length) +
+                                  "-byte file holds");
+      return false;
+    }
+    std::uint64_t at = 20 + std::uint64_t(jsonLength);
+    at = (at + 3) & ~std::uint64_t(3);
+    while (at + 8 <= length) {  // further chunks (BIN): each within the file
+      const std::uint64_t chunk = readU32(bytes, at);
+      if (at + 8 + chunk <= length && readU32(bytes, at + 4) == 0x004E4942u && binChunk.empty())
+        binChunk = std::string_view(bytes).substr(at + 8, chunk);  // "BIN"
+      if (at + 8 + chunk > length) {
+        diagnostics.error(path, "a .glb chunk at byte " + std::to_string(at) + " declares " +
+                                    std::to_string(chunk) + " bytes, more than the file holds");
+        return false;
+      }
+      at = (at + 8 + chunk + 3) & ~std::uint64_t(3);
+    }
+    json = std::string_view(bytes).substr(20, jsonLength);
+  }
+  Json root;
+  std::string error;
+  if (!JsonParser(json).parse(root, error)) {
+    diagnostics.error(path, "invalid glTF JSON: " + error);
+    return false;
+  }
+  if (root.kind != Json::Kind::Object) {
+    diagnostics.error(path, "invalid glTF: the JSON is not an object");
+    return false;
+  }
+  return Checker(root, path, binChunk, diagnostics).run();
+}
+
+bool precheckGltf(const std::string& path, compiler::Diagnostics& diagnostics) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (auto& c : ext)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".gltf" && ext != ".glb")
+    return true;
+  std::string error;
+  // A .glb is read whole (its size is bounded by the scene limit); assimp reads it again.
+  auto bytes = files::readInputFile(path, files::kMaxSceneFileBytes, "scenes", error);
+  if (!bytes) {
+    diagnostics.error(path, error);
+    return false;
+  }
+  return precheckGltfBytes(path, *bytes, ext == ".glb", diagnostics);
+}
+
+}  // namespace memograph::io
