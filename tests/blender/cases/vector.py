@@ -229,6 +229,14 @@ CASES += [
          output='Normal', tolerance=3e-3,
          note='curved height (Gradient QUADRATIC of Object): Cycles forward difference '
               'over 1/64 vs the analytic slope, Distance * h\'\' * 0.0055'),
+    # Finite-difference heights: Bump matches only with the bake's footprint equal to
+    # Cycles' bake footprint (half a texel along the diagonals).
+    Case(name='bump_over_noise', node='ShaderNodeBump', inputs={'Distance': 0.1},
+         extra=_height_from('ShaderNodeTexNoise'), output='Normal', kind='noise',
+         note='Noise Fac of Object as height: its _D forward-differences over the footprint'),
+    Case(name='bump_over_brick', node='ShaderNodeBump', inputs={'Distance': 0.05},
+         extra=_height_from('ShaderNodeTexBrick'), output='Normal',
+         note='Brick Fac of Object as height: steps at the mortar edges'),
 ]
 
 

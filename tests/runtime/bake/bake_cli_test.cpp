@@ -227,7 +227,7 @@ void TestGenerated(in MaterialInputs inputs, out T Out) {
   mg_assign(inputs.generated, Out);
 }
 
-/// The generated coordinates' footprint along x (one pixel).
+/// The generated coordinates' derivative along the footprint's first axis.
 /// @input generated
 void TestGeneratedDx(in MaterialInputs inputs, out float3 Out) {
   Out = inputs.generated.x;
@@ -300,7 +300,8 @@ TEST_F(BakeCli, BoundsSetObjectPositionAndGenerated) {
   EXPECT_EQ(rest[2], 1.0f);
 }
 
-TEST_F(BakeCli, GeneratedDerivativesAreOnePixel) {
+// Cycles' bake footprint: half a texel (averaged over x and y) along the diagonals.
+TEST_F(BakeCli, GeneratedDerivativesFollowCyclesBakeFootprint) {
   const std::string nodes = objectSpaceLibrary(dir_);
   const auto g = graph("Footprint",
                        "TestGeneratedDx Out>0;\n"
@@ -310,8 +311,12 @@ TEST_F(BakeCli, GeneratedDerivativesAreOnePixel) {
   ASSERT_EQ(run.exitCode, 0) << run.output;
   int w = 0, h = 0;
   const auto dx = rawPfm(outFile("Footprint_emission.pfm"), w, h);
-  EXPECT_FLOAT_EQ(dx[0], 1.0f / 8.0f);  // Generated x runs 0..1 over 8 pixels
-  EXPECT_EQ(dx[1], 0.0f);
+  // Texels are 3/8 by 1/4 world units: half a texel on average is 0.15625, and the
+  // diagonal step (k, -k, 0) with k = 0.15625 / sqrt(2) maps to Generated through the
+  // texture space's half size (1.5, 0.5, 1): (k / 3, -k, 0).
+  const float k = 0.15625f * 0.70710678f;
+  EXPECT_NEAR(dx[0], k / 3.0f, 1e-6f);
+  EXPECT_NEAR(dx[1], -k, 1e-6f);
   EXPECT_EQ(dx[2], 0.0f);
 }
 
