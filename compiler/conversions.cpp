@@ -5,8 +5,12 @@ namespace memograph::compiler {
 std::optional<Cost> conversionCost(Type from, Type to) {
   if (from == to)
     return Cost{};
-  if (from.base == BaseType::Int && to.isFloat() && !to.derivatives)
-    return Cost{1, 0, 0, 0, 0};
+  if (from.base == BaseType::Int && to.isFloat() && !to.derivatives) {
+    Cost cost;
+    // int → float is exact; to a vector it is also a splat.
+    (to.width() == 1 ? cost.intToFloat : cost.conversions) = 1;
+    return cost;
+  }
   if (!from.isFloat() || !to.isFloat())
     return std::nullopt;
   if (!from.derivatives && to.derivatives)

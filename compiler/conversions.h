@@ -12,20 +12,31 @@ namespace memograph::compiler {
 
 // Overload-selection cost, compared lexicographically: fewest conversions first; among
 // those, fewest that lose information (truncating a vector), so a scalar is splatted rather
-// than a vector cut down (Listing 5.1 → 5.3 picks float3 Mul/Add this way); then the least
-// derivative work, so derivatives flow only where a consumer needs them; then the fewest
-// dropped derivatives; last, the narrowest types (the least arithmetic: a float2 graph
-// extended to float3 at its end beats a float3 graph fed an extended float2).
+// than a vector cut down (Listing 5.1 → 5.3 picks float3 Mul/Add this way); then the fewest
+// lost derivatives (a value that varies over the footprint entering a plain socket of a node
+// whose outputs carry derivatives: they would be incomplete), so derivatives reach every
+// socket that has a `_D` overload; then the least derivative work, so derivatives flow only
+// where a consumer needs them; then the fewest dropped derivatives; then the fewest `int` →
+// `float` conversions (exact, so ranked below derivative work: an IntConstant feeds a float
+// socket through its plain overload, not its `_D` one); last, the narrowest types (the least
+// arithmetic: a float2 graph extended to float3 at its end beats a float3 graph fed an
+// extended float2).
 struct Cost {
   int conversions = 0;
   int truncations = 0;
+  int lostDerivatives = 0;
   int derivativeWork = 0;
   int droppedDerivatives = 0;
+  int intToFloat = 0;
   int componentWidth = 0;  // sum of the chosen overloads' socket widths
 
   Cost operator+(const Cost& o) const {
-    return {conversions + o.conversions, truncations + o.truncations,
-            derivativeWork + o.derivativeWork, droppedDerivatives + o.droppedDerivatives,
+    return {conversions + o.conversions,
+            truncations + o.truncations,
+            lostDerivatives + o.lostDerivatives,
+            derivativeWork + o.derivativeWork,
+            droppedDerivatives + o.droppedDerivatives,
+            intToFloat + o.intToFloat,
             componentWidth + o.componentWidth};
   }
   auto operator<=>(const Cost&) const = default;

@@ -1,8 +1,10 @@
 #include "compiler/emitter.h"
 
+#include <algorithm>
 #include <set>
 
 #include "compiler/conversions.h"
+#include "compiler/library_scanner.h"
 #include "compiler/literal.h"
 
 namespace memograph::compiler {
@@ -16,34 +18,61 @@ std::string joined(const std::vector<std::string>& items) {
   return text.empty() ? "none" : text;
 }
 
-// Library functions reachable from the chosen overloads, callees before callers.
-std::vector<std::size_t> functionsToEmit(const EmitInput& in) {
-  std::vector<std::size_t> result;
-  std::vector<char> visited(in.library.functions().size(), 0);
+// Library functions reachable from the chosen overloads, from the prelude functions a host
+// shader may call (mg_make_float*_D, mg_defaultMaterialOutputs) and from what the
+// material's function body calls itself (conversions, mg_const_*), for one target: the prelude's
+// first, in definition order (the order in which they compile as one file), then the families' in
+// call order, callees before callers.
+std::vector<std::size_t> functionsToEmit(const EmitInput& in, Target target,
+                                         const std::string& body) {
+  const auto& functions = in.library.functions();
+  std::vector<std::size_t> postOrder;
+  std::vector<char> visited(functions.size(), 0);
   // Iterative post-order DFS over the call graph.
   auto visit = [&](std::size_t root) {
-    std::vector<std::pair<std::size_t, std::size_t>> stack{{root, 0}};
-    if (visited[root])
+    if (visited[root] || !functions[root].isFor(target))
       return;
+    std::vector<std::pair<std::size_t, std::size_t>> stack{{root, 0}};
     visited[root] = 1;
     while (!stack.empty()) {
       auto& [function, next] = stack.back();
-      const auto& callees = in.library.functions()[function].callees;
+      const auto& callees = functions[function].callees;
       if (next < callees.size()) {
         const std::size_t callee = callees[next++];
-        if (!visited[callee]) {
+        if (!visited[callee] && functions[callee].isFor(target)) {
           visited[callee] = 1;
           stack.emplace_back(callee, 0);
         }
         continue;
       }
-      result.push_back(function);
+      postOrder.push_back(function);
       stack.pop_back();
     }
   };
   for (const std::size_t node : in.order) {
     const auto& type = *in.graph.nodes[node].type;
     visit(type.overloads[*in.chosen[node]].function);
+  }
+  // What the including shader may call to build MaterialInputs and defaults
+  // (docs/material-interface.md), then what the material's own function calls.
+  auto roots = identifiersIn(body);
+  roots.insert(roots.begin(), {"mg_make_float_D", "mg_make_float2_D", "mg_make_float3_D",
+                               "mg_make_float4_D", "mg_defaultMaterialOutputs"});
+  for (const auto identifier : roots) {
+    for (const std::size_t function : in.library.functionsNamed(identifier)) {
+      if (functions[function].prelude)
+        visit(function);
+    }
+  }
+  std::vector<std::size_t> result;
+  for (const std::size_t function : postOrder) {
+    if (functions[function].prelude)
+      result.push_back(function);
+  }
+  std::sort(result.begin(), result.end());
+  for (const std::size_t function : postOrder) {
+    if (!functions[function].prelude)
+      result.push_back(function);
   }
   return result;
 }
@@ -98,20 +127,10 @@ std::string emitMaterial(const EmitInput& in, Target target) {
   for (std::size_t slot = 0; slot < meta.textures.size(); ++slot) {
     out += "// texture slot " + std::to_string(slot) + ": " + meta.textures[slot] + "\n";
   }
-  const std::string preludeGuard = glsl ? "MG_PRELUDE_GLSL" : "MG_PRELUDE_HLSL";
-  out += "\n#ifndef " + preludeGuard + "\n#define " + preludeGuard + "\n";
-  out += in.library.prelude(target);
-  out += "#endif  // " + preludeGuard + "\n";
-
-  for (const std::size_t index : functionsToEmit(in)) {
-    const auto& function = in.library.functions()[index];
-    out += "\n#ifndef " + function.guard + "\n#define " + function.guard + "\n";
-    out += function.text + "\n#endif\n";
-  }
-
-  out += "\nvoid EvaluateMaterial_" + meta.name +
-         "(in MaterialInputs inputs, out MaterialOutputs outputs) {\n";
-  out += "  outputs = mg_defaultMaterialOutputs(inputs);\n";
+  // The function first: what it calls decides which library functions come before it.
+  std::string body = "\nvoid EvaluateMaterial_" + meta.name +
+                     "(in MaterialInputs inputs, out MaterialOutputs outputs) {\n";
+  body += "  outputs = mg_defaultMaterialOutputs(inputs);\n";
   // Declarations first, then calls, as in thesis Listing 5.3.
   for (const std::size_t node : in.order) {
     const auto& resolved = in.graph.nodes[node];
@@ -119,7 +138,7 @@ std::string emitMaterial(const EmitInput& in, Target target) {
     for (std::size_t s = 0; s < resolved.type->sockets.size(); ++s) {
       if (resolved.type->sockets[s].direction != Direction::Out)
         continue;
-      out += "  " + overload.socketTypes[s].name() + " " + variableName(in.graph, node, s) + ";\n";
+      body += "  " + overload.socketTypes[s].name() + " " + variableName(in.graph, node, s) + ";\n";
     }
   }
   for (const std::size_t node : in.order) {
@@ -128,8 +147,8 @@ std::string emitMaterial(const EmitInput& in, Target target) {
     for (std::size_t s = 0; s < resolved.type->sockets.size(); ++s) {
       if (overload.socketTypes[s].base == BaseType::Table && resolved.inputs[s] &&
           resolved.inputs[s]->kind != InputSource::Kind::Link) {
-        out += tableDefinition(tableName(node, resolved.type->sockets[s].name),
-                               resolved.inputs[s]->constant);
+        body += tableDefinition(tableName(node, resolved.type->sockets[s].name),
+                                resolved.inputs[s]->constant);
       }
     }
   }
@@ -168,10 +187,23 @@ std::string emitMaterial(const EmitInput& in, Target target) {
     std::string call = "  " + type.name + "(";
     for (std::size_t i = 0; i < arguments.size(); ++i)
       call += (i ? ", " : "") + arguments[i];
-    out += call + ");\n";
+    body += call + ");\n";
   }
-  out += "}\n";
-  return out;
+  body += "}\n";
+
+  // The prelude's declarations (types, defines, prototypes) once per shader; then each
+  // reached function once, under its own guard, so that any number of material includes
+  // can share one shader.
+  const std::string preludeGuard = glsl ? "MG_PRELUDE_GLSL" : "MG_PRELUDE_HLSL";
+  out += "\n#ifndef " + preludeGuard + "\n#define " + preludeGuard + "\n";
+  out += in.library.preludeDeclarations(target);
+  out += "#endif  // " + preludeGuard + "\n";
+  for (const std::size_t index : functionsToEmit(in, target, body)) {
+    const auto& function = in.library.functions()[index];
+    out += "\n#ifndef " + function.guard + "\n#define " + function.guard + "\n";
+    out += function.text + "\n#endif\n";
+  }
+  return out + body;
 }
 
 }  // namespace memograph::compiler

@@ -1,41 +1,80 @@
 #include "compiler/library_files.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+
+#include "compiler/input_file.h"
 
 namespace memograph::compiler {
 
 namespace fs = std::filesystem;
 
+// Bounds the work a library folder can cause (docs/limits.md).
+constexpr std::size_t kMaxNodeLibraryFiles = 4096;
+constexpr std::uint64_t kMaxNodeLibraryBytes = 64 * files::kMiB;
+
 std::optional<std::vector<SourceFile>> readNodeLibraryDirectory(const std::string& directory,
                                                                 Diagnostics& diagnostics) {
   std::error_code ec;
   if (!fs::is_directory(directory, ec)) {
-    diagnostics.error(directory, "the node library directory does not exist");
+    diagnostics.error(directory,
+                      ec && ec.value() != ENOENT
+                          ? "cannot open the node library: " + files::describeFileError(ec)
+                          : "the node library directory does not exist");
     return std::nullopt;
   }
   std::vector<SourceFile> files;
+  std::uint64_t totalBytes = 0;
   for (fs::recursive_directory_iterator it(directory, ec), end; it != end && !ec;
        it.increment(ec)) {
-    if (!it->is_regular_file() || it->path().extension() != ".inc")
+    if (it->path().extension() != ".inc")
       continue;
-    std::ifstream stream(it->path(), std::ios::binary);
-    std::ostringstream text;
-    text << stream.rdbuf();
-    if (!stream) {
-      diagnostics.error(it->path().string(), "cannot read this node library file");
+    std::error_code typeError;
+    // A folder named *.inc is a mistake (a file that was meant), not something to skip.
+    if (it->is_directory(typeError)) {
+      diagnostics.error(it->path().string(),
+                        "is a folder, but .inc names node library files; rename it");
       return std::nullopt;
     }
-    files.push_back({fs::relative(it->path(), directory).generic_string(), text.str()});
+    std::string error;
+    auto text =
+        files::readInputFile(it->path(), files::kMaxTextFileBytes, "node library files", error);
+    if (!text) {
+      diagnostics.error(it->path().string(), "cannot read this node library file: " + error);
+      return std::nullopt;
+    }
+    totalBytes += text->size();
+    if (totalBytes > kMaxNodeLibraryBytes) {
+      diagnostics.error(directory, "the node library's .inc files hold more than " +
+                                       files::formatBytes(kMaxNodeLibraryBytes) +
+                                       " in all (docs/limits.md)");
+      return std::nullopt;
+    }
+    files.push_back({fs::relative(it->path(), directory).generic_string(), std::move(*text)});
+    if (files.size() > kMaxNodeLibraryFiles) {
+      diagnostics.error(directory, "the node library has more than " +
+                                       std::to_string(kMaxNodeLibraryFiles) +
+                                       " .inc files (docs/limits.md)");
+      return std::nullopt;
+    }
   }
   if (ec) {
-    diagnostics.error(directory, "cannot list the node library: " + ec.message());
+    diagnostics.error(directory, "cannot list the node library: " + files::describeFileError(ec));
     return std::nullopt;
   }
   if (files.empty()) {
     diagnostics.error(directory, "the node library directory has no .inc files");
+    return std::nullopt;
+  }
+  // The prelude (types, helpers every node uses) must be there: without it the library
+  // loads but every generated include is unusable shader code.
+  if (std::none_of(files.begin(), files.end(),
+                   [](const SourceFile& f) { return f.path.starts_with("prelude/"); })) {
+    diagnostics.error(directory, "the node library has no prelude/ folder of .inc files")
+        .notes.push_back("copy nodes/prelude/ from the built-in library and edit it");
     return std::nullopt;
   }
   std::sort(files.begin(), files.end(),

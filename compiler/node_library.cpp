@@ -132,6 +132,10 @@ bool isKnownOutput(std::string_view name) {
          kMaterialOutputNames.end();
 }
 
+// Bounds on @types (docs/limits.md).
+constexpr std::size_t kMaxTypeInstances = 64;
+constexpr std::size_t kMaxTypeVariables = 16;
+
 class Loader {
  public:
   Loader(NodeLibrary::Parts& parts, Diagnostics& diagnostics)
@@ -141,9 +145,14 @@ class Loader {
     const bool isPrelude = file.path.starts_with("prelude/");
     const bool glslOnly = file.path == "prelude/glsl.inc";
     const bool hlslOnly = file.path == "prelude/hlsl.inc";
+    std::optional<Target> onlyTarget;
+    if (glslOnly)
+      onlyTarget = Target::Glsl;
+    if (hlslOnly)
+      onlyTarget = Target::Hlsl;
     for (const auto& item : scanLibraryFile(file, diagnostics_)) {
       if (isPrelude) {
-        addToPrelude(file, item, glslOnly, hlslOnly);
+        addToPrelude(file, item, onlyTarget);
         continue;
       }
       if (item.kind != LibraryItem::Kind::Function || item.isPrototype) {
@@ -158,6 +167,7 @@ class Loader {
 
   void finish() {
     linkCallees();
+    markInventedDerivatives();
     std::sort(parts_.nodeTypes.begin(), parts_.nodeTypes.end(),
               [](const NodeType& a, const NodeType& b) { return a.name < b.name; });
   }
@@ -204,6 +214,17 @@ class Loader {
     }
     const std::size_t count =
         annotations.typeVariables.empty() ? 0 : annotations.typeVariables[0].second.size();
+    // Each instance is a function of its own: a bound keeps a tiny file from costing
+    // gigabytes (docs/limits.md; the library's longest list has 8 types).
+    if (count > kMaxTypeInstances || annotations.typeVariables.size() > kMaxTypeVariables) {
+      diagnostics_.error(file, item.location,
+                         "@types lists " + std::to_string(count) + " types for " +
+                             std::to_string(annotations.typeVariables.size()) +
+                             " variables; the limits are " + std::to_string(kMaxTypeInstances) +
+                             " types and " + std::to_string(kMaxTypeVariables) +
+                             " variables (docs/limits.md)");
+      return std::nullopt;
+    }
     for (const auto& [variable, types] : annotations.typeVariables) {
       if (types.size() != count || variable.empty()) {
         diagnostics_.error(file, item.location,
@@ -221,9 +242,15 @@ class Loader {
       return {item};
     std::vector<LibraryItem> instances;
     const std::size_t count = annotations.typeVariables[0].second.size();
+    // The doc lines (which hold the @types list itself) are not copied into each instance:
+    // with them, n types cost n copies of an n-long list, memory quadratic in n.
+    LibraryItem base = item;
+    base.docLines.clear();
+    instances.reserve(count);
     for (std::size_t i = 0; i < count; ++i) {
-      LibraryItem instance = item;
+      LibraryItem instance = base;
       for (const auto& [variable, types] : annotations.typeVariables) {
+        instance.name = replaceWord(instance.name, variable, types[i]);  // mg_make_T_D
         instance.text = replaceWord(instance.text, variable, types[i]);
         instance.returnType = replaceWord(instance.returnType, variable, types[i]);
         instance.parameterList = replaceWord(instance.parameterList, variable, types[i]);
@@ -240,21 +267,55 @@ class Loader {
     return guard;
   }
 
-  void addToPrelude(const SourceFile& file, const LibraryItem& item, bool glslOnly, bool hlslOnly) {
+  // Preprocessor lines, structs and prototypes go to every include; functions become
+  // LibraryFunctions like the families' helpers, emitted only when reached.
+  void addToPrelude(const SourceFile& file, const LibraryItem& item,
+                    std::optional<Target> onlyTarget) {
     std::string text;
-    if (item.kind == LibraryItem::Kind::Function) {
+    if (item.kind == LibraryItem::Kind::Function && !item.isPrototype) {
       const auto annotations = parseAnnotations(file, item);
       if (!annotations)
         return;
-      for (const auto& instance : instantiate(item, *annotations))
-        text += instance.text + "\n";
-    } else {
-      text = item.text + "\n";
+      for (const auto& instance : instantiate(item, *annotations)) {
+        const auto parameters = parseParameters(instance.parameterList);
+        if (!parameters) {
+          diagnostics_.error(file, item.location,
+                             "cannot read the parameters of '" + item.name +
+                                 "': write `[in|out|inout] Type name` separated by commas");
+          return;
+        }
+        LibraryFunction function;
+        function.name = instance.name;
+        function.returnType = instance.returnType;
+        function.text = instance.text;
+        function.guard = guardFor(instance.name, *parameters);
+        function.file = file.path;
+        function.location = item.location;
+        function.prelude = true;
+        function.onlyTarget = onlyTarget;
+        text += "#ifndef " + function.guard + "\n#define " + function.guard + "\n" + function.text +
+                "\n#endif\n";
+        parts_.functionsByName[function.name].push_back(parts_.functions.size());
+        recordSignature(*parameters, function.returnType);
+        parts_.functions.push_back(std::move(function));
+      }
+      append(text, onlyTarget, false);
+      return;
     }
-    if (!hlslOnly)
+    append(item.text + "\n", onlyTarget, true);
+  }
+
+  void append(const std::string& text, std::optional<Target> onlyTarget, bool declaration) {
+    if (onlyTarget != Target::Hlsl) {
       parts_.glslPrelude += text;
-    if (!glslOnly)
+      if (declaration)
+        parts_.glslDeclarations += text;
+    }
+    if (onlyTarget != Target::Glsl) {
       parts_.hlslPrelude += text;
+      if (declaration)
+        parts_.hlslDeclarations += text;
+    }
   }
 
   void addFunction(const SourceFile& file, const LibraryItem& item) {
@@ -287,7 +348,8 @@ class Loader {
                                "a helper (a function named mg_…)");
         return;
       }
-      functionsByName_[function.name].push_back(parts_.functions.size());
+      parts_.functionsByName[function.name].push_back(parts_.functions.size());
+      recordSignature(*parameters, function.returnType);
       parts_.functions.push_back(std::move(function));
     }
   }
@@ -421,25 +483,98 @@ class Loader {
     return true;
   }
 
+  // A `_D` type or a name built on one: float3_D, mg_make_float3_D, mg_const_D.
+  static bool namesDerivatives(std::string_view identifier) {
+    return identifier.ends_with("_D") || identifier.find("_D_") != std::string_view::npos;
+  }
+
+  void recordSignature(const std::vector<RawParameter>& parameters, const std::string& returnType) {
+    derivativeParameters_.push_back(
+        std::any_of(parameters.begin(), parameters.end(),
+                    [](const RawParameter& p) { return namesDerivatives(p.type); }));
+    // Makes a `_D` value from plain ones (mg_make_float3_D, mg_const_D).
+    returnsDerivatives_.push_back(namesDerivatives(returnType) && !derivativeParameters_.back());
+  }
+
+  // Whether a function body can hold a `_D` value: it names a `_D` type or function, reads
+  // MaterialInputs (uv, position, … are `_D`), or calls a name one of whose overloads makes
+  // a `_D` value from plain ones. Only then can it call an overload with a `_D` parameter.
+  bool mayHoldDerivatives(const std::vector<std::string_view>& identifiers) const {
+    for (const auto identifier : identifiers) {
+      if (namesDerivatives(identifier) || identifier == "inputs" ||
+          identifier == "MaterialInputs") {
+        return true;
+      }
+      const auto found = parts_.functionsByName.find(identifier);
+      if (found != parts_.functionsByName.end() &&
+          std::any_of(found->second.begin(), found->second.end(),
+                      [&](std::size_t f) { return returnsDerivatives_[f]; })) {
+        return true;
+      }
+    }
+    return false;
+  }
+
   void linkCallees() {
     for (std::size_t i = 0; i < parts_.functions.size(); ++i) {
       auto& function = parts_.functions[i];
       std::set<std::size_t> callees;
-      // Skip the function's own name (its first identifier after the return type).
-      for (const auto identifier : identifiersIn(function.text)) {
-        const auto found = functionsByName_.find(std::string(identifier));
-        if (found == functionsByName_.end() || identifier == function.name)
+      bool definitionSeen = false;
+      const auto identifiers = identifiersIn(function.text);
+      // A body without `_D` values cannot call the overloads that take one: leaving them
+      // out keeps a plain material from carrying the whole derivative arithmetic.
+      const bool derivatives = mayHoldDerivatives(identifiers);
+      for (const auto identifier : identifiers) {
+        const auto found = parts_.functionsByName.find(identifier);
+        if (found == parts_.functionsByName.end())
           continue;
-        callees.insert(found->second.begin(), found->second.end());
+        const bool ownName = identifier == function.name;
+        // The first occurrence of its own name is its definition, not a call.
+        if (ownName && !definitionSeen) {
+          definitionSeen = true;
+          continue;
+        }
+        // A call of its own name: the overloads defined before it (GLSL and HLSL call only
+        // what is declared above).
+        for (const std::size_t callee : found->second) {
+          if ((!ownName || callee < i) && (derivatives || !derivativeParameters_[callee]))
+            callees.insert(callee);
+        }
       }
       function.callees.assign(callees.begin(), callees.end());
+    }
+  }
+
+  // Overload::inventsDerivatives, from the MaterialInputs members the node reads (@input).
+  void markInventedDerivatives() {
+    auto isAny = [](const std::string& member, std::initializer_list<std::string_view> names) {
+      return std::find(names.begin(), names.end(), member) != names.end();
+    };
+    for (auto& node : parts_.nodeTypes) {
+      const bool readsDerivatives = std::any_of(
+          node.inputsRead.begin(), node.inputsRead.end(), [&](const std::string& member) {
+            return isAny(member, {"uv", "position", "generated", "objectPosition"});
+          });
+      const bool readsVaryingPlain = std::any_of(
+          node.inputsRead.begin(), node.inputsRead.end(), [&](const std::string& member) {
+            return isAny(member, {"normal", "tangent", "vertexColor", "view", "geometricNormal"});
+          });
+      const bool hasInputSockets =
+          std::any_of(node.sockets.begin(), node.sockets.end(),
+                      [](const Socket& socket) { return socket.direction == Direction::In; });
+      for (auto& overload : node.overloads) {
+        overload.inventsDerivatives = node.takesInputs && !hasInputSockets &&
+                                      overload.derivativeOutputs > 0 && !readsDerivatives &&
+                                      readsVaryingPlain;
+      }
     }
   }
 
   NodeLibrary::Parts& parts_;
   Diagnostics& diagnostics_;
   std::unordered_map<std::string, std::size_t> nodeIndex_;
-  std::unordered_map<std::string, std::vector<std::size_t>> functionsByName_;
+  std::vector<char> derivativeParameters_;  // per function: a parameter of a `_D` type
+  std::vector<char> returnsDerivatives_;    // per function: a `_D` result from plain ones
 };
 
 std::size_t editDistance(std::string_view a, std::string_view b) {
@@ -491,6 +626,12 @@ NodeLibrary NodeLibrary::load(const std::vector<SourceFile>& files, Diagnostics&
     loader.loadFile(*file);
   loader.finish();
   return library;
+}
+
+const std::vector<std::size_t>& NodeLibrary::functionsNamed(std::string_view name) const {
+  static const std::vector<std::size_t> kNone;
+  const auto found = parts_.functionsByName.find(name);
+  return found == parts_.functionsByName.end() ? kNone : found->second;
 }
 
 const NodeType* NodeLibrary::find(std::string_view name) const {

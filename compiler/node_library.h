@@ -5,6 +5,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,16 +25,24 @@ struct Parameter {
   std::string name;
 };
 
-// One emitted function: a node overload or a helper, after template instantiation.
+// One emitted function: a node overload, a helper, or a function of the prelude, after
+// template instantiation. All three are emitted only when a material reaches them.
 struct LibraryFunction {
   std::string name;
   std::string returnType;
-  std::vector<Parameter> parameters;
-  std::string text;                  // the whole instantiated definition, ready to emit
-  std::string guard;                 // include-guard macro, unique per name and parameter types
-  std::string file;                  // library file it came from
-  SourceLocation location;           // of the definition in that file
-  std::vector<std::size_t> callees;  // library functions it calls (NodeLibrary::functions())
+  std::vector<Parameter> parameters;  // nodes only (prelude and helper types stay text)
+  std::string text;                   // the whole instantiated definition, ready to emit
+  std::string guard;                  // include-guard macro, unique per name and parameter types
+  std::string file;                   // library file it came from
+  SourceLocation location;            // of the definition in that file
+  // Library functions it calls (NodeLibrary::functions()), by name: every overload of a
+  // called name, and of its own name only the overloads defined before it (the only ones a
+  // shader compiler lets it call).
+  std::vector<std::size_t> callees;
+  bool prelude = false;              // defined in prelude/ (else in a node family file)
+  std::optional<Target> onlyTarget;  // prelude/glsl.inc or prelude/hlsl.inc: that target only
+
+  bool isFor(Target target) const { return !onlyTarget || *onlyTarget == target; }
 };
 
 // A socket of a node type: a parameter that is not a context parameter.
@@ -48,6 +57,11 @@ struct Overload {
   std::vector<Type> socketTypes;  // parallel to NodeType::sockets
   int derivativeInputs = 0;       // input sockets of a `_D` type
   int derivativeOutputs = 0;      // output sockets of a `_D` type
+  // Gives `_D` outputs that would be invented: a source node (no input sockets) reading only
+  // MaterialInputs members that vary over a footprint but carry no derivatives (normal,
+  // tangent, vertexColor, view, geometricNormal). Type inference never chooses it
+  // (docs/mgraph-format.md, "Derivatives").
+  bool inventsDerivatives = false;
 };
 
 // All overloads of one node name, which share their sockets.
@@ -78,18 +92,33 @@ class NodeLibrary {
   std::vector<std::string> suggestions(std::string_view name) const;
 
   const std::vector<NodeType>& nodeTypes() const { return parts_.nodeTypes; }  // by name
-  // Every function of the node families (nodes and helpers), in definition order.
+  // Every function: the prelude's (target-specific file first, then common.inc), then the
+  // node families' (nodes and helpers), in definition order.
   const std::vector<LibraryFunction>& functions() const { return parts_.functions; }
-  // The prelude for a target: its target-specific file then common.inc, templates expanded.
+  // Indices into functions() of every function (any target) named `name`, in definition
+  // order; empty when there is none.
+  const std::vector<std::size_t>& functionsNamed(std::string_view name) const;
+  // The whole prelude for a target: its target-specific file then common.inc, templates
+  // expanded, each function under its include guard (LibraryFunction::guard), so that it can
+  // precede material includes, which emit the prelude functions they reach under the same
+  // guards.
   const std::string& prelude(Target target) const {
     return target == Target::Glsl ? parts_.glslPrelude : parts_.hlslPrelude;
+  }
+  // What every material include carries of the prelude: its preprocessor lines, structs
+  // (float*_D, Table, MaterialInputs, MaterialOutputs) and prototypes, in file order.
+  const std::string& preludeDeclarations(Target target) const {
+    return target == Target::Glsl ? parts_.glslDeclarations : parts_.hlslDeclarations;
   }
 
   struct Parts {
     std::vector<NodeType> nodeTypes;
     std::vector<LibraryFunction> functions;
+    std::map<std::string, std::vector<std::size_t>, std::less<>> functionsByName;
     std::string glslPrelude;
     std::string hlslPrelude;
+    std::string glslDeclarations;
+    std::string hlslDeclarations;
   };
 
  private:

@@ -27,7 +27,7 @@ std::optional<std::vector<std::size_t>> scheduleGraph(const ResolvedGraph& graph
   if (sinks.empty()) {
     auto& d = diagnostics.error(file, SourceLocation{1, 1},
                                 "the graph has no output node, so it computes nothing");
-    d.notes.push_back("add one, e.g. `BaseColorOutput Color<1;` (`memograph nodes` lists them)");
+    d.notes.push_back("add one, e.g. `BaseColorOutput In<1;` (`memograph nodes` lists them)");
     return std::nullopt;
   }
 

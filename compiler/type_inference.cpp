@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <functional>
 #include <set>
 
 #include "compiler/conversions.h"
@@ -24,7 +25,10 @@ std::optional<Cost> constantCost(const Literal& value, Type to) {
         return std::nullopt;
       {
         const int width = static_cast<int>(value.components.size());
-        return Cost{width == to.width() ? 0 : 1, width > to.width() ? 1 : 0, 0, 0, 0};
+        Cost cost;
+        cost.conversions = width == to.width() ? 0 : 1;
+        cost.truncations = width > to.width() ? 1 : 0;
+        return cost;
       }
   }
   return std::nullopt;
@@ -126,7 +130,11 @@ class Inference {
           return std::nullopt;
       }
     }
-    return choose();
+    computeVarying();
+    auto chosen = choose();
+    if (chosen)
+      warnAboutLostDerivatives(*chosen);
+    return chosen;
   }
 
  private:
@@ -140,6 +148,9 @@ class Inference {
   bool initialCandidates(std::size_t node) {
     const auto& resolved = graph_.nodes[node];
     for (std::size_t k = 0; k < resolved.type->overloads.size(); ++k) {
+      // Its derivatives would be made up (zeros for a value that varies): never chosen.
+      if (resolved.type->overloads[k].inventsDerivatives)
+        continue;
       bool fits = true;
       for (std::size_t s = 0; s < resolved.inputs.size() && fits; ++s) {
         const auto& input = resolved.inputs[s];
@@ -242,6 +253,30 @@ class Inference {
                         "' from a value that does not go through '" + nodeName(e.producer) + "'");
       return;
     }
+    if (allWantDerivatives && noneOfferDerivatives) {
+      if (const auto path = pathToInventedDerivatives(e)) {
+        const std::size_t source = path->back();
+        std::string members;
+        for (const auto& member : graph_.nodes[source].type->inputsRead)
+          members += (members.empty() ? "'" : ", '") + member + "'";
+        auto& d = diagnostics_.error(
+            file_, input.location,
+            "'" + nodeName(e.consumer) + "' needs derivatives of its input '" +
+                socketName(e.consumer, e.consumerSocket) + "', but they would come from '" +
+                nodeName(source) + "' (" + where(source) + "), which reads " + members +
+                ": MaterialInputs carries no derivatives of it, and memograph never invents "
+                "them (docs/mgraph-format.md, Derivatives)");
+        std::string text = "'" + nodeName(e.consumer) + "' (" + where(e.consumer) + ")";
+        for (const std::size_t node : *path)
+          text += " ← '" + nodeName(node) + "' (" + where(node) + ")";
+        d.notes.push_back("path: " + text);
+        d.notes.push_back("feed '" + socketName(e.consumer, e.consumerSocket) +
+                          "' from values with derivatives (UVInput, PositionInput, …), or "
+                          "from ones that do not go through '" +
+                          nodeName(source) + "'");
+        return;
+      }
+    }
     auto& d = diagnostics_.error(file_, input.location,
                                  "no overload of '" + nodeName(e.consumer) +
                                      "' fits what arrives at input '" +
@@ -282,9 +317,144 @@ class Inference {
     return path;
   }
 
+  // The producers from e.producer up to a node whose only `_D` overloads would invent
+  // derivatives (and so were never candidates), following links that offer no `_D` type;
+  // nothing when there is none within 64 steps.
+  std::optional<std::vector<std::size_t>> pathToInventedDerivatives(const Edge& e) const {
+    std::vector<std::size_t> path{e.producer};
+    std::vector<char> seen(graph_.nodes.size(), 0);
+    // Depth-first, through inputs in socket order: the first such source found.
+    std::function<bool(std::size_t, int)> search = [&](std::size_t node, int depth) -> bool {
+      if (seen[node] || depth > 64)
+        return false;
+      seen[node] = 1;
+      const auto& overloads = graph_.nodes[node].type->overloads;
+      if (std::any_of(overloads.begin(), overloads.end(),
+                      [](const Overload& o) { return o.inventsDerivatives; })) {
+        return true;
+      }
+      for (const auto& input : graph_.nodes[node].inputs) {
+        if (!input || input->kind != InputSource::Kind::Link)
+          continue;
+        path.push_back(input->producer);
+        if (search(input->producer, depth + 1))
+          return true;
+        path.pop_back();
+      }
+      return false;
+    };
+    if (search(e.producer, 0))
+      return path;
+    return std::nullopt;
+  }
+
+  // Whether a node's outputs vary over a pixel's footprint: it reads a MaterialInputs member
+  // that does (all but the per-object or per-frame ones), or a linked input varies.
+  void computeVarying() {
+    varies_.assign(graph_.nodes.size(), 0);
+    for (const std::size_t node : order_) {
+      const auto& resolved = graph_.nodes[node];
+      for (const auto& member : resolved.type->inputsRead) {
+        if (member != "time" && member != "objectLocation" && member != "objectRandom" &&
+            member != "backfacing") {
+          varies_[node] = 1;
+        }
+      }
+      for (const auto& input : resolved.inputs) {
+        if (input && input->kind == InputSource::Kind::Link && varies_[input->producer])
+          varies_[node] = 1;
+      }
+    }
+  }
+
+  // The cost of edge producer (overload kp) → consumer (overload kc): the conversion, and a
+  // lost derivative when a varying value enters a plain socket of an overload with `_D`
+  // outputs (their derivatives then miss how that input varies).
+  std::optional<Cost> edgeCost(std::size_t producer, std::size_t kp, std::size_t producerSocket,
+                               std::size_t consumer, std::size_t kc,
+                               std::size_t consumerSocket) const {
+    const Type to = socketType(consumer, kc, consumerSocket);
+    auto cost = conversionCost(socketType(producer, kp, producerSocket), to);
+    if (cost && loses(producer, consumer, kc, to))
+      cost->lostDerivatives = 1;
+    return cost;
+  }
+  bool loses(std::size_t producer, std::size_t consumer, std::size_t kc, Type to) const {
+    return varies_[producer] && to.isFloat() && !to.derivatives &&
+           overload(consumer, kc).derivativeOutputs > 0;
+  }
+
+  // The node downstream of `node` that needs its derivatives: follow outputs taken as `_D`
+  // to a node that takes derivatives but gives none on (a texture lookup, a bump). Nothing
+  // when no consumer takes `node`'s derivatives.
+  std::optional<std::size_t> derivativeConsumer(std::size_t node,
+                                                const OverloadChoice& chosen) const {
+    std::optional<std::size_t> found;
+    for (int steps = 0; steps < 64; ++steps) {
+      std::optional<std::size_t> next;
+      const auto& consumers = graph_.nodes[node].consumers;
+      for (std::size_t socket = 0; socket < consumers.size() && !next; ++socket) {
+        if (!socketType(node, *chosen[node], socket).derivatives)
+          continue;
+        for (const auto& consumer : consumers[socket]) {
+          if (chosen[consumer.node] &&
+              socketType(consumer.node, *chosen[consumer.node], consumer.socket).derivatives) {
+            next = consumer.node;
+            break;
+          }
+        }
+      }
+      if (!next)
+        return found;
+      found = node = *next;
+    }
+    return found;
+  }
+
+  // Warns where a value that varies reaches a plain socket of a node whose derivatives a
+  // consumer needs: those derivatives leave out how the input varies (the socket has no
+  // `_D` overload that fits; the cost order takes one whenever it does).
+  void warnAboutLostDerivatives(const OverloadChoice& chosen) {
+    for (const std::size_t node : order_) {
+      const std::size_t k = *chosen[node];
+      if (overload(node, k).derivativeOutputs == 0)
+        continue;
+      const auto& inputs = graph_.nodes[node].inputs;
+      std::optional<std::size_t> needer;
+      bool looked = false;
+      for (std::size_t s = 0; s < inputs.size(); ++s) {
+        if (!inputs[s] || inputs[s]->kind != InputSource::Kind::Link ||
+            !loses(inputs[s]->producer, node, k, socketType(node, k, s))) {
+          continue;
+        }
+        if (!looked) {
+          needer = derivativeConsumer(node, chosen);
+          looked = true;
+        }
+        if (!needer)
+          break;
+        const std::size_t producer = inputs[s]->producer;
+        const Type produced = socketType(producer, *chosen[producer], inputs[s]->producerSocket);
+        auto& d = diagnostics_.warning(
+            file_, inputs[s]->location,
+            "the derivatives of '" + nodeName(node) + "' leave out how its input '" +
+                socketName(node, s) + "' varies: '" + nodeName(node) +
+                "' has no derivative (_D) overload for it, and '" + nodeName(*needer) + "' (" +
+                where(*needer) + ") needs those derivatives");
+        d.notes.push_back(std::string("link ") + std::to_string(inputs[s]->link) + " from '" +
+                          nodeName(producer) + "' (" + where(producer) + ") varies over the " +
+                          "pixel footprint" +
+                          (produced.derivatives ? "; its derivatives are dropped here" : ""));
+        d.notes.push_back("filtering downstream sees only the other inputs' derivatives; give '" +
+                          socketName(node, s) + "' a constant to silence this");
+      }
+    }
+  }
+
   Cost ownCost(std::size_t node, std::size_t k) const {
     const auto& o = overload(node, k);
-    Cost cost{0, 0, o.derivativeInputs + o.derivativeOutputs, 0, 0};
+    Cost cost;
+    cost.derivativeWork = o.derivativeInputs + o.derivativeOutputs;
     for (const Type& type : o.socketTypes)
       cost.componentWidth += type.width();
     const auto& inputs = graph_.nodes[node].inputs;
@@ -314,15 +484,14 @@ class Inference {
           std::optional<Cost> cheapest;
           for (std::size_t i = 0; i < candidates_[p].size(); ++i) {
             const auto conversion =
-                conversionCost(socketType(p, candidates_[p][i], inputs[s]->producerSocket),
-                               socketType(node, k, s));
+                edgeCost(p, candidates_[p][i], inputs[s]->producerSocket, node, k, s);
             if (!conversion)
               continue;
             const Cost c = best[p][i] + *conversion;
             if (!cheapest || c < *cheapest)
               cheapest = c;
           }
-          total = total + cheapest.value_or(Cost{1 << 20, 0, 0, 0, 0});
+          total = total + cheapest.value_or(Cost{.conversions = 1 << 20});
         }
         best[node].push_back(total);
       }
@@ -341,8 +510,7 @@ class Inference {
             if (!chosen[consumer.node])
               continue;  // pruned consumer
             const auto conversion =
-                conversionCost(socketType(node, k, socket),
-                               socketType(consumer.node, *chosen[consumer.node], consumer.socket));
+                edgeCost(node, k, socket, consumer.node, *chosen[consumer.node], consumer.socket);
             if (!conversion) {
               total.reset();
               break;
@@ -359,23 +527,117 @@ class Inference {
           tied.push_back(k);
         }
       }
-      if (tied.empty()) {
-        auto& d = diagnostics_.error(
-            file_, graph_.nodes[node].source->location,
-            "no overload of '" + nodeName(node) + "' fits all the nodes its outputs feed");
-        for (const auto k : candidates_[node]) {
-          d.notes.push_back("candidate: " +
-                            overloadSignature(*graph_.nodes[node].type, overload(node, k)));
+      if (tied.size() != 1) {
+        // The greedy pass is exact on trees only: where nodes are shared, search every
+        // combination before reporting.
+        const auto search = exhaustiveSearch();
+        if (search.best && !search.tie)
+          return search.best;
+        if (tied.empty() && !search.gaveUp && search.tie) {
+          reportAmbiguity(search.tieNode,
+                          {*(*search.best)[search.tieNode], *(*search.tie)[search.tieNode]});
+          return std::nullopt;
         }
-        return std::nullopt;
-      }
-      if (tied.size() > 1) {
-        reportAmbiguity(node, tied);
+        if (tied.empty()) {
+          auto& d = diagnostics_.error(
+              file_, graph_.nodes[node].source->location,
+              "no overload of '" + nodeName(node) + "' fits all the nodes its outputs feed");
+          for (const auto k : candidates_[node]) {
+            d.notes.push_back("candidate: " +
+                              overloadSignature(*graph_.nodes[node].type, overload(node, k)));
+          }
+        } else {
+          reportAmbiguity(node, tied);
+        }
+        if (search.gaveUp) {
+          diagnostics_.last().notes.push_back(
+              "type inference gave up its exhaustive search after " +
+              std::to_string(kMaxSearchSteps) +
+              " overload combinations (docs/mgraph-format.md); a valid choice may exist: "
+              "make some types explicit, e.g. with Separate/Combine or constants");
+        }
         return std::nullopt;
       }
       chosen[node] = tied.front();
     }
     return chosen;
+  }
+
+  // The search's bound: overloads tried (partial assignments), all nodes together.
+  static constexpr std::size_t kMaxSearchSteps = 1'000'000;
+
+  struct SearchResult {
+    std::optional<OverloadChoice> best;  // a cheapest valid choice
+    std::optional<OverloadChoice> tie;   // another one as cheap, if any
+    std::size_t tieNode = 0;             // a node on which best and tie differ
+    bool gaveUp = false;                 // stopped at kMaxSearchSteps
+  };
+
+  // Phase 3's fallback: every combination of the remaining candidates, producers before
+  // consumers (order_), costing each node's overload and each edge exactly once; branch and
+  // bound on the cost, which only grows as nodes are added.
+  SearchResult exhaustiveSearch() const {
+    SearchResult result;
+    const std::size_t n = order_.size();
+    std::vector<std::size_t> next(n, 0);
+    std::vector<Cost> prefix(n + 1);
+    OverloadChoice current(graph_.nodes.size());
+    std::optional<Cost> best;
+    std::size_t steps = 0;
+    std::size_t position = 0;
+    while (true) {
+      if (position == n) {
+        if (!best || prefix[n] < *best) {
+          best = prefix[n];
+          result.best = current;
+          result.tie.reset();
+        } else if (prefix[n] == *best && !result.tie) {
+          result.tie = current;
+        }
+        if (n == 0)
+          break;
+        --position;
+        continue;
+      }
+      const std::size_t node = order_[position];
+      if (next[position] >= candidates_[node].size()) {
+        next[position] = 0;
+        current[node].reset();
+        if (position == 0)
+          break;
+        --position;
+        continue;
+      }
+      const std::size_t k = candidates_[node][next[position]++];
+      if (++steps > kMaxSearchSteps) {
+        result.gaveUp = true;
+        result.best.reset();
+        return result;
+      }
+      std::optional<Cost> cost = prefix[position] + ownCost(node, k);
+      const auto& inputs = graph_.nodes[node].inputs;
+      for (std::size_t s = 0; s < inputs.size() && cost; ++s) {
+        if (!inputs[s] || inputs[s]->kind != InputSource::Kind::Link)
+          continue;
+        const std::size_t p = inputs[s]->producer;
+        const auto edge = edgeCost(p, *current[p], inputs[s]->producerSocket, node, k, s);
+        cost = edge ? std::optional(*cost + *edge) : std::nullopt;
+      }
+      if (!cost || (best && *cost > *best))
+        continue;
+      current[node] = k;
+      prefix[position + 1] = *cost;
+      ++position;
+    }
+    if (result.tie) {
+      for (const std::size_t node : order_) {
+        if ((*result.best)[node] != (*result.tie)[node]) {
+          result.tieNode = node;
+          break;
+        }
+      }
+    }
+    return result;
   }
 
   void reportAmbiguity(std::size_t node, const std::vector<std::size_t>& tied) {
@@ -405,6 +667,7 @@ class Inference {
   Diagnostics& diagnostics_;
   std::vector<std::vector<std::size_t>> candidates_;
   std::vector<Edge> edges_;
+  std::vector<char> varies_;  // per node: computeVarying()
 };
 
 }  // namespace

@@ -165,9 +165,13 @@ TEST(Conversions, CostsAndExpressions) {
   const Type f{BaseType::Float, false}, f3{BaseType::Float3, false}, f3d{BaseType::Float3, true},
       f2d{BaseType::Float2, true}, i{BaseType::Int, false};
   EXPECT_EQ(*conversionCost(f3, f3), Cost{});
-  EXPECT_EQ(*conversionCost(f, f3), (Cost{1, 0, 0, 0}));
-  EXPECT_EQ(*conversionCost(f3, f), (Cost{1, 1, 0, 0}));
-  EXPECT_EQ(*conversionCost(f3d, f3), (Cost{0, 0, 0, 1}));
+  EXPECT_EQ(*conversionCost(f, f3), (Cost{.conversions = 1}));
+  EXPECT_EQ(*conversionCost(f3, f), (Cost{.conversions = 1, .truncations = 1}));
+  EXPECT_EQ(*conversionCost(f3d, f3), (Cost{.droppedDerivatives = 1}));
+  // int → float is exact and ranks below derivative work; to a vector it is also a splat.
+  EXPECT_EQ(*conversionCost(i, f), (Cost{.intToFloat = 1}));
+  EXPECT_EQ(*conversionCost(i, f3), (Cost{.conversions = 1}));
+  EXPECT_LT(*conversionCost(i, f), (Cost{.derivativeWork = 1, .droppedDerivatives = 1}));
   EXPECT_FALSE(conversionCost(f3, f3d)) << "derivatives cannot be invented";
   EXPECT_FALSE(conversionCost(i, f3d));
   EXPECT_EQ(convertExpression("link0", f, f3), "mg_to_float3(link0)");

@@ -8,6 +8,7 @@ struct float_D { float v; float x; float y; };
 struct float2_D { float2 v; float2 x; float2 y; };
 struct float3_D { float3 v; float3 x; float3 y; };
 struct float4_D { float4 v; float4 x; float4 y; };
+struct Table { float4 v[256]; };
 struct MaterialInputs {
   float2_D uv;
   float3_D position;
@@ -18,6 +19,12 @@ struct MaterialInputs {
   float3 view;
   float time;
   int textureBase;
+  float3_D generated;
+  float3_D objectPosition;
+  float3 geometricNormal;
+  float3 objectLocation;
+  float objectRandom;
+  float backfacing;
 };
 struct MaterialOutputs {
   float3 baseColor;
@@ -26,8 +33,13 @@ struct MaterialOutputs {
   float3 normal;
   float3 emission;
   float opacity;
+  float specular;
 };
 float4 mg_SampleTexture(int textureIndex, float2 uv, float2 ddx, float2 ddy);
+#endif  // MG_PRELUDE_HLSL
+
+#ifndef MG_FN_mg_defaultMaterialOutputs_MaterialInputs
+#define MG_FN_mg_defaultMaterialOutputs_MaterialInputs
 MaterialOutputs mg_defaultMaterialOutputs(MaterialInputs inputs) {
   MaterialOutputs o;
   o.baseColor = float3(0.8, 0.8, 0.8);
@@ -36,12 +48,13 @@ MaterialOutputs mg_defaultMaterialOutputs(MaterialInputs inputs) {
   o.normal = inputs.normal;
   o.emission = float3(0.0, 0.0, 0.0);
   o.opacity = 1.0;
+  o.specular = 0.5;
   return o;
 }
-float mg_drop_D(float_D a) { return a.v; }
-float2 mg_drop_D(float2_D a) { return a.v; }
-float3 mg_drop_D(float3_D a) { return a.v; }
-float4 mg_drop_D(float4_D a) { return a.v; }
+#endif
+
+#ifndef MG_FN_mg_make_float_D_float_float_float
+#define MG_FN_mg_make_float_D_float_float_float
 float_D mg_make_float_D(float v, float x, float y) {
   float_D r;
   r.v = v;
@@ -49,6 +62,10 @@ float_D mg_make_float_D(float v, float x, float y) {
   r.y = y;
   return r;
 }
+#endif
+
+#ifndef MG_FN_mg_make_float2_D_float2_float2_float2
+#define MG_FN_mg_make_float2_D_float2_float2_float2
 float2_D mg_make_float2_D(float2 v, float2 x, float2 y) {
   float2_D r;
   r.v = v;
@@ -56,6 +73,10 @@ float2_D mg_make_float2_D(float2 v, float2 x, float2 y) {
   r.y = y;
   return r;
 }
+#endif
+
+#ifndef MG_FN_mg_make_float3_D_float3_float3_float3
+#define MG_FN_mg_make_float3_D_float3_float3_float3
 float3_D mg_make_float3_D(float3 v, float3 x, float3 y) {
   float3_D r;
   r.v = v;
@@ -63,6 +84,10 @@ float3_D mg_make_float3_D(float3 v, float3 x, float3 y) {
   r.y = y;
   return r;
 }
+#endif
+
+#ifndef MG_FN_mg_make_float4_D_float4_float4_float4
+#define MG_FN_mg_make_float4_D_float4_float4_float4
 float4_D mg_make_float4_D(float4 v, float4 x, float4 y) {
   float4_D r;
   r.v = v;
@@ -70,28 +95,27 @@ float4_D mg_make_float4_D(float4 v, float4 x, float4 y) {
   r.y = y;
   return r;
 }
-float_D mg_const_float_D(float v) { return mg_make_float_D(v, v - v, v - v); }
-float2_D mg_const_float2_D(float2 v) { return mg_make_float2_D(v, v - v, v - v); }
-float3_D mg_const_float3_D(float3 v) { return mg_make_float3_D(v, v - v, v - v); }
-float4_D mg_const_float4_D(float4 v) { return mg_make_float4_D(v, v - v, v - v); }
+#endif
+
+#ifndef MG_FN_mg_to_float3_float
+#define MG_FN_mg_to_float3_float
 float3 mg_to_float3(float a) { return float3(a, a, a); }
+#endif
+
+#ifndef MG_FN_mg_to_float3_float2
+#define MG_FN_mg_to_float3_float2
 float3 mg_to_float3(float2 a) { return float3(a.x, a.y, 0.0); }
+#endif
+
+#ifndef MG_FN_mg_to_float3_float4
+#define MG_FN_mg_to_float3_float4
 float3 mg_to_float3(float4 a) { return float3(a.x, a.y, a.z); }
+#endif
+
+#ifndef MG_FN_mg_to_float3_int
+#define MG_FN_mg_to_float3_int
 float3 mg_to_float3(int a) { return float3(float(a), float(a), float(a)); }
-float mg_to_float(float3 a) { return a.x; }
-float mg_to_float(int a) { return float(a); }
-float2 mg_to_float2(float3 a) { return float2(a.x, a.y); }
-float4 mg_to_float4(float3 a) { return float4(a.x, a.y, a.z, 1.0); }
-float3_D mg_to_float3_D(float_D a) {
-  return mg_make_float3_D(mg_to_float3(a.v), mg_to_float3(a.x), mg_to_float3(a.y));
-}
-float3_D mg_to_float3_D(float2_D a) {
-  return mg_make_float3_D(mg_to_float3(a.v), mg_to_float3(a.x), mg_to_float3(a.y));
-}
-float2_D mg_to_float2_D(float3_D a) {
-  return mg_make_float2_D(mg_to_float2(a.v), mg_to_float2(a.x), mg_to_float2(a.y));
-}
-#endif  // MG_PRELUDE_HLSL
+#endif
 
 #ifndef MG_FN_Float1Constant_float_float
 #define MG_FN_Float1Constant_float_float
