@@ -49,9 +49,11 @@ class EXPORT_SCENE_OT_memograph(bpy.types.Operator):
                 _, _, scene_warnings = scene_export.export_scene(
                     bpy.path.abspath(self.directory), result.names, context,
                     use_selection=self.use_selection)
-            except Exception as exc:
-                self.report({'ERROR'}, 'memograph scene export failed: %s' % exc)
-                return {'CANCELLED'}
+            except Exception as exc:  # the graphs are written: report, keep them
+                # A warning, not an error: from a script an ERROR report raises.
+                self.report({'WARNING'}, 'memograph scene export failed (the glTF exporter '
+                            'needs numpy): %s' % exc)
+                scene_warnings = []
             for message in scene_warnings:
                 self.report({'WARNING'}, 'scene: %s' % message)
         self.report({'INFO'}, 'memograph: wrote %d material(s), %d warning(s)'
