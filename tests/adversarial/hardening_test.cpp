@@ -138,7 +138,7 @@ TEST(GltfPrecheck, DeepHierarchiesAndHugeChunksAreRefused) {
       glb.push_back(char(v >> (8 * b)));
   };
   u32(2);
-  u32(24);  // the file's true length
+  u32(24);           // the file's true length
   u32(0xFFFFFFF0u);  // a 4 GiB JSON chunk
   u32(0x4E4F534Au);
   glb += "{}  ";
