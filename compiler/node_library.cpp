@@ -267,6 +267,26 @@ class Loader {
     return guard;
   }
 
+  // One template instance as a library function (prelude helper, family helper or node).
+  static LibraryFunction functionOf(const SourceFile& file, const LibraryItem& item,
+                                    const LibraryItem& instance,
+                                    const std::vector<RawParameter>& parameters) {
+    LibraryFunction function;
+    function.name = instance.name;
+    function.returnType = instance.returnType;
+    function.text = instance.text;
+    function.guard = guardFor(instance.name, parameters);
+    function.file = file.path;
+    function.location = item.location;
+    return function;
+  }
+
+  void reportUnreadableParameters(const SourceFile& file, const LibraryItem& item) {
+    diagnostics_.error(file, item.location,
+                       "cannot read the parameters of '" + item.name +
+                           "': write `[in|out|inout] Type name` separated by commas");
+  }
+
   // Preprocessor lines, structs and prototypes go to every include; functions become
   // LibraryFunctions like the families' helpers, emitted only when reached.
   void addToPrelude(const SourceFile& file, const LibraryItem& item,
@@ -278,19 +298,9 @@ class Loader {
         return;
       for (const auto& instance : instantiate(item, *annotations)) {
         const auto parameters = parseParameters(instance.parameterList);
-        if (!parameters) {
-          diagnostics_.error(file, item.location,
-                             "cannot read the parameters of '" + item.name +
-                                 "': write `[in|out|inout] Type name` separated by commas");
-          return;
-        }
-        LibraryFunction function;
-        function.name = instance.name;
-        function.returnType = instance.returnType;
-        function.text = instance.text;
-        function.guard = guardFor(instance.name, *parameters);
-        function.file = file.path;
-        function.location = item.location;
+        if (!parameters)
+          return reportUnreadableParameters(file, item);
+        LibraryFunction function = functionOf(file, item, instance, *parameters);
         function.prelude = true;
         function.onlyTarget = onlyTarget;
         text += "#ifndef " + function.guard + "\n#define " + function.guard + "\n" + function.text +
@@ -326,19 +336,9 @@ class Loader {
         item.returnType == "void" && std::isupper(static_cast<unsigned char>(item.name[0]));
     for (const auto& instance : instantiate(item, *annotations)) {
       const auto parameters = parseParameters(instance.parameterList);
-      if (!parameters) {
-        diagnostics_.error(file, item.location,
-                           "cannot read the parameters of '" + item.name +
-                               "': write `[in|out|inout] Type name` separated by commas");
-        return;
-      }
-      LibraryFunction function;
-      function.name = instance.name;
-      function.returnType = instance.returnType;
-      function.text = instance.text;
-      function.guard = guardFor(instance.name, *parameters);
-      function.file = file.path;
-      function.location = item.location;
+      if (!parameters)
+        return reportUnreadableParameters(file, item);
+      LibraryFunction function = functionOf(file, item, instance, *parameters);
       if (isNode && !addNodeOverload(file, item, *annotations, *parameters, function))
         return;
       if (!isNode && !item.name.starts_with("mg_")) {
