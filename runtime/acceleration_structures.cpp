@@ -186,7 +186,7 @@ SceneAccelerationStructures::SceneAccelerationStructures(
       for (int column = 0; column < 4; ++column)
         record.transform.matrix[row][column] = placement.objectToWorld[column][row];
     record.instanceCustomIndex = static_cast<std::uint32_t>(i);
-    record.mask = 0xFF;
+    record.mask = placement.castsShadow ? 0xFF : 0x01;
     record.instanceShaderBindingTableRecordOffset = 0;
     record.flags = VK_GEOMETRY_INSTANCE_TRIANGLE_FACING_CULL_DISABLE_BIT_KHR;
     record.accelerationStructureReference = blases_[placement.mesh].address();

@@ -36,6 +36,9 @@ struct MeshGeometry {
 struct InstancePlacement {
   std::uint32_t mesh = 0;
   glm::mat4 objectToWorld{1.0f};
+  // false: a light's quad (Blender area lights): TLAS mask 0x01, which shadow and camera rays
+  // (cull mask 0xFE) skip and only BSDF rays find, as Cycles' lamps.
+  bool castsShadow = true;
 };
 
 class AccelerationStructure {

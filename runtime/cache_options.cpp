@@ -1,5 +1,6 @@
 #include "runtime/cache_options.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -159,9 +160,37 @@ void validateCacheOptions(const CacheOptions& cache) {
       throw std::invalid_argument("--tile-queue must be 1..16777216 tiles, not " +
                                   std::to_string(cache.tileQueue));
   }
-  if (cache.clockShift > 32)
+  if (cache.clockShift && *cache.clockShift > 32)
     throw std::invalid_argument("--clock-shift must be 0..32, not " +
-                                std::to_string(cache.clockShift));
+                                std::to_string(*cache.clockShift));
+}
+
+std::uint32_t defaultCacheEntries(CacheMode mode) {
+  return mode == CacheMode::Texel ? kDefaultTexelCacheEntries : kDefaultCacheEntries;
+}
+
+CacheClock cacheClockOf(const CacheOptions& options, bool bufferInt64Atomics) {
+  if (options.clock)
+    return *options.clock;
+  return bufferInt64Atomics ? CacheClock::Counter : CacheClock::Frame;
+}
+
+std::uint32_t cacheClockShift(const CacheOptions& options, std::uint64_t lookupsPerFrame) {
+  if (options.clockShift)
+    return *options.clockShift;
+  if (options.eviction == CacheEviction::Lrw)
+    return 0u;
+  if (lookupsPerFrame == 0)
+    return 16u;
+  const long bits = std::lround(std::log2(double(lookupsPerFrame)));
+  return std::uint32_t(std::clamp(bits - 10, 0l, 32l));
+}
+
+CacheOptions resolveCacheOptions(CacheOptions options, bool bufferInt64Atomics,
+                                 std::uint64_t lookupsPerFrame) {
+  options.clock = cacheClockOf(options, bufferInt64Atomics);
+  options.clockShift = cacheClockShift(options, lookupsPerFrame);
+  return options;
 }
 
 std::uint32_t cacheValueWords(const CacheOptions& options, std::uint32_t valueCount) {
@@ -196,9 +225,9 @@ std::vector<std::string> cacheShaderDefines(const CacheOptions& cache, std::uint
     defines.push_back("MG_CACHE_UPDATE_COUNTER=1");
   if (cache.valueFormat == CacheValueFormat::Fp16)
     defines.push_back("MG_CACHE_VALUE_FP16=1");
-  if (cache.clock == CacheClock::Counter) {
+  if (cacheClockOf(cache) == CacheClock::Counter) {
     defines.push_back("MG_CACHE_CLOCK_COUNTER=1");
-    defines.push_back("MG_CACHE_CLOCK_SHIFT=" + std::to_string(cache.clockShift));
+    defines.push_back("MG_CACHE_CLOCK_SHIFT=" + std::to_string(cacheClockShift(cache)));
   }
   if (cache.snapUv)
     defines.push_back("MG_CACHE_SNAP_UV=1");

@@ -55,16 +55,20 @@ TileStorage parseTileStorage(const std::string& text);
 // "subgroup"/"deferred".
 TileFill parseTileFill(const std::string& text);
 
-// The entry count S when CacheOptions::entries is unset (as many tiles as texels with --cache
-// tile: 2^20 tiles of 4x4 hold 2^24 texels, Table 6.1's size).
+// The entry count S when CacheOptions::entries is unset: the best rows measured on the GPU
+// machine (docs/gpu-results.md, Table 6.1: 2^24 texels, as texels or as 2^20 tiles of 4x4;
+// the same texel count with --cache texel was 3x faster there than 2^20 texels), fitted to
+// the device (material_cache.cpp: halved while over the storage-buffer range or a quarter
+// of the device-local memory). kDefaultCacheEntries: tiles; kDefaultTexelCacheEntries: texels.
 inline constexpr std::uint32_t kDefaultCacheEntries = 1u << 20;
+inline constexpr std::uint32_t kDefaultTexelCacheEntries = 1u << 24;
 
 struct CacheOptions {
   CacheMode mode = CacheMode::None;
-  // S; must exceed `probe`. Unset: kDefaultCacheEntries, halved while a buffer holding the
-  // entries would exceed the device's storage-buffer range (the most one binding may
-  // address: 128 MiB on lavapipe, where 2^20 tiles of 4x2 texels do not fit); a given
-  // count that does not fit is refused.
+  // S; must exceed `probe`. Unset: defaultCacheEntries(mode), halved while a buffer holding
+  // the entries would exceed the device's storage-buffer range (the most one binding may
+  // address: 128 MiB on lavapipe, where 2^20 tiles of 4x2 texels do not fit) or a quarter of
+  // its device-local memory; a given count that does not fit is refused.
   std::optional<std::uint32_t> entries;
   std::uint32_t probe = 8;  // D, 1..16 (gpu::kCacheMaxProbe)
   float mipBias = 0.0f;     // eq. 5.5; positive: finer texels
@@ -75,10 +79,17 @@ struct CacheOptions {
   // it cost nothing measurable (texel 123.8 vs 125.1 ms, tile 147.3 vs 146.3 ms).
   bool updateCounter = true;
   CacheValueFormat valueFormat = CacheValueFormat::Fp32;
-  CacheClock clock = CacheClock::Frame;
-  // Counter clock: the entry keeps counter bits clockShift..clockShift+31. 16 is §5.3.3's
-  // suggestion for 1080p; tiny images (tests) need 0, or every stamp of a short run is 0.
-  std::uint32_t clockShift = 16;
+  // Unset: the counter clock where the device has 64-bit buffer atomics (every best row of
+  // Tables 6.1-6.2 used it; with small caches the frame clock's lru collapsed: 423 against
+  // 187 ms), else the frame clock (resolveCacheOptions).
+  std::optional<CacheClock> clock;
+  // Counter clock: the entry keeps counter bits clockShift..clockShift+31. Unset: per policy
+  // (cacheClockShift): lru about 2^10 ages a frame (16 at 1080p, P = 6, L = 4: §5.3.3's
+  // "bits 16 to 48"), where every read and write ticks; lrw 0, since only writes tick (at 16 one
+  // age spanned about 65,000 writes and lrw-counter acted like lrw-frame). Ages are compared modulo
+  // 2^32, so a wrap of the kept bits is harmless. Tiny images (tests) need 0, or every stamp of a
+  // short run is 0.
+  std::optional<std::uint32_t> clockShift;
   // §6.1: evaluate a miss at its texel's centre, so an entry holds the texel's value.
   bool snapUv = false;
   // §6.1, Fig. 6.6: primary hits evaluate their graph directly; only bounces >= 1 cache.
@@ -106,6 +117,20 @@ struct CacheOptions {
 
 // Throws std::invalid_argument naming the option (CLI spelling) when out of range.
 void validateCacheOptions(const CacheOptions& options);
+
+// S when CacheOptions::entries is unset, before fitting: kDefaultTexelCacheEntries texels or
+// kDefaultCacheEntries tiles.
+std::uint32_t defaultCacheEntries(CacheMode mode);
+// The clock an unset CacheOptions::clock means on a device with or without 64-bit buffer
+// atomics, and the shift an unset clockShift means for the eviction policy.
+// `lookupsPerFrame` (pixels x paths x rays, 0: unknown) sizes lru's shift: about 2^10
+// ages a frame, round(log2(lookups)) - 10 (16 at 1080p, P = 6, L = 4: §5.3.3's bits 16..47;
+// 0 for the tiny images of tests, whose counter never reaches 2^16); 16 when unknown.
+CacheClock cacheClockOf(const CacheOptions& options, bool bufferInt64Atomics = true);
+std::uint32_t cacheClockShift(const CacheOptions& options, std::uint64_t lookupsPerFrame = 0);
+// `options` with clock and clockShift set to what they mean on the device and image.
+CacheOptions resolveCacheOptions(CacheOptions options, bool bufferInt64Atomics,
+                                 std::uint64_t lookupsPerFrame = 0);
 
 // uints per texel's values and per entry (header + the values stored in the entry: one
 // texel's for the texel cache, a tile's with kTileStorageEntry, none for other tile

@@ -24,16 +24,25 @@ GpuBuffer deviceBuffer(const VulkanContext& context, std::uint64_t bytes,
                    VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
 }
 
-// S: the given --cache-entries, or kDefaultCacheEntries halved while `bytesPerEntry` times
-// the count exceeds the device's storage-buffer range (never below twice the probe
-// distance; deviceBuffer refuses what still does not fit).
+// S: the given --cache-entries, or defaultCacheEntries(mode) halved while `bytesPerEntry`
+// times the count exceeds the device's storage-buffer range or a quarter of its largest
+// device-local heap (never below twice the probe distance; deviceBuffer refuses what still
+// does not fit).
 std::uint32_t entryCountFor(const VulkanContext& context, const CacheOptions& options,
                             std::uint64_t bytesPerEntry) {
   if (options.entries)
     return *options.entries;
-  const std::uint64_t range = context.info().limits.maxStorageBufferRange;
-  std::uint32_t count = kDefaultCacheEntries;
-  while (range > 0 && count * bytesPerEntry > range && count / 2 > 2 * options.probe)
+  std::uint64_t limit = context.info().limits.maxStorageBufferRange;
+  VkPhysicalDeviceMemoryProperties memory{};
+  vkGetPhysicalDeviceMemoryProperties(context.physicalDevice(), &memory);
+  std::uint64_t deviceLocal = 0;
+  for (std::uint32_t h = 0; h < memory.memoryHeapCount; ++h)
+    if (memory.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+      deviceLocal = std::max<std::uint64_t>(deviceLocal, memory.memoryHeaps[h].size);
+  if (deviceLocal > 0)
+    limit = limit > 0 ? std::min(limit, deviceLocal / 4) : deviceLocal / 4;
+  std::uint32_t count = defaultCacheEntries(options.mode);
+  while (limit > 0 && std::uint64_t(count) * bytesPerEntry > limit && count / 2 > 2 * options.probe)
     count /= 2;
   return count;
 }
@@ -262,13 +271,13 @@ void MaterialCache::describe(RenderStats& stats) const {
   stats.cache = cacheModeName(options_.mode);
   stats.cacheEviction = cacheEvictionName(options_.eviction);
   stats.cacheEntries = entryCount_;
-  stats.cacheEntriesFitted = !options_.entries && entryCount_ != kDefaultCacheEntries;
+  stats.cacheEntriesFitted = !options_.entries && entryCount_ != defaultCacheEntries(options_.mode);
   stats.cacheProbe = options_.probe;
   stats.cacheReadCheck = options_.updateCounter ? "counter" : "key";
   stats.cacheValueCount = valueCount_;
   stats.cacheBytes = bytes_;
   stats.cacheValueFormat = cacheValueFormatName(options_.valueFormat);
-  stats.cacheClock = cacheClockName(options_.clock);
+  stats.cacheClock = cacheClockName(cacheClockOf(options_));
   stats.cacheSnapUv = options_.snapUv;
   stats.cacheSecondaryOnly = options_.secondaryOnly;
   if (options_.mode == CacheMode::Tile)

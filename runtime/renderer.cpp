@@ -134,7 +134,10 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                   true);
 
   MaterialDispatch dispatch = resolveMaterialDispatch(options_.materialDispatch, context.backend());
-  const CacheOptions& cache = options_.cache;
+  // Unset clock options resolved for this device (cache_options.h).
+  const CacheOptions cache = resolveCacheOptions(options_.cache, context.info().bufferInt64Atomics,
+                                                 std::uint64_t(settings.width) * settings.height *
+                                                     settings.pathsPerPixel * settings.raysPerPath);
   const bool cacheOn = cache.mode != CacheMode::None;
   if (cacheOn) {
     // Before minutes of material compiles.

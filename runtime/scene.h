@@ -31,6 +31,7 @@ struct Instance {
   std::uint32_t mesh = 0;
   std::uint32_t material = 0;  // index into Scene::materials
   glm::mat4 objectToWorld{1.0f};
+  bool castsShadow = true;  // false: a light's quad: only BSDF rays see it (as Cycles' lamps)
 };
 
 // A scene material is a name that maps to a material graph (a .mgraph file, or generated
@@ -39,6 +40,10 @@ struct MaterialRef {
   std::string name;
   std::string graphPath;  // a .mgraph file; empty when graphText is given
   std::string graphText;  // inline graph source (built-in scenes)
+  // Emissive light sampling (NEE): an estimate of the radiance the material emits, used only
+  // to choose among emissive triangles by power (the emission itself is the graph's, at the
+  // sampled point). Zero: the material is not sampled as a light (found by BSDF rays only).
+  glm::vec3 emissionEstimate{0.0f};
 };
 
 enum class LightType : std::uint32_t { Point = 0, Directional = 1, Spot = 2 };
@@ -82,6 +87,7 @@ struct Scene {
   std::vector<Light> lights;
   Camera camera;
   Environment environment;
+  bool emissiveLightSampling = true;  // NEE of emissive triangles (materials with an estimate)
 };
 
 }  // namespace memograph::runtime

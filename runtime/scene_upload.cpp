@@ -1,6 +1,8 @@
 #include "runtime/scene_upload.h"
 
 #include <stdexcept>
+
+#include <glm/gtc/constants.hpp>
 #include <string>
 
 #include "runtime/material_linker.h"
@@ -148,7 +150,7 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene) {
     gi.objectInfo =
         glm::vec4(float(pcgHash(index ^ 0x5bd1e995u) >> 8) * (1.0f / 16777216.0f), 0, 0, 0);
     instances.push_back(gi);
-    out.placements.push_back({instance.mesh, instance.objectToWorld});
+    out.placements.push_back({instance.mesh, instance.objectToWorld, instance.castsShadow});
   }
   std::vector<gpu::Light> lights;
   for (const Light& light : scene.lights) {
@@ -164,6 +166,55 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene) {
     gl.spot = glm::vec4(axis, light.spotCosHalfAngle);
     gl.spotSmooth = glm::vec4(light.spotSmooth, 0.0f, 0.0f, 0.0f);
     lights.push_back(gl);
+  }
+  // Emissive triangles (NEE), sampled by power: world area x pi x luminance of the material's
+  // emission estimate. With punctual lights too, half the samples go to each group, so the
+  // area pdf of a point on instance i is pGroup * pi * lum(material) / total power.
+  std::vector<gpu::Light> triangles;
+  std::vector<double> power;
+  double totalPower = 0.0;
+  if (scene.emissiveLightSampling) {
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+      const Instance& instance = scene.instances[i];
+      const glm::vec3 e = scene.materials[instance.material].emissionEstimate;
+      const float lum = 0.2126f * e.r + 0.7152f * e.g + 0.0722f * e.b;
+      if (!(lum > 0.0f))
+        continue;
+      const Mesh& mesh = scene.meshes[instance.mesh];
+      for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        glm::vec3 p[3];
+        for (int k = 0; k < 3; ++k)
+          p[k] = glm::vec3(instance.objectToWorld *
+                           glm::vec4(mesh.positions[mesh.indices[t + k]], 1.0f));
+        const float area = 0.5f * glm::length(glm::cross(p[1] - p[0], p[2] - p[0]));
+        if (!(area > 0.0f))
+          continue;
+        gpu::Light gl;
+        gl.positionOrDirection = glm::vec4(0.0f, 0.0f, 0.0f, float(gpu::kLightTriangle));
+        gl.spot = glm::vec4(glm::uintBitsToFloat(std::uint32_t(i)),
+                            glm::uintBitsToFloat(std::uint32_t(t / 3)), area, 0.0f);
+        gl.spotSmooth = glm::vec4(0.0f);
+        triangles.push_back(gl);
+        power.push_back(double(area) * glm::pi<double>() * lum);
+        totalPower += power.back();
+      }
+    }
+  }
+  if (!triangles.empty()) {
+    const double pGroup = lights.empty() ? 1.0 : 0.5;
+    double cdf = 0.0;
+    for (std::size_t k = 0; k < triangles.size(); ++k) {
+      cdf += power[k] / totalPower;
+      triangles[k].intensity = glm::vec4(k + 1 == triangles.size() ? 1.0f : float(cdf),
+                                         float(lights.size()), float(triangles.size()), 0.0f);
+    }
+    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
+      const glm::vec3 e = scene.materials[scene.instances[i].material].emissionEstimate;
+      const float lum = 0.2126f * e.r + 0.7152f * e.g + 0.0722f * e.b;
+      if (lum > 0.0f)
+        instances[i].objectInfo.y = float(pGroup * glm::pi<double>() * lum / totalPower);
+    }
+    lights.insert(lights.end(), triangles.begin(), triangles.end());
   }
   std::vector<glm::vec4> environment(1, glm::vec4(0.0f));
   const Environment& env = scene.environment;

@@ -188,6 +188,7 @@ struct SurfaceHit {
   vec3 geometricNormal;
   float curvature;
   float coneWidth;
+  float lightAreaPdf;  // emissive NEE's area pdf of this point (0: not a sampled light)
 };
 
 SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
@@ -195,6 +196,7 @@ SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
   Instance instance = instances[hit.instanceIndex];
   Mesh mesh = meshes[instance.ids.x];
   s.materialId = instance.ids.y;
+  s.lightAreaPdf = instance.objectInfo.y;
   uint firstVertex = mesh.ranges.x;
   uint firstIndex = mesh.ranges.y + 3u * hit.primitiveIndex;
   Vertex v0 = vertices[firstVertex + indices[firstIndex]];
@@ -226,9 +228,12 @@ SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
   bool backfacing = dot(front, direction) > 0.0;
   // Two-sided surfaces: both normals face the ray.
   if (dot(ng, direction) > 0.0) ng = -ng;
-  if (dot(n, ng) < 0.0) n = -n;
+  bool flipped = dot(n, ng) < 0.0;
+  if (flipped) n = -n;
   s.geometricNormal = ng;
-  s.curvature = triangleCurvature(p0, p1, p2, n0, n1, n2);
+  // The curvature of the normals the hit shades with: flipped on a back face (eq. 2.12 then
+  // sees a convex surface as convex from either side).
+  s.curvature = (flipped ? -1.0 : 1.0) * triangleCurvature(p0, p1, p2, n0, n1, n2);
 
   // Eq. 2.10, then the footprint ellipse (eq. 2.13-2.16) mapped to UVs through the
   // barycentrics of its vertex and co-vertex.
@@ -297,13 +302,99 @@ SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
   return s;
 }
 
-// Direct light from one light chosen uniformly among the point and directional lights,
-// through one shadow ray (thesis §5.2). Returns f * cos * L_i / pdf.
+// The power heuristic (beta 2) for a sample of pdf a against a strategy of pdf b.
+float misWeight(float a, float b) {
+  float a2 = a * a;
+  float b2 = b * b;
+  return a2 + b2 > 0.0 ? a2 / (a2 + b2) : 0.0;
+}
+
+// Emissive-triangle NEE (docs/runtime.md): one emissive triangle chosen by power (CDF in
+// the light buffer), a uniform point on it, the material's emission evaluated there (its
+// graph, uncached), one shadow ray; MIS-weighted against BSDF sampling when `mis` (the path
+// continues, so a BSDF ray can find the same light). Returns f * cos * Le * w / pdf.
+vec3 sampleEmissiveTriangle(vec3 position, vec3 ng, mat3 toLocal, vec3 wo, BrdfParameters brdf,
+                            uint first, uint count, float u, bool mis, inout Rng rng,
+                            inout uint rays) {
+  uint lo = 0u;
+  uint hi = count - 1u;
+  while (lo < hi) {
+    uint mid = (lo + hi) / 2u;
+    if (lights[first + mid].intensity.x < u) lo = mid + 1u;
+    else hi = mid;
+  }
+  Light tri = lights[first + lo];
+  HitInfo hit;
+  hit.instanceIndex = floatBitsToUint(tri.spot.x);
+  hit.primitiveIndex = floatBitsToUint(tri.spot.y);
+  vec2 r = rngNext2(rng);
+  float su = sqrt(r.x);
+  hit.barycentrics = vec2(su * (1.0 - r.y), su * r.y);
+  Instance instance = instances[hit.instanceIndex];
+  Mesh mesh = meshes[instance.ids.x];
+  uint firstIndex = mesh.ranges.y + 3u * hit.primitiveIndex;
+  mat4 toWorld = instance.objectToWorld;
+  vec3 p0 = (toWorld * vec4(vertices[mesh.ranges.x + indices[firstIndex]].position.xyz, 1.0)).xyz;
+  vec3 p1 =
+      (toWorld * vec4(vertices[mesh.ranges.x + indices[firstIndex + 1u]].position.xyz, 1.0)).xyz;
+  vec3 p2 =
+      (toWorld * vec4(vertices[mesh.ranges.x + indices[firstIndex + 2u]].position.xyz, 1.0)).xyz;
+  vec3 target = (1.0 - hit.barycentrics.x - hit.barycentrics.y) * p0 + hit.barycentrics.x * p1 +
+                hit.barycentrics.y * p2;
+  vec3 toLight = target - position;
+  float d2 = dot(toLight, toLight);
+  if (!(d2 > 1e-12)) return vec3(0.0);
+  float distance = sqrt(d2);
+  vec3 wi = toLight / distance;
+  vec3 lightNormal = cross(p1 - p0, p2 - p0);
+  float cosLight = abs(dot(normalize(lightNormal), wi));
+  float areaPdf = instance.objectInfo.y;
+  if (cosLight < 1e-6 || !(areaPdf > 0.0) || dot(wi, ng) <= 0.0) return vec3(0.0);
+  vec3 fCos = brdfEvaluateCos(brdf, toLocal * wo, toLocal * wi);
+  if (all(equal(fCos, vec3(0.0)))) return vec3(0.0);
+  rays += 1u;
+  if (traceShadow(offsetRayOrigin(position, ng), wi, distance * (1.0 - 1e-3))) return vec3(0.0);
+  hit.t = distance;
+  RayCone cone;
+  cone.width = 0.0;
+  cone.spread = 0.0;
+  SurfaceHit s = surfaceAt(hit, position, wi, cone);
+  MaterialOutputs m;
+  evaluateMaterialDirect(s.materialId, s.inputs, m);
+  float lightPdf = areaPdf * d2 / cosLight;  // solid angle
+  float w = mis ? misWeight(lightPdf, brdfPdf(brdf, toLocal * wo, toLocal * wi)) : 1.0;
+  return fCos * m.emission * (w / lightPdf);
+}
+
+// Direct light (thesis §5.2): one light through one shadow ray. With emissive triangles
+// (NEE) half the samples go to them and half to the point, spot and directional lights,
+// chosen uniformly. Returns f * cos * L_i / pdf.
 vec3 sampleDirectLight(vec3 position, vec3 ng, mat3 toLocal, vec3 wo, BrdfParameters brdf,
-                       inout Rng rng, inout uint rays) {
+                       bool mis, inout Rng rng, inout uint rays) {
   uint lightCount = frame.path.w;
   if (lightCount == 0u) return vec3(0.0);
-  uint index = min(uint(rngNext(rng) * float(lightCount)), lightCount - 1u);
+  uint punctual = lightCount;
+  uint triangleCount = 0u;
+  Light lastLight = lights[lightCount - 1u];
+  if (uint(lastLight.positionOrDirection.w) == kLightTriangle) {
+    punctual = uint(lastLight.intensity.y);
+    triangleCount = uint(lastLight.intensity.z);
+  }
+  float u = rngNext(rng);
+  float groupScale = 1.0;
+  if (triangleCount > 0u) {
+    bool pickTriangle = punctual == 0u || u < 0.5;
+    if (punctual > 0u) {
+      groupScale = 2.0;
+      u = pickTriangle ? 2.0 * u : 2.0 * u - 1.0;
+    }
+    if (pickTriangle) {
+      // The triangle pdf already holds the group's 1/2 (SceneBuffers upload).
+      return sampleEmissiveTriangle(position, ng, toLocal, wo, brdf, punctual, triangleCount, u,
+                                    mis, rng, rays);
+    }
+  }
+  uint index = min(uint(u * float(punctual)), punctual - 1u);
   Light light = lights[index];
   vec3 wi;
   float distance;
@@ -337,7 +428,7 @@ vec3 sampleDirectLight(vec3 position, vec3 ng, mat3 toLocal, vec3 wo, BrdfParame
   vec3 shadowOrigin = offsetRayOrigin(position, ng);
   float tMax = distance < kRayTMax ? distance * (1.0 - 1e-4) : kRayTMax;
   if (traceShadow(shadowOrigin, wi, tMax)) return vec3(0.0);
-  return fCos * incident * float(lightCount);
+  return fCos * incident * (float(punctual) * groupScale);
 }
 
 // The primary ray through a point of the pixel (jitter in [0,1)^2).
@@ -363,7 +454,7 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
   primaryHit.t = -1.0;
   if (sharedPrimary && inside) {
     primaryRay(pixel, vec2(0.5), primaryOrigin, primaryDirection);
-    primaryHit = traceClosest(primaryOrigin, primaryDirection, kRayTMax);
+    primaryHit = traceClosest(primaryOrigin, primaryDirection, kRayTMax, 0xFEu);
     rays += 1u;
   }
 
@@ -381,6 +472,7 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
     cone.spread = frame.cameraPosition.w;
     vec3 throughput = vec3(1.0);
     vec3 radiance = vec3(0.0);
+    float previousBsdfPdf = 0.0;  // the BSDF ray's pdf that found this hit (0: camera ray)
     bool alive = inside;
     for (uint bounce = 0u; bounce < rayCountPerPath; ++bounce) {
       SurfaceHit s;
@@ -390,7 +482,8 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
         if (bounce == 0u && sharedPrimary) {
           hit = primaryHit;
         } else {
-          hit = traceClosest(origin, direction, kRayTMax);
+          // Camera rays skip lights' quads (Cycles 3.4 shows no area lamp to the camera).
+          hit = traceClosest(origin, direction, kRayTMax, bounce == 0u ? 0xFEu : 0xFFu);
           rays += 1u;
         }
         if (hit.t < 0.0) {
@@ -413,9 +506,18 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
       BrdfParameters brdf = brdfFromMaterial(m.baseColor, m.metallic, m.roughness, m.specular);
       vec3 position = s.inputs.position.v;
 
-      radiance += throughput * m.emission;
-      radiance += throughput *
-                  sampleDirectLight(position, s.geometricNormal, toLocal, wo, brdf, rng, rays);
+      // Emission found by a BSDF ray, MIS-weighted against emissive NEE at the last vertex.
+      float emissionWeight = 1.0;
+      if (previousBsdfPdf > 0.0 && s.lightAreaPdf > 0.0) {
+        vec3 toHit = position - origin;
+        float cosLight = abs(dot(s.geometricNormal, direction));
+        float lightPdf = cosLight > 1e-6 ? s.lightAreaPdf * dot(toHit, toHit) / cosLight : 0.0;
+        emissionWeight = misWeight(previousBsdfPdf, lightPdf);
+      }
+      radiance += throughput * m.emission * emissionWeight;
+      bool continues = bounce + 1u < rayCountPerPath;
+      radiance += throughput * sampleDirectLight(position, s.geometricNormal, toLocal, wo, brdf,
+                                                 continues, rng, rays);
       if (bounce + 1u == rayCountPerPath) continue;
 
       // BRDF importance sampling of the next direction (eq. 2.9 with the lobe mixture).
@@ -429,6 +531,7 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
         continue;
       }
       throughput *= brdfEvaluateCos(brdf, woLocal, wiLocal) / pdf;
+      previousBsdfPdf = pdf;
 
       // The cone leaves with its width and a spread grown by roughness (eq. 2.11) and
       // curvature (eq. 2.12); a diffuse bounce spreads like the roughest lobe.
@@ -436,6 +539,7 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
       cone.spread += rayConeRoughnessSpread(specularLobe ? brdf.alpha : 1.0) +
                      rayConeCurvatureSpread(s.curvature, s.coneWidth, s.geometricNormal,
                                             direction);
+      cone.spread = min(cone.spread, kRayConeMaxSpread);
       cone.width = s.coneWidth;
       origin = offsetRayOrigin(position, s.geometricNormal);
       direction = wi;

@@ -12,11 +12,23 @@ float rayConeWidthAt(RayCone cone, float t) {
   return cone.width + cone.spread * t;
 }
 
-// Eq. 2.11: spread added by a GGX lobe of roughness alpha.
+// Eq. 2.11: spread added by a GGX lobe of roughness alpha, bounded. The root of eq. 2.11 is
+// sigma = alpha / sqrt(2 - 2 alpha^2), the lobe's width as a slope (a tangent), and eq. 2.11
+// (Akenine-Möller et al. 2021, "Improved Shader and Texture Level of Detail Using Ray
+// Cones", JCGT 10(1), §4) uses it as an angle: beta = 2 sigma, the small-angle form. That
+// diverges as alpha -> 1 (14 rad at the 0.99 clamp this code had), so after one diffuse
+// bounce every texture fell to its coarsest mip and the cache level went strongly negative.
+// Here the slope is turned into an angle, beta = 2 atan(sigma): the same for small alpha
+// (atan x = x - x^3/3), and at most pi, a lobe over the whole hemisphere (alpha = 1, the
+// diffuse bounce), which no physical cone can exceed.
 float rayConeRoughnessSpread(float alphaGgx) {
-  float a2 = min(alphaGgx * alphaGgx, 0.99);
-  return 2.0 * sqrt(a2 / (2.0 - 2.0 * a2));
+  float a = clamp(alphaGgx, 0.0, 1.0);
+  return 2.0 * atan(a, sqrt(max(2.0 - 2.0 * a * a, 0.0)));
 }
+
+// The most a cone may open: a hemisphere (pi). Spreads add up over bounces (alpha_new =
+// alpha_old + beta_r + beta_c); past pi the small-angle width of eq. 2.10 means nothing.
+const float kRayConeMaxSpread = 3.14159265;
 
 // Eq. 2.12: spread added by a surface of curvature k for a cone of width w arriving along d.
 float rayConeCurvatureSpread(float k, float width, vec3 normal, vec3 d) {

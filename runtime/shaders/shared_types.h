@@ -119,6 +119,11 @@ struct TileFillItem {
 MG_CONSTANT(uint, kLightPoint, 0);
 MG_CONSTANT(uint, kLightDirectional, 1);
 MG_CONSTANT(uint, kLightSpot, 2);
+// An emissive triangle (NEE, sampled by power): intensity.x the CDF up to and including it
+// over the emissive triangles, intensity.y/z the index of the first emissive triangle in the
+// light buffer and their count (as floats), spot.x/y instance and primitive (uint bits),
+// spot.z its world-space area. Emissive triangles follow the punctual lights.
+MG_CONSTANT(uint, kLightTriangle, 3);
 
 // Mesh::flags bits.
 MG_CONSTANT(uint, kMeshHasUvs, 1);
@@ -188,7 +193,8 @@ struct Instance {
   mat4 normalToWorld;  // inverse transpose of objectToWorld
   mat4 worldToObject;  // inverse of objectToWorld (Object coordinates)
   uvec4 ids;           // x mesh, y material, z/w unused
-  vec4 objectInfo;     // x: random in [0, 1) (a hash of the instance index); yzw unused
+  vec4 objectInfo;     // x: random in [0, 1) (a hash of the instance index); y: emissive
+                       // NEE's area pdf of any point of this instance (0: not a light); zw unused
 };
 
 struct Light {

@@ -184,6 +184,29 @@ uint cacheClockNow() {
 #endif
 }
 
+// The clock now without a tick: what an entry's age is measured against. The kept 32 bits
+// wrap (the frame clock after 2^32 frames, the counter clock after 2^(32 + shift) stamps),
+// so ages are taken modulo 2^32 (cacheChooseSlot): correct across a wrap as long as no
+// entry is older than 2^31 clock units.
+uint cacheClockPeek() {
+#ifdef MG_CACHE_CLOCK_COUNTER
+  uint64_t ticks = atomicAdd(counters.cacheClock, uint64_t(0));
+  return uint(ticks >> uint(MG_CACHE_CLOCK_SHIFT));
+#else
+  return frame.cache.y;
+#endif
+}
+
+// The ordering of the entry protocol (§5.3.4, a seqlock): a writer's lock must be visible
+// before any of its value stores, and its value stores before the key that unlocks; a
+// reader's first key load before its value loads, and those before its second key load.
+// memoryBarrier() (OpMemoryBarrier, device scope, acquire-release over uniform and image
+// memory) orders both the cache buffer and the tile cache's storage image; a buffer-only
+// barrier does not order imageLoad/imageStore (--tile-storage texture2d|texture3d).
+void cacheFence() {
+  memoryBarrier();
+}
+
 // The values an entry stores for output mask `mask`, in kCacheOutput* order.
 void cachePack(uint mask, MaterialOutputs o, out float values[MG_CACHE_VALUES]) {
   uint n = 0u;
@@ -255,12 +278,12 @@ uint cacheReadBegin(uint entry, CacheKey key) {
   uint counterBefore = 0u;
 #ifdef MG_CACHE_UPDATE_COUNTER
   uint offset = cacheEntryOffset(entry);
-  memoryBarrierBuffer();
+  cacheFence();
   counterBefore = cacheData[offset + 2u];
-  memoryBarrierBuffer();
+  cacheFence();
   if (cacheData[offset] != key.hash) return kCacheKeyLock;
 #endif
-  memoryBarrierBuffer();  // key, then values
+  cacheFence();  // key, then values
   return counterBefore;
 }
 
@@ -271,7 +294,7 @@ bool cacheReadValid(uint entry, CacheKey key, uint counterBefore) {
 #ifdef MG_CACHE_UPDATE_COUNTER
   if (counterBefore == kCacheKeyLock) return false;
 #endif
-  memoryBarrierBuffer();
+  cacheFence();  // values, then the second key load
   if (cacheData[offset] != key.hash) return false;  // overwritten while reading
 #ifdef MG_CACHE_UPDATE_COUNTER
   if (cacheData[offset + 2u] != counterBefore) return false;  // rewritten, key restored
@@ -303,16 +326,21 @@ bool cacheRead(CacheKey key, out float values[MG_CACHE_VALUES]) {
 // clock compared is the frame clock or the counter clock's kept bits (cacheClockNow).
 int cacheChooseSlot(CacheKey key) {
   int oldest = -1;
-  uint oldestTime = 0xFFFFFFFFu;
+#if MG_CACHE_EVICTION == 1 || MG_CACHE_EVICTION == 2
+  uint now = cacheClockPeek();
+  uint oldestAge = 0u;
+#endif
   [[unroll]] for (uint d = 0u; d < uint(MG_CACHE_PROBE); ++d) {
     uint offset = cacheEntryOffset(key.base + d);
     uint stored = cacheData[offset];
     if (stored == kCacheKeyEmpty) return int(d);
 #if MG_CACHE_EVICTION == 1 || MG_CACHE_EVICTION == 2
     if (stored != kCacheKeyLock) {
-      uint time = cacheData[offset + 1u];
-      if (time < oldestTime) {
-        oldestTime = time;
+      // Age modulo 2^32: after the clock wraps, the newest stamps are small numbers but
+      // small ages (comparing the stamps themselves evicted the newest entries first).
+      uint age = now - cacheData[offset + 1u];
+      if (oldest < 0 || age > oldestAge) {
+        oldestAge = age;
         oldest = int(d);
       }
     }
@@ -339,8 +367,10 @@ int cacheLock(CacheKey key) {
   if (previous == kCacheKeyEmpty) atomicAdd(counters.cacheOccupancy, 1u);
 #ifdef MG_CACHE_UPDATE_COUNTER
   atomicAdd(cacheData[offset + 2u], 1u);  // before any value changes (§5.3.4)
-  memoryBarrierBuffer();
 #endif
+  // The lock (and the counter) before any value store, in both read-check modes: without
+  // this fence a reader could see the old key around new values (the key mode had none).
+  cacheFence();
   return int(entry);
 }
 
@@ -353,7 +383,7 @@ void cacheUnlock(uint entry, CacheKey key) {
 #else
   cacheData[offset + 1u] = frame.cache.y;  // unread by none and random; no counter tick
 #endif
-  memoryBarrierBuffer();
+  cacheFence();  // the values (buffer or image) and the clock, then the key
   atomicExchange(cacheData[offset], key.hash);
 }
 

@@ -106,6 +106,11 @@ void tileStoreTexel(uint entry, uint texel, float values[MG_CACHE_VALUES]) {
     vec4 group = vec4(0.0);
     for (uint c = 0u; c < 4u; ++c)
       if (4u * g + c < uint(MG_CACHE_VALUES)) group[c] = values[4u * g + c];
+#ifdef MG_CACHE_VALUE_FP16
+    // An rgba16f store of a value past 65504 gives infinity (a bright emission would poison
+    // every path that reads the texel): clamp as the buffer's fp16 words do.
+    group = clamp(group, vec4(-kCacheHalfMax), vec4(kCacheHalfMax));
+#endif
     imageStore(tileImage, tileTexelAt(entry, texel, g), group);
   }
 }
@@ -118,11 +123,10 @@ void tileLoadTexel(uint entry, uint texel, out float values[MG_CACHE_VALUES]) {
 }
 #endif
 
+// The texel stores (buffer or image) before what publishes them: cacheFence (texel_cache.glsl)
+// orders image and buffer memory together.
 void tileStorageBarrier() {
-#if MG_TILE_STORAGE >= 2
-  memoryBarrierImage();
-#endif
-  memoryBarrierBuffer();
+  cacheFence();
 }
 
 // ---- Keys and filtering (§5.4.2) ---------------------------------------------------------
@@ -287,7 +291,7 @@ void tileFillTexel(uint invocation) {
   tileStorageBarrier();
   if (atomicAdd(tileQueue[slot].texelsDone, 1u) == kTileTexels - 1u) {
     // Every texel of the tile was stored (and made visible) before its count went up.
-    memoryBarrierBuffer();
+    cacheFence();
     CacheKey key;
     key.base = item.keyBase;
     key.hash = item.keyHash;
@@ -299,6 +303,15 @@ void tileFillTexel(uint invocation) {
 #else
 
 // ---- Cooperative computation of missing tiles (§5.4.3) -----------------------------------
+
+// A computed texel as the storage will give it back (fp16: clamped to ±65504 and rounded to
+// a half), so the lanes served by the exchange shade with what later hits read.
+void tileQuantize(inout float values[MG_CACHE_VALUES]) {
+#ifdef MG_CACHE_VALUE_FP16
+  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i)
+    values[i] = unpackHalf2x16(packHalf2x16(vec2(clamp(values[i], -kCacheHalfMax, kCacheHalfMax), 0.0))).x;
+#endif
+}
 
 // Shuffles a value array from lane `source` (every lane takes part, each with its source).
 void tileShuffleValues(float values[MG_CACHE_VALUES], uint source,
@@ -380,11 +393,12 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
       candidates = subgroupBallot(pending && sortKey == nextKey);
 #endif
       uint leader = subgroupBallotFindLSB(candidates);
-      uint leaderMaterial = subgroupShuffle(materialId, leader);
-      int leaderLevel = subgroupShuffle(tile.level, leader);
-      vec2 leaderTile = subgroupShuffle(tile.tile, leader);
-      if (pending && materialId == leaderMaterial && tile.level == leaderLevel &&
-          all(equal(tile.tile, leaderTile))) {
+      // A slot is a cache key (graph, level, tile: eq. 5.8-5.10), not a material id:
+      // materials that share a graph share the key, so they share the slot too (matched by
+      // material id, the same tile was computed once per material and counted a duplicate).
+      uint leaderBase = subgroupShuffle(tile.key.base, leader);
+      uint leaderHash = subgroupShuffle(tile.key.hash, leader);
+      if (pending && tile.key.base == leaderBase && tile.key.hash == leaderHash) {
         pending = false;
         mySlot = slot;
       }
@@ -405,10 +419,7 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
     int slotLevel = subgroupShuffle(tile.level, lockSource);
     vec2 slotTile = subgroupShuffle(tile.tile, lockSource);
     int entry = -1;
-    if (rank < selected) {
-      entry = cacheLock(lockKey);
-      if (entry >= 0 && tileLogDuplicate(lockKey)) g_duplicateTiles += 1u;
-    }
+    if (rank < selected) entry = cacheLock(lockKey);
     // Only tiles with a locked entry are computed. A slot the policy declined (none, with
     // its probe range full) or another subgroup holds locked could not be stored: its
     // W x H evaluations would serve only this subgroup's requesters, who evaluate their own
@@ -457,6 +468,7 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
         evaluateMaterialDirect(workMaterial, tileTexelInputs(inputs, workLevel, workTile, texel),
                                texelOutputs);
         cachePack(workInfo.x, texelOutputs, texelValues);
+        tileQuantize(texelValues);
       }
 #if defined(MG_MATERIAL_CALLABLES) || defined(MG_TILE_TEST_REPACKS)
       // executeCallableEXT may repack invocations into other subgroups (SPIR-V "invocation
@@ -501,8 +513,14 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
     subgroupMemoryBarrier();
     uvec4 writesDone = subgroupBallot(true);
     // Step 7: the locking lanes write the metadata and the keys, which unlocks the entries.
-    if (entry >= 0 && writesDone.x + writesDone.y + writesDone.z + writesDone.w != 0u)
+    if (entry >= 0 && writesDone.x + writesDone.y + writesDone.z + writesDone.w != 0u) {
       cacheUnlock(uint(entry), lockKey);
+      // §6.7.2's duplicates: a tile published twice in a frame. Logged when published, not
+      // when locked: a tile given up after a callable repack (its entry emptied, counted as
+      // a repack) and then computed by another subgroup is one computation, not two; logged
+      // at the lock, those retries were most of the 77-85 % "duplicates" of issue 17.
+      if (tileLogDuplicate(lockKey)) g_duplicateTiles += 1u;
+    }
     if (mine) {
       values = filtered;
       served = true;

@@ -4,10 +4,11 @@
 
 layout(set = 0, binding = kBindingTlas) uniform accelerationStructureEXT tlas;
 
-// Closest opaque hit along a ray, or t = -1.
-HitInfo traceClosest(vec3 origin, vec3 direction, float tMax) {
+// Closest opaque hit along a ray, or t = -1. `mask`: the TLAS cull mask (camera rays 0xFE
+// skip lights' quads, InstancePlacement::castsShadow).
+HitInfo traceClosest(vec3 origin, vec3 direction, float tMax, uint mask) {
   rayQueryEXT query;
-  rayQueryInitializeEXT(query, tlas, gl_RayFlagsOpaqueEXT, 0xFF, origin, 0.0, direction, tMax);
+  rayQueryInitializeEXT(query, tlas, gl_RayFlagsOpaqueEXT, mask, origin, 0.0, direction, tMax);
   while (rayQueryProceedEXT(query)) {
   }
   HitInfo hit;
@@ -29,7 +30,7 @@ HitInfo traceClosest(vec3 origin, vec3 direction, float tMax) {
 bool traceShadow(vec3 origin, vec3 direction, float tMax) {
   rayQueryEXT query;
   rayQueryInitializeEXT(query, tlas,
-                        gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT, 0xFF,
+                        gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT, 0xFE,
                         origin, 0.0, direction, tMax);
   while (rayQueryProceedEXT(query)) {
   }

@@ -220,6 +220,54 @@ TEST_F(SceneImportTest, GltfGivesSharedMeshesInstancesCameraLightsAndMaterials) 
   EXPECT_NEAR(glm::distance(sun->direction, glm::vec3(0, -1, 0)), 0.0f, 1e-4f);
 }
 
+// The Blender scene export's sidecar (docs/blender.md, "Scene export"): Z-up root, light
+// units (/ 683), the named camera, the world, texture spaces, emitters and area lights.
+TEST_F(SceneImportTest, BlenderSidecarConvertsUnitsWorldTextureSpaceAndAreaLights) {
+  const std::string path = write("quad.gltf", quadGltf());
+  Diagnostics plainDiagnostics;
+  const auto plain = importScene(path, materials(), plainDiagnostics);
+  ASSERT_TRUE(plain.has_value());
+  write("quad.memograph",
+        "memograph-blender-scene 1\n# comment\nup z\nlighting SPEC 683\ncamera Cam\n"
+        "world color 0.5 0.25 1 strength 2\ntexspace 1 2 3 4 5 6 Quad\n"
+        "emitter 3 3 3 Wood\nsome-future-statement 1 2\n"
+        "area SQUARE 0.5 0.5 50 1 1 1 1 0 0 0 0 1 0 0 0 0 1 0 0 0 3 1 Panel Light\n");
+  Diagnostics diagnostics;
+  const auto scene = importScene(path, materials(), diagnostics);
+  ASSERT_TRUE(scene.has_value()) << compiler::formatDiagnostics(diagnostics);
+  ASSERT_EQ(scene->lights.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    EXPECT_NEAR(scene->lights[i].intensity.r * 683.0f, plain->lights[i].intensity.r, 1e-3f);
+  }
+  // Z-up to y-up: Blender's (x, y, z) is memograph's (x, z, -y).
+  const runtime::Light& bulb =
+      scene->lights[0].type == runtime::LightType::Point ? scene->lights[0] : scene->lights[1];
+  EXPECT_NEAR(glm::distance(bulb.position, glm::vec3(1, 1, -3)), 0.0f, 1e-5f);
+  EXPECT_EQ(scene->environment.constantRadiance, glm::vec3(1.0f, 0.5f, 2.0f));
+  const runtime::Mesh& quad = scene->meshes[scene->instances[0].mesh];
+  EXPECT_TRUE(quad.hasTextureSpace);
+  EXPECT_EQ(quad.textureSpaceLocation, glm::vec3(1, 2, 3));
+  EXPECT_EQ(quad.textureSpaceSize, glm::vec3(4, 5, 6));
+  EXPECT_EQ(scene->materials[scene->instances[0].material].emissionEstimate, glm::vec3(3.0f));
+  // The area light: one more instance, a 0.5 m quad whose front (-z, Blender) emits
+  // P / (4 A) = 50 W, cast no shadow, placed at Blender (0, 0, 3) = memograph (0, 3, 0).
+  ASSERT_EQ(scene->instances.size(), plain->instances.size() + 1);
+  const runtime::Instance& area = scene->instances.back();
+  EXPECT_FALSE(area.castsShadow);
+  EXPECT_NEAR(glm::distance(glm::vec3(area.objectToWorld[3]), glm::vec3(0, 3, 0)), 0.0f, 1e-5f);
+  const glm::vec3 down = glm::vec3(area.objectToWorld * glm::vec4(0, 0, -1, 0));
+  EXPECT_NEAR(glm::distance(down, glm::vec3(0, -1, 0)), 0.0f, 1e-5f);
+  EXPECT_EQ(scene->materials[area.material].emissionEstimate, glm::vec3(50.0f));
+  EXPECT_NE(scene->materials[area.material].graphText.find("Backfacing"), std::string::npos);
+  EXPECT_FALSE(diagnostics.hasErrors());
+
+  write("quad.memograph", "memograph-blender-scene 1\nlighting SPEC\n");
+  Diagnostics bad;
+  EXPECT_FALSE(importScene(path, materials(), bad).has_value());
+  EXPECT_NE(compiler::formatDiagnostics(bad).find("line 2"), std::string::npos)
+      << compiler::formatDiagnostics(bad);
+}
+
 TEST_F(SceneImportTest, BinaryGltfImportsLikeTheTextForm) {
   Diagnostics diagnostics;
   const auto glb = importScene(write("quad.glb", quadGlb()), materials(), diagnostics);

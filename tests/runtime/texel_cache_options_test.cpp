@@ -86,6 +86,64 @@ TEST(TexelCacheOptions, EntrySizesAndDefinesFollowTheOptions) {
   EXPECT_EQ(parseCacheClock("counter"), CacheClock::Counter);
 }
 
+// The defaults a user of --cache texel / --cache tile gets (issue 17, item 4): the best
+// configuration measured on the H200 (docs/gpu-results.md, Table 6.1): lru, the counter
+// clock (where the device has 64-bit buffer atomics), the update-counter read check,
+// 2^24 texels (2^20 4x4 tiles) fitted to the device, and per policy a clock shift.
+TEST(TexelCacheOptions, DefaultsAreTheBestMeasuredConfiguration) {
+  CacheOptions options;
+  EXPECT_EQ(options.eviction, CacheEviction::Lru);
+  EXPECT_TRUE(options.updateCounter);
+  EXPECT_EQ(options.valueFormat, CacheValueFormat::Fp32);
+  EXPECT_FALSE(options.entries.has_value());
+  EXPECT_EQ(defaultCacheEntries(CacheMode::Texel), 1u << 24);
+  EXPECT_EQ(defaultCacheEntries(CacheMode::Tile), 1u << 20);
+  EXPECT_EQ(options.tileWidth * options.tileHeight * defaultCacheEntries(CacheMode::Tile),
+            defaultCacheEntries(CacheMode::Texel));
+  EXPECT_EQ(cacheClockOf(options, true), CacheClock::Counter);
+  EXPECT_EQ(cacheClockOf(options, false), CacheClock::Frame);
+  options.clock = CacheClock::Frame;
+  EXPECT_EQ(cacheClockOf(options, true), CacheClock::Frame);  // a given clock is kept
+  // Clock shift per policy: lru ticks on reads and writes (§5.3.3's bits 16..47), lrw only
+  // on writes, so it keeps every bit.
+  EXPECT_EQ(cacheClockShift(options), 16u);
+  EXPECT_EQ(cacheClockShift(options, 1920ull * 1080 * 6 * 4), 16u);  // §5.3.3's 1080p choice
+  EXPECT_EQ(cacheClockShift(options, 24 * 24 * 2), 0u);              // a test's tiny image
+  options.eviction = CacheEviction::Lrw;
+  EXPECT_EQ(cacheClockShift(options), 0u);
+  options.clockShift = 5;
+  EXPECT_EQ(cacheClockShift(options), 5u);
+  CacheOptions lrw;
+  lrw.mode = CacheMode::Texel;
+  lrw.eviction = CacheEviction::Lrw;
+  auto defines = cacheShaderDefines(lrw, 5);
+  EXPECT_NE(std::find(defines.begin(), defines.end(), "MG_CACHE_CLOCK_COUNTER=1"), defines.end());
+  EXPECT_NE(std::find(defines.begin(), defines.end(), "MG_CACHE_CLOCK_SHIFT=0"), defines.end());
+  CacheOptions resolved = resolveCacheOptions(lrw, false);
+  EXPECT_EQ(resolved.clock, CacheClock::Frame);
+  EXPECT_EQ(resolved.clockShift, 0u);
+}
+
+// What a render with only the cache mode set reports on lavapipe (which has 64-bit buffer
+// atomics): the counter clock and the texel count fitted below 2^24 (lavapipe's 128 MiB
+// storage-buffer range holds 2^21 texel entries of 15 words).
+TEST(TexelCacheOptions, DefaultTexelRenderUsesTheCounterClockAndFittedEntries) {
+  RendererOptions options = testing::testOptions();
+  options.cache.mode = CacheMode::Texel;
+  Renderer renderer(options);
+  RenderResult r = renderer.render(wallScene(stripesGraph(), false), settings(2, 1));
+  std::printf("default texel cache on %s: %u entries, clock %s, eviction %s, check %s\n",
+              renderer.context().info().name.c_str(), r.stats.cacheEntries,
+              r.stats.cacheClock.c_str(), r.stats.cacheEviction.c_str(),
+              r.stats.cacheReadCheck.c_str());
+  EXPECT_EQ(r.stats.cacheClock, renderer.context().info().bufferInt64Atomics ? "counter" : "frame");
+  EXPECT_EQ(r.stats.cacheEviction, "lru");
+  EXPECT_EQ(r.stats.cacheReadCheck, "counter");
+  EXPECT_LE(r.stats.cacheEntries, 1u << 24);
+  EXPECT_GT(r.stats.cacheEntries, 1u << 20);  // more than the old fixed default
+  EXPECT_GT(r.stats.frames.back().cacheHits, 0u);
+}
+
 // §5.3.1: fp16 halves the value words and the picture stays close. Both renders snap uv, so
 // which thread fills an entry does not matter (see the snapping test) and the difference is
 // fp16 rounding alone. Bound: mean LDR-FLIP below 0.005 (the printed figure is the

@@ -3,6 +3,7 @@
 // texel cache's within a stated tolerance, every storage layout of §5.4.1 gives the same
 // picture, the subgroup computes each missing tile once per subgroup (counters), and options
 // the device cannot run are refused with a message.
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <utility>
@@ -130,6 +131,37 @@ TEST(TileCache, EveryStorageLayoutGivesThePicture) {
       EXPECT_GT(other.stats.cacheBytes, entry.stats.cacheBytes / 4) << tileStorageName(storage);
     }
   }
+}
+
+// fp16 tiles in a storage image (--value-format fp16 --tile-storage texture2d): an emission
+// past the largest half (1e6 here) is stored as 65504, as the buffer's fp16 words store it;
+// unclamped, rgba16f made it infinite, the path tracer dropped every such path, and the
+// wall rendered black.
+TEST(TileCache, Fp16ImageTilesClampBrightEmission) {
+  const std::string graph =
+      "material Bright;\nUVInput UV>0;\nWave In<0 Out>1;\nBaseColorOutput Color<1;\n"
+      "EmissionOutput Color=(1000000, 1000000, 1000000);\n";
+  Scene scene = wallScene(graph, false);
+  RendererOptions options = tileOptions(4, 2, TileFilter::Nearest, TileStorage::Texture2D);
+  options.cache.valueFormat = CacheValueFormat::Fp16;
+  RenderResult result = Renderer(options).render(scene, settings(2, 1));
+  expectTileCounters(result.stats);
+  const auto& image = result.image;
+  float centre = image.pixel(image.width / 2, image.height / 2)[0];
+  std::size_t finite = 0, bright = 0, total = 0;
+  for (std::uint32_t y = 0; y < image.height; ++y)
+    for (std::uint32_t x = 0; x < image.width; ++x) {
+      float r = image.pixel(x, y)[0];
+      total += 1;
+      finite += std::isfinite(r);
+      bright += r > 60000.0f;
+    }
+  std::printf("fp16 image tiles, emission 1e6: centre %.1f, %zu of %zu pixels above 60000\n",
+              centre, bright, total);
+  EXPECT_EQ(finite, total);
+  EXPECT_GT(result.stats.frames.back().cacheHits, 0u);
+  EXPECT_NEAR(centre, 65504.0f, 65504.0f * 0.01f);  // clamped, not infinite (then dropped: 0)
+  EXPECT_GT(bright, total / 2);
 }
 
 // §5.4.4's grouping changes only the order in which missing tiles are computed.

@@ -15,11 +15,13 @@ inline constexpr const char* kCacheHelp =
     "                        §5.3: one hash table of texels of cacheable materials) or tile\n"
     "                        (§5.4: entries are tiles, computed by a whole subgroup)\n"
     "  --cache-entries N     cache entries S: texels, or tiles with --cache tile\n"
-    "                        (default 1048576, halved until the cache fits one storage\n"
-    "                        buffer of the device: 128 MiB on lavapipe; output says so)\n"
+    "                        (default 16777216 texels or 1048576 tiles, the best rows\n"
+    "                        measured on an H200; halved until the cache fits one storage\n"
+    "                        buffer and a quarter of the device's memory: 128 MiB on\n"
+    "                        lavapipe; output says so)\n"
     "  --probe D             linear probing distance, 1..16 (default 8)\n"
     "  --eviction E          when a probe range is full: lru (default), lrw (least recently\n"
-    "                        written; both by frame clock), random, or none\n"
+    "                        written; both by --clock), random, or none\n"
     "  --cache-read-check C  counter (default: an update counter per entry also catches a\n"
     "                        key restored meanwhile, §5.3.4) or key (read key, values, key)\n"
     "  --mip-bias B          added to the cache's mip level (eq. 5.5); positive: finer\n"
@@ -38,11 +40,12 @@ inline constexpr const char* kCacheHelp =
     "  --tile-queue N        deferred fill: tiles queued per frame at most (default 65536)\n"
     "  --value-format F      fp32 (default) or fp16: entry values as 32-bit floats or two\n"
     "                        16-bit halves per word (§5.3.1; half the value memory)\n"
-    "  --clock C             lru/lrw time: frame (default; the frame number) or counter (a\n"
-    "                        64-bit GPU atomic counter bumped per access, §5.3.3; needs\n"
-    "                        64-bit buffer atomics)\n"
-    "  --clock-shift S       counter clock: the entry keeps counter bits S..S+31 (default 16,\n"
-    "                        §5.3.3; 0 for tiny images)\n"
+    "  --clock C             lru/lrw time: counter (default where the device has 64-bit\n"
+    "                        buffer atomics: a GPU atomic counter bumped per access,\n"
+    "                        §5.3.3) or frame (the frame number; the default elsewhere)\n"
+    "  --clock-shift S       counter clock: the entry keeps counter bits S..S+31 (default:\n"
+    "                        lru about 2^10 ages a frame, 16 at 1080p P=6 L=4, §5.3.3;\n"
+    "                        lrw 0, where only writes tick)\n"
     "  --snap-uv             evaluate a miss at its texel's centre with a texel's\n"
     "                        footprint (§6.1, eq. 5.16-5.17); makes a texel-cached render\n"
     "                        repeatable (otherwise the hit that stores a texel first, which\n"
@@ -56,7 +59,7 @@ inline constexpr const char* kCacheHelp =
 
 struct CacheArguments {
   std::string cache = "none", entries = "", probe = "8", eviction = "lru", mipBias = "0",
-              readCheck = "counter", valueFormat = "fp32", clock = "frame", clockShift = "16",
+              readCheck = "counter", valueFormat = "fp32", clock = "", clockShift = "",
               tile = "4x4", filter = "nearest", tileStorage = "entry", tileFill = "subgroup",
               tileQueue = "65536";
   bool snapUv = false, secondaryOnly = false, floorMaterials = false, groupByMaterial = false;
@@ -88,7 +91,8 @@ struct CacheArguments {
     options.mode = runtime::parseCacheMode(cache);
     options.eviction = runtime::parseCacheEviction(eviction);
     options.valueFormat = runtime::parseCacheValueFormat(valueFormat);
-    options.clock = runtime::parseCacheClock(clock);
+    if (!clock.empty())
+      options.clock = runtime::parseCacheClock(clock);
     options.snapUv = snapUv;
     options.secondaryOnly = secondaryOnly;
     if (readCheck != "key" && readCheck != "counter")
@@ -109,7 +113,8 @@ struct CacheArguments {
     if (!entries.empty())
       options.entries = whole(entries, "--cache-entries");
     options.probe = whole(probe, "--probe");
-    options.clockShift = whole(clockShift, "--clock-shift");
+    if (!clockShift.empty())
+      options.clockShift = whole(clockShift, "--clock-shift");
     options.tileQueue = whole(tileQueue, "--tile-queue");
     const auto x = tile.find('x');
     if (x == std::string::npos)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -128,6 +129,7 @@ struct Sidecar {
   std::string worldImage;  // relative to the glTF's folder
   std::vector<TextureSpaceLine> textureSpaces;
   std::vector<AreaLight> areas;
+  std::vector<std::pair<std::string, glm::vec3>> emitters;  // material -> emission estimate
 };
 
 std::string restOfLine(std::istringstream& s) {
@@ -199,6 +201,11 @@ bool readSidecar(const std::string& gltfPath, Sidecar& out, compiler::Diagnostic
         return bad("texspace needs six numbers and a mesh name");
       t.mesh = restOfLine(s);
       out.textureSpaces.push_back(t);
+    } else if (word == "emitter") {
+      glm::vec3 e;
+      if (!(s >> e.r >> e.g >> e.b))
+        return bad("emitter needs r g b and a material name");
+      out.emitters.emplace_back(restOfLine(s), e);
     } else if (word == "area") {
       AreaLight a;
       std::string shape;
@@ -419,6 +426,10 @@ void applySidecar(Scene& scene, const Sidecar& side, const glm::mat4& root, cons
       }
     }
   }
+  for (runtime::MaterialRef& m : scene.materials)
+    for (const auto& [name, estimate] : side.emitters)
+      if (m.name == name)
+        m.emissionEstimate = estimate;
   for (const AreaLight& a : side.areas) {
     // Cycles 3.4 gives an area light of power P and area A the radiance P / (4 A) on its
     // front (-z) side (measured: docs/blender.md, Light units).
@@ -432,15 +443,21 @@ void applySidecar(Scene& scene, const Sidecar& side, const glm::mat4& root, cons
     quad.indices = {0, 2, 1, 0, 3, 2};  // counter-clockwise seen from -z
     runtime::computeTangents(quad);
     scene.meshes.push_back(std::move(quad));
-    runtime::EmitterParams params;
-    params.radiance = a.color * (a.power / (4.0f * area));
-    params.baseColor = glm::vec3(0.0f);
+    const glm::vec3 radiance = a.color * (a.power / (4.0f * area));
     const std::string materialName = "mg_area_light_" + std::to_string(scene.materials.size());
-    scene.materials.push_back(
-        runtime::MaterialRef{materialName, {}, runtime::emitterGraph(materialName, params)});
+    // Front side (-z) only, as Cycles' area lamp: the emission times 1 - Backfacing; black
+    // and not specular, so the quad reflects nothing.
+    char graph[512];
+    std::snprintf(graph, sizeof graph,
+                  "material %s;\nGeometry Backfacing>0;\n"
+                  "Math Value=1 Value1<0 Value2=0 Operation=1 UseClamp=0 Result>1;\n"
+                  "EmissionOutput Color=(%.9g, %.9g, %.9g) Strength<1;\n"
+                  "BaseColorOutput In=(0, 0, 0);\nSpecularOutput In=0;\n",
+                  materialName.c_str(), radiance.r, radiance.g, radiance.b);
+    scene.materials.push_back(runtime::MaterialRef{materialName, {}, graph, radiance});
     scene.instances.push_back(runtime::Instance{
         static_cast<std::uint32_t>(scene.meshes.size() - 1),
-        static_cast<std::uint32_t>(scene.materials.size() - 1), root * a.objectToWorld});
+        static_cast<std::uint32_t>(scene.materials.size() - 1), root * a.objectToWorld, false});
   }
 }
 

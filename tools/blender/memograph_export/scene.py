@@ -72,7 +72,41 @@ def _world_lines(scene, out_dir, warnings):
     return [_line('world', 'color', c[0], c[1], c[2], 'strength', strength)]
 
 
-def sidecar_lines(scene, objects, out_dir, warnings):
+def _value(sock, fallback):
+    """An input's unlinked value, or `fallback` where it is linked (a texture)."""
+    if sock is None:
+        return fallback
+    if sock.is_linked:
+        return fallback
+    v = sock.default_value
+    return tuple(v)[:3] if hasattr(v, '__len__') else float(v)
+
+
+def emission_estimate(material):
+    """A rough emitted radiance of a material (for choosing among lights by power only:
+    memograph evaluates the graph's real emission at each light sample). None: no emission."""
+    if material is None or not material.use_nodes or material.node_tree is None:
+        return None
+    out = None
+    for node in material.node_tree.nodes:
+        if node.bl_idname == 'ShaderNodeOutputMaterial' and node.is_active_output:
+            out = node
+    if out is None or not out.inputs['Surface'].is_linked:
+        return None
+    shader = out.inputs['Surface'].links[0].from_node
+    if shader.bl_idname == 'ShaderNodeEmission':
+        color, strength = shader.inputs.get('Color'), shader.inputs.get('Strength')
+    elif shader.bl_idname == 'ShaderNodeBsdfPrincipled':
+        color, strength = shader.inputs.get('Emission'), shader.inputs.get('Emission Strength')
+    else:
+        return None  # mixes and groups: found by BSDF rays only
+    c = _value(color, (1.0, 1.0, 1.0))
+    s = _value(strength, 1.0)
+    est = [max(0.0, float(x) * s) for x in c]
+    return est if max(est) > 0.0 else None
+
+
+def sidecar_lines(scene, objects, out_dir, warnings, names=None):
     lines = ['memograph-blender-scene %d' % SIDECAR_VERSION,
              '# written by tools/blender/memograph_export/scene.py; format: docs/blender.md',
              'up z',
@@ -80,6 +114,11 @@ def sidecar_lines(scene, objects, out_dir, warnings):
     if scene.camera is not None:
         lines.append(_line('camera', scene.camera.name))
     lines += _world_lines(scene, out_dir, warnings)
+    for mat in bpy.data.materials:
+        if names and mat.name in names:
+            est = emission_estimate(mat)
+            if est is not None:
+                lines.append(_line('emitter', est[0], est[1], est[2], names[mat.name]))
     seen_meshes = set()
     for obj in objects:
         if obj.type == 'MESH' and obj.data is not None and obj.data.name not in seen_meshes:
@@ -121,12 +160,12 @@ def export_scene(out_dir, names, context=None, use_selection=False, gltf_name='s
     # coordinates match Cycles; memograph rotates the root to its y-up on import.
     bpy.ops.export_scene.gltf(filepath=gltf_path, export_format='GLTF_SEPARATE',
                               export_yup=False, export_apply=True, export_cameras=True,
-                              export_lights=True, export_materials='PLACEHOLDER',
+                              export_lights=True, export_materials='EXPORT',
                               export_texcoords=True, export_normals=True,
                               use_selection=use_selection, convert_lighting_mode='SPEC')
     with open(gltf_path) as f:
         doc = json.load(f)
-    # Placeholder materials are written with Blender's names only: rename to the .mgraph name.
+    # glTF's materials keep Blender's names: rename them to the .mgraph names.
     for mat in doc.get('materials', []):
         if mat.get('name') in names:
             mat['name'] = names[mat['name']]
@@ -134,7 +173,7 @@ def export_scene(out_dir, names, context=None, use_selection=False, gltf_name='s
     exporter.write_atomic(gltf_path, json.dumps(doc, indent=1) + '\n')
     objects = context.selected_objects if use_selection else scene.objects
     objects = [o for o in objects if o.visible_get()]
-    lines = sidecar_lines(scene, objects, out_dir, warnings)
+    lines = sidecar_lines(scene, objects, out_dir, warnings, names)
     sidecar = os.path.splitext(gltf_path)[0] + '.memograph'
     exporter.write_atomic(sidecar, '\n'.join(lines) + '\n')
     return gltf_path, sidecar, warnings

@@ -1,0 +1,253 @@
+"""Builds one Blender test scene (issue 15), renders it with Cycles and exports it for memograph.
+
+    blender -b --factory-startup --python build_scene.py -- --scene NAME --out DIR
+            [--size N] [--samples S]
+
+Writes DIR/NAME.blend, DIR/cycles.pfm (Cycles CPU, no denoiser, box filter one pixel wide,
+no clamping, no light threshold) and DIR/export/ (the memograph exporter with --scene:
+<material>.mgraph, scene.gltf, scene.memograph). The scenes (all Blender units, z up):
+
+- units_point / units_sun / units_spot / units_area: a 4 m white Diffuse plane (albedo 1)
+  seen from above by a camera (memograph has no orthographic camera), lit by one light of that type and nothing else.
+- emission: procedural emission only (Noise and Checker into Emission), no lights, black world.
+- room: a diffuse room (floor and two walls, Diffuse BSDF with procedural albedo) with a
+  point light, a sun and an emissive panel.
+"""
+
+import argparse
+import array
+import math
+import os
+import sys
+
+import bpy
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, '..', '..', '..', 'tools', 'blender'))
+sys.dont_write_bytecode = True
+
+
+def write_pfm(path, width, height, rgba):
+    """3-channel little-endian PFM; Blender's pixels and PFM's rows both start at the bottom."""
+    rgb = array.array('f', [0.0]) * (width * height * 3)
+    for c in range(3):
+        rgb[c::3] = array.array('f', rgba[c::4])
+    if sys.byteorder != 'little':
+        rgb.byteswap()
+    with open(path, 'wb') as f:
+        f.write(b'PF\n%d %d\n-1.0\n' % (width, height))
+        f.write(rgb.tobytes())
+
+
+def diffuse(name, color=(1, 1, 1), albedo_node=None):
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    nt = m.node_tree
+    nt.nodes.clear()
+    d = nt.nodes.new('ShaderNodeBsdfDiffuse')
+    d.inputs['Color'].default_value = (*color, 1)
+    d.inputs['Roughness'].default_value = 0.0
+    o = nt.nodes.new('ShaderNodeOutputMaterial')
+    nt.links.new(d.outputs[0], o.inputs['Surface'])
+    if albedo_node is not None:
+        albedo_node(nt, d.inputs['Color'])
+    return m
+
+
+def emission(name, color=(1, 1, 1), strength=1.0, color_node=None):
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    nt = m.node_tree
+    nt.nodes.clear()
+    e = nt.nodes.new('ShaderNodeEmission')
+    e.inputs['Color'].default_value = (*color, 1)
+    e.inputs['Strength'].default_value = strength
+    o = nt.nodes.new('ShaderNodeOutputMaterial')
+    nt.links.new(e.outputs[0], o.inputs['Surface'])
+    if color_node is not None:
+        color_node(nt, e.inputs['Color'], e.inputs['Strength'])
+    return m
+
+
+def plane(name, size, material, location=(0, 0, 0), rotation=(0, 0, 0)):
+    bpy.ops.mesh.primitive_plane_add(size=size, location=location, rotation=rotation)
+    obj = bpy.context.object
+    obj.name = name
+    obj.data.name = name
+    obj.data.materials.append(material)
+    return obj
+
+
+def light(kind, name, location, rotation=(0, 0, 0), **props):
+    data = bpy.data.lights.new(name, kind)
+    for k, v in props.items():
+        setattr(data, k, v)
+    obj = bpy.data.objects.new(name, data)
+    obj.location = location
+    obj.rotation_euler = rotation
+    bpy.context.scene.collection.objects.link(obj)
+    return obj
+
+
+def camera(location, rotation=(0, 0, 0), ortho_scale=None, lens=None):
+    cam = bpy.data.cameras.new('Camera')
+    if ortho_scale is not None:
+        cam.type = 'ORTHO'
+        cam.ortho_scale = ortho_scale
+    if lens is not None:
+        cam.lens = lens
+    cam.sensor_fit = 'HORIZONTAL'
+    obj = bpy.data.objects.new('Camera', cam)
+    obj.location = location
+    obj.rotation_euler = rotation
+    bpy.context.scene.collection.objects.link(obj)
+    bpy.context.scene.camera = obj
+    return obj
+
+
+def world(color=(0, 0, 0), strength=1.0):
+    w = bpy.data.worlds.new('World')
+    w.use_nodes = True
+    bg = w.node_tree.nodes['Background']
+    bg.inputs['Color'].default_value = (*color, 1)
+    bg.inputs['Strength'].default_value = strength
+    bpy.context.scene.world = w
+
+
+def units_scene(kind):
+    world()
+    plane('Ground', 4.0, diffuse('White'))
+    if kind == 'point':
+        light('POINT', 'Lamp', (0.1, -0.05, 2.0), energy=100.0, color=(1.0, 0.9, 0.8),
+              shadow_soft_size=0.0)
+        camera((0, 0, 1), lens=70)
+    elif kind == 'sun':
+        light('SUN', 'Sun', (0, 0, 3), rotation=(math.radians(30), 0, math.radians(20)),
+              energy=3.0, color=(0.9, 0.95, 1.0), angle=0.0)
+        camera((0, 0, 1), lens=70)
+    elif kind == 'spot':
+        light('SPOT', 'Spot', (0, 0, 2.0), energy=200.0, spot_size=math.radians(50),
+              spot_blend=0.3, shadow_soft_size=0.0)
+        camera((0, 0, 1), lens=12)  # the cone's edge (r = 0.93 m) is in view
+    elif kind == 'area':
+        light('AREA', 'Panel', (0, 0, 1.5), energy=50.0, size=0.5, shape='SQUARE')
+        camera((0, 0, 1), lens=35)
+
+
+def checker(nt, target, c1=(0.8, 0.3, 0.2), c2=(0.2, 0.6, 0.8), scale=4.0):
+    t = nt.nodes.new('ShaderNodeTexChecker')
+    t.inputs['Color1'].default_value = (*c1, 1)
+    t.inputs['Color2'].default_value = (*c2, 1)
+    t.inputs['Scale'].default_value = scale
+    nt.links.new(t.outputs['Color'], target)
+
+
+def emission_scene():
+    world()
+
+    def noisy(nt, color, strength):
+        n = nt.nodes.new('ShaderNodeTexNoise')
+        n.inputs['Scale'].default_value = 3.0
+        ramp = nt.nodes.new('ShaderNodeValToRGB')
+        ramp.color_ramp.elements[0].color = (0.05, 0.1, 0.4, 1)
+        ramp.color_ramp.elements[1].color = (1.0, 0.7, 0.2, 1)
+        nt.links.new(n.outputs['Fac'], ramp.inputs['Fac'])
+        nt.links.new(ramp.outputs['Color'], color)
+
+    plane('Glow', 2.0, emission('Glow', strength=1.5, color_node=noisy))
+    plane('Tiles', 0.8, emission('Tiles', color_node=lambda nt, c, s: checker(nt, c, scale=3)),
+          location=(0.3, 0.3, 0.2))
+    camera((0, 0, 2), lens=40)
+
+
+def room_scene():
+    world()
+    floor = diffuse('Floor', albedo_node=lambda nt, c: checker(nt, c, (0.8, 0.8, 0.75),
+                                                            (0.3, 0.35, 0.4), 5.0))
+    wall = diffuse('Wall', color=(0.7, 0.6, 0.5))
+    plane('Floor', 4.0, floor)
+    plane('BackWall', 4.0, wall, location=(0, 2, 2), rotation=(math.radians(90), 0, 0))
+    plane('SideWall', 4.0, diffuse('SideWall', color=(0.4, 0.6, 0.4)), location=(-2, 0, 2),
+          rotation=(0, math.radians(90), 0))
+    panel = plane('Panel', 1.0, emission('Panel', color=(1.0, 0.9, 0.7), strength=4.0),
+                  location=(1.2, 1.98, 1.8), rotation=(math.radians(90), 0, 0))
+    panel.scale = (1.0, 0.5, 1.0)
+    light('POINT', 'Bulb', (0.5, 0.0, 2.5), energy=150.0, shadow_soft_size=0.0)
+    light('SUN', 'Sun', (0, 0, 5), rotation=(math.radians(40), 0, math.radians(-30)),
+          energy=2.0, angle=0.0)
+    camera((1.2, -4.5, 1.8), rotation=(math.radians(80), 0, math.radians(12)), lens=28)
+
+
+def render(out_dir, size, samples):
+    sc = bpy.context.scene
+    sc.render.engine = 'CYCLES'
+    sc.cycles.device = 'CPU'
+    sc.cycles.samples = samples
+    sc.cycles.use_denoising = False
+    sc.cycles.use_adaptive_sampling = False
+    sc.cycles.sample_clamp_direct = 0.0
+    sc.cycles.sample_clamp_indirect = 0.0
+    sc.cycles.light_sampling_threshold = 0.0
+    sc.cycles.filter_type = 'BOX'
+    sc.cycles.filter_width = 1.0
+    sc.cycles.max_bounces = 8
+    sc.render.resolution_x = sc.render.resolution_y = size
+    sc.render.resolution_percentage = 100
+    sc.render.threads_mode = 'FIXED'
+    sc.render.threads = max(1, min(2, os.cpu_count() or 1))
+    sc.view_settings.view_transform = 'Standard'
+    exr = os.path.join(out_dir, 'cycles.exr')
+    sc.render.filepath = exr
+    sc.render.image_settings.file_format = 'OPEN_EXR'
+    sc.render.image_settings.color_depth = '32'
+    bpy.ops.render.render(write_still=True)
+    img = bpy.data.images.load(exr)
+    write_pfm(os.path.join(out_dir, 'cycles.pfm'), size, size, list(img.pixels))
+
+
+SCENES = {
+    'units_point': lambda: units_scene('point'),
+    'units_sun': lambda: units_scene('sun'),
+    'units_spot': lambda: units_scene('spot'),
+    'units_area': lambda: units_scene('area'),
+    'emission': emission_scene,
+    'room': room_scene,
+}
+
+
+def main(argv):
+    p = argparse.ArgumentParser(prog='build_scene.py')
+    p.add_argument('--scene', required=True, choices=sorted(SCENES))
+    p.add_argument('--out', required=True)
+    p.add_argument('--size', type=int, default=16)
+    p.add_argument('--samples', type=int, default=256)
+    p.add_argument('--no-render', action='store_true')
+    args = p.parse_args(argv)
+    out = os.path.abspath(args.out)
+    os.makedirs(out, exist_ok=True)
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    SCENES[args.scene]()
+    bpy.context.view_layer.update()
+    bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, args.scene + '.blend'))
+    if not args.no_render:
+        render(out, args.size, args.samples)
+    from memograph_export import exporter, scene as scene_export
+    export_dir = os.path.join(out, 'export')
+    result = exporter.export_materials(list(bpy.data.materials), export_dir)
+    for material, node, message in result.warnings:
+        print('warning: %s: %s: %s' % (material, node, message), file=sys.stderr)
+    if result.errors:
+        print('error: %s' % result.errors, file=sys.stderr)
+        return 1
+    _, _, warnings = scene_export.export_scene(export_dir, result.names)
+    for message in warnings:
+        print('warning: scene: %s' % message, file=sys.stderr)
+    print('build_scene: %s written to %s' % (args.scene, out))
+    return 0
+
+
+if __name__ == '__main__':
+    code = main(sys.argv[sys.argv.index('--') + 1:] if '--' in sys.argv else [])
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(code)

@@ -1,0 +1,132 @@
+"""Issue 15 acceptance: a Blender scene rendered by Cycles and by memograph (after the
+scene export), compared. One scene per run:
+
+    python3 compare_scene.py --scene NAME --memograph PATH [--out DIR] [--blender PATH]
+
+1. Blender (headless, CPU Cycles, no denoiser) runs build_scene.py: builds the scene,
+   renders DIR/cycles.pfm and exports DIR/export/ (graphs, scene.gltf, scene.memograph).
+2. `memograph render DIR/export/scene.gltf --materials DIR/export` (no other scene flags)
+   renders DIR/memograph.pfm at the same size.
+3. The check per scene (CHECKS below):
+   - units_*: the mean of each channel (the irradiance on the plane times albedo/pi)
+     within 2 % of Cycles';
+   - emission: mean absolute error <= 0.01;
+   - room: mean LDR-FLIP (`memograph diff`, linear values clamped to [0, 1]) <= 0.05.
+Exit 0 pass, 1 fail (a clear message; also when Blender is missing: it never skips).
+"""
+
+import argparse
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, '..'))
+sys.dont_write_bytecode = True
+from compare_nodes import read_pfm  # noqa: E402
+
+# scene: (size, Cycles samples, memograph --frames, --paths, --bounces, check, limit)
+CHECKS = {
+    'units_point': (16, 64, 4, 4, 1, 'mean', 0.02),
+    'units_sun': (16, 64, 4, 4, 1, 'mean', 0.02),
+    'units_spot': (16, 256, 16, 4, 1, 'mean', 0.02),
+    'units_area': (16, 512, 64, 16, 2, 'mean', 0.02),
+    'emission': (32, 16, 4, 4, 1, 'mae', 0.01),
+    'room': (48, 512, 64, 16, 5, 'flip', 0.05),
+}
+
+
+def fail(msg):
+    print('compare_scene: FAIL: %s' % msg)
+    sys.stdout.flush()
+    return 1
+
+
+def means(path):
+    w, h, rows = read_pfm(path)
+    px = [p for row in rows for p in row]
+    return w, h, rows, [sum(p[c] for p in px) / len(px) for c in range(3)]
+
+
+def main(argv=None):
+    p = argparse.ArgumentParser(prog='compare_scene.py')
+    p.add_argument('--scene', required=True, choices=sorted(CHECKS))
+    p.add_argument('--memograph', required=True)
+    p.add_argument('--out', default=None)
+    p.add_argument('--blender', default=None)
+    p.add_argument('--keep-cycles', action='store_true',
+                   help='reuse DIR/cycles.pfm and DIR/export if they exist')
+    args = p.parse_args(argv)
+    size, samples, frames, paths, bounces, check, limit = CHECKS[args.scene]
+    out = os.path.abspath(args.out or os.path.join('/tmp', 'memograph_scene_' + args.scene))
+    os.makedirs(out, exist_ok=True)
+    blender = args.blender or shutil.which('blender')
+    if not blender:
+        return fail('Blender 3.4 not found on PATH: run tools/setup.sh (or pass --blender)')
+    t0 = time.time()
+    if not (args.keep_cycles and os.path.exists(os.path.join(out, 'cycles.pfm'))):
+        cmd = [blender, '-b', '--factory-startup', '--python-exit-code', '1', '--python',
+               os.path.join(HERE, 'build_scene.py'), '--', '--scene', args.scene, '--out', out,
+               '--size', str(size), '--samples', str(samples)]
+        # Debian's Blender takes its Python home from the first python on PATH: under a pyenv
+        # interpreter (its bin first on PATH) it would miss Debian's numpy, which the glTF
+        # exporter needs. Give Blender the PATH without the running interpreter's bin.
+        env = dict(os.environ)
+        own_bin = os.path.dirname(os.path.realpath(sys.executable))
+        env['PATH'] = os.pathsep.join(d for d in env.get('PATH', '').split(os.pathsep)
+                                      if d and os.path.realpath(d) != own_bin)
+        r = subprocess.run(cmd, capture_output=True, text=True, env=env)
+        with open(os.path.join(out, 'blender.log'), 'w') as f:
+            f.write(r.stdout + r.stderr)
+        if r.returncode != 0 or not os.path.exists(os.path.join(out, 'cycles.pfm')):
+            return fail('Blender exited with %d (see %s/blender.log):\n%s'
+                        % (r.returncode, out, (r.stdout + r.stderr)[-2000:]))
+    t1 = time.time()
+    mg = os.path.join(out, 'memograph.pfm')
+    cmd = [args.memograph, 'render', os.path.join(out, 'export', 'scene.gltf'), '--materials',
+           os.path.join(out, 'export'), '--size', '%dx%d' % (size, size), '--frames',
+           str(frames), '--paths', str(paths), '--bounces', str(bounces), '--out', mg]
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        return fail('memograph render exited with %d: %s\n%s' % (r.returncode, ' '.join(cmd),
+                                                                  r.stdout + r.stderr))
+    t2 = time.time()
+    w0, h0, ref, mref = means(os.path.join(out, 'cycles.pfm'))
+    w1, h1, got, mgot = means(mg)
+    if (w0, h0) != (w1, h1):
+        return fail('image sizes differ: Cycles %dx%d, memograph %dx%d' % (w0, h0, w1, h1))
+    print('compare_scene %s: %dx%d, Cycles %d samples (%.1f s), memograph %d spp (%.1f s)'
+          % (args.scene, w0, h0, samples, t1 - t0, frames * paths, t2 - t1))
+    print('  mean RGB: Cycles (%.5f, %.5f, %.5f), memograph (%.5f, %.5f, %.5f)'
+          % (*mref, *mgot))
+    if check == 'mean':
+        rel = [abs(b - a) / max(a, 1e-9) for a, b in zip(mref, mgot)]
+        figure = max(rel)
+        print('  irradiance relative error per channel: %s (limit %.1f %%)'
+              % (', '.join('%.3f %%' % (100 * x) for x in rel), 100 * limit))
+    elif check == 'mae':
+        tot = sum(abs(a[c] - b[c]) for ra, rb in zip(ref, got) for a, b in zip(ra, rb)
+                  for c in range(3))
+        figure = tot / (w0 * h0 * 3)
+        print('  mean absolute error: %.5f (limit %.3f)' % (figure, limit))
+    else:
+        r = subprocess.run([args.memograph, 'diff', os.path.join(out, 'cycles.pfm'), mg,
+                            '--out', os.path.join(out, 'flip.pfm')],
+                           capture_output=True, text=True)
+        m = re.search(r'mean\D*([0-9.]+(?:e-?\d+)?)', r.stdout)
+        if r.returncode != 0 or not m:
+            return fail('memograph diff failed: %s' % (r.stdout + r.stderr))
+        figure = float(m.group(1))
+        print('  %s' % r.stdout.strip().replace('\n', '\n  '))
+        print('  mean LDR-FLIP: %.4f (limit %.2f)' % (figure, limit))
+    if not figure <= limit:
+        return fail('%s: %.5f exceeds %.5f (images in %s)' % (args.scene, figure, limit, out))
+    print('compare_scene: PASS')
+    return 0
+
+
+if __name__ == '__main__':
+    sys.exit(main())

@@ -1,0 +1,77 @@
+// memograph selftest: the cache's concurrency stress test (thesis §5.3.4) on this machine's
+// GPU, in every read-check and storage mode, with the torn reads of each. Runs from the
+// device bundle, so the GPU machine can check the memory ordering lavapipe cannot show.
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "cli_common.h"
+#include "commands.h"
+#include "runtime/cache_selftest.h"
+#include "runtime/vulkan_context.h"
+
+namespace memograph::cli {
+
+int runSelftest(std::span<const std::string_view> args) {
+  std::string iterationsText = "256", invocationsText = "4096", roundsText = "1";
+  bool help = false;
+  ArgumentScanner scanner("selftest", args);
+  scanner.option("--iterations", &iterationsText);
+  scanner.option("--invocations", &invocationsText);
+  scanner.option("--rounds", &roundsText);
+  scanner.flag("--help", &help);
+  std::vector<std::string> positional;
+  if (const int code = scanner.scan(positional); code != kExitOk)
+    return code;
+  if (help) {
+    std::cout << "usage: memograph selftest [--invocations N] [--iterations N] [--rounds N]\n\n"
+                 "The material cache's concurrency stress test on this GPU: N invocations\n"
+                 "(default 4096, a multiple of 64) of N lookups each (default 256) on 32\n"
+                 "entries, in the key, counter, image-key, image-counter and unprotected\n"
+                 "modes, --rounds times each. Prints the torn reads per mode; exits 1 when a\n"
+                 "protected mode tore.\n";
+    return kExitOk;
+  }
+  if (!positional.empty())
+    return usageError("selftest", "takes no positional arguments");
+  std::uint32_t iterations = 0, invocations = 0, rounds = 0;
+  if (!parseNumber(iterationsText, iterations) || iterations == 0 || iterations > 65536)
+    return usageError("selftest", "--iterations takes 1..65536");
+  if (!parseNumber(invocationsText, invocations) || invocations == 0 || invocations % 64 != 0 ||
+      invocations > (1u << 24))
+    return usageError("selftest", "--invocations takes a multiple of 64 up to 16777216");
+  if (!parseNumber(roundsText, rounds) || rounds == 0 || rounds > 1000)
+    return usageError("selftest", "--rounds takes 1..1000");
+  try {
+    runtime::VulkanContext context(runtime::ContextOptions{});
+    std::printf("device: %s\n", context.info().name.c_str());
+    std::printf("mode,round,invocations,iterations,hits,misses,torn,occupancy\n");
+    bool protectedTore = false;
+    for (runtime::CacheStressMode mode :
+         {runtime::CacheStressMode::Key, runtime::CacheStressMode::Counter,
+          runtime::CacheStressMode::ImageKey, runtime::CacheStressMode::ImageCounter,
+          runtime::CacheStressMode::Unprotected}) {
+      std::uint64_t hits = 0, torn = 0;
+      for (std::uint32_t round = 0; round < rounds; ++round) {
+        runtime::CacheStressResult r =
+            runtime::runCacheStress(context, mode, invocations, iterations);
+        std::printf("%s,%u,%u,%u,%u,%u,%u,%u\n", runtime::cacheStressModeName(mode), round,
+                    r.invocations, r.iterations, r.hits, r.misses, r.torn, r.occupancy);
+        hits += r.hits;
+        torn += r.torn;
+      }
+      std::printf("# %s: %llu torn reads of %llu hits\n", runtime::cacheStressModeName(mode),
+                  (unsigned long long)torn, (unsigned long long)hits);
+      if (mode != runtime::CacheStressMode::Unprotected && torn > 0)
+        protectedTore = true;
+    }
+    std::fflush(stdout);
+    return protectedTore ? kExitFailure : kExitOk;
+  } catch (const std::exception& e) {
+    std::cerr << "memograph selftest: " << e.what() << "\n";
+    return kExitFailure;
+  }
+}
+
+}  // namespace memograph::cli
