@@ -13,7 +13,8 @@ inline constexpr std::array<std::string_view, 13> kMaterialInputNames = {
     "time",      "generated", "objectPosition", "geometricNormal", "objectLocation", "objectRandom",
     "backfacing"};
 
-inline constexpr std::array<std::string_view, 7> kMaterialOutputNames = {
-    "baseColor", "metallic", "roughness", "specular", "normal", "emission", "opacity"};
+inline constexpr std::array<std::string_view, 9> kMaterialOutputNames = {
+    "baseColor",        "metallic", "roughness", "specular", "specularTint",
+    "cyclesPrincipled", "normal",   "emission",  "opacity"};
 
 }  // namespace memograph::compiler

@@ -33,12 +33,13 @@ struct float2_D { vec2 v; vec2 x; vec2 y; };
 struct MaterialInputs { float2_D uv; };
 struct MaterialOutputs {
   vec3 baseColor; float metallic; float roughness; vec3 normal; vec3 emission; float opacity;
-  float specular;
+  float specular; float specularTint; float cyclesPrincipled;
 };
 MaterialOutputs mg_defaultMaterialOutputs(MaterialInputs inputs) {
   MaterialOutputs o;
   o.baseColor = vec3(0.0); o.metallic = 0.0; o.roughness = 0.0; o.normal = vec3(0.0);
-  o.emission = vec3(0.0); o.opacity = 1.0; o.specular = 0.5;
+  o.emission = vec3(0.0); o.opacity = 1.0; o.specular = 0.5; o.specularTint = 0.0;
+  o.cyclesPrincipled = 0.0;
   return o;
 }
 const uvec4 mg_materialCacheInfo[1] = uvec4[](uvec4(0u));

@@ -183,6 +183,8 @@ BakeOutputs MaterialBaker::bake(const BakeMaterial& material, const BakeSettings
   out.metallic.resize(pixels);
   out.roughness.resize(pixels);
   out.specular.resize(pixels);
+  out.specularTint.resize(pixels);
+  out.cyclesPrincipled.resize(pixels);
   out.normal.resize(pixels);
   out.emission.resize(pixels);
   out.opacity.resize(pixels);
@@ -195,6 +197,8 @@ BakeOutputs MaterialBaker::bake(const BakeMaterial& material, const BakeSettings
     out.emission[p] = {v[8], v[9], v[10]};
     out.opacity[p] = v[11];
     out.specular[p] = v[12];
+    out.specularTint[p] = v[13];
+    out.cyclesPrincipled[p] = v[14];
   }
   return out;
 }

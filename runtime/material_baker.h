@@ -43,6 +43,8 @@ struct BakeOutputs {
   std::vector<float> metallic;
   std::vector<float> roughness;
   std::vector<float> specular;
+  std::vector<float> specularTint;
+  std::vector<float> cyclesPrincipled;
   std::vector<std::array<float, 3>> normal;
   std::vector<std::array<float, 3>> emission;
   std::vector<float> opacity;

@@ -56,11 +56,15 @@ std::uint32_t cacheOutputMask(const std::vector<std::string>& outputsWritten,
     std::uint32_t bit;
     std::uint32_t floats;
   };
-  static const Output kOutputs[] = {
-      {"baseColor", gpu::kCacheOutputBaseColor, 3}, {"metallic", gpu::kCacheOutputMetallic, 1},
-      {"roughness", gpu::kCacheOutputRoughness, 1}, {"normal", gpu::kCacheOutputNormal, 3},
-      {"emission", gpu::kCacheOutputEmission, 3},   {"opacity", gpu::kCacheOutputOpacity, 1},
-      {"specular", gpu::kCacheOutputSpecular, 1}};
+  static const Output kOutputs[] = {{"baseColor", gpu::kCacheOutputBaseColor, 3},
+                                    {"metallic", gpu::kCacheOutputMetallic, 1},
+                                    {"roughness", gpu::kCacheOutputRoughness, 1},
+                                    {"normal", gpu::kCacheOutputNormal, 3},
+                                    {"emission", gpu::kCacheOutputEmission, 3},
+                                    {"opacity", gpu::kCacheOutputOpacity, 1},
+                                    {"specular", gpu::kCacheOutputSpecular, 1},
+                                    {"specularTint", gpu::kCacheOutputSpecularTint, 1},
+                                    {"cyclesPrincipled", gpu::kCacheOutputCyclesPrincipled, 1}};
   std::uint32_t mask = 0, floats = 0;
   for (const std::string& name : outputsWritten) {
     bool known = false;
@@ -160,6 +164,8 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
     entry.name = name;
     entry.textureBase = static_cast<int>(linked.texturePaths.size());
     entry.cacheable = compiled->metadata.cacheable;
+    entry.inputsUsed = compiled->metadata.inputsUsed;
+    entry.textureCount = compiled->metadata.textures.size();
     if (entry.cacheable) {
       entry.cacheOutputMask =
           cacheOutputMask(compiled->metadata.outputsWritten, &entry.cacheValueCount);

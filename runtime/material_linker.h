@@ -27,6 +27,10 @@ struct LinkedMaterial {
   // Index into LinkedMaterials::distinct: scene materials sharing a graph share one
   // compiled include (and one callable shader).
   std::uint32_t distinctIndex = 0;
+  // The MaterialInputs members the graph reads and how many textures it samples (compiler
+  // metadata): none of either means every output is a constant.
+  std::vector<std::string> inputsUsed;
+  std::size_t textureCount = 0;
 };
 
 // One distinct compiled graph: what a callable shader of its own needs.

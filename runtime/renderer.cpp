@@ -182,7 +182,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     textureImages.push_back(options_.textureLoader(path));
 
   // Scene data, acceleration structures, textures.
-  SceneBuffers buffers = uploadScene(context, scene);
+  SceneBuffers buffers = uploadScene(context, scene, emissionKindsVerified(scene, materials));
   SceneAccelerationStructures accel(context, buffers.vertices, sizeof(gpu::Vertex), buffers.indices,
                                     buffers.geometry, buffers.placements);
   stats.accelerationStructures = accel.stats();
@@ -236,6 +236,10 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     shaderDefines.push_back("MG_MATERIAL_FLOOR=1");
   if (options_.debugCacheMisses)
     shaderDefines.push_back("MG_DEBUG_CACHE_MISSES=1");
+  // NEE evaluates emitters whose emission is not a known constant: a second material call
+  // site, compiled only for scenes that have such emitters (path_tracer.glsl).
+  if (buffers.neeEvaluatesEmission && !floor)
+    shaderDefines.push_back("MG_NEE_EVALUATES_EMISSION=1");
   TracePipeline pipeline(context, compiler, textures.count(),
                          materialCallables ? &*materialCallables : nullptr, pipelineThreads,
                          shaderDefines, materialCache.tileImageView() != VK_NULL_HANDLE,

@@ -44,6 +44,13 @@ struct MaterialRef {
   // to choose among emissive triangles by power (the emission itself is the graph's, at the
   // sampled point). Zero: the material is not sampled as a light (found by BSDF rays only).
   glm::vec3 emissionEstimate{0.0f};
+  // What the estimate is. Graph: an estimate only; NEE evaluates the graph at each light
+  // sample. Constant: the graph emits exactly emissionEstimate everywhere; ConstantFront: on
+  // the front of each triangle (the side its winding's normal points to) and nothing
+  // behind, as an area lamp. The renderer trusts a constant only for a graph that reads no
+  // inputs and no textures (ConstantFront: no input but backfacing) and evaluates otherwise.
+  enum class EmissionKind { Graph, Constant, ConstantFront };
+  EmissionKind emissionKind = EmissionKind::Graph;
 };
 
 enum class LightType : std::uint32_t { Point = 0, Directional = 1, Spot = 2 };

@@ -97,7 +97,28 @@ TextureSpace autoTextureSpace(const Mesh& mesh) {
   return space;
 }
 
-SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene) {
+std::vector<MaterialRef::EmissionKind> emissionKindsVerified(const Scene& scene,
+                                                             const LinkedMaterials& linked) {
+  std::vector<MaterialRef::EmissionKind> kinds;
+  for (std::size_t i = 0; i < scene.materials.size(); ++i) {
+    auto kind = scene.materials[i].emissionKind;
+    if (kind != MaterialRef::EmissionKind::Graph) {
+      const LinkedMaterial* m = i < linked.materials.size() ? &linked.materials[i] : nullptr;
+      bool constant = m && m->textureCount == 0;
+      if (constant)
+        for (const std::string& input : m->inputsUsed)
+          if (!(kind == MaterialRef::EmissionKind::ConstantFront && input == "backfacing"))
+            constant = false;
+      if (!constant)
+        kind = MaterialRef::EmissionKind::Graph;
+    }
+    kinds.push_back(kind);
+  }
+  return kinds;
+}
+
+SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
+                         const std::vector<MaterialRef::EmissionKind>& emissionKinds) {
   validateScene(scene);
   SceneBuffers out;
   std::vector<gpu::Vertex> vertices;
@@ -193,7 +214,18 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene) {
         gl.positionOrDirection = glm::vec4(0.0f, 0.0f, 0.0f, float(gpu::kLightTriangle));
         gl.spot = glm::vec4(glm::uintBitsToFloat(std::uint32_t(i)),
                             glm::uintBitsToFloat(std::uint32_t(t / 3)), area, 0.0f);
-        gl.spotSmooth = glm::vec4(0.0f);
+        // The emission NEE takes as it is (w: 1 both sides, 2 front only), or w = 0: the
+        // shader evaluates the material at the sample.
+        const auto kind = instance.material < emissionKinds.size()
+                              ? emissionKinds[instance.material]
+                              : MaterialRef::EmissionKind::Graph;
+        if (kind == MaterialRef::EmissionKind::Graph) {
+          gl.spotSmooth = glm::vec4(0.0f);
+          out.neeEvaluatesEmission = true;
+        } else {
+          gl.spotSmooth =
+              glm::vec4(e, kind == MaterialRef::EmissionKind::Constant ? 1.0f : 2.0f);
+        }
         triangles.push_back(gl);
         power.push_back(double(area) * glm::pi<double>() * lum);
         totalPower += power.back();

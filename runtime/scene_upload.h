@@ -27,9 +27,23 @@ struct SceneBuffers {
   std::uint32_t lightCount = 0;
   std::uint32_t environmentWidth = 0;  // 0: constant environment
   std::uint32_t environmentHeight = 0;
+  // Some emissive triangle's material must be evaluated at NEE's light samples (its
+  // emission is not a known constant): the path tracer needs MG_NEE_EVALUATES_EMISSION.
+  bool neeEvaluatesEmission = false;
 };
 
-SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene);
+struct LinkedMaterials;
+
+// Each scene material's declared MaterialRef::EmissionKind where its compiled graph bears
+// it out (Constant: reads no input and no texture; ConstantFront: none but backfacing),
+// else Graph: a declared constant is never trusted for a graph that could vary.
+std::vector<MaterialRef::EmissionKind> emissionKindsVerified(const Scene& scene,
+                                                             const LinkedMaterials& linked);
+
+// `emissionKinds`: per scene material, the emission NEE may take as known (see
+// MaterialRef::EmissionKind and emissionKindsVerified); empty: every material Graph.
+SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
+                         const std::vector<MaterialRef::EmissionKind>& emissionKinds = {});
 
 // Blender's automatic texture space of a mesh (BKE_mesh_texspace_calc), which Generated
 // coordinates map to [0, 1]^3: the centre of the object-space bounding box and half its

@@ -105,7 +105,9 @@ void addShell(Room& r) {
   const auto sky =
       b.material("Classroom_WindowSky",
                  emitterGraph("Classroom_WindowSky", {{2.6f, 3.0f, 3.6f}, {0.8f, 0.85f, 0.9f}}));
-  b.scene().materials[sky].emissionEstimate = {2.6f, 3.0f, 3.6f};  // emissive NEE
+  // Emissive NEE: the graph's constant emission (emitterGraph reads no input).
+  b.scene().materials[sky].emissionEstimate = {2.6f, 3.0f, 3.6f};
+  b.scene().materials[sky].emissionKind = MaterialRef::EmissionKind::Constant;
   const auto sillMaterial = b.material(
       "Classroom_WindowSill",
       paintedMetalGraph("Classroom_WindowSill", {{0.9f, 0.9f, 0.88f}, {0.6f, 0.6f, 0.6f}, 0.1f},
@@ -370,7 +372,8 @@ void addDetails(Room& r) {
   const auto panel = b.material(
       "Classroom_LampPanel",
       emitterGraph("Classroom_LampPanel", {{12.0f, 11.5f, 10.5f}, {0.95f, 0.95f, 0.95f}}));
-  b.scene().materials[panel].emissionEstimate = {12.0f, 11.5f, 10.5f};  // emissive NEE
+  b.scene().materials[panel].emissionEstimate = {12.0f, 11.5f, 10.5f};  // as the sky's
+  b.scene().materials[panel].emissionKind = MaterialRef::EmissionKind::Constant;
   const auto housingMesh =
       b.addMesh(boxesMesh("lamp_housing", {{{-0.6f, -0.08f, -0.15f}, {0.6f, 0, 0.15f}}}));
   const auto panelMesh =

@@ -18,7 +18,7 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 
 // Four vec4 a pixel: (baseColor, metallic), (normal, roughness), (emission, opacity),
-// (specular, 0, 0, 0).
+// (specular, specularTint, cyclesPrincipled, 0).
 layout(set = 0, binding = 0, std430) writeonly buffer BakeValues {
   vec4 bakeValues[];
 };
@@ -90,5 +90,6 @@ void main() {
   bakeValues[base + 0u] = vec4(outputs.baseColor, outputs.metallic);
   bakeValues[base + 1u] = vec4(outputs.normal, outputs.roughness);
   bakeValues[base + 2u] = vec4(outputs.emission, outputs.opacity);
-  bakeValues[base + 3u] = vec4(outputs.specular, 0.0, 0.0, 0.0);
+  bakeValues[base + 3u] =
+      vec4(outputs.specular, outputs.specularTint, outputs.cyclesPrincipled, 0.0);
 }

@@ -310,74 +310,19 @@ float misWeight(float a, float b) {
   return a2 + b2 > 0.0 ? a2 / (a2 + b2) : 0.0;
 }
 
-// Direct light (thesis §5.2) takes one light through one shadow ray. With emissive
-// triangles (NEE, docs/runtime.md) half the samples go to them, chosen by power (CDF in the
-// light buffer), and half to the point, spot and directional lights, chosen uniformly.
-//
-// The choice is made before the shading point's material is evaluated, so that the sampled
-// triangle point's emission is evaluated by the same evaluateMaterial call as the hit's: the
-// path tracer keeps one material call site (each site costs the whole kernel, thesis §5.2's
-// measurements and docs/runtime.md), and the emission at light points is memoized like any
-// hit's.
-struct LightChoice {
-  bool triangle;        // an emissive triangle was chosen (else a punctual light, or none)
-  bool usable;          // the triangle point faces the shading point (geometry only)
-  uint punctualCount;   // point, spot and directional lights
-  float u;              // the punctual group's random number, remapped to [0,1)
-  float groupScale;     // 1 / the probability of the punctual group
-  vec3 wi;              // towards the triangle point
-  float distance;
-  float lightPdf;       // the triangle point's solid-angle pdf, the group's 1/2 included
-  SurfaceHit surface;   // the triangle point, for its material evaluation
-};
-
-// The number of emissive triangles (0: none) and of punctual lights. The light buffer's last
-// record is a header when the scene has emissive triangles (SceneBuffers upload).
-uint emissiveTriangleCount(out uint punctualCount) {
-  uint lightCount = frame.path.w;
-  punctualCount = lightCount;
-  if (lightCount == 0u) return 0u;
-  Light last = lights[lightCount - 1u];
-  if (uint(last.positionOrDirection.w) != kLightTriangle) return 0u;
-  punctualCount = uint(last.intensity.y);
-  return uint(last.intensity.z);
-}
-
-LightChoice noLightChoice() {
-  LightChoice c;
-  c.triangle = false;
-  c.usable = false;
-  c.punctualCount = 0u;
-  c.u = 0.0;
-  c.groupScale = 1.0;
-  c.wi = vec3(0.0);
-  c.distance = 0.0;
-  c.lightPdf = 0.0;
-  c.surface.materialId = 0u;
-  return c;
-}
-
-// Chooses the light of a shading point at `position` (geometric normal `ng`, facing the
-// ray); for an emissive triangle, also a uniform point on it, seen through `cone` (the
-// path's cone, as a BSDF ray towards it would be).
-LightChoice chooseLight(vec3 position, vec3 ng, RayCone cone, inout Rng rng) {
-  LightChoice c = noLightChoice();
-  uint triangleCount = emissiveTriangleCount(c.punctualCount);
-  if (c.punctualCount + triangleCount == 0u) return c;
-  float u = rngNext(rng);
-  if (triangleCount > 0u) {
-    c.triangle = c.punctualCount == 0u || u < 0.5;
-    if (c.punctualCount > 0u) {
-      c.groupScale = 2.0;
-      u = c.triangle ? 2.0 * u : 2.0 * u - 1.0;
-    }
-  }
-  c.u = u;
-  if (!c.triangle) return c;
-
-  uint first = c.punctualCount;
+// Emissive-triangle NEE (docs/runtime.md): one emissive triangle chosen by power (CDF in
+// the light buffer), a uniform point on it, one shadow ray; MIS-weighted against BSDF
+// sampling when `mis` (the path continues, so a BSDF ray can find the same light). Returns
+// f * cos * Le * w / pdf. Le is the triangle record's constant emission where the host
+// knows the material emits one colour everywhere (no material evaluation: a second material
+// call site in the path tracer cost the classroom's memoized frame about 27 % on the H200);
+// otherwise the material's graph is evaluated at the point (uncached), a call site compiled
+// in only for scenes with such emitters (MG_NEE_EVALUATES_EMISSION).
+vec3 sampleEmissiveTriangle(vec3 position, vec3 ng, mat3 toLocal, vec3 wo, BrdfParameters brdf,
+                            uint first, uint count, float u, bool mis, inout Rng rng,
+                            inout uint rays) {
   uint lo = 0u;
-  uint hi = triangleCount - 1u;
+  uint hi = count - 1u;
   while (lo < hi) {
     uint mid = (lo + hi) / 2u;
     if (lights[first + mid].intensity.x < u) lo = mid + 1u;
@@ -403,70 +348,100 @@ LightChoice chooseLight(vec3 position, vec3 ng, RayCone cone, inout Rng rng) {
                 hit.barycentrics.y * p2;
   vec3 toLight = target - position;
   float d2 = dot(toLight, toLight);
-  if (!(d2 > 1e-12)) return c;
+  if (!(d2 > 1e-12)) return vec3(0.0);
   float distance = sqrt(d2);
   vec3 wi = toLight / distance;
-  float cosLight = abs(dot(normalize(cross(p1 - p0, p2 - p0)), wi));
+  vec3 lightNormal = cross(p1 - p0, p2 - p0);
+  float cosLight = abs(dot(normalize(lightNormal), wi));
   float areaPdf = instance.objectInfo.y;
-  if (cosLight < 1e-6 || !(areaPdf > 0.0) || dot(wi, ng) <= 0.0) return c;
-  c.usable = true;
-  c.wi = wi;
-  c.distance = distance;
-  c.lightPdf = areaPdf * d2 / cosLight;  // area to solid angle
-  hit.t = distance;
-  c.surface = surfaceAt(hit, position, wi, cone);
-  return c;
-}
-
-// The chosen light's f * cos * L_i / pdf through one shadow ray. `lightMaterial` holds the
-// triangle point's material outputs; MIS-weighted (power heuristic) against BSDF sampling
-// when `mis` (the path continues, so a BSDF ray can find the same emitter).
-vec3 directLight(LightChoice c, MaterialOutputs lightMaterial, vec3 position, vec3 ng,
-                 mat3 toLocal, vec3 wo, BrdfParameters brdf, bool mis, inout uint rays) {
-  vec3 wi;
-  float distance;
-  vec3 incident;
-  if (c.triangle) {
-    if (!c.usable) return vec3(0.0);
-    wi = c.wi;
-    distance = c.distance * (1.0 - 1e-3);
-    float w = mis ? misWeight(c.lightPdf, brdfPdf(brdf, toLocal * wo, toLocal * wi)) : 1.0;
-    incident = lightMaterial.emission * (w / c.lightPdf);
-  } else {
-    if (c.punctualCount == 0u) return vec3(0.0);
-    uint index = min(uint(c.u * float(c.punctualCount)), c.punctualCount - 1u);
-    Light light = lights[index];
-    uint lightType = uint(light.positionOrDirection.w);
-    if (lightType != kLightDirectional) {
-      vec3 toLight = light.positionOrDirection.xyz - position;
-      float d2 = max(dot(toLight, toLight), 1e-12);
-      distance = sqrt(d2);
-      wi = toLight / distance;
-      incident = light.intensity.rgb / d2;  // radiant intensity over distance squared
-      if (lightType == kLightSpot) {
-        // Cycles 3.4's spot_light_attenuation: the cosine to the axis, cut at the cone and
-        // smoothstepped over the blend width.
-        float attenuation = dot(-wi, light.spot.xyz);
-        if (attenuation <= light.spot.w) return vec3(0.0);
-        float t = attenuation - light.spot.w;
-        float smoothWidth = light.spotSmooth.x;
-        if (t < smoothWidth && smoothWidth != 0.0) attenuation *= smoothstep(0.0, smoothWidth, t);
-        incident *= attenuation;
-      }
-      distance *= 1.0 - 1e-4;
-    } else {
-      wi = -normalize(light.positionOrDirection.xyz);
-      distance = kRayTMax;
-      incident = light.intensity.rgb;  // irradiance perpendicular to the light
-    }
-    if (dot(wi, ng) <= 0.0) return vec3(0.0);
-    incident *= float(c.punctualCount) * c.groupScale;
-  }
+  if (cosLight < 1e-6 || !(areaPdf > 0.0) || dot(wi, ng) <= 0.0) return vec3(0.0);
+  // A one-sided constant emitter (an area lamp) seen from behind: nothing to trace.
+  if (tri.spotSmooth.w == 2.0 && dot(lightNormal, toLight) >= 0.0) return vec3(0.0);
   vec3 fCos = brdfEvaluateCos(brdf, toLocal * wo, toLocal * wi);
   if (all(equal(fCos, vec3(0.0)))) return vec3(0.0);
   rays += 1u;
-  if (traceShadow(offsetRayOrigin(position, ng), wi, distance)) return vec3(0.0);
-  return fCos * incident;
+  if (traceShadow(offsetRayOrigin(position, ng), wi, distance * (1.0 - 1e-3))) return vec3(0.0);
+  vec3 emission = tri.spotSmooth.xyz;
+#ifdef MG_NEE_EVALUATES_EMISSION
+  if (tri.spotSmooth.w == 0.0) {
+    hit.t = distance;
+    RayCone cone;
+    cone.width = 0.0;
+    cone.spread = 0.0;
+    SurfaceHit s = surfaceAt(hit, position, wi, cone);
+    MaterialOutputs m;
+    evaluateMaterialDirect(s.materialId, s.inputs, m);
+    emission = m.emission;
+  }
+#endif
+  float lightPdf = areaPdf * d2 / cosLight;  // solid angle
+  float w = mis ? misWeight(lightPdf, brdfPdf(brdf, toLocal * wo, toLocal * wi)) : 1.0;
+  return fCos * emission * (w / lightPdf);
+}
+
+// Direct light (thesis §5.2): one light through one shadow ray. With emissive triangles
+// (NEE) half the samples go to them and half to the point, spot and directional lights,
+// chosen uniformly. Returns f * cos * L_i / pdf.
+vec3 sampleDirectLight(vec3 position, vec3 ng, mat3 toLocal, vec3 wo, BrdfParameters brdf,
+                       bool mis, inout Rng rng, inout uint rays) {
+  uint lightCount = frame.path.w;
+  if (lightCount == 0u) return vec3(0.0);
+  uint punctual = lightCount;
+  uint triangleCount = 0u;
+  Light lastLight = lights[lightCount - 1u];
+  if (uint(lastLight.positionOrDirection.w) == kLightTriangle) {
+    punctual = uint(lastLight.intensity.y);
+    triangleCount = uint(lastLight.intensity.z);
+  }
+  float u = rngNext(rng);
+  float groupScale = 1.0;
+  if (triangleCount > 0u) {
+    bool pickTriangle = punctual == 0u || u < 0.5;
+    if (punctual > 0u) {
+      groupScale = 2.0;
+      u = pickTriangle ? 2.0 * u : 2.0 * u - 1.0;
+    }
+    if (pickTriangle) {
+      // The triangle pdf already holds the group's 1/2 (SceneBuffers upload).
+      return sampleEmissiveTriangle(position, ng, toLocal, wo, brdf, punctual, triangleCount, u,
+                                    mis, rng, rays);
+    }
+  }
+  uint index = min(uint(u * float(punctual)), punctual - 1u);
+  Light light = lights[index];
+  vec3 wi;
+  float distance;
+  vec3 incident;
+  uint lightType = uint(light.positionOrDirection.w);
+  if (lightType != kLightDirectional) {
+    vec3 toLight = light.positionOrDirection.xyz - position;
+    float d2 = max(dot(toLight, toLight), 1e-12);
+    distance = sqrt(d2);
+    wi = toLight / distance;
+    incident = light.intensity.rgb / d2;  // radiant intensity over distance squared
+    if (lightType == kLightSpot) {
+      // Cycles 3.4's spot_light_attenuation: the cosine to the axis, cut at the cone and
+      // smoothstepped over the blend width.
+      float attenuation = dot(-wi, light.spot.xyz);
+      if (attenuation <= light.spot.w) return vec3(0.0);
+      float t = attenuation - light.spot.w;
+      float smoothWidth = light.spotSmooth.x;
+      if (t < smoothWidth && smoothWidth != 0.0) attenuation *= smoothstep(0.0, smoothWidth, t);
+      incident *= attenuation;
+    }
+  } else {
+    wi = -normalize(light.positionOrDirection.xyz);
+    distance = kRayTMax;
+    incident = light.intensity.rgb;  // irradiance perpendicular to the light
+  }
+  if (dot(wi, ng) <= 0.0) return vec3(0.0);
+  vec3 fCos = brdfEvaluateCos(brdf, toLocal * wo, toLocal * wi);
+  if (all(equal(fCos, vec3(0.0)))) return vec3(0.0);
+  rays += 1u;
+  vec3 shadowOrigin = offsetRayOrigin(position, ng);
+  float tMax = distance < kRayTMax ? distance * (1.0 - 1e-4) : kRayTMax;
+  if (traceShadow(shadowOrigin, wi, tMax)) return vec3(0.0);
+  return fCos * incident * (float(punctual) * groupScale);
 }
 
 // The closest hit a ray sees. Camera rays pass through lights' quads (Cycles 3.4 shows no
@@ -546,30 +521,8 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
           s = surfaceAt(hit, origin, direction, cone);
         }
       }
-      // The light is chosen before the material evaluation (see LightChoice); the loop's
-      // second pass, in scenes with emissive triangles, evaluates the sampled point's
-      // material through the same call. The pass count is the same in every invocation.
-      LightChoice light = noLightChoice();
-      if (alive) {
-        RayCone lightCone;
-        lightCone.width = s.coneWidth;
-        lightCone.spread = cone.spread;
-        light = chooseLight(s.inputs.position.v, s.geometricNormal, lightCone, rng);
-      }
-      uint punctualCount;
-      uint evaluations = emissiveTriangleCount(punctualCount) > 0u ? 2u : 1u;
       MaterialOutputs m;
-      MaterialOutputs lightMaterial;
-      for (uint pass = 0u; pass < evaluations; ++pass) {
-        bool lightPass = pass == 1u;
-        MaterialOutputs outputs;
-        // A light point counts as a secondary hit (MG_CACHE_SECONDARY_ONLY: it is cached).
-        evaluateMaterial(lightPass ? alive && light.usable : alive,
-                         lightPass ? light.surface.materialId : s.materialId,
-                         lightPass ? light.surface.inputs : s.inputs, bounce + pass, outputs);
-        if (lightPass) lightMaterial = outputs;
-        else m = outputs;
-      }
+      evaluateMaterial(alive, s.materialId, s.inputs, bounce, m);
       if (!alive) continue;
 
       vec3 n = dot(m.normal, m.normal) > 1e-30 ? normalize(m.normal) : s.geometricNormal;
@@ -578,7 +531,8 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
       basisAround(n, t, b);
       mat3 toLocal = transpose(mat3(t, b, n));
       vec3 wo = -direction;
-      BrdfParameters brdf = brdfFromMaterial(m.baseColor, m.metallic, m.roughness, m.specular);
+      BrdfParameters brdf = brdfFromMaterial(m.baseColor, m.metallic, m.roughness, m.specular,
+                                             m.specularTint, m.cyclesPrincipled);
       vec3 position = s.inputs.position.v;
 
       // Emission found by a BSDF ray, MIS-weighted against emissive NEE at the last vertex.
@@ -591,8 +545,8 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
       }
       radiance += throughput * m.emission * emissionWeight;
       bool continues = bounce + 1u < rayCountPerPath;
-      radiance += throughput * directLight(light, lightMaterial, position, s.geometricNormal,
-                                           toLocal, wo, brdf, continues, rays);
+      radiance += throughput * sampleDirectLight(position, s.geometricNormal, toLocal, wo, brdf,
+                                                 continues, rng, rays);
       if (bounce + 1u == rayCountPerPath) continue;
 
       // BRDF importance sampling of the next direction (eq. 2.9 with the lobe mixture).

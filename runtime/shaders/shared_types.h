@@ -78,7 +78,8 @@ MG_CONSTANT(uint, kCacheEvictionLrw, 2);     // least recently written, frame cl
 MG_CONSTANT(uint, kCacheEvictionRandom, 3);  // a pseudo-random entry of the probe range
 // Bits of a material's output mask (which MaterialOutputs members an entry stores, in this
 // order: baseColor 3 floats, metallic 1, roughness 1, normal 3, emission 3, opacity 1,
-// specular 1; specular came last, so the older members kept their places).
+// specular 1, specularTint 1, cyclesPrincipled 1; the later members came last, so the older
+// members kept their places).
 MG_CONSTANT(uint, kCacheOutputBaseColor, 1);
 MG_CONSTANT(uint, kCacheOutputMetallic, 2);
 MG_CONSTANT(uint, kCacheOutputRoughness, 4);
@@ -86,6 +87,8 @@ MG_CONSTANT(uint, kCacheOutputNormal, 8);
 MG_CONSTANT(uint, kCacheOutputEmission, 16);
 MG_CONSTANT(uint, kCacheOutputOpacity, 32);
 MG_CONSTANT(uint, kCacheOutputSpecular, 64);
+MG_CONSTANT(uint, kCacheOutputSpecularTint, 128);
+MG_CONSTANT(uint, kCacheOutputCyclesPrincipled, 256);
 
 // Tile cache (thesis §4.6, §5.4): where a tile's texels live (MG_TILE_STORAGE, §5.4.1).
 MG_CONSTANT(uint, kTileStorageEntry, 0);      // after the key and metadata, in the entry

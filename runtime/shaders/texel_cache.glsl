@@ -227,6 +227,14 @@ void cachePack(uint mask, MaterialOutputs o, out float values[MG_CACHE_VALUES]) 
   }
   if ((mask & kCacheOutputOpacity) != 0u) { values[n] = o.opacity; n += 1u; }
   if ((mask & kCacheOutputSpecular) != 0u) { values[n] = o.specular; n += 1u; }
+  if ((mask & kCacheOutputSpecularTint) != 0u) {
+    values[n] = o.specularTint;
+    n += 1u;
+  }
+  if ((mask & kCacheOutputCyclesPrincipled) != 0u) {
+    values[n] = o.cyclesPrincipled;
+    n += 1u;
+  }
 }
 
 // Outputs from cached values: the members the graph writes from the entry, the rest as the
@@ -250,6 +258,14 @@ MaterialOutputs cacheUnpack(uint mask, float values[MG_CACHE_VALUES], MaterialIn
   }
   if ((mask & kCacheOutputOpacity) != 0u) { o.opacity = values[n]; n += 1u; }
   if ((mask & kCacheOutputSpecular) != 0u) { o.specular = values[n]; n += 1u; }
+  if ((mask & kCacheOutputSpecularTint) != 0u) {
+    o.specularTint = values[n];
+    n += 1u;
+  }
+  if ((mask & kCacheOutputCyclesPrincipled) != 0u) {
+    o.cyclesPrincipled = values[n];
+    n += 1u;
+  }
   return o;
 }
 

@@ -333,6 +333,69 @@ def principled_v2(tree):
                          [Sock(n, t, d) for n, t, d in names], [Sock('BSDF', 'SHADER')]))
 
 
+def principled_v1(tree, tint=0.0, distribution='GGX'):
+    """A Blender 3.x Principled BSDF (v1 socket names; the subset the exporter reads)."""
+    names = [('Base Color', 'RGBA', (0.8, 0.3, 0.1, 1)), ('Subsurface', 'VALUE', 0.0),
+             ('Metallic', 'VALUE', 0.25), ('Specular', 'VALUE', 0.7),
+             ('Specular Tint', 'VALUE', tint), ('Roughness', 'VALUE', 0.4),
+             ('Anisotropic', 'VALUE', 0.0), ('Sheen', 'VALUE', 0.0),
+             ('Clearcoat', 'VALUE', 0.0), ('Transmission', 'VALUE', 0.0),
+             ('Emission', 'RGBA', (0, 0, 0, 1)), ('Emission Strength', 'VALUE', 1.0),
+             ('Alpha', 'VALUE', 1.0), ('Normal', 'VECTOR', (0, 0, 0)),
+             ('Clearcoat Normal', 'VECTOR', (0, 0, 0)), ('Tangent', 'VECTOR', (0, 0, 0))]
+    return tree.add(Node('ShaderNodeBsdfPrincipled', 'Principled BSDF',
+                         [Sock(n, t, d) for n, t, d in names], [Sock('BSDF', 'SHADER')],
+                         distribution=distribution))
+
+
+class PrincipledTest(unittest.TestCase):
+    def test_v1_carries_specular_tint_and_cycles_weighting(self):
+        tree = Tree()
+        out = output_node(tree)
+        p = principled_v1(tree, tint=0.6)
+        tree.link(p.outputs[0], out.inputs[0])
+        result, (text,) = export([Material('Mat', tree)])
+        self.assertIn('PrincipledOutput BaseColor=(0.800000012, 0.300000012, 0.100000001) '
+                      'Metallic=0.25 Roughness=0.400000006 Specular=0.699999988 '
+                      'Emission=(0, 0, 0) EmissionStrength=1 Alpha=1 '
+                      'SpecularTint=0.600000024 CyclesPrincipled=1;', text)
+        self.assertEqual(result.warnings, [])  # Specular Tint is carried: no warning
+
+    def test_v1_linked_tint_and_uncarried_features(self):
+        tree = Tree()
+        out = output_node(tree)
+        p = principled_v1(tree, distribution='MULTI_GGX')
+        m = tree.add(math_node('M'))
+        tree.link(m.outputs[0], p.inputs[4])  # Specular Tint
+        p.inputs[7].default_value = 0.5  # Sheen
+        tree.link(p.outputs[0], out.inputs[0])
+        result, (text,) = export([Material('Mat', tree)])
+        self.assertIn('Math A=0.5 B=0.5 Operation=2 Value>0;', text)
+        self.assertIn('SpecularTint<0 CyclesPrincipled=1;', text)
+        msgs = ' | '.join(w[2] for w in result.warnings)
+        self.assertNotIn('Specular Tint', msgs)
+        self.assertIn('Sheen = 0.5 is not carried', msgs)
+        self.assertIn('Multiscatter GGX is written as single-scatter GGX', msgs)
+
+    def test_mix_blends_the_cycles_weighting_with_a_diffuse(self):
+        tree = Tree()
+        out = output_node(tree)
+        p = principled_v1(tree, tint=1.0)
+        diff = tree.add(Node('ShaderNodeBsdfDiffuse', 'Diffuse',
+                             [Sock('Color', 'RGBA', (0.5, 0.1, 0.1, 1)),
+                              Sock('Roughness', 'VALUE', 0.0),
+                              Sock('Normal', 'VECTOR', (0, 0, 0))], [Sock('BSDF', 'SHADER')]))
+        mix = tree.add(Node('ShaderNodeMixShader', 'Mix',
+                            [Sock('Fac', 'VALUE', 0.25), Sock('Shader', 'SHADER'),
+                             Sock('Shader_001', 'SHADER')], [Sock('Shader', 'SHADER')]))
+        tree.link(diff.outputs[0], mix.inputs[1])
+        tree.link(p.outputs[0], mix.inputs[2])
+        tree.link(mix.outputs[0], out.inputs[0])
+        result, (text,) = export([Material('Mat', tree)])
+        self.assertIn('Mix A=0 B=1 Factor<0 Out>', text)  # specular tint and the weighting
+        self.assertEqual(text.count('Mix A=0 B=1 Factor<0'), 2)
+
+
 class SpecWriterTest(unittest.TestCase):
     def test_uncarried_input_and_output_are_reported(self):
         tree = Tree()
@@ -364,13 +427,20 @@ class Blender4Test(unittest.TestCase):
         p = principled_v2(tree)
         tree.link(p.outputs[0], out.inputs[0])
         result, (text,) = export([Material('Mat', tree)])
+        # v2 keeps memograph's own weighting (CyclesPrincipled 0) and no tint.
         self.assertIn('PrincipledOutput BaseColor=(0.800000012, 0.800000012, 0.800000012) '
                       'Metallic=0 Roughness=0.5 Specular=0.5 Emission=(1, 0.5, 0) '
-                      'EmissionStrength=2 Alpha=1;', text)
+                      'EmissionStrength=2 Alpha=1 SpecularTint=0 CyclesPrincipled=0;', text)
         msgs = ' | '.join(w[2] for w in result.warnings)
         self.assertIn('Specular IOR Level', msgs)
         self.assertIn('Clearcoat/Coat = 0.3 is not carried', msgs)
         self.assertNotIn('Specular Tint', msgs)  # white tint = off in 4.x
+        # A coloured 4.x tint is not carried, and says so.
+        p.inputs[8].default_value = (1, 0.5, 0.5, 1)
+        result, (text,) = export([Material('Mat', tree)])
+        msgs = ' | '.join(w[2] for w in result.warnings)
+        self.assertIn('Specular Tint (4.x colour) = (1, 0.5, 0.5) is not carried', msgs)
+        self.assertIn('SpecularTint=0 CyclesPrincipled=0;', text)
 
     def test_noise_types_and_new_inputs(self):
         tree = Tree()

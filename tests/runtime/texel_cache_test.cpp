@@ -39,7 +39,56 @@ TEST(TexelCache, OutputMaskFollowsTheWrittenOutputs) {
                             &floats),
             63u);
   EXPECT_EQ(floats, 12u);
+  EXPECT_EQ(cacheOutputMask({"specular", "specularTint", "cyclesPrincipled"}, &floats),
+            gpu::kCacheOutputSpecular | gpu::kCacheOutputSpecularTint |
+                gpu::kCacheOutputCyclesPrincipled);
+  EXPECT_EQ(floats, 3u);
   EXPECT_THROW(cacheOutputMask({"sheen"}), std::runtime_error);
+}
+
+// Specular Tint and the Cycles weighting (docs/material-interface.md) are outputs like the
+// others: both cache kinds store and restore them. A glossy red wall (Specular 1: F0 0.08)
+// under a grey sky and a point light, its outputs constant, so a cached entry holds
+// exactly the graph's values and the cached image is the uncached one. Tinted, the
+// wall's reflection loses green (F0 0.012 in green), so a cache that dropped the two
+// outputs (restoring the defaults, 0) would render the untinted wall. Bounds: each
+// cache's mean red and green within 1 % of the uncached render's; the untinted wall's
+// green at least 20 % above the tinted one's (measured on lavapipe: both caches equal to
+// the uncached red 0.6152 and green 0.0310; untinted red 0.4876, green 0.0677).
+TEST(TexelCache, SpecularTintAndCyclesWeightingSurviveBothCacheKinds) {
+  auto wallGraph = [](bool tinted) {
+    std::string g =
+        "material Glossy;\nBaseColorOutput Color=(1, 0.05, 0.05);\n"
+        "RoughnessOutput Roughness=0.3;\nSpecularOutput In=1;\n";
+    if (tinted)
+      g += "SpecularTintOutput In=1;\nCyclesPrincipledOutput In=1;\n";
+    return g;
+  };
+  auto channelMean = [](const RenderResult& r, int c) {
+    return testing::meanChannel(r.image, c, 0, 0, int(r.image.width), int(r.image.height));
+  };
+  RendererOptions tile = cacheOptions(CacheMode::Tile, Backend::RayQuery);
+  tile.cache.tileWidth = 2;
+  tile.cache.tileHeight = 2;
+  const Scene tinted = wallScene(wallGraph(true), false);
+  const RenderResult none =
+      Renderer(cacheOptions(CacheMode::None, Backend::RayQuery)).render(tinted, settings(4, 2, 2));
+  const RenderResult plain = Renderer(cacheOptions(CacheMode::None, Backend::RayQuery))
+                                 .render(wallScene(wallGraph(false), false), settings(4, 2, 2));
+  const double red = channelMean(none, 0), green = channelMean(none, 1);
+  std::printf("tinted wall, uncached: mean red %.4f green %.4f; untinted: red %.4f green %.4f\n",
+              red, green, channelMean(plain, 0), channelMean(plain, 1));
+  EXPECT_GT(channelMean(plain, 1), 1.2 * green);
+  for (const RendererOptions& options : {cacheOptions(CacheMode::Texel, Backend::RayQuery), tile}) {
+    const RenderResult cached = Renderer(options).render(tinted, settings(4, 2, 2));
+    expectConsistentCounters(cached.stats);
+    std::printf("tinted wall, %s cache: mean red %.4f green %.4f, last frame hit rate %.2f %%\n",
+                cached.stats.cache.c_str(), channelMean(cached, 0), channelMean(cached, 1),
+                100.0 * cached.stats.frames.back().cacheHitRate());
+    EXPECT_GT(cached.stats.frames.back().cacheLookups, 0u) << cached.stats.cache;
+    EXPECT_NEAR(channelMean(cached, 0), red, 0.01 * red) << cached.stats.cache;
+    EXPECT_NEAR(channelMean(cached, 1), green, 0.01 * green) << cached.stats.cache;
+  }
 }
 
 TEST(TexelCache, StaticCameraHitRateExceeds99PercentAfterAFewFrames) {

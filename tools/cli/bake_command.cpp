@@ -35,8 +35,8 @@ constexpr std::string_view kHelp =
     "Evaluates each material graph (a DIR means every .mgraph in it) at the pixel centres\n"
     "of its UV square and writes one image per output the material writes:\n"
     "DIR/<Material>_<output>.<ext>, output one of baseColor, metallic, roughness, specular,\n"
-    "normal, emission, opacity. Pixel (i, j) is uv ((i + 0.5) / W, (j + 0.5) / H); j = 0 is\n"
-    "v near 0 (Blender's img.pixels row 0).\n"
+    "specularTint, cyclesPrincipled, normal, emission, opacity. Pixel (i, j) is uv\n"
+    "((i + 0.5) / W, (j + 0.5) / H); j = 0 is v near 0 (Blender's img.pixels row 0).\n"
     "\n"
     "The material sits on a plane spanning the bounds in x and y at their centre in z\n"
     "(default: Blender's default plane, position = object = (2u-1, 2v-1, 0)), normal,\n"
@@ -143,6 +143,10 @@ std::vector<OutputImage> outputImages(const runtime::BakeOutputs& baked,
       scalar = &baked.roughness;
     } else if (name == "specular") {
       scalar = &baked.specular;
+    } else if (name == "specularTint") {
+      scalar = &baked.specularTint;
+    } else if (name == "cyclesPrincipled") {
+      scalar = &baked.cyclesPrincipled;
     } else if (name == "opacity") {
       scalar = &baked.opacity;
     } else {

@@ -129,7 +129,14 @@ struct Sidecar {
   std::string worldImage;  // relative to the glTF's folder
   std::vector<TextureSpaceLine> textureSpaces;
   std::vector<AreaLight> areas;
-  std::vector<std::pair<std::string, glm::vec3>> emitters;  // material -> emission estimate
+  // material -> emission estimate, and whether it is the material's exact, constant emission
+  // (`emitter_constant`: the exporter found its Emission colour and strength unlinked).
+  struct Emitter {
+    std::string material;
+    glm::vec3 emission;
+    bool constant = false;
+  };
+  std::vector<Emitter> emitters;
 };
 
 std::string restOfLine(std::istringstream& s) {
@@ -201,11 +208,11 @@ bool readSidecar(const std::string& gltfPath, Sidecar& out, compiler::Diagnostic
         return bad("texspace needs six numbers and a mesh name");
       t.mesh = restOfLine(s);
       out.textureSpaces.push_back(t);
-    } else if (word == "emitter") {
+    } else if (word == "emitter" || word == "emitter_constant") {
       glm::vec3 e;
       if (!(s >> e.r >> e.g >> e.b))
-        return bad("emitter needs r g b and a material name");
-      out.emitters.emplace_back(restOfLine(s), e);
+        return bad(word + " needs r g b and a material name");
+      out.emitters.push_back({restOfLine(s), e, word == "emitter_constant"});
     } else if (word == "area") {
       AreaLight a;
       std::string shape;
@@ -427,9 +434,12 @@ void applySidecar(Scene& scene, const Sidecar& side, const glm::mat4& root, cons
     }
   }
   for (runtime::MaterialRef& m : scene.materials)
-    for (const auto& [name, estimate] : side.emitters)
-      if (m.name == name)
-        m.emissionEstimate = estimate;
+    for (const Sidecar::Emitter& e : side.emitters)
+      if (m.name == e.material) {
+        m.emissionEstimate = e.emission;
+        m.emissionKind = e.constant ? runtime::MaterialRef::EmissionKind::Constant
+                                    : runtime::MaterialRef::EmissionKind::Graph;
+      }
   for (const AreaLight& a : side.areas) {
     // Cycles 3.4 gives an area light of power P and area A the radiance P / (4 A) on its
     // front (-z) side (measured: docs/blender.md, Light units).
@@ -454,7 +464,8 @@ void applySidecar(Scene& scene, const Sidecar& side, const glm::mat4& root, cons
                   "EmissionOutput Color=(%.9g, %.9g, %.9g) Strength<1;\n"
                   "BaseColorOutput In=(0, 0, 0);\nSpecularOutput In=0;\n",
                   materialName.c_str(), radiance.r, radiance.g, radiance.b);
-    scene.materials.push_back(runtime::MaterialRef{materialName, {}, graph, radiance});
+    scene.materials.push_back(runtime::MaterialRef{materialName, {}, graph, radiance,
+                                                   runtime::MaterialRef::EmissionKind::ConstantFront});
     scene.instances.push_back(runtime::Instance{
         static_cast<std::uint32_t>(scene.meshes.size() - 1),
         static_cast<std::uint32_t>(scene.materials.size() - 1), root * a.objectToWorld, false});

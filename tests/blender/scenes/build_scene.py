@@ -12,10 +12,18 @@ no clamping, no light threshold) and DIR/export/ (the memograph exporter with --
 - emission: procedural emission only (Noise and Checker into Emission), no lights, black world.
 - room: a diffuse room (floor and two walls, Diffuse BSDF with procedural albedo) with a
   point light, a sun and an emissive panel.
+- principled: nine Principled BSDF tiles side by side (PRINCIPLED_TILES: coloured bases at
+  a few Metallic / Specular / Specular Tint / Roughness values) lit by one sun, seen near
+  the sun's mirror direction so the highlights are in view. principled_retro: the same
+  tiles with the sun behind the camera, both far from the normal (back-scattering, where
+  Principled diffuse's retro-reflection shows). Both also write DIR/tiles.json:
+  each tile's material and the pixel box (x0, y0, x1, y1, inclusive, row 0 at the bottom as
+  in PFM) of its middle, which compare_scene.py averages per tile.
 """
 
 import argparse
 import array
+import json
 import math
 import os
 import sys
@@ -66,6 +74,18 @@ def emission(name, color=(1, 1, 1), strength=1.0, color_node=None):
     nt.links.new(e.outputs[0], o.inputs['Surface'])
     if color_node is not None:
         color_node(nt, e.inputs['Color'], e.inputs['Strength'])
+    return m
+
+
+def principled(name, base_color, metallic, specular, specular_tint, roughness):
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    p = m.node_tree.nodes['Principled BSDF']
+    p.inputs['Base Color'].default_value = (*base_color, 1)
+    p.inputs['Metallic'].default_value = metallic
+    p.inputs['Specular'].default_value = specular
+    p.inputs['Specular Tint'].default_value = specular_tint
+    p.inputs['Roughness'].default_value = roughness
     return m
 
 
@@ -178,6 +198,66 @@ def room_scene():
     camera((1.2, -4.5, 1.8), rotation=(math.radians(80), 0, math.radians(12)), lens=28)
 
 
+ORANGE = (0.8, 0.3, 0.08)
+BLUE = (0.15, 0.35, 0.8)
+GREEN = (0.2, 0.6, 0.15)
+# (base colour, Metallic, Specular, Specular Tint, Roughness), row-major from the camera's
+# top-left tile: tint off and on at one setting, high Specular with tint, half metal, a
+# rough tile (Principled diffuse's retro-reflection), a metal, no specular at all.
+PRINCIPLED_TILES = (
+    (ORANGE, 0.0, 0.5, 0.0, 0.3), (ORANGE, 0.0, 0.5, 1.0, 0.3), (ORANGE, 0.0, 1.0, 1.0, 0.2),
+    (BLUE, 0.0, 1.0, 0.5, 0.4), (BLUE, 0.5, 0.5, 1.0, 0.3), (BLUE, 0.0, 0.5, 0.0, 1.0),
+    (ORANGE, 1.0, 0.5, 0.0, 0.35), (GREEN, 0.0, 0.0, 0.0, 0.5), (GREEN, 0.2, 0.8, 0.8, 0.6),
+)
+
+
+def principled_scene(view='mirror'):
+    world()
+    tiles = []
+    for k, (color, metallic, specular, tint, roughness) in enumerate(PRINCIPLED_TILES):
+        row, col = divmod(k, 3)
+        name = 'P%d' % k
+        # The camera looks towards -y: its left is +x, its top (the far side) is -y.
+        x, y = (1 - col) * 1.0, (row - 1) * 1.0
+        plane(name, 0.9, principled(name, color, metallic, specular, tint, roughness),
+              location=(x, y, 0))
+        tiles.append((name, x, y))
+    if view == 'mirror':
+        # The sun shines towards +y and down, 55 degrees from the normal; the camera sits near
+        # the mirror direction (40 degrees from the normal), towards -y.
+        light('SUN', 'Sun', (0, 0, 3), rotation=(math.radians(55), 0, 0), energy=3.0,
+              angle=0.0)
+        camera((0, 3.6, 3.3), rotation=(math.radians(47.5), 0, math.radians(180)), lens=55)
+    else:
+        # Back-scattering: the sun behind the camera, 65 degrees from the normal, the camera
+        # 60 degrees from it, where Principled diffuse's retro-reflection is strong.
+        light('SUN', 'Sun', (0, 0, 3), rotation=(math.radians(-65), 0, 0), energy=3.0,
+              angle=0.0)
+        camera((0, 4.33, 2.5), rotation=(math.radians(60), 0, math.radians(180)), lens=50)
+    return tiles
+
+
+def tile_boxes(tiles, size, half=0.3):
+    """Pixel boxes of each tile's middle (half-width `half` m around its centre): the box
+    inside the projected square, so no pixel sees an edge."""
+    from bpy_extras.object_utils import world_to_camera_view
+    from mathutils import Vector
+    sc = bpy.context.scene
+    sc.render.resolution_x = sc.render.resolution_y = size  # the view's aspect
+    sc.render.resolution_percentage = 100
+    boxes = []
+    for name, x, y in tiles:
+        pts = [world_to_camera_view(sc, sc.camera, Vector((x + dx, y + dy, 0.0)))
+               for dx in (-half, half) for dy in (-half, half)]
+        xs = sorted(p.x * size for p in pts)
+        ys = sorted(p.y * size for p in pts)
+        # Inner box: the second smallest and second largest of the corners' coordinates.
+        box = [math.ceil(xs[1]), math.ceil(ys[1]), math.floor(xs[2]) - 1,
+               math.floor(ys[2]) - 1]
+        boxes.append({'material': name, 'box': box})
+    return boxes
+
+
 def render(out_dir, size, samples):
     sc = bpy.context.scene
     sc.render.engine = 'CYCLES'
@@ -212,6 +292,8 @@ SCENES = {
     'units_area': lambda: units_scene('area'),
     'emission': emission_scene,
     'room': room_scene,
+    'principled': principled_scene,
+    'principled_retro': lambda: principled_scene('retro'),
 }
 
 
@@ -226,8 +308,11 @@ def main(argv):
     out = os.path.abspath(args.out)
     os.makedirs(out, exist_ok=True)
     bpy.ops.wm.read_factory_settings(use_empty=True)
-    SCENES[args.scene]()
+    tiles = SCENES[args.scene]()
     bpy.context.view_layer.update()
+    if tiles:
+        with open(os.path.join(out, 'tiles.json'), 'w') as f:
+            json.dump(tile_boxes(tiles, args.size), f, indent=1)
     bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, args.scene + '.blend'))
     if not args.no_render:
         render(out, args.size, args.samples)

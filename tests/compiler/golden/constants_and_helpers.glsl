@@ -39,6 +39,8 @@ struct MaterialOutputs {
   float3 emission;
   float opacity;
   float specular;
+  float specularTint;
+  float cyclesPrincipled;
 };
 float4 mg_SampleTexture(int textureIndex, float2 uv, float2 ddx, float2 ddy);
 #endif  // MG_PRELUDE_GLSL
@@ -54,6 +56,8 @@ MaterialOutputs mg_defaultMaterialOutputs(MaterialInputs inputs) {
   o.emission = float3(0.0, 0.0, 0.0);
   o.opacity = 1.0;
   o.specular = 0.5;
+  o.specularTint = 0.0;
+  o.cyclesPrincipled = 0.0;
   return o;
 }
 #endif

@@ -100,18 +100,38 @@ TEST_F(BakeCli, ConstantColourIsExactAndOnlyWrittenOutputsAreFiles) {
 }
 
 TEST_F(BakeCli, PrincipledOutputWritesSpecularWithBlendersDefault) {
-  const auto set = graph("Set", "PrincipledOutput BaseColor=(0.1, 0.2, 0.3) Specular=0.8;\n");
+  const auto set = graph("Set",
+                         "PrincipledOutput BaseColor=(0.1, 0.2, 0.3) Specular=0.8 "
+                         "SpecularTint=0.25 CyclesPrincipled=1;\n");
   const auto unset = graph("Unset", "PrincipledOutput BaseColor=(0.1, 0.2, 0.3);\n");
   const auto run = runCli("bake " + set + " " + unset + " --size 1x1 --format pfm --out " + out());
   ASSERT_EQ(run.exitCode, 0) << run.output;
-  EXPECT_EQ(outputFiles(), (std::vector<std::string>{
-                               "Set_baseColor.pfm", "Set_emission.pfm", "Set_metallic.pfm",
-                               "Set_opacity.pfm", "Set_roughness.pfm", "Set_specular.pfm",
-                               "Unset_baseColor.pfm", "Unset_emission.pfm", "Unset_metallic.pfm",
-                               "Unset_opacity.pfm", "Unset_roughness.pfm", "Unset_specular.pfm"}));
+  EXPECT_EQ(outputFiles(),
+            (std::vector<std::string>{
+                "Set_baseColor.pfm", "Set_cyclesPrincipled.pfm", "Set_emission.pfm",
+                "Set_metallic.pfm", "Set_opacity.pfm", "Set_roughness.pfm", "Set_specular.pfm",
+                "Set_specularTint.pfm", "Unset_baseColor.pfm", "Unset_cyclesPrincipled.pfm",
+                "Unset_emission.pfm", "Unset_metallic.pfm", "Unset_opacity.pfm",
+                "Unset_roughness.pfm", "Unset_specular.pfm", "Unset_specularTint.pfm"}));
   int w = 0, h = 0;
   EXPECT_EQ(rawPfm(outFile("Set_specular.pfm"), w, h)[0], 0.8f);
   EXPECT_EQ(rawPfm(outFile("Unset_specular.pfm"), w, h)[0], 0.5f);
+  // Specular Tint and the Cycles weighting: as written, and off by default.
+  EXPECT_EQ(rawPfm(outFile("Set_specularTint.pfm"), w, h)[0], 0.25f);
+  EXPECT_EQ(rawPfm(outFile("Set_cyclesPrincipled.pfm"), w, h)[0], 1.0f);
+  EXPECT_EQ(rawPfm(outFile("Unset_specularTint.pfm"), w, h)[0], 0.0f);
+  EXPECT_EQ(rawPfm(outFile("Unset_cyclesPrincipled.pfm"), w, h)[0], 0.0f);
+}
+
+TEST_F(BakeCli, SpecularTintAndCyclesPrincipledSinksClampToZeroOne) {
+  const auto g = graph("Sinks", "SpecularTintOutput 1.5;\nCyclesPrincipledOutput -2;\n");
+  const auto run = runCli("bake " + g + " --size 1x1 --format pfm --out " + out());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_EQ(outputFiles(),
+            (std::vector<std::string>{"Sinks_cyclesPrincipled.pfm", "Sinks_specularTint.pfm"}));
+  int w = 0, h = 0;
+  EXPECT_EQ(rawPfm(outFile("Sinks_specularTint.pfm"), w, h)[0], 1.0f);
+  EXPECT_EQ(rawPfm(outFile("Sinks_cyclesPrincipled.pfm"), w, h)[0], 0.0f);
 }
 
 TEST_F(BakeCli, NegativeAndLargeValuesSurviveFloatFormats) {

@@ -24,10 +24,10 @@ _OFF = (0.0,)
 _WHITE = ((1.0, 1.0, 1.0),)
 
 # Principled features memograph's BRDF does not have: (names 3.4 then 4.x, values meaning
-# "off", what to call it). A linked socket or another value is reported.
+# "off", what to call it). A linked socket or another value is reported. 3.4's Specular
+# Tint (a factor) is carried (shaders.principled); 4.x's colour Specular Tint is not.
 PRINCIPLED_UNCARRIED = (
     (('Subsurface', 'Subsurface Weight'), _OFF, 'Subsurface'),
-    (('Specular Tint',), (0.0, (1.0, 1.0, 1.0)), 'Specular Tint'),
     (('Anisotropic',), _OFF, 'Anisotropic'),
     (('Sheen', 'Sheen Weight'), _OFF, 'Sheen'),
     (('Clearcoat', 'Coat Weight'), _OFF, 'Clearcoat/Coat'),
@@ -36,6 +36,7 @@ PRINCIPLED_UNCARRIED = (
     (('Tangent',), ((0.0, 0.0, 0.0),), 'Tangent'),
     (('Thin Film Thickness',), _OFF, 'Thin Film'),
 )
+PRINCIPLED_V2_SPECULAR_TINT = (('Specular Tint',), _WHITE, 'Specular Tint (4.x colour)')
 
 # Inputs that exist only in 4.x and that no 3.4-based spec carries: (node, identifier) ->
 # values that mean "as in 3.4". Another value, or a link, is reported by check_new_inputs.

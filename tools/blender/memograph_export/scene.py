@@ -83,8 +83,11 @@ def _value(sock, fallback):
 
 
 def emission_estimate(material):
-    """A rough emitted radiance of a material (for choosing among lights by power only:
-    memograph evaluates the graph's real emission at each light sample). None: no emission."""
+    """The emitted radiance of a material and whether it is exact: (rgb, exact), or None for
+    no emission. Exact when the Emission colour and strength are both unlinked (the graph
+    then emits colour x strength everywhere, which memograph's light sampling takes as it
+    is: `emitter_constant`); otherwise a rough value for choosing among lights by power
+    (`emitter`: memograph evaluates the graph's real emission at each light sample)."""
     if material is None or not material.use_nodes or material.node_tree is None:
         return None
     out = None
@@ -102,8 +105,11 @@ def emission_estimate(material):
         return None  # mixes and groups: found by BSDF rays only
     c = _value(color, (1.0, 1.0, 1.0))
     s = _value(strength, 1.0)
-    est = [max(0.0, float(x) * s) for x in c]
-    return est if max(est) > 0.0 else None
+    raw = [float(x) * s for x in c]
+    est = [max(0.0, x) for x in raw]
+    exact = (color is not None and not color.is_linked and strength is not None
+             and not strength.is_linked and est == raw)
+    return (est, exact) if max(est) > 0.0 else None
 
 
 def sidecar_lines(scene, objects, out_dir, warnings, names=None):
@@ -116,9 +122,11 @@ def sidecar_lines(scene, objects, out_dir, warnings, names=None):
     lines += _world_lines(scene, out_dir, warnings)
     for mat in bpy.data.materials:
         if names and mat.name in names:
-            est = emission_estimate(mat)
-            if est is not None:
-                lines.append(_line('emitter', est[0], est[1], est[2], names[mat.name]))
+            found = emission_estimate(mat)
+            if found is not None:
+                est, exact = found
+                lines.append(_line('emitter_constant' if exact else 'emitter', est[0], est[1],
+                                   est[2], names[mat.name]))
     seen_meshes = set()
     for obj in objects:
         if obj.type == 'MESH' and obj.data is not None and obj.data.name not in seen_meshes:

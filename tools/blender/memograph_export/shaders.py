@@ -1,17 +1,23 @@
 """Shader nodes -> memograph outputs (issue 13, item 3).
 
 memograph materials have one BRDF (Principled subset: base colour, metallic, roughness,
-specular, emission, opacity, normal; nodes/outputs.inc). A shader node is evaluated into a
-Params record of those fields (operands), shader mixing blends the fields, and the material
-writes them once at the end. Everything but Principled BSDF is an approximation and says so
-in a warning naming the material, the node and what was used.
+specular, specular tint, emission, opacity, normal; nodes/outputs.inc). A shader node is
+evaluated into a Params record of those fields (operands), shader mixing blends the fields,
+and the material writes them once at the end. Everything but Principled BSDF is an
+approximation and says so in a warning naming the material, the node and what was used.
+
+A Blender 3.x Principled BSDF (v1) also sets cycles_principled = 1: memograph's BRDF then
+weights and shapes its diffuse and specular as Cycles 3.4 does (runtime/shaders/brdf.glsl,
+docs/blender.md "Principled BSDF"); every other shader, and 4.x's v2, keeps memograph's
+own energy-conserving weighting (0).
 """
 
 from . import compat
 from .graph import Const, Convert, Out, SHADER
 from .mgraph import Link, Literal
 
-FIELDS = ('base_color', 'metallic', 'roughness', 'specular', 'emission', 'alpha')
+FIELDS = ('base_color', 'metallic', 'roughness', 'specular', 'specular_tint',
+          'cycles_principled', 'emission', 'alpha')
 _COLOR_FIELDS = ('base_color', 'emission')
 
 
@@ -23,6 +29,8 @@ class Params:
         self.metallic = kw.get('metallic', Literal(0.0))
         self.roughness = kw.get('roughness', Literal(0.5))
         self.specular = kw.get('specular', Literal(0.5))
+        self.specular_tint = kw.get('specular_tint', Literal(0.0))
+        self.cycles_principled = kw.get('cycles_principled', Literal(0.0))
         self.emission = kw.get('emission', Literal((0.0, 0.0, 0.0)))
         self.emission_strength = kw.get('emission_strength', Literal(1.0))
         self.alpha = kw.get('alpha', Literal(1.0))
@@ -93,11 +101,27 @@ def principled(mw, flat):
     if spec_ident == 'Specular IOR Level':
         mw.warn(flat, 'Principled v2 "Specular IOR Level" is written as memograph Specular '
                 '(0.5 = the IOR\'s own reflectance in both); IOR itself is not carried')
+    # v1 (3.x): Specular Tint is a factor, carried, and the closures are weighted as Cycles
+    # 3.4 weights them. v2 (4.x) is another model (a layered, energy-conserving dielectric
+    # with a colour Specular Tint), nearer memograph's own weighting: cycles_principled 0.
+    v1 = spec_ident == 'Specular'
+    p.cycles_principled = Literal(1.0 if v1 else 0.0)
+    tint_ident = compat.find_input(node, 'Specular Tint')
+    tint_socket = flat.socket(tint_ident) if tint_ident else None
+    if tint_socket is not None and tint_socket.type == 'VALUE':
+        p.specular_tint = mw.input_operand(flat, tint_ident) or Literal(0.0)
     p.emission = _in(mw, flat, 'Emission', 'Emission Color') or Literal((0.0, 0.0, 0.0))
     p.emission_strength = _in(mw, flat, 'Emission Strength') or Literal(1.0)
     p.alpha = _in(mw, flat, 'Alpha') or Literal(1.0)
     p.normal = _normal(mw, flat)
-    _warn_unused(mw, flat, compat.PRINCIPLED_UNCARRIED)
+    checks = compat.PRINCIPLED_UNCARRIED
+    if tint_socket is not None and tint_socket.type != 'VALUE':
+        checks = checks + (compat.PRINCIPLED_V2_SPECULAR_TINT,)
+    _warn_unused(mw, flat, checks)
+    distribution = getattr(node, 'distribution', 'GGX')
+    if v1 and distribution == 'MULTI_GGX':
+        mw.warn(flat, 'Multiscatter GGX is written as single-scatter GGX (Cycles uses '
+                'multiscatter above Roughness 0.075: rough speculars are brighter there)')
     return p
 
 
@@ -133,7 +157,8 @@ def mix_shader(mw, flat):
     b = mw.shader(flat.input('Shader_001'))
     if not (a.pure_emission and b.pure_emission):  # two emissions mix exactly
         mw.warn(flat, 'Mix Shader approximated by blending the two shaders\' parameters '
-                '(base colour, metallic, roughness, specular, emission, alpha, normal) by Fac')
+                '(base colour, metallic, roughness, specular, specular tint, Cycles weighting, '
+                'emission, alpha, normal) by Fac')
     fac = mw.input_operand(flat, 'Fac')
     clamped = mw.builder.new_link()
     mw.builder.add('Saturate', [('In', fac)], [('Out', clamped)], comment=flat.label + ' Fac')
@@ -168,7 +193,9 @@ def add_shader(mw, flat):
                 'are those of the %s shader' % ('second' if a.pure_emission else 'first'))
     surface = b if a.pure_emission else a
     out = Params(base_color=surface.base_color, metallic=surface.metallic,
-                 roughness=surface.roughness, specular=surface.specular, alpha=surface.alpha,
+                 roughness=surface.roughness, specular=surface.specular,
+                 specular_tint=surface.specular_tint,
+                 cycles_principled=surface.cycles_principled, alpha=surface.alpha,
                  normal=surface.normal)
     ea, eb = a.emission_product(mw), b.emission_product(mw)
     link = mw.builder.new_link()
@@ -249,6 +276,7 @@ def write_outputs(mw, params):
         ('BaseColor', params.base_color), ('Metallic', params.metallic),
         ('Roughness', params.roughness), ('Specular', params.specular),
         ('Emission', params.emission), ('EmissionStrength', params.emission_strength),
-        ('Alpha', params.alpha)], [])
+        ('Alpha', params.alpha), ('SpecularTint', params.specular_tint),
+        ('CyclesPrincipled', params.cycles_principled)], [])
     if params.normal is not None:
         b.add('NormalOutput', [('In', params.normal)], [])
