@@ -142,6 +142,10 @@ bool StagedFile::write(std::string_view bytes, std::string& error) {
     error = "internal: write before create";
     return false;
   }
+  return writeAll(bytes, error) && sync(error);
+}
+
+bool StagedFile::writeAll(std::string_view bytes, std::string& error) {
   const char* data = bytes.data();
   std::size_t left = bytes.size();
   while (left > 0) {
@@ -155,7 +159,7 @@ bool StagedFile::write(std::string_view bytes, std::string& error) {
     data += written;
     left -= static_cast<std::size_t>(written);
   }
-  return sync(error);
+  return true;
 }
 
 bool StagedFile::sync(std::string& error) {
@@ -178,6 +182,56 @@ bool StagedFile::sync(std::string& error) {
     return false;
   }
   return true;
+}
+
+bool StagedFile::adopt(const fs::path& written, std::string& error) {
+  if (temporary_.empty()) {
+    error = "internal: adopt before create";
+    return false;
+  }
+  if (fd_ >= 0) {
+    ::close(fd_);
+    fd_ = -1;
+  }
+  if (::rename(written.c_str(), temporary_.c_str()) == 0)
+    return sync(error);
+  if (errno != EXDEV) {
+    error = errnoMessage("cannot move " + written.string(), errno);
+    return false;
+  }
+  // Another file system: copied into the temporary (still unique, still ours).
+  const int in = ::open(written.c_str(), O_RDONLY | O_CLOEXEC);
+  if (in < 0) {
+    error = errnoMessage("cannot read " + written.string(), errno);
+    return false;
+  }
+  fd_ = ::open(temporary_.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+  if (fd_ < 0) {
+    error = errnoMessage("cannot reopen the temporary file", errno);
+    ::close(in);
+    return false;
+  }
+  std::vector<char> buffer(1 << 16);
+  for (;;) {
+    const ssize_t n = ::read(in, buffer.data(), buffer.size());
+    if (n < 0 && errno == EINTR)
+      continue;
+    if (n < 0) {
+      error = errnoMessage("cannot read " + written.string(), errno);
+      ::close(in);
+      return false;
+    }
+    if (n == 0)
+      break;
+    std::string cause;
+    if (!writeAll(std::string_view(buffer.data(), std::size_t(n)), cause)) {
+      error = cause;
+      ::close(in);
+      return false;
+    }
+  }
+  ::close(in);
+  return sync(error);
 }
 
 bool StagedFile::commit(std::string& error) {

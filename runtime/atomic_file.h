@@ -38,6 +38,10 @@ class StagedFile {
   bool write(std::string_view bytes, std::string& error);
   // Checks a temporary written by someone else through temporaryPath(): present, flushed.
   bool sync(std::string& error);
+  // Takes `written`, a complete file written elsewhere (a staging folder), as the
+  // temporary: renamed over it when both are on one file system, else copied; then
+  // flushed. `written` is gone afterwards only when it was renamed.
+  bool adopt(const std::filesystem::path& written, std::string& error);
   // Renames the temporary over the target.
   bool commit(std::string& error);
   // Removes the temporary (the destructor does this too).
@@ -47,6 +51,8 @@ class StagedFile {
   const std::filesystem::path& temporaryPath() const { return temporary_; }
 
  private:
+  bool writeAll(std::string_view bytes, std::string& error);  // to fd_, without fsync
+
   std::filesystem::path target_;
   std::filesystem::path temporary_;
   int fd_ = -1;

@@ -1,5 +1,6 @@
 #include "runtime/shader_compiler.h"
 
+#include <atomic>
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
@@ -163,11 +164,23 @@ std::vector<std::uint32_t> readCache(const std::filesystem::path& path) {
   return {words.begin() + kCacheHeaderWords, words.end()};
 }
 
+// The cache is an optimisation: an entry that cannot be written (a read-only or full disk,
+// a file-size limit) is a warning, once per process, and the shader is used as compiled.
+void warnCacheUnwritable(const std::filesystem::path& path, const std::string& why) {
+  static std::atomic_flag warned = ATOMIC_FLAG_INIT;
+  if (warned.test_and_set())
+    return;
+  std::cerr << "memograph: warning: cannot write the shader cache entry " << path.string() << " ("
+            << why << "); shaders are compiled again on the next run\n";
+}
+
 void writeCache(const std::filesystem::path& path, const std::vector<std::uint32_t>& spirv) {
   std::error_code error;
   std::filesystem::create_directories(path.parent_path(), error);
-  if (error)
-    return;  // the cache is an optimisation; a read-only disk just disables it
+  if (error) {
+    warnCacheUnwritable(path, "cannot create its folder: " + error.message());
+    return;
+  }
   std::vector<std::uint32_t> words(kCacheHeaderWords);
   words.insert(words.end(), spirv.begin(), spirv.end());
   const std::uint64_t sum = checksum(words, kCacheHeaderWords);
@@ -178,10 +191,11 @@ void writeCache(const std::filesystem::path& path, const std::vector<std::uint32
   words[4] = std::uint32_t(sum >> 32);
   // A unique temporary, fsynced, renamed (files::writeFileAtomically): readers see all or
   // nothing, and a failed write (a full disk) removes its temporary.
-  std::string ignored;
-  files::writeFileAtomically(
-      path, std::string_view(reinterpret_cast<const char*>(words.data()), words.size() * 4),
-      ignored);
+  std::string why;
+  if (!files::writeFileAtomically(
+          path, std::string_view(reinterpret_cast<const char*>(words.data()), words.size() * 4),
+          why))
+    warnCacheUnwritable(path, why);
 }
 
 }  // namespace

@@ -117,6 +117,96 @@ TEST_F(Hardening, PfmHeadersCannotDeclareMoreThanTheFileHolds) {
   EXPECT_EQ(listing(), (std::vector<std::string>{"big.pfm", "ok.pfm"}));
 }
 
+// One triangle whose buffer is the file `uri` beside the glTF (tests/adversarial/
+// make_scenes.py writes the same scenes for the CLI).
+std::string externalTriangle(const std::string& uri) {
+  return R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+    "nodes": [{"mesh": 0}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+    "accessors": [
+      {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"},
+      {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36},
+                    {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+    "buffers": [{"byteLength": 44, "uri": ")" +
+         uri + R"("}]})";
+}
+std::string triangleBuffer(std::uint16_t lastIndex) {
+  const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+  const std::uint16_t indices[4] = {0, 1, lastIndex, 0};
+  std::string bytes(reinterpret_cast<const char*>(positions), sizeof positions);
+  bytes.append(reinterpret_cast<const char*>(indices), sizeof indices);
+  return bytes;
+}
+
+// Issue 14: vertex indices in an external .bin were not read, so assimp dropped a triangle
+// with a bad one without a word; a missing buffer file was assimp's vaguer error.
+TEST_F(Hardening, ExternalBufferIndicesAreChecked) {
+  fs::create_directories(path("sub"));
+  std::ofstream(path("sub/good.bin"), std::ios::binary) << triangleBuffer(2);
+  std::ofstream(path("sub/bad.bin"), std::ios::binary) << triangleBuffer(60000);
+  std::ofstream(path("sub/short.bin"), std::ios::binary) << triangleBuffer(2).substr(0, 20);
+  std::ofstream(path("good.gltf")) << externalTriangle("sub/good.bin");
+  std::ofstream(path("escaped.gltf")) << externalTriangle("sub\\/good.bin");
+  std::ofstream(path("bad.gltf")) << externalTriangle("sub/bad.bin");
+  std::ofstream(path("missing.gltf")) << externalTriangle("sub/missing.bin");
+  std::ofstream(path("short.gltf")) << externalTriangle("sub/short.bin");
+  std::ofstream(path("folder.gltf")) << externalTriangle("sub");
+  std::ofstream(path("absolute.gltf")) << externalTriangle(path("sub/good.bin"));
+  auto check = [&](const std::string& name) {
+    compiler::Diagnostics diagnostics;
+    const bool ok = io::precheckGltf(path(name), diagnostics);
+    const std::string text = compiler::formatDiagnostics(diagnostics);
+    EXPECT_EQ(ok, !diagnostics.hasErrors()) << text;
+    return ok ? std::string("ok") : text;
+  };
+  EXPECT_EQ(check("good.gltf"), "ok");
+  EXPECT_EQ(check("escaped.gltf"), "ok");  // "sub\/good.bin" is JSON for sub/good.bin
+  EXPECT_NE(check("bad.gltf")
+                .find("meshes[0].primitives[0].indices: index 2 is 60000, out of "
+                      "range: the primitive has 3 vertices"),
+            std::string::npos)
+      << check("bad.gltf");
+  EXPECT_NE(
+      check("missing.gltf")
+          .find("buffers[0].uri 'sub/missing.bin': " + path("sub") + "/missing.bin: no such file"),
+      std::string::npos)
+      << check("missing.gltf");
+  EXPECT_NE(check("short.gltf").find("has 20 bytes, fewer than the buffer's byteLength of 44"),
+            std::string::npos)
+      << check("short.gltf");
+  EXPECT_NE(check("folder.gltf").find("is a folder"), std::string::npos) << check("folder.gltf");
+  EXPECT_NE(check("absolute.gltf").find("is an absolute path"), std::string::npos)
+      << check("absolute.gltf");
+}
+
+// Found by memograph_gltf_import_fuzzer: assimp 5.2 allocates a base64 payload's decoded
+// size, then throws on a byte over 127 without freeing it (and decodes other strangers as
+// zeros). Data URIs are checked as assimp splits them; valid ones (escaped '/' included) pass.
+TEST(GltfPrecheck, DataUrisMustBeBase64AsAssimpReadsThem) {
+  auto check = [](const std::string& uri) {
+    const std::string json = R"({"asset": {"version": "2.0"}, "buffers": [{"byteLength": 3,
+        "uri": ")" + uri + R"("}], "images": [{"uri": "data:image/png;base64,AAAA"}]})";
+    compiler::Diagnostics diagnostics;
+    const bool ok = io::precheckGltfBytes("data.gltf", json, false, diagnostics);
+    return ok ? std::string("ok") : compiler::formatDiagnostics(diagnostics);
+  };
+  EXPECT_EQ(check("data:application/octet-stream;base64,AAA\/"), "ok");
+  EXPECT_EQ(check("data:application/octet-stream;base64,AA=="), "ok");
+  EXPECT_NE(check("data:application/octet-stream;base64,AA\u00ffA")
+                .find("buffers[0].uri: the base64 data has a character that is not base64 (0xc3 at "
+                      "character 2)"),
+            std::string::npos)
+      << check("data:application/octet-stream;base64,AA\u00ffA");
+  EXPECT_NE(check("data:application/octet-stream;base64,AA=A").find("not base64"),
+            std::string::npos);
+  EXPECT_NE(check("data:application/octet-stream;base64,AAAAA").find("not a whole number"),
+            std::string::npos);
+  EXPECT_NE(check("data:application/" + std::string(120, 'x') + ";base64,AAAA").find("over 100"),
+            std::string::npos);
+  EXPECT_EQ(check("data:application/octet-stream,anything goes"), "ok");  // not base64
+}
+
 TEST(GltfPrecheck, TheShowcaseScenePasses) {
   compiler::Diagnostics diagnostics;
   EXPECT_TRUE(io::precheckGltf(MEMOGRAPH_EXAMPLES_DIR "/scenes/showcase.gltf", diagnostics))

@@ -1,8 +1,11 @@
 // The memograph CLI as a user runs it: exit codes, messages, all-or-nothing output.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include "cli_run.h"
 #include "test_support.h"
@@ -163,6 +166,42 @@ TEST_F(CliTest, RenderAndBenchRefuseBadCacheOptionValues) {
   }
   EXPECT_EQ(runCli("render builtin:landscape --debug-misses" + out).exitCode, 2);
   EXPECT_FALSE(fs::exists(directory_ / "x.pfm"));
+}
+
+// Issue 14: the shader cache is an optimisation. An entry that cannot be written (here its
+// folder is a file; a full disk is ShaderCache.AnUnwritableEntryIsAWarningAndLeavesNoTemporary
+// in tests/runtime, since a file-size limit also breaks lavapipe's file-backed memory) is a
+// warning, and the render goes on.
+TEST_F(CliTest, RenderGoesOnWhenTheShaderCacheCannotBeWritten) {
+  if (runCli("bench --help").exitCode != 0)
+    GTEST_SKIP() << "this memograph has no renderer";
+  const auto cache = write("cache", "a file where the cache folder would be\n");
+  // One triangle (tests/adversarial/make_scenes.py's valid.gltf): one shader, seconds.
+  const auto scene = write("triangle.gltf",
+                           R"({"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+      "nodes": [{"mesh": 0}],
+      "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1}]}],
+      "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                     "min": [0, 0, 0], "max": [1, 1, 0]},
+                    {"bufferView": 1, "componentType": 5123, "count": 3, "type": "SCALAR"}],
+      "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 36},
+                      {"buffer": 0, "byteOffset": 36, "byteLength": 6}],
+      "buffers": [{"byteLength": 44, "uri": "data:application/octet-stream;base64,)"
+                           R"(AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIAAAA="}]})");
+  const auto out = (directory_ / "x.png").string();
+  const auto run = runCli("render " + scene + " --size 8x8 --paths 1 --bounces 1 --frames 1 " +
+                          "--shader-cache " + cache + " --out " + out);
+  if (run.output.find("this build") != std::string::npos)
+    GTEST_SKIP() << "this memograph reads no scene files or writes no PNG: " << run.output;
+  EXPECT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("warning: cannot write the shader cache entry"), std::string::npos)
+      << run.output;
+  EXPECT_TRUE(fs::exists(out));
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(directory_))
+    names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"cache", "triangle.gltf", "x.png"}));
 }
 
 TEST_F(CliTest, RenderHelpListsTheCacheOptions) {

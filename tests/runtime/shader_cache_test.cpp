@@ -1,7 +1,10 @@
 // The SPIR-V disk cache: a second start with the same sources compiles nothing; a changed
 // source (another material) misses.
+#include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -127,6 +130,63 @@ TEST(ShaderCache, CorruptEntriesAreDroppedAndRecompiled) {
     ++files;
   }
   EXPECT_EQ(files, 1u);
+  std::filesystem::remove_all(directory);
+}
+
+// Issue 14: a cache entry that cannot be written (a full disk; here a file-size limit, the
+// same failed write(2) without root) is a warning; the compiled shader is returned and no
+// temporary is left behind. The compile runs in a child process with RLIMIT_FSIZE below
+// an entry's size and SIGXFSZ ignored, so each write fails with EFBIG part-way.
+TEST(ShaderCache, AnUnwritableEntryIsAWarningAndLeavesNoTemporary) {
+  const auto directory = std::filesystem::temp_directory_path() /
+                         ("memograph-full-cache-test-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(directory);
+  std::filesystem::create_directories(directory);
+  const std::map<std::string, std::string> sources = {
+      {"tiny.comp", "#version 460\nlayout(local_size_x = 1) in;\nvoid main() {}\n"}};
+  const ShaderCompileRequest request{"tiny.comp", ShaderStage::Compute, {}};
+  const std::vector<std::uint32_t> reference = ShaderCompiler(sources, {}).compile(request);
+  ASSERT_GT(reference.size() * 4, 64u);
+
+  int pipeFds[2];
+  ASSERT_EQ(::pipe(pipeFds), 0);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    ::dup2(pipeFds[1], STDERR_FILENO);
+    ::close(pipeFds[0]);
+    std::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{64, 64};  // bytes: the header and a few words of SPIR-V
+    if (::setrlimit(RLIMIT_FSIZE, &limit) != 0)
+      ::_exit(3);
+    ShaderCompiler compiler(sources, directory);
+    const bool same = compiler.compile(request) == reference && compiler.stats().compiled == 1;
+    std::cerr.flush();
+    ::_exit(same ? 0 : 4);
+  }
+  ::close(pipeFds[1]);
+  std::string stderrText;
+  char buffer[4096];
+  for (ssize_t n; (n = ::read(pipeFds[0], buffer, sizeof buffer)) > 0;)
+    stderrText.append(buffer, std::size_t(n));
+  ::close(pipeFds[0]);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status)) << "the compile was killed by signal " << WTERMSIG(status);
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "3: setrlimit failed, 4: a wrong result; " << stderrText;
+  EXPECT_NE(stderrText.find("warning: cannot write the shader cache entry"), std::string::npos)
+      << stderrText;
+  EXPECT_NE(stderrText.find("File too large"), std::string::npos) << stderrText;
+  std::vector<std::string> left;
+  for (const auto& e : std::filesystem::directory_iterator(directory))
+    left.push_back(e.path().filename().string());
+  EXPECT_TRUE(left.empty()) << "left behind: " << left.front();
+  // Without the limit the same folder takes the entry.
+  ShaderCompiler compiler(sources, directory);
+  EXPECT_EQ(compiler.compile(request), reference);
+  ShaderCompiler again(sources, directory);
+  again.compile(request);
+  EXPECT_EQ(again.stats().hits, 1u);
   std::filesystem::remove_all(directory);
 }
 

@@ -1,9 +1,12 @@
 // memograph import-blender SCENE.blend --out DIR [--blender PATH] [--materials NAME...]:
 // runs Blender headless with the memograph exporter (tools/blender/export_memograph.py) and
-// writes one .mgraph per material into DIR (docs/blender.md).
+// writes one .mgraph per material into DIR (docs/blender.md). DIR is committed as a set
+// (issue 14; docs/limits.md): Blender exports into a staging folder beside DIR, and only a
+// complete, successful export reaches DIR.
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -21,6 +24,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "runtime/atomic_file.h"
 
 extern char** environ;
 
@@ -41,7 +45,8 @@ constexpr std::string_view kHelp =
     "are printed on stderr. See docs/blender.md.\n"
     "\n"
     "options:\n"
-    "  --out DIR            output folder (created)\n"
+    "  --out DIR            output folder (created); written only when the whole export\n"
+    "                       succeeds: Blender writes into a staging folder beside it\n"
     "  --blender PATH       the Blender executable (default: `blender` on PATH)\n"
     "  --materials NAME...  only these materials (default: all)\n"
     "  --scene              also write the scene: DIR/scene.gltf (Blender's glTF exporter,\n"
@@ -142,6 +147,127 @@ bool interestingBlenderLine(std::string_view line) {
   return false;
 }
 
+constexpr std::string_view kCommand = "memograph import-blender: ";
+
+// Folders this command created (the output folder's missing parents, folders inside DIR):
+// removed again, deepest first and only while empty, when the command fails.
+class CreatedFolders {
+ public:
+  ~CreatedFolders() {
+    if (keep_)
+      return;
+    for (auto it = folders_.rbegin(); it != folders_.rend(); ++it) {
+      std::error_code ignored;
+      fs::remove(*it, ignored);  // only an empty folder is removed
+    }
+  }
+  // create_directories, remembering each folder it made.
+  bool create(const fs::path& folder, std::string& error) {
+    std::vector<fs::path> missing;
+    std::error_code ec;
+    for (fs::path at = folder; !at.empty() && !fs::exists(fs::symlink_status(at, ec));
+         at = at.parent_path()) {
+      missing.push_back(at);
+      if (at == at.parent_path())
+        break;
+    }
+    for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+      const bool made = fs::create_directory(*it, ec);
+      if (ec) {
+        error = it->string() + ": cannot create the folder: " + ec.message();
+        return false;
+      }
+      if (made)  // not one that appeared meanwhile
+        folders_.push_back(*it);
+    }
+    return true;
+  }
+  void keep() { keep_ = true; }
+
+ private:
+  std::vector<fs::path> folders_;
+  bool keep_ = false;
+};
+
+// The folder Blender exports into: `.<DIR name>.import-XXXXXX` beside DIR (so on DIR's file
+// system, and renamed into place when DIR does not exist yet). Removed with everything in
+// it unless released.
+class StagingFolder {
+ public:
+  ~StagingFolder() {
+    if (path_.empty())
+      return;
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  bool create(const fs::path& target, std::string& error) {
+    std::string pattern = (target.parent_path() / ("." + target.filename().string())).string();
+    pattern += ".import-XXXXXX";
+    if (!::mkdtemp(pattern.data())) {
+      error =
+          files::errnoMessage("cannot create a staging folder beside " + target.string(), errno);
+      return false;
+    }
+    path_ = pattern;
+    // mkdtemp makes it 0700; the output folder gets what mkdir(2) would have given it.
+    const mode_t mask = ::umask(022);
+    ::umask(mask);
+    ::chmod(path_.c_str(), 0777 & ~mask);
+    return true;
+  }
+  const fs::path& path() const { return path_; }
+  void release() { path_.clear(); }
+
+ private:
+  fs::path path_;
+};
+
+// Commits the staged export into `target`, which exists: every file is staged next to its
+// target (files::StagedFile, moved there from the staging folder) and all are renamed into
+// place as one set (files::commitFileSet): a failure part-way restores what was replaced.
+bool commitIntoFolder(const fs::path& staging, const fs::path& target, CreatedFolders& created,
+                      std::string& error) {
+  // The listing first: files are moved out of the staging folder below.
+  std::vector<std::pair<fs::path, fs::file_status>> entries;
+  std::error_code ec;
+  fs::recursive_directory_iterator it(staging, ec), end;
+  for (; !ec && it != end; it.increment(ec)) {
+    const fs::file_status status = it->symlink_status(ec);
+    if (!ec)
+      entries.emplace_back(it->path(), status);
+  }
+  if (ec) {
+    error = staging.string() + ": cannot read the staged export: " + ec.message();
+    return false;
+  }
+  std::vector<files::StagedFile> staged;
+  for (const auto& [path, status] : entries) {
+    const fs::path destination = target / path.lexically_relative(staging);
+    if (fs::is_directory(status)) {  // listed before what it holds
+      const fs::file_status there = fs::status(destination, ec);
+      if (fs::exists(there) && !fs::is_directory(there)) {
+        error = destination.string() + ": is a file; the export has a folder there";
+        return false;
+      }
+      if (!fs::exists(there) && !created.create(destination, error))
+        return false;
+      continue;
+    }
+    if (!fs::is_regular_file(status)) {
+      error = path.string() + ": the export wrote something that is not a regular file";
+      return false;
+    }
+    files::StagedFile file;
+    std::string cause;
+    if (!file.create(destination, cause) || !file.adopt(path, cause)) {
+      error = destination.string() + ": " + cause;
+      return false;
+    }
+    staged.push_back(std::move(file));
+  }
+  return files::commitFileSet(staged, error);
+}
+
 }  // namespace
 
 int runImportBlender(std::span<const std::string_view> args) {
@@ -224,8 +350,29 @@ int runImportBlender(std::span<const std::string_view> args) {
     return kExitFailure;
   }
 
+  // The output folder, absolute and without a trailing separator (its name names the
+  // staging folder). A file there, or a dangling link, is an error before Blender starts.
   std::error_code ec;
-  const fs::path absOut = fs::absolute(outDir, ec);
+  fs::path absOut = fs::absolute(outDir, ec).lexically_normal();
+  if (absOut.has_relative_path() && absOut.filename().empty())
+    absOut = absOut.parent_path();
+  const fs::file_status outStatus = fs::status(absOut, ec);
+  if (fs::exists(outStatus) && !fs::is_directory(outStatus)) {
+    std::cerr << kCommand << "--out " << outDir << ": is a file, not a folder\n";
+    return kExitFailure;
+  }
+  if (!fs::exists(outStatus) && fs::is_symlink(fs::symlink_status(absOut, ec))) {
+    std::cerr << kCommand << "--out " << outDir << ": is a dangling symbolic link\n";
+    return kExitFailure;
+  }
+  CreatedFolders created;
+  StagingFolder staging;
+  std::string error;
+  if (!created.create(absOut.parent_path(), error) || !staging.create(absOut, error)) {
+    std::cerr << kCommand << error << "\n";
+    return kExitFailure;
+  }
+  const std::string stagingName = staging.path().string();
   std::vector<std::string> argv = {blenderPath->string(),
                                    "-b",
                                    "--factory-startup",
@@ -236,7 +383,7 @@ int runImportBlender(std::span<const std::string_view> args) {
                                    script->string(),
                                    "--",
                                    "--out",
-                                   absOut.string()};
+                                   stagingName};
   if (withScene)
     argv.emplace_back("--scene");
   if (!materials.empty()) {
@@ -268,9 +415,15 @@ int runImportBlender(std::span<const std::string_view> args) {
               << std::strerror(spawned) << "\n";
     return kExitFailure;
   }
-  // Blender's stdout, line by line (stderr, where the exporter's warnings go, is shared).
+  // Blender's stdout, line by line (stderr, where the exporter's warnings go, is shared),
+  // with the staging folder's name shown as the output folder's.
   std::string pending;
   std::array<char, 4096> buffer{};
+  auto show = [&](std::string line) {
+    for (std::size_t at; (at = line.find(stagingName)) != std::string::npos;)
+      line.replace(at, stagingName.size(), absOut.string());
+    std::cout << line << "\n" << std::flush;
+  };
   while (true) {
     const ssize_t n = ::read(pipeFds[0], buffer.data(), buffer.size());
     if (n < 0 && errno == EINTR)
@@ -283,26 +436,47 @@ int runImportBlender(std::span<const std::string_view> args) {
       std::string line = pending.substr(0, nl);
       pending.erase(0, nl + 1);
       if (verbose || interestingBlenderLine(line))
-        std::cout << line << "\n" << std::flush;
+        show(std::move(line));
     }
   }
   if (!pending.empty() && (verbose || interestingBlenderLine(pending)))
-    std::cout << pending << "\n";
+    show(std::move(pending));
   ::close(pipeFds[0]);
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   if (WIFSIGNALED(status)) {
     std::cerr << "memograph import-blender: Blender ended with signal " << WTERMSIG(status) << " ("
-              << strsignal(WTERMSIG(status)) << ")\n";
+              << strsignal(WTERMSIG(status)) << "); " << absOut.string() << " is unchanged\n";
     return kExitFailure;
   }
   const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 1;
   if (code != 0) {
     std::cerr << "memograph import-blender: the export failed (Blender exit status " << code
-              << ")\n";
+              << "); " << absOut.string() << " is unchanged\n";
     return kExitFailure;
   }
+  // A new output folder: the staging folder is renamed into place (atomic). One that exists
+  // (or appeared meanwhile) takes the exported files as one set.
+  if (!fs::exists(absOut, ec)) {
+    if (::rename(stagingName.c_str(), absOut.c_str()) == 0) {
+      staging.release();
+      created.keep();
+      return kExitOk;
+    }
+    if (errno != EEXIST && errno != ENOTEMPTY) {
+      std::cerr << kCommand
+                << files::errnoMessage(absOut.string() + ": cannot move the export into place",
+                                       errno)
+                << "\n";
+      return kExitFailure;
+    }
+  }
+  if (!commitIntoFolder(staging.path(), absOut, created, error)) {
+    std::cerr << kCommand << error << "; " << absOut.string() << " is unchanged\n";
+    return kExitFailure;
+  }
+  created.keep();
   return kExitOk;
 }
 

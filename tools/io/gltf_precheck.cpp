@@ -210,6 +210,12 @@ class Checker {
       checkAccessor(array("accessors").items[a], "accessors[" + std::to_string(a) + "]");
     for (std::size_t v = 0; v < array("bufferViews").size(); ++v)
       checkView(array("bufferViews").items[v], "bufferViews[" + std::to_string(v) + "]");
+    for (std::size_t b = 0; b < array("buffers").size(); ++b) {
+      checkExternalBuffer(b);
+      checkDataUri(array("buffers").items[b], "buffers[" + std::to_string(b) + "].uri");
+    }
+    for (std::size_t i = 0; i < array("images").size(); ++i)
+      checkDataUri(array("images").items[i], "images[" + std::to_string(i) + "].uri");
     // Index values are read only once every range above is known to be good.
     const bool rangesGood = ok_;
     for (std::size_t m = 0; m < array("meshes").size(); ++m)
@@ -409,7 +415,7 @@ class Checker {
     const Json& view = array("bufferViews").items[std::size_t(viewIndex->number)];
     const std::string* buffer = bufferBytes(std::size_t(numberOr(view.get("buffer"), 0)));
     if (!buffer)
-      return;  // an external or unreadable buffer: assimp reports it
+      return;
     const std::uint64_t size = componentBytes(numberOr(accessor.get("componentType"), 0));
     const double countValue = numberOr(accessor.get("count"), 0);
     const double strideValue = numberOr(view.get("byteStride"), double(size));
@@ -436,7 +442,187 @@ class Checker {
     }
   }
 
-  // A buffer's bytes: the .glb BIN chunk, or a base64 data: URI; nullptr for others.
+  // A buffer in a file beside the glTF (a `uri` that is not `data:`), as assimp opens it:
+  // the glTF's folder joined with the URI as written (assimp decodes no %-escapes). It must
+  // be a regular file within the scene limit holding the buffer's byteLength; an absolute
+  // path is refused (assimp would read it only for a glTF named without a folder). assimp
+  // opens no file for a buffer of byteLength 0, and neither does this.
+  void checkExternalBuffer(std::size_t b) {
+    const Json& buffer = array("buffers").items[b];
+    const Json* uri = buffer.get("uri");
+    if (!uri || uri->kind != Json::Kind::String || uri->string.rfind("data:", 0) == 0)
+      return;
+    const double length = numberOr(buffer.get("byteLength"), 0);
+    if (!(length > 0))
+      return;
+    const std::string shown =
+        uri->string.size() > 200 ? uri->string.substr(0, 200) + "..." : uri->string;
+    const std::string where = "buffers[" + std::to_string(b) + "].uri '" + shown + "'";
+    const std::string name = unescape(uri->string);
+    if (name.empty() || name.find('\0') != std::string::npos) {
+      error(where + " is not a file name");
+      return;
+    }
+    if (name[0] == '/' || name[0] == '\\') {
+      error(where + " is an absolute path; a buffer's URI is relative to the glTF file");
+      return;
+    }
+    const std::filesystem::path file = externalPath(name);
+    std::string fileError;
+    const auto size = files::checkInputFile(file, files::kMaxSceneFileBytes, "scenes", fileError);
+    if (!size) {
+      error(where + ": " + file.string() + ": " + fileError);
+      return;
+    }
+    if (double(*size) < length) {
+      error(where + ": " + file.string() + " has " + std::to_string(*size) +
+            " bytes, fewer than the buffer's byteLength of " + format(length));
+    }
+  }
+  std::filesystem::path externalPath(const std::string& name) const {
+    return std::filesystem::path(path_).parent_path() / name;
+  }
+
+  // A JSON string's escapes resolved (the parser keeps strings as written): \" \\ \/ \b
+  // \f \n \r \t and \uXXXX (surrogate pairs included) as UTF-8.
+  static std::string unescape(std::string_view text) {
+    std::string out;
+    auto hex4 = [&](std::size_t at, std::uint32_t& v) {
+      if (at + 4 > text.size())
+        return false;
+      v = 0;
+      for (std::size_t k = at; k < at + 4; ++k) {
+        const char c = text[k];
+        const int d = c >= '0' && c <= '9'   ? c - '0'
+                      : c >= 'a' && c <= 'f' ? c - 'a' + 10
+                      : c >= 'A' && c <= 'F' ? c - 'A' + 10
+                                             : -1;
+        if (d < 0)
+          return false;
+        v = v << 4 | std::uint32_t(d);
+      }
+      return true;
+    };
+    for (std::size_t i = 0; i < text.size(); ++i) {
+      if (text[i] != '\\' || i + 1 >= text.size()) {
+        out.push_back(text[i]);
+        continue;
+      }
+      const char c = text[++i];
+      switch (c) {
+        case 'b':
+          out.push_back('\b');
+          break;
+        case 'f':
+          out.push_back('\f');
+          break;
+        case 'n':
+          out.push_back('\n');
+          break;
+        case 'r':
+          out.push_back('\r');
+          break;
+        case 't':
+          out.push_back('\t');
+          break;
+        case 'u': {
+          std::uint32_t v = 0, low = 0;
+          if (!hex4(i + 1, v)) {
+            out.push_back(c);
+            break;
+          }
+          i += 4;
+          if (v >= 0xD800 && v < 0xDC00 && i + 2 < text.size() && text[i + 1] == '\\' &&
+              text[i + 2] == 'u' && hex4(i + 3, low) && low >= 0xDC00 && low < 0xE000) {
+            v = 0x10000 + ((v - 0xD800) << 10) + (low - 0xDC00);
+            i += 6;
+          }
+          if (v < 0x80) {
+            out.push_back(char(v));
+          } else if (v < 0x800) {
+            out.push_back(char(0xC0 | v >> 6));
+            out.push_back(char(0x80 | (v & 0x3F)));
+          } else if (v < 0x10000) {
+            out.push_back(char(0xE0 | v >> 12));
+            out.push_back(char(0x80 | (v >> 6 & 0x3F)));
+            out.push_back(char(0x80 | (v & 0x3F)));
+          } else {
+            out.push_back(char(0xF0 | v >> 18));
+            out.push_back(char(0x80 | (v >> 12 & 0x3F)));
+            out.push_back(char(0x80 | (v >> 6 & 0x3F)));
+            out.push_back(char(0x80 | (v & 0x3F)));
+          }
+          break;
+        }
+        default:  // \" \\ \/ and anything else: the character itself
+          out.push_back(c);
+      }
+    }
+    return out;
+  }
+
+  // A data: URI split as assimp 5.2 splits it (glTFCommon ParseDataURI): the header up to
+  // the first ',' (a media type, then ';'-separated parameters, base64 when one starts with
+  // "base64"), the payload after it.
+  struct DataUri {
+    std::string_view header, payload;
+    bool base64 = false;
+  };
+  static DataUri splitDataUri(std::string_view text) {
+    DataUri out;
+    const std::size_t comma = text.find(',');
+    out.header = text.substr(5, comma == std::string_view::npos ? text.npos : comma - 5);
+    out.payload = comma == std::string_view::npos ? std::string_view() : text.substr(comma + 1);
+    for (std::size_t at = out.header.find(';'); at != std::string_view::npos;
+         at = out.header.find(';', at + 1)) {
+      if (out.header.substr(at + 1, 6) == "base64")
+        out.base64 = true;
+    }
+    return out;
+  }
+
+  // assimp 5.2 keeps the payload's offset in a char (a header over 127 characters wraps it
+  // and reads before the string), allocates a base64 payload's decoded size and then throws
+  // on a byte over 127 without freeing it, and decodes other characters outside the
+  // alphabet as zeros (found by memograph_gltf_import_fuzzer: a leak). So a data: URI has a
+  // short header, and base64 data is whole groups of four characters of the alphabet with
+  // '=' padding only at the end.
+  void checkDataUri(const Json& owner, const std::string& where) {
+    const Json* uri = owner.get("uri");
+    if (!uri || uri->kind != Json::Kind::String || uri->string.rfind("data:", 0) != 0)
+      return;
+    const std::string text = unescape(uri->string);
+    const DataUri data = splitDataUri(text);
+    if (data.header.size() > 100) {
+      error(where + ": the data: URI's media type and parameters are " +
+            std::to_string(data.header.size()) + " characters, over 100");
+      return;
+    }
+    if (!data.base64)
+      return;
+    const std::string_view payload = data.payload;
+    for (std::size_t i = 0; i < payload.size(); ++i) {
+      const char c = payload[i];
+      const bool alphabet = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') ||
+                            (c >= '0' && c <= '9') || c == '+' || c == '/';
+      const bool padding =
+          c == '=' && i + 2 >= payload.size() && (i + 1 == payload.size() || payload[i + 1] == '=');
+      if (!alphabet && !padding) {
+        char shown[8];
+        std::snprintf(shown, sizeof shown, "0x%02x", unsigned(std::uint8_t(c)));
+        error(where + ": the base64 data has a character that is not base64 (" + shown +
+              " at character " + std::to_string(i) + ")");
+        return;
+      }
+    }
+    if (payload.size() % 4 != 0) {
+      error(where + ": the base64 data is " + std::to_string(payload.size()) +
+            " characters, not a whole number of 4-character groups");
+    }
+  }
+
+  // A buffer's bytes: the .glb BIN chunk, a base64 data: URI, or the file beside the glTF
+  // (checkExternalBuffer found it readable); empty when it cannot be read here.
   const std::string* bufferBytes(std::size_t b) {
     if (b >= array("buffers").size())
       return nullptr;
@@ -452,11 +638,16 @@ class Checker {
       return &slot.second;
     }
     const std::string& text = uri->string;
-    const auto comma = text.find(',');
-    if (text.rfind("data:", 0) != 0 || comma == std::string::npos || comma < 7 ||
-        text.compare(comma - 7, 7, ";base64") != 0)
+    if (text.rfind("data:", 0) != 0) {
+      std::string ignored;  // reported by checkExternalBuffer
+      if (auto bytes = files::readInputFile(externalPath(unescape(text)), files::kMaxSceneFileBytes,
+                                            "scenes", ignored))
+        slot.second = std::move(*bytes);
       return &slot.second;
-    slot.second = base64(std::string_view(text).substr(comma + 1));
+    }
+    const std::string unescaped = unescape(text);
+    const DataUri data = splitDataUri(unescaped);
+    slot.second = data.base64 ? base64(data.payload) : std::string(data.payload);
     return &slot.second;
   }
 
@@ -498,6 +689,10 @@ class Checker {
   }
 
   static std::uint64_t componentBytes(double type) {
+    // Range first: converting a double beyond int's range is undefined (found by
+    // memograph_gltf_import_fuzzer: "componentType": 5.2e92).
+    if (!(type >= 0 && type <= 65535))
+      return 0;
     switch (static_cast<int>(type)) {
       case 5120:
       case 5121:

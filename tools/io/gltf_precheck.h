@@ -8,7 +8,12 @@
 //  - the node hierarchy: children in range, no node with two parents, no cycle, at most
 //    kMaxNodeDepth levels;
 //  - every index into nodes, meshes, cameras, materials, accessors, bufferViews and
-//    buffers in range, accessors within their buffer views, views within their buffers.
+//    buffers in range, accessors within their buffer views, views within their buffers;
+//  - buffers in external files (a non-data: uri, resolved against the glTF's folder as
+//    assimp does): regular files within the scene limit, as long as byteLength, the URI not
+//    an absolute path;
+//  - each primitive's vertex indices below its vertex count, read from data: URIs, the
+//    .glb BIN chunk and external files.
 #pragma once
 
 #include <string>
@@ -23,7 +28,8 @@ inline constexpr int kMaxNodeDepth = 1000;
 // True for files to check (extension .gltf or .glb); false with an error added otherwise.
 bool precheckGltf(const std::string& path, compiler::Diagnostics& diagnostics);
 
-// The same checks on bytes in memory (the fuzz target and tests); `path` names them.
+// The same checks on bytes in memory (the fuzz target and tests); `path` names them, and
+// external buffers are looked up in its folder.
 bool precheckGltfBytes(const std::string& path, const std::string& bytes, bool glb,
                        compiler::Diagnostics& diagnostics);
 
