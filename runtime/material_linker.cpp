@@ -165,6 +165,9 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
     entry.textureBase = static_cast<int>(linked.texturePaths.size());
     entry.cacheable = compiled->metadata.cacheable;
     entry.inputsUsed = compiled->metadata.inputsUsed;
+    for (const std::string& output : compiled->metadata.outputsWritten)
+      if (output == "specularTint" || output == "cyclesPrincipled")
+        linked.cyclesPrincipled = true;
     entry.textureCount = compiled->metadata.textures.size();
     if (entry.cacheable) {
       entry.cacheOutputMask =

@@ -48,6 +48,9 @@ struct LinkedMaterials {
   std::vector<std::string> texturePaths;  // resolved paths, in descriptor-array order
   // Floats per texel-cache entry: the largest cacheValueCount (0: nothing is cacheable).
   std::uint32_t cacheValueCount = 0;
+  // Some material writes specularTint or cyclesPrincipled: the path tracer needs
+  // MG_CYCLES_PRINCIPLED (brdf.glsl), which other scenes do without.
+  bool cyclesPrincipled = false;
   double compileMilliseconds = 0.0;
 };
 

@@ -238,6 +238,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     shaderDefines.push_back("MG_DEBUG_CACHE_MISSES=1");
   // NEE evaluates emitters whose emission is not a known constant: a second material call
   // site, compiled only for scenes that have such emitters (path_tracer.glsl).
+  if (materials.cyclesPrincipled && !floor)
+    shaderDefines.push_back("MG_CYCLES_PRINCIPLED=1");
   if (buffers.neeEvaluatesEmission && !floor)
     shaderDefines.push_back("MG_NEE_EVALUATES_EMISSION=1");
   TracePipeline pipeline(context, compiler, textures.count(),

@@ -168,8 +168,8 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
     // Object Info's Random: 24 bits of a PCG hash of the instance index (Blender hashes
     // the object's name; the index is what a memograph scene has).
     const auto index = static_cast<std::uint32_t>(instances.size());
-    gi.objectInfo = glm::vec4(float(pcgHash(index ^ 0x5bd1e995u) >> 8) * (1.0f / 16777216.0f), 0,
-                              instance.castsShadow ? 0.0f : 1.0f, 0);
+    gi.objectInfo =
+        glm::vec4(float(pcgHash(index ^ 0x5bd1e995u) >> 8) * (1.0f / 16777216.0f), 0, 0, 0);
     instances.push_back(gi);
     out.placements.push_back({instance.mesh, instance.objectToWorld, instance.castsShadow});
   }

@@ -46,19 +46,30 @@ BrdfParameters brdfFromMaterial(vec3 baseColor, float metallic, float roughness,
                                 float specularTint, float cyclesPrincipled) {
   BrdfParameters brdf;
   metallic = clamp(metallic, 0.0, 1.0);
-  float cycles = clamp(cyclesPrincipled, 0.0, 1.0);
   float dielectricF0 = clamp(kDielectricF0PerSpecular * specular, 0.0, 1.0);
+#ifdef MG_CYCLES_PRINCIPLED
+  float cycles = clamp(cyclesPrincipled, 0.0, 1.0);
   // Cycles' cspec0 = 0.08 specular tint (1 - metallic) + baseColor metallic, clamped to
   // [0, 1] (bsdf_microfacet_ggx_fresnel_setup saturates it).
   vec3 dielectricF0Tinted = clamp(
       kDielectricF0PerSpecular * specular * specularTintColor(baseColor, specularTint), 0.0, 1.0);
+#else
+  // No material of the scene writes specularTint or cyclesPrincipled (the renderer defines
+  // MG_CYCLES_PRINCIPLED when one does): both are 0, and their code folds away, so such a
+  // scene's path tracer carries none of it (its registers are the kernel's scarcest resource).
+  const float cycles = 0.0;
+  vec3 dielectricF0Tinted = vec3(dielectricF0);
+#endif
   // memograph: the diffuse share is what the dielectric specular layer does not reflect at
   // normal incidence, so an albedo-1 dielectric reflects about 1 in total (white furnace).
   // Cycles: diffuse_weight = (1 - metallic) (1 - transmission), nothing taken for the
   // specular (transmission is not carried).
   vec3 diffuse = baseColor * (1.0 - metallic);
   brdf.diffuse = (1.0 - cycles) * diffuse * (1.0 - dielectricF0Tinted);
+  brdf.diffuseBurley = vec3(0.0);
+#ifdef MG_CYCLES_PRINCIPLED
   brdf.diffuseBurley = cycles * diffuse;
+#endif
   brdf.f0 = mix(dielectricF0Tinted, baseColor, metallic);
   float r = clamp(roughness, 0.02, 1.0);
   brdf.alpha = r * r;
@@ -100,8 +111,10 @@ vec3 fresnelCycles(vec3 f0, float dielectricF0, float cosTheta) {
 
 vec3 brdfFresnel(BrdfParameters brdf, float cosTheta) {
   vec3 f = fresnelSchlick(brdf.f0, cosTheta);
+#ifdef MG_CYCLES_PRINCIPLED
   if (brdf.cycles > 0.0)
     f = mix(f, fresnelCycles(brdf.f0, brdf.dielectricF0, cosTheta), brdf.cycles);
+#endif
   return f;
 }
 
@@ -139,8 +152,10 @@ vec3 brdfEvaluateCos(BrdfParameters brdf, vec3 wo, vec3 wi) {
   float g = smithG1(wi.z, brdf.alpha) * smithG1(wo.z, brdf.alpha);  // eq. 2.5
   vec3 specular = f * g * ggxD(h.z, brdf.alpha) / (4.0 * wi.z * wo.z);
   vec3 diffuse = brdf.diffuse;
+#ifdef MG_CYCLES_PRINCIPLED
   if (brdf.cycles > 0.0)
     diffuse += brdf.diffuseBurley * burleyDiffuse(brdf.roughness, wo, wi);
+#endif
   return (diffuse / kPi + specular) * wi.z;
 }
 
@@ -148,7 +163,11 @@ vec3 brdfEvaluateCos(BrdfParameters brdf, vec3 wo, vec3 wi) {
 float brdfSpecularProbability(BrdfParameters brdf, vec3 wo) {
   vec3 weights = vec3(0.2126, 0.7152, 0.0722);
   float specular = dot(brdfFresnel(brdf, wo.z), weights);
+#ifdef MG_CYCLES_PRINCIPLED
   float diffuse = dot(brdf.diffuse + brdf.diffuseBurley, weights);
+#else
+  float diffuse = dot(brdf.diffuse, weights);
+#endif
   return clamp(specular / max(specular + diffuse, 1e-6), 0.1, 0.9);
 }
 

@@ -14,7 +14,6 @@
 // A third, MG_MATERIAL_FLOOR, evaluates no graph at all: the floor run's constants.
 #version 460
 #extension GL_GOOGLE_include_directive : require
-#extension GL_EXT_control_flow_attributes : require
 #extension GL_EXT_nonuniform_qualifier : require
 #ifdef MG_SUBGROUP_RAY_COUNT
 #extension GL_KHR_shader_subgroup_arithmetic : require
@@ -444,22 +443,6 @@ vec3 sampleDirectLight(vec3 position, vec3 ng, mat3 toLocal, vec3 wo, BrdfParame
   return fCos * incident * (float(punctual) * groupScale);
 }
 
-// The closest hit a ray sees. Camera rays pass through lights' quads (Cycles 3.4 shows no
-// area lamp to the camera; Instance::objectInfo.z = 1 marks them): the trace goes on past
-// each, up to a few, from the same origin, so hit.t and the ray cone stay the ray's own.
-// One loop around one trace call, not a second call or a cull mask (see traceClosest).
-const uint kMaxSkippedLightQuads = 8u;
-HitInfo traceVisible(vec3 origin, vec3 direction, bool cameraRay) {
-  HitInfo hit;
-  float tMin = 0.0;
-  [[dont_unroll]] for (uint skipped = 0u; skipped < kMaxSkippedLightQuads; ++skipped) {
-    hit = traceClosest(origin, direction, tMin, kRayTMax);
-    if (!cameraRay || hit.t < 0.0 || instances[hit.instanceIndex].objectInfo.z == 0.0) break;
-    tMin = hit.t * (1.0 + 1e-5) + 1e-5;
-  }
-  return hit;
-}
-
 // The primary ray through a point of the pixel (jitter in [0,1)^2).
 void primaryRay(uvec2 pixel, vec2 jitter, out vec3 origin, out vec3 direction) {
   vec2 size = vec2(frame.image.xy);
@@ -483,7 +466,7 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
   primaryHit.t = -1.0;
   if (sharedPrimary && inside) {
     primaryRay(pixel, vec2(0.5), primaryOrigin, primaryDirection);
-    primaryHit = traceVisible(primaryOrigin, primaryDirection, true);
+    primaryHit = traceClosest(primaryOrigin, primaryDirection, kRayTMax, 0xFEu);
     rays += 1u;
   }
 
@@ -511,7 +494,8 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
         if (bounce == 0u && sharedPrimary) {
           hit = primaryHit;
         } else {
-          hit = traceVisible(origin, direction, bounce == 0u);
+          // Camera rays skip lights' quads (Cycles 3.4 shows no area lamp to the camera).
+          hit = traceClosest(origin, direction, kRayTMax, bounce == 0u ? 0xFEu : 0xFFu);
           rays += 1u;
         }
         if (hit.t < 0.0) {

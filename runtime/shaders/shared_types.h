@@ -197,8 +197,7 @@ struct Instance {
   mat4 worldToObject;  // inverse of objectToWorld (Object coordinates)
   uvec4 ids;           // x mesh, y material, z/w unused
   vec4 objectInfo;     // x: random in [0, 1) (a hash of the instance index); y: emissive
-                       // NEE's area pdf of any point of this instance (0: not a light); z: 1 for
-                       // a light's quad, which camera rays pass through; w unused
+                       // NEE's area pdf of any point of this instance (0: not a light); zw unused
 };
 
 struct Light {

@@ -12,8 +12,8 @@ layout(location = 1) rayPayloadEXT uint shadowPayload;
 const uint kMissClosest = 0u;
 const uint kMissShadow = 1u;
 
-HitInfo traceClosest(vec3 origin, vec3 direction, float tMin, float tMax) {
-  traceRayEXT(tlas, gl_RayFlagsOpaqueEXT, 0xFF, 0, 1, kMissClosest, origin, tMin, direction,
+HitInfo traceClosest(vec3 origin, vec3 direction, float tMax, uint mask) {
+  traceRayEXT(tlas, gl_RayFlagsOpaqueEXT, mask, 0, 1, kMissClosest, origin, 0.0, direction,
               tMax, 0);
   return hitPayload;
 }

@@ -4,12 +4,16 @@
 
 layout(set = 0, binding = kBindingTlas) uniform accelerationStructureEXT tlas;
 
-// Closest opaque hit along a ray between tMin and tMax, or t = -1. The cull mask stays a
-// constant: lavapipe compiled a non-constant one three times slower and ran it about a
-// thousand times slower (camera rays skip lights' quads in traceVisible instead).
-HitInfo traceClosest(vec3 origin, vec3 direction, float tMin, float tMax) {
+// Closest opaque hit along a ray, or t = -1. `mask`: the TLAS cull mask (camera rays 0xFE
+// skip lights' quads, InstancePlacement::castsShadow). Each initialization gets a constant
+// mask (lavapipe compiled the traversal of a non-constant one far more slowly); the one
+// rayQueryProceedEXT loop keeps one inlined traversal.
+HitInfo traceClosest(vec3 origin, vec3 direction, float tMax, uint mask) {
   rayQueryEXT query;
-  rayQueryInitializeEXT(query, tlas, gl_RayFlagsOpaqueEXT, 0xFF, origin, tMin, direction, tMax);
+  if (mask == 0xFFu)
+    rayQueryInitializeEXT(query, tlas, gl_RayFlagsOpaqueEXT, 0xFF, origin, 0.0, direction, tMax);
+  else
+    rayQueryInitializeEXT(query, tlas, gl_RayFlagsOpaqueEXT, 0xFE, origin, 0.0, direction, tMax);
   while (rayQueryProceedEXT(query)) {
   }
   HitInfo hit;
@@ -27,8 +31,7 @@ HitInfo traceClosest(vec3 origin, vec3 direction, float tMin, float tMax) {
   return hit;
 }
 
-// Whether anything blocks the segment from origin to origin + tMax * direction. Lights'
-// quads (instance mask 0x01, InstancePlacement::castsShadow) cast no shadow.
+// Whether anything blocks the segment from origin to origin + tMax * direction.
 bool traceShadow(vec3 origin, vec3 direction, float tMax) {
   rayQueryEXT query;
   rayQueryInitializeEXT(query, tlas,
