@@ -209,8 +209,11 @@ static std::uint32_t entryValueWords(const CacheOptions& options, std::uint32_t 
 }
 
 std::uint32_t cacheEntryWords(const CacheOptions& options, std::uint32_t valueCount) {
+  // The subgroup tile fill's count of stored texels follows the header (texel_cache.glsl
+  // kCacheTileCount); the deferred fill counts in its queue instead.
+  const bool tileCount = options.mode == CacheMode::Tile && options.tileFill == TileFill::Subgroup;
   return (options.updateCounter ? gpu::kCacheEntryHeaderWithCounter : gpu::kCacheEntryHeader) +
-         entryValueWords(options, valueCount);
+         (tileCount ? gpu::kCacheEntryTileCountWords : 0) + entryValueWords(options, valueCount);
 }
 
 std::vector<std::string> cacheShaderDefines(const CacheOptions& cache, std::uint32_t valueCount) {

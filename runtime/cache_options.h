@@ -132,9 +132,9 @@ std::uint32_t cacheClockShift(const CacheOptions& options, std::uint64_t lookups
 CacheOptions resolveCacheOptions(CacheOptions options, bool bufferInt64Atomics,
                                  std::uint64_t lookupsPerFrame = 0);
 
-// uints per texel's values and per entry (header + the values stored in the entry: one
-// texel's for the texel cache, a tile's with kTileStorageEntry, none for other tile
-// storages) for `valueCount` floats per texel.
+// uints per texel's values and per entry (header — with the subgroup tile fill's texel
+// count — + the values stored in the entry: one texel's for the texel cache, a tile's with
+// kTileStorageEntry, none for other tile storages) for `valueCount` floats per texel.
 std::uint32_t cacheValueWords(const CacheOptions& options, std::uint32_t valueCount);
 std::uint32_t cacheEntryWords(const CacheOptions& options, std::uint32_t valueCount);
 

@@ -42,11 +42,27 @@ MaterialOutputs mg_defaultMaterialOutputs(MaterialInputs inputs) {
   o.cyclesPrincipled = 0.0;
   return o;
 }
+#ifdef STRESS_TILE
+// One cacheable material of base colour, metallic and roughness (5 values: two image
+// texels, an odd fp16 count), each a function of the texel's uv exact in fp16 (texel
+// centres k + 0.5 below 64), so a texel stored for another tile or not stored shows.
+const uvec4 mg_materialCacheInfo[1] = uvec4[](uvec4(kCacheOutputBaseColor | kCacheOutputMetallic |
+                                                    kCacheOutputRoughness, 0x9e3779b9u, 0x7f4a7c15u, 0u));
+void evaluateMaterialDirect(uint id, MaterialInputs inputs, out MaterialOutputs outputs) {
+  outputs = mg_defaultMaterialOutputs(inputs);
+  vec2 uv = inputs.uv.v;
+  outputs.baseColor = vec3(uv.x, uv.y, uv.x + 2.0 * uv.y + 1.0);
+  outputs.metallic = 3.0 * uv.x + uv.y;
+  outputs.roughness = 100.0 - uv.y;
+}
+#include "tile_cache.glsl"
+#else
 const uvec4 mg_materialCacheInfo[1] = uvec4[](uvec4(0u));
 void evaluateMaterialDirect(uint id, MaterialInputs inputs, out MaterialOutputs outputs) {
   outputs = mg_defaultMaterialOutputs(inputs);
 }
 #include "texel_cache.glsl"
+#endif
 #ifdef SELFTEST_RAY_CONE
 #include "ray_cone.glsl"
 #endif
@@ -80,6 +96,9 @@ void stressWrite(CacheKey key, float values[MG_CACHE_VALUES]) {
 bool stressRead(CacheKey key, out float values[MG_CACHE_VALUES]) { return cacheRead(key, values); }
 void stressWrite(CacheKey key, float values[MG_CACHE_VALUES]) { cacheWrite(key, values); }
 #endif
+)";
+
+constexpr const char* kMainOpen = R"(
 layout(local_size_x = 64) in;
 void main() {
 )";
@@ -130,6 +149,101 @@ constexpr const char* kStressBody = R"(
   atomicAdd(results[3], localMisses);
 )";
 
+// The subgroup tile fill (tile_cache.glsl tileComputeMissing, thesis §5.4.3) under the
+// same contention: STRESS_TILES tiles of one material on the cache's entries. Each
+// iteration a lane reads its tile whole (every texel, between the entry protocol's checks);
+// the subgroup then computes the tiles its lanes missed, and each served lane checks the
+// texel the exchange gave it. results[0..10]: hits, torn, misses, served, wrong served,
+// tiles computed, published, given up, duplicates, repack lane-events, fallbacks.
+constexpr const char* kTileStressBody = R"(
+  uint id = gl_GlobalInvocationID.x;
+  g_invocationId = id;
+#ifdef STRESS_QUARTER_LANES
+  // A partial subgroup, as NVIDIA's raygen often has: a quarter of the lanes computes, so
+  // a tile of the subgroup's size takes four passes.
+  if ((gl_SubgroupInvocationID & 3u) != 0u) return;
+#endif
+#ifdef STRESS_ALL_BUT_ONE_LANE
+  // All lanes but the last: a tile of the subgroup's size takes a pass of all the others
+  // and a pass of one texel.
+  if (gl_SubgroupInvocationID == gl_SubgroupSize - 1u) return;
+#endif
+  uvec4 info = mg_materialCacheInfo[0];
+  uint localHits = 0u, localTorn = 0u, localMisses = 0u, localServed = 0u, localWrong = 0u;
+  for (uint it = 0u; it < uint(STRESS_ITERATIONS); ++it) {
+    uint k = cachePcg(id * 7919u + it * 104729u) % uint(STRESS_TILES);
+    TileRequest tile;
+    tile.level = 0;
+    tile.tile = vec2(float(k % 8u), float(k / 8u));
+    uint spot = cachePcg(id ^ (it * 0x9e3779b9u)) % kTileTexels;
+    tile.local = vec2(float(spot % kTileW) + 0.5, float(spot / kTileW) + 0.5);
+    tile.key = cacheKeyOf(info, 0, tile.tile);
+    // Every lane runs the same read (a miss reads entry 0 and ignores it), so the lanes need
+    // no reconvergence after a divergent branch before the subgroup computation below.
+    int entry = cacheFind(tile.key);
+    uint readEntry = uint(max(entry, 0));
+    uint counterBefore = cacheReadBegin(readEntry, tile.key);
+    bool ok = true;
+    for (uint t = 0u; t < kTileTexels; ++t) {
+      float stored[MG_CACHE_VALUES], expected[MG_CACHE_VALUES];
+      tileLoadTexel(readEntry, t, stored);
+      stressTexel(tile.tile, t, expected);
+      for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) ok = ok && stored[i] == expected[i];
+    }
+    bool valid = cacheReadValid(readEntry, tile.key, counterBefore);  // random eviction: no touch
+    bool hit = entry >= 0 && valid;
+    if (hit && !ok) localTorn += 1u;
+    if (hit) localHits += 1u;
+    else localMisses += 1u;
+#ifdef MG_TILE_TEST_REPACKS
+    // The same for the whole subgroup: the pass from which it looks repacked (past the last
+    // pass: never).
+    g_testRepackPass = it % uint(STRESS_REPACK_PERIOD);
+#endif
+    MaterialInputs inputs;
+    inputs.uv.v = tile.tile * kTileArea + tile.local;
+    inputs.uv.x = vec2(1.0, 0.0);
+    inputs.uv.y = vec2(0.0, 1.0);
+    float values[MG_CACHE_VALUES];
+    for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;
+    bool served = false;
+    tileComputeMissing(!hit, 0u, info, tile, inputs, values, served);
+    if (served) {
+      localServed += 1u;
+      float expected[MG_CACHE_VALUES];
+      stressTexel(tile.tile, spot, expected);
+      bool ok = true;
+      for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) ok = ok && values[i] == expected[i];
+      if (!ok) localWrong += 1u;
+    }
+  }
+  atomicAdd(results[0], localHits);
+  atomicAdd(results[1], localTorn);
+  atomicAdd(results[2], localMisses);
+  atomicAdd(results[3], localServed);
+  atomicAdd(results[4], localWrong);
+  atomicAdd(results[5], g_tilesComputed);
+  atomicAdd(results[6], g_tilesPublished);
+  atomicAdd(results[7], g_tilesGivenUp);
+  atomicAdd(results[8], g_duplicateTiles);
+  atomicAdd(results[9], g_tileRepacks);
+  atomicAdd(results[10], g_tileFallbacks);
+)";
+
+// Before main() of the tile program: texel t of a tile as the cache must hold it.
+constexpr const char* kTileStressFunctions = R"(
+void stressTexel(vec2 tile, uint t, out float values[MG_CACHE_VALUES]) {
+  MaterialInputs inputs;
+  inputs.uv.v = vec2(0.0);
+  inputs.uv.x = vec2(0.0);
+  inputs.uv.y = vec2(0.0);
+  MaterialOutputs outputs;
+  evaluateMaterialDirect(0u, tileTexelInputs(inputs, 0, tile, t), outputs);
+  cachePack(mg_materialCacheInfo[0].x, outputs, values);
+  tileQuantize(values);
+}
+)";
+
 template <typename T>
 VulkanHandle<T> handle(VkDevice device, T raw,
                        void (*destroy)(VkDevice, T, const VkAllocationCallbacks*)) {
@@ -138,29 +252,45 @@ VulkanHandle<T> handle(VkDevice device, T raw,
 
 struct Program {
   std::string body;
+  std::string functions;  // GLSL before main()
   std::vector<std::string> defines;
   std::uint32_t entries = kCacheStressEntries;
   std::uint32_t invocations = 64;
   std::uint64_t clockStart = 0;
   std::uint32_t resultWords = 4;
+  // A storage image at kBindingTileImage (the texel stress's: 3 rgba32f texels an entry).
   bool image = false;
+  VkImageType imageType = VK_IMAGE_TYPE_2D;
+  VkFormat imageFormat = VK_FORMAT_R32G32B32A32_SFLOAT;
+  VkExtent3D imageExtent{0, 0, 0};
+  // The tile cache's buffers: kBindingTileTexels (tileTexelWords uints) and kBindingTileLog.
+  bool tileBuffers = false;
+  std::uint64_t tileTexelWords = 4;
+  std::uint32_t tilesPerRow = 0;  // frame.cache.w
+  bool readCache = false;         // return the cache's words after the run
 };
 
-// Compiles and runs one program; returns gpu::Counters then the result words.
-std::pair<gpu::Counters, std::vector<std::uint32_t>> runProgram(const VulkanContext& context,
-                                                                const Program& program) {
+struct ProgramResult {
+  gpu::Counters counters{};
+  std::vector<std::uint32_t> words;  // the first resultWords of results[]
+  std::vector<std::uint32_t> cache;  // the entries, when readCache
+};
+
+// Compiles and runs one program; returns gpu::Counters, the result words and the cache.
+ProgramResult runProgram(const VulkanContext& context, const Program& program) {
   if (program.invocations == 0 || program.invocations % 64 != 0)
     throw std::invalid_argument("cache self-test: invocations must be a positive multiple of 64");
   VkDevice device = context.device();
   std::map<std::string, std::string> files;
   for (const auto& shader : embeddedShaders())
     files[std::string(shader.name)] = std::string(shader.text);
-  files["cache_selftest.comp"] = std::string(kProgramHead) + program.body + "\n}\n";
+  files["cache_selftest.comp"] =
+      std::string(kProgramHead) + program.functions + kMainOpen + program.body + "\n}\n";
   ShaderCompiler compiler(std::move(files), {});
   std::vector<std::uint32_t> spirv =
       compiler.compile({"cache_selftest.comp", ShaderStage::Compute, program.defines});
   std::uint32_t values = 1, header = gpu::kCacheEntryHeader, entryWords = 0;
-  bool entryWordsGiven = false;
+  bool entryWordsGiven = false, tile = false, deferred = false;
   for (const std::string& d : program.defines) {
     if (d.rfind("MG_CACHE_VALUES=", 0) == 0)
       values = std::uint32_t(std::stoul(d.substr(16)));
@@ -170,7 +300,11 @@ std::pair<gpu::Counters, std::vector<std::uint32_t>> runProgram(const VulkanCont
       entryWords = std::uint32_t(std::stoul(d.substr(21)));
       entryWordsGiven = true;
     }
+    tile = tile || d.rfind("MG_CACHE_TILE=", 0) == 0;
+    deferred = deferred || d.rfind("MG_TILE_FILL_DEFERRED=", 0) == 0;
   }
+  if (tile && !deferred)
+    header += gpu::kCacheEntryTileCountWords;  // texel_cache.glsl kCacheTileCount
   if (!entryWordsGiven)
     entryWords = values;  // fp32 values in the entry
 
@@ -181,19 +315,25 @@ std::pair<gpu::Counters, std::vector<std::uint32_t>> runProgram(const VulkanCont
   checkVk(vkCreateShaderModule(device, &moduleInfo, nullptr, &rawModule), "vkCreateShaderModule");
   auto module = handle(device, rawModule, vkDestroyShaderModule);
 
-  const std::uint32_t bindingCount = program.image ? 4 : 3;
-  VkDescriptorSetLayoutBinding bindings[4] = {
+  std::vector<VkDescriptorSetLayoutBinding> bindings = {
       {gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT,
        nullptr},
       {gpu::kBindingRayCounter, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT,
        nullptr},
       {gpu::kBindingCache, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT,
-       nullptr},
-      {gpu::kBindingTileImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1, VK_SHADER_STAGE_COMPUTE_BIT,
        nullptr}};
+  if (program.tileBuffers) {
+    bindings.push_back({gpu::kBindingTileTexels, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+                        VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+    bindings.push_back({gpu::kBindingTileLog, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+                        VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+  }
+  if (program.image)
+    bindings.push_back({gpu::kBindingTileImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1,
+                        VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  setInfo.bindingCount = bindingCount;
-  setInfo.pBindings = bindings;
+  setInfo.bindingCount = std::uint32_t(bindings.size());
+  setInfo.pBindings = bindings.data();
   VkDescriptorSetLayout rawSetLayout = VK_NULL_HANDLE;
   checkVk(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &rawSetLayout), "set layout");
   auto setLayout = handle(device, rawSetLayout, vkDestroyDescriptorSetLayout);
@@ -215,7 +355,7 @@ std::pair<gpu::Counters, std::vector<std::uint32_t>> runProgram(const VulkanCont
   auto pipeline = handle(device, rawPipeline, vkDestroyPipeline);
 
   gpu::FrameConstants frame{};
-  frame.cache = glm::uvec4(program.entries, 1u, 0u, 0u);
+  frame.cache = glm::uvec4(program.entries, 1u, 0u, program.tilesPerRow);
   GpuBuffer frameBuffer = hostBuffer(context, sizeof frame, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT);
   frameBuffer.write(&frame, sizeof frame);
   std::vector<std::uint8_t> zero(sizeof(gpu::Counters) + 4 * std::max(program.resultWords, 1u), 0);
@@ -228,16 +368,27 @@ std::pair<gpu::Counters, std::vector<std::uint32_t>> runProgram(const VulkanCont
   GpuBuffer cache = hostBuffer(context, emptyCache.size() * sizeof(std::uint32_t),
                                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   cache.write(emptyCache.data(), emptyCache.size() * sizeof(std::uint32_t));
+  // The tile cache's texel buffer and its log of published tiles (cleared).
+  GpuBuffer tileTexels, tileLog;
+  if (program.tileBuffers) {
+    std::vector<std::uint32_t> zeros(std::max<std::uint64_t>(program.tileTexelWords, 1), 0u);
+    tileTexels = hostBuffer(context, zeros.size() * sizeof(std::uint32_t),
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    tileTexels.write(zeros.data(), zeros.size() * sizeof(std::uint32_t));
+    zeros.assign(gpu::kTileLogEntries, 0u);
+    tileLog = hostBuffer(context, zeros.size() * sizeof(std::uint32_t),
+                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+    tileLog.write(zeros.data(), zeros.size() * sizeof(std::uint32_t));
+  }
 
-  // The image mode's rgba32f storage image: 3 texels (12 values) per entry, one row.
   VulkanHandle<VkImage> image;
   VulkanHandle<VkDeviceMemory> imageMemory;
   VulkanHandle<VkImageView> imageView;
   if (program.image) {
     VkImageCreateInfo imageInfo{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-    imageInfo.imageType = VK_IMAGE_TYPE_2D;
-    imageInfo.format = VK_FORMAT_R32G32B32A32_SFLOAT;
-    imageInfo.extent = {3 * program.entries, 1, 1};
+    imageInfo.imageType = program.imageType;
+    imageInfo.format = program.imageFormat;
+    imageInfo.extent = program.imageExtent;
     imageInfo.mipLevels = 1;
     imageInfo.arrayLayers = 1;
     imageInfo.samples = VK_SAMPLE_COUNT_1_BIT;
@@ -259,8 +410,9 @@ std::pair<gpu::Counters, std::vector<std::uint32_t>> runProgram(const VulkanCont
     checkVk(vkBindImageMemory(device, rawImage, rawMemory, 0), "vkBindImageMemory");
     VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     viewInfo.image = rawImage;
-    viewInfo.viewType = VK_IMAGE_VIEW_TYPE_2D;
-    viewInfo.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+    viewInfo.viewType =
+        program.imageType == VK_IMAGE_TYPE_3D ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
+    viewInfo.format = program.imageFormat;
     viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
     VkImageView rawView = VK_NULL_HANDLE;
     checkVk(vkCreateImageView(device, &viewInfo, nullptr, &rawView), "vkCreateImageView");
@@ -268,7 +420,7 @@ std::pair<gpu::Counters, std::vector<std::uint32_t>> runProgram(const VulkanCont
   }
 
   VkDescriptorPoolSize poolSizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                       {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2},
+                                       {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
                                        {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
   poolInfo.maxSets = 1;
@@ -283,26 +435,33 @@ std::pair<gpu::Counters, std::vector<std::uint32_t>> runProgram(const VulkanCont
   setAllocate.pSetLayouts = &rawSetLayout;
   VkDescriptorSet set = VK_NULL_HANDLE;
   checkVk(vkAllocateDescriptorSets(device, &setAllocate, &set), "descriptor set");
-  VkDescriptorBufferInfo infos[3] = {{frameBuffer.buffer(), 0, VK_WHOLE_SIZE},
-                                     {results.buffer(), 0, VK_WHOLE_SIZE},
-                                     {cache.buffer(), 0, VK_WHOLE_SIZE}};
+  std::map<std::uint32_t, VkDescriptorBufferInfo> bufferInfos = {
+      {gpu::kBindingFrame, {frameBuffer.buffer(), 0, VK_WHOLE_SIZE}},
+      {gpu::kBindingRayCounter, {results.buffer(), 0, VK_WHOLE_SIZE}},
+      {gpu::kBindingCache, {cache.buffer(), 0, VK_WHOLE_SIZE}}};
+  if (program.tileBuffers) {
+    bufferInfos[gpu::kBindingTileTexels] = {tileTexels.buffer(), 0, VK_WHOLE_SIZE};
+    bufferInfos[gpu::kBindingTileLog] = {tileLog.buffer(), 0, VK_WHOLE_SIZE};
+  }
   VkDescriptorImageInfo imageDescriptor{VK_NULL_HANDLE, imageView.get(), VK_IMAGE_LAYOUT_GENERAL};
-  VkWriteDescriptorSet writes[4];
-  for (std::uint32_t i = 0; i < bindingCount; ++i) {
+  std::vector<VkWriteDescriptorSet> writes(bindings.size());
+  for (std::size_t i = 0; i < bindings.size(); ++i) {
     writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
     writes[i].dstSet = set;
     writes[i].dstBinding = bindings[i].binding;
     writes[i].descriptorCount = 1;
     writes[i].descriptorType = bindings[i].descriptorType;
-    if (i < 3)
-      writes[i].pBufferInfo = &infos[i];
-    else
+    if (bindings[i].descriptorType == VK_DESCRIPTOR_TYPE_STORAGE_IMAGE)
       writes[i].pImageInfo = &imageDescriptor;
+    else
+      writes[i].pBufferInfo = &bufferInfos.at(bindings[i].binding);
   }
-  vkUpdateDescriptorSets(device, bindingCount, writes, 0, nullptr);
+  vkUpdateDescriptorSets(device, std::uint32_t(writes.size()), writes.data(), 0, nullptr);
 
   context.submitAndWait([&](VkCommandBuffer commands) {
     if (program.image) {
+      // Undefined contents: every texel a tile reads is written under the entry protocol
+      // before its key is published.
       VkImageMemoryBarrier toGeneral{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
       toGeneral.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
       toGeneral.newLayout = VK_IMAGE_LAYOUT_GENERAL;
@@ -325,12 +484,17 @@ std::pair<gpu::Counters, std::vector<std::uint32_t>> runProgram(const VulkanCont
     vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT,
                          0, 1, &barrier, 0, nullptr, 0, nullptr);
   });
-  gpu::Counters counters{};
-  results.read(&counters, sizeof counters);
-  std::vector<std::uint32_t> words(program.resultWords);
-  if (!words.empty())
-    results.read(words.data(), words.size() * sizeof(std::uint32_t), sizeof(gpu::Counters));
-  return {counters, words};
+  ProgramResult result;
+  results.read(&result.counters, sizeof result.counters);
+  result.words.resize(program.resultWords);
+  if (!result.words.empty())
+    results.read(result.words.data(), result.words.size() * sizeof(std::uint32_t),
+                 sizeof(gpu::Counters));
+  if (program.readCache) {
+    result.cache.resize(emptyCache.size());
+    cache.read(result.cache.data(), result.cache.size() * sizeof(std::uint32_t));
+  }
+  return result;
 }
 
 }  // namespace
@@ -368,8 +532,10 @@ CacheStressResult runCacheStress(const VulkanContext& context, CacheStressMode m
   if (program.image) {
     program.defines.push_back("MG_CACHE_ENTRY_WORDS=0");
     program.defines.push_back("STRESS_IMAGE=1");
+    program.imageExtent = {3 * program.entries, 1, 1};  // 3 rgba32f texels an entry, one row
   }
-  auto [counters, words] = runProgram(context, program);
+  ProgramResult run = runProgram(context, program);
+  const std::vector<std::uint32_t>& words = run.words;
   CacheStressResult result;
   result.mode = mode;
   result.invocations = invocations;
@@ -378,7 +544,168 @@ CacheStressResult runCacheStress(const VulkanContext& context, CacheStressMode m
   result.torn = words[1];
   result.writes = words[2];
   result.misses = words[3];
-  result.occupancy = counters.cacheOccupancy;
+  result.occupancy = run.counters.cacheOccupancy;
+  return result;
+}
+
+std::string TileFillStressResult::failure() const {
+  std::string why;
+  auto add = [&](bool bad, const std::string& what) {
+    if (bad)
+      why += (why.empty() ? "" : "; ") + what;
+  };
+  add(torn > 0, std::to_string(torn) + " torn tile reads");
+  add(wrongServed > 0, std::to_string(wrongServed) + " lanes served a wrong texel");
+  add(entriesLocked > 0, std::to_string(entriesLocked) + " entries left locked");
+  add(countsLeft > 0, std::to_string(countsLeft) + " entries left with a texel count");
+  add(tilesPublished + tilesGivenUp != tilesComputed,
+      std::to_string(tilesComputed) + " tiles computed, " + std::to_string(tilesPublished) +
+          " published + " + std::to_string(tilesGivenUp) + " given up");
+  add(occupancy != entriesFilled, "occupancy " + std::to_string(occupancy) + " for " +
+                                      std::to_string(entriesFilled) + " entries in use");
+  add(tilesPublished == 0 || hits == 0, "nothing published or read");
+  add(options.repacks && tilesGivenUp == 0, "nothing given up");
+  return why;
+}
+
+std::string tileFillStressName(const TileFillStressOptions& options) {
+  return std::string("tile-") + tileStorageName(options.storage) +
+         (options.lanes == TileFillLanes::Quarter     ? "-quarter"
+          : options.lanes == TileFillLanes::AllButOne ? "-allbutone"
+                                                      : "") +
+         (options.repacks ? "-repacks" : "") + (options.fp16 ? "-fp16" : "") +
+         (options.updateCounter ? "" : "-key");
+}
+
+std::vector<TileFillStressOptions> tileFillStressConfigurations() {
+  std::vector<TileFillStressOptions> all(6);
+  all[0].storage = TileStorage::Entry;
+  all[1].storage = TileStorage::Entry;
+  all[1].lanes = TileFillLanes::AllButOne;
+  all[2].storage = TileStorage::Entry;
+  all[2].lanes = TileFillLanes::Quarter;
+  all[2].repacks = true;
+  all[3].storage = TileStorage::Buffer;
+  all[3].lanes = TileFillLanes::AllButOne;
+  all[3].repacks = all[3].fp16 = true;
+  all[4].storage = TileStorage::Texture2D;
+  all[4].lanes = TileFillLanes::Quarter;
+  all[4].fp16 = true;
+  all[5].storage = TileStorage::Texture3D;
+  all[5].lanes = TileFillLanes::AllButOne;
+  return all;
+}
+
+TileFillStressResult runTileFillStress(const VulkanContext& context,
+                                       const TileFillStressOptions& options,
+                                       std::uint32_t invocations, std::uint32_t iterations) {
+  const DeviceInfo& info = context.info();
+  const VkSubgroupFeatureFlags needed =
+      VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_VOTE_BIT |
+      VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_SHUFFLE_BIT |
+      VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
+  if ((info.subgroupOperations & needed) != needed ||
+      !(info.subgroupStages & VK_SHADER_STAGE_COMPUTE_BIT))
+    throw std::invalid_argument(
+        "the tile fill self-test needs subgroup ballot, shuffle, vote "
+        "and arithmetic in compute shaders");
+  TileFillStressResult result;
+  result.options = options;
+  result.invocations = invocations;
+  result.iterations = iterations;
+  // Subgroup sizes are powers of two: the tile is the subgroup over 4 (4 tiles an iteration)
+  // or, fewer lanes computing, the whole subgroup (several passes).
+  const std::uint32_t subgroup = std::max(2u, info.subgroupSize);
+  const std::uint32_t lanes = options.lanes == TileFillLanes::Quarter ? std::max(1u, subgroup / 4)
+                              : options.lanes == TileFillLanes::AllButOne ? subgroup - 1
+                                                                          : subgroup;
+  const std::uint32_t texels =
+      options.lanes == TileFillLanes::All ? std::max(1u, subgroup / 4) : subgroup;
+  result.computingLanes = lanes;
+  std::uint32_t width = 1;
+  while (width * width < texels)
+    width *= 2;
+  result.tileWidth = width;
+  result.tileHeight = std::max(1u, texels / width);
+  result.passes = (texels + lanes - 1) / lanes;
+  constexpr std::uint32_t kValues = 5, kTiles = 64;
+  const std::uint32_t valueWords = options.fp16 ? (kValues + 1) / 2 : kValues;
+  const std::uint32_t groups = (kValues + 3) / 4;
+
+  Program program;
+  program.body = kTileStressBody;
+  program.functions = kTileStressFunctions;
+  program.invocations = invocations;
+  program.resultWords = 11;
+  program.readCache = true;
+  program.tileBuffers = true;
+  program.tilesPerRow = program.entries;
+  const std::uint32_t storage = static_cast<std::uint32_t>(options.storage);
+  program.defines = {
+      "MG_CACHE_TILE=1",
+      "STRESS_TILE=1",
+      "MG_CACHE_VALUES=" + std::to_string(kValues),
+      "MG_CACHE_PROBE=8",
+      "MG_CACHE_EVICTION=" + std::to_string(gpu::kCacheEvictionRandom),
+      "MG_CACHE_ENTRY_WORDS=" +
+          std::to_string(options.storage == TileStorage::Entry ? texels * valueWords : 0u),
+      "MG_TILE_W=" + std::to_string(result.tileWidth),
+      "MG_TILE_H=" + std::to_string(result.tileHeight),
+      "MG_TILE_STORAGE=" + std::to_string(storage),
+      "STRESS_TILES=" + std::to_string(kTiles),
+      "STRESS_ITERATIONS=" + std::to_string(iterations)};
+  if (options.updateCounter)
+    program.defines.push_back("MG_CACHE_UPDATE_COUNTER=1");
+  if (options.fp16)
+    program.defines.push_back("MG_CACHE_VALUE_FP16=1");
+  if (options.lanes == TileFillLanes::Quarter)
+    program.defines.push_back("STRESS_QUARTER_LANES=1");
+  if (options.lanes == TileFillLanes::AllButOne)
+    program.defines.push_back("STRESS_ALL_BUT_ONE_LANE=1");
+  if (options.repacks) {
+    program.defines.push_back("MG_TILE_TEST_REPACKS=1");
+    // Given up from pass 0, 1, ... passes - 1, or (two in passes + 2 iterations) never.
+    program.defines.push_back("STRESS_REPACK_PERIOD=" + std::to_string(result.passes + 2));
+  }
+  if (options.storage == TileStorage::Buffer)
+    program.tileTexelWords = std::uint64_t(program.entries) * texels * valueWords;
+  if (options.storage == TileStorage::Texture2D || options.storage == TileStorage::Texture3D) {
+    program.image = true;
+    program.imageFormat =
+        options.fp16 ? VK_FORMAT_R16G16B16A16_SFLOAT : VK_FORMAT_R32G32B32A32_SFLOAT;
+    program.defines.push_back(options.fp16 ? "MG_TILE_IMAGE_FORMAT=rgba16f"
+                                           : "MG_TILE_IMAGE_FORMAT=rgba32f");
+    // One row of tiles (tile_cache.glsl tileTexelAt with frame.cache.w = the entries).
+    if (options.storage == TileStorage::Texture2D) {
+      program.imageExtent = {program.entries * result.tileWidth * groups, result.tileHeight, 1};
+    } else {
+      program.imageType = VK_IMAGE_TYPE_3D;
+      program.imageExtent = {program.entries * result.tileWidth, result.tileHeight, groups};
+    }
+  }
+  ProgramResult run = runProgram(context, program);
+  const std::vector<std::uint32_t>& w = run.words;
+  result.hits = w[0];
+  result.torn = w[1];
+  result.misses = w[2];
+  result.served = w[3];
+  result.wrongServed = w[4];
+  result.tilesComputed = w[5];
+  result.tilesPublished = w[6];
+  result.tilesGivenUp = w[7];
+  result.duplicateTiles = w[8];
+  result.repacks = w[9];
+  result.fallbacks = w[10];
+  result.occupancy = run.counters.cacheOccupancy;
+  const std::uint32_t meta =
+      options.updateCounter ? gpu::kCacheEntryHeaderWithCounter : gpu::kCacheEntryHeader;
+  const std::size_t stride = run.cache.size() / program.entries;
+  for (std::uint32_t e = 0; e < program.entries; ++e) {
+    const std::uint32_t key = run.cache[e * stride];
+    result.entriesLocked += key == gpu::kCacheKeyLock;
+    result.entriesFilled += key != gpu::kCacheKeyLock && key != gpu::kCacheKeyEmpty;
+    result.countsLeft += run.cache[e * stride + meta] != 0;
+  }
   return result;
 }
 
@@ -393,7 +720,7 @@ std::vector<std::uint32_t> runCacheProgram(const VulkanContext& context, const s
   program.invocations = invocations;
   program.clockStart = clockStart;
   program.resultWords = resultWords;
-  return runProgram(context, program).second;
+  return runProgram(context, program).words;
 }
 
 }  // namespace memograph::runtime

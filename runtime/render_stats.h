@@ -33,6 +33,9 @@ struct FrameStats {
   std::uint64_t cacheDuplicateTiles = 0;
   std::uint64_t cacheTileFallbacks = 0;
   std::uint64_t cacheTileRepacks = 0;
+  // Tiles published (their key written after their last texel) since the cache was cleared:
+  // persists across frames like the occupancy. Not in the CSV.
+  std::uint64_t cacheTilesPublished = 0;
   double cacheHitRate() const { return cacheLookups ? double(cacheHits) / cacheLookups : 0.0; }
 };
 

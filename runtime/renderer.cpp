@@ -374,6 +374,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     frameStats.cacheDuplicateTiles = counters.cacheDuplicateTiles;
     frameStats.cacheTileFallbacks = counters.cacheTileFallbacks;
     frameStats.cacheTileRepacks = counters.cacheTileRepacks;
+    frameStats.cacheTilesPublished = counters.cacheTilesPublished;
     if (timestamps) {
       std::uint64_t ticks[2] = {0, 0};
       checkVk(vkGetQueryPoolResults(device, timestampPool.get(), 0, 2, sizeof ticks, ticks,

@@ -621,6 +621,11 @@ void renderPixel(uvec2 pixel, bool inside) {
     atomicAdd(counters.cacheTileFallbacks, tileCounts.z);
     atomicAdd(counters.cacheTileRepacks, tileCounts.w);
   }
+#ifndef MG_TILE_FILL_DEFERRED
+  // Tiles this subgroup's lanes published (each by the lane that stored its last texel).
+  uint tilesPublished = subgroupAdd(g_tilesPublished);
+  if (subgroupElect() && tilesPublished > 0u) atomicAdd(counters.cacheTilesPublished, tilesPublished);
+#endif
 #endif
 }
 

@@ -68,6 +68,13 @@ MG_CONSTANT(uint, kCacheEntryHeader, 2);
 // a third uint, bumped by every write, so a reader detects a write even when the key was
 // restored (the A-B-A race of the key-only check).
 MG_CONSTANT(uint, kCacheEntryHeaderWithCounter, 3);
+// The tile cache's subgroup fill (§5.4.3; not the deferred fill) adds one uint after the
+// header above: the count of the locked tile's texels stored so far. Each lane that stores
+// a texel fences and adds 1 to it; the add that brings it to W*H publishes the tile
+// (tile_cache.glsl tileCountTexels). It is 0 whenever the entry is unlocked, and nothing
+// else reads or writes it (the clock and the update counter have other writers). 4 bytes
+// an entry: 4 MiB at the default 2^20 tiles.
+MG_CONSTANT(uint, kCacheEntryTileCountWords, 1);
 MG_CONSTANT(uint, kCacheKeyEmpty, 0u);          // a cleared entry; H1 is never 0
 MG_CONSTANT(uint, kCacheKeyLock, 0xFFFFFFFFu);  // CACHE_LOCK of §5.3.4; H1 is never this
 MG_CONSTANT(uint, kCacheMaxProbe, 16);          // linear probing distance D: 1..16
@@ -167,7 +174,9 @@ struct Counters {
   uint cacheTileRepacks;
   // Persistent across frames.
   uint cacheOccupancy;  // entries ever filled (an empty entry's first write); never falls
-  uint persistentPad0;
+  // Tile cache: tiles published (the key written after the tile's last texel) since the
+  // cache was cleared, by the subgroup fill's or the deferred fill's last texel.
+  uint cacheTilesPublished;
   uint64 cacheClock;  // the 64-bit atomic counter clock of §5.3.3 (MG_CACHE_CLOCK_COUNTER)
 };
 MG_CONSTANT(uint, kCountersPerFrameUints, 8);

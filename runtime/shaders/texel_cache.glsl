@@ -19,9 +19,17 @@
 #extension GL_EXT_control_flow_attributes : require
 
 #ifdef MG_CACHE_UPDATE_COUNTER
-const uint kCacheHeader = kCacheEntryHeaderWithCounter;  // key, clock, update counter
+const uint kCacheMetaWords = kCacheEntryHeaderWithCounter;  // key, clock, update counter
 #else
-const uint kCacheHeader = kCacheEntryHeader;  // key, clock
+const uint kCacheMetaWords = kCacheEntryHeader;  // key, clock
+#endif
+#if defined(MG_CACHE_TILE) && !defined(MG_TILE_FILL_DEFERRED)
+// The subgroup tile fill's count of stored texels (tile_cache.glsl tileCountTexels), after
+// the metadata: the header is key, clock[, update counter], count.
+const uint kCacheTileCount = kCacheMetaWords;
+const uint kCacheHeader = kCacheMetaWords + kCacheEntryTileCountWords;
+#else
+const uint kCacheHeader = kCacheMetaWords;
 #endif
 // Words per entry's values: one per fp32 value, or one per two halves (§5.3.1: 16-bit floats
 // "usually provide sufficient precision" for colours and normals). The tile cache stores

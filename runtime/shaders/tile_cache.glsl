@@ -15,7 +15,9 @@
 //   MG_CACHE_ENTRY_WORDS   the texel words stored in an entry (0 unless kTileStorageEntry).
 // With the subgroup fill every lane of the subgroup must call evaluateMaterialTiled
 // together (path_tracer.glsl keeps its loops uniform for that): the texels of a tile are
-// assigned to lanes by rank. The deferred fill has no such need.
+// assigned to lanes by rank, and the lane that stores a tile's last texel publishes it
+// (tileCountTexels: a release fence and an atomic count per texel, never a subgroup
+// operation, orders the texels before the key). The deferred fill has no such need.
 #ifndef MG_TILE_CACHE_GLSL
 #define MG_TILE_CACHE_GLSL
 #ifndef MG_TILE_FILL_DEFERRED
@@ -54,6 +56,16 @@ uint g_tileFallbacks = 0u;
 uint g_tileRepacks = 0u;
 // A number unique to this invocation (its pixel), to detect a subgroup repack (below).
 uint g_invocationId = 0u;
+// Tiles this invocation published (its texel was a tile's last; path_tracer.glsl adds them
+// to Counters::cacheTilesPublished) and locked tiles it gave back empty after a repack
+// (counted by cache_selftest's tile fill check only).
+uint g_tilesPublished = 0u;
+uint g_tilesGivenUp = 0u;
+#ifdef MG_TILE_TEST_REPACKS
+// Test hook (below): the first pass of an iteration at which the subgroup looks repacked.
+// 0 in the renderer: every computation is given up before anything is stored.
+uint g_testRepackPass = 0u;
+#endif
 
 // ---- Texel storage (§5.4.1) --------------------------------------------------------------
 
@@ -123,8 +135,9 @@ void tileLoadTexel(uint entry, uint texel, out float values[MG_CACHE_VALUES]) {
 }
 #endif
 
-// The texel stores (buffer or image) before what publishes them: cacheFence (texel_cache.glsl)
-// orders image and buffer memory together.
+// The texel stores (buffer or image) before what publishes them (the release fence before
+// a texel's count, tileCountTexels): cacheFence (texel_cache.glsl) orders image and buffer
+// memory together.
 void tileStorageBarrier() {
   cacheFence();
 }
@@ -297,6 +310,7 @@ void tileFillTexel(uint invocation) {
     key.hash = item.keyHash;
     key.texelUv = vec2(0.0);
     cacheUnlock(item.entry, key);
+    atomicAdd(counters.cacheTilesPublished, 1u);
   }
 }
 #endif
@@ -311,6 +325,81 @@ void tileQuantize(inout float values[MG_CACHE_VALUES]) {
   for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i)
     values[i] = unpackHalf2x16(packHalf2x16(vec2(clamp(values[i], -kCacheHalfMax, kCacheHalfMax), 0.0))).x;
 #endif
+}
+
+// Step 7, publishing a tile whose texels other lanes stored. A subgroup operation carries
+// data but does not synchronize memory (the Vulkan memory model has no happens-before
+// through a ballot or shuffle), so a fence in each lane followed by a ballot and the
+// locking lane's key store ordered nothing across lanes: a reader that saw the key could
+// read stale texels on a GPU. Instead each lane that stores a texel then does a release
+// fence (memoryBarrier: buffer and image memory, so every --tile-storage) and an atomic add
+// on the entry's count word (kCacheTileCount), as the deferred fill does on its queue item.
+// The adds of one lock form a release sequence on that word (every write to it is an atomic
+// read-modify-write), so the add that completes the count reads a value that every earlier
+// add's release sequence contains; with the acquire fence after it, each earlier lane's
+// fence synchronizes with it (fence synchronization), and every texel store happens-before
+// that lane's key store, which cacheUnlock orders after a release fence in turn. The
+// completing lane, whichever it is, publishes: a tile has exactly one.
+// The word: the clock cannot count (lru's read touches store it with a plain store even
+// while the entry is locked: a reader checks the key, a lock comes, the reader stamps), nor
+// can the update counter (optional; cacheLock bumps it after the lock's exchange, with no
+// order against this tile's lanes). The count word is touched only by the lanes of the tile
+// that holds the lock, and it is 0 whenever the entry is unlocked: the completing lane
+// resets it before the key's release. A later lock's lanes add to it only after that lock's
+// exchange read the key (their entry index comes from it through a shuffle), the same
+// dependency by which their texel stores follow the lock.
+// The low bits count texels (W*H <= the subgroup size <= 128); a tile given up (a repack,
+// below) adds its missing texels plus kTileCountCancel, so the count still completes exactly
+// once, and the completing add, the locking lane's or a late texel's, empties the entry.
+const uint kTileCountMask = 0xFFFFu;
+const uint kTileCountCancel = 0x10000u;
+
+// Adds `amount` to the count of the tile locked in `entry` (after a release fence: the
+// caller's texel store, or nothing to order for a give-up); the add that completes it
+// publishes the tile under `key`, or gives the entry back empty when the tile was given up.
+void tileCountTexels(uint entry, CacheKey key, uint amount) {
+  uint word = cacheEntryOffset(entry) + kCacheTileCount;
+  uint after = atomicAdd(cacheData[word], amount) + amount;
+  if ((after & kTileCountMask) != kTileTexels) return;
+  // Acquire: every lane's texel (stored before its release fence and its add) happens-before
+  // what follows, here the key store.
+  cacheFence();
+  atomicExchange(cacheData[word], 0u);  // 0 for the entry's next lock, before the key
+  if ((after & kTileCountCancel) != 0u) {
+    cacheFence();  // the reset before the key that lets the next lock in
+    cacheUnlockEmpty(entry);
+    g_tilesGivenUp += 1u;
+    return;
+  }
+  cacheUnlock(entry, key);  // clock, release fence, key
+  g_tilesPublished += 1u;
+  // §6.7.2's duplicates: a tile published twice in a frame, logged by the lane that
+  // publishes, once per tile. Logged when published, not when locked: a tile given up after
+  // a callable repack (its entry emptied, counted as a repack) and then computed by another
+  // subgroup is one computation, not two; logged at the lock, those retries were most of
+  // the 77-85 % "duplicates" of issue 17.
+  if (tileLogDuplicate(key)) g_duplicateTiles += 1u;
+}
+
+// A repack gave the computation up before pass `pass`: the locking lane of the tile with
+// place `placeInPasses` among the locked tiles (its texels are numbers placeInPasses * W*H ..)
+// hands the entry back. Texels numbered below pass * activeCount were stored and counted in
+// the earlier, stable passes; the rest never will be.
+void tileGiveUp(uint entry, CacheKey key, uint placeInPasses, uint pass, uint activeCount) {
+  uint first = placeInPasses * kTileTexels;
+  uint done = pass * activeCount;
+  uint stored = done > first ? min(done - first, kTileTexels) : 0u;
+  // Complete in an earlier pass: its last lane published it, and it must stay published.
+  if (stored == kTileTexels) return;
+  if (stored == 0u) {
+    // Nothing stored or counted under this lock: nobody else will touch the entry.
+    cacheUnlockEmpty(entry);
+    g_tilesGivenUp += 1u;
+    return;
+  }
+  // Partly stored: the count completes with the missing texels and the cancel mark, here or
+  // in the add of a lane whose texel add is still on its way; that one empties the entry.
+  tileCountTexels(entry, key, kTileCountCancel + kTileTexels - stored);
 }
 
 // Shuffles a value array from lane `source` (every lane takes part, each with its source).
@@ -432,7 +521,8 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
     // locking lanes is the slot's place among the computed tiles.
     uint mySlotLane = mySlot != kNoLane ? laneOfRank(activeLanes, mySlot) : lane;
     bool mine = mySlot != kNoLane && subgroupBallotBitExtract(lockedLanes, mySlotLane);
-    uint myComputed = subgroupShuffle(subgroupBallotExclusiveBitCount(lockedLanes), mySlotLane);
+    uint lockedPlace = subgroupBallotExclusiveBitCount(lockedLanes);  // a locking lane's tile
+    uint myComputed = subgroupShuffle(lockedPlace, mySlotLane);
 
     // Steps 2-4 and 6, pass by pass: the lane of rank r computes texel p * activeCount + r
     // of the locked tiles (texel t of the c-th locked slot is number c * W * H + t), with
@@ -455,6 +545,12 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
       int workLevel = subgroupShuffle(slotLevel, slotLane);
       vec2 workTile = subgroupShuffle(slotTile, slotLane);
       int tileEntry = subgroupShuffle(entry, slotLane);
+      // The tile's key, for the lane whose texel completes it: that lane publishes it.
+      CacheKey tileKey;
+      tileKey.base = subgroupShuffle(lockKey.base, slotLane);
+      tileKey.hash = subgroupShuffle(lockKey.hash, slotLane);
+      tileKey.texelUv = vec2(0.0);
+      tileKey.texelSize = 0.0;
       float texelValues[MG_CACHE_VALUES];
       for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) texelValues[i] = 0.0;
 #if defined(MG_MATERIAL_CALLABLES) || defined(MG_TILE_TEST_REPACKS)
@@ -475,13 +571,16 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
       // repack instruction"); the exchange needs the same invocations in the same lanes as
       // before: every lane at its old index, all from the same subgroup (the same first
       // invocation before the call), the same lanes active. If not, nothing more is stored,
-      // the locked entries go back to empty, and every requester evaluates its own hit (both
+      // the locked tiles not yet complete go back to empty (tileGiveUp: a tile completed in an
+      // earlier pass stays published), and every requester evaluates its own hit (both
       // counted).
 #ifdef MG_TILE_TEST_REPACKS
       // Test hook: as if the upper half of the lanes came back from the call out of another
       // subgroup, at the same lane indices and with the same lanes active (a regrouping only
-      // the identity check can tell), so every tile computation is given up.
-      if (gl_SubgroupInvocationID >= gl_SubgroupSize / 2u) firstBefore += 1u;
+      // the identity check can tell), from pass g_testRepackPass on (the renderer: 0, so
+      // every tile computation is given up before anything is stored).
+      if (gl_SubgroupInvocationID >= gl_SubgroupSize / 2u && pass >= g_testRepackPass)
+        firstBefore += 1u;
 #endif
       bool stable = subgroupAll(gl_SubgroupInvocationID == lane) &&
                     subgroupAllEqual(firstBefore) &&
@@ -489,12 +588,18 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
       if (!stable) {
         g_tileRepacks += 1u;
         if (request && !served) g_tileFallbacks += 1u;
-        if (entry >= 0) cacheUnlockEmpty(uint(entry));
+        if (entry >= 0) tileGiveUp(uint(entry), lockKey, lockedPlace, pass, activeCount);
         served = false;
         return;
       }
 #endif
-      if (worker) tileStoreTexel(uint(tileEntry), texel, texelValues);  // only locked tiles
+      if (worker) {
+        // Only locked tiles have workers. Store, release fence, count (tileCountTexels): the
+        // lane whose add completes the tile publishes it, in whatever pass that happens.
+        tileStoreTexel(uint(tileEntry), texel, texelValues);
+        tileStorageBarrier();
+        tileCountTexels(uint(tileEntry), tileKey, 1u);
+      }
       [[unroll]] for (uint t = 0u; t < kTileTaps; ++t) {
         uint wanted = myComputed * kTileTexels + taps[t];
         bool here = mine && wanted / activeCount == pass;
@@ -505,22 +610,12 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
           for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) filtered[i] += weights[t] * tap[i];
       }
     }
-    // Each lane's writes are made visible, then the subgroup meets in a ballot (a
-    // synchronizing subgroup operation) before the keys go out. Not subgroupBarrier():
-    // lavapipe runs it as a work-group barrier, which corrupted state when the subgroups of
-    // a work group looped here a different number of times.
-    tileStorageBarrier();
-    subgroupMemoryBarrier();
-    uvec4 writesDone = subgroupBallot(true);
-    // Step 7: the locking lanes write the metadata and the keys, which unlocks the entries.
-    if (entry >= 0 && writesDone.x + writesDone.y + writesDone.z + writesDone.w != 0u) {
-      cacheUnlock(uint(entry), lockKey);
-      // §6.7.2's duplicates: a tile published twice in a frame. Logged when published, not
-      // when locked: a tile given up after a callable repack (its entry emptied, counted as
-      // a repack) and then computed by another subgroup is one computation, not two; logged
-      // at the lock, those retries were most of the 77-85 % "duplicates" of issue 17.
-      if (tileLogDuplicate(lockKey)) g_duplicateTiles += 1u;
-    }
+    // Step 7 happened in the passes: each tile's last texel published it (tileCountTexels),
+    // with no subgroup operation in the memory ordering, so it does not depend on how the
+    // driver reconverges the lanes either (VK_KHR_shader_maximal_reconvergence would not
+    // change it). Not subgroupBarrier(): lavapipe runs it as a work-group barrier, which
+    // corrupted state when the subgroups of a work group looped here a different number of
+    // times.
     if (mine) {
       values = filtered;
       served = true;

@@ -70,6 +70,21 @@ TEST(TexelCacheOptions, EntrySizesAndDefinesFollowTheOptions) {
   EXPECT_EQ(cacheValueWords(options, 5), 3u);  // the last word's high half unused
   options.updateCounter = true;
   EXPECT_EQ(cacheEntryWords(options, 5), gpu::kCacheEntryHeaderWithCounter + 3);
+  {
+    // Tiles: the subgroup fill's texel count follows the header (tile_cache.glsl
+    // tileCountTexels); the deferred fill counts in its queue. 4x2 fp16 texels of 5 values.
+    CacheOptions tile = options;
+    tile.mode = CacheMode::Tile;
+    tile.tileWidth = 4;
+    tile.tileHeight = 2;
+    EXPECT_EQ(cacheEntryWords(tile, 5),
+              gpu::kCacheEntryHeaderWithCounter + gpu::kCacheEntryTileCountWords + 8 * 3);
+    tile.tileStorage = TileStorage::Texture2D;
+    EXPECT_EQ(cacheEntryWords(tile, 5),
+              gpu::kCacheEntryHeaderWithCounter + gpu::kCacheEntryTileCountWords);
+    tile.tileFill = TileFill::Deferred;
+    EXPECT_EQ(cacheEntryWords(tile, 5), gpu::kCacheEntryHeaderWithCounter);
+  }
   options.clock = CacheClock::Counter;
   options.clockShift = 3;
   options.snapUv = true;

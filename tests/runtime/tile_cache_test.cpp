@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "render_test_support.h"
+#include "runtime/cache_selftest.h"
 #include "texel_cache_scenes.h"
 
 namespace memograph::runtime {
@@ -324,6 +325,107 @@ TEST(TileCache, GivenUpTilesLeaveNothingCachedAndNothingCounted) {
   std::printf("%s, every tile given up: mean LDR-FLIP %.5f vs no cache\n", describe(given).c_str(),
               flip);
   EXPECT_LT(flip, 0.001);
+}
+
+// Step 7 of §5.4.3 by the memory model: a tile is published by the lane whose atomic count
+// completes it (each lane fences after its texel store and counts), not by the locking lane
+// after a ballot. Every computed tile must end published exactly once (or given back empty
+// after a repack, never both), so the cache's count of published tiles, which persists
+// across frames, is the sum of the tiles computed: with half-empty subgroups (the test hook)
+// a 4x2 tile takes two passes of 4 lanes, and 2x2 tiles one; with full subgroups 2x2 tiles
+// go two an iteration; and a 64-entry cache, whose entries are evicted and locked again many
+// times a frame (a count not back at 0 after a tile would keep the next tile locked). A count
+// that completed twice or never shows as a published count off the computed one or as tiles
+// that stay locked (then computed again every frame: the hit rate). With every computation
+// given up (the repack hook) nothing is published.
+TEST(TileCache, EveryComputedTileIsPublishedOnce) {
+  Scene scene = wallScene(stripesGraph(), true);
+  struct Case {
+    std::uint32_t w, h;
+    bool partial, repacks;
+    std::uint32_t entries;  // 64: entries are evicted and locked again, many times a frame
+  };
+  for (Case c : {Case{4, 2, true, false, 1u << 16}, Case{2, 2, true, false, 1u << 16},
+                 Case{2, 2, false, false, 1u << 16}, Case{4, 2, true, false, 64},
+                 Case{4, 2, true, true, 1u << 16}}) {
+    RendererOptions options = tileOptions(c.w, c.h);
+    options.cache.testPartialSubgroups = c.partial;
+    options.cache.testRepacks = c.repacks;
+    options.cache.entries = c.entries;
+    RenderResult result = Renderer(options).render(scene, settings(3, 2));
+    expectConsistentCounters(result.stats);
+    std::uint64_t computed = 0;
+    for (const FrameStats& f : result.stats.frames) {
+      computed += f.cacheTilesComputed;
+      EXPECT_EQ(f.cacheTilesPublished, c.repacks ? 0u : computed)
+          << c.w << "x" << c.h << (c.partial ? " partial" : "") << " frame " << f.frame;
+      EXPECT_LE(f.cacheOccupancy, f.cacheTilesPublished) << "frame " << f.frame;
+    }
+    const FrameStats& last = result.stats.frames.back();
+    std::printf(
+        "%s%s%s, %u entries: %llu tiles computed, %llu published in %zu frames; "
+        "occupancy %llu, last frame hit rate %.2f %%\n",
+        describe(result).c_str(), c.partial ? " with half of every subgroup" : "",
+        c.repacks ? ", every tile given up" : "", c.entries, (unsigned long long)computed,
+        (unsigned long long)last.cacheTilesPublished, result.stats.frames.size(),
+        (unsigned long long)last.cacheOccupancy, 100.0 * last.cacheHitRate());
+    EXPECT_GT(computed, 0u);
+    if (!c.repacks && c.entries > 64) {
+      EXPECT_GT(last.cacheHitRate(), 0.95);
+      EXPECT_GT(last.cacheOccupancy, 0u);
+    }
+  }
+}
+
+// The same hand-off under contention, through the real tile_cache.glsl without the renderer
+// (runtime::runTileFillStress, also run by `memograph selftest` on the GPU): 64 tiles on 32
+// entries, every lane reading its tile whole (all texels between the entry protocol's
+// checks), the subgroup computing the missed ones. Every storage layout; tiles of a quarter
+// of the subgroup (several an iteration) or of the whole subgroup on a quarter of the lanes
+// (four passes: lavapipe 4x2 tiles on 2 lanes) or on all lanes but one (two passes, the
+// second of one texel, whose add a count that completed early would leave behind); fp16;
+// and the repack hook giving computations up from pass 0, 1, ... or never, so tiles are given
+// up with some texels stored and counted (the count completes with a cancel mark and empties
+// the entry). Afterwards no entry may be locked or keep a count, every
+// computed tile must be published or given up once, the occupancy must be the entries in
+// use, and no hit or served lane may see a texel that is not its tile's.
+TEST(TileCache, SubgroupFillPublishesEveryTileWithAllItsTexels) {
+  testing::testOptions();  // sets XDG_RUNTIME_DIR when unset
+  ContextOptions contextOptions;
+  contextOptions.validation = validationLayerAvailable();
+  VulkanContext context(contextOptions);
+  std::vector<TileFillStressOptions> configurations = tileFillStressConfigurations();
+  for (TileStorage storage :
+       {TileStorage::Entry, TileStorage::Buffer, TileStorage::Texture2D, TileStorage::Texture3D})
+    for (TileFillLanes lanes :
+         {TileFillLanes::All, TileFillLanes::Quarter, TileFillLanes::AllButOne}) {
+      TileFillStressOptions options;
+      options.storage = storage;
+      options.lanes = lanes;
+      options.repacks = lanes != TileFillLanes::All;
+      options.fp16 = storage == TileStorage::Texture2D || storage == TileStorage::Buffer;
+      configurations.push_back(options);
+    }
+  const std::uint32_t subgroup = context.info().subgroupSize;
+  for (const TileFillStressOptions& options : configurations) {
+    TileFillStressResult r = runTileFillStress(context, options, 1024, 64);
+    const std::string name = tileFillStressName(options);
+    std::printf(
+        "%s (%ux%u, %u lanes, %u passes): %u hits, %u misses, %u torn; %u served, %u wrong; %u "
+        "tiles computed, %u published, %u given up, %u duplicates; left: %u locked, %u counts; "
+        "occupancy %u of %u entries in use\n",
+        name.c_str(), r.tileWidth, r.tileHeight, r.computingLanes, r.passes, r.hits, r.misses,
+        r.torn, r.served, r.wrongServed, r.tilesComputed, r.tilesPublished, r.tilesGivenUp,
+        r.duplicateTiles, r.entriesLocked, r.countsLeft, r.occupancy, r.entriesFilled);
+    EXPECT_EQ(r.failure(), "") << name;
+    EXPECT_EQ(r.hits + r.misses, r.invocations / subgroup * r.computingLanes * r.iterations)
+        << name;
+    EXPECT_GT(r.served, 0u) << name;
+    // §6.7.2's log: each publication logged once, so all but the first of each of the 64
+    // tiles (all published many times over) is a duplicate.
+    EXPECT_EQ(r.tilesPublished - r.duplicateTiles, 64u) << name;
+  }
+  EXPECT_TRUE(context.validationErrors().empty());
 }
 
 // Options the device cannot run are refused before anything compiles, with the reason.

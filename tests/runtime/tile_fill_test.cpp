@@ -43,7 +43,11 @@ void expectDeferredCounters(const RenderStats& stats) {
   ASSERT_FALSE(stats.frames.empty());
   EXPECT_EQ(stats.frames.front().cacheHits, 0u);
   EXPECT_GT(stats.frames.front().cacheTilesComputed, 0u);
+  std::uint64_t queued = 0;
   for (const FrameStats& f : stats.frames) {
+    // The fill pass publishes every queued tile once (its last texel's count), in the frame.
+    queued += f.cacheTilesComputed;
+    EXPECT_EQ(f.cacheTilesPublished, queued) << "frame " << f.frame;
     EXPECT_LE(f.cacheTilesComputed, f.cacheMisses) << "frame " << f.frame;
     EXPECT_EQ(f.cacheDuplicateTiles, 0u) << "frame " << f.frame;
     EXPECT_EQ(f.cacheTileRepacks, 0u) << "frame " << f.frame;
@@ -123,6 +127,7 @@ TEST(TileFill, AFullQueueLeavesTheRestToEvaluateTheirHits) {
     EXPECT_LE(f.cacheTilesComputed, 2u) << "frame " << f.frame;
     EXPECT_GT(f.cacheTileFallbacks, 0u) << "frame " << f.frame;
     published += f.cacheTilesComputed;
+    EXPECT_EQ(f.cacheTilesPublished, published) << "frame " << f.frame;
     EXPECT_LE(f.cacheOccupancy, published) << "frame " << f.frame;
   }
   double flip = meanFlip(none.image, small.image);

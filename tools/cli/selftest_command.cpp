@@ -1,8 +1,10 @@
 // memograph selftest: the cache's concurrency stress test (thesis §5.3.4) on this machine's
-// GPU, in every read-check and storage mode, with the torn reads of each. Runs from the
+// GPU, in every read-check and storage mode, with the torn reads of each, then the tile
+// cache's subgroup fill (§5.4.3: tiles published by their last texel's count). Runs from the
 // device bundle, so the GPU machine can check the memory ordering lavapipe cannot show.
 #include <cstdio>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -30,7 +32,10 @@ int runSelftest(std::span<const std::string_view> args) {
                  "(default 4096, a multiple of 64) of N lookups each (default 256) on 32\n"
                  "entries, in the key, counter, image-key, image-counter and unprotected\n"
                  "modes, --rounds times each. Prints the torn reads per mode; exits 1 when a\n"
-                 "protected mode tore.\n";
+                 "protected mode tore. Then the tile cache's subgroup fill, the same way, in\n"
+                 "every tile storage, with several tiles an iteration, several passes a tile\n"
+                 "and given-up tiles: exits 1 when a tile read tore or a tile was not\n"
+                 "published exactly once with all its texels (or given back empty).\n";
     return kExitOk;
   }
   if (!positional.empty())
@@ -66,8 +71,44 @@ int runSelftest(std::span<const std::string_view> args) {
       if (mode != runtime::CacheStressMode::Unprotected && torn > 0)
         protectedTore = true;
     }
+    // The tile cache's subgroup fill (§5.4.3): each tile published by its last texel.
+    bool tileFailed = false;
+    std::printf(
+        "mode,round,invocations,iterations,tile,lanes,passes,hits,misses,torn,served,wrong_served,"
+        "tiles_computed,published,given_up,duplicates,left_locked,left_counts,occupancy,"
+        "entries_in_use\n");
+    for (const runtime::TileFillStressOptions& options : runtime::tileFillStressConfigurations()) {
+      const std::string name = runtime::tileFillStressName(options);
+      std::uint64_t hits = 0, torn = 0, published = 0;
+      std::string failures;
+      for (std::uint32_t round = 0; round < rounds; ++round) {
+        runtime::TileFillStressResult r;
+        try {
+          r = runtime::runTileFillStress(context, options, invocations, iterations);
+        } catch (const std::invalid_argument& e) {
+          std::printf("# %s: skipped, %s\n", name.c_str(), e.what());
+          break;
+        }
+        std::printf("%s,%u,%u,%u,%ux%u,%u,%u,%u,%u,%u,%u,%u,%u,%u,%u,%u,%u,%u,%u,%u\n",
+                    name.c_str(), round, r.invocations, r.iterations, r.tileWidth, r.tileHeight,
+                    r.computingLanes, r.passes, r.hits, r.misses, r.torn, r.served, r.wrongServed,
+                    r.tilesComputed, r.tilesPublished, r.tilesGivenUp, r.duplicateTiles,
+                    r.entriesLocked, r.countsLeft, r.occupancy, r.entriesFilled);
+        hits += r.hits;
+        torn += r.torn;
+        published += r.tilesPublished;
+        if (const std::string why = r.failure(); !why.empty())
+          failures +=
+              (failures.empty() ? "" : " | ") + ("round " + std::to_string(round) + ": " + why);
+      }
+      std::printf("# %s: %llu torn reads of %llu hits, %llu tiles published%s%s\n", name.c_str(),
+                  (unsigned long long)torn, (unsigned long long)hits, (unsigned long long)published,
+                  failures.empty() ? "" : "; FAILED: ", failures.c_str());
+      if (!failures.empty())
+        tileFailed = true;
+    }
     std::fflush(stdout);
-    return protectedTore ? kExitFailure : kExitOk;
+    return protectedTore || tileFailed ? kExitFailure : kExitOk;
   } catch (const std::exception& e) {
     std::cerr << "memograph selftest: " << e.what() << "\n";
     return kExitFailure;
