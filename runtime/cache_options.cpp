@@ -242,6 +242,8 @@ std::vector<std::string> cacheShaderDefines(const CacheOptions& cache, std::uint
     defines.push_back("MG_TILE_H=" + std::to_string(cache.tileHeight));
     defines.push_back("MG_TILE_STORAGE=" +
                       std::to_string(static_cast<std::uint32_t>(cache.tileStorage)));
+    if (cache.tileStorage == TileStorage::Texture2D || cache.tileStorage == TileStorage::Texture3D)
+      defines.push_back("MG_CACHE_VALUES_IN_IMAGE=1");  // cacheFence orders image memory too
     if (cache.tileFilter == TileFilter::Bilinear)
       defines.push_back("MG_TILE_BILINEAR=1");
     if (cache.groupByMaterial)

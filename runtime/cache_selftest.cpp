@@ -532,6 +532,7 @@ CacheStressResult runCacheStress(const VulkanContext& context, CacheStressMode m
   if (program.image) {
     program.defines.push_back("MG_CACHE_ENTRY_WORDS=0");
     program.defines.push_back("STRESS_IMAGE=1");
+    program.defines.push_back("MG_CACHE_VALUES_IN_IMAGE=1");
     program.imageExtent = {3 * program.entries, 1, 1};  // 3 rgba32f texels an entry, one row
   }
   ProgramResult run = runProgram(context, program);
@@ -656,6 +657,8 @@ TileFillStressResult runTileFillStress(const VulkanContext& context,
       "STRESS_ITERATIONS=" + std::to_string(iterations)};
   if (options.updateCounter)
     program.defines.push_back("MG_CACHE_UPDATE_COUNTER=1");
+  if (options.storage == TileStorage::Texture2D || options.storage == TileStorage::Texture3D)
+    program.defines.push_back("MG_CACHE_VALUES_IN_IMAGE=1");  // as cacheShaderDefines does
   if (options.fp16)
     program.defines.push_back("MG_CACHE_VALUE_FP16=1");
   if (options.lanes == TileFillLanes::Quarter)

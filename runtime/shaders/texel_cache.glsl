@@ -208,11 +208,19 @@ uint cacheClockPeek() {
 // The ordering of the entry protocol (§5.3.4, a seqlock): a writer's lock must be visible
 // before any of its value stores, and its value stores before the key that unlocks; a
 // reader's first key load before its value loads, and those before its second key load.
-// memoryBarrier() (OpMemoryBarrier, device scope, acquire-release over uniform and image
-// memory) orders both the cache buffer and the tile cache's storage image; a buffer-only
-// barrier does not order imageLoad/imageStore (--tile-storage texture2d|texture3d).
+// Where values live in a storage image (--tile-storage texture2d|texture3d, or the
+// self-test's image modes: MG_CACHE_VALUES_IN_IMAGE), memoryBarrier() (OpMemoryBarrier,
+// device scope, acquire-release over uniform, image and workgroup memory) orders the cache
+// buffer and the image together: a buffer-only barrier does not order imageLoad/imageStore.
+// Everywhere else every entry lives in buffers, and memoryBarrierBuffer() (uniform memory
+// only) is all the protocol needs: the wider barrier also orders image memory, which the
+// path tracer's texture reads use, on every lookup.
 void cacheFence() {
+#ifdef MG_CACHE_VALUES_IN_IMAGE
   memoryBarrier();
+#else
+  memoryBarrierBuffer();
+#endif
 }
 
 // The values an entry stores for output mask `mask`, in kCacheOutput* order.
