@@ -7,6 +7,7 @@
 #include "runtime/shader_compiler.h"
 #include "runtime/shader_sources.h"
 #include "runtime/shaders/shared_types.h"
+#include "runtime/storage_image.h"
 #include "runtime/vulkan_error.h"
 #include "runtime/vulkan_handle.h"
 
@@ -381,43 +382,10 @@ ProgramResult runProgram(const VulkanContext& context, const Program& program) {
     tileLog.write(zeros.data(), zeros.size() * sizeof(std::uint32_t));
   }
 
-  VulkanHandle<VkImage> image;
-  VulkanHandle<VkDeviceMemory> imageMemory;
-  VulkanHandle<VkImageView> imageView;
-  if (program.image) {
-    VkImageCreateInfo imageInfo{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-    imageInfo.imageType = program.imageType;
-    imageInfo.format = program.imageFormat;
-    imageInfo.extent = program.imageExtent;
-    imageInfo.mipLevels = 1;
-    imageInfo.arrayLayers = 1;
-    imageInfo.samples = VK_SAMPLE_COUNT_1_BIT;
-    imageInfo.tiling = VK_IMAGE_TILING_OPTIMAL;
-    imageInfo.usage = VK_IMAGE_USAGE_STORAGE_BIT;
-    imageInfo.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    VkImage rawImage = VK_NULL_HANDLE;
-    checkVk(vkCreateImage(device, &imageInfo, nullptr, &rawImage), "vkCreateImage (self-test)");
-    image = handle(device, rawImage, vkDestroyImage);
-    VkMemoryRequirements requirements;
-    vkGetImageMemoryRequirements(device, rawImage, &requirements);
-    VkMemoryAllocateInfo allocateInfo{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    allocateInfo.allocationSize = requirements.size;
-    allocateInfo.memoryTypeIndex =
-        context.findMemoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    VkDeviceMemory rawMemory = VK_NULL_HANDLE;
-    checkVk(vkAllocateMemory(device, &allocateInfo, nullptr, &rawMemory), "vkAllocateMemory");
-    imageMemory = handle(device, rawMemory, vkFreeMemory);
-    checkVk(vkBindImageMemory(device, rawImage, rawMemory, 0), "vkBindImageMemory");
-    VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    viewInfo.image = rawImage;
-    viewInfo.viewType =
-        program.imageType == VK_IMAGE_TYPE_3D ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
-    viewInfo.format = program.imageFormat;
-    viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    VkImageView rawView = VK_NULL_HANDLE;
-    checkVk(vkCreateImageView(device, &viewInfo, nullptr, &rawView), "vkCreateImageView");
-    imageView = handle(device, rawView, vkDestroyImageView);
-  }
+  StorageImage image;
+  if (program.image)
+    image = createStorageImage(context, program.imageType, program.imageFormat, program.imageExtent,
+                               "self-test image");
 
   VkDescriptorPoolSize poolSizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 4},
@@ -443,7 +411,7 @@ ProgramResult runProgram(const VulkanContext& context, const Program& program) {
     bufferInfos[gpu::kBindingTileTexels] = {tileTexels.buffer(), 0, VK_WHOLE_SIZE};
     bufferInfos[gpu::kBindingTileLog] = {tileLog.buffer(), 0, VK_WHOLE_SIZE};
   }
-  VkDescriptorImageInfo imageDescriptor{VK_NULL_HANDLE, imageView.get(), VK_IMAGE_LAYOUT_GENERAL};
+  VkDescriptorImageInfo imageDescriptor{VK_NULL_HANDLE, image.view.get(), VK_IMAGE_LAYOUT_GENERAL};
   std::vector<VkWriteDescriptorSet> writes(bindings.size());
   for (std::size_t i = 0; i < bindings.size(); ++i) {
     writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -459,21 +427,6 @@ ProgramResult runProgram(const VulkanContext& context, const Program& program) {
   vkUpdateDescriptorSets(device, std::uint32_t(writes.size()), writes.data(), 0, nullptr);
 
   context.submitAndWait([&](VkCommandBuffer commands) {
-    if (program.image) {
-      // Undefined contents: every texel a tile reads is written under the entry protocol
-      // before its key is published.
-      VkImageMemoryBarrier toGeneral{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-      toGeneral.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-      toGeneral.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-      toGeneral.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
-      toGeneral.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-      toGeneral.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-      toGeneral.image = image.get();
-      toGeneral.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-      vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
-                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 0, nullptr, 0, nullptr, 1,
-                           &toGeneral);
-    }
     vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, rawPipeline);
     vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, rawLayout, 0, 1, &set, 0,
                             nullptr);

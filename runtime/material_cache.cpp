@@ -198,59 +198,11 @@ MaterialCache::MaterialCache(const VulkanContext& context, const CacheOptions& o
                                   cacheValueFormatName(options.valueFormat) +
                                   " RGBA storage images (--tile-storage)");
 
-    VkDevice device = context.device();
-    VkImageCreateInfo imageInfo{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
-    imageInfo.imageType = is3D ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
-    imageInfo.format = imageFormat(options);
-    imageInfo.extent = {static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height),
-                        is3D ? groups : 1u};
-    imageInfo.mipLevels = 1;
-    imageInfo.arrayLayers = 1;
-    imageInfo.samples = VK_SAMPLE_COUNT_1_BIT;
-    imageInfo.tiling = VK_IMAGE_TILING_OPTIMAL;
-    imageInfo.usage = VK_IMAGE_USAGE_STORAGE_BIT;
-    imageInfo.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-    VkImage image = VK_NULL_HANDLE;
-    checkVk(vkCreateImage(device, &imageInfo, nullptr, &image), "vkCreateImage (tile cache)");
-    image_ =
-        VulkanHandle<VkImage>(image, [device](VkImage i) { vkDestroyImage(device, i, nullptr); });
-    VkMemoryRequirements requirements;
-    vkGetImageMemoryRequirements(device, image, &requirements);
-    VkMemoryAllocateInfo allocate{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    allocate.allocationSize = requirements.size;
-    allocate.memoryTypeIndex =
-        context.findMemoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    VkDeviceMemory memory = VK_NULL_HANDLE;
-    checkVk(vkAllocateMemory(device, &allocate, nullptr, &memory),
-            "vkAllocateMemory (tile cache image)");
-    imageMemory_ = VulkanHandle<VkDeviceMemory>(
-        memory, [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
-    checkVk(vkBindImageMemory(device, image, memory, 0), "vkBindImageMemory (tile cache)");
-    bytes_ += requirements.size;
-    VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
-    viewInfo.image = image;
-    viewInfo.viewType = is3D ? VK_IMAGE_VIEW_TYPE_3D : VK_IMAGE_VIEW_TYPE_2D;
-    viewInfo.format = imageFormat(options);
-    viewInfo.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-    VkImageView view = VK_NULL_HANDLE;
-    checkVk(vkCreateImageView(device, &viewInfo, nullptr, &view), "vkCreateImageView (tile cache)");
-    imageView_ = VulkanHandle<VkImageView>(
-        view, [device](VkImageView v) { vkDestroyImageView(device, v, nullptr); });
-    // The image stays in GENERAL for the shader's loads and stores; its contents need no
-    // clear (a texel is only read under a key that was written after it).
-    context.submitAndWait([&](VkCommandBuffer commands) {
-      VkImageMemoryBarrier barrier{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER};
-      barrier.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
-      barrier.newLayout = VK_IMAGE_LAYOUT_GENERAL;
-      barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
-      barrier.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-      barrier.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
-      barrier.image = image;
-      barrier.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
-      vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT,
-                           VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 0, nullptr, 0, nullptr, 1,
-                           &barrier);
-    });
+    tileImage_ = createStorageImage(
+        context, is3D ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D, imageFormat(options),
+        {static_cast<std::uint32_t>(width), static_cast<std::uint32_t>(height), is3D ? groups : 1u},
+        "tile cache image");
+    bytes_ += tileImage_.bytes;
   }
 }
 

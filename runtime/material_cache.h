@@ -15,6 +15,7 @@
 #include "runtime/gpu_buffer.h"
 #include "runtime/render_stats.h"
 #include "runtime/renderer.h"
+#include "runtime/storage_image.h"
 #include "runtime/vulkan_context.h"
 #include "runtime/vulkan_handle.h"
 
@@ -48,7 +49,7 @@ class MaterialCache {
   // every queue slot (0 without the deferred fill: no fill pass).
   const GpuBuffer& tileQueue() const { return tileQueue_; }
   std::uint32_t tileFillRows() const { return tileFillRows_; }
-  VkImageView tileImageView() const { return imageView_.get(); }
+  VkImageView tileImageView() const { return tileImage_.view.get(); }
 
   // The clears before a frame's trace: every entry empty (key 0, clock 0) before the first
   // frame; the tile log and the fill queue's count before every frame. The caller orders them
@@ -70,9 +71,7 @@ class MaterialCache {
   GpuBuffer tileLog_;
   GpuBuffer tileQueue_;
   std::uint32_t tileFillRows_ = 0;
-  VulkanHandle<VkDeviceMemory> imageMemory_;
-  VulkanHandle<VkImage> image_;
-  VulkanHandle<VkImageView> imageView_;
+  StorageImage tileImage_;  // --tile-storage texture2d|texture3d only
 };
 
 }  // namespace memograph::runtime
