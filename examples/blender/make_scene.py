@@ -1,21 +1,24 @@
-"""The Blender scene example (issue 15): a small room with procedural materials, lit by a
+"""The Blender scene example: a small room with procedural materials, lit by a
 point light, a sun, an area light and an emissive panel under a dim blue world.
 
     blender -b --factory-startup --python examples/blender/make_scene.py -- OUT.blend [--reference OUT.pfm --size N --samples S]
 
-writes the .blend (and, with --reference, Cycles' render of it as a PFM: CPU, no denoiser, box
-filter, for the side-by-side in docs/). Then (docs/blender.md, "Example: a whole scene"):
+writes the .blend (and, with --reference, Cycles' render of it as a PFM with the reference
+settings of tools/blender/cycles_reference.py, for the side-by-side in docs/). Then (docs/blender.md, "Example: a whole scene"):
 
     memograph import-blender OUT.blend --out DIR --scene
     memograph render DIR/scene.gltf --materials DIR --size 96x96 --frames 64 --out memograph.pfm
 """
 
-import array
 import math
 import os
 import sys
 
 import bpy
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', 'tools',
+                                'blender'))
+from cycles_reference import render_reference_pfm  # noqa: E402 (needs the path above)
 
 
 def material(name, shader, inputs, texture=None):
@@ -97,33 +100,6 @@ def build():
     bpy.context.scene.camera = co
 
 
-def render_pfm(path, size, samples):
-    sc = bpy.context.scene
-    sc.render.engine = 'CYCLES'
-    sc.cycles.device = 'CPU'
-    sc.cycles.samples = samples
-    sc.cycles.use_denoising = False
-    sc.cycles.use_adaptive_sampling = False
-    sc.cycles.sample_clamp_direct = sc.cycles.sample_clamp_indirect = 0.0
-    sc.cycles.light_sampling_threshold = 0.0
-    sc.cycles.filter_type, sc.cycles.filter_width = 'BOX', 1.0
-    sc.render.resolution_x = sc.render.resolution_y = size
-    sc.render.resolution_percentage = 100
-    sc.render.threads_mode, sc.render.threads = 'FIXED', 2
-    exr = os.path.splitext(path)[0] + '.exr'
-    sc.render.filepath = exr
-    sc.render.image_settings.file_format = 'OPEN_EXR'
-    sc.render.image_settings.color_depth = '32'
-    bpy.ops.render.render(write_still=True)
-    px = list(bpy.data.images.load(exr).pixels)
-    rgb = array.array('f', [0.0]) * (size * size * 3)
-    for c in range(3):
-        rgb[c::3] = array.array('f', px[c::4])
-    with open(path, 'wb') as f:
-        f.write(b'PF\n%d %d\n-1.0\n' % (size, size))
-        f.write(rgb.tobytes())
-
-
 def main(argv):
     out = os.path.abspath(argv[0])
     size = int(argv[argv.index('--size') + 1]) if '--size' in argv else 96
@@ -136,7 +112,7 @@ def main(argv):
     bpy.ops.wm.save_as_mainfile(filepath=out)
     if '--reference' in argv:
         samples = int(argv[argv.index('--samples') + 1]) if '--samples' in argv else 1024
-        render_pfm(os.path.abspath(argv[argv.index('--reference') + 1]), size, samples)
+        render_reference_pfm(os.path.abspath(argv[argv.index('--reference') + 1]), size, samples)
     return 0
 
 

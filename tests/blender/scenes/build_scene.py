@@ -22,7 +22,6 @@ no clamping, no light threshold) and DIR/export/ (the memograph exporter with --
 """
 
 import argparse
-import array
 import json
 import math
 import os
@@ -34,17 +33,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, '..', '..', '..', 'tools', 'blender'))
 sys.dont_write_bytecode = True
 
-
-def write_pfm(path, width, height, rgba):
-    """3-channel little-endian PFM; Blender's pixels and PFM's rows both start at the bottom."""
-    rgb = array.array('f', [0.0]) * (width * height * 3)
-    for c in range(3):
-        rgb[c::3] = array.array('f', rgba[c::4])
-    if sys.byteorder != 'little':
-        rgb.byteswap()
-    with open(path, 'wb') as f:
-        f.write(b'PF\n%d %d\n-1.0\n' % (width, height))
-        f.write(rgb.tobytes())
+from cycles_reference import render_reference_pfm  # noqa: E402 (needs the path above)
 
 
 def diffuse(name, color=(1, 1, 1), albedo_node=None):
@@ -259,30 +248,7 @@ def tile_boxes(tiles, size, half=0.3):
 
 
 def render(out_dir, size, samples):
-    sc = bpy.context.scene
-    sc.render.engine = 'CYCLES'
-    sc.cycles.device = 'CPU'
-    sc.cycles.samples = samples
-    sc.cycles.use_denoising = False
-    sc.cycles.use_adaptive_sampling = False
-    sc.cycles.sample_clamp_direct = 0.0
-    sc.cycles.sample_clamp_indirect = 0.0
-    sc.cycles.light_sampling_threshold = 0.0
-    sc.cycles.filter_type = 'BOX'
-    sc.cycles.filter_width = 1.0
-    sc.cycles.max_bounces = 8
-    sc.render.resolution_x = sc.render.resolution_y = size
-    sc.render.resolution_percentage = 100
-    sc.render.threads_mode = 'FIXED'
-    sc.render.threads = max(1, min(2, os.cpu_count() or 1))
-    sc.view_settings.view_transform = 'Standard'
-    exr = os.path.join(out_dir, 'cycles.exr')
-    sc.render.filepath = exr
-    sc.render.image_settings.file_format = 'OPEN_EXR'
-    sc.render.image_settings.color_depth = '32'
-    bpy.ops.render.render(write_still=True)
-    img = bpy.data.images.load(exr)
-    write_pfm(os.path.join(out_dir, 'cycles.pfm'), size, size, list(img.pixels))
+    render_reference_pfm(os.path.join(out_dir, 'cycles.pfm'), size, samples, max_bounces=8)
 
 
 SCENES = {
