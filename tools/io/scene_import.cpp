@@ -459,7 +459,7 @@ void applySidecar(Scene& scene, const Sidecar& side, const glm::mat4& root, cons
     // and not specular, so the quad reflects nothing.
     char graph[512];
     std::snprintf(graph, sizeof graph,
-                  "material %s;\nGeometry Backfacing>0;\n"
+                  "material %s;\nBackfacingInput Out>0;\n"
                   "Math Value=1 Value1<0 Value2=0 Operation=1 UseClamp=0 Result>1;\n"
                   "EmissionOutput Color=(%.9g, %.9g, %.9g) Strength<1;\n"
                   "BaseColorOutput In=(0, 0, 0);\nSpecularOutput In=0;\n",
