@@ -223,8 +223,7 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
           gl.spotSmooth = glm::vec4(0.0f);
           out.neeEvaluatesEmission = true;
         } else {
-          gl.spotSmooth =
-              glm::vec4(e, kind == MaterialRef::EmissionKind::Constant ? 1.0f : 2.0f);
+          gl.spotSmooth = glm::vec4(e, kind == MaterialRef::EmissionKind::Constant ? 1.0f : 2.0f);
         }
         triangles.push_back(gl);
         power.push_back(double(area) * glm::pi<double>() * lum);

@@ -464,8 +464,8 @@ void applySidecar(Scene& scene, const Sidecar& side, const glm::mat4& root, cons
                   "EmissionOutput Color=(%.9g, %.9g, %.9g) Strength<1;\n"
                   "BaseColorOutput In=(0, 0, 0);\nSpecularOutput In=0;\n",
                   materialName.c_str(), radiance.r, radiance.g, radiance.b);
-    scene.materials.push_back(runtime::MaterialRef{materialName, {}, graph, radiance,
-                                                   runtime::MaterialRef::EmissionKind::ConstantFront});
+    scene.materials.push_back(runtime::MaterialRef{
+        materialName, {}, graph, radiance, runtime::MaterialRef::EmissionKind::ConstantFront});
     scene.instances.push_back(runtime::Instance{
         static_cast<std::uint32_t>(scene.meshes.size() - 1),
         static_cast<std::uint32_t>(scene.materials.size() - 1), root * a.objectToWorld, false});
