@@ -309,17 +309,27 @@ float misWeight(float a, float b) {
   return a2 + b2 > 0.0 ? a2 / (a2 + b2) : 0.0;
 }
 
+// One light sample of a shading point: the direction towards the light, the shadow ray's
+// length, and the radiance it brings over its pdf. An emissive triangle's (lightPdf > 0) is
+// MIS-weighted against BSDF sampling; with `evaluate` its emission is still to be taken
+// from the material's graph at `hit`.
+struct LightSample {
+  vec3 wi;
+  float tMax;
+  vec3 incident;   // L_i / pdf (an emitter to evaluate: 1 / pdf, times its emission later)
+  float lightPdf;  // solid-angle pdf of an emissive-triangle sample; 0 for punctual lights
+  bool evaluate;
+  HitInfo hit;     // the triangle point, where `evaluate` needs it
+};
+
 // Emissive-triangle NEE (docs/runtime.md): one emissive triangle chosen by power (CDF in
-// the light buffer), a uniform point on it, one shadow ray; MIS-weighted against BSDF
-// sampling when `mis` (the path continues, so a BSDF ray can find the same light). Returns
-// f * cos * Le * w / pdf. Le is the triangle record's constant emission where the host
-// knows the material emits one colour everywhere (no material evaluation: a second material
-// call site in the path tracer cost the classroom's memoized frame about 27 % on the H200);
-// otherwise the material's graph is evaluated at the point (uncached), a call site compiled
-// in only for scenes with such emitters (MG_NEE_EVALUATES_EMISSION).
-vec3 sampleEmissiveTriangle(vec3 position, vec3 ng, mat3 toLocal, vec3 wo, BrdfParameters brdf,
-                            uint first, uint count, float u, bool mis, inout Rng rng,
-                            inout uint rays) {
+// the light buffer) and a uniform point on it. Its emission is the triangle record's
+// constant where the host knows the material emits one colour everywhere (no material
+// evaluation, so no second material call site in the kernel); otherwise the graph is
+// evaluated at the point once the shadow ray found it unblocked, a call site compiled in
+// only for scenes with such emitters (MG_NEE_EVALUATES_EMISSION). False: no contribution.
+bool sampleEmissiveTriangle(vec3 position, uint first, uint count, float u, inout Rng rng,
+                            out LightSample s) {
   uint lo = 0u;
   uint hi = count - 1u;
   while (lo < hi) {
@@ -328,59 +338,76 @@ vec3 sampleEmissiveTriangle(vec3 position, vec3 ng, mat3 toLocal, vec3 wo, BrdfP
     else hi = mid;
   }
   Light tri = lights[first + lo];
-  HitInfo hit;
-  hit.instanceIndex = floatBitsToUint(tri.spot.x);
-  hit.primitiveIndex = floatBitsToUint(tri.spot.y);
+  s.hit.instanceIndex = floatBitsToUint(tri.spot.x);
+  s.hit.primitiveIndex = floatBitsToUint(tri.spot.y);
   vec2 r = rngNext2(rng);
   float su = sqrt(r.x);
-  hit.barycentrics = vec2(su * (1.0 - r.y), su * r.y);
-  Instance instance = instances[hit.instanceIndex];
+  s.hit.barycentrics = vec2(su * (1.0 - r.y), su * r.y);
+  Instance instance = instances[s.hit.instanceIndex];
   Mesh mesh = meshes[instance.ids.x];
-  uint firstIndex = mesh.ranges.y + 3u * hit.primitiveIndex;
+  uint firstIndex = mesh.ranges.y + 3u * s.hit.primitiveIndex;
   mat4 toWorld = instance.objectToWorld;
   vec3 p0 = (toWorld * vec4(vertices[mesh.ranges.x + indices[firstIndex]].position.xyz, 1.0)).xyz;
   vec3 p1 =
       (toWorld * vec4(vertices[mesh.ranges.x + indices[firstIndex + 1u]].position.xyz, 1.0)).xyz;
   vec3 p2 =
       (toWorld * vec4(vertices[mesh.ranges.x + indices[firstIndex + 2u]].position.xyz, 1.0)).xyz;
-  vec3 target = (1.0 - hit.barycentrics.x - hit.barycentrics.y) * p0 + hit.barycentrics.x * p1 +
-                hit.barycentrics.y * p2;
+  vec3 target = (1.0 - s.hit.barycentrics.x - s.hit.barycentrics.y) * p0 +
+                s.hit.barycentrics.x * p1 + s.hit.barycentrics.y * p2;
   vec3 toLight = target - position;
   float d2 = dot(toLight, toLight);
-  if (!(d2 > 1e-12)) return vec3(0.0);
+  if (!(d2 > 1e-12)) return false;
   float distance = sqrt(d2);
-  vec3 wi = toLight / distance;
+  s.wi = toLight / distance;
+  s.tMax = distance * (1.0 - 1e-3);
+  s.hit.t = distance;
   vec3 lightNormal = cross(p1 - p0, p2 - p0);
-  float cosLight = abs(dot(normalize(lightNormal), wi));
+  float cosLight = abs(dot(normalize(lightNormal), s.wi));
   float areaPdf = instance.objectInfo.y;
-  if (cosLight < 1e-6 || !(areaPdf > 0.0) || dot(wi, ng) <= 0.0) return vec3(0.0);
-  // A one-sided constant emitter (an area lamp) seen from behind: nothing to trace.
-  if (tri.spotSmooth.w == 2.0 && dot(lightNormal, toLight) >= 0.0) return vec3(0.0);
-  vec3 fCos = brdfEvaluateCos(brdf, toLocal * wo, toLocal * wi);
-  if (all(equal(fCos, vec3(0.0)))) return vec3(0.0);
-  rays += 1u;
-  if (traceShadow(offsetRayOrigin(position, ng), wi, distance * (1.0 - 1e-3))) return vec3(0.0);
-  vec3 emission = tri.spotSmooth.xyz;
-#ifdef MG_NEE_EVALUATES_EMISSION
-  if (tri.spotSmooth.w == 0.0) {
-    hit.t = distance;
-    RayCone cone;
-    cone.width = 0.0;
-    cone.spread = 0.0;
-    SurfaceHit s = surfaceAt(hit, position, wi, cone);
-    MaterialOutputs m;
-    evaluateMaterialDirect(s.materialId, s.inputs, m);
-    emission = m.emission;
+  if (cosLight < 1e-6 || !(areaPdf > 0.0)) return false;
+  // A one-sided constant emitter (an area lamp) seen from behind.
+  if (tri.spotSmooth.w == 2.0 && dot(lightNormal, toLight) >= 0.0) return false;
+  s.lightPdf = areaPdf * d2 / cosLight;  // area to solid angle
+  s.evaluate = tri.spotSmooth.w == 0.0;
+  s.incident = (s.evaluate ? vec3(1.0) : tri.spotSmooth.xyz) / s.lightPdf;
+  return true;
+}
+
+// A point, spot or directional light chosen uniformly (u in [0,1)). False: no contribution.
+bool samplePunctualLight(vec3 position, uint count, float u, out LightSample s) {
+  Light light = lights[min(uint(u * float(count)), count - 1u)];
+  s.lightPdf = 0.0;
+  s.evaluate = false;
+  uint lightType = uint(light.positionOrDirection.w);
+  if (lightType == kLightDirectional) {
+    s.wi = -normalize(light.positionOrDirection.xyz);
+    s.tMax = kRayTMax;
+    s.incident = light.intensity.rgb * float(count);  // irradiance perpendicular to the light
+    return true;
   }
-#endif
-  float lightPdf = areaPdf * d2 / cosLight;  // solid angle
-  float w = mis ? misWeight(lightPdf, brdfPdf(brdf, toLocal * wo, toLocal * wi)) : 1.0;
-  return fCos * emission * (w / lightPdf);
+  vec3 toLight = light.positionOrDirection.xyz - position;
+  float d2 = max(dot(toLight, toLight), 1e-12);
+  float distance = sqrt(d2);
+  s.wi = toLight / distance;
+  s.tMax = distance * (1.0 - 1e-4);
+  s.incident = light.intensity.rgb / d2 * float(count);  // radiant intensity over distance²
+  if (lightType == kLightSpot) {
+    // Cycles 3.4's spot_light_attenuation: the cosine to the axis, cut at the cone and
+    // smoothstepped over the blend width.
+    float attenuation = dot(-s.wi, light.spot.xyz);
+    if (attenuation <= light.spot.w) return false;
+    float t = attenuation - light.spot.w;
+    float smoothWidth = light.spotSmooth.x;
+    if (t < smoothWidth && smoothWidth != 0.0) attenuation *= smoothstep(0.0, smoothWidth, t);
+    s.incident *= attenuation;
+  }
+  return true;
 }
 
 // Direct light (thesis §5.2): one light through one shadow ray. With emissive triangles
-// (NEE) half the samples go to them and half to the point, spot and directional lights,
-// chosen uniformly. Returns f * cos * L_i / pdf.
+// (NEE) half the samples go to them and half to the point, spot and directional lights;
+// an emissive sample is MIS-weighted (power heuristic) when `mis` (the path continues, so a
+// BSDF ray can find the same emitter). Returns f * cos * L_i / pdf.
 vec3 sampleDirectLight(vec3 position, vec3 ng, mat3 toLocal, vec3 wo, BrdfParameters brdf,
                        bool mis, inout Rng rng, inout uint rays) {
   uint lightCount = frame.path.w;
@@ -393,54 +420,41 @@ vec3 sampleDirectLight(vec3 position, vec3 ng, mat3 toLocal, vec3 wo, BrdfParame
     triangleCount = uint(lastLight.intensity.z);
   }
   float u = rngNext(rng);
+  bool pickTriangle = false;
   float groupScale = 1.0;
   if (triangleCount > 0u) {
-    bool pickTriangle = punctual == 0u || u < 0.5;
+    pickTriangle = punctual == 0u || u < 0.5;
     if (punctual > 0u) {
       groupScale = 2.0;
       u = pickTriangle ? 2.0 * u : 2.0 * u - 1.0;
     }
-    if (pickTriangle) {
-      // The triangle pdf already holds the group's 1/2 (SceneBuffers upload).
-      return sampleEmissiveTriangle(position, ng, toLocal, wo, brdf, punctual, triangleCount, u,
-                                    mis, rng, rays);
-    }
   }
-  uint index = min(uint(u * float(punctual)), punctual - 1u);
-  Light light = lights[index];
-  vec3 wi;
-  float distance;
-  vec3 incident;
-  uint lightType = uint(light.positionOrDirection.w);
-  if (lightType != kLightDirectional) {
-    vec3 toLight = light.positionOrDirection.xyz - position;
-    float d2 = max(dot(toLight, toLight), 1e-12);
-    distance = sqrt(d2);
-    wi = toLight / distance;
-    incident = light.intensity.rgb / d2;  // radiant intensity over distance squared
-    if (lightType == kLightSpot) {
-      // Cycles 3.4's spot_light_attenuation: the cosine to the axis, cut at the cone and
-      // smoothstepped over the blend width.
-      float attenuation = dot(-wi, light.spot.xyz);
-      if (attenuation <= light.spot.w) return vec3(0.0);
-      float t = attenuation - light.spot.w;
-      float smoothWidth = light.spotSmooth.x;
-      if (t < smoothWidth && smoothWidth != 0.0) attenuation *= smoothstep(0.0, smoothWidth, t);
-      incident *= attenuation;
-    }
-  } else {
-    wi = -normalize(light.positionOrDirection.xyz);
-    distance = kRayTMax;
-    incident = light.intensity.rgb;  // irradiance perpendicular to the light
-  }
-  if (dot(wi, ng) <= 0.0) return vec3(0.0);
-  vec3 fCos = brdfEvaluateCos(brdf, toLocal * wo, toLocal * wi);
+  LightSample s;
+  // The triangle pdf already holds the group's 1/2 (SceneBuffers upload).
+  bool found = pickTriangle ? sampleEmissiveTriangle(position, punctual, triangleCount, u, rng, s)
+                            : samplePunctualLight(position, punctual, u, s);
+  if (!found || dot(s.wi, ng) <= 0.0) return vec3(0.0);
+  if (!pickTriangle) s.incident *= groupScale;
+  vec3 fCos = brdfEvaluateCos(brdf, toLocal * wo, toLocal * s.wi);
   if (all(equal(fCos, vec3(0.0)))) return vec3(0.0);
   rays += 1u;
-  vec3 shadowOrigin = offsetRayOrigin(position, ng);
-  float tMax = distance < kRayTMax ? distance * (1.0 - 1e-4) : kRayTMax;
-  if (traceShadow(shadowOrigin, wi, tMax)) return vec3(0.0);
-  return fCos * incident * (float(punctual) * groupScale);
+  if (traceShadow(offsetRayOrigin(position, ng), s.wi, s.tMax)) return vec3(0.0);
+#ifdef MG_NEE_EVALUATES_EMISSION
+  if (s.evaluate) {
+    RayCone cone;
+    cone.width = 0.0;
+    cone.spread = 0.0;
+    SurfaceHit light = surfaceAt(s.hit, position, s.wi, cone);
+    MaterialOutputs m;
+    evaluateMaterialDirect(light.materialId, light.inputs, m);
+    s.incident *= m.emission;
+  }
+#else
+  if (s.evaluate) return vec3(0.0);  // unreachable: the host defines it for such emitters
+#endif
+  if (s.lightPdf > 0.0 && mis)
+    s.incident *= misWeight(s.lightPdf, brdfPdf(brdf, toLocal * wo, toLocal * s.wi));
+  return fCos * s.incident;
 }
 
 // The primary ray through a point of the pixel (jitter in [0,1)^2).
