@@ -194,13 +194,25 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
   std::vector<gpu::Light> triangles;
   std::vector<double> power;
   double totalPower = 0.0;
+  auto estimateLuminance = [&](const Instance& instance) {
+    const glm::vec3 e = scene.materials[instance.material].emissionEstimate;
+    return 0.2126f * e.r + 0.7152f * e.g + 0.0722f * e.b;
+  };
   if (scene.emissiveLightSampling) {
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
       const Instance& instance = scene.instances[i];
-      const glm::vec3 e = scene.materials[instance.material].emissionEstimate;
-      const float lum = 0.2126f * e.r + 0.7152f * e.g + 0.0722f * e.b;
+      const float lum = estimateLuminance(instance);
       if (!(lum > 0.0f))
         continue;
+      // The emission NEE takes as it is (w: 1 both sides, 2 front only), or w = 0: the
+      // shader evaluates the material at the sample.
+      const auto kind = instance.material < emissionKinds.size() ? emissionKinds[instance.material]
+                                                                 : MaterialRef::EmissionKind::Graph;
+      const glm::vec4 emission =
+          kind == MaterialRef::EmissionKind::Graph
+              ? glm::vec4(0.0f)
+              : glm::vec4(scene.materials[instance.material].emissionEstimate,
+                          kind == MaterialRef::EmissionKind::Constant ? 1.0f : 2.0f);
       const Mesh& mesh = scene.meshes[instance.mesh];
       for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
         glm::vec3 p[3];
@@ -214,17 +226,8 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
         gl.positionOrDirection = glm::vec4(0.0f, 0.0f, 0.0f, float(gpu::kLightTriangle));
         gl.spot = glm::vec4(glm::uintBitsToFloat(std::uint32_t(i)),
                             glm::uintBitsToFloat(std::uint32_t(t / 3)), area, 0.0f);
-        // The emission NEE takes as it is (w: 1 both sides, 2 front only), or w = 0: the
-        // shader evaluates the material at the sample.
-        const auto kind = instance.material < emissionKinds.size()
-                              ? emissionKinds[instance.material]
-                              : MaterialRef::EmissionKind::Graph;
-        if (kind == MaterialRef::EmissionKind::Graph) {
-          gl.spotSmooth = glm::vec4(0.0f);
-          out.neeEvaluatesEmission = true;
-        } else {
-          gl.spotSmooth = glm::vec4(e, kind == MaterialRef::EmissionKind::Constant ? 1.0f : 2.0f);
-        }
+        gl.spotSmooth = emission;
+        out.neeEvaluatesEmission |= kind == MaterialRef::EmissionKind::Graph;
         triangles.push_back(gl);
         power.push_back(double(area) * glm::pi<double>() * lum);
         totalPower += power.back();
@@ -240,8 +243,7 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
                                          float(lights.size()), float(triangles.size()), 0.0f);
     }
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
-      const glm::vec3 e = scene.materials[scene.instances[i].material].emissionEstimate;
-      const float lum = 0.2126f * e.r + 0.7152f * e.g + 0.0722f * e.b;
+      const float lum = estimateLuminance(scene.instances[i]);
       if (lum > 0.0f)
         instances[i].objectInfo.y = float(pGroup * glm::pi<double>() * lum / totalPower);
     }
