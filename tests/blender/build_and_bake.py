@@ -34,6 +34,7 @@ sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(REPO, 'tools', 'blender'))
 
 import cases as case_registry  # noqa: E402
+from cycles_reference import configure_bake, write_pfm  # noqa: E402
 
 SIZE = 64
 COORD_OUTPUT = {'uv3': 'UV', 'uv': 'UV', 'generated': 'Generated', 'object': 'Object',
@@ -52,20 +53,6 @@ def parse_args():
     p.add_argument('--exr', action='store_true', help='also save each Cycles bake as '
                    'DIR/cycles/<case>.exr (float EXR, for viewing; the comparison reads PFM)')
     return p.parse_args(argv)
-
-
-def write_pfm(path, width, height, rgba):
-    """3-channel little-endian PFM. Blender's img.pixels start at the bottom row, and so do
-    PFM's stored rows, so the rows go out in the order Blender holds them."""
-    rgb = array.array('f', [0.0]) * (width * height * 3)
-    rgb[0::3] = rgba[0::4]
-    rgb[1::3] = rgba[1::4]
-    rgb[2::3] = rgba[2::4]
-    if sys.byteorder != 'little':
-        rgb.byteswap()
-    with open(path, 'wb') as f:
-        f.write(b'PF\n%d %d\n-1.0\n' % (width, height))
-        f.write(rgb.tobytes())
 
 
 def save_exr(scene, img, path):
@@ -110,12 +97,7 @@ def setup_scene(texel_fix=True):
     scene = bpy.context.scene
     for ob in list(bpy.data.objects):
         bpy.data.objects.remove(ob, do_unlink=True)
-    scene.render.engine = 'CYCLES'
-    scene.cycles.device = 'CPU'
-    scene.cycles.samples = 1
-    scene.cycles.use_denoising = False
-    scene.render.threads_mode = 'FIXED'
-    scene.render.threads = max(1, min(2, os.cpu_count() or 1))
+    configure_bake(scene)
     bpy.ops.mesh.primitive_plane_add(size=2, location=(0, 0, 0))
     plane = bpy.context.active_object
     plane.name = 'BakePlane'

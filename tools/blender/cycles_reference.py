@@ -1,8 +1,9 @@
-"""Cycles as memograph's reference renderer (docs/blender.md): the settings under which a
-memograph render is compared with Cycles 3.4, and the image as a PFM. CPU, no denoiser, no
-adaptive sampling, no clamping, no light threshold, a one-pixel box filter (memograph's
-pixel), the Standard view transform, and a linear 32-bit EXR read back as a PFM. Runs inside
-Blender (`blender -b --python ...`); used by the scene tests and the Blender example."""
+"""Cycles as memograph's reference (docs/blender.md): the settings under which memograph is
+compared with Cycles 3.4, for renders (CPU, no denoiser, no adaptive sampling, no clamping,
+no light threshold, a one-pixel box filter: memograph's pixel, the Standard view transform,
+a linear 32-bit EXR read back as a PFM) and for the node bakes (CPU, one sample, no
+denoiser). Runs inside Blender (`blender -b --python ...`); used by the node and scene tests
+and the Blender example."""
 
 import array
 import os
@@ -21,6 +22,17 @@ def write_pfm(path, width, height, rgba):
     with open(path, 'wb') as f:
         f.write(b'PF\n%d %d\n-1.0\n' % (width, height))
         f.write(rgb.tobytes())
+
+
+def configure_bake(scene):
+    """Cycles set up for baking material outputs: CPU, one sample (an emission bake of a
+    texel centre needs no more), no denoiser, at most two threads."""
+    scene.render.engine = 'CYCLES'
+    scene.cycles.device = 'CPU'
+    scene.cycles.samples = 1
+    scene.cycles.use_denoising = False
+    scene.render.threads_mode = 'FIXED'
+    scene.render.threads = max(1, min(2, os.cpu_count() or 1))
 
 
 def render_reference_pfm(pfm_path, size, samples, max_bounces=None):

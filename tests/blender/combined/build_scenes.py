@@ -20,6 +20,11 @@ from math import cos, pi, sin
 
 import bpy
 
+sys.dont_write_bytecode = True
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', '..', '..',
+                                'tools', 'blender'))
+from cycles_reference import configure_bake, write_pfm  # noqa: E402 (needs the path above)
+
 SIZE = 64
 
 
@@ -30,27 +35,10 @@ def args():
     return p.parse_args(argv)
 
 
-def write_pfm(path, rgba):
-    rgb = array.array('f', [0.0]) * (SIZE * SIZE * 3)
-    rgb[0::3] = rgba[0::4]
-    rgb[1::3] = rgba[1::4]
-    rgb[2::3] = rgba[2::4]
-    if sys.byteorder != 'little':
-        rgb.byteswap()
-    with open(path, 'wb') as f:
-        f.write(b'PF\n%d %d\n-1.0\n' % (SIZE, SIZE))
-        f.write(rgb.tobytes())
-
-
 def reset():
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
-    scene.render.engine = 'CYCLES'
-    scene.cycles.device = 'CPU'
-    scene.cycles.samples = 1
-    scene.cycles.use_denoising = False
-    scene.render.threads_mode = 'FIXED'
-    scene.render.threads = 2
+    configure_bake(scene)
     return scene
 
 
@@ -468,7 +456,7 @@ def bake_all(out_dir):
         bpy.ops.object.bake(type='EMIT', margin=0)
         buf = array.array('f', [0.0]) * (SIZE * SIZE * 4)
         img.pixels.foreach_get(buf)
-        write_pfm(os.path.join(out_dir, 'cycles', mat.name + '.pfm'), buf)
+        write_pfm(os.path.join(out_dir, 'cycles', mat.name + '.pfm'), SIZE, SIZE, buf)
         nt.nodes.remove(tex)  # not part of the material that gets exported
     bpy.data.objects.remove(plane, do_unlink=True)
     bpy.data.images.remove(img)
