@@ -3,6 +3,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "runtime/compute_pipeline.h"
 #include "runtime/gpu_buffer.h"
 #include "runtime/shader_compiler.h"
 #include "runtime/shader_sources.h"
@@ -309,12 +310,7 @@ ProgramResult runProgram(const VulkanContext& context, const Program& program) {
   if (!entryWordsGiven)
     entryWords = values;  // fp32 values in the entry
 
-  VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  moduleInfo.codeSize = spirv.size() * sizeof(std::uint32_t);
-  moduleInfo.pCode = spirv.data();
-  VkShaderModule rawModule = VK_NULL_HANDLE;
-  checkVk(vkCreateShaderModule(device, &moduleInfo, nullptr, &rawModule), "vkCreateShaderModule");
-  auto module = handle(device, rawModule, vkDestroyShaderModule);
+  auto module = createShaderModule(device, spirv);
 
   std::vector<VkDescriptorSetLayoutBinding> bindings = {
       {gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT,
@@ -344,16 +340,7 @@ ProgramResult runProgram(const VulkanContext& context, const Program& program) {
   VkPipelineLayout rawLayout = VK_NULL_HANDLE;
   checkVk(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &rawLayout), "pipeline layout");
   auto layout = handle(device, rawLayout, vkDestroyPipelineLayout);
-  VkComputePipelineCreateInfo pipelineInfo{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-  pipelineInfo.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-  pipelineInfo.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  pipelineInfo.stage.module = rawModule;
-  pipelineInfo.stage.pName = "main";
-  pipelineInfo.layout = rawLayout;
-  VkPipeline rawPipeline = VK_NULL_HANDLE;
-  checkVk(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &rawPipeline),
-          "compute pipeline");
-  auto pipeline = handle(device, rawPipeline, vkDestroyPipeline);
+  auto pipeline = createComputePipeline(device, module.get(), rawLayout, "self-test");
 
   gpu::FrameConstants frame{};
   frame.cache = glm::uvec4(program.entries, 1u, 0u, program.tilesPerRow);
@@ -427,7 +414,7 @@ ProgramResult runProgram(const VulkanContext& context, const Program& program) {
   vkUpdateDescriptorSets(device, std::uint32_t(writes.size()), writes.data(), 0, nullptr);
 
   context.submitAndWait([&](VkCommandBuffer commands) {
-    vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, rawPipeline);
+    vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.get());
     vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, rawLayout, 0, 1, &set, 0,
                             nullptr);
     vkCmdDispatch(commands, program.invocations / 64, 1, 1);

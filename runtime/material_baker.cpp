@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "runtime/compute_pipeline.h"
 #include "runtime/gpu_buffer.h"
 #include "runtime/gpu_textures.h"
 #include "runtime/shader_compiler.h"
@@ -62,13 +63,7 @@ BakeOutputs MaterialBaker::bake(const BakeMaterial& material, const BakeSettings
                         {"MG_TEXTURE_COUNT=" + std::to_string(textures.count()),
                          "MG_BAKE_EVALUATE=EvaluateMaterial_" + material.name}});
 
-  VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  moduleInfo.codeSize = spirv.size() * sizeof(std::uint32_t);
-  moduleInfo.pCode = spirv.data();
-  VkShaderModule rawModule = VK_NULL_HANDLE;
-  checkVk(vkCreateShaderModule(device, &moduleInfo, nullptr, &rawModule), "vkCreateShaderModule");
-  VulkanHandle<VkShaderModule> module(
-      rawModule, [device](VkShaderModule m) { vkDestroyShaderModule(device, m, nullptr); });
+  VulkanHandle<VkShaderModule> module = createShaderModule(device, spirv);
 
   VkDescriptorSetLayoutBinding bindings[2] = {};
   bindings[0].binding = 0;
@@ -102,17 +97,8 @@ BakeOutputs MaterialBaker::bake(const BakeMaterial& material, const BakeSettings
   VulkanHandle<VkPipelineLayout> layout(
       rawLayout, [device](VkPipelineLayout l) { vkDestroyPipelineLayout(device, l, nullptr); });
 
-  VkComputePipelineCreateInfo pipelineInfo{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-  pipelineInfo.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-  pipelineInfo.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-  pipelineInfo.stage.module = module.get();
-  pipelineInfo.stage.pName = "main";
-  pipelineInfo.layout = rawLayout;
-  VkPipeline rawPipeline = VK_NULL_HANDLE;
-  checkVk(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &rawPipeline),
-          "vkCreateComputePipelines");
-  VulkanHandle<VkPipeline> pipeline(
-      rawPipeline, [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); });
+  VulkanHandle<VkPipeline> pipeline =
+      createComputePipeline(device, module.get(), rawLayout, "bake");
 
   VkDescriptorPoolSize poolSizes[2] = {
       {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
@@ -160,7 +146,7 @@ BakeOutputs MaterialBaker::bake(const BakeMaterial& material, const BakeSettings
   push.size[0] = settings.width;
   push.size[1] = settings.height;
   context.submitAndWait([&](VkCommandBuffer commands) {
-    vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, rawPipeline);
+    vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.get());
     vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, rawLayout, 0, 1, &set, 0,
                             nullptr);
     vkCmdPushConstants(commands, rawLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);

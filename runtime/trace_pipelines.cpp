@@ -8,23 +8,13 @@
 #include <thread>
 #include <vector>
 
+#include "runtime/compute_pipeline.h"
 #include "runtime/shaders/shared_types.h"
 #include "runtime/vulkan_error.h"
 
 namespace memograph::runtime {
 
 namespace {
-
-VulkanHandle<VkShaderModule> createModule(VkDevice device,
-                                          const std::vector<std::uint32_t>& spirv) {
-  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-  info.codeSize = spirv.size() * sizeof(std::uint32_t);
-  info.pCode = spirv.data();
-  VkShaderModule module = VK_NULL_HANDLE;
-  checkVk(vkCreateShaderModule(device, &info, nullptr, &module), "vkCreateShaderModule");
-  return VulkanHandle<VkShaderModule>(
-      module, [device](VkShaderModule m) { vkDestroyShaderModule(device, m, nullptr); });
-}
 
 // vkCreateRayTracingPipelinesKHR through a deferred operation joined by up to `threads`
 // host threads: a driver that compiles the pipeline's shaders itself (one per material with
@@ -148,25 +138,13 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   fillDefines.push_back("MG_TILE_FILL_PASS=1");
 
   if (query) {
-    auto module =
-        createModule(device, compiler.compile({"path_tracer.glsl", ShaderStage::Compute, defines}));
-    VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
-    info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    info.stage.module = module.get();
-    info.stage.pName = "main";
-    info.layout = layout;
-    VkPipeline pipeline = VK_NULL_HANDLE;
-    checkVk(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
-            "vkCreateComputePipelines");
-    pipeline_ = VulkanHandle<VkPipeline>(pipeline, destroyPipeline);
+    auto module = createShaderModule(
+        device, compiler.compile({"path_tracer.glsl", ShaderStage::Compute, defines}));
+    pipeline_ = createComputePipeline(device, module.get(), layout, "path tracer");
     if (tileFillPass) {
-      auto fillModule = createModule(
+      auto fillModule = createShaderModule(
           device, compiler.compile({"path_tracer.glsl", ShaderStage::Compute, fillDefines}));
-      info.stage.module = fillModule.get();
-      checkVk(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
-              "vkCreateComputePipelines (tile fill)");
-      fillPipeline_ = VulkanHandle<VkPipeline>(pipeline, destroyPipeline);
+      fillPipeline_ = createComputePipeline(device, fillModule.get(), layout, "tile fill");
     }
     return;
   }
@@ -179,24 +157,24 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   const std::uint32_t firstCallable = tileFillPass ? 5 : 4;
   const std::uint32_t shaderCount = firstCallable + callableCount;
   std::vector<VulkanHandle<VkShaderModule>> modules;
+  modules.push_back(createShaderModule(
+      device, compiler.compile({"path_tracer.glsl", ShaderStage::RayGen, defines})));
   modules.push_back(
-      createModule(device, compiler.compile({"path_tracer.glsl", ShaderStage::RayGen, defines})));
+      createShaderModule(device, compiler.compile({"trace_miss.rmiss", ShaderStage::Miss, {}})));
   modules.push_back(
-      createModule(device, compiler.compile({"trace_miss.rmiss", ShaderStage::Miss, {}})));
-  modules.push_back(
-      createModule(device, compiler.compile({"trace_shadow.rmiss", ShaderStage::Miss, {}})));
-  modules.push_back(
-      createModule(device, compiler.compile({"trace_hit.rchit", ShaderStage::ClosestHit, {}})));
+      createShaderModule(device, compiler.compile({"trace_shadow.rmiss", ShaderStage::Miss, {}})));
+  modules.push_back(createShaderModule(
+      device, compiler.compile({"trace_hit.rchit", ShaderStage::ClosestHit, {}})));
   std::vector<VkShaderStageFlagBits> stageBits = {
       VK_SHADER_STAGE_RAYGEN_BIT_KHR, VK_SHADER_STAGE_MISS_BIT_KHR, VK_SHADER_STAGE_MISS_BIT_KHR,
       VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR};
   if (tileFillPass) {
-    modules.push_back(createModule(
+    modules.push_back(createShaderModule(
         device, compiler.compile({"path_tracer.glsl", ShaderStage::RayGen, fillDefines})));
     stageBits.push_back(VK_SHADER_STAGE_RAYGEN_BIT_KHR);
   }
   for (std::uint32_t i = 0; i < callableCount; ++i) {
-    modules.push_back(createModule(device, callables->spirv[i]));
+    modules.push_back(createShaderModule(device, callables->spirv[i]));
     stageBits.push_back(VK_SHADER_STAGE_CALLABLE_BIT_KHR);
   }
   std::vector<VkPipelineShaderStageCreateInfo> shaderStages(shaderCount);
