@@ -178,27 +178,17 @@ void cacheLoadValues(uint wordOffset, out float values[MG_CACHE_VALUES]) {
   for (uint w = 0u; w < kCacheValueWords; ++w) cacheValueFromWord(cacheData[wordOffset + w], w, values);
 }
 
-// The time an access stamps into an entry's metadata (§5.3.3). Frame clock: the host's
-// frame number, the same for every access of a frame. Counter clock: a global 64-bit
-// atomic counter, incremented by every stamping access and never reset between frames;
-// the entry keeps bits MG_CACHE_CLOCK_SHIFT .. +31 of it ("only bits 16 to 48 of a 64-bit
-// counter", §5.3.3), so 32 bits of metadata do not roll over within a session.
-uint cacheClockNow() {
+// The clock (§5.3.3), advanced by `tick`: 1 for an access that stamps an entry's metadata,
+// 0 to read what an entry's age is measured against. Frame clock: the host's frame number,
+// the same for every access of a frame. Counter clock: a global 64-bit atomic counter, ticked
+// by every stamping access and never reset between frames; the entry keeps bits
+// MG_CACHE_CLOCK_SHIFT .. +31 of it ("only bits 16 to 48 of a 64-bit counter", §5.3.3). The
+// kept 32 bits wrap (the frame clock after 2^32 frames, the counter clock after
+// 2^(32 + shift) stamps), so ages are taken modulo 2^32 (cacheChooseSlot): correct across a
+// wrap as long as no entry is older than 2^31 clock units.
+uint cacheClock(uint tick) {
 #ifdef MG_CACHE_CLOCK_COUNTER
-  uint64_t ticks = atomicAdd(counters.cacheClock, uint64_t(1));
-  return uint(ticks >> uint(MG_CACHE_CLOCK_SHIFT));
-#else
-  return frame.cache.y;
-#endif
-}
-
-// The clock now without a tick: what an entry's age is measured against. The kept 32 bits
-// wrap (the frame clock after 2^32 frames, the counter clock after 2^(32 + shift) stamps),
-// so ages are taken modulo 2^32 (cacheChooseSlot): correct across a wrap as long as no
-// entry is older than 2^31 clock units.
-uint cacheClockPeek() {
-#ifdef MG_CACHE_CLOCK_COUNTER
-  uint64_t ticks = atomicAdd(counters.cacheClock, uint64_t(0));
+  uint64_t ticks = atomicAdd(counters.cacheClock, uint64_t(tick));
   return uint(ticks >> uint(MG_CACHE_CLOCK_SHIFT));
 #else
   return frame.cache.y;
@@ -333,7 +323,7 @@ bool cacheReadValid(uint entry, CacheKey key, uint counterBefore) {
 #endif
 #if MG_CACHE_EVICTION == 1  // kCacheEvictionLru
 #ifdef MG_CACHE_CLOCK_COUNTER
-  cacheData[offset + 1u] = cacheClockNow();  // §5.3.3: reads count only for lru
+  cacheData[offset + 1u] = cacheClock(1u);  // §5.3.3: reads count only for lru
 #else
   if (cacheData[offset + 1u] != frame.cache.y) cacheData[offset + 1u] = frame.cache.y;
 #endif
@@ -355,11 +345,11 @@ bool cacheRead(CacheKey key, out float values[MG_CACHE_VALUES]) {
 // Empty entries are taken first by every policy; then none drops the value, lru and lrw
 // take the oldest frame clock (lru's is refreshed by reads, lrw's only by writes), random
 // a pseudo-random entry (a hash of the key and the frame: no memory access, §4.5). The
-// clock compared is the frame clock or the counter clock's kept bits (cacheClockNow).
+// clock compared is the frame clock or the counter clock's kept bits (cacheClock).
 int cacheChooseSlot(CacheKey key) {
   int oldest = -1;
 #if MG_CACHE_EVICTION == 1 || MG_CACHE_EVICTION == 2
-  uint now = cacheClockPeek();
+  uint now = cacheClock(0u);
   uint oldestAge = 0u;
 #endif
   [[unroll]] for (uint d = 0u; d < uint(MG_CACHE_PROBE); ++d) {
@@ -411,7 +401,7 @@ int cacheLock(CacheKey key) {
 void cacheUnlock(uint entry, CacheKey key) {
   uint offset = cacheEntryOffset(entry);
 #if MG_CACHE_EVICTION == 1 || MG_CACHE_EVICTION == 2
-  cacheData[offset + 1u] = cacheClockNow();
+  cacheData[offset + 1u] = cacheClock(1u);
 #else
   cacheData[offset + 1u] = frame.cache.y;  // unread by none and random; no counter tick
 #endif
