@@ -259,7 +259,19 @@ TEST_F(SceneImportTest, BlenderSidecarConvertsUnitsWorldTextureSpaceAndAreaLight
   EXPECT_NEAR(glm::distance(down, glm::vec3(0, -1, 0)), 0.0f, 1e-5f);
   EXPECT_EQ(scene->materials[area.material].emissionEstimate, glm::vec3(50.0f));
   EXPECT_NE(scene->materials[area.material].graphText.find("Backfacing"), std::string::npos);
+  // An `emitter` line is an estimate (NEE evaluates the graph); the area quad's front emits
+  // exactly its radiance; `emitter_constant` declares the material's exact emission.
+  using Kind = runtime::MaterialRef::EmissionKind;
+  EXPECT_EQ(scene->materials[scene->instances[0].material].emissionKind, Kind::Graph);
+  EXPECT_EQ(scene->materials[area.material].emissionKind, Kind::ConstantFront);
   EXPECT_FALSE(diagnostics.hasErrors());
+  write("quad.memograph", "memograph-blender-scene 1\nemitter_constant 3 3 3 Wood\n");
+  Diagnostics constantDiagnostics;
+  const auto constant = importScene(path, materials(), constantDiagnostics);
+  ASSERT_TRUE(constant.has_value()) << compiler::formatDiagnostics(constantDiagnostics);
+  const runtime::MaterialRef& wood = constant->materials[constant->instances[0].material];
+  EXPECT_EQ(wood.emissionEstimate, glm::vec3(3.0f));
+  EXPECT_EQ(wood.emissionKind, Kind::Constant);
 
   write("quad.memograph", "memograph-blender-scene 1\nlighting SPEC\n");
   Diagnostics bad;
