@@ -236,10 +236,15 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     shaderDefines.push_back("MG_MATERIAL_FLOOR=1");
   if (options_.debugCacheMisses)
     shaderDefines.push_back("MG_DEBUG_CACHE_MISSES=1");
-  // NEE evaluates emitters whose emission is not a known constant: a second material call
-  // site, compiled only for scenes that have such emitters (path_tracer.glsl).
+  // Cycles' Principled weighting, only for scenes whose materials write it (brdf.glsl).
   if (materials.cyclesPrincipled && !floor)
     shaderDefines.push_back("MG_CYCLES_PRINCIPLED=1");
+  // Emissive-triangle NEE and its MIS, only for scenes with emissive triangles; with free
+  // materials too, so the floor traces the same rays. NEE evaluates emitters whose emission
+  // is not a known constant: a second material call site, compiled only for scenes that
+  // have such emitters (path_tracer.glsl).
+  if (buffers.emissiveTriangles)
+    shaderDefines.push_back("MG_EMISSIVE_NEE=1");
   if (buffers.neeEvaluatesEmission && !floor)
     shaderDefines.push_back("MG_NEE_EVALUATES_EMISSION=1");
   TracePipeline pipeline(context, compiler, textures.count(),

@@ -234,6 +234,7 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
       }
     }
   }
+  out.emissiveTriangles = !triangles.empty();
   if (!triangles.empty()) {
     const double pGroup = lights.empty() ? 1.0 : 0.5;
     double cdf = 0.0;

@@ -27,6 +27,9 @@ struct SceneBuffers {
   std::uint32_t lightCount = 0;
   std::uint32_t environmentWidth = 0;  // 0: constant environment
   std::uint32_t environmentHeight = 0;
+  // The light buffer ends with emissive triangles for NEE: the path tracer needs
+  // MG_EMISSIVE_NEE (without it, no kernel carries their sampling and MIS).
+  bool emissiveTriangles = false;
   // Some emissive triangle's material must be evaluated at NEE's light samples (its
   // emission is not a known constant): the path tracer needs MG_NEE_EVALUATES_EMISSION.
   bool neeEvaluatesEmission = false;

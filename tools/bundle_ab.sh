@@ -21,7 +21,12 @@ bash tools/bundle_device.sh
 rm -rf bundle/ab
 for rev in "$@"; do
   short=$(git rev-parse --short=7 "$rev")
-  tree=$(mktemp -d /tmp/memograph_ab.XXXXXX)
+  # A fixed source path per revision, so that its build folder (whose CMake cache names the
+  # source) is reused by the next call instead of refused.
+  tree=/tmp/memograph_ab_src/$short
+  git worktree remove --force "$tree" 2>/dev/null || rm -rf "$tree"
+  git worktree prune
+  mkdir -p /tmp/memograph_ab_src
   git worktree add --quiet --detach "$tree" "$rev"
   build="$root/build-ab/$short"
   cmake -S "$tree" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DMEMOGRAPH_BUILD_TESTS=OFF \

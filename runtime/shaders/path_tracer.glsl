@@ -319,9 +319,12 @@ struct LightSample {
   vec3 incident;   // L_i / pdf (an emitter to evaluate: 1 / pdf, times its emission later)
   float lightPdf;  // solid-angle pdf of an emissive-triangle sample; 0 for punctual lights
   bool evaluate;
+#ifdef MG_EMISSIVE_NEE
   HitInfo hit;     // the triangle point, where `evaluate` needs it
+#endif
 };
 
+#ifdef MG_EMISSIVE_NEE
 // Emissive-triangle NEE (docs/runtime.md): one emissive triangle chosen by power (CDF in
 // the light buffer) and a uniform point on it. Its emission is the triangle record's
 // constant where the host knows the material emits one colour everywhere (no material
@@ -372,6 +375,7 @@ bool sampleEmissiveTriangle(vec3 position, uint first, uint count, float u, inou
   s.incident = (s.evaluate ? vec3(1.0) : tri.spotSmooth.xyz) / s.lightPdf;
   return true;
 }
+#endif
 
 // A point, spot or directional light chosen uniformly (u in [0,1)). False: no contribution.
 bool samplePunctualLight(vec3 position, uint count, float u, out LightSample s) {
@@ -405,36 +409,32 @@ bool samplePunctualLight(vec3 position, uint count, float u, out LightSample s) 
 }
 
 // Direct light (thesis §5.2): one light through one shadow ray. With emissive triangles
-// (NEE) half the samples go to them and half to the point, spot and directional lights;
+// (NEE, compiled in only for scenes that have them: MG_EMISSIVE_NEE) half the samples go to
+// them and half to the point, spot and directional lights;
 // an emissive sample is MIS-weighted (power heuristic) when `mis` (the path continues, so a
 // BSDF ray can find the same emitter). Returns f * cos * L_i / pdf.
 vec3 sampleDirectLight(vec3 position, vec3 ng, mat3 toLocal, vec3 wo, BrdfParameters brdf,
                        bool mis, inout Rng rng, inout uint rays) {
   uint lightCount = frame.path.w;
   if (lightCount == 0u) return vec3(0.0);
-  uint punctual = lightCount;
-  uint triangleCount = 0u;
-  Light lastLight = lights[lightCount - 1u];
-  if (uint(lastLight.positionOrDirection.w) == kLightTriangle) {
-    punctual = uint(lastLight.intensity.y);
-    triangleCount = uint(lastLight.intensity.z);
-  }
   float u = rngNext(rng);
-  bool pickTriangle = false;
-  float groupScale = 1.0;
-  if (triangleCount > 0u) {
-    pickTriangle = punctual == 0u || u < 0.5;
-    if (punctual > 0u) {
-      groupScale = 2.0;
-      u = pickTriangle ? 2.0 * u : 2.0 * u - 1.0;
-    }
-  }
   LightSample s;
-  // The triangle pdf already holds the group's 1/2 (SceneBuffers upload).
+#ifdef MG_EMISSIVE_NEE
+  // The triangle records follow the punctual lights, and each holds both counts.
+  Light lastLight = lights[lightCount - 1u];
+  uint punctual = uint(lastLight.intensity.y);
+  uint triangleCount = uint(lastLight.intensity.z);
+  bool pickTriangle = punctual == 0u || u < 0.5;
+  if (punctual > 0u) u = pickTriangle ? 2.0 * u : 2.0 * u - 1.0;
   bool found = pickTriangle ? sampleEmissiveTriangle(position, punctual, triangleCount, u, rng, s)
                             : samplePunctualLight(position, punctual, u, s);
+  // A triangle's pdf already holds its group's 1/2 (SceneBuffers upload); a punctual one's not
+  // (here punctual > 0, since the pick chose it).
+  if (!pickTriangle) s.incident *= 2.0;
+#else
+  bool found = samplePunctualLight(position, lightCount, u, s);
+#endif
   if (!found || dot(s.wi, ng) <= 0.0) return vec3(0.0);
-  if (!pickTriangle) s.incident *= groupScale;
   vec3 fCos = brdfEvaluateCos(brdf, toLocal * wo, toLocal * s.wi);
   if (all(equal(fCos, vec3(0.0)))) return vec3(0.0);
   rays += 1u;
@@ -449,11 +449,13 @@ vec3 sampleDirectLight(vec3 position, vec3 ng, mat3 toLocal, vec3 wo, BrdfParame
     evaluateMaterialDirect(light.materialId, light.inputs, m);
     s.incident *= m.emission;
   }
-#else
+#elif defined(MG_EMISSIVE_NEE)
   if (s.evaluate) return vec3(0.0);  // unreachable: the host defines it for such emitters
 #endif
+#ifdef MG_EMISSIVE_NEE
   if (s.lightPdf > 0.0 && mis)
     s.incident *= misWeight(s.lightPdf, brdfPdf(brdf, toLocal * wo, toLocal * s.wi));
+#endif
   return fCos * s.incident;
 }
 
@@ -535,12 +537,14 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
 
       // Emission found by a BSDF ray, MIS-weighted against emissive NEE at the last vertex.
       float emissionWeight = 1.0;
+#ifdef MG_EMISSIVE_NEE
       if (previousBsdfPdf > 0.0 && s.lightAreaPdf > 0.0) {
         vec3 toHit = position - origin;
         float cosLight = abs(dot(s.geometricNormal, direction));
         float lightPdf = cosLight > 1e-6 ? s.lightAreaPdf * dot(toHit, toHit) / cosLight : 0.0;
         emissionWeight = misWeight(previousBsdfPdf, lightPdf);
       }
+#endif
       radiance += throughput * m.emission * emissionWeight;
       bool continues = bounce + 1u < rayCountPerPath;
       radiance += throughput * sampleDirectLight(position, s.geometricNormal, toLocal, wo, brdf,

@@ -189,6 +189,8 @@ int runBench(std::span<const std::string_view> args) {
       auto spec = runtime::parseBuiltinSceneSpec(std::string_view(sceneName).substr(8), error);
       const std::string& name = spec->name;
       runtime::Scene scene = runtime::makeBuiltinScene(name, spec->options);
+      if (rendererArguments.noEmissiveNee)
+        scene.emissiveLightSampling = false;
       // Each scene gets its own renderer: --backend auto depends on its material count.
       options.context.autoPrefersPipeline =
           runtime::countDistinctMaterialGraphs(scene) > runtime::kManyMaterialGraphs;

@@ -52,7 +52,6 @@ constexpr std::string_view kHelp =
     "  --list-devices        print the Vulkan devices and their ray-tracing support\n"
     "  --materials DIR       folder of .mgraph graphs for a scene file's materials\n"
     "  --no-shader-cache     compile every shader\n"
-    "  --no-emissive-nee     no light sampling of emissive triangles (BSDF rays only)\n"
     "  --stats FILE          per-frame statistics as CSV (GPU ms, rays, AS memory, cache)\n"
     "  --validation          enable the Vulkan validation layer\n"
     "  --debug-misses        texel cache debug view (thesis Fig. 6.9): each frame alone,\n"
@@ -72,7 +71,6 @@ int runRender(std::span<const std::string_view> args) {
   std::string out, size = "640x360", paths = "1", bounces = "4", frames = "1", cameraPath,
                    seed = "0", materials, stats;
   bool help = false, listDevices = false, noShaderCache = false, validation = false;
-  bool noEmissiveNee = false;
   ArgumentScanner scanner("render", args);
   RendererArguments rendererArguments;
   rendererArguments.registerWith(scanner);
@@ -89,7 +87,6 @@ int runRender(std::span<const std::string_view> args) {
   scanner.option("--materials", &materials);
   scanner.option("--stats", &stats);
   scanner.flag("--no-shader-cache", &noShaderCache);
-  scanner.flag("--no-emissive-nee", &noEmissiveNee);
   scanner.flag("--validation", &validation);
   bool debugMisses = false;
   scanner.flag("--debug-misses", &debugMisses);
@@ -236,7 +233,7 @@ int runRender(std::span<const std::string_view> args) {
     return kExitFailure;
 #endif
   }
-  if (noEmissiveNee)
+  if (rendererArguments.noEmissiveNee)
     scene.emissiveLightSampling = false;
   if (!cameraPath.empty()) {
 #ifdef MEMOGRAPH_HAVE_SCENES

@@ -1,7 +1,7 @@
 // The renderer's command-line options that `render` and `bench` share: trace backend,
-// material dispatch, device, node library, shader cache folder, shared primary ray, and
-// the material cache's options (cache_arguments.h), with their help text (each command
-// prints its own options, then kRendererHelp, then kCacheHelp).
+// material dispatch, device, node library, shader cache folder, shared primary ray, emissive
+// NEE, and the material cache's options (cache_arguments.h), with their help text (each
+// command prints its own options, then kRendererHelp, then kCacheHelp).
 #pragma once
 
 #include <stdexcept>
@@ -26,12 +26,15 @@ inline constexpr const char* kRendererHelp =
     "  --nodes DIR           node library folder instead of the built-in one\n"
     "  --shader-cache DIR    SPIR-V cache folder (default $XDG_CACHE_HOME/memograph)\n"
     "  --shared-primary      one primary ray through the pixel centre for all P paths of a\n"
-    "                        pixel (thesis §5.1)\n";
+    "                        pixel (thesis §5.1)\n"
+    "  --no-emissive-nee     no light sampling of emissive triangles (BSDF rays only)\n";
 
 struct RendererArguments {
   CacheArguments cache;
   std::string backend = "auto", materialDispatch = "auto", device = "-1", nodes, shaderCache;
   bool sharedPrimary = false;
+  // A scene option, not a renderer one: the command applies it to each scene it loads.
+  bool noEmissiveNee = false;
 
   void registerWith(ArgumentScanner& scanner) {
     cache.registerWith(scanner);
@@ -41,6 +44,7 @@ struct RendererArguments {
     scanner.option("--nodes", &nodes);
     scanner.option("--shader-cache", &shaderCache);
     scanner.flag("--shared-primary", &sharedPrimary);
+    scanner.flag("--no-emissive-nee", &noEmissiveNee);
   }
 
   // The renderer's options (the command adds its own, e.g. validation). Throws
