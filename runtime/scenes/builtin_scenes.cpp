@@ -42,9 +42,16 @@ std::optional<BuiltinSceneSpec> parseBuiltinSceneSpec(std::string_view text, std
       spec.options.materialCost.layers = number;
     } else if (key == "terrain") {
       spec.options.terrainCells = number;
+    } else if (key == "nee") {
+      if (number != 0 && number != 1) {
+        error = "bad option '" + std::string(item) + "' for built-in scene '" + spec.name +
+                "': nee is 0 (no light sampling of emissive triangles) or 1";
+        return std::nullopt;
+      }
+      spec.options.emissiveNee = number == 1;
     } else {
       error = "unknown option '" + std::string(key) + "' for built-in scene '" + spec.name +
-              "'; known options: octaves, layers, terrain";
+              "'; known options: octaves, layers, terrain, nee";
       return std::nullopt;
     }
   }

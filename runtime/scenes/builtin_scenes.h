@@ -15,17 +15,25 @@ namespace memograph::runtime {
 
 struct BuiltinSceneOptions {
   // How expensive every generated material graph is (noise octaves and extra layers); the
-  // memoization benchmarks raise it until no-memo/floor matches the thesis (issue 4).
+  // memoization benchmarks raise it until no-memo/floor matches the thesis.
   MaterialCost materialCost{};
   // Landscape terrain grid: cells per side (vertices = (cells+1)^2).
   int terrainCells = 256;
+  // Light sampling of the scene's emissive triangles (Scene::emissiveLightSampling); unset:
+  // the scene's own default. The classroom's is off: each lamp panel already holds a point
+  // light, so on the H200 NEE of its panels and windows lowered the picture error at equal
+  // samples by 3 % (mean FLIP 0.203 against 0.209) but cost 24 ms a frame on the free-material
+  // floor (89.5 against 65.4 ms) and 58 ms on the memoized frame (201 against 143 ms): at
+  // equal time it loses (docs/runtime.md, Light sampling).
+  std::optional<bool> emissiveNee;
 };
 
 // "classroom", "landscape".
 std::vector<std::string> builtinSceneNames();
 
 // A built-in scene named on a command line: `NAME[:KEY=VALUE[,KEY=VALUE…]]`, keys
-// `octaves`, `layers` (MaterialCost) and `terrain` (terrainCells), e.g.
+// `octaves`, `layers` (MaterialCost), `terrain` (terrainCells) and `nee` (0 or 1:
+// emissiveNee), e.g.
 // `classroom:octaves=10,layers=3`. The CLI strips its own `builtin:` prefix first.
 struct BuiltinSceneSpec {
   std::string name;

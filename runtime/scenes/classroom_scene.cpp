@@ -407,6 +407,8 @@ Scene makeClassroomScene(const BuiltinSceneOptions& options) {
   scene.camera.verticalFovDegrees = 60.0f;
   // A closed room: the environment is only seen through nothing, so keep it black.
   scene.environment.constantRadiance = glm::vec3(0.0f);
+  // Off unless asked for: the lamps' point lights already light the room (builtin_scenes.h).
+  scene.emissiveLightSampling = options.emissiveNee.value_or(false);
   return std::move(scene);
 }
 

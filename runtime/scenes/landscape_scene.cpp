@@ -138,6 +138,7 @@ Scene makeLandscapeScene(const BuiltinSceneOptions& options) {
   scene.camera.position = eye + glm::vec3(0, landscapeTerrainHeight(eye.x, eye.z) + 30.0f, 0);
   scene.camera.target = {0.0f, landscapeTerrainHeight(0, 0), 0.0f};
   scene.camera.verticalFovDegrees = 55.0f;
+  scene.emissiveLightSampling = options.emissiveNee.value_or(true);  // it has no emitters yet
   return std::move(scene);
 }
 

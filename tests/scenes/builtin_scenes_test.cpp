@@ -212,11 +212,28 @@ TEST(BuiltinSceneSpec, OptionsSetTheCostKnobs) {
   EXPECT_EQ(spec->options.terrainCells, 64);
 }
 
+// The classroom samples its emissive panels and windows only when asked (nee=1): measured
+// on the H200, its lamps' point lights make that NEE a loss at equal time (builtin_scenes.h).
+TEST(BuiltinSceneSpec, TheClassroomSamplesItsEmittersOnlyWhenAsked) {
+  std::string error;
+  const auto plain = parseBuiltinSceneSpec("classroom", error);
+  ASSERT_TRUE(plain.has_value()) << error;
+  EXPECT_FALSE(makeBuiltinScene("classroom", plain->options).emissiveLightSampling);
+  const auto asked = parseBuiltinSceneSpec("classroom:nee=1", error);
+  ASSERT_TRUE(asked.has_value()) << error;
+  EXPECT_TRUE(makeBuiltinScene("classroom", asked->options).emissiveLightSampling);
+  const auto off = parseBuiltinSceneSpec("landscape:nee=0", error);
+  ASSERT_TRUE(off.has_value()) << error;
+  EXPECT_FALSE(makeBuiltinScene("landscape", off->options).emissiveLightSampling);
+}
+
 TEST(BuiltinSceneSpec, BadOptionsNameTheProblem) {
   std::string error;
   EXPECT_FALSE(parseBuiltinSceneSpec("classroom:detail=3", error).has_value());
   EXPECT_NE(error.find("unknown option 'detail'"), std::string::npos) << error;
-  EXPECT_NE(error.find("octaves, layers, terrain"), std::string::npos) << error;
+  EXPECT_NE(error.find("octaves, layers, terrain, nee"), std::string::npos) << error;
+  EXPECT_FALSE(parseBuiltinSceneSpec("classroom:nee=2", error).has_value());
+  EXPECT_NE(error.find("nee is 0"), std::string::npos) << error;
   EXPECT_FALSE(parseBuiltinSceneSpec("classroom:octaves=many", error).has_value());
   EXPECT_NE(error.find("'octaves=many'"), std::string::npos) << error;
   EXPECT_FALSE(parseBuiltinSceneSpec("classroom:octaves", error).has_value());

@@ -11,7 +11,7 @@ OUT=${OUT:-/tmp/out}
 m=${MEMOGRAPH:-bundle/memograph}
 size=${SIZE:-320x180}
 mkdir -p "$OUT"
-common=(builtin:classroom --size "$size" --bounces 4 --shader-cache /tmp/noise_shaders)
+common=(builtin:classroom:nee=1 --size "$size" --bounces 4 --shader-cache /tmp/noise_shaders)
 step() {
   local label=$1 limit=$2
   shift 2
