@@ -27,6 +27,13 @@ using TextureLoader = std::function<TextureImage(const std::string& path)>;
 // error that says which tool can convert it.
 TextureImage loadTextureCore(const std::string& path);
 
+// Scenes with more distinct material graphs than this render best with per-material callable
+// shaders: one shader holding every graph grows too large to compile quickly (the CLI makes
+// `--backend auto` pick the pipeline backend for them). 8, not more: the city's 14 graphs
+// in one query shader ran lavapipe's compiler past 16 minutes and 13 GB before it was
+// stopped, where their 14 callables took 26 s.
+constexpr std::size_t kManyMaterialGraphs = 8;
+
 struct RendererOptions {
   ContextOptions context;
   bool shaderCache = true;
@@ -39,7 +46,7 @@ struct RendererOptions {
   // On a CPU device (lavapipe) a switch over more distinct materials than this is refused
   // before compiling: llvmpipe compiles the one shader in about 110 MB per material (the
   // 88-material classroom: over 12 GB). 0: no limit.
-  std::uint32_t cpuSwitchMaterialLimit = 16;
+  std::uint32_t cpuSwitchMaterialLimit = kManyMaterialGraphs;
   // Threads compiling callable material shaders and joining the driver's ray-tracing
   // pipeline compile (deferred host operations); 0: one per hardware thread.
   std::uint32_t shaderCompileThreads = 0;
@@ -53,10 +60,6 @@ struct RendererOptions {
   bool debugCacheMisses = false;
 };
 
-// Scenes with more distinct material graphs than this render best with per-material callable
-// shaders: one shader holding every graph grows too large to compile quickly (the CLI makes
-// `--backend auto` pick the pipeline backend for them).
-constexpr std::size_t kManyMaterialGraphs = 16;
 
 // Materials that share a graph (same file or same text) count once.
 std::size_t countDistinctMaterialGraphs(const Scene& scene);

@@ -95,6 +95,10 @@ struct Scene {
   Camera camera;
   Environment environment;
   bool emissiveLightSampling = true;  // NEE of emissive triangles (materials with an estimate)
+  // Meshes whose vertices move every frame (the city's flags), each used by one instance.
+  // The renderer draws them at rest for now: deforming them and updating their BLASes is the
+  // BLAS management's part (docs/scenes.md).
+  std::vector<std::uint32_t> animatedMeshes;
 };
 
 }  // namespace memograph::runtime

@@ -6,7 +6,7 @@
 namespace memograph::runtime {
 
 std::vector<std::string> builtinSceneNames() {
-  return {"classroom", "landscape"};
+  return {"classroom", "landscape", "city"};
 }
 
 std::optional<BuiltinSceneSpec> parseBuiltinSceneSpec(std::string_view text, std::string& error) {
@@ -28,6 +28,18 @@ std::optional<BuiltinSceneSpec> parseBuiltinSceneSpec(std::string_view text, std
     const std::string_view key = item.substr(0, equals);
     const std::string_view value =
         equals == std::string_view::npos ? std::string_view{} : item.substr(equals + 1);
+    if (key == "scale") {
+      double scale = 0.0;
+      const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), scale);
+      if (value.empty() || ec != std::errc() || end != value.data() + value.size() ||
+          !(scale > 0.0 && scale <= 1.0)) {
+        error = "bad option '" + std::string(item) + "' for built-in scene '" + spec.name +
+                "': scale is a number in (0, 1], e.g. scale=0.02";
+        return std::nullopt;
+      }
+      spec.options.cityScale = scale;
+      continue;
+    }
     int number = 0;
     const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), number);
     if (equals == std::string_view::npos || value.empty() || ec != std::errc() ||
@@ -51,7 +63,7 @@ std::optional<BuiltinSceneSpec> parseBuiltinSceneSpec(std::string_view text, std
       spec.options.emissiveNee = number == 1;
     } else {
       error = "unknown option '" + std::string(key) + "' for built-in scene '" + spec.name +
-              "'; known options: octaves, layers, terrain, nee";
+              "'; known options: octaves, layers, terrain, nee, scale";
       return std::nullopt;
     }
   }
@@ -74,6 +86,8 @@ Scene makeBuiltinScene(std::string_view name, const BuiltinSceneOptions& options
     return makeClassroomScene(options);
   if (name == "landscape")
     return makeLandscapeScene(options);
+  if (name == "city")
+    return makeCityScene(options);
   std::string known;
   for (const std::string& n : builtinSceneNames())
     known += (known.empty() ? "" : ", ") + n;

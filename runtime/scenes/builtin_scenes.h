@@ -26,14 +26,17 @@ struct BuiltinSceneOptions {
   // floor (89.5 against 65.4 ms) and 58 ms on the memoized frame (201 against 143 ms): at
   // equal time it loses (docs/runtime.md, Light sampling).
   std::optional<bool> emissiveNee;
+  // The city's size, in (0, 1]: the counts of buildings (unique meshes), props (instances)
+  // and flags (animated meshes) scale together, and the street grid with them.
+  double cityScale = 1.0;
 };
 
 // "classroom", "landscape".
 std::vector<std::string> builtinSceneNames();
 
 // A built-in scene named on a command line: `NAME[:KEY=VALUE[,KEY=VALUE…]]`, keys
-// `octaves`, `layers` (MaterialCost), `terrain` (terrainCells) and `nee` (0 or 1:
-// emissiveNee), e.g.
+// `octaves`, `layers` (MaterialCost), `terrain` (terrainCells), `nee` (0 or 1:
+// emissiveNee) and `scale` (a number in (0, 1]: cityScale), e.g.
 // `classroom:octaves=10,layers=3`. The CLI strips its own `builtin:` prefix first.
 struct BuiltinSceneSpec {
   std::string name;
@@ -51,6 +54,7 @@ Scene makeBuiltinScene(std::string_view name, const BuiltinSceneOptions& options
 // The individual generators.
 Scene makeClassroomScene(const BuiltinSceneOptions& options);
 Scene makeLandscapeScene(const BuiltinSceneOptions& options);
+Scene makeCityScene(const BuiltinSceneOptions& options);
 
 // The landscape's terrain height (metres) at world (x, z): the same function the terrain
 // mesh samples, so camera paths and object placement can follow the ground.
@@ -66,5 +70,25 @@ inline constexpr ClassroomExtent kClassroom{};
 
 // The landscape terrain covers [-halfSize, halfSize]² in x and z.
 inline constexpr float kLandscapeHalfSize = 200.0f;
+
+// The city: square blocks of kCityBlockSize metres, street centre to street centre, with
+// streets kCityStreetWidth wide; the main street runs along z at x = 0 and ends at the
+// mirror wall (z = halfSize - kCityStreetWidth / 2, facing -z).
+inline constexpr float kCityBlockSize = 100.0f;
+inline constexpr float kCityStreetWidth = 20.0f;
+struct CityCounts {
+  int buildings = 0;  // each its own mesh (BLAS)
+  int props = 0;      // instances of the shared prop meshes
+  int flags = 0;      // animated: each its own mesh, deformed every frame
+};
+// Throws std::invalid_argument unless 0 < scale <= 1.
+CityCounts cityCounts(double scale);
+// The city covers [-halfSize, halfSize]² (plus 100 m of ground around it).
+float cityHalfSize(double scale);
+// The ground height (metres) at world (x, z).
+float cityTerrainHeight(float x, float z);
+// A flag's cloth at `seconds`: the offset of a vertex from its rest position (mesh space;
+// rest.x is the distance from the pole). Scene::animatedMeshes lists the flags in order.
+glm::vec3 cityFlagDisplacement(glm::vec3 rest, float seconds, int flag);
 
 }  // namespace memograph::runtime

@@ -208,7 +208,7 @@ CameraPath sampleClosedPath(const std::vector<glm::vec3>& eyes,
 
 }  // namespace
 
-CameraPath makeBuiltinCameraPath(std::string_view scene, int frames) {
+CameraPath makeBuiltinCameraPath(std::string_view scene, int frames, double cityScale) {
   if (frames < 1)
     throw std::invalid_argument("a camera path needs at least one frame");
   if (scene == "classroom") {
@@ -248,6 +248,32 @@ CameraPath makeBuiltinCameraPath(std::string_view scene, int frames) {
       const float ground = landscapeTerrainHeight(c.position.x, c.position.z);
       c.position.y = std::max(c.position.y, ground + 8.0f);
     }
+    return path;
+  }
+  if (scene == "city") {
+    // From high outside the city down into the main street (x = 0), along it towards the
+    // mirror wall at its end (the frames where the mirror shows what is behind the camera),
+    // past the wall's side into the cross street, and up and out again.
+    const float h = cityHalfSize(cityScale);
+    const std::vector<glm::vec3> eyes = {
+        {-1.6f * h, 150.0f, -1.6f * h}, {-0.6f * h, 80.0f, -1.3f * h}, {0.0f, 25.0f, -1.1f * h},
+        {0.0f, 2.0f, -0.85f * h},       {0.0f, 2.0f, -0.3f * h},       {0.0f, 2.0f, 0.3f * h},
+        {0.0f, 2.0f, h - 45.0f},        {8.0f, 2.0f, h - 15.0f},       {30.0f, 4.0f, h},
+        {0.8f * h, 60.0f, 1.3f * h},    {-0.5f * h, 150.0f, 1.6f * h}, {-1.7f * h, 170.0f, 0.0f}};
+    const std::vector<glm::vec3> targets = {
+        {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -0.5f * h}, {0.0f, 5.0f, -0.6f * h},
+        {0.0f, 2.0f, 0.0f}, {0.0f, 2.0f, h},         {0.0f, 2.0f, h},
+        {0.0f, 3.0f, h},    {8.0f, 2.0f, h + 30.0f}, {h, 10.0f, h},
+        {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f},      {0.0f, 0.0f, 0.0f}};
+    // Heights near the ground are above it; the spline keeps at least 1.7 m of clearance.
+    std::vector<glm::vec3> groundEyes = eyes, groundTargets = targets;
+    for (glm::vec3& e : groundEyes)
+      e.y += cityTerrainHeight(e.x, e.z);
+    for (glm::vec3& t : groundTargets)
+      t.y += cityTerrainHeight(t.x, t.z);
+    CameraPath path = sampleClosedPath(groundEyes, groundTargets, 60.0f, frames);
+    for (Camera& c : path.frames)
+      c.position.y = std::max(c.position.y, cityTerrainHeight(c.position.x, c.position.z) + 1.7f);
     return path;
   }
   std::string known;

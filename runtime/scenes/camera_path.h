@@ -45,9 +45,11 @@ std::optional<CameraPath> loadCameraPath(const std::string& path,
 std::string formatCameraPath(const CameraPath& path, std::string_view headerComment = {});
 
 // A path for a built-in scene ("classroom": a walk through the aisles past the blackboard
-// and the bookcases; "landscape": a fly-over of the terrain and the two groves), sampled
-// at `frames` frames along a closed smooth curve at constant speed. Throws
-// std::invalid_argument for an unknown scene or frames < 1.
-CameraPath makeBuiltinCameraPath(std::string_view scene, int frames = 360);
+// and the bookcases; "landscape": a fly-over of the terrain and the two groves; "city": in
+// from above, down the main street towards the mirror wall, past it and out), sampled at
+// `frames` frames along a closed smooth curve at constant speed. `cityScale` is the city's
+// (BuiltinSceneOptions::cityScale). Throws std::invalid_argument for an unknown scene or
+// frames < 1.
+CameraPath makeBuiltinCameraPath(std::string_view scene, int frames = 360, double cityScale = 1.0);
 
 }  // namespace memograph::runtime

@@ -217,6 +217,14 @@ std::string emitterGraph(const std::string& name, const EmitterParams& p) {
   return b.text();
 }
 
+std::string mirrorGraph(const std::string& name) {
+  MaterialBuilder b(name);
+  b.baseColor(glm::vec3(0.92f, 0.92f, 0.9f));
+  b.metallic(1.0f);
+  b.roughness(0.02f);
+  return b.text();
+}
+
 std::string terrainGraph(const std::string& name, const TerrainParams& p, MaterialCost cost) {
   MaterialBuilder b(name);
   const GraphLink uv = b.uv();

@@ -122,6 +122,9 @@ std::string corkGraph(const std::string& name, const CorkParams& p, RecipeSeed s
 std::string missingMaterialGraph(const std::string& name);
 // Cheap on purpose: lamps and windows are light sources, not texture work.
 std::string emitterGraph(const std::string& name, const EmitterParams& p);
+
+// A polished metal mirror (metallic 1, roughness 0.02): constant, so it costs no noise.
+std::string mirrorGraph(const std::string& name);
 // The landscape's one expensive material: grass, dirt, rock and snow layers, each a
 // multi-octave noise, blended by large-scale masks that are themselves noise over UV.
 // The masks stand in for height and slope: real height/slope masks would read the

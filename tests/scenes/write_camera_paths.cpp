@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <iterator>
 #include <string>
 
 #include "runtime/scenes/builtin_scenes.h"
@@ -20,7 +21,11 @@ int main(int argc, char** argv) {
   const char* descriptions[] = {
       "a walk at eye height (1.6 m) along the window aisle, across the front past the\n"
       "blackboard, down the middle aisle, past the bookcases and back along the left wall",
-      "a loop 25-40 m above the terrain around the valley, over both groves"};
+      "a loop 25-40 m above the terrain around the valley, over both groves",
+      "in from 150 m above the city, down the main street towards the mirror wall at its\n"
+      "end (the mirror shows what is behind the camera), past the wall and up and out\n"
+      "(the full-size city, scale=1)"};
+  static_assert(std::size(descriptions) == 3, "one description per built-in scene");
   int i = 0;
   for (const std::string& scene : builtinSceneNames()) {
     const CameraPath path = makeBuiltinCameraPath(scene, frames);

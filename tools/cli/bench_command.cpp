@@ -216,7 +216,9 @@ int runBench(std::span<const std::string_view> args) {
         fileLabel += "_" + runLabel;
       std::vector<runtime::Camera> cameras;
       if (!staticCamera) {
-        const auto path = runtime::makeBuiltinCameraPath(name, int(plan.pathCameras)).frames;
+        const auto path =
+            runtime::makeBuiltinCameraPath(name, int(plan.pathCameras), spec->options.cityScale)
+                .frames;
         for (std::uint32_t frame = 0; frame < w + f; ++frame)
           cameras.push_back(path[benchCameraIndex(plan, frame)]);
       }

@@ -14,7 +14,7 @@
 namespace memograph::cli {
 
 inline constexpr const char* kRendererHelp =
-    "  --backend B           auto (default: query, or pipeline for scenes of more than 16\n"
+    "  --backend B           auto (default: query, or pipeline for scenes of more than 8\n"
     "                        distinct materials, where it has callables), query, pipeline\n"
     "  --material-dispatch D auto (default), switch or callable: how the path tracer\n"
     "                        reaches each material. switch: every material in the one\n"
