@@ -145,10 +145,12 @@ TEST(RayConeSpread, DiffuseBounceIsBoundedAndTheSecondHitKeepsAFinerLevel) {
     std::printf("roughness spread alpha %.2f: %.5f rad (eq. 2.11 small-angle form %.5f)\n",
                 alphas[i], f(i), eq211);
     EXPECT_LE(f(i), pi + 1e-5);
-    if (alphas[i] <= 0.1)
+    if (alphas[i] <= 0.1) {
       EXPECT_NEAR(f(i), eq211, 0.01 * eq211 + 1e-6);  // first order: the same
-    if (i > 0)
+    }
+    if (i > 0) {
       EXPECT_GT(f(i), f(i - 1));  // monotonic in roughness
+    }
   }
   EXPECT_NEAR(f(5), pi, 1e-4);  // a diffuse lobe spans the hemisphere
   const double w2 = f(6);

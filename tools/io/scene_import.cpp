@@ -244,14 +244,14 @@ struct Importer {
   std::string path;
   std::string materialsDir;
   compiler::Diagnostics& diagnostics;
-  Scene scene;
-  std::vector<std::uint32_t> meshMaterial;       // assimp mesh → scene material
-  std::vector<int> meshIndex;                    // assimp mesh → scene mesh (-1: skipped)
-  std::map<std::string, glm::mat4> nodeWorld;    // node name → world transform
-  std::map<unsigned, std::uint32_t> materialOf;  // assimp material → scene material
+  Scene scene{};
+  std::vector<std::uint32_t> meshMaterial{};       // assimp mesh → scene material
+  std::vector<int> meshIndex{};                    // assimp mesh → scene mesh (-1: skipped)
+  std::map<std::string, glm::mat4> nodeWorld{};    // node name → world transform
+  std::map<unsigned, std::uint32_t> materialOf{};  // assimp material → scene material
   int missingMaterial = -1;
   float lightScale = 1.0f;
-  std::string cameraName;
+  std::string cameraName{};
 
   std::uint32_t material(unsigned assimpIndex) {
     if (auto it = materialOf.find(assimpIndex); it != materialOf.end())
@@ -506,7 +506,7 @@ std::optional<Scene> importScene(const std::string& path, const std::string& mat
     diagnostics.error(path, "the scene is incomplete (no node hierarchy or no meshes)");
     return std::nullopt;
   }
-  Importer imp{*in, path, materialsDir, diagnostics, {}, {}, {}, {}, {}};
+  Importer imp{*in, path, materialsDir, diagnostics};
   imp.meshIndex.assign(in->mNumMeshes, -1);
   imp.meshMaterial.assign(in->mNumMeshes, 0);
   for (unsigned m = 0; m < in->mNumMeshes; ++m) {
