@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "runtime/storage_image.h"
 #include "runtime/vulkan_error.h"
 
 namespace memograph::runtime {
@@ -71,18 +72,9 @@ GpuTextures::GpuTextures(const VulkanContext& context, const std::vector<Texture
     checkVk(vkCreateImage(device, &info, nullptr, &image), "vkCreateImage");
     VulkanHandle<VkImage> imageOwner(image,
                                      [device](VkImage i) { vkDestroyImage(device, i, nullptr); });
-    VkMemoryRequirements requirements;
-    vkGetImageMemoryRequirements(device, image, &requirements);
-    VkMemoryAllocateInfo allocate{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-    allocate.allocationSize = requirements.size;
-    allocate.memoryTypeIndex =
-        context.findMemoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-    VkDeviceMemory memory = VK_NULL_HANDLE;
-    checkVk(vkAllocateMemory(device, &allocate, nullptr, &memory), "vkAllocateMemory (texture)");
-    memories_.emplace_back(memory,
-                           [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
-    checkVk(vkBindImageMemory(device, image, memory, 0), "vkBindImageMemory");
-    bytes_ += requirements.size;
+    ImageMemory memory = bindDeviceLocalImageMemory(context, image, "texture");
+    memories_.push_back(std::move(memory.memory));
+    bytes_ += memory.bytes;
 
     std::size_t stagingBytes = 0;
     for (const auto& level : texture.levels)

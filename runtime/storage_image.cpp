@@ -6,6 +6,28 @@
 
 namespace memograph::runtime {
 
+ImageMemory bindDeviceLocalImageMemory(const VulkanContext& context, VkImage image,
+                                       const char* what) {
+  const VkDevice device = context.device();
+  const std::string name(what);
+  VkMemoryRequirements requirements;
+  vkGetImageMemoryRequirements(device, image, &requirements);
+  VkMemoryAllocateInfo allocate{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+  allocate.allocationSize = requirements.size;
+  allocate.memoryTypeIndex =
+      context.findMemoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  VkDeviceMemory memory = VK_NULL_HANDLE;
+  checkVk(vkAllocateMemory(device, &allocate, nullptr, &memory),
+          ("vkAllocateMemory (" + name + ")").c_str());
+  ImageMemory out;
+  out.memory = VulkanHandle<VkDeviceMemory>(
+      memory, [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
+  checkVk(vkBindImageMemory(device, image, memory, 0),
+          ("vkBindImageMemory (" + name + ")").c_str());
+  out.bytes = requirements.size;
+  return out;
+}
+
 StorageImage createStorageImage(const VulkanContext& context, VkImageType type, VkFormat format,
                                 VkExtent3D extent, const char* what) {
   const VkDevice device = context.device();
@@ -28,20 +50,9 @@ StorageImage createStorageImage(const VulkanContext& context, VkImageType type, 
   out.image =
       VulkanHandle<VkImage>(image, [device](VkImage i) { vkDestroyImage(device, i, nullptr); });
 
-  VkMemoryRequirements requirements;
-  vkGetImageMemoryRequirements(device, image, &requirements);
-  VkMemoryAllocateInfo allocate{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
-  allocate.allocationSize = requirements.size;
-  allocate.memoryTypeIndex =
-      context.findMemoryType(requirements.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  VkDeviceMemory memory = VK_NULL_HANDLE;
-  checkVk(vkAllocateMemory(device, &allocate, nullptr, &memory),
-          ("vkAllocateMemory (" + name + ")").c_str());
-  out.memory = VulkanHandle<VkDeviceMemory>(
-      memory, [device](VkDeviceMemory m) { vkFreeMemory(device, m, nullptr); });
-  checkVk(vkBindImageMemory(device, image, memory, 0),
-          ("vkBindImageMemory (" + name + ")").c_str());
-  out.bytes = requirements.size;
+  ImageMemory memory = bindDeviceLocalImageMemory(context, image, what);
+  out.memory = std::move(memory.memory);
+  out.bytes = memory.bytes;
 
   VkImageViewCreateInfo viewInfo{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
   viewInfo.image = image;

@@ -18,6 +18,15 @@ struct StorageImage {
   VkDeviceSize bytes = 0;  // the memory bound to it
 };
 
+// Device-local memory allocated for `image` and bound to it; `bytes` is its size. `what`
+// names the image in error messages. Throws std::runtime_error on a Vulkan error.
+struct ImageMemory {
+  VulkanHandle<VkDeviceMemory> memory;
+  VkDeviceSize bytes = 0;
+};
+ImageMemory bindDeviceLocalImageMemory(const VulkanContext& context, VkImage image,
+                                       const char* what);
+
 // One mip level and layer of `format` (2D or 3D as `type`), transitioned to GENERAL before
 // it returns. `what` names it in error messages. Throws std::runtime_error on a Vulkan error.
 StorageImage createStorageImage(const VulkanContext& context, VkImageType type, VkFormat format,
