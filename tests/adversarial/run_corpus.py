@@ -6,7 +6,6 @@ no crash (a signal fails the test), a time bound (TIMEOUT_S) and a memory bound 
 in the child), and, on failure, the output folder untouched. Usage: run_corpus.py MEMOGRAPH
 """
 import concurrent.futures
-import hashlib
 import os
 import re
 import resource
@@ -21,26 +20,14 @@ TIMEOUT_S = 20
 MEMORY_BYTES = 3 << 30  # address space: a 4 GiB allocation from a 28-byte header fails
 
 sys.path.insert(0, HERE)
+sys.path.insert(0, os.path.join(HERE, ".."))
 import make_scenes  # noqa: E402
+from folder_snapshot import snapshot  # noqa: E402
 
 
 def limit_memory():
     resource.setrlimit(resource.RLIMIT_AS, (MEMORY_BYTES, MEMORY_BYTES))
     resource.setrlimit(resource.RLIMIT_CORE, (0, 0))
-
-
-def snapshot(folder):
-    state = {}
-    for root, dirs, files in os.walk(folder):
-        for name in dirs + files:
-            path = os.path.join(root, name)
-            rel = os.path.relpath(path, folder)
-            if os.path.isfile(path) and not os.path.islink(path):
-                with open(path, "rb") as f:
-                    state[rel] = hashlib.sha256(f.read()).hexdigest()
-            else:
-                state[rel] = "dir"
-    return state
 
 
 def prepare(work):

@@ -9,13 +9,15 @@ folder and any folder it created); a successful one must put every file in DIR.
 """
 
 import argparse
-import hashlib
 import os
 import shutil
 import stat
 import subprocess
 import sys
 import tempfile
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '../..'))
+from folder_snapshot import snapshot  # noqa: E402
 
 FAKE_BLENDER = r"""#!/bin/sh
 # A stand-in for Blender: finds --out DIR, writes an export there, then does $FAKE_MODE.
@@ -48,20 +50,6 @@ def check(ok, what):
     if not ok:
         failures.append(what)
     return ok
-
-
-def snapshot(folder):
-    state = {}
-    for root, dirs, files in os.walk(folder):
-        for name in dirs + files:
-            path = os.path.join(root, name)
-            rel = os.path.relpath(path, folder)
-            if os.path.isfile(path):
-                with open(path, 'rb') as f:
-                    state[rel] = hashlib.sha256(f.read()).hexdigest()
-            else:
-                state[rel] = 'dir'
-    return state
 
 
 def hidden(folder):
