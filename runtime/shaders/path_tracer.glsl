@@ -410,9 +410,9 @@ bool samplePunctualLight(vec3 position, uint count, float u, out LightSample s) 
 
 // Direct light (thesis §5.2): one light through one shadow ray. With emissive triangles
 // (NEE, compiled in only for scenes that have them: MG_EMISSIVE_NEE) half the samples go to
-// them and half to the point, spot and directional lights;
-// an emissive sample is MIS-weighted (power heuristic) when `mis` (the path continues, so a
-// BSDF ray can find the same emitter). Returns f * cos * L_i / pdf.
+// them and half to the point, spot and directional lights; an emissive sample is
+// MIS-weighted (power heuristic) when `mis` (the path continues, so a BSDF ray can find the
+// same emitter). Returns f * cos * L_i / pdf.
 vec3 sampleDirectLight(vec3 position, vec3 ng, mat3 toLocal, vec3 wo, BrdfParameters brdf,
                        bool mis, inout Rng rng, inout uint rays) {
   uint lightCount = frame.path.w;
@@ -450,7 +450,9 @@ vec3 sampleDirectLight(vec3 position, vec3 ng, mat3 toLocal, vec3 wo, BrdfParame
     s.incident *= m.emission;
   }
 #elif defined(MG_EMISSIVE_NEE)
-  if (s.evaluate) return vec3(0.0);  // unreachable: the host defines it for such emitters
+  // The floor's free materials emit nothing; elsewhere the host defines
+  // MG_NEE_EVALUATES_EMISSION for scenes with such emitters, so only the floor gets here.
+  if (s.evaluate) return vec3(0.0);
 #endif
 #ifdef MG_EMISSIVE_NEE
   if (s.lightPdf > 0.0 && mis)
