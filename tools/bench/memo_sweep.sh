@@ -2,7 +2,7 @@
 # The memoization benchmark sweep: the runs behind the project's Tables 6.1-6.3 (thesis §6)
 # at 1920x1080, P = 6, L = 4 over a 300-camera path, in ONE device call of at most 600 s.
 # tools/bundle_memo_sweep.sh copies it to bundle/memo_sweep.sh; on the GPU machine:
-#   bash bundle/memo_sweep.sh [--tables 6.1,6.1r,6.1s,6.1b,diag,6.2,6.3] [--match REGEX] [--budget S]
+#   bash bundle/memo_sweep.sh [--tables defaults,6.1,6.1r,6.1s,6.1b,diag,6.2,6.3] [--match REGEX] [--budget S]
 # and here, on lavapipe, end to end at a tiny size (64x36, a 4-camera path):
 #   bash tools/bench/memo_sweep.sh --dry-run [--match REGEX]
 #
@@ -23,7 +23,7 @@ usage() {
   sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'
 }
 
-dry=0 tables="6.1,6.1r,6.1s,6.1b,diag,6.2,6.3" match="" budget=""
+dry=0 tables="defaults,6.1,6.1r,6.1s,6.1b,diag,6.2,6.3" match="" budget=""
 while [ $# -gt 0 ]; do
   case $1 in
   --dry-run) dry=1 ;;
@@ -49,6 +49,10 @@ fi
 # Sizes count texels, as the thesis does: a 4x4 tile entry holds 16 (2^24 texels = 2^20 tiles).
 read -r -d '' VARIANTS <<'TABLE'
 # limit table scene      label                 cameras stride flags
+# defaults: what a user gets from `--cache texel` or `--cache tile` and nothing else, against
+# Table 6.1's rows below (make_tables prints the ratio).
+  120   defaults classroom texel_default       300     1      --cache texel
+  120   defaults classroom tile_default        300     1      --cache tile
   110   6.1   classroom  none                  300     10     --cache none
   120   6.1   classroom  texel_s24_lru-counter 300     1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key
   120   6.1   classroom  tile_s24_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key

@@ -90,6 +90,21 @@ class MakeTablesTest(unittest.TestCase):
         # A later step that finished clears an earlier timeout; without a run it is not run.
         self.assertEqual(self.table_line(text, "No eviction", large)[4], "—")
 
+    def test_defaults_table_gives_the_ratio_to_table_61s_row(self):
+        write_summary(self.path("a.csv"), [
+            ("classroom", "texel_default", "H200", 150.0, 0.995),
+            ("classroom", "texel_s24_lru-counter", "H200", 120.0, 0.996)])
+        result = self.run_tool("--summary", self.path("a.csv"))
+        self.assertEqual(result.returncode, 0, result.stderr)
+        with open(self.path("t.md")) as f:
+            text = f.read()
+        self.assertEqual(self.table_line(text, "classroom", "## Defaults"),
+                         ["classroom", "`--cache texel`", "150.0", "99.500 %", "120.0",
+                          "99.600 %", "1.25×"])
+        # No tile default was run: no row for it, and the default is not an "other run".
+        self.assertNotIn("`--cache tile`", text)
+        self.assertNotIn("| classroom | texel_default |", text)
+
     def test_bad_input_exits_1_and_usage_exits_2(self):
         missing = self.run_tool("--summary", self.path("missing.csv"))
         self.assertEqual(missing.returncode, 1)
