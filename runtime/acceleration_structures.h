@@ -1,9 +1,12 @@
-// Acceleration structures of a scene: one BLAS per mesh, shared by all of its instances and
-// compacted after the build (every mesh is static), and one TLAS over the instances. Their
-// memory (BLAS, TLAS, scratch) is reported, since a later issue culls it.
+// Acceleration structures: batched, compacted BLAS builds, a TLAS rebuilt from host-written
+// instance records, and a scene's static set of them (one BLAS per mesh, shared by all of
+// its instances, and one TLAS over every instance) for renders without culling (culled
+// renders: blas_cache.h, scene_culling.h). Their memory (BLAS, TLAS, scratch) is reported.
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <span>
 #include <vector>
 
 #include <vulkan/vulkan.h>
@@ -56,6 +59,53 @@ class AccelerationStructure {
   VkDeviceAddress address_ = 0;
 };
 
+// One batch of BLAS builds: one scratch buffer with a slice per build, one submit, then
+// each BLAS copied into a structure of its compacted size (§3.3.1: batching, compaction).
+struct CompactedBlases {
+  std::vector<AccelerationStructure> blases;  // one per mesh given, in order
+  std::uint64_t bytes = 0;                    // after compaction
+  std::uint64_t bytesBeforeCompaction = 0;
+  std::uint64_t scratchBytes = 0;
+  std::uint64_t triangles = 0;
+  double gpuMilliseconds = 0.0;  // the builds alone, from timestamps (0 without them)
+};
+// `vertices` holds records of `vertexStride` bytes, position first; `indices` uint32
+// triangles relative to each mesh's first vertex. Throws on a mesh without triangles.
+CompactedBlases buildCompactedBlases(const VulkanContext& context, const GpuBuffer& vertices,
+                                     std::uint32_t vertexStride, const GpuBuffer& indices,
+                                     std::span<const MeshGeometry> meshes);
+
+// A TLAS instance record: row-major 3x4 transform, custom index (the shaders' instance or
+// counter slot), cull mask, hit group 0, no facing culling.
+VkAccelerationStructureInstanceKHR instanceRecord(const glm::mat4& objectToWorld,
+                                                  std::uint32_t customIndex, std::uint32_t mask,
+                                                  VkDeviceAddress blas);
+
+// A TLAS rebuilt from instance records the host writes into mapped memory, sized once for
+// `capacity` records so that its handle (and the descriptor set that names it) never
+// changes. The build reads the records on the device: write them only while no build of
+// this structure is in flight.
+class TopLevelStructure {
+ public:
+  TopLevelStructure(const VulkanContext& context, std::uint32_t capacity);
+  VkAccelerationStructureInstanceKHR* records() const;
+  std::uint32_t capacity() const { return capacity_; }
+  // Records the build of the first `count` records and a barrier that makes it visible to
+  // the ray-tracing and compute shaders after it.
+  void recordBuild(VkCommandBuffer commands, std::uint32_t count) const;
+  VkAccelerationStructureKHR handle() const { return tlas_.handle(); }
+  std::uint64_t bytes() const { return tlas_.size(); }
+  std::uint64_t scratchBytes() const { return scratch_.size(); }
+  std::uint64_t instanceBufferBytes() const { return instances_.size(); }
+
+ private:
+  const VulkanContext* context_ = nullptr;
+  std::uint32_t capacity_ = 0;
+  GpuBuffer instances_;
+  GpuBuffer scratch_;
+  AccelerationStructure tlas_;
+};
+
 class SceneAccelerationStructures {
  public:
   // `vertices` holds gpu::Vertex records (position first), `indices` uint32 triangles with
@@ -65,12 +115,14 @@ class SceneAccelerationStructures {
                               const std::vector<MeshGeometry>& meshes,
                               const std::vector<InstancePlacement>& instances);
 
-  VkAccelerationStructureKHR tlas() const { return tlas_.handle(); }
+  VkAccelerationStructureKHR tlas() const { return tlas_->handle(); }
   const AccelerationStructureStats& stats() const { return stats_; }
+  // The TLAS's build scratch, which it keeps (the BLASes' is freed after their build).
+  std::uint64_t residentScratchBytes() const { return tlas_->scratchBytes(); }
 
  private:
   std::vector<AccelerationStructure> blases_;
-  AccelerationStructure tlas_;
+  std::unique_ptr<TopLevelStructure> tlas_;
   AccelerationStructureStats stats_;
 };
 

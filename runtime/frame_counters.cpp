@@ -13,6 +13,15 @@ std::vector<FrameCounter> frameCounters(const FrameStats& frame) {
       {"duplicate_tiles", double(frame.cacheDuplicateTiles)},
       {"tile_fallbacks", double(frame.cacheTileFallbacks)},
       {"tile_repacks", double(frame.cacheTileRepacks)},
+      {"active_instances", double(frame.activeInstances)},
+      {"omitted_instances", double(frame.omittedInstances)},
+      {"active_hitboxes", double(frame.activeHitboxes)},
+      {"tlas_records", double(frame.tlasRecords)},
+      {"as_bytes", double(frame.blasBytes + frame.tlasBytes), true},
+      {"blas_builds", double(frame.blasBuilds)},
+      {"blas_evictions", double(frame.blasEvictions)},
+      {"blas_build_gpu_ms", frame.blasBuildMilliseconds},
+      {"tlas_build_gpu_ms", frame.tlasBuildMilliseconds},
   };
 }
 

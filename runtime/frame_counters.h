@@ -13,6 +13,7 @@ namespace memograph::runtime {
 struct FrameCounter {
   std::string_view name;  // a CSV column stem: lower case, underscores
   double value = 0.0;
+  bool peak = false;  // summaries report its largest value too (memory)
 };
 
 // The counters of one frame, always the same names in the same order (the bench CSV's

@@ -36,7 +36,10 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
          "cache_misses,cache_hit_rate,cache_read_check,cache_occupancy,cache_tiles_computed,"
          "cache_duplicate_tiles,cache_value_format,cache_clock,cache_snap_uv,"
          "cache_secondary_only,cache_clock_ticks,cache_tile,cache_tile_fallbacks,"
-         "cache_tile_repacks\n";
+         "cache_tile_repacks,culling,active_instances,omitted_instances,inactive_instances,"
+         "waiting_instances,hitboxes,active_hitboxes,instance_state_changes,tlas_records,"
+         "frame_blas_bytes,frame_tlas_bytes,frame_scratch_bytes,blas_builds,blas_evictions,"
+         "blas_build_gpu_ms,tlas_build_gpu_ms\n";
   const auto& a = s.accelerationStructures;
   for (const auto& f : s.frames) {
     double mraysPerSecond = f.gpuMilliseconds > 0 ? f.rays / (f.gpuMilliseconds * 1e3) : 0.0;
@@ -53,7 +56,13 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
         << s.cacheReadCheck << ',' << f.cacheOccupancy << ',' << f.cacheTilesComputed << ','
         << f.cacheDuplicateTiles << ',' << s.cacheValueFormat << ',' << s.cacheClock << ','
         << int(s.cacheSnapUv) << ',' << int(s.cacheSecondaryOnly) << ',' << f.cacheClockTicks << ','
-        << s.cacheTile << ',' << f.cacheTileFallbacks << ',' << f.cacheTileRepacks << '\n';
+        << s.cacheTile << ',' << f.cacheTileFallbacks << ',' << f.cacheTileRepacks << ','
+        << s.culling << ',' << f.activeInstances << ',' << f.omittedInstances << ','
+        << f.inactiveInstances << ',' << f.waitingInstances << ',' << f.hitboxes << ','
+        << f.activeHitboxes << ',' << f.instanceStateChanges << ',' << f.tlasRecords << ','
+        << f.blasBytes << ',' << f.tlasBytes << ',' << f.asScratchBytes << ',' << f.blasBuilds
+        << ',' << f.blasEvictions << ',' << f.blasBuildMilliseconds << ','
+        << f.tlasBuildMilliseconds << '\n';
   }
 }
 

@@ -36,6 +36,27 @@ struct FrameStats {
   // Tiles published (their key written after their last texel) since the cache was cleared:
   // persists across frames like the occupancy. Not in the CSV.
   std::uint64_t cacheTilesPublished = 0;
+  // Acceleration structures this frame (seeds/001 §3.3; with --culling none the scene's
+  // static set): instances in the TLAS, omitted (a counting box stands in), inactive, and
+  // active ones still waiting for their BLAS (the build budget); LiPaC's hitboxes (with
+  // instances) and how many are active; instance state changes in this frame's update;
+  // TLAS records (instances and boxes); resident BLAS and TLAS bytes, and scratch (the
+  // TLAS's plus this frame's BLAS builds'); BLAS builds and evictions; GPU build times.
+  std::uint32_t activeInstances = 0;
+  std::uint32_t omittedInstances = 0;
+  std::uint32_t inactiveInstances = 0;
+  std::uint32_t waitingInstances = 0;
+  std::uint32_t hitboxes = 0;
+  std::uint32_t activeHitboxes = 0;
+  std::uint32_t instanceStateChanges = 0;
+  std::uint32_t tlasRecords = 0;
+  std::uint64_t blasBytes = 0;
+  std::uint64_t tlasBytes = 0;
+  std::uint64_t asScratchBytes = 0;
+  std::uint32_t blasBuilds = 0;
+  std::uint32_t blasEvictions = 0;
+  double blasBuildMilliseconds = 0.0;
+  double tlasBuildMilliseconds = 0.0;
   double cacheHitRate() const { return cacheLookups ? double(cacheHits) / cacheLookups : 0.0; }
 };
 
@@ -84,6 +105,7 @@ struct RenderStats {
   bool cacheSnapUv = false;           // misses evaluated at the texel centre (§6.1)
   bool cacheSecondaryOnly = false;    // primary hits bypass the cache (Fig. 6.6)
   std::uint64_t cacheBytes = 0;
+  std::string culling = "none";  // --culling: none, frustum or lipac
 
   double medianGpuMilliseconds() const;
   std::uint64_t totalRays() const;

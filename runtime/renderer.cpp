@@ -11,6 +11,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "runtime/acceleration_structures.h"
+#include "runtime/culled_acceleration.h"
+#include "runtime/culling_view.h"
 #include "runtime/gpu_buffer.h"
 #include "runtime/gpu_textures.h"
 #include "runtime/material_cache.h"
@@ -113,6 +115,11 @@ Renderer::~Renderer() = default;
 RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings) {
   validateSettings(settings);
   validateScene(scene);
+  validateCullingOptions(options_.culling);
+  if (options_.debugCullingSize > 0 && options_.culling.mode == CullingMode::None)
+    throw std::invalid_argument(
+        "--debug-culling shows which instances culling keeps; it needs --culling frustum or "
+        "--culling lipac");
   const VulkanContext& context = *context_;
   VkDevice device = context.device();
   RenderResult result;
@@ -183,9 +190,25 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
 
   // Scene data, acceleration structures, textures.
   SceneBuffers buffers = uploadScene(context, scene, emissionKindsVerified(scene, materials));
-  SceneAccelerationStructures accel(context, buffers.vertices, sizeof(gpu::Vertex), buffers.indices,
-                                    buffers.geometry, buffers.placements);
-  stats.accelerationStructures = accel.stats();
+  const CullingOptions& cullingOptions = options_.culling;
+  stats.culling = std::string(cullingModeName(cullingOptions.mode));
+  // Without culling, every BLAS and the TLAS are built once here; culled renders rebuild the
+  // TLAS every frame from the instances the frame keeps.
+  std::optional<SceneAccelerationStructures> staticAccel;
+  std::optional<CulledAccelerationStructures> culledAccel;
+  GpuBuffer noHitFeedback;
+  if (cullingOptions.mode == CullingMode::None) {
+    staticAccel.emplace(context, buffers.vertices, sizeof(gpu::Vertex), buffers.indices,
+                        buffers.geometry, buffers.placements);
+    stats.accelerationStructures = staticAccel->stats();
+    noHitFeedback = GpuBuffer(context, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                              VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  } else {
+    culledAccel.emplace(context, scene, buffers, cullingOptions);
+    stats.accelerationStructures.blasCount = static_cast<std::uint32_t>(buffers.geometry.size());
+    stats.accelerationStructures.instanceCount = static_cast<std::uint32_t>(scene.instances.size());
+  }
+  const bool hitFeedback = culledAccel && culledAccel->hitFeedbackOn();
   GpuTextures textures(context, textureImages);
   stats.textureBytes = textures.bytes();
 
@@ -247,6 +270,9 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     shaderDefines.push_back("MG_EMISSIVE_NEE=1");
   if (buffers.neeEvaluatesEmission && !floor)
     shaderDefines.push_back("MG_NEE_EVALUATES_EMISSION=1");
+  // LiPaC's hit counters and the counting-box probe, only where LiPaC runs.
+  if (hitFeedback)
+    shaderDefines.push_back("MG_HIT_FEEDBACK=1");
   TracePipeline pipeline(context, compiler, textures.count(),
                          materialCallables ? &*materialCallables : nullptr, pipelineThreads,
                          shaderDefines, materialCache.tileImageView() != VK_NULL_HANDLE,
@@ -274,8 +300,14 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   GpuBuffer rayReadback =
       hostBuffer(context, sizeof(gpu::Counters), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-  TraceResources resources{accel.tlas(),   &frameBuffer, &accumulation, &rayCounter,
-                           &materialCache, &buffers,     &textures};
+  TraceResources resources{staticAccel ? staticAccel->tlas() : culledAccel->tlas(),
+                           &frameBuffer,
+                           &accumulation,
+                           &rayCounter,
+                           &materialCache,
+                           &buffers,
+                           &textures,
+                           culledAccel ? &culledAccel->hitFeedback() : &noHitFeedback};
   TraceDescriptorSet descriptors(context, pipeline.descriptorSetLayout(), resources);
   VkDescriptorSet set = descriptors.get();
 
@@ -285,7 +317,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   if (timestamps) {
     VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    queryInfo.queryCount = 2;
+    queryInfo.queryCount = 4;  // the trace's, then a culled render's TLAS build
     VkQueryPool queryPool = VK_NULL_HANDLE;
     checkVk(vkCreateQueryPool(device, &queryInfo, nullptr, &queryPool), "vkCreateQueryPool");
     timestampPool = VulkanHandle<VkQueryPool>(
@@ -308,6 +340,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
 
   Camera previousCamera;
   std::uint32_t sampleIndex = 0;
+  std::uint64_t previousRays = 0;
   for (std::uint32_t f = 0; f < settings.frames; ++f) {
     const Camera& camera =
         settings.cameraPath.empty()
@@ -322,6 +355,18 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     frame.environmentSize.z = sampleIndex;
     frame.cache.y = f + 1u;  // the frame clock of §5.3.3 (0: never used)
     frameBuffer.write(&frame, sizeof frame);
+    FrameStats frameStats;
+    frameStats.frame = f;
+    if (culledAccel) {
+      culledAccel->prepareFrame(camera, float(settings.width) / float(settings.height), f,
+                                previousRays, frameStats);
+    } else {
+      const AccelerationStructureStats& a = staticAccel->stats();
+      frameStats.activeInstances = frameStats.tlasRecords = a.instanceCount;
+      frameStats.blasBytes = a.blasBytes;
+      frameStats.tlasBytes = a.tlasBytes;
+      frameStats.asScratchBytes = staticAccel->residentScratchBytes();
+    }
 
     auto start = std::chrono::steady_clock::now();
     context.submitAndWait([&](VkCommandBuffer commands) {
@@ -333,16 +378,21 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                       f == 0 ? VK_WHOLE_SIZE : gpu::kCountersPerFrameUints * sizeof(std::uint32_t),
                       0);
       materialCache.recordClears(commands, f == 0);
+      if (culledAccel)
+        culledAccel->recordClears(commands);
       VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
       barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
       barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
       vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT,
                            VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0, nullptr, 0,
                            nullptr);
-      if (timestamps) {
-        vkCmdResetQueryPool(commands, timestampPool.get(), 0, 2);
+      if (timestamps)
+        vkCmdResetQueryPool(commands, timestampPool.get(), 0, 4);
+      if (culledAccel)
+        culledAccel->recordTlasBuild(commands, timestamps ? timestampPool.get() : VK_NULL_HANDLE,
+                                     2);
+      if (timestamps)
         vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestampPool.get(), 0);
-      }
       pipeline.record(commands, set, settings.width, settings.height);
       if (materialCache.tileFillRows() > 0) {
         // The deferred tile fill computes the tiles the trace queued (its stores, queue and
@@ -362,14 +412,15 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                            VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
       VkBufferCopy copy{0, 0, sizeof(gpu::Counters)};
       vkCmdCopyBuffer(commands, rayCounter.buffer(), rayReadback.buffer(), 1, &copy);
+      if (culledAccel)
+        culledAccel->recordAfterTrace(commands);
     });
-    FrameStats frameStats;
-    frameStats.frame = f;
     frameStats.wallMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     gpu::Counters counters{};
     rayReadback.read(&counters, sizeof counters);
     frameStats.rays = counters.rays;
+    previousRays = counters.rays;
     frameStats.cacheLookups = counters.cacheLookups;
     frameStats.cacheHits = counters.cacheHits;
     frameStats.cacheMisses = counters.cacheMisses;
@@ -381,13 +432,24 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     frameStats.cacheTileRepacks = counters.cacheTileRepacks;
     frameStats.cacheTilesPublished = counters.cacheTilesPublished;
     if (timestamps) {
-      std::uint64_t ticks[2] = {0, 0};
-      checkVk(vkGetQueryPoolResults(device, timestampPool.get(), 0, 2, sizeof ticks, ticks,
-                                    sizeof(std::uint64_t),
+      std::uint64_t ticks[4] = {0, 0, 0, 0};
+      const std::uint32_t queries = culledAccel ? 4 : 2;
+      checkVk(vkGetQueryPoolResults(device, timestampPool.get(), 0, queries,
+                                    queries * sizeof(std::uint64_t), ticks, sizeof(std::uint64_t),
                                     VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
               "vkGetQueryPoolResults (timestamps)");
-      frameStats.gpuMilliseconds =
-          double(ticks[1] - ticks[0]) * context.info().timestampPeriodNs * 1e-6;
+      const double period = context.info().timestampPeriodNs * 1e-6;
+      frameStats.gpuMilliseconds = double(ticks[1] - ticks[0]) * period;
+      if (culledAccel)
+        frameStats.tlasBuildMilliseconds = double(ticks[3] - ticks[2]) * period;
+    }
+    if (culledAccel) {
+      // The render's figures: the peak of what was resident.
+      auto& a = stats.accelerationStructures;
+      a.blasBytes = std::max(a.blasBytes, frameStats.blasBytes);
+      a.tlasBytes = frameStats.tlasBytes;
+      a.scratchBytes = std::max(a.scratchBytes, frameStats.asScratchBytes);
+      a.buildMilliseconds += frameStats.blasBuildMilliseconds + frameStats.tlasBuildMilliseconds;
     }
     stats.frames.push_back(frameStats);
     if (settings.onFrame)
@@ -395,6 +457,13 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     ++sampleIndex;
     if (settings.continueAfterFrame && !settings.continueAfterFrame(frameStats))
       break;  // the image is the accumulation of the frames rendered so far
+  }
+
+  if (culledAccel) {
+    result.instanceStates = culledAccel->culling().states();
+    if (options_.debugCullingSize > 0)
+      result.cullingView =
+          cullingTopView(culledAccel->culling(), previousCamera, options_.debugCullingSize);
   }
 
   // Read the accumulated image back.

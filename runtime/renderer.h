@@ -15,6 +15,7 @@
 #include "runtime/material_linker.h"
 #include "runtime/render_stats.h"
 #include "runtime/scene.h"
+#include "runtime/scene_culling.h"
 #include "runtime/vulkan_context.h"
 
 namespace memograph::runtime {
@@ -60,6 +61,12 @@ struct RendererOptions {
   // Thesis Fig. 6.9: the image shows each frame alone, pixels where a path missed the
   // cache in red. Needs the texel cache.
   bool debugCacheMisses = false;
+  // Culled acceleration structures (seeds/001 §3.3): which instances the TLAS holds each
+  // frame, and the BLAS budgets. None: every instance, all BLASes built up front.
+  CullingOptions culling;
+  // Culled renders: also draw cullingTopView of the last frame, this many pixels a side
+  // (RenderResult::cullingView; 0: none).
+  std::uint32_t debugCullingSize = 0;
 };
 
 // Materials that share a graph (same file or same text) count once.
@@ -86,6 +93,10 @@ struct RenderSettings {
 struct RenderResult {
   HdrImage image;  // the accumulated mean radiance of the last camera's frames
   RenderStats stats;
+  // Culled renders: each instance's state in the last frame, and its top view when asked
+  // (RendererOptions::debugCullingSize).
+  std::vector<InstanceState> instanceStates;
+  HdrImage cullingView;
 };
 
 class Renderer {

@@ -13,7 +13,7 @@ TraceDescriptorSet::TraceDescriptorSet(const VulkanContext& context,
   std::vector<VkDescriptorPoolSize> poolSizes = {
       {VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 1},
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 12},
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 13},
       {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, r.textures->count()}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -66,6 +66,7 @@ TraceDescriptorSet::TraceDescriptorSet(const VulkanContext& context,
   writeBuffer(gpu::kBindingTileTexels, kStorage, r.cache->tileTexels(), "the tile texels");
   writeBuffer(gpu::kBindingTileLog, kStorage, r.cache->tileLog(), "the tile log");
   writeBuffer(gpu::kBindingTileQueue, kStorage, r.cache->tileQueue(), "the tile queue");
+  writeBuffer(gpu::kBindingHitFeedback, kStorage, *r.hitFeedback, "the hit-feedback counters");
   VkDescriptorImageInfo tileImageInfo{VK_NULL_HANDLE, r.cache->tileImageView(),
                                       VK_IMAGE_LAYOUT_GENERAL};
   if (tileImageInfo.imageView != VK_NULL_HANDLE) {

@@ -22,6 +22,7 @@ struct TraceResources {
   const MaterialCache* cache = nullptr;     // entries, tile texels and log (dummies without)
   const SceneBuffers* scene = nullptr;
   const GpuTextures* textures = nullptr;
+  const GpuBuffer* hitFeedback = nullptr;  // LiPaC's hit counters (a dummy without)
 };
 
 class TraceDescriptorSet {

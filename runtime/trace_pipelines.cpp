@@ -100,6 +100,7 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   add(gpu::kBindingTileTexels, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   add(gpu::kBindingTileLog, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   add(gpu::kBindingTileQueue, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  add(gpu::kBindingHitFeedback, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   if (tileImage)
     add(gpu::kBindingTileImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};

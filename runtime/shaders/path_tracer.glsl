@@ -66,6 +66,23 @@ layout(set = 0, binding = kBindingRayCounter, std430) buffer CounterBlock {
 
 const float kRayTMax = 1e30;
 
+#ifdef MG_HIT_FEEDBACK
+layout(set = 0, binding = kBindingHitFeedback, std430) buffer HitFeedbackBlock {
+  uint hitCounts[];
+};
+
+// LiPaC's hit feedback (seeds/001 §3.3.2): a path ray counts the instance it hit, and a
+// probe along the same segment counts the first counting box before that hit (a hitbox, or
+// an omitted instance's box: the custom index is the counter slot). One box per ray, as
+// the thesis's skip-and-continue gives, without a second path through the raygen.
+void countHitFeedback(vec3 origin, vec3 direction, HitInfo hit) {
+  if (hit.t >= 0.0) atomicAdd(hitCounts[hit.instanceIndex], 1u);
+  HitInfo box = traceClosest(origin, direction, hit.t >= 0.0 ? hit.t : kRayTMax,
+                             kMaskCountingBox);
+  if (box.t >= 0.0) atomicAdd(hitCounts[box.instanceIndex], 1u);
+}
+#endif
+
 #if defined(MG_MATERIAL_FLOOR)
 // The floor run: every material replaced by constants, no graph evaluated, so the frame
 // time is the path tracer's alone (what a free material would cost). Each material keeps
@@ -484,8 +501,11 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
   primaryHit.t = -1.0;
   if (sharedPrimary && inside) {
     primaryRay(pixel, vec2(0.5), primaryOrigin, primaryDirection);
-    primaryHit = traceClosest(primaryOrigin, primaryDirection, kRayTMax, 0xFEu);
+    primaryHit = traceClosest(primaryOrigin, primaryDirection, kRayTMax, kRayMaskNoLightQuads);
     rays += 1u;
+#ifdef MG_HIT_FEEDBACK
+    countHitFeedback(primaryOrigin, primaryDirection, primaryHit);
+#endif
   }
 
   vec3 sum = vec3(0.0);
@@ -513,8 +533,12 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
           hit = primaryHit;
         } else {
           // Camera rays skip lights' quads (Cycles 3.4 shows no area lamp to the camera).
-          hit = traceClosest(origin, direction, kRayTMax, bounce == 0u ? 0xFEu : 0xFFu);
+          hit = traceClosest(origin, direction, kRayTMax,
+                             bounce == 0u ? kRayMaskNoLightQuads : kRayMaskAll);
           rays += 1u;
+#ifdef MG_HIT_FEEDBACK
+          countHitFeedback(origin, direction, hit);
+#endif
         }
         if (hit.t < 0.0) {
           radiance += throughput * environmentRadiance(direction);

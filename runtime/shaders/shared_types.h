@@ -46,7 +46,20 @@ MG_CONSTANT(uint, kBindingTileTexels, 12);  // tile cache: texels in a separate 
 MG_CONSTANT(uint, kBindingTileLog, 13);     // tile cache: tiles computed this frame (a set)
 MG_CONSTANT(uint, kBindingTileImage, 14);   // tile cache: texels in a 2D or 3D storage image
 MG_CONSTANT(uint, kBindingTileQueue, 15);   // tile cache, deferred fill: the missing tiles
-MG_CONSTANT(uint, kBindingCount, 16);
+// LiPaC hit feedback (seeds/001 §3.3.2; MG_HIT_FEEDBACK): one uint per scene instance, its
+// hits (or its box's while omitted), then one per hitbox, its box's. Cleared every frame.
+MG_CONSTANT(uint, kBindingHitFeedback, 16);
+MG_CONSTANT(uint, kBindingCount, 17);
+
+// TLAS instance masks and the rays' cull masks. Surfaces answer every path ray; lights'
+// quads (Blender area lamps) only BSDF rays, as Cycles' lamps; LiPaC's counting boxes
+// (hitboxes, omitted instances) only the hit-feedback probe, so no path ray ever stops at
+// one.
+MG_CONSTANT(uint, kMaskSurface, 0x7E);
+MG_CONSTANT(uint, kMaskLightQuad, 0x01);
+MG_CONSTANT(uint, kMaskCountingBox, 0x80);
+MG_CONSTANT(uint, kRayMaskNoLightQuads, 0x7E);  // camera and shadow rays
+MG_CONSTANT(uint, kRayMaskAll, 0x7F);           // BSDF rays
 
 // Compute work-group edge of the ray-query backend.
 MG_CONSTANT(uint, kWorkgroupSize, 8);

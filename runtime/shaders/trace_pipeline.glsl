@@ -23,6 +23,6 @@ bool traceShadow(vec3 origin, vec3 direction, float tMax) {
   traceRayEXT(tlas,
               gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT |
                   gl_RayFlagsSkipClosestHitShaderEXT,
-              0xFE, 0, 1, kMissShadow, origin, 0.0, direction, tMax, 1);
+              kRayMaskNoLightQuads, 0, 1, kMissShadow, origin, 0.0, direction, tMax, 1);
   return shadowPayload != 0u;
 }

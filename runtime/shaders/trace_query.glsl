@@ -4,16 +4,23 @@
 
 layout(set = 0, binding = kBindingTlas) uniform accelerationStructureEXT tlas;
 
-// Closest opaque hit along a ray, or t = -1. `mask`: the TLAS cull mask (camera rays 0xFE
-// skip lights' quads, InstancePlacement::castsShadow). Each initialization gets a constant
-// mask (lavapipe compiled the traversal of a non-constant one far more slowly); the one
-// rayQueryProceedEXT loop keeps one inlined traversal.
+// Closest opaque hit along a ray, or t = -1. `mask`: the TLAS cull mask (camera rays
+// kRayMaskNoLightQuads skip lights' quads, InstancePlacement::castsShadow). Each
+// initialization gets a constant mask (lavapipe compiled the traversal of a non-constant
+// one far more slowly); the one rayQueryProceedEXT loop keeps one inlined traversal.
 HitInfo traceClosest(vec3 origin, vec3 direction, float tMax, uint mask) {
   rayQueryEXT query;
-  if (mask == 0xFFu)
-    rayQueryInitializeEXT(query, tlas, gl_RayFlagsOpaqueEXT, 0xFF, origin, 0.0, direction, tMax);
+  if (mask == kRayMaskAll)
+    rayQueryInitializeEXT(query, tlas, gl_RayFlagsOpaqueEXT, kRayMaskAll, origin, 0.0, direction,
+                          tMax);
+#ifdef MG_HIT_FEEDBACK
+  else if (mask == kMaskCountingBox)
+    rayQueryInitializeEXT(query, tlas, gl_RayFlagsOpaqueEXT, kMaskCountingBox, origin, 0.0,
+                          direction, tMax);
+#endif
   else
-    rayQueryInitializeEXT(query, tlas, gl_RayFlagsOpaqueEXT, 0xFE, origin, 0.0, direction, tMax);
+    rayQueryInitializeEXT(query, tlas, gl_RayFlagsOpaqueEXT, kRayMaskNoLightQuads, origin, 0.0,
+                          direction, tMax);
   while (rayQueryProceedEXT(query)) {
   }
   HitInfo hit;
@@ -35,8 +42,8 @@ HitInfo traceClosest(vec3 origin, vec3 direction, float tMax, uint mask) {
 bool traceShadow(vec3 origin, vec3 direction, float tMax) {
   rayQueryEXT query;
   rayQueryInitializeEXT(query, tlas,
-                        gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT, 0xFE,
-                        origin, 0.0, direction, tMax);
+                        gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT,
+                        kRayMaskNoLightQuads, origin, 0.0, direction, tMax);
   while (rayQueryProceedEXT(query)) {
   }
   return rayQueryGetIntersectionTypeEXT(query, true) !=

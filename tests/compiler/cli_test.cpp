@@ -162,6 +162,43 @@ TEST_F(CliTest, TheSmallCityRendersWithTheDefaultBackend) {
   EXPECT_TRUE(fs::exists(out));
 }
 
+// Bad culling options are usage errors (exit 2) naming the flag, before any GPU work; a
+// culled render of the small city writes its image, its statistics and its top view.
+TEST_F(CliTest, CullingOptionsAreCheckedAndACulledRenderWritesItsTopView) {
+  if (runCli("bench --help").exitCode != 0)
+    GTEST_SKIP() << "this memograph has no renderer";
+  const auto out = (directory_ / "city.pfm").string();
+  const auto top = (directory_ / "city_top.pfm").string();
+  const auto stats = (directory_ / "city.csv").string();
+  const std::string render = "render builtin:city:scale=0.02 --out " + out;
+  const std::pair<std::string, std::string> bad[] = {
+      {" --culling all", "--culling takes none, frustum or lipac, not 'all'"},
+      {" --culling lipac --hitbox-deactivate 30", "--hitbox-deactivate (30) must be below"},
+      {" --culling lipac --hitbox-size -1", "--hitbox-size must be a positive number"},
+      {" --culling frustum --low-frames x", "--low-frames takes a whole number, not 'x'"},
+      {" --blas-budget 64", "they need --culling frustum or --culling lipac"},
+      {" --debug-culling " + top, "--debug-culling shows which instances culling keeps"},
+  };
+  for (const auto& [flags, message] : bad) {
+    const auto run = runCli(render + flags);
+    EXPECT_EQ(run.exitCode, 2) << flags << ": " << run.output;
+    EXPECT_NE(run.output.find(message), std::string::npos) << flags << ": " << run.output;
+    EXPECT_FALSE(fs::exists(out));
+  }
+  const auto run = runCli(render +
+                          " --size 16x9 --paths 1 --bounces 2 --frames 3 --floor-materials "
+                          "--backend query --culling lipac --debug-culling " +
+                          top + " --stats " + stats);
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_NE(run.output.find("culling lipac: last frame"), std::string::npos) << run.output;
+  EXPECT_TRUE(fs::exists(out));
+  EXPECT_GT(fs::file_size(top), 512u * 512u * 12u);  // a 512x512 RGB float PFM
+  std::ifstream csv(stats);
+  std::string header;
+  std::getline(csv, header);
+  EXPECT_NE(header.find(",culling,active_instances,"), std::string::npos) << header;
+}
+
 // Bad cache option values are usage errors (exit 2), refused before any GPU work, and the
 // message names the value and the choices.
 TEST_F(CliTest, RenderAndBenchRefuseBadCacheOptionValues) {

@@ -92,7 +92,7 @@ int runBench(std::span<const std::string_view> args) {
   if (const int code = scanner.scan(scenes); code != kExitOk)
     return code;
   if (help) {
-    std::cout << kHelp << kRendererHelp << kCacheHelp;
+    std::cout << kHelp << kRendererHelp << kCacheHelp << kCullingHelp;
     return kExitOk;
   }
   if (scenes.empty())
@@ -181,7 +181,7 @@ int runBench(std::span<const std::string_view> args) {
            "cache_probe,cache_bytes,median_cache_hit_rate,label,warmup,frame_stride,camera_frames,"
         << benchSummaryCsvColumns()
         << ",cache_value_format,cache_clock,cache_snap_uv,cache_secondary_only,cache_tile,"
-           "frames_requested,stopped_early\n";
+           "culling,frames_requested,stopped_early\n";
   }
   try {
     for (const auto& sceneName : scenes) {
@@ -272,6 +272,23 @@ int runBench(std::span<const std::string_view> args) {
                     << (result.stats.cacheSecondaryOnly ? ", secondary hits only" : "")
                     << "): median hit rate " << 100.0 * summary.medianCacheHitRate << " %, total "
                     << 100.0 * summary.totalCacheHitRate << " %\n";
+        if (result.stats.culling != "none" && !timed.empty()) {
+          std::uint64_t peakBytes = 0, builds = 0, evictions = 0;
+          for (const auto& frame : timed) {
+            peakBytes = std::max(peakBytes, frame.blasBytes + frame.tlasBytes);
+            builds += frame.blasBuilds;
+            evictions += frame.blasEvictions;
+          }
+          const auto& last = timed.back();
+          std::cout << "  culling " << result.stats.culling << ": last frame "
+                    << last.activeInstances << " active, " << last.omittedInstances << " omitted, "
+                    << last.inactiveInstances << " inactive instances";
+          if (last.hitboxes)
+            std::cout << ", " << last.activeHitboxes << " of " << last.hitboxes
+                      << " hitboxes active";
+          std::cout << "; peak AS " << peakBytes << " B; " << builds << " BLAS builds, "
+                    << evictions << " evictions over the timed frames\n";
+        }
         std::cout.flush();
         if (!csvPath.empty()) {
           csv << label << ',' << width << ',' << height << ',' << p << ',' << l << ','
@@ -287,8 +304,8 @@ int runBench(std::span<const std::string_view> args) {
               << (staticCamera ? 0 : plan.stride) << ',' << (staticCamera ? 0 : plan.pathCameras)
               << ',' << benchSummaryCsvValues(summary) << ',' << result.stats.cacheValueFormat
               << ',' << result.stats.cacheClock << ',' << int(result.stats.cacheSnapUv) << ','
-              << int(result.stats.cacheSecondaryOnly) << ',' << result.stats.cacheTile << ',' << f
-              << ',' << int(stoppedEarly) << '\n';
+              << int(result.stats.cacheSecondaryOnly) << ',' << result.stats.cacheTile << ','
+              << result.stats.culling << ',' << f << ',' << int(stoppedEarly) << '\n';
         }
         if (!framesCsv.empty()) {
           std::ostringstream perFrame;

@@ -21,6 +21,8 @@ struct TimedFrameSummary {
   std::uint64_t cacheHits = 0;
   // Median of each of runtime::frameCounters(), in its order.
   std::vector<double> counterMedians;
+  // The largest value of each counter marked `peak`, in its order.
+  std::vector<double> counterPeaks;
 };
 
 TimedFrameSummary summarizeTimedFrames(std::span<const runtime::FrameStats> frames);

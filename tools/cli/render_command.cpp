@@ -36,8 +36,8 @@ constexpr std::string_view kHelp =
     "\n"
     "Path traces a scene (thesis §5.2) and writes the accumulated HDR image. SCENE is a\n"
     "glTF/OBJ file whose material names map to DIR/<name>.mgraph (--materials DIR), or a\n"
-    "built-in scene (classroom, landscape) with options octaves, layers, terrain, nee,\n"
-    "e.g. builtin:classroom:octaves=10,layers=3 (docs/scenes.md).\n"
+    "built-in scene (classroom, landscape, city) with options octaves, layers, terrain, nee,\n"
+    "scale, e.g. builtin:classroom:octaves=10,layers=3 (docs/scenes.md).\n"
     "\n"
     "options:\n"
     "  --out FILE            .pfm (always), .png or .exr (builds with OpenImageIO)\n"
@@ -55,7 +55,10 @@ constexpr std::string_view kHelp =
     "  --stats FILE          per-frame statistics as CSV (GPU ms, rays, AS memory, cache)\n"
     "  --validation          enable the Vulkan validation layer\n"
     "  --debug-misses        texel cache debug view (thesis Fig. 6.9): each frame alone,\n"
-    "                        red where a path of the pixel missed the cache\n";
+    "                        red where a path of the pixel missed the cache\n"
+    "  --debug-culling FILE  with --culling: also write a 512x512 top-down view of the last\n"
+    "                        frame's instances (orange active, yellow omitted, grey\n"
+    "                        inactive, blue outlines: inactive hitboxes; red: the camera)\n";
 
 }  // namespace
 
@@ -90,13 +93,15 @@ int runRender(std::span<const std::string_view> args) {
   scanner.flag("--validation", &validation);
   bool debugMisses = false;
   scanner.flag("--debug-misses", &debugMisses);
+  std::string debugCulling;
+  scanner.option("--debug-culling", &debugCulling);
   scanner.flag("--list-devices", &listDevices);
   scanner.flag("--help", &help);
   std::vector<std::string> positional;
   if (const int code = scanner.scan(positional); code != kExitOk)
     return code;
   if (help) {
-    std::cout << kHelp << kRendererHelp << kCacheHelp;
+    std::cout << kHelp << kRendererHelp << kCacheHelp << kCullingHelp;
     return kExitOk;
   }
   if (listDevices) {
@@ -121,20 +126,34 @@ int runRender(std::span<const std::string_view> args) {
   settings.sharedPrimaryRay = rendererArguments.sharedPrimary;
 
   // Every output is checked before any work: its format (a usage error), then its folder.
-  std::string extension = std::filesystem::path(out).extension().string();
-  for (auto& c : extension)
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  auto imageExtension = [](const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    for (auto& c : extension)
+      c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return extension;
+  };
+  auto checkImageOutput = [&](const std::string& path, std::string_view flag) {
+    const std::string extension = imageExtension(path);
 #ifndef MEMOGRAPH_HAVE_IO
-  if (extension != ".pfm")
-    return usageError("render",
-                      "this build writes only .pfm (no OpenImageIO); convert it "
-                      "with 'memograph' built with the io module");
+    if (extension != ".pfm")
+      return usageError("render",
+                        "this build writes only .pfm (no OpenImageIO); convert it "
+                        "with 'memograph' built with the io module");
 #else
-  if (extension != ".pfm" && extension != ".png" && extension != ".exr")
-    return usageError("render", "--out must name a .pfm, .png or .exr file, not '" + out + "'");
+    if (extension != ".pfm" && extension != ".png" && extension != ".exr")
+      return usageError(
+          "render", std::string(flag) + " must name a .pfm, .png or .exr file, not '" + path + "'");
 #endif
-  if (const int code = checkOutputFile("render", out); code != kExitOk)
+    return checkOutputFile("render", path);
+  };
+  if (const int code = checkImageOutput(out, "--out"); code != kExitOk)
     return code;
+  if (!debugCulling.empty()) {
+    if (const int code = checkImageOutput(debugCulling, "--debug-culling"); code != kExitOk)
+      return code;
+    if (std::filesystem::path(debugCulling) == std::filesystem::path(out))
+      return usageError("render", "--debug-culling and --out name the same file");
+  }
   if (!stats.empty()) {
     if (const int code = checkOutputFile("render", stats); code != kExitOk)
       return code;
@@ -152,6 +171,13 @@ int runRender(std::span<const std::string_view> args) {
   if (debugMisses && options.cache.mode == runtime::CacheMode::None)
     return usageError("render", "--debug-misses shows cache misses; it needs --cache texel");
   options.debugCacheMisses = debugMisses;
+  if (!debugCulling.empty()) {
+    if (options.culling.mode == runtime::CullingMode::None)
+      return usageError("render",
+                        "--debug-culling shows which instances culling keeps; it needs "
+                        "--culling frustum or --culling lipac");
+    options.debugCullingSize = 512;
+  }
   options.shaderCache = !noShaderCache;
 
   // The scene: built-in, or a file through the io module.
@@ -270,27 +296,35 @@ int runRender(std::span<const std::string_view> args) {
       std::cerr << "validation: " << error << "\n";
     // The image and the statistics are one output set (files::commitFileSet): both are
     // written, or neither, so a failing --stats no longer leaves the image behind.
-    std::vector<files::StagedFile> staged(1);
+    std::vector<files::StagedFile> staged;
     std::string error;
-    if (extension == ".pfm") {
-      if (!staged[0].create(out, error) ||
-          !staged[0].write(runtime::encodePfm(result.image), error)) {
-        std::cerr << "memograph render: " << out << ": " << error << "\n";
-        return kExitFailure;
+    auto stage = [&](const std::string& path, const runtime::HdrImage& image) {
+      files::StagedFile& file = staged.emplace_back();
+      if (imageExtension(path) == ".pfm") {
+        if (!file.create(path, error) || !file.write(runtime::encodePfm(image), error)) {
+          std::cerr << "memograph render: " << path << ": " << error << "\n";
+          return false;
+        }
+        return true;
       }
-    } else {
 #ifdef MEMOGRAPH_HAVE_IO
-      if (!io::stageImage(out, result.image, io::LdrOptions{}, staged[0], diagnostics)) {
+      if (!io::stageImage(path, image, io::LdrOptions{}, file, diagnostics)) {
         printDiagnostics(diagnostics);
-        return kExitFailure;
+        return false;
       }
 #endif
-    }
+      return true;
+    };
+    staged.reserve(3);
+    if (!stage(out, result.image))
+      return kExitFailure;
+    if (!debugCulling.empty() && !stage(debugCulling, result.cullingView))
+      return kExitFailure;
     if (!stats.empty()) {
       std::ostringstream csv;
       runtime::writeStatsCsv(csv, result.stats);
-      staged.emplace_back();
-      if (!staged[1].create(stats, error) || !staged[1].write(csv.str(), error)) {
+      files::StagedFile& file = staged.emplace_back();
+      if (!file.create(stats, error) || !file.write(csv.str(), error)) {
         std::cerr << "memograph render: " << stats << ": " << error << "\n";
         return kExitFailure;
       }
@@ -318,6 +352,14 @@ int runRender(std::span<const std::string_view> args) {
         std::cerr << ", " << last.cacheTilesComputed << " tiles computed ("
                   << last.cacheDuplicateTiles << " duplicates)";
       std::cerr << "\n";
+    }
+    if (result.stats.culling != "none" && !result.stats.frames.empty()) {
+      const auto& last = result.stats.frames.back();
+      std::cerr << "culling " << result.stats.culling << ": last frame " << last.activeInstances
+                << " active, " << last.omittedInstances << " omitted, " << last.inactiveInstances
+                << " inactive instances; AS " << last.blasBytes + last.tlasBytes
+                << " B resident (peak BLAS " << result.stats.accelerationStructures.blasBytes
+                << " B)\n";
     }
   } catch (const std::exception& e) {
     std::cerr << "memograph render: " << e.what() << "\n";

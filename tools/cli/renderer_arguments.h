@@ -1,7 +1,8 @@
 // The renderer's command-line options that `render` and `bench` share: trace backend,
 // material dispatch, device, node library, shader cache folder, shared primary ray, emissive
-// NEE, and the material cache's options (cache_arguments.h), with their help text (each
-// command prints its own options, then kRendererHelp, then kCacheHelp).
+// NEE, the material cache's options (cache_arguments.h) and culling's (culling_arguments.h),
+// with their help text (each command prints its own options, then kRendererHelp, then
+// kCacheHelp and kCullingHelp).
 #pragma once
 
 #include <stdexcept>
@@ -9,6 +10,7 @@
 
 #include "cache_arguments.h"
 #include "cli_common.h"
+#include "culling_arguments.h"
 #include "runtime/renderer.h"
 
 namespace memograph::cli {
@@ -31,6 +33,7 @@ inline constexpr const char* kRendererHelp =
 
 struct RendererArguments {
   CacheArguments cache;
+  CullingArguments culling;
   std::string backend = "auto", materialDispatch = "auto", device = "-1", nodes, shaderCache;
   bool sharedPrimary = false;
   // A scene option, not a renderer one: the command applies it to each scene it loads.
@@ -38,6 +41,7 @@ struct RendererArguments {
 
   void registerWith(ArgumentScanner& scanner) {
     cache.registerWith(scanner);
+    culling.registerWith(scanner);
     scanner.option("--backend", &backend);
     scanner.option("--material-dispatch", &materialDispatch);
     scanner.option("--device", &device);
@@ -55,6 +59,7 @@ struct RendererArguments {
     options.materialDispatch = runtime::parseMaterialDispatch(materialDispatch);
     options.cache = cache.parse();
     options.floorMaterials = cache.floorMaterials;
+    options.culling = culling.parse();
     std::uint32_t deviceIndex = 0;
     if (device != "-1" && !parseNumber(device, deviceIndex))
       throw std::invalid_argument(

@@ -1,0 +1,89 @@
+#include "runtime/blas_cache.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+namespace memograph::runtime {
+
+BlasCache::BlasCache(const VulkanContext& context, const GpuBuffer& vertices,
+                     std::uint32_t vertexStride, const GpuBuffer& indices,
+                     std::vector<MeshGeometry> meshes, std::uint64_t budgetBytes,
+                     std::uint64_t buildTriangles)
+    : context_(context),
+      vertices_(vertices),
+      vertexStride_(vertexStride),
+      indices_(indices),
+      meshes_(std::move(meshes)),
+      budgetBytes_(budgetBytes),
+      buildTriangles_(buildTriangles),
+      blases_(meshes_.size()),
+      lastUsed_(meshes_.size(), 0) {}
+
+BlasFrameWork BlasCache::prepare(std::span<const std::uint32_t> needed, std::uint32_t frame) {
+  BlasFrameWork work;
+  std::vector<std::uint8_t> wanted(meshes_.size(), 0);
+  for (std::uint32_t mesh : needed) {
+    if (mesh >= meshes_.size())
+      throw std::logic_error("BlasCache: mesh " + std::to_string(mesh) + " of " +
+                             std::to_string(meshes_.size()));
+    wanted[mesh] = 1;
+  }
+
+  // Builds, lowest mesh index first, within the triangle budget.
+  std::vector<std::uint32_t> toBuild;
+  std::vector<MeshGeometry> geometry;
+  for (std::uint32_t mesh = 0; mesh < meshes_.size(); ++mesh) {
+    if (!wanted[mesh] || blases_[mesh])
+      continue;
+    const std::uint64_t triangles = meshes_[mesh].triangleCount;
+    if (buildTriangles_ && !toBuild.empty() && work.trianglesBuilt + triangles > buildTriangles_) {
+      ++work.waiting;
+      continue;
+    }
+    toBuild.push_back(mesh);
+    geometry.push_back(meshes_[mesh]);
+    work.trianglesBuilt += triangles;
+  }
+  if (!toBuild.empty()) {
+    CompactedBlases built =
+        buildCompactedBlases(context_, vertices_, vertexStride_, indices_, geometry);
+    for (std::size_t k = 0; k < toBuild.size(); ++k) {
+      blases_[toBuild[k]] = std::move(built.blases[k]);
+      residentBytes_ += blases_[toBuild[k]]->size();
+      ++residentCount_;
+    }
+    work.builds = static_cast<std::uint32_t>(toBuild.size());
+    work.scratchBytes = built.scratchBytes;
+    work.gpuMilliseconds = built.gpuMilliseconds;
+  }
+  for (std::uint32_t mesh = 0; mesh < meshes_.size(); ++mesh)
+    if (wanted[mesh] && blases_[mesh])
+      lastUsed_[mesh] = frame + 1;
+
+  // Eviction of BLASes this frame does not use, least recently used first (ties: lowest
+  // mesh index), while over the budget. What this frame uses stays even past the budget.
+  if (budgetBytes_ && residentBytes_ > budgetBytes_) {
+    std::vector<std::uint32_t> unused;
+    for (std::uint32_t mesh = 0; mesh < meshes_.size(); ++mesh)
+      if (blases_[mesh] && lastUsed_[mesh] != frame + 1)
+        unused.push_back(mesh);
+    std::stable_sort(unused.begin(), unused.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return lastUsed_[a] < lastUsed_[b]; });
+    for (std::uint32_t mesh : unused) {
+      if (residentBytes_ <= budgetBytes_)
+        break;
+      residentBytes_ -= blases_[mesh]->size();
+      --residentCount_;
+      blases_[mesh].reset();
+      ++work.evictions;
+    }
+  }
+  return work;
+}
+
+VkDeviceAddress BlasCache::address(std::uint32_t mesh) const {
+  return mesh < blases_.size() && blases_[mesh] ? blases_[mesh]->address() : 0;
+}
+
+}  // namespace memograph::runtime

@@ -1,0 +1,157 @@
+#include "runtime/culled_acceleration.h"
+
+#include <algorithm>
+#include <array>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "runtime/shaders/shared_types.h"
+
+namespace memograph::runtime {
+
+namespace {
+
+constexpr VkBufferUsageFlags kBuildInput =
+    VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
+    VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+
+// The unit cube's 8 corners and 12 triangles.
+constexpr std::array<float, 24> kCubeCorners = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0,
+                                                0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1};
+constexpr std::array<std::uint32_t, 36> kCubeTriangles = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6,
+                                                          0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7,
+                                                          0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+
+// The unit cube stretched over a box; a flat box gets a millimetre of thickness so that
+// rays still cross it.
+glm::mat4 boxTransform(const Bounds& box) {
+  glm::vec3 extent = glm::max(box.hi - box.lo, glm::vec3(1e-3f));
+  return glm::scale(glm::translate(glm::mat4(1.0f), box.lo), extent);
+}
+
+}  // namespace
+
+CulledAccelerationStructures::CulledAccelerationStructures(const VulkanContext& context,
+                                                           const Scene& scene,
+                                                           const SceneBuffers& buffers,
+                                                           const CullingOptions& options)
+    : context_(context),
+      options_(options),
+      culling_(scene, options),
+      blasCache_(context, buffers.vertices, sizeof(gpu::Vertex), buffers.indices, buffers.geometry,
+                 options.blasBudgetBytes, options.blasBuildTriangles) {
+  for (const Instance& instance : scene.instances) {
+    instanceMeshes_.push_back(instance.mesh);
+    castsShadow_.push_back(instance.castsShadow ? 1 : 0);
+    transforms_.push_back(instance.objectToWorld);
+  }
+  if (hitFeedbackOn()) {
+    boxVertices_ = uploadBuffer(context, kCubeCorners.data(), sizeof kCubeCorners, kBuildInput);
+    boxIndices_ = uploadBuffer(context, kCubeTriangles.data(), sizeof kCubeTriangles, kBuildInput);
+    const MeshGeometry cube{0, 8, 0, 12};
+    box_ = buildCompactedBlases(context, boxVertices_, 3 * sizeof(float), boxIndices_,
+                                std::span<const MeshGeometry>(&cube, 1));
+  }
+  tlas_ = std::make_unique<TopLevelStructure>(context, culling_.counterCount());
+  // The counters live on the device (the trace's atomics) and are copied to a host buffer
+  // after each frame; 16 bytes at least, so the binding is valid without feedback too.
+  const VkDeviceSize counterBytes =
+      std::max<VkDeviceSize>(16, VkDeviceSize(culling_.counterCount()) * sizeof(std::uint32_t));
+  hitFeedback_ = GpuBuffer(context, counterBytes,
+                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                               VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                           VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  hitReadback_ = hostBuffer(context, counterBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+}
+
+void CulledAccelerationStructures::prepareFrame(const Camera& camera, float aspect,
+                                                std::uint32_t frame, std::uint64_t previousRays,
+                                                FrameStats& stats) {
+  std::vector<std::uint32_t> hits;
+  if (hitFeedbackOn() && frame > 0) {
+    hits.resize(culling_.counterCount());
+    hitReadback_.read(hits.data(), hits.size() * sizeof(std::uint32_t));
+  }
+  culling_.update(camera, aspect, hits, previousRays);
+
+  const std::vector<InstanceState>& states = culling_.states();
+  std::vector<std::uint32_t> needed;
+  for (std::size_t i = 0; i < states.size(); ++i)
+    if (states[i] == InstanceState::Active)
+      needed.push_back(instanceMeshes_[i]);
+  const BlasFrameWork work = blasCache_.prepare(needed, frame);
+
+  // The TLAS records: active instances whose BLAS is resident, then the counting boxes.
+  VkAccelerationStructureInstanceKHR* records = tlas_->records();
+  std::uint32_t n = 0;
+  std::uint32_t waitingInstances = 0;
+  const VkDeviceAddress box = hitFeedbackOn() ? box_.blases.front().address() : 0;
+  for (std::uint32_t i = 0; i < states.size(); ++i) {
+    if (states[i] == InstanceState::Active) {
+      const VkDeviceAddress blas = blasCache_.address(instanceMeshes_[i]);
+      if (!blas) {
+        ++waitingInstances;
+        continue;
+      }
+      records[n++] = instanceRecord(
+          transforms_[i], i, castsShadow_[i] ? gpu::kMaskSurface : gpu::kMaskLightQuad, blas);
+    } else if (states[i] == InstanceState::Omitted) {
+      records[n++] =
+          instanceRecord(boxTransform(culling_.bounds()[i]), i, gpu::kMaskCountingBox, box);
+    }
+  }
+  if (hitFeedbackOn()) {
+    for (std::uint32_t h = 0; h < culling_.hitboxCount(); ++h) {
+      if (!culling_.hitboxUsed(h) || culling_.hitboxActive(h))
+        continue;
+      records[n++] = instanceRecord(boxTransform(culling_.hitboxBounds(h)),
+                                    culling_.instanceCount() + h, gpu::kMaskCountingBox, box);
+    }
+  }
+  records_ = n;
+
+  const CullingCounts& counts = culling_.counts();
+  stats.activeInstances = counts.active - waitingInstances;
+  stats.waitingInstances = waitingInstances;
+  stats.omittedInstances = counts.omitted;
+  stats.inactiveInstances = counts.inactive;
+  stats.hitboxes = counts.hitboxes;
+  stats.activeHitboxes = counts.activeHitboxes;
+  stats.instanceStateChanges = counts.changes;
+  stats.tlasRecords = n;
+  stats.blasBytes = blasCache_.residentBytes() + box_.bytes;
+  stats.tlasBytes = tlas_->bytes();
+  stats.asScratchBytes = tlas_->scratchBytes() + work.scratchBytes;
+  stats.blasBuilds = work.builds;
+  stats.blasEvictions = work.evictions;
+  stats.blasBuildMilliseconds = work.gpuMilliseconds;
+}
+
+void CulledAccelerationStructures::recordClears(VkCommandBuffer commands) const {
+  if (hitFeedbackOn())
+    vkCmdFillBuffer(commands, hitFeedback_.buffer(), 0, VK_WHOLE_SIZE, 0);
+}
+
+void CulledAccelerationStructures::recordTlasBuild(VkCommandBuffer commands, VkQueryPool timestamps,
+                                                   std::uint32_t first) const {
+  if (timestamps)
+    vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps, first);
+  tlas_->recordBuild(commands, records_);
+  if (timestamps)
+    vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+                        timestamps, first + 1);
+}
+
+void CulledAccelerationStructures::recordAfterTrace(VkCommandBuffer commands) const {
+  if (!hitFeedbackOn())
+    return;
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       0, 1, &barrier, 0, nullptr, 0, nullptr);
+  VkBufferCopy copy{0, 0, hitFeedback_.size()};
+  vkCmdCopyBuffer(commands, hitFeedback_.buffer(), hitReadback_.buffer(), 1, &copy);
+}
+
+}  // namespace memograph::runtime

@@ -1,0 +1,67 @@
+// The acceleration structures of a culled render (--culling frustum|lipac; seeds/001 §3.3):
+// every frame, SceneCulling decides which instances the TLAS holds from the camera and the
+// last frame's hit feedback, the BlasCache builds and evicts their BLASes, and the TLAS is
+// rebuilt from the active instances plus LiPaC's counting boxes (one static unit-cube BLAS,
+// transformed to each omitted instance's or inactive hitbox's bounds).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "runtime/acceleration_structures.h"
+#include "runtime/blas_cache.h"
+#include "runtime/gpu_buffer.h"
+#include "runtime/render_stats.h"
+#include "runtime/scene.h"
+#include "runtime/scene_culling.h"
+#include "runtime/scene_upload.h"
+#include "runtime/vulkan_context.h"
+
+namespace memograph::runtime {
+
+class CulledAccelerationStructures {
+ public:
+  // `buffers` must outlive this object.
+  CulledAccelerationStructures(const VulkanContext& context, const Scene& scene,
+                               const SceneBuffers& buffers, const CullingOptions& options);
+
+  VkAccelerationStructureKHR tlas() const { return tlas_->handle(); }
+  // LiPaC's counters (binding kBindingHitFeedback): SceneCulling::counterCount() uints.
+  const GpuBuffer& hitFeedback() const { return hitFeedback_; }
+  bool hitFeedbackOn() const { return options_.mode == CullingMode::Lipac; }
+  const SceneCulling& culling() const { return culling_; }
+
+  // Before frame `frame`'s submit: reads the last frame's counters (`previousRays`: the rays
+  // it traced), updates the instance states, builds and evicts BLASes and writes the TLAS
+  // records. Fills the frame's culling fields of `stats`.
+  void prepareFrame(const Camera& camera, float aspect, std::uint32_t frame,
+                    std::uint64_t previousRays, FrameStats& stats);
+  // In the frame's command buffer, with the other clears (the caller's barrier orders them
+  // before the trace): zeroes the hit counters.
+  void recordClears(VkCommandBuffer commands) const;
+  // Before the trace: builds the TLAS (between timestamps `first` and `first + 1` of
+  // `timestamps` when it is not null) and makes it visible to the trace.
+  void recordTlasBuild(VkCommandBuffer commands, VkQueryPool timestamps, std::uint32_t first) const;
+  // After the trace: copies the counters where prepareFrame reads them.
+  void recordAfterTrace(VkCommandBuffer commands) const;
+
+ private:
+  const VulkanContext& context_;
+  CullingOptions options_;
+  SceneCulling culling_;
+  std::vector<std::uint32_t> instanceMeshes_;
+  std::vector<std::uint8_t> castsShadow_;
+  std::vector<glm::mat4> transforms_;
+  BlasCache blasCache_;
+  // The unit cube [0, 1]^3 that counting boxes instance.
+  GpuBuffer boxVertices_;
+  GpuBuffer boxIndices_;
+  CompactedBlases box_;
+  std::unique_ptr<TopLevelStructure> tlas_;
+  std::uint32_t records_ = 0;
+  GpuBuffer hitFeedback_;
+  GpuBuffer hitReadback_;
+};
+
+}  // namespace memograph::runtime

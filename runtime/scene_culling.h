@@ -1,0 +1,148 @@
+// Which instances go into the TLAS each frame (seeds/001 §3.3.2): all of them, those in the
+// camera's frustum or near it, or light-path-guided culling (LiPaC), where hit counters from
+// the last frame's trace decide. Host-side state only, no Vulkan, so it is tested without a
+// device; the renderer feeds it the hit counters and builds the TLAS from its states.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "runtime/scene.h"
+
+namespace memograph::runtime {
+
+enum class CullingMode { None, Frustum, Lipac };
+
+// Throws std::invalid_argument listing the names on anything else.
+CullingMode parseCullingMode(std::string_view name);
+std::string_view cullingModeName(CullingMode mode);
+
+struct CullingOptions {
+  CullingMode mode = CullingMode::None;
+  // frustum: instances within this distance of the camera stay too (shadows and reflections
+  // of what is just behind it), in scene units (metres in the built-in scenes).
+  float radius = 30.0f;
+  // lipac: the hitbox grid's cell edge in x and z.
+  float hitboxSize = 50.0f;
+  // lipac thresholds, in hits per million rays traced in the frame, so that one setting
+  // holds at every image size and sample count (activation takes at least 4 hits for a
+  // hitbox, 2 for an instance, however small the frame). Deactivation waits `lowFrames`
+  // frames, doubled for a hitbox or an instance each time it leaves. ϑ_a activates an inactive
+  // hitbox (its box's hits plus its instances'); an active one deactivates after `lowFrames` frames
+  // in a row below ϑ_d (§3.3.2: "around factor 10" apart, "low for several frames").
+  double hitboxActivate = 20.0;
+  double hitboxDeactivate = 2.0;
+  // An instance with its own BLAS (used by no other instance) in an active hitbox is first
+  // omitted (a box counts its rays) and activated above σ_a; an active one goes back to
+  // omitted after `lowFrames` frames below σ_o.
+  double instanceActivate = 4.0;
+  double instanceDeactivate = 0.4;
+  std::uint32_t lowFrames = 8;
+  // An instance that enters the frustum is activated at once when its bounding sphere's
+  // angular radius is at least this fraction of the vertical field of view (§3.3.2: the
+  // feedback's latency would show it a frame late); smaller ones wait for the feedback.
+  float appearMinFraction = 0.01f;
+  // BLAS residency (§3.3.1): bytes of resident BLASes past which those no instance in the
+  // TLAS uses are evicted, least recently used first (0: no limit), and the triangles built
+  // per frame at most (0: no limit; at least one BLAS is built per frame). A triangle
+  // budget, not a time budget, so that pictures do not depend on the machine's speed.
+  std::uint64_t blasBudgetBytes = 0;
+  std::uint64_t blasBuildTriangles = 0;
+};
+
+// Throws std::invalid_argument with the option's flag name on a bad value.
+void validateCullingOptions(const CullingOptions& options);
+
+enum class InstanceState : std::uint8_t { Inactive = 0, Omitted = 1, Active = 2 };
+
+struct Bounds {
+  glm::vec3 lo{0.0f};
+  glm::vec3 hi{0.0f};
+  glm::vec3 centre() const { return 0.5f * (lo + hi); }
+};
+
+// World-space bounds of every instance of the scene.
+std::vector<Bounds> instanceBounds(const Scene& scene);
+
+// The five planes of a camera's frustum (inward normals, w = offset): four sides and the
+// camera's own plane; no far plane.
+struct Frustum {
+  glm::vec4 planes[5];
+  bool intersects(const Bounds& box) const;
+};
+Frustum cameraFrustum(const Camera& camera, float aspect);
+
+struct CullingCounts {
+  std::uint32_t active = 0;
+  std::uint32_t omitted = 0;
+  std::uint32_t inactive = 0;
+  std::uint32_t hitboxes = 0;        // hitboxes with instances
+  std::uint32_t activeHitboxes = 0;  // of which active
+  std::uint32_t changes = 0;         // instance state changes in the last update
+};
+
+class SceneCulling {
+ public:
+  SceneCulling(const Scene& scene, const CullingOptions& options);
+
+  // Before each frame's trace: the frame's camera and image aspect, and the counters of the
+  // previous frame's trace (instanceCount() + hitboxCount() values; empty before the first
+  // frame, and for the modes without feedback) with the rays it traced.
+  void update(const Camera& camera, float aspect, std::span<const std::uint32_t> hits,
+              std::uint64_t rays);
+
+  std::uint32_t instanceCount() const { return static_cast<std::uint32_t>(states_.size()); }
+  std::uint32_t hitboxCount() const { return static_cast<std::uint32_t>(hitboxActive_.size()); }
+  // Counter slots the trace writes: one per instance (its hits, or its box's when
+  // omitted), then one per hitbox (its box's, when inactive).
+  std::uint32_t counterCount() const { return instanceCount() + hitboxCount(); }
+
+  const std::vector<InstanceState>& states() const { return states_; }
+  const std::vector<Bounds>& bounds() const { return bounds_; }
+  bool hitboxActive(std::uint32_t h) const { return hitboxActive_[h] != 0; }
+  // A hitbox's box: its grid cell in x and z, the height range of its instances.
+  const Bounds& hitboxBounds(std::uint32_t h) const { return hitboxBounds_[h]; }
+  // Whether a hitbox holds instances (an empty cell has no box: nothing to activate).
+  bool hitboxUsed(std::uint32_t h) const { return !hitboxInstances_[h].empty(); }
+  std::uint32_t hitboxOf(std::uint32_t instance) const { return instanceHitbox_[instance]; }
+  const CullingCounts& counts() const { return counts_; }
+
+ private:
+  void updateFrustum(const Frustum& frustum, const Camera& camera);
+  void updateLipac(const Frustum& frustum, const Camera& camera,
+                   std::span<const std::uint32_t> hits, std::uint64_t rays);
+  void setState(std::uint32_t instance, InstanceState state);
+  void count();
+
+  CullingOptions options_;
+  std::vector<Bounds> bounds_;
+  std::vector<std::uint8_t> ownBlas_;  // the instance's mesh has no other instance
+  // Never culled: lights' quads, and instances wider than two hitboxes (the ground), which
+  // no one hitbox stands for.
+  std::vector<std::uint8_t> alwaysOn_;
+  std::vector<InstanceState> states_;
+  std::vector<std::uint8_t> inFrustum_;   // last update's frustum test (lipac)
+  std::vector<std::uint32_t> lowFrames_;  // per instance, frames below its deactivation
+  std::vector<std::uint32_t> lowNeeded_;  // per instance, as hitboxLowNeeded_
+  // Activated on appearing in the frustum while its hitbox was inactive: it stays while it
+  // is hit, until its hitbox activates (then the hitbox's rules hold).
+  std::vector<std::uint8_t> appeared_;
+  std::vector<std::uint32_t> instanceHitbox_;
+  std::vector<std::vector<std::uint32_t>> hitboxInstances_;
+  std::vector<Bounds> hitboxBounds_;
+  std::vector<std::uint8_t> hitboxActive_;
+  std::vector<std::uint32_t> hitboxLowFrames_;
+  // Frames below ϑ_d a hitbox needs before it deactivates: lowFrames, doubled each time it
+  // deactivates (up to kMaxLowFrames), so a hitbox whose box sees many rays but whose
+  // instances see few settles instead of cycling.
+  std::vector<std::uint32_t> hitboxLowNeeded_;
+  CullingCounts counts_;
+  bool first_ = true;
+};
+
+}  // namespace memograph::runtime

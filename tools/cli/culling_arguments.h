@@ -1,0 +1,84 @@
+// The culled acceleration structures' command-line options (seeds/001 §3.3), shared by
+// `render` and `bench`.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+#include "cli_common.h"
+#include "runtime/scene_culling.h"
+
+namespace memograph::cli {
+
+inline constexpr const char* kCullingHelp =
+    "  --culling C           which instances the TLAS holds each frame: none (default: all),\n"
+    "                        frustum (those in the camera's frustum or within\n"
+    "                        --culling-radius of it) or lipac (light-path-guided culling:\n"
+    "                        hit counters from the last frame's rays activate hitboxes of\n"
+    "                        a grid, so what is seen in a mirror or lights the view stays)\n"
+    "  --culling-radius R    frustum: also keep instances within R of the camera (default 30)\n"
+    "  --hitbox-size S       lipac: hitbox grid cell edge in x and z (default 50)\n"
+    "  --hitbox-activate A   lipac: an inactive hitbox activates at A hits per million rays\n"
+    "                        of the frame (default 20)\n"
+    "  --hitbox-deactivate D lipac: an active hitbox deactivates after --low-frames frames\n"
+    "                        below D hits per million rays (default 2)\n"
+    "  --instance-activate A lipac: an instance with its own BLAS, omitted (a box counts its\n"
+    "                        rays), activates at A hits per million rays (default 4)\n"
+    "  --instance-deactivate D  lipac: and is omitted again below D (default 0.4)\n"
+    "  --low-frames K        lipac: frames below a deactivation threshold before it acts\n"
+    "                        (default 8; doubled for a hitbox each time it deactivates)\n"
+    "  --blas-budget MB      culled: evict BLASes no instance in the TLAS uses, least\n"
+    "                        recently used first, past MB mebibytes (default: no limit)\n"
+    "  --blas-build-budget T culled: build at most T triangles of BLASes a frame (at least\n"
+    "                        one BLAS; default: no limit)\n";
+
+struct CullingArguments {
+  std::string mode = "none", radius = "30", hitboxSize = "50", hitboxActivate = "20",
+              hitboxDeactivate = "2", instanceActivate = "4", instanceDeactivate = "0.4",
+              lowFrames = "8", blasBudget = "0", blasBuildBudget = "0";
+
+  void registerWith(ArgumentScanner& scanner) {
+    scanner.option("--culling", &mode);
+    scanner.option("--culling-radius", &radius);
+    scanner.option("--hitbox-size", &hitboxSize);
+    scanner.option("--hitbox-activate", &hitboxActivate);
+    scanner.option("--hitbox-deactivate", &hitboxDeactivate);
+    scanner.option("--instance-activate", &instanceActivate);
+    scanner.option("--instance-deactivate", &instanceDeactivate);
+    scanner.option("--low-frames", &lowFrames);
+    scanner.option("--blas-budget", &blasBudget);
+    scanner.option("--blas-build-budget", &blasBuildBudget);
+  }
+
+  // Throws std::invalid_argument with a message for the user.
+  runtime::CullingOptions parse() const {
+    runtime::CullingOptions o;
+    o.mode = runtime::parseCullingMode(mode);
+    auto real = [](const std::string& text, const char* flag) {
+      double value = 0.0;
+      if (!parseReal(text, value))
+        throw std::invalid_argument(std::string(flag) + " takes a number, not '" + text + "'");
+      return value;
+    };
+    auto whole = [](const std::string& text, const char* flag) {
+      std::uint32_t value = 0;
+      if (!parseNumber(text, value))
+        throw std::invalid_argument(std::string(flag) + " takes a whole number, not '" + text +
+                                    "'");
+      return value;
+    };
+    o.radius = static_cast<float>(real(radius, "--culling-radius"));
+    o.hitboxSize = static_cast<float>(real(hitboxSize, "--hitbox-size"));
+    o.hitboxActivate = real(hitboxActivate, "--hitbox-activate");
+    o.hitboxDeactivate = real(hitboxDeactivate, "--hitbox-deactivate");
+    o.instanceActivate = real(instanceActivate, "--instance-activate");
+    o.instanceDeactivate = real(instanceDeactivate, "--instance-deactivate");
+    o.lowFrames = whole(lowFrames, "--low-frames");
+    o.blasBudgetBytes = std::uint64_t(whole(blasBudget, "--blas-budget")) << 20;
+    o.blasBuildTriangles = whole(blasBuildBudget, "--blas-build-budget");
+    runtime::validateCullingOptions(o);
+    return o;
+  }
+};
+
+}  // namespace memograph::cli
