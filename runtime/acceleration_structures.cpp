@@ -11,14 +11,6 @@ namespace memograph::runtime {
 
 namespace {
 
-constexpr VkBufferUsageFlags kBuildInput =
-    VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
-    VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
-
-VkDeviceSize alignUp(VkDeviceSize value, VkDeviceSize alignment) {
-  return (value + alignment - 1) / alignment * alignment;
-}
-
 // Makes finished builds visible to what comes next (compaction, copies, the TLAS build).
 void buildBarrier(VkCommandBuffer commands) {
   VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
@@ -57,6 +49,37 @@ AccelerationStructure::AccelerationStructure(const VulkanContext& context,
   address_ = f.getAccelerationStructureDeviceAddress(device, &addressInfo);
 }
 
+VkAccelerationStructureGeometryKHR meshGeometry(const GpuBuffer& vertices,
+                                                std::uint32_t vertexStride,
+                                                const GpuBuffer& indices,
+                                                const MeshGeometry& mesh) {
+  VkAccelerationStructureGeometryKHR g{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
+  g.geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR;
+  g.flags = VK_GEOMETRY_OPAQUE_BIT_KHR;
+  auto& t = g.geometry.triangles;
+  t = {VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR};
+  t.vertexFormat = VK_FORMAT_R32G32B32_SFLOAT;
+  t.vertexData.deviceAddress = vertices.address() + VkDeviceSize(mesh.firstVertex) * vertexStride;
+  t.vertexStride = vertexStride;
+  t.maxVertex = mesh.vertexCount - 1;
+  t.indexType = VK_INDEX_TYPE_UINT32;
+  t.indexData.deviceAddress = indices.address() + VkDeviceSize(mesh.firstIndex) * 4;
+  return g;
+}
+
+VkAccelerationStructureBuildGeometryInfoKHR buildGeometryInfo(
+    VkAccelerationStructureTypeKHR type, VkBuildAccelerationStructureFlagsKHR flags,
+    VkBuildAccelerationStructureModeKHR mode, const VkAccelerationStructureGeometryKHR* geometry) {
+  VkAccelerationStructureBuildGeometryInfoKHR build{
+      VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
+  build.type = type;
+  build.flags = flags;
+  build.mode = mode;
+  build.geometryCount = 1;
+  build.pGeometries = geometry;
+  return build;
+}
+
 CompactedBlases buildCompactedBlases(const VulkanContext& context, const GpuBuffer& vertices,
                                      std::uint32_t vertexStride, const GpuBuffer& indices,
                                      std::span<const MeshGeometry> meshes) {
@@ -79,26 +102,12 @@ CompactedBlases buildCompactedBlases(const VulkanContext& context, const GpuBuff
     if (mesh.triangleCount == 0)
       throw std::runtime_error("mesh " + std::to_string(i) + " has no triangles");
     auto& g = geometries[i];
-    g = {VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
-    g.geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR;
-    g.flags = VK_GEOMETRY_OPAQUE_BIT_KHR;
-    auto& t = g.geometry.triangles;
-    t = {VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR};
-    t.vertexFormat = VK_FORMAT_R32G32B32_SFLOAT;
-    t.vertexData.deviceAddress = vertices.address() + VkDeviceSize(mesh.firstVertex) * vertexStride;
-    t.vertexStride = vertexStride;
-    t.maxVertex = mesh.vertexCount - 1;
-    t.indexType = VK_INDEX_TYPE_UINT32;
-    t.indexData.deviceAddress = indices.address() + VkDeviceSize(mesh.firstIndex) * 4;
-
+    g = meshGeometry(vertices, vertexStride, indices, mesh);
     auto& b = builds[i];
-    b = {VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
-    b.type = VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR;
-    b.flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR |
-              VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_COMPACTION_BIT_KHR;
-    b.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
-    b.geometryCount = 1;
-    b.pGeometries = &g;
+    b = buildGeometryInfo(VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR,
+                          VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR |
+                              VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_COMPACTION_BIT_KHR,
+                          VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR, &g);
     VkAccelerationStructureBuildSizesInfoKHR sizes{
         VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
     f.getAccelerationStructureBuildSizes(device, VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR,
@@ -218,14 +227,9 @@ namespace {
 
 VkAccelerationStructureBuildGeometryInfoKHR tlasBuildInfo(
     const VkAccelerationStructureGeometryKHR* geometry) {
-  VkAccelerationStructureBuildGeometryInfoKHR build{
-      VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
-  build.type = VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR;
-  build.flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR;
-  build.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
-  build.geometryCount = 1;
-  build.pGeometries = geometry;
-  return build;
+  return buildGeometryInfo(VK_ACCELERATION_STRUCTURE_TYPE_TOP_LEVEL_KHR,
+                           VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR,
+                           VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR, geometry);
 }
 
 VkAccelerationStructureGeometryKHR tlasGeometry(VkDeviceAddress records) {
@@ -242,8 +246,8 @@ VkAccelerationStructureGeometryKHR tlasGeometry(VkDeviceAddress records) {
 
 TopLevelStructure::TopLevelStructure(const VulkanContext& context, std::uint32_t capacity)
     : context_(&context), capacity_(std::max(capacity, 1u)) {
-  instances_ =
-      hostBuffer(context, sizeof(VkAccelerationStructureInstanceKHR) * capacity_, kBuildInput);
+  instances_ = hostBuffer(context, sizeof(VkAccelerationStructureInstanceKHR) * capacity_,
+                          kAccelerationBuildInput);
   VkAccelerationStructureGeometryKHR geometry = tlasGeometry(instances_.address());
   VkAccelerationStructureBuildGeometryInfoKHR build = tlasBuildInfo(&geometry);
   VkAccelerationStructureBuildSizesInfoKHR sizes{

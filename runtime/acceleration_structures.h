@@ -18,6 +18,12 @@
 
 namespace memograph::runtime {
 
+// Usage of buffers that acceleration-structure builds read (vertices, indices, instance
+// records).
+inline constexpr VkBufferUsageFlags kAccelerationBuildInput =
+    VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
+    VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+
 struct AccelerationStructureStats {
   std::uint32_t blasCount = 0;
   std::uint32_t instanceCount = 0;
@@ -58,6 +64,18 @@ class AccelerationStructure {
   VulkanHandle<VkAccelerationStructureKHR> handle_;
   VkDeviceAddress address_ = 0;
 };
+
+// A mesh's opaque triangles in the shared buffers (`vertices`: records of `vertexStride`
+// bytes, position first; `indices`: uint32 relative to the mesh's first vertex).
+VkAccelerationStructureGeometryKHR meshGeometry(const GpuBuffer& vertices,
+                                                std::uint32_t vertexStride,
+                                                const GpuBuffer& indices, const MeshGeometry& mesh);
+
+// The build of one structure of `type` from one geometry (scratch and destination are
+// the caller's).
+VkAccelerationStructureBuildGeometryInfoKHR buildGeometryInfo(
+    VkAccelerationStructureTypeKHR type, VkBuildAccelerationStructureFlagsKHR flags,
+    VkBuildAccelerationStructureModeKHR mode, const VkAccelerationStructureGeometryKHR* geometry);
 
 // One batch of BLAS builds: one scratch buffer with a slice per build, one submit, then
 // each BLAS copied into a structure of its compacted size (§3.3.1: batching, compaction).

@@ -19,6 +19,7 @@ std::vector<FrameCounter> frameCounters(const FrameStats& frame) {
       {"tlas_records", double(frame.tlasRecords)},
       {"as_bytes", double(frame.blasBytes + frame.tlasBytes), true},
       {"blas_builds", double(frame.blasBuilds)},
+      {"blas_updates", double(frame.blasUpdates)},
       {"blas_evictions", double(frame.blasEvictions)},
       {"blas_build_gpu_ms", frame.blasBuildMilliseconds},
       {"tlas_build_gpu_ms", frame.tlasBuildMilliseconds},

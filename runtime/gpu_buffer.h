@@ -15,6 +15,12 @@
 
 namespace memograph::runtime {
 
+// `value` rounded up to a multiple of `alignment` (offsets and addresses of scratch slices,
+// shader-binding-table records).
+inline VkDeviceSize alignUp(VkDeviceSize value, VkDeviceSize alignment) {
+  return (value + alignment - 1) / alignment * alignment;
+}
+
 class GpuBuffer {
  public:
   GpuBuffer() = default;

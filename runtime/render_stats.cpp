@@ -38,7 +38,8 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
          "cache_secondary_only,cache_clock_ticks,cache_tile,cache_tile_fallbacks,"
          "cache_tile_repacks,culling,active_instances,omitted_instances,inactive_instances,"
          "waiting_instances,hitboxes,active_hitboxes,instance_state_changes,tlas_records,"
-         "frame_blas_bytes,frame_tlas_bytes,frame_scratch_bytes,blas_builds,blas_evictions,"
+         "frame_blas_bytes,frame_tlas_bytes,frame_scratch_bytes,blas_builds,blas_updates,"
+         "blas_evictions,"
          "blas_build_gpu_ms,tlas_build_gpu_ms\n";
   const auto& a = s.accelerationStructures;
   for (const auto& f : s.frames) {
@@ -61,7 +62,7 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
         << f.inactiveInstances << ',' << f.waitingInstances << ',' << f.hitboxes << ','
         << f.activeHitboxes << ',' << f.instanceStateChanges << ',' << f.tlasRecords << ','
         << f.blasBytes << ',' << f.tlasBytes << ',' << f.asScratchBytes << ',' << f.blasBuilds
-        << ',' << f.blasEvictions << ',' << f.blasBuildMilliseconds << ','
+        << ',' << f.blasUpdates << ',' << f.blasEvictions << ',' << f.blasBuildMilliseconds << ','
         << f.tlasBuildMilliseconds << '\n';
   }
 }

@@ -41,7 +41,9 @@ struct FrameStats {
   // active ones still waiting for their BLAS (the build budget); LiPaC's hitboxes (with
   // instances) and how many are active; instance state changes in this frame's update;
   // TLAS records (instances and boxes); resident BLAS and TLAS bytes, and scratch (the
-  // TLAS's plus this frame's BLAS builds'); BLAS builds and evictions; GPU build times.
+  // TLAS's, the animated BLASes', this frame's BLAS builds'); BLAS builds (rebuilds of
+  // animated ones included), in-place updates and evictions; GPU build times (BLAS: builds,
+  // updates and the moved vertices' copies).
   std::uint32_t activeInstances = 0;
   std::uint32_t omittedInstances = 0;
   std::uint32_t inactiveInstances = 0;
@@ -54,6 +56,7 @@ struct FrameStats {
   std::uint64_t tlasBytes = 0;
   std::uint64_t asScratchBytes = 0;
   std::uint32_t blasBuilds = 0;
+  std::uint32_t blasUpdates = 0;  // animated meshes' BLASes updated in place
   std::uint32_t blasEvictions = 0;
   double blasBuildMilliseconds = 0.0;
   double tlasBuildMilliseconds = 0.0;

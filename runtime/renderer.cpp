@@ -11,8 +11,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "runtime/acceleration_structures.h"
-#include "runtime/culled_acceleration.h"
 #include "runtime/culling_view.h"
+#include "runtime/dynamic_acceleration.h"
 #include "runtime/gpu_buffer.h"
 #include "runtime/gpu_textures.h"
 #include "runtime/material_cache.h"
@@ -195,20 +195,23 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   // Without culling, every BLAS and the TLAS are built once here; culled renders rebuild the
   // TLAS every frame from the instances the frame keeps.
   std::optional<SceneAccelerationStructures> staticAccel;
-  std::optional<CulledAccelerationStructures> culledAccel;
+  std::optional<DynamicAccelerationStructures> dynamicAccel;
   GpuBuffer noHitFeedback;
-  if (cullingOptions.mode == CullingMode::None) {
+  // Animated meshes move every frame: their BLASes are updated and the TLAS rebuilt, as in
+  // a culled render.
+  const bool animated = !scene.animatedMeshes.empty() && bool(scene.animatedPosition);
+  if (cullingOptions.mode == CullingMode::None && !animated) {
     staticAccel.emplace(context, buffers.vertices, sizeof(gpu::Vertex), buffers.indices,
                         buffers.geometry, buffers.placements);
     stats.accelerationStructures = staticAccel->stats();
     noHitFeedback = GpuBuffer(context, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                               VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   } else {
-    culledAccel.emplace(context, scene, buffers, cullingOptions);
+    dynamicAccel.emplace(context, scene, buffers, cullingOptions);
     stats.accelerationStructures.blasCount = static_cast<std::uint32_t>(buffers.geometry.size());
     stats.accelerationStructures.instanceCount = static_cast<std::uint32_t>(scene.instances.size());
   }
-  const bool hitFeedback = culledAccel && culledAccel->hitFeedbackOn();
+  const bool hitFeedback = dynamicAccel && dynamicAccel->hitFeedbackOn();
   GpuTextures textures(context, textureImages);
   stats.textureBytes = textures.bytes();
 
@@ -300,14 +303,14 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   GpuBuffer rayReadback =
       hostBuffer(context, sizeof(gpu::Counters), VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-  TraceResources resources{staticAccel ? staticAccel->tlas() : culledAccel->tlas(),
+  TraceResources resources{staticAccel ? staticAccel->tlas() : dynamicAccel->tlas(),
                            &frameBuffer,
                            &accumulation,
                            &rayCounter,
                            &materialCache,
                            &buffers,
                            &textures,
-                           culledAccel ? &culledAccel->hitFeedback() : &noHitFeedback};
+                           dynamicAccel ? &dynamicAccel->hitFeedback() : &noHitFeedback};
   TraceDescriptorSet descriptors(context, pipeline.descriptorSetLayout(), resources);
   VkDescriptorSet set = descriptors.get();
 
@@ -317,7 +320,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   if (timestamps) {
     VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    queryInfo.queryCount = 4;  // the trace's, then a culled render's TLAS build
+    queryInfo.queryCount = 5;  // the trace's, then a dynamic set's animated BLASes and TLAS
     VkQueryPool queryPool = VK_NULL_HANDLE;
     checkVk(vkCreateQueryPool(device, &queryInfo, nullptr, &queryPool), "vkCreateQueryPool");
     timestampPool = VulkanHandle<VkQueryPool>(
@@ -357,9 +360,9 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     frameBuffer.write(&frame, sizeof frame);
     FrameStats frameStats;
     frameStats.frame = f;
-    if (culledAccel) {
-      culledAccel->prepareFrame(camera, float(settings.width) / float(settings.height), f,
-                                previousRays, frameStats);
+    if (dynamicAccel) {
+      dynamicAccel->prepareFrame(camera, float(settings.width) / float(settings.height), f,
+                                 frame.cameraForward.w, previousRays, frameStats);
     } else {
       const AccelerationStructureStats& a = staticAccel->stats();
       frameStats.activeInstances = frameStats.tlasRecords = a.instanceCount;
@@ -378,8 +381,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                       f == 0 ? VK_WHOLE_SIZE : gpu::kCountersPerFrameUints * sizeof(std::uint32_t),
                       0);
       materialCache.recordClears(commands, f == 0);
-      if (culledAccel)
-        culledAccel->recordClears(commands);
+      if (dynamicAccel)
+        dynamicAccel->recordClears(commands);
       VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
       barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
       barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
@@ -387,10 +390,10 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                            VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0, nullptr, 0,
                            nullptr);
       if (timestamps)
-        vkCmdResetQueryPool(commands, timestampPool.get(), 0, 4);
-      if (culledAccel)
-        culledAccel->recordTlasBuild(commands, timestamps ? timestampPool.get() : VK_NULL_HANDLE,
-                                     2);
+        vkCmdResetQueryPool(commands, timestampPool.get(), 0, 5);
+      if (dynamicAccel)
+        dynamicAccel->recordTlasBuild(commands, timestamps ? timestampPool.get() : VK_NULL_HANDLE,
+                                      2);
       if (timestamps)
         vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestampPool.get(), 0);
       pipeline.record(commands, set, settings.width, settings.height);
@@ -412,8 +415,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                            VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
       VkBufferCopy copy{0, 0, sizeof(gpu::Counters)};
       vkCmdCopyBuffer(commands, rayCounter.buffer(), rayReadback.buffer(), 1, &copy);
-      if (culledAccel)
-        culledAccel->recordAfterTrace(commands);
+      if (dynamicAccel)
+        dynamicAccel->recordAfterTrace(commands);
     });
     frameStats.wallMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -432,18 +435,20 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     frameStats.cacheTileRepacks = counters.cacheTileRepacks;
     frameStats.cacheTilesPublished = counters.cacheTilesPublished;
     if (timestamps) {
-      std::uint64_t ticks[4] = {0, 0, 0, 0};
-      const std::uint32_t queries = culledAccel ? 4 : 2;
+      std::uint64_t ticks[5] = {0, 0, 0, 0, 0};
+      const std::uint32_t queries = dynamicAccel ? 5 : 2;
       checkVk(vkGetQueryPoolResults(device, timestampPool.get(), 0, queries,
                                     queries * sizeof(std::uint64_t), ticks, sizeof(std::uint64_t),
                                     VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
               "vkGetQueryPoolResults (timestamps)");
       const double period = context.info().timestampPeriodNs * 1e-6;
       frameStats.gpuMilliseconds = double(ticks[1] - ticks[0]) * period;
-      if (culledAccel)
-        frameStats.tlasBuildMilliseconds = double(ticks[3] - ticks[2]) * period;
+      if (dynamicAccel) {
+        frameStats.blasBuildMilliseconds += double(ticks[3] - ticks[2]) * period;
+        frameStats.tlasBuildMilliseconds = double(ticks[4] - ticks[3]) * period;
+      }
     }
-    if (culledAccel) {
+    if (dynamicAccel) {
       // The render's figures: the peak of what was resident.
       auto& a = stats.accelerationStructures;
       a.blasBytes = std::max(a.blasBytes, frameStats.blasBytes);
@@ -459,11 +464,11 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
       break;  // the image is the accumulation of the frames rendered so far
   }
 
-  if (culledAccel) {
-    result.instanceStates = culledAccel->culling().states();
+  if (dynamicAccel) {
+    result.instanceStates = dynamicAccel->culling().states();
     if (options_.debugCullingSize > 0)
       result.cullingView =
-          cullingTopView(culledAccel->culling(), previousCamera, options_.debugCullingSize);
+          cullingTopView(dynamicAccel->culling(), previousCamera, options_.debugCullingSize);
   }
 
   // Read the accumulated image back.

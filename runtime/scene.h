@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -95,10 +96,12 @@ struct Scene {
   Camera camera;
   Environment environment;
   bool emissiveLightSampling = true;  // NEE of emissive triangles (materials with an estimate)
-  // Meshes whose vertices move every frame (the city's flags), each used by one instance.
-  // The renderer draws them at rest for now: deforming them and updating their BLASes is the
-  // BLAS management's part (docs/scenes.md).
+  // Meshes whose vertices move every frame (the city's flags), and where the k-th one's rest
+  // vertex (object space) lies at a time in seconds; the renderer recomputes their normals
+  // from the moved triangles and updates their BLASes in place (docs/culling.md). Without
+  // the function they are drawn at rest.
   std::vector<std::uint32_t> animatedMeshes;
+  std::function<glm::vec3(std::size_t k, glm::vec3 rest, float seconds)> animatedPosition;
 };
 
 }  // namespace memograph::runtime

@@ -101,6 +101,10 @@ void validateCullingOptions(const CullingOptions& o) {
                                 ", not " + std::to_string(o.lowFrames));
   if (!(o.appearMinFraction >= 0.0f && o.appearMinFraction <= 1.0f))
     throw std::invalid_argument("the appearing instances' minimum size must be in [0, 1]");
+  if (o.blasRebuildEvery == 0 || o.blasRebuildEvery > kMaxLowFrames)
+    throw std::invalid_argument("--blas-rebuild-every must be in 1.." +
+                                std::to_string(kMaxLowFrames) + ", not " +
+                                std::to_string(o.blasRebuildEvery));
   if (o.mode == CullingMode::None && (o.blasBudgetBytes || o.blasBuildTriangles))
     throw std::invalid_argument(
         "--blas-budget and --blas-build-budget manage the BLASes culling leaves out; they need "

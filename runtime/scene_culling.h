@@ -53,6 +53,9 @@ struct CullingOptions {
   // budget, not a time budget, so that pictures do not depend on the machine's speed.
   std::uint64_t blasBudgetBytes = 0;
   std::uint64_t blasBuildTriangles = 0;
+  // Animated meshes' BLASes: updated in place every frame, rebuilt every this many frames
+  // (refits loosen the tree; §3.3.1). 1: rebuilt every frame.
+  std::uint32_t blasRebuildEvery = 16;
 };
 
 // Throws std::invalid_argument with the option's flag name on a bad value.

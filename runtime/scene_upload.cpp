@@ -28,6 +28,17 @@ void validateScene(const Scene& scene) {
     throw std::invalid_argument("the scene has no meshes");
   if (scene.instances.empty())
     throw std::invalid_argument("the scene has no instances");
+  std::vector<bool> animated(scene.meshes.size(), false);
+  for (std::size_t k = 0; k < scene.animatedMeshes.size(); ++k) {
+    const std::uint32_t mesh = scene.animatedMeshes[k];
+    if (mesh >= scene.meshes.size())
+      throw std::invalid_argument("animated mesh " + std::to_string(k) + " names mesh " +
+                                  std::to_string(mesh) + ", but the scene has " +
+                                  std::to_string(scene.meshes.size()) + " meshes");
+    if (animated[mesh])
+      throw std::invalid_argument("mesh " + std::to_string(mesh) + " is listed twice as animated");
+    animated[mesh] = true;
+  }
   for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
     const Mesh& mesh = scene.meshes[i];
     std::string label = meshLabel(mesh, i);

@@ -57,10 +57,6 @@ VkPipeline createRayTracingPipeline(const VulkanContext& context,
   return pipeline;
 }
 
-VkDeviceSize alignUp(VkDeviceSize value, VkDeviceSize alignment) {
-  return (value + alignment - 1) / alignment * alignment;
-}
-
 }  // namespace
 
 TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compiler,

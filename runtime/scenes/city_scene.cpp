@@ -342,6 +342,9 @@ Scene makeCityScene(const BuiltinSceneOptions& options) {
   scene.lights.push_back(sun);
   scene.environment.constantRadiance = glm::vec3(0.45f, 0.6f, 0.85f);
   scene.emissiveLightSampling = options.emissiveNee.value_or(true);
+  scene.animatedPosition = [](std::size_t flag, glm::vec3 rest, float seconds) {
+    return rest + cityFlagDisplacement(rest, seconds, static_cast<int>(flag));
+  };
   const CameraPath path = makeBuiltinCameraPath("city", 1, options.cityScale);
   scene.camera = path.frames.front();
   return std::move(scene);

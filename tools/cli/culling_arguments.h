@@ -30,12 +30,14 @@ inline constexpr const char* kCullingHelp =
     "  --blas-budget MB      culled: evict BLASes no instance in the TLAS uses, least\n"
     "                        recently used first, past MB mebibytes (default: no limit)\n"
     "  --blas-build-budget T culled: build at most T triangles of BLASes a frame (at least\n"
-    "                        one BLAS; default: no limit)\n";
+    "                        one BLAS; default: no limit)\n"
+    "  --blas-rebuild-every N  animated meshes (the city's flags): their BLASes are updated\n"
+    "                        in place every frame and rebuilt every N frames (default 16)\n";
 
 struct CullingArguments {
   std::string mode = "none", radius = "30", hitboxSize = "50", hitboxActivate = "20",
               hitboxDeactivate = "2", instanceActivate = "4", instanceDeactivate = "0.4",
-              lowFrames = "8", blasBudget = "0", blasBuildBudget = "0";
+              lowFrames = "8", blasBudget = "0", blasBuildBudget = "0", blasRebuildEvery = "16";
 
   void registerWith(ArgumentScanner& scanner) {
     scanner.option("--culling", &mode);
@@ -48,6 +50,7 @@ struct CullingArguments {
     scanner.option("--low-frames", &lowFrames);
     scanner.option("--blas-budget", &blasBudget);
     scanner.option("--blas-build-budget", &blasBuildBudget);
+    scanner.option("--blas-rebuild-every", &blasRebuildEvery);
   }
 
   // Throws std::invalid_argument with a message for the user.
@@ -76,6 +79,7 @@ struct CullingArguments {
     o.lowFrames = whole(lowFrames, "--low-frames");
     o.blasBudgetBytes = std::uint64_t(whole(blasBudget, "--blas-budget")) << 20;
     o.blasBuildTriangles = whole(blasBuildBudget, "--blas-build-budget");
+    o.blasRebuildEvery = whole(blasRebuildEvery, "--blas-rebuild-every");
     runtime::validateCullingOptions(o);
     return o;
   }

@@ -218,3 +218,87 @@ TEST(CulledRender, TheBuildBudgetSpreadsBuildsOverFrames) {
 
 }  // namespace
 }  // namespace memograph::runtime
+
+namespace memograph::runtime {
+namespace {
+
+// A dark quad facing a camera under a white sky, animated to slide sideways by `speed`
+// units a second; without culling, so the animation alone makes the TLAS dynamic.
+Scene slidingQuad(float speed) {
+  Scene scene;
+  Mesh quad = testing::quad(2.0f);
+  scene.meshes.push_back(quad);
+  MaterialRef material;
+  material.name = "Dark";
+  material.graphText = testing::constantGraph("Dark", glm::vec3(0.05f), 1.0f);
+  scene.materials.push_back(material);
+  scene.instances.push_back({0, 0, glm::mat4(1.0f)});
+  scene.animatedMeshes = {0};
+  scene.animatedPosition = [speed](std::size_t, glm::vec3 rest, float seconds) {
+    return rest + glm::vec3(speed * seconds, 0.0f, 0.0f);
+  };
+  scene.environment.constantRadiance = glm::vec3(1.0f);
+  scene.camera.position = {0.0f, 3.0f, 0.01f};
+  scene.camera.target = {0.0f, 0.0f, 0.0f};
+  scene.camera.verticalFovDegrees = 30.0f;
+  return scene;
+}
+
+// Frames at one camera, the last at a camera moved by a hair so that the image is that
+// frame alone (accumulation restarts when the camera moves).
+RenderSettings lastFrameAlone(const Scene& scene, std::uint32_t frames) {
+  RenderSettings s;
+  s.width = s.height = 16;
+  s.pathsPerPixel = 2;
+  s.raysPerPath = 2;
+  s.frames = frames;
+  s.secondsPerFrame = 0.25f;
+  s.cameraPath.assign(frames - 1, scene.camera);
+  Camera moved = scene.camera;
+  moved.position.z += 1e-4f;
+  s.cameraPath.push_back(moved);
+  return s;
+}
+
+TEST(AnimatedBlases, AMovedMeshIsHitWhereItIsNow) {
+  // At 2 units a second, frame 4 (t = 1 s) has the 2-unit quad beside the view's centre.
+  const Scene scene = slidingQuad(2.0f);
+  RendererOptions o = testing::testOptions(Backend::RayQuery);
+  const RenderResult still = render(o, slidingQuad(0.0f), lastFrameAlone(scene, 5));
+  const RenderResult moved = render(o, scene, lastFrameAlone(scene, 5));
+  const double centreStill = testing::meanChannel(still.image, 0, 6, 6, 10, 10);
+  const double centreMoved = testing::meanChannel(moved.image, 0, 6, 6, 10, 10);
+  EXPECT_LT(centreStill, 0.2) << "the quad covers the centre at rest";
+  EXPECT_GT(centreMoved, 0.9) << "the sky shows where the quad was";
+  std::uint32_t updates = 0, builds = 0;
+  for (const FrameStats& f : moved.stats.frames) {
+    updates += f.blasUpdates;
+    builds += f.blasBuilds;
+  }
+  EXPECT_EQ(updates, 5u) << "one in-place update a frame";
+  EXPECT_EQ(builds, 0u) << "the quad, the only mesh, is never rebuilt within 16 frames";
+}
+
+TEST(AnimatedBlases, UpdatedInPlaceGivesTheRebuiltPicture) {
+  const Scene scene = slidingQuad(0.3f);
+  RendererOptions updated = testing::testOptions(Backend::RayQuery);
+  RendererOptions rebuilt = updated;
+  rebuilt.culling.blasRebuildEvery = 1;
+  const RenderSettings s = lastFrameAlone(scene, 6);
+  const RenderResult a = render(updated, scene, s);
+  const RenderResult b = render(rebuilt, scene, s);
+  std::uint32_t aUpdates = 0, bUpdates = 0, bBuilds = 0;
+  for (const FrameStats& f : a.stats.frames)
+    aUpdates += f.blasUpdates;
+  for (const FrameStats& f : b.stats.frames) {
+    bUpdates += f.blasUpdates;
+    bBuilds += f.blasBuilds;
+  }
+  EXPECT_EQ(aUpdates, 6u);
+  EXPECT_EQ(bUpdates, 0u);
+  EXPECT_EQ(bBuilds, 6u);
+  EXPECT_TRUE(sameImage(a.image, b.image));
+}
+
+}  // namespace
+}  // namespace memograph::runtime

@@ -1,4 +1,4 @@
-#include "runtime/culled_acceleration.h"
+#include "runtime/dynamic_acceleration.h"
 
 #include <algorithm>
 #include <array>
@@ -10,10 +10,6 @@
 namespace memograph::runtime {
 
 namespace {
-
-constexpr VkBufferUsageFlags kBuildInput =
-    VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
-    VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
 
 // The unit cube's 8 corners and 12 triangles.
 constexpr std::array<float, 24> kCubeCorners = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0,
@@ -31,23 +27,27 @@ glm::mat4 boxTransform(const Bounds& box) {
 
 }  // namespace
 
-CulledAccelerationStructures::CulledAccelerationStructures(const VulkanContext& context,
-                                                           const Scene& scene,
-                                                           const SceneBuffers& buffers,
-                                                           const CullingOptions& options)
+DynamicAccelerationStructures::DynamicAccelerationStructures(const VulkanContext& context,
+                                                             const Scene& scene,
+                                                             SceneBuffers& buffers,
+                                                             const CullingOptions& options)
     : context_(context),
       options_(options),
       culling_(scene, options),
       blasCache_(context, buffers.vertices, sizeof(gpu::Vertex), buffers.indices, buffers.geometry,
-                 options.blasBudgetBytes, options.blasBuildTriangles) {
+                 options.blasBudgetBytes, options.blasBuildTriangles),
+      animated_(context, scene, buffers, options.blasRebuildEvery) {
+  meshCount_ = static_cast<std::uint32_t>(scene.meshes.size());
   for (const Instance& instance : scene.instances) {
     instanceMeshes_.push_back(instance.mesh);
     castsShadow_.push_back(instance.castsShadow ? 1 : 0);
     transforms_.push_back(instance.objectToWorld);
   }
   if (hitFeedbackOn()) {
-    boxVertices_ = uploadBuffer(context, kCubeCorners.data(), sizeof kCubeCorners, kBuildInput);
-    boxIndices_ = uploadBuffer(context, kCubeTriangles.data(), sizeof kCubeTriangles, kBuildInput);
+    boxVertices_ =
+        uploadBuffer(context, kCubeCorners.data(), sizeof kCubeCorners, kAccelerationBuildInput);
+    boxIndices_ = uploadBuffer(context, kCubeTriangles.data(), sizeof kCubeTriangles,
+                               kAccelerationBuildInput);
     const MeshGeometry cube{0, 8, 0, 12};
     box_ = buildCompactedBlases(context, boxVertices_, 3 * sizeof(float), boxIndices_,
                                 std::span<const MeshGeometry>(&cube, 1));
@@ -64,9 +64,9 @@ CulledAccelerationStructures::CulledAccelerationStructures(const VulkanContext& 
   hitReadback_ = hostBuffer(context, counterBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
 }
 
-void CulledAccelerationStructures::prepareFrame(const Camera& camera, float aspect,
-                                                std::uint32_t frame, std::uint64_t previousRays,
-                                                FrameStats& stats) {
+void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float aspect,
+                                                 std::uint32_t frame, float seconds,
+                                                 std::uint64_t previousRays, FrameStats& stats) {
   std::vector<std::uint32_t> hits;
   if (hitFeedbackOn() && frame > 0) {
     hits.resize(culling_.counterCount());
@@ -74,12 +74,23 @@ void CulledAccelerationStructures::prepareFrame(const Camera& camera, float aspe
   }
   culling_.update(camera, aspect, hits, previousRays);
 
+  // The meshes the active instances use: animated ones are moved and updated (all of them
+  // without culling), the others come from the BLAS cache.
   const std::vector<InstanceState>& states = culling_.states();
   std::vector<std::uint32_t> needed;
-  for (std::size_t i = 0; i < states.size(); ++i)
-    if (states[i] == InstanceState::Active)
+  std::vector<std::uint8_t> animatedNeeded(meshCount_, 0);
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    if (states[i] != InstanceState::Active)
+      continue;
+    if (animated_.address(instanceMeshes_[i]))
+      animatedNeeded[instanceMeshes_[i]] = 1;
+    else
       needed.push_back(instanceMeshes_[i]);
+  }
   const BlasFrameWork work = blasCache_.prepare(needed, frame);
+  const AnimatedFrameWork moved = animated_.prepare(
+      seconds, frame,
+      options_.mode == CullingMode::None ? std::vector<std::uint8_t>{} : animatedNeeded);
 
   // The TLAS records: active instances whose BLAS is resident, then the counting boxes.
   VkAccelerationStructureInstanceKHR* records = tlas_->records();
@@ -88,7 +99,9 @@ void CulledAccelerationStructures::prepareFrame(const Camera& camera, float aspe
   const VkDeviceAddress box = hitFeedbackOn() ? box_.blases.front().address() : 0;
   for (std::uint32_t i = 0; i < states.size(); ++i) {
     if (states[i] == InstanceState::Active) {
-      const VkDeviceAddress blas = blasCache_.address(instanceMeshes_[i]);
+      VkDeviceAddress blas = animated_.address(instanceMeshes_[i]);
+      if (!blas)
+        blas = blasCache_.address(instanceMeshes_[i]);
       if (!blas) {
         ++waitingInstances;
         continue;
@@ -119,30 +132,36 @@ void CulledAccelerationStructures::prepareFrame(const Camera& camera, float aspe
   stats.activeHitboxes = counts.activeHitboxes;
   stats.instanceStateChanges = counts.changes;
   stats.tlasRecords = n;
-  stats.blasBytes = blasCache_.residentBytes() + box_.bytes;
+  stats.blasBytes = blasCache_.residentBytes() + box_.bytes + animated_.bytes();
   stats.tlasBytes = tlas_->bytes();
-  stats.asScratchBytes = tlas_->scratchBytes() + work.scratchBytes;
-  stats.blasBuilds = work.builds;
+  stats.asScratchBytes = tlas_->scratchBytes() + work.scratchBytes + animated_.scratchBytes();
+  stats.blasBuilds = work.builds + moved.rebuilds;
+  stats.blasUpdates = moved.updates;
   stats.blasEvictions = work.evictions;
   stats.blasBuildMilliseconds = work.gpuMilliseconds;
 }
 
-void CulledAccelerationStructures::recordClears(VkCommandBuffer commands) const {
+void DynamicAccelerationStructures::recordClears(VkCommandBuffer commands) const {
   if (hitFeedbackOn())
     vkCmdFillBuffer(commands, hitFeedback_.buffer(), 0, VK_WHOLE_SIZE, 0);
 }
 
-void CulledAccelerationStructures::recordTlasBuild(VkCommandBuffer commands, VkQueryPool timestamps,
-                                                   std::uint32_t first) const {
+void DynamicAccelerationStructures::recordTlasBuild(VkCommandBuffer commands,
+                                                    VkQueryPool timestamps,
+                                                    std::uint32_t first) const {
   if (timestamps)
     vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps, first);
-  tlas_->recordBuild(commands, records_);
+  animated_.record(commands);
   if (timestamps)
     vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
                         timestamps, first + 1);
+  tlas_->recordBuild(commands, records_);
+  if (timestamps)
+    vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+                        timestamps, first + 2);
 }
 
-void CulledAccelerationStructures::recordAfterTrace(VkCommandBuffer commands) const {
+void DynamicAccelerationStructures::recordAfterTrace(VkCommandBuffer commands) const {
   if (!hitFeedbackOn())
     return;
   VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};

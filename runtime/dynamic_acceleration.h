@@ -1,8 +1,10 @@
-// The acceleration structures of a culled render (--culling frustum|lipac; seeds/001 §3.3):
-// every frame, SceneCulling decides which instances the TLAS holds from the camera and the
-// last frame's hit feedback, the BlasCache builds and evicts their BLASes, and the TLAS is
-// rebuilt from the active instances plus LiPaC's counting boxes (one static unit-cube BLAS,
-// transformed to each omitted instance's or inactive hitbox's bounds).
+// The acceleration structures of a render whose TLAS changes every frame (seeds/001 §3.3):
+// a culled render (--culling frustum|lipac), or a scene with animated meshes. Every frame,
+// SceneCulling decides which instances the TLAS holds from the camera and the last frame's
+// hit feedback, the BlasCache builds and evicts their BLASes, the animated meshes the frame
+// uses are moved and their BLASes updated (AnimatedBlases), and the TLAS is rebuilt from the
+// active instances plus LiPaC's counting boxes (one static unit-cube BLAS, transformed to
+// each omitted instance's or inactive hitbox's bounds).
 #pragma once
 
 #include <cstdint>
@@ -10,6 +12,7 @@
 #include <vector>
 
 #include "runtime/acceleration_structures.h"
+#include "runtime/animated_blases.h"
 #include "runtime/blas_cache.h"
 #include "runtime/gpu_buffer.h"
 #include "runtime/render_stats.h"
@@ -20,11 +23,11 @@
 
 namespace memograph::runtime {
 
-class CulledAccelerationStructures {
+class DynamicAccelerationStructures {
  public:
-  // `buffers` must outlive this object.
-  CulledAccelerationStructures(const VulkanContext& context, const Scene& scene,
-                               const SceneBuffers& buffers, const CullingOptions& options);
+  // `scene` and `buffers` must outlive this object.
+  DynamicAccelerationStructures(const VulkanContext& context, const Scene& scene,
+                                SceneBuffers& buffers, const CullingOptions& options);
 
   VkAccelerationStructureKHR tlas() const { return tlas_->handle(); }
   // LiPaC's counters (binding kBindingHitFeedback): SceneCulling::counterCount() uints.
@@ -35,13 +38,14 @@ class CulledAccelerationStructures {
   // Before frame `frame`'s submit: reads the last frame's counters (`previousRays`: the rays
   // it traced), updates the instance states, builds and evicts BLASes and writes the TLAS
   // records. Fills the frame's culling fields of `stats`.
-  void prepareFrame(const Camera& camera, float aspect, std::uint32_t frame,
+  void prepareFrame(const Camera& camera, float aspect, std::uint32_t frame, float seconds,
                     std::uint64_t previousRays, FrameStats& stats);
   // In the frame's command buffer, with the other clears (the caller's barrier orders them
   // before the trace): zeroes the hit counters.
   void recordClears(VkCommandBuffer commands) const;
-  // Before the trace: builds the TLAS (between timestamps `first` and `first + 1` of
-  // `timestamps` when it is not null) and makes it visible to the trace.
+  // Before the trace: moves the animated meshes and updates their BLASes, then builds the
+  // TLAS and makes it visible to the trace; with `timestamps`, writes queries `first`
+  // (start), `first + 1` (after the animated BLASes) and `first + 2` (after the TLAS).
   void recordTlasBuild(VkCommandBuffer commands, VkQueryPool timestamps, std::uint32_t first) const;
   // After the trace: copies the counters where prepareFrame reads them.
   void recordAfterTrace(VkCommandBuffer commands) const;
@@ -50,10 +54,12 @@ class CulledAccelerationStructures {
   const VulkanContext& context_;
   CullingOptions options_;
   SceneCulling culling_;
+  std::uint32_t meshCount_ = 0;
   std::vector<std::uint32_t> instanceMeshes_;
   std::vector<std::uint8_t> castsShadow_;
   std::vector<glm::mat4> transforms_;
   BlasCache blasCache_;
+  AnimatedBlases animated_;
   // The unit cube [0, 1]^3 that counting boxes instance.
   GpuBuffer boxVertices_;
   GpuBuffer boxIndices_;

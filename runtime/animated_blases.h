@@ -1,0 +1,76 @@
+// The BLASes of animated meshes (Scene::animatedMeshes; seeds/001 §3.3.1): built once with
+// ALLOW_UPDATE and not compacted ("we only compact static BLASes"), then every frame the
+// meshes' vertices are moved on the host (Scene::animatedPosition, normals from the moved
+// triangles), copied into the shared vertex buffer, and the BLASes updated in place, with a
+// full rebuild every `rebuildEvery` frames because refits degrade the tree. In a culled
+// render only the meshes an active instance uses are moved; one left behind is rebuilt
+// when it is needed again.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "runtime/acceleration_structures.h"
+#include "runtime/gpu_buffer.h"
+#include "runtime/scene.h"
+#include "runtime/scene_upload.h"
+#include "runtime/shaders/shared_types.h"
+#include "runtime/vulkan_context.h"
+
+namespace memograph::runtime {
+
+struct AnimatedFrameWork {
+  std::uint32_t updates = 0;
+  std::uint32_t rebuilds = 0;
+};
+
+class AnimatedBlases {
+ public:
+  // `buffers` must outlive this object. rebuildEvery >= 1.
+  AnimatedBlases(const VulkanContext& context, const Scene& scene, SceneBuffers& buffers,
+                 std::uint32_t rebuildEvery);
+
+  bool empty() const { return meshes_.empty(); }
+  // The mesh's BLAS, or 0 when the mesh is not animated.
+  VkDeviceAddress address(std::uint32_t mesh) const;
+  std::uint64_t bytes() const { return bytes_; }
+  std::uint64_t scratchBytes() const { return scratch_.size(); }
+
+  // Host side, before frame `frame`'s submit: moves the animated meshes that `needed` marks
+  // (indexed by mesh; every one when it is empty) to time `seconds` and plans their update
+  // or rebuild.
+  AnimatedFrameWork prepare(float seconds, std::uint32_t frame,
+                            const std::vector<std::uint8_t>& needed);
+  // In the frame's command buffer before the TLAS build: the vertex copies, then the BLAS
+  // updates and rebuilds, each with the barrier that orders it (nothing when prepare moved
+  // nothing).
+  void record(VkCommandBuffer commands) const;
+
+ private:
+  struct Animated {
+    std::uint32_t mesh = 0;
+    std::size_t k = 0;  // index into Scene::animatedMeshes
+    MeshGeometry geometry;
+    AccelerationStructure blas;
+    VkDeviceSize scratchOffset = 0;
+    std::uint32_t builtAfter = 0;  // 1 + the frame of its last (re)build; 0: the first
+    bool current = false;          // its BLAS matches the last positions written
+    float normalSign = 1.0f;       // turns the winding's normals to the mesh's own side
+  };
+
+  const VulkanContext& context_;
+  const Scene& scene_;
+  SceneBuffers& buffers_;
+  std::uint32_t rebuildEvery_;
+  std::vector<Animated> meshes_;
+  std::vector<std::int32_t> slotOfMesh_;  // -1: not animated
+  GpuBuffer staging_;                     // this frame's moved vertex records
+  GpuBuffer scratch_;
+  std::uint64_t bytes_ = 0;
+  // The frame's plan, read by record().
+  std::vector<VkBufferCopy> copies_;
+  std::vector<std::size_t> planned_;  // slots to build this frame
+  std::vector<std::uint8_t> plannedUpdate_;
+};
+
+}  // namespace memograph::runtime

@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# The culling measurement on the GPU machine (docs/culling.md, "Measured"): builtin:city at
+# 1920x1080, P = 6, L = 4 with --culling none, frustum and lipac.
+#   bench      the city's camera path (360 frames; STRIDE=k renders every k-th camera):
+#              per frame the trace's GPU time, BLAS and TLAS build times, AS bytes, instance
+#              counts (frames_<mode>.csv), and bench's summary line per mode (bench.csv)
+#   pictures   each mode at three cameras of the path, two facing the mirror (120, 135) and
+#              one flying in (60): the 8 cameras before it, then 4 frames at it (the image is
+#              those 4), seed 1; LDR-FLIP of frustum and lipac against none (pictures.txt)
+# After tools/bundle_device.sh, on the GPU machine (tools/ and examples/ travel as tracked
+# files; carry bundle and .gl):
+#   bash tools/bench/culling_device.sh [bench] [pictures]
+# EXTRA="--cache texel" adds flags to every run. Results under $OUT, each step under its own
+# time limit (LIMIT seconds a bench run, default 170). Here, to check the script on lavapipe
+# (figures meaningless): MEMOGRAPH=build/tools/memograph SCENE=builtin:city:scale=0.02
+# SIZE=64x36 PATHS=1 OUT=/tmp/culling bash tools/bench/culling_device.sh
+set -uo pipefail
+[ -n "${MEMOGRAPH:-}" ] || source bundle/device_env.sh # the GPU machine's Vulkan set-up
+OUT=${OUT:-/tmp/out}
+mkdir -p "$OUT"
+m=${MEMOGRAPH:-bundle/memograph}
+stride=${STRIDE:-1}
+scene=${SCENE:-builtin:city}
+size=${SIZE:-1920x1080}
+paths=${PATHS:-6}
+limit=${LIMIT:-170}
+path=examples/camera_paths/city.campath
+work=$(mktemp -d)
+nvidia-smi --query-gpu=name,driver_version --format=csv,noheader >"$OUT/env.txt" 2>&1
+cat bundle/VERSION >>"$OUT/env.txt" 2>/dev/null
+echo "stride=$stride limit=$limit extra='${EXTRA:-}'" >>"$OUT/env.txt"
+
+bench() {
+  for mode in none frustum lipac; do
+    echo "== bench $mode" | tee -a "$OUT/log.txt"
+    # shellcheck disable=SC2086 # EXTRA is a list of flags
+    timeout "$limit" "$m" bench "$scene" --sizes "$size" --paths "$paths" --bounces 4 \
+      --warmup 0 --frames $((360 / stride)) --camera-frames 360 --frame-stride "$stride" \
+      --time-limit $((limit - 10)) --culling "$mode" --label "$mode" --shader-cache "$work/sc" \
+      --csv "$work/bench_$mode.csv" --frames-csv "$work/" ${EXTRA:-} 2>&1 | tail -8 >>"$OUT/log.txt"
+    echo "rc=${PIPESTATUS[0]}" >>"$OUT/log.txt"
+    if [ -f "$OUT/bench.csv" ]; then tail -n +2 "$work/bench_$mode.csv"; else cat "$work/bench_$mode.csv"; fi \
+      >>"$OUT/bench.csv" 2>/dev/null
+    cp "$work"/*_"$mode"_"$size".csv "$OUT/frames_$mode.csv" 2>/dev/null
+  done
+}
+
+pictures() {
+  local cameras
+  mapfile -t cameras < <(grep -v '^#' "$path" | grep .)
+  for k in 120 135 60; do
+    printf '%s\n' "${cameras[@]:k-8:8}" >"$work/path_$k.campath"
+    for _ in 1 2 3 4; do echo "${cameras[k]}" >>"$work/path_$k.campath"; done
+    for mode in none frustum lipac; do
+      echo "== picture $k $mode" | tee -a "$OUT/log.txt"
+      # shellcheck disable=SC2086
+      timeout 150 "$m" render "$scene" --size "$size" --paths "$paths" --bounces 4 --frames 12 \
+        --camera-path "$work/path_$k.campath" --seed 1 --culling "$mode" \
+        --shader-cache "$work/sc" --out "$work/${k}_$mode.pfm" --stats "$work/${k}_$mode.csv" \
+        ${EXTRA:-} >>"$OUT/log.txt" 2>&1
+      echo "rc=$?" >>"$OUT/log.txt"
+      tail -n 1 "$work/${k}_$mode.csv" | sed "s/^/$k,$mode,/" >>"$OUT/pictures_stats.csv" 2>/dev/null
+    done
+    for mode in frustum lipac; do
+      echo "== camera $k: $mode against none" >>"$OUT/pictures.txt"
+      "$m" diff "$work/${k}_none.pfm" "$work/${k}_$mode.pfm" >>"$OUT/pictures.txt" 2>&1
+    done
+  done
+  head -1 "$work/60_none.csv" >"$OUT/pictures_stats_header.csv" 2>/dev/null
+}
+
+[ $# -gt 0 ] || set -- bench pictures
+for step in "$@"; do
+  case $step in
+  bench) bench ;;
+  pictures) pictures ;;
+  *) echo "culling_device.sh: unknown step '$step'" >&2; exit 2 ;;
+  esac
+done
+rm -rf "$work"
+echo done >>"$OUT/log.txt"
