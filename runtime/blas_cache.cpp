@@ -9,7 +9,7 @@ namespace memograph::runtime {
 BlasCache::BlasCache(const VulkanContext& context, const GpuBuffer& vertices,
                      std::uint32_t vertexStride, const GpuBuffer& indices,
                      std::vector<MeshGeometry> meshes, std::uint64_t budgetBytes,
-                     std::uint64_t buildTriangles)
+                     std::uint64_t buildTriangles, std::uint32_t keepFrames)
     : context_(context),
       vertices_(vertices),
       vertexStride_(vertexStride),
@@ -17,6 +17,7 @@ BlasCache::BlasCache(const VulkanContext& context, const GpuBuffer& vertices,
       meshes_(std::move(meshes)),
       budgetBytes_(budgetBytes),
       buildTriangles_(buildTriangles),
+      keepFrames_(keepFrames),
       blases_(meshes_.size()),
       lastUsed_(meshes_.size(), 0) {}
 
@@ -61,8 +62,19 @@ BlasFrameWork BlasCache::prepare(std::span<const std::uint32_t> needed, std::uin
     if (wanted[mesh] && blases_[mesh])
       lastUsed_[mesh] = frame + 1;
 
-  // Eviction of BLASes this frame does not use, least recently used first (ties: lowest
-  // mesh index), while over the budget. What this frame uses stays even past the budget.
+  // BLASes no frame has used for more than keepFrames frames go.
+  auto evict = [&](std::uint32_t mesh) {
+    residentBytes_ -= blases_[mesh]->size();
+    --residentCount_;
+    blases_[mesh].reset();
+    ++work.evictions;
+  };
+  if (keepFrames_)
+    for (std::uint32_t mesh = 0; mesh < meshes_.size(); ++mesh)
+      if (blases_[mesh] && frame + 1 - lastUsed_[mesh] > keepFrames_)
+        evict(mesh);
+  // Then those this frame does not use, least recently used first (ties: lowest mesh
+  // index), while over the budget. What this frame uses stays even past the budget.
   if (budgetBytes_ && residentBytes_ > budgetBytes_) {
     std::vector<std::uint32_t> unused;
     for (std::uint32_t mesh = 0; mesh < meshes_.size(); ++mesh)
@@ -73,10 +85,7 @@ BlasFrameWork BlasCache::prepare(std::span<const std::uint32_t> needed, std::uin
     for (std::uint32_t mesh : unused) {
       if (residentBytes_ <= budgetBytes_)
         break;
-      residentBytes_ -= blases_[mesh]->size();
-      --residentCount_;
-      blases_[mesh].reset();
-      ++work.evictions;
+      evict(mesh);
     }
   }
   return work;

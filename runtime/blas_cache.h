@@ -1,7 +1,7 @@
 // BLAS residency for culled renders (seeds/001 §3.3.1): one shared, compacted BLAS per mesh,
 // built when an instance in the TLAS first needs it, in batches up to a triangle budget per
-// frame, and evicted, least recently used first, once the resident BLASes pass a memory
-// budget and no instance in the TLAS uses them.
+// frame, and evicted when no instance in the TLAS has used it for `keepFrames` frames, or,
+// least recently used first, once the resident BLASes pass a memory budget.
 #pragma once
 
 #include <cstdint>
@@ -26,10 +26,11 @@ struct BlasFrameWork {
 
 class BlasCache {
  public:
-  // budgetBytes, buildTriangles: 0 for no limit. The buffers must outlive the cache.
+  // budgetBytes, buildTriangles, keepFrames: 0 for no limit. The buffers must outlive the
+  // cache.
   BlasCache(const VulkanContext& context, const GpuBuffer& vertices, std::uint32_t vertexStride,
             const GpuBuffer& indices, std::vector<MeshGeometry> meshes, std::uint64_t budgetBytes,
-            std::uint64_t buildTriangles);
+            std::uint64_t buildTriangles, std::uint32_t keepFrames);
 
   // The meshes the frame's TLAS needs (repeats allowed): builds the missing ones, lowest mesh
   // index first so that the same inputs build the same set, until the triangle budget is
@@ -50,6 +51,7 @@ class BlasCache {
   std::vector<MeshGeometry> meshes_;
   std::uint64_t budgetBytes_;
   std::uint64_t buildTriangles_;
+  std::uint32_t keepFrames_;
   std::vector<std::optional<AccelerationStructure>> blases_;
   std::vector<std::uint32_t> lastUsed_;  // frame + 1; 0: never
   std::uint64_t residentBytes_ = 0;

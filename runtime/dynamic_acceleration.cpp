@@ -35,7 +35,7 @@ DynamicAccelerationStructures::DynamicAccelerationStructures(const VulkanContext
       options_(options),
       culling_(scene, options),
       blasCache_(context, buffers.vertices, sizeof(gpu::Vertex), buffers.indices, buffers.geometry,
-                 options.blasBudgetBytes, options.blasBuildTriangles),
+                 options.blasBudgetBytes, options.blasBuildTriangles, options.blasKeepFrames),
       animated_(context, scene, buffers, options.blasRebuildEvery) {
   meshCount_ = static_cast<std::uint32_t>(scene.meshes.size());
   for (const Instance& instance : scene.instances) {

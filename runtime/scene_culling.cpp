@@ -105,6 +105,10 @@ void validateCullingOptions(const CullingOptions& o) {
     throw std::invalid_argument("--blas-rebuild-every must be in 1.." +
                                 std::to_string(kMaxLowFrames) + ", not " +
                                 std::to_string(o.blasRebuildEvery));
+  if (o.blasKeepFrames > kMaxLowFrames)
+    throw std::invalid_argument("--blas-keep-frames must be in 0.." +
+                                std::to_string(kMaxLowFrames) + ", not " +
+                                std::to_string(o.blasKeepFrames));
   if (o.mode == CullingMode::None && (o.blasBudgetBytes || o.blasBuildTriangles))
     throw std::invalid_argument(
         "--blas-budget and --blas-build-budget manage the BLASes culling leaves out; they need "

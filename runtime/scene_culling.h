@@ -53,6 +53,10 @@ struct CullingOptions {
   // budget, not a time budget, so that pictures do not depend on the machine's speed.
   std::uint64_t blasBudgetBytes = 0;
   std::uint64_t blasBuildTriangles = 0;
+  // A BLAS no instance in the TLAS has used for more than this many frames is evicted
+  // whatever the budget (§3.3.1: "or when they have not been used for many frames"), so
+  // the resident set follows what the frames keep; 0: only the budget evicts.
+  std::uint32_t blasKeepFrames = 8;
   // Animated meshes' BLASes: updated in place every frame, rebuilt every this many frames
   // (refits loosen the tree; §3.3.1). 1: rebuilt every frame.
   std::uint32_t blasRebuildEvery = 16;

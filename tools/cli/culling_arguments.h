@@ -31,13 +31,16 @@ inline constexpr const char* kCullingHelp =
     "                        recently used first, past MB mebibytes (default: no limit)\n"
     "  --blas-build-budget T culled: build at most T triangles of BLASes a frame (at least\n"
     "                        one BLAS; default: no limit)\n"
+    "  --blas-keep-frames K  evict a BLAS no instance in the TLAS has used for K frames\n"
+    "                        (default 8; 0: only --blas-budget evicts)\n"
     "  --blas-rebuild-every N  animated meshes (the city's flags): their BLASes are updated\n"
     "                        in place every frame and rebuilt every N frames (default 16)\n";
 
 struct CullingArguments {
   std::string mode = "none", radius = "30", hitboxSize = "50", hitboxActivate = "20",
               hitboxDeactivate = "2", instanceActivate = "4", instanceDeactivate = "0.4",
-              lowFrames = "8", blasBudget = "0", blasBuildBudget = "0", blasRebuildEvery = "16";
+              lowFrames = "8", blasBudget = "0", blasBuildBudget = "0", blasRebuildEvery = "16",
+              blasKeepFrames = "8";
 
   void registerWith(ArgumentScanner& scanner) {
     scanner.option("--culling", &mode);
@@ -51,6 +54,7 @@ struct CullingArguments {
     scanner.option("--blas-budget", &blasBudget);
     scanner.option("--blas-build-budget", &blasBuildBudget);
     scanner.option("--blas-rebuild-every", &blasRebuildEvery);
+    scanner.option("--blas-keep-frames", &blasKeepFrames);
   }
 
   // Throws std::invalid_argument with a message for the user.
@@ -80,6 +84,7 @@ struct CullingArguments {
     o.blasBudgetBytes = std::uint64_t(whole(blasBudget, "--blas-budget")) << 20;
     o.blasBuildTriangles = whole(blasBuildBudget, "--blas-build-budget");
     o.blasRebuildEvery = whole(blasRebuildEvery, "--blas-rebuild-every");
+    o.blasKeepFrames = whole(blasKeepFrames, "--blas-keep-frames");
     runtime::validateCullingOptions(o);
     return o;
   }

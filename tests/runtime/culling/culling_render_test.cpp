@@ -183,8 +183,10 @@ std::vector<Camera> spreadPath() {
 TEST(CulledRender, TheBlasCacheEvictsUnderASmallBudgetWithTheSamePicture) {
   const Scene scene = smallCity();
   const RenderSettings s = settings(7, spreadPath());
-  const RenderResult unlimited = render(options(CullingMode::Frustum, true), scene, s);
-  RendererOptions small = options(CullingMode::Frustum, true);
+  RendererOptions keepAll = options(CullingMode::Frustum, true);
+  keepAll.culling.blasKeepFrames = 0;  // only the budget evicts
+  const RenderResult unlimited = render(keepAll, scene, s);
+  RendererOptions small = keepAll;
   small.culling.blasBudgetBytes = 1u << 20;
   const RenderResult budgeted = render(small, scene, s);
   std::uint32_t evictions = 0, builds = 0, unlimitedBuilds = 0;
@@ -200,6 +202,24 @@ TEST(CulledRender, TheBlasCacheEvictsUnderASmallBudgetWithTheSamePicture) {
   EXPECT_GT(builds, unlimitedBuilds) << "evicted BLASes are built again when needed";
   EXPECT_LT(budgeted.stats.frames.back().blasBytes, unlimited.stats.frames.back().blasBytes);
   EXPECT_TRUE(sameImage(budgeted.image, unlimited.image));
+}
+
+TEST(CulledRender, BlasesUnusedForKeepFramesAreEvicted) {
+  const Scene scene = smallCity();
+  RendererOptions o = options(CullingMode::Frustum, true);
+  o.culling.blasKeepFrames = 2;
+  // The path's cameras far apart (each frame keeps another part of the city), then four
+  // frames at the mirror camera.
+  std::vector<Camera> path = spreadPath();
+  path.insert(path.end(), 2, mirrorCamera());
+  const RenderResult r = render(o, scene, settings(9, path));
+  std::uint32_t evictions = 0;
+  for (const FrameStats& f : r.stats.frames)
+    evictions += f.blasEvictions;
+  EXPECT_GT(evictions, 0u);
+  const RenderResult fresh = render(o, scene, settings(1, {mirrorCamera()}));
+  EXPECT_EQ(r.stats.frames.back().blasBytes, fresh.stats.frames.front().blasBytes)
+      << "after more than 2 frames at the mirror camera only its BLASes are resident";
 }
 
 TEST(CulledRender, TheBuildBudgetSpreadsBuildsOverFrames) {
