@@ -52,7 +52,9 @@ DynamicAccelerationStructures::DynamicAccelerationStructures(const VulkanContext
     box_ = buildCompactedBlases(context, boxVertices_, 3 * sizeof(float), boxIndices_,
                                 std::span<const MeshGeometry>(&cube, 1));
   }
-  tlas_ = std::make_unique<TopLevelStructure>(context, culling_.counterCount());
+  tlas_ = std::make_unique<TopLevelStructure>(context, culling_.instanceCount());
+  if (hitFeedbackOn())
+    boxTlas_ = std::make_unique<TopLevelStructure>(context, culling_.counterCount());
   // The counters live on the device (the trace's atomics) and are copied to a host buffer
   // after each frame; 16 bytes at least, so the binding is valid without feedback too.
   const VkDeviceSize counterBytes =
@@ -92,9 +94,11 @@ void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float asp
       seconds, frame,
       options_.mode == CullingMode::None ? std::vector<std::uint8_t>{} : animatedNeeded);
 
-  // The TLAS records: active instances whose BLAS is resident, then the counting boxes.
+  // The TLAS records: active instances whose BLAS is resident; the counting boxes' TLAS:
+  // omitted instances, then inactive hitboxes.
   VkAccelerationStructureInstanceKHR* records = tlas_->records();
-  std::uint32_t n = 0;
+  VkAccelerationStructureInstanceKHR* boxes = boxTlas_ ? boxTlas_->records() : nullptr;
+  std::uint32_t n = 0, boxCount = 0;
   std::uint32_t waitingInstances = 0;
   const VkDeviceAddress box = hitFeedbackOn() ? box_.blases.front().address() : 0;
   for (std::uint32_t i = 0; i < states.size(); ++i) {
@@ -108,19 +112,20 @@ void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float asp
       }
       records[n++] = instanceRecord(
           transforms_[i], i, castsShadow_[i] ? gpu::kMaskSurface : gpu::kMaskLightQuad, blas);
-    } else if (states[i] == InstanceState::Omitted) {
-      records[n++] =
+    } else if (states[i] == InstanceState::Omitted && boxes) {
+      boxes[boxCount++] =
           instanceRecord(boxTransform(culling_.bounds()[i]), i, gpu::kMaskCountingBox, box);
     }
   }
-  if (hitFeedbackOn()) {
+  if (boxes) {
     for (std::uint32_t h = 0; h < culling_.hitboxCount(); ++h) {
       if (!culling_.hitboxUsed(h) || culling_.hitboxActive(h))
         continue;
-      records[n++] = instanceRecord(boxTransform(culling_.hitboxBounds(h)),
-                                    culling_.instanceCount() + h, gpu::kMaskCountingBox, box);
+      boxes[boxCount++] = instanceRecord(boxTransform(culling_.hitboxBounds(h)),
+                                         culling_.instanceCount() + h, gpu::kMaskCountingBox, box);
     }
   }
+  boxRecords_ = boxCount;
   records_ = n;
 
   const CullingCounts& counts = culling_.counts();
@@ -131,10 +136,11 @@ void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float asp
   stats.hitboxes = counts.hitboxes;
   stats.activeHitboxes = counts.activeHitboxes;
   stats.instanceStateChanges = counts.changes;
-  stats.tlasRecords = n;
+  stats.tlasRecords = n + boxCount;
   stats.blasBytes = blasCache_.residentBytes() + box_.bytes + animated_.bytes();
-  stats.tlasBytes = tlas_->bytes();
-  stats.asScratchBytes = tlas_->scratchBytes() + work.scratchBytes + animated_.scratchBytes();
+  stats.tlasBytes = tlas_->bytes() + (boxTlas_ ? boxTlas_->bytes() : 0);
+  stats.asScratchBytes = tlas_->scratchBytes() + (boxTlas_ ? boxTlas_->scratchBytes() : 0) +
+                         work.scratchBytes + animated_.scratchBytes();
   stats.blasBuilds = work.builds + moved.rebuilds;
   stats.blasUpdates = moved.updates;
   stats.blasEvictions = work.evictions;
@@ -156,6 +162,8 @@ void DynamicAccelerationStructures::recordTlasBuild(VkCommandBuffer commands,
     vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
                         timestamps, first + 1);
   tlas_->recordBuild(commands, records_);
+  if (boxTlas_)
+    boxTlas_->recordBuild(commands, boxRecords_);
   if (timestamps)
     vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
                         timestamps, first + 2);

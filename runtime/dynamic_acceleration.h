@@ -30,6 +30,10 @@ class DynamicAccelerationStructures {
                                 SceneBuffers& buffers, const CullingOptions& options);
 
   VkAccelerationStructureKHR tlas() const { return tlas_->handle(); }
+  // LiPaC's counting boxes (binding kBindingCountingBoxes); VK_NULL_HANDLE without LiPaC.
+  VkAccelerationStructureKHR countingBoxes() const {
+    return boxTlas_ ? boxTlas_->handle() : VK_NULL_HANDLE;
+  }
   // LiPaC's counters (binding kBindingHitFeedback): SceneCulling::counterCount() uints.
   const GpuBuffer& hitFeedback() const { return hitFeedback_; }
   bool hitFeedbackOn() const { return options_.mode == CullingMode::Lipac; }
@@ -66,6 +70,8 @@ class DynamicAccelerationStructures {
   CompactedBlases box_;
   std::unique_ptr<TopLevelStructure> tlas_;
   std::uint32_t records_ = 0;
+  std::unique_ptr<TopLevelStructure> boxTlas_;  // LiPaC only
+  std::uint32_t boxRecords_ = 0;
   GpuBuffer hitFeedback_;
   GpuBuffer hitReadback_;
 };

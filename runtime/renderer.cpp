@@ -310,7 +310,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                            &materialCache,
                            &buffers,
                            &textures,
-                           dynamicAccel ? &dynamicAccel->hitFeedback() : &noHitFeedback};
+                           dynamicAccel ? &dynamicAccel->hitFeedback() : &noHitFeedback,
+                           dynamicAccel ? dynamicAccel->countingBoxes() : VK_NULL_HANDLE};
   TraceDescriptorSet descriptors(context, pipeline.descriptorSetLayout(), resources);
   VkDescriptorSet set = descriptors.get();
 

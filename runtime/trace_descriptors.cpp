@@ -11,7 +11,7 @@ TraceDescriptorSet::TraceDescriptorSet(const VulkanContext& context,
                                        VkDescriptorSetLayout setLayout, const TraceResources& r) {
   VkDevice device = context.device();
   std::vector<VkDescriptorPoolSize> poolSizes = {
-      {VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 1},
+      {VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 2},
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
       {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 13},
       {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1},
@@ -78,18 +78,24 @@ TraceDescriptorSet::TraceDescriptorSet(const VulkanContext& context,
     write.pImageInfo = &tileImageInfo;
     writes.push_back(write);
   }
-  VkAccelerationStructureKHR tlas = r.tlas;
-  VkWriteDescriptorSetAccelerationStructureKHR tlasInfo{
-      VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};
-  tlasInfo.accelerationStructureCount = 1;
-  tlasInfo.pAccelerationStructures = &tlas;
-  VkWriteDescriptorSet tlasWrite{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-  tlasWrite.pNext = &tlasInfo;
-  tlasWrite.dstSet = set;
-  tlasWrite.dstBinding = gpu::kBindingTlas;
-  tlasWrite.descriptorCount = 1;
-  tlasWrite.descriptorType = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR;
-  writes.push_back(tlasWrite);
+  // The scene's TLAS, and LiPaC's counting boxes where the render has them.
+  const VkAccelerationStructureKHR structures[2] = {r.tlas, r.countingBoxes};
+  VkWriteDescriptorSetAccelerationStructureKHR structureInfos[2];
+  const std::uint32_t structureBindings[2] = {gpu::kBindingTlas, gpu::kBindingCountingBoxes};
+  for (int i = 0; i < 2; ++i) {
+    if (structures[i] == VK_NULL_HANDLE)
+      continue;
+    structureInfos[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET_ACCELERATION_STRUCTURE_KHR};
+    structureInfos[i].accelerationStructureCount = 1;
+    structureInfos[i].pAccelerationStructures = &structures[i];
+    VkWriteDescriptorSet write{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+    write.pNext = &structureInfos[i];
+    write.dstSet = set;
+    write.dstBinding = structureBindings[i];
+    write.descriptorCount = 1;
+    write.descriptorType = VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR;
+    writes.push_back(write);
+  }
   std::vector<VkDescriptorImageInfo> imageInfos;
   for (std::uint32_t i = 0; i < r.textures->count(); ++i)
     imageInfos.push_back(

@@ -23,6 +23,8 @@ struct TraceResources {
   const SceneBuffers* scene = nullptr;
   const GpuTextures* textures = nullptr;
   const GpuBuffer* hitFeedback = nullptr;  // LiPaC's hit counters (a dummy without)
+  // LiPaC's counting boxes; VK_NULL_HANDLE without (no shader then uses the binding).
+  VkAccelerationStructureKHR countingBoxes = VK_NULL_HANDLE;
 };
 
 class TraceDescriptorSet {

@@ -97,6 +97,7 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   add(gpu::kBindingTileLog, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   add(gpu::kBindingTileQueue, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   add(gpu::kBindingHitFeedback, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  add(gpu::kBindingCountingBoxes, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR);
   if (tileImage)
     add(gpu::kBindingTileImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};

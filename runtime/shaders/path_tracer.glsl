@@ -72,14 +72,14 @@ layout(set = 0, binding = kBindingHitFeedback, std430) buffer HitFeedbackBlock {
 };
 
 // LiPaC's hit feedback (seeds/001 §3.3.2): a path ray counts the instance it hit, and a
-// probe along the same segment counts the first counting box before that hit (a hitbox, or
-// an omitted instance's box: the custom index is the counter slot). One box per ray, as
-// the thesis's skip-and-continue gives, without a second path through the raygen.
+// probe along the same segment through the counting boxes' own TLAS counts the first box
+// before that hit (a hitbox, or an omitted instance's box: the custom index is the counter
+// slot). One box per ray, as the thesis's skip-and-continue gives, without a second path
+// through the raygen, and path rays never traverse a box.
 void countHitFeedback(vec3 origin, vec3 direction, HitInfo hit) {
   if (hit.t >= 0.0) atomicAdd(hitCounts[hit.instanceIndex], 1u);
-  HitInfo box = traceClosest(origin, direction, hit.t >= 0.0 ? hit.t : kRayTMax,
-                             kMaskCountingBox);
-  if (box.t >= 0.0) atomicAdd(hitCounts[box.instanceIndex], 1u);
+  uint box = traceCountingBox(origin, direction, hit.t >= 0.0 ? hit.t : kRayTMax);
+  if (box != 0xFFFFFFFFu) atomicAdd(hitCounts[box], 1u);
 }
 #endif
 

@@ -49,15 +49,16 @@ MG_CONSTANT(uint, kBindingTileQueue, 15);   // tile cache, deferred fill: the mi
 // LiPaC hit feedback (seeds/001 §3.3.2; MG_HIT_FEEDBACK): one uint per scene instance, its
 // hits (or its box's while omitted), then one per hitbox, its box's. Cleared every frame.
 MG_CONSTANT(uint, kBindingHitFeedback, 16);
-MG_CONSTANT(uint, kBindingCount, 17);
+// LiPaC's counting boxes (inactive hitboxes, omitted instances) in a TLAS of their own, so
+// that path rays never traverse them and the feedback probe traverses nothing else.
+MG_CONSTANT(uint, kBindingCountingBoxes, 17);
+MG_CONSTANT(uint, kBindingCount, 18);
 
 // TLAS instance masks and the rays' cull masks. Surfaces answer every path ray; lights'
-// quads (Blender area lamps) only BSDF rays, as Cycles' lamps; LiPaC's counting boxes
-// (hitboxes, omitted instances) only the hit-feedback probe, so no path ray ever stops at
-// one.
+// quads (Blender area lamps) only BSDF rays, as Cycles' lamps.
 MG_CONSTANT(uint, kMaskSurface, 0x7E);
 MG_CONSTANT(uint, kMaskLightQuad, 0x01);
-MG_CONSTANT(uint, kMaskCountingBox, 0x80);
+MG_CONSTANT(uint, kMaskCountingBox, 0xFF);
 MG_CONSTANT(uint, kRayMaskNoLightQuads, 0x7E);  // camera and shadow rays
 MG_CONSTANT(uint, kRayMaskAll, 0x7F);           // BSDF rays
 

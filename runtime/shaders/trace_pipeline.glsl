@@ -26,3 +26,15 @@ bool traceShadow(vec3 origin, vec3 direction, float tMax) {
               kRayMaskNoLightQuads, 0, 1, kMissShadow, origin, 0.0, direction, tMax, 1);
   return shadowPayload != 0u;
 }
+
+#ifdef MG_HIT_FEEDBACK
+layout(set = 0, binding = kBindingCountingBoxes) uniform accelerationStructureEXT countingBoxes;
+
+// The first counting box along a ray segment: its custom index (a hit-feedback counter
+// slot), or ~0u when the segment crosses none.
+uint traceCountingBox(vec3 origin, vec3 direction, float tMax) {
+  traceRayEXT(countingBoxes, gl_RayFlagsOpaqueEXT, 0xFF, 0, 1, kMissClosest, origin, 0.0,
+              direction, tMax, 0);
+  return hitPayload.t >= 0.0 ? hitPayload.instanceIndex : 0xFFFFFFFFu;
+}
+#endif

@@ -13,11 +13,6 @@ HitInfo traceClosest(vec3 origin, vec3 direction, float tMax, uint mask) {
   if (mask == kRayMaskAll)
     rayQueryInitializeEXT(query, tlas, gl_RayFlagsOpaqueEXT, kRayMaskAll, origin, 0.0, direction,
                           tMax);
-#ifdef MG_HIT_FEEDBACK
-  else if (mask == kMaskCountingBox)
-    rayQueryInitializeEXT(query, tlas, gl_RayFlagsOpaqueEXT, kMaskCountingBox, origin, 0.0,
-                          direction, tMax);
-#endif
   else
     rayQueryInitializeEXT(query, tlas, gl_RayFlagsOpaqueEXT, kRayMaskNoLightQuads, origin, 0.0,
                           direction, tMax);
@@ -49,3 +44,20 @@ bool traceShadow(vec3 origin, vec3 direction, float tMax) {
   return rayQueryGetIntersectionTypeEXT(query, true) !=
          gl_RayQueryCommittedIntersectionNoneEXT;
 }
+
+#ifdef MG_HIT_FEEDBACK
+layout(set = 0, binding = kBindingCountingBoxes) uniform accelerationStructureEXT countingBoxes;
+
+// The first counting box along a ray segment: its custom index (a hit-feedback counter
+// slot), or ~0u when the segment crosses none.
+uint traceCountingBox(vec3 origin, vec3 direction, float tMax) {
+  rayQueryEXT query;
+  rayQueryInitializeEXT(query, countingBoxes, gl_RayFlagsOpaqueEXT, 0xFF, origin, 0.0, direction,
+                        tMax);
+  while (rayQueryProceedEXT(query)) {
+  }
+  if (rayQueryGetIntersectionTypeEXT(query, true) != gl_RayQueryCommittedIntersectionTriangleEXT)
+    return 0xFFFFFFFFu;
+  return uint(rayQueryGetIntersectionInstanceCustomIndexEXT(query, true));
+}
+#endif
