@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -69,6 +70,8 @@ DynamicAccelerationStructures::DynamicAccelerationStructures(const VulkanContext
 void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float aspect,
                                                  std::uint32_t frame, float seconds,
                                                  std::uint64_t previousRays, FrameStats& stats) {
+  using Clock = std::chrono::steady_clock;
+  const auto stateStart = Clock::now();
   std::vector<std::uint32_t> hits;
   if (hitFeedbackOn() && frame > 0) {
     hits.resize(culling_.counterCount());
@@ -89,11 +92,14 @@ void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float asp
     else
       needed.push_back(instanceMeshes_[i]);
   }
+  double hostMilliseconds =
+      std::chrono::duration<double, std::milli>(Clock::now() - stateStart).count();
   const BlasFrameWork work = blasCache_.prepare(needed, frame);
   const AnimatedFrameWork moved = animated_.prepare(
       seconds, frame,
       options_.mode == CullingMode::None ? std::vector<std::uint8_t>{} : animatedNeeded);
 
+  const auto recordStart = Clock::now();
   // The TLAS records: active instances whose BLAS is resident; the counting boxes' TLAS:
   // omitted instances, then inactive hitboxes.
   VkAccelerationStructureInstanceKHR* records = tlas_->records();
@@ -126,6 +132,8 @@ void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float asp
     }
   }
   boxRecords_ = boxCount;
+  hostMilliseconds += std::chrono::duration<double, std::milli>(Clock::now() - recordStart).count();
+  stats.cullingHostMilliseconds = hostMilliseconds;
   records_ = n;
 
   const CullingCounts& counts = culling_.counts();

@@ -23,6 +23,7 @@ std::vector<FrameCounter> frameCounters(const FrameStats& frame) {
       {"blas_evictions", double(frame.blasEvictions)},
       {"blas_build_gpu_ms", frame.blasBuildMilliseconds},
       {"tlas_build_gpu_ms", frame.tlasBuildMilliseconds},
+      {"culling_host_ms", frame.cullingHostMilliseconds},
   };
 }
 

@@ -60,6 +60,9 @@ struct FrameStats {
   std::uint32_t blasEvictions = 0;
   double blasBuildMilliseconds = 0.0;
   double tlasBuildMilliseconds = 0.0;
+  // Host time of the frame's culling: reading the counters, the state update and writing
+  // the TLAS records (what §3.3.2 runs in compute passes); BLAS builds excluded.
+  double cullingHostMilliseconds = 0.0;
   double cacheHitRate() const { return cacheLookups ? double(cacheHits) / cacheLookups : 0.0; }
 };
 
