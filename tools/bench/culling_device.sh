@@ -10,6 +10,8 @@
 # After tools/bundle_device.sh, on the GPU machine (tools/ and examples/ travel as tracked
 # files; carry bundle and .gl):
 #   bash tools/bench/culling_device.sh [bench] [pictures]
+# and here, from the returned files: tools/results/make_culling_report RUN_FOLDER
+#   (docs/results/culling_h200.md and docs/results/culling_plots/).
 # EXTRA="--cache texel" adds flags to every run. Results under $OUT, each step under its own
 # time limit (LIMIT seconds a bench run, default 170). Here, to check the script on lavapipe
 # (figures meaningless): MEMOGRAPH=build/tools/memograph SCENE=builtin:city:scale=0.02

@@ -1,0 +1,77 @@
+#!/usr/bin/env python3
+"""Tests of tools/results/make_culling_report on a made-up run: medians, peaks and ratios to
+`--culling none`, the pictures' FLIP table, and bad input refused with exit 1.
+Run: python3 tools/results/make_culling_report_test.py (ctest runs it as
+tools.make_culling_report)."""
+import csv
+import os
+import subprocess
+import sys
+import tempfile
+import unittest
+
+REPORT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "make_culling_report")
+COLUMNS = ["frame", "gpu_ms", "frame_blas_bytes", "frame_tlas_bytes", "blas_build_gpu_ms",
+           "tlas_build_gpu_ms", "active_instances", "omitted_instances", "culling_host_ms"]
+
+
+def write_frames(path, frames):
+    with open(path, "w", newline="") as f:
+        writer = csv.writer(f)
+        writer.writerow(COLUMNS)
+        for i, (trace, mib, blas_ms, active) in enumerate(frames):
+            writer.writerow([i, trace, mib * 2**20, 0, blas_ms, 0.5, active, 0, 0.1])
+
+
+class MakeCullingReportTest(unittest.TestCase):
+    def setUp(self):
+        self.dir = tempfile.TemporaryDirectory()
+        self.addCleanup(self.dir.cleanup)
+
+    def run_report(self, folder):
+        out = os.path.join(self.dir.name, "report.md")
+        result = subprocess.run([sys.executable, REPORT, folder, "--out", out, "--plots",
+                                 os.path.join(self.dir.name, "plots"), "--no-png"],
+                                capture_output=True, text=True)
+        text = open(out).read() if os.path.exists(out) else ""
+        return result, text
+
+    def test_ratios_to_none_and_the_pictures(self):
+        run = os.path.join(self.dir.name, "run")
+        os.makedirs(run)
+        write_frames(os.path.join(run, "frames_none.csv"),
+                     [(100.0, 1000, 0.0, 20000), (100.0, 1000, 0.0, 20000),
+                      (110.0, 1000, 0.0, 20000)])
+        write_frames(os.path.join(run, "frames_lipac.csv"),
+                     [(90.0, 300, 4.0, 3000), (80.0, 200, 1.0, 2000), (80.0, 100, 1.0, 1000)])
+        with open(os.path.join(run, "pictures.txt"), "w") as f:
+            f.write("== camera 120: lipac against none\nLDR-FLIP of a against b\n"
+                    "  mean  0.004200\n  max  0.5\n== camera 120: frustum against none\n"
+                    "  mean  0.031000\n")
+        result, text = self.run_report(run)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        lipac = next(line for line in text.splitlines() if line.startswith("| lipac |"))
+        cells = [c.strip() for c in lipac.strip("|").split("|")]
+        # frames, median AS, peak AS, peak / none, trace, BLAS, TLAS, frame, frame / none
+        self.assertEqual(cells[1:10], ["3", "200 MiB", "300 MiB", "0.30×", "80.00", "1.00",
+                                       "0.50", "81.50", "0.81×"])
+        mirror = next(line for line in text.splitlines() if line.startswith("| mirror (camera 120)"))
+        self.assertEqual([c.strip() for c in mirror.strip("|").split("|")][1:],
+                         ["0.0310", "0.0042"])
+
+    def test_bad_input_exits_1(self):
+        result, _ = self.run_report(os.path.join(self.dir.name, "missing"))
+        self.assertEqual(result.returncode, 1)
+        empty = os.path.join(self.dir.name, "empty")
+        os.makedirs(empty)
+        result, _ = self.run_report(empty)
+        self.assertEqual(result.returncode, 1)
+        with open(os.path.join(empty, "frames_none.csv"), "w") as f:
+            f.write("frame,gpu_ms\n0,1\n")
+        result, _ = self.run_report(empty)
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("not a culling run", result.stderr)
+
+
+if __name__ == "__main__":
+    unittest.main()
