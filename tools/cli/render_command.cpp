@@ -224,7 +224,8 @@ int runRender(std::span<const std::string_view> args) {
 #endif
   // A scene may name its own environment image (the Blender export's world): --environment
   // replaces it.
-  float environmentStrength = 1.0f, environmentUOffset = 0.0f;
+  // Unused in builds without the io module, which read no environment image.
+  [[maybe_unused]] float environmentStrength = 1.0f, environmentUOffset = 0.0f;
   if (environment.empty() && !scene.environment.imagePath.empty() &&
       scene.environment.imageRgb.empty()) {
     environment = scene.environment.imagePath;
