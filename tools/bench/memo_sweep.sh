@@ -2,7 +2,11 @@
 # The memoization benchmark sweep: the runs behind the project's Tables 6.1-6.3 (thesis §6)
 # at 1920x1080, P = 6, L = 4 over a 300-camera path, in ONE device call of at most 600 s.
 # tools/bundle_memo_sweep.sh copies it to bundle/memo_sweep.sh; on the GPU machine:
-#   bash bundle/memo_sweep.sh [--tables defaults,6.1,6.1r,6.1s,6.1b,diag,6.2,6.3] [--match REGEX] [--budget S]
+#   bash bundle/memo_sweep.sh [--tables defaults,6.1,6.1r,6.1s,6.1b,diag,6.2,6.3] [--match REGEX]
+#                             [--skip-done STEPS.tsv]... [--budget S] [--list]
+#   (--skip-done: leave out the rows an earlier call's steps.tsv lists as ok, e.g. the calls
+#   kept under docs/results/memoization_h200/, which travel with the working tree;
+#   --list: print the rows selected and stop)
 # and here, on lavapipe, end to end at a tiny size (64x36, a 4-camera path):
 #   bash tools/bench/memo_sweep.sh --dry-run [--match REGEX]
 #
@@ -20,16 +24,22 @@
 set -uo pipefail
 
 usage() {
-  sed -n '2,9p' "$0" | sed 's/^# \{0,1\}//'
+  sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'
 }
 
-dry=0 tables="defaults,6.1,6.1r,6.1s,6.1b,diag,6.2,6.3" match="" budget=""
+dry=0 list=0 tables="defaults,6.1,6.1r,6.1s,6.1b,diag,6.2,6.3" match="" budget="" done_steps=()
 while [ $# -gt 0 ]; do
   case $1 in
   --dry-run) dry=1 ;;
-  --tables | --match | --budget)
+  --list) list=1 ;;
+  --tables | --match | --budget | --skip-done)
     [ $# -ge 2 ] || { echo "memo_sweep.sh: $1 needs a value" >&2; exit 2; }
-    case $1 in --tables) tables=$2 ;; --match) match=$2 ;; --budget) budget=$2 ;; esac
+    case $1 in
+    --tables) tables=$2 ;; --match) match=$2 ;; --budget) budget=$2 ;;
+    --skip-done)
+      [ -r "$2" ] || { echo "memo_sweep.sh: --skip-done: cannot read '$2'" >&2; exit 2; }
+      done_steps+=("$2") ;;
+    esac
     shift ;;
   -h | --help) usage; exit 0 ;;
   *) echo "memo_sweep.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
@@ -202,7 +212,11 @@ log="$OUT/log.txt" steps="$OUT/steps.tsv"
 : >"$log"
 printf 'status\tseconds\tlimit_s\ttable\tscene\tlabel\tcameras\tstride\tflags\n' >"$steps"
 
-# The rows selected by --tables and --match, in order.
+# The rows selected by --tables and --match, less those --skip-done lists as ok, in order.
+done_rows=""
+if [ ${#done_steps[@]} -gt 0 ]; then
+  done_rows=$(awk -F'\t' '$1 == "ok" { print $5 "/" $6 }' "${done_steps[@]}" | sort -u)
+fi
 rows=()
 while IFS= read -r line; do
   line=${line%%#*}
@@ -210,8 +224,16 @@ while IFS= read -r line; do
   read -r limit table scene label cameras stride flags <<<"$line"
   [[ ",$tables," == *",$table,"* ]] || continue
   [ -z "$match" ] || [[ "$scene/$label" =~ $match ]] || continue
+  [ -n "$done_rows" ] && grep -qxF "$scene/$label" <<<"$done_rows" && continue
   rows+=("$limit|$table|$scene|$label|$cameras|$stride|$flags")
 done <<<"$VARIANTS"
+if [ $list = 1 ]; then
+  for row in "${rows[@]}"; do
+    IFS='|' read -r limit table scene label _ <<<"$row"
+    printf '%s\t%s\t%s/%s\n' "$limit" "$table" "$scene" "$label"
+  done
+  exit 0
+fi
 
 # One step: a bench call under its own time limit, skipped when the budget cannot hold it.
 run_step() {
