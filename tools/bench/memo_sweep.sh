@@ -6,7 +6,8 @@
 #                             [--skip-done STEPS.tsv]... [--budget S] [--list]
 #   (--skip-done: leave out the rows an earlier call's steps.tsv lists as ok, e.g. the calls
 #   kept under docs/results/memoization_h200/, which travel with the working tree;
-#   --list: print the rows selected and stop)
+#   --list: print the rows selected and stop; MEMOGRAPH=bundle/ab/<rev>/memograph, after
+#   tools/bundle_ab.sh <rev>, continues a sweep with an earlier commit's binary)
 # and here, on lavapipe, end to end at a tiny size (64x36, a 4-camera path):
 #   bash tools/bench/memo_sweep.sh --dry-run [--match REGEX]
 #
@@ -199,7 +200,9 @@ if [ $dry = 1 ]; then
   OUT=${OUT:-/tmp/memo_sweep_dry}
   budget=${budget:-1000000}
 else
-  m=bundle/memograph
+  # MEMOGRAPH: another bundled binary, e.g. bundle/ab/<rev>/memograph of tools/bundle_ab.sh,
+  # to continue a sweep with the binary its first calls used.
+  m=${MEMOGRAPH:-bundle/memograph}
   OUT=${OUT:-/tmp/out}
   budget=${budget:-585} # the device call's 600 s, less packing and set-up
   source bundle/device_env.sh
@@ -305,7 +308,7 @@ fi
   if [ $dry = 1 ]; then
     echo "bundle: none, the working tree's build (dry run)"
   else
-    echo "bundle: $(cat bundle/VERSION 2>/dev/null || echo "no bundle/VERSION")"
+    echo "bundle: $(cat "$(dirname "$m")/VERSION" 2>/dev/null || echo "no VERSION beside $m")"
   fi
   nvidia-smi -L 2>/dev/null || true
   nvidia-smi --query-gpu=name,driver_version,clocks.max.sm --format=csv 2>/dev/null || true
