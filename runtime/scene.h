@@ -27,6 +27,26 @@ struct Mesh {
   glm::vec3 textureSpaceSize{1.0f};
 };
 
+// An axis-aligned box.
+struct Bounds {
+  glm::vec3 lo{0.0f};
+  glm::vec3 hi{0.0f};
+  glm::vec3 centre() const { return 0.5f * (lo + hi); }
+};
+
+// The box around a mesh's positions (object space); a zero box for a mesh without any.
+inline Bounds meshBounds(const Mesh& mesh) {
+  Bounds b;
+  if (mesh.positions.empty())
+    return b;
+  b.lo = b.hi = mesh.positions.front();
+  for (const glm::vec3& p : mesh.positions) {
+    b.lo = glm::min(b.lo, p);
+    b.hi = glm::max(b.hi, p);
+  }
+  return b;
+}
+
 // A placed copy of a mesh with one material.
 struct Instance {
   std::uint32_t mesh = 0;

@@ -116,21 +116,14 @@ void validateCullingOptions(const CullingOptions& o) {
 }
 
 std::vector<Bounds> instanceBounds(const Scene& scene) {
-  std::vector<Bounds> meshBounds(scene.meshes.size());
-  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
-    Bounds& b = meshBounds[m];
-    if (scene.meshes[m].positions.empty())
-      continue;
-    b.lo = b.hi = scene.meshes[m].positions.front();
-    for (const glm::vec3& p : scene.meshes[m].positions) {
-      b.lo = glm::min(b.lo, p);
-      b.hi = glm::max(b.hi, p);
-    }
-  }
+  std::vector<Bounds> objectBounds;
+  objectBounds.reserve(scene.meshes.size());
+  for (const Mesh& mesh : scene.meshes)
+    objectBounds.push_back(meshBounds(mesh));
   std::vector<Bounds> out;
   out.reserve(scene.instances.size());
   for (const Instance& instance : scene.instances)
-    out.push_back(transformed(meshBounds.at(instance.mesh), instance.objectToWorld));
+    out.push_back(transformed(objectBounds.at(instance.mesh), instance.objectToWorld));
   return out;
 }
 

@@ -67,12 +67,6 @@ void validateCullingOptions(const CullingOptions& options);
 
 enum class InstanceState : std::uint8_t { Inactive = 0, Omitted = 1, Active = 2 };
 
-struct Bounds {
-  glm::vec3 lo{0.0f};
-  glm::vec3 hi{0.0f};
-  glm::vec3 centre() const { return 0.5f * (lo + hi); }
-};
-
 // World-space bounds of every instance of the scene.
 std::vector<Bounds> instanceBounds(const Scene& scene);
 

@@ -92,13 +92,9 @@ TextureSpace autoTextureSpace(const Mesh& mesh) {
   TextureSpace space;
   if (mesh.positions.empty())
     return space;
-  glm::vec3 lo = mesh.positions[0], hi = mesh.positions[0];
-  for (const glm::vec3& p : mesh.positions) {
-    lo = glm::min(lo, p);
-    hi = glm::max(hi, p);
-  }
-  space.location = 0.5f * (lo + hi);
-  space.size = 0.5f * (hi - lo);
+  const Bounds bounds = meshBounds(mesh);
+  space.location = bounds.centre();
+  space.size = 0.5f * (bounds.hi - bounds.lo);
   for (int k = 0; k < 3; ++k) {
     if (space.size[k] == 0.0f)
       space.size[k] = 1.0f;

@@ -33,8 +33,8 @@ layout(set = 0, binding = kBindingCountingBoxes) uniform accelerationStructureEX
 // The first counting box along a ray segment: its custom index (a hit-feedback counter
 // slot), or ~0u when the segment crosses none.
 uint traceCountingBox(vec3 origin, vec3 direction, float tMax) {
-  traceRayEXT(countingBoxes, gl_RayFlagsOpaqueEXT, 0xFF, 0, 1, kMissClosest, origin, 0.0,
-              direction, tMax, 0);
+  traceRayEXT(countingBoxes, gl_RayFlagsOpaqueEXT, kMaskCountingBox, 0, 1, kMissClosest, origin,
+              0.0, direction, tMax, 0);
   return hitPayload.t >= 0.0 ? hitPayload.instanceIndex : 0xFFFFFFFFu;
 }
 #endif

@@ -52,8 +52,8 @@ layout(set = 0, binding = kBindingCountingBoxes) uniform accelerationStructureEX
 // slot), or ~0u when the segment crosses none.
 uint traceCountingBox(vec3 origin, vec3 direction, float tMax) {
   rayQueryEXT query;
-  rayQueryInitializeEXT(query, countingBoxes, gl_RayFlagsOpaqueEXT, 0xFF, origin, 0.0, direction,
-                        tMax);
+  rayQueryInitializeEXT(query, countingBoxes, gl_RayFlagsOpaqueEXT, kMaskCountingBox, origin,
+                        0.0, direction, tMax);
   while (rayQueryProceedEXT(query)) {
   }
   if (rayQueryGetIntersectionTypeEXT(query, true) != gl_RayQueryCommittedIntersectionTriangleEXT)
