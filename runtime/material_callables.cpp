@@ -39,12 +39,12 @@ MaterialCallables compileMaterialCallables(const LinkedMaterials& materials,
         files["material.glsl"] = material.include;
         ShaderCompiler compiler(std::move(files), options.cacheDirectory);
         try {
+          std::vector<std::string> defines = options.defines;
+          defines.push_back("MG_TEXTURE_COUNT=" + std::to_string(options.textureCount));
+          defines.push_back("MG_TEXTURE_BASE=" + std::to_string(material.textureBase));
+          defines.push_back("MG_EVALUATE_MATERIAL=EvaluateMaterial_" + material.name);
           callables.spirv[index] =
-              compiler.compile({"material_callable.rcall",
-                                ShaderStage::Callable,
-                                {"MG_TEXTURE_COUNT=" + std::to_string(options.textureCount),
-                                 "MG_TEXTURE_BASE=" + std::to_string(material.textureBase),
-                                 "MG_EVALUATE_MATERIAL=EvaluateMaterial_" + material.name}});
+              compiler.compile({"material_callable.rcall", ShaderStage::Callable, defines});
         } catch (const std::exception& e) {
           throw std::runtime_error("callable shader of material '" + material.name +
                                    "': " + e.what());

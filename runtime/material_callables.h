@@ -26,6 +26,9 @@ struct MaterialCallableCompileOptions {
   std::filesystem::path cacheDirectory;  // empty: no disk cache
   std::uint32_t textureCount = 1;
   std::uint32_t threads = 0;  // 0: one per hardware thread
+  // Defines every callable shares with the raygen that calls it (those that shape
+  // MaterialInputs and MaterialOutputs must match on both sides).
+  std::vector<std::string> defines;
 };
 
 // Compiles every distinct material; adds the hits, compiles and summed compile time (CPU

@@ -165,6 +165,10 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
     entry.textureBase = static_cast<int>(linked.texturePaths.size());
     entry.cacheable = compiled->metadata.cacheable;
     entry.inputsUsed = compiled->metadata.inputsUsed;
+    for (const std::string& input : entry.inputsUsed)
+      if (input == "generated" || input == "objectPosition" || input == "geometricNormal" ||
+          input == "objectLocation" || input == "objectRandom" || input == "backfacing")
+        linked.objectInputs = true;
     for (const std::string& output : compiled->metadata.outputsWritten)
       if (output == "specularTint" || output == "cyclesPrincipled")
         linked.cyclesPrincipled = true;

@@ -51,6 +51,10 @@ struct LinkedMaterials {
   // Some material writes specularTint or cyclesPrincipled: the path tracer needs
   // MG_CYCLES_PRINCIPLED (brdf.glsl), which other scenes do without.
   bool cyclesPrincipled = false;
+  // Some material reads an object-space input (generated, objectPosition, geometricNormal,
+  // objectLocation, objectRandom, backfacing); without one the shaders define
+  // MG_OMIT_OBJECT_INPUTS and MaterialInputs carries none of them.
+  bool objectInputs = false;
   double compileMilliseconds = 0.0;
 };
 

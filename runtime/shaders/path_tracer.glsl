@@ -302,7 +302,9 @@ SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
   s.inputs.textureBase = 0;  // set per material by the switch case or the callable
 
   // Object space (Blender's Object and Generated coordinates, Object Info): the hit and its
-  // footprint axes through the inverse transform, then the mesh's texture space.
+  // footprint axes through the inverse transform, then the mesh's texture space. Compiled
+  // out for scenes whose materials read none of it (MG_OMIT_OBJECT_INPUTS, renderer.cpp).
+#ifndef MG_OMIT_OBJECT_INPUTS
   mat4 toObject = instance.worldToObject;
   s.inputs.objectPosition.v = (toObject * vec4(position, 1.0)).xyz;
   s.inputs.objectPosition.x = mat3(toObject) * axis1;
@@ -316,6 +318,7 @@ SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
   s.inputs.objectLocation = toWorld[3].xyz;
   s.inputs.objectRandom = instance.objectInfo.x;
   s.inputs.backfacing = backfacing ? 1.0 : 0.0;
+#endif
   return s;
 }
 

@@ -288,12 +288,14 @@ void tileFillTexel(uint invocation) {
   inputs.view = vec3(0.0, 0.0, 1.0);
   inputs.time = frame.cameraForward.w;
   inputs.textureBase = 0;
+#ifndef MG_OMIT_OBJECT_INPUTS
   inputs.generated = inputs.position;
   inputs.objectPosition = inputs.position;
   inputs.geometricNormal = vec3(0.0, 0.0, 1.0);
   inputs.objectLocation = vec3(0.0);
   inputs.objectRandom = 0.0;
   inputs.backfacing = 0.0;
+#endif
   vec2 tile = vec2(uintBitsToFloat(item.tileX), uintBitsToFloat(item.tileY));
   inputs = tileTexelInputs(inputs, int(item.level), tile, texel);
   MaterialOutputs outputs;

@@ -116,5 +116,25 @@ TEST(ObjectInputs, PathTracerFillsGeneratedObjectInfoAndFaceNormal) {
   EXPECT_TRUE(renderer.context().validationErrors().empty());
 }
 
+// The renderer compiles MaterialInputs without the object-space members
+// (MG_OMIT_OBJECT_INPUTS) exactly when the linker says no graph reads one; a graph that
+// reads any of them keeps them all.
+TEST(ObjectInputs, LinkerSaysWhetherAnyGraphReadsObjectSpace) {
+  const fs::path nodes = objectNodes();
+  MaterialLinkOptions options;
+  options.nodeLibraryDirectory = nodes;
+  const MaterialRef plain{"Plain", "", "material Plain;\nBaseColorOutput (0.5, 0.5, 0.5);\n"};
+  const MaterialRef generated{"Gen", "",
+                              "material Gen;\nTestGenerated Out>0;\nEmissionOutput Color<0;\n"};
+  const MaterialRef info{"Info", "", "material Info;\nTestInfo Out>0;\nEmissionOutput Color<0;\n"};
+  const bool plainOnly = linkMaterials({plain}, options).objectInputs;
+  const bool withGenerated = linkMaterials({plain, generated}, options).objectInputs;
+  const bool withInfo = linkMaterials({info, plain}, options).objectInputs;
+  fs::remove_all(nodes);
+  EXPECT_FALSE(plainOnly);
+  EXPECT_TRUE(withGenerated);
+  EXPECT_TRUE(withInfo);
+}
+
 }  // namespace
 }  // namespace memograph::runtime
