@@ -345,6 +345,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                         (buffers.environmentWidth ? gpu::kFlagEnvironmentImage : 0u);
   frame.path = glm::uvec4(settings.pathsPerPixel, settings.raysPerPath, flags, buffers.lightCount);
   frame.environmentSize = glm::uvec4(buffers.environmentWidth, buffers.environmentHeight, 0, 0);
+  frame.culling = glm::uvec4(options_.culling.feedbackStride, 0, 0, 0);
   std::uint32_t mipBiasBits = 0;
   std::memcpy(&mipBiasBits, &cache.mipBias, sizeof mipBiasBits);
   frame.cache =

@@ -105,6 +105,9 @@ void validateCullingOptions(const CullingOptions& o) {
     throw std::invalid_argument("--blas-rebuild-every must be in 1.." +
                                 std::to_string(kMaxLowFrames) + ", not " +
                                 std::to_string(o.blasRebuildEvery));
+  if (o.feedbackStride == 0 || o.feedbackStride > 64)
+    throw std::invalid_argument("--feedback-stride must be in 1..64, not " +
+                                std::to_string(o.feedbackStride));
   if (o.blasKeepFrames > kMaxLowFrames)
     throw std::invalid_argument("--blas-keep-frames must be in 0.." +
                                 std::to_string(kMaxLowFrames) + ", not " +

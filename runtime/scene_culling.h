@@ -60,6 +60,11 @@ struct CullingOptions {
   // Animated meshes' BLASes: updated in place every frame, rebuilt every this many frames
   // (refits loosen the tree; §3.3.1). 1: rebuilt every frame.
   std::uint32_t blasRebuildEvery = 16;
+  // lipac: 1 in this many 8×8-pixel blocks counts its rays each frame (another block each
+  // frame), each count weighted by it: the counters keep their expected value (thresholds
+  // are per million rays of the frame) while the counting-box probes, a second trace per
+  // ray, cost 1/N. 1: every ray counts.
+  std::uint32_t feedbackStride = 1;
 };
 
 // Throws std::invalid_argument with the option's flag name on a bad value.

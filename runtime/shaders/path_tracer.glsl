@@ -76,10 +76,21 @@ layout(set = 0, binding = kBindingHitFeedback, std430) buffer HitFeedbackBlock {
 // before that hit (a hitbox, or an omitted instance's box: the custom index is the counter
 // slot). One box per ray, as the thesis's skip-and-continue gives, without a second path
 // through the raygen, and path rays never traverse a box.
-void countHitFeedback(vec3 origin, vec3 direction, HitInfo hit) {
-  if (hit.t >= 0.0) atomicAdd(hitCounts[hit.instanceIndex], 1u);
+// `weight` 0: this pixel does not count this frame (hitFeedbackWeight).
+void countHitFeedback(vec3 origin, vec3 direction, HitInfo hit, uint weight) {
+  if (weight == 0u) return;
+  if (hit.t >= 0.0) atomicAdd(hitCounts[hit.instanceIndex], weight);
   uint box = traceCountingBox(origin, direction, hit.t >= 0.0 ? hit.t : kRayTMax);
-  if (box != 0xFFFFFFFFu) atomicAdd(hitCounts[box], 1u);
+  if (box != 0xFFFFFFFFu) atomicAdd(hitCounts[box], weight);
+}
+
+// Sampled feedback (CullingOptions::feedbackStride = N): 1 in N blocks of 8×8 pixels counts
+// its rays, weighted N, a different block each frame. Whole blocks, so that a subgroup's
+// invocations skip the probe together instead of waiting for one that traces it.
+uint hitFeedbackWeight(uvec2 pixel) {
+  uint stride = max(frame.culling.x, 1u);
+  uvec2 block = pixel >> 3u;
+  return (block.x + 5u * block.y + frame.image.z) % stride == 0u ? stride : 0u;
 }
 #endif
 
@@ -498,6 +509,9 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
   uint pathCount = max(frame.path.x, 1u);
   uint rayCountPerPath = frame.path.y;
   bool sharedPrimary = (frame.path.z & kFlagSharedPrimaryRay) != 0u;
+#ifdef MG_HIT_FEEDBACK
+  uint feedbackWeight = hitFeedbackWeight(pixel);
+#endif
 
   vec3 primaryOrigin, primaryDirection;
   HitInfo primaryHit;
@@ -507,7 +521,7 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
     primaryHit = traceClosest(primaryOrigin, primaryDirection, kRayTMax, kRayMaskNoLightQuads);
     rays += 1u;
 #ifdef MG_HIT_FEEDBACK
-    countHitFeedback(primaryOrigin, primaryDirection, primaryHit);
+    countHitFeedback(primaryOrigin, primaryDirection, primaryHit, feedbackWeight);
 #endif
   }
 
@@ -540,7 +554,7 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
                              bounce == 0u ? kRayMaskNoLightQuads : kRayMaskAll);
           rays += 1u;
 #ifdef MG_HIT_FEEDBACK
-          countHitFeedback(origin, direction, hit);
+          countHitFeedback(origin, direction, hit, feedbackWeight);
 #endif
         }
         if (hit.t < 0.0) {

@@ -168,6 +168,9 @@ struct FrameConstants {
   // Cache: x entries S (0: no cache), y frame clock (frame + 1), z mip bias of eq. 5.5
   // (float bits), w tiles per row of the tile cache's storage image.
   uvec4 cache;
+  // LiPaC (MG_HIT_FEEDBACK): x: 1 in x 8×8-pixel blocks counts its rays this frame, each
+  // count weighted x (CullingOptions::feedbackStride); yzw unused.
+  uvec4 culling;
 };
 
 // Counters the shader adds to (binding kBindingRayCounter), in vec4-sized groups. The first

@@ -10,7 +10,8 @@
 # After tools/bundle_device.sh, on the GPU machine (tools/ and examples/ travel as tracked
 # files; carry bundle and .gl):
 #   bash tools/bench/culling_device.sh [bench] [pictures]
-# and here, from the returned files: tools/results/make_culling_report RUN_FOLDER
+# and here, from the returned files (unpack culling_run.tar.gz into RUN_FOLDER first):
+#   tools/results/make_culling_report RUN_FOLDER
 #   (docs/results/culling_h200.md and docs/results/culling_plots/).
 # EXTRA="--cache texel" adds flags to every run. Results under $OUT, each step under its own
 # time limit (LIMIT seconds a bench run, default 170). Here, to check the script on lavapipe
@@ -81,3 +82,11 @@ for step in "$@"; do
 done
 rm -rf "$work"
 echo done >>"$OUT/log.txt"
+# The device tool returns at most 8 files and a full run writes 9: on the GPU machine they
+# come back as one archive (unpack it into the run folder for make_culling_report) beside
+# the two logs to read at once.
+if [ -z "${MEMOGRAPH:-}" ]; then
+  tar czf /tmp/culling_run.tar.gz -C "$OUT" .
+  find "$OUT" -maxdepth 1 -type f ! -name log.txt ! -name pictures.txt -delete
+  mv /tmp/culling_run.tar.gz "$OUT/"
+fi

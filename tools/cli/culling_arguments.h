@@ -27,6 +27,8 @@ inline constexpr const char* kCullingHelp =
     "  --instance-deactivate D  lipac: and is omitted again below D (default 0.4)\n"
     "  --low-frames K        lipac: frames below a deactivation threshold before it acts\n"
     "                        (default 8; doubled for a hitbox each time it deactivates)\n"
+    "  --feedback-stride N   lipac: 1 in N 8x8-pixel blocks counts its rays each frame,\n"
+    "                        weighted N (default 1: every ray; 1..64)\n"
     "  --blas-budget MB      culled: evict BLASes no instance in the TLAS uses, least\n"
     "                        recently used first, past MB mebibytes (default: no limit)\n"
     "  --blas-build-budget T culled: build at most T triangles of BLASes a frame (at least\n"
@@ -40,7 +42,7 @@ struct CullingArguments {
   std::string mode = "none", radius = "30", hitboxSize = "50", hitboxActivate = "20",
               hitboxDeactivate = "2", instanceActivate = "4", instanceDeactivate = "0.4",
               lowFrames = "8", blasBudget = "0", blasBuildBudget = "0", blasRebuildEvery = "16",
-              blasKeepFrames = "8";
+              blasKeepFrames = "8", feedbackStride = "1";
 
   void registerWith(ArgumentScanner& scanner) {
     scanner.option("--culling", &mode);
@@ -55,6 +57,7 @@ struct CullingArguments {
     scanner.option("--blas-build-budget", &blasBuildBudget);
     scanner.option("--blas-rebuild-every", &blasRebuildEvery);
     scanner.option("--blas-keep-frames", &blasKeepFrames);
+    scanner.option("--feedback-stride", &feedbackStride);
   }
 
   // Throws std::invalid_argument with a message for the user.
@@ -85,6 +88,7 @@ struct CullingArguments {
     o.blasBuildTriangles = whole(blasBuildBudget, "--blas-build-budget");
     o.blasRebuildEvery = whole(blasRebuildEvery, "--blas-rebuild-every");
     o.blasKeepFrames = whole(blasKeepFrames, "--blas-keep-frames");
+    o.feedbackStride = whole(feedbackStride, "--feedback-stride");
     runtime::validateCullingOptions(o);
     return o;
   }

@@ -169,6 +169,22 @@ TEST(CulledRender, WhatOnlyTheMirrorShowsIsKeptByLipacAndLostByFrustumCulling) {
   EXPECT_EQ(keptByFrustum, 0u);
 }
 
+// Sampled feedback (1 in 4 pixel blocks a frame, weighted 4) still finds what only the
+// mirror shows: the instances behind the camera can only be activated by counted rays.
+TEST(CulledRender, SampledFeedbackStillKeepsWhatOnlyTheMirrorShows) {
+  const Scene scene = smallCity();
+  const Camera camera = mirrorCamera();
+  RendererOptions o = options(CullingMode::Lipac, false);
+  o.culling.feedbackStride = 4;
+  const RenderResult lipac = render(o, scene, settings(8, {camera}));
+  std::uint32_t kept = 0;
+  const std::vector<std::uint32_t> behind =
+      behindInTheStreet(scene, camera, CullingOptions{}.radius);
+  for (std::uint32_t i : behind)
+    kept += lipac.instanceStates[i] == InstanceState::Active;
+  EXPECT_GT(kept, 0u) << "of " << behind.size() << " instances behind the camera";
+}
+
 // Five cameras far apart on the path, then the mirror camera (which sees a small part of
 // the city) for two frames.
 std::vector<Camera> spreadPath() {

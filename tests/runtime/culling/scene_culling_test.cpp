@@ -224,6 +224,13 @@ TEST(CullingOptions, BadValuesAreRefusedWithTheirFlag) {
   o = lipac();
   o.lowFrames = 0;
   EXPECT_NE(message(o).find("--low-frames"), std::string::npos);
+  o = lipac();
+  o.feedbackStride = 0;
+  EXPECT_NE(message(o).find("--feedback-stride"), std::string::npos);
+  o.feedbackStride = 65;
+  EXPECT_NE(message(o).find("--feedback-stride"), std::string::npos);
+  o.feedbackStride = 64;
+  EXPECT_EQ(message(o), "");
   o = CullingOptions{};
   o.blasBudgetBytes = 1 << 20;
   EXPECT_NE(message(o).find("need"), std::string::npos);
