@@ -58,7 +58,7 @@ MG_CONSTANT(uint, kBindingCount, 18);
 // quads (Blender area lamps) only BSDF rays, as Cycles' lamps.
 MG_CONSTANT(uint, kMaskSurface, 0x7E);
 MG_CONSTANT(uint, kMaskLightQuad, 0x01);
-MG_CONSTANT(uint, kMaskCountingBox, 0xFF);  // the boxes' own TLAS: every box, every probe
+MG_CONSTANT(uint, kMaskCountingBox, 0xFF);      // the boxes' own TLAS: every box, every probe
 MG_CONSTANT(uint, kRayMaskNoLightQuads, 0x7E);  // camera and shadow rays
 MG_CONSTANT(uint, kRayMaskAll, 0x7F);           // BSDF rays
 
