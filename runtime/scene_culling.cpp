@@ -15,7 +15,8 @@ constexpr std::uint64_t kMaxHitboxes = 65536;
 constexpr std::uint32_t kMaxLowFrames = 1024;
 // Activation needs at least this many hits however few rays a frame traces, so that in a
 // small image (where the per-million thresholds stand for less than one hit) one stray
-// diffuse ray does not switch a hitbox or an instance on.
+// diffuse ray does not switch a hitbox or an instance on. Counted rays, not counts: with
+// sampled feedback each counted ray adds feedbackStride (update() scales the minimum).
 constexpr double kMinHitboxActivationHits = 4.0;
 constexpr double kMinInstanceActivationHits = 2.0;
 
@@ -265,8 +266,11 @@ void SceneCulling::updateLipac(const Frustum& frustum, const Camera& camera,
   if (!hits.empty()) {
     // Hitboxes (§3.3.2, algorithm 5): an inactive one counts the rays through its box, an
     // active one the hits of its instances (their own, or their boxes' while omitted).
-    const double activate =
-        std::max(kMinHitboxActivationHits, thresholdHits(options_.hitboxActivate, rays));
+    // A counted ray adds feedbackStride to its counter (sampled feedback): the minimums are
+    // in rays, so they scale with it; the per-million thresholds keep their expected value.
+    const double rayWeight = static_cast<double>(options_.feedbackStride);
+    const double activate = std::max(kMinHitboxActivationHits * rayWeight,
+                                     thresholdHits(options_.hitboxActivate, rays));
     const double deactivate = thresholdHits(options_.hitboxDeactivate, rays);
     for (std::uint32_t h = 0; h < hitboxCount(); ++h) {
       if (hitboxInstances_[h].empty())
@@ -295,8 +299,8 @@ void SceneCulling::updateLipac(const Frustum& frustum, const Camera& camera,
       }
     }
     // Instances (algorithm 5's third pass).
-    const double instanceActivate =
-        std::max(kMinInstanceActivationHits, thresholdHits(options_.instanceActivate, rays));
+    const double instanceActivate = std::max(kMinInstanceActivationHits * rayWeight,
+                                             thresholdHits(options_.instanceActivate, rays));
     const double instanceDeactivate = thresholdHits(options_.instanceDeactivate, rays);
     for (std::uint32_t i = 0; i < n; ++i) {
       if (alwaysOn_[i])

@@ -137,6 +137,25 @@ TEST(Lipac, HitboxesActivateAboveTheThresholdAndOwnMeshesGoThroughOmitted) {
   EXPECT_EQ(culling.states()[4], InstanceState::Active);
 }
 
+// With sampled feedback one counted ray adds feedbackStride: the minimum of 4 hits for a
+// hitbox stays 4 rays (16 counts at stride 4), so one stray ray cannot switch it on.
+TEST(Lipac, SampledFeedbackKeepsTheMinimumInRays) {
+  CullingOptions o = lipac();
+  o.feedbackStride = 4;
+  SceneCulling culling(row(), o);
+  const std::uint32_t n = culling.instanceCount();
+  const std::uint32_t far = culling.hitboxOf(2);
+  culling.update(farAway(), 1.0f, {}, 0);
+  std::vector<std::uint32_t> hits(culling.counterCount(), 0);
+  const std::uint64_t fewRays = 1000;  // ϑ_a stands for 0.02 hits: the minimum decides
+  hits[n + far] = 12;                  // three counted rays
+  culling.update(farAway(), 1.0f, hits, fewRays);
+  EXPECT_FALSE(culling.hitboxActive(far));
+  hits[n + far] = 16;  // four
+  culling.update(farAway(), 1.0f, hits, fewRays);
+  EXPECT_TRUE(culling.hitboxActive(far));
+}
+
 TEST(Lipac, DeactivatesOnlyAfterLowFramesAndBacksOff) {
   SceneCulling culling(row(), lipac());
   const std::uint32_t n = culling.instanceCount();
