@@ -3,7 +3,9 @@
 // validates annotations, and for the metadata, which reports them in this order.
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <cstddef>
 #include <string_view>
 
 namespace memograph::compiler {
@@ -12,6 +14,16 @@ inline constexpr std::array<std::string_view, 13> kMaterialInputNames = {
     "uv",        "position",  "normal",         "tangent",         "vertexColor",    "view",
     "time",      "generated", "objectPosition", "geometricNormal", "objectLocation", "objectRandom",
     "backfacing"};
+
+// The object-space inputs (Blender's Texture Coordinate, Geometry and Object Info): the
+// members from `generated` on, which the prelude leaves out under MG_OMIT_OBJECT_INPUTS.
+inline constexpr std::size_t kFirstObjectSpaceInput = 7;
+static_assert(kMaterialInputNames[kFirstObjectSpaceInput] == "generated");
+
+inline bool isObjectSpaceInput(std::string_view name) {
+  const auto first = kMaterialInputNames.begin() + kFirstObjectSpaceInput;
+  return std::find(first, kMaterialInputNames.end(), name) != kMaterialInputNames.end();
+}
 
 inline constexpr std::array<std::string_view, 9> kMaterialOutputNames = {
     "baseColor",        "metallic", "roughness", "specular", "specularTint",

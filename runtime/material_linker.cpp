@@ -14,6 +14,7 @@
 #define MG_HAVE_COMPILER 1
 #include "compiler/compiler.h"
 #include "compiler/diagnostics.h"
+#include "compiler/material_interface.h"
 #include "compiler/node_library.h"
 #include "memograph/node_library_loader.h"
 #endif
@@ -165,10 +166,9 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
     entry.textureBase = static_cast<int>(linked.texturePaths.size());
     entry.cacheable = compiled->metadata.cacheable;
     entry.inputsUsed = compiled->metadata.inputsUsed;
-    for (const std::string& input : entry.inputsUsed)
-      if (input == "generated" || input == "objectPosition" || input == "geometricNormal" ||
-          input == "objectLocation" || input == "objectRandom" || input == "backfacing")
-        linked.objectInputs = true;
+    if (std::any_of(entry.inputsUsed.begin(), entry.inputsUsed.end(),
+                    [](const std::string& input) { return compiler::isObjectSpaceInput(input); }))
+      linked.objectInputs = true;
     for (const std::string& output : compiled->metadata.outputsWritten)
       if (output == "specularTint" || output == "cyclesPrincipled")
         linked.cyclesPrincipled = true;
