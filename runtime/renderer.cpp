@@ -232,8 +232,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   ShaderCacheStats callableStats;
   std::optional<MaterialCallables> materialCallables;
   // MaterialInputs without the object-space members when no graph reads them: the callable
-  // payload and the raygen's stack shrink (on the H200 the classroom's texel row ran 20 %
-  // slower once they were added, with the stack at 864 B instead of 512 B).
+  // payload and the raygen's stack shrink (on the H200 the classroom's texel row: 144.7 ms
+  // and a 896 B stack with them, 128.5 ms and 576 B without).
   const bool omitObjectInputs = floor || !materials.objectInputs;
   if (callables) {
     MaterialCallableCompileOptions callableOptions;

@@ -85,8 +85,9 @@ void countHitFeedback(vec3 origin, vec3 direction, HitInfo hit, uint weight) {
 }
 
 // Sampled feedback (CullingOptions::feedbackStride = N): 1 in N blocks of 8×8 pixels counts
-// its rays, weighted N, a different block each frame. Whole blocks, so that a subgroup's
-// invocations skip the probe together instead of waiting for one that traces it.
+// its rays, weighted N, a different block each frame. Whole blocks, so that neighbouring
+// invocations, which mostly share a subgroup (the query backend's 8×8 work groups; the
+// pipeline's launch order is the driver's), skip the probe together.
 uint hitFeedbackWeight(uvec2 pixel) {
   uint stride = max(frame.culling.x, 1u);
   uvec2 block = pixel >> 3u;
