@@ -4,14 +4,10 @@
 # tools/bundle_memo_sweep.sh copies it to bundle/memo_sweep.sh; on the GPU machine:
 #   bash bundle/memo_sweep.sh [--tables defaults,6.1,6.1r,6.1s,6.1b,diag,6.2,6.3] [--match REGEX]
 #                             [--skip-done STEPS.tsv]... [--budget S] [--list]
-#                             [--precompile JOBS [--precompile-limit S]]
 #   (--skip-done: leave out the rows an earlier call's steps.tsv lists as ok, e.g. the calls
 #   kept under docs/results/memoization_h200/, which travel with the working tree;
 #   --list: print the rows selected and stop; MEMOGRAPH=bundle/ab/<rev>/memograph, after
-#   tools/bundle_ab.sh <rev>, continues a sweep with an earlier commit's binary;
-#   --precompile: first build every selected row's pipeline, JOBS rows at a time, for at most
-#   S seconds (default: a quarter of the budget), so that the timed rows find it in the
-#   driver's shader cache; see "Precompile" below)
+#   tools/bundle_ab.sh <rev>, continues a sweep with an earlier commit's binary)
 # and here, on lavapipe, end to end at a tiny size (64x36, a 4-camera path):
 #   bash tools/bench/memo_sweep.sh --dry-run [--match REGEX]
 #
@@ -33,16 +29,14 @@ usage() {
 }
 
 dry=0 list=0 tables="defaults,6.1,6.1r,6.1s,6.1b,diag,6.2,6.3" match="" budget="" done_steps=()
-precompile_jobs=0 precompile_limit=
 while [ $# -gt 0 ]; do
   case $1 in
   --dry-run) dry=1 ;;
   --list) list=1 ;;
-  --tables | --match | --budget | --skip-done | --precompile | --precompile-limit)
+  --tables | --match | --budget | --skip-done)
     [ $# -ge 2 ] || { echo "memo_sweep.sh: $1 needs a value" >&2; exit 2; }
     case $1 in
     --tables) tables=$2 ;; --match) match=$2 ;; --budget) budget=$2 ;;
-    --precompile) precompile_jobs=$2 ;; --precompile-limit) precompile_limit=$2 ;;
     --skip-done)
       [ -r "$2" ] || { echo "memo_sweep.sh: --skip-done: cannot read '$2'" >&2; exit 2; }
       done_steps+=("$2") ;;
@@ -55,14 +49,6 @@ while [ $# -gt 0 ]; do
 done
 if [ -n "$budget" ] && ! [[ $budget =~ ^[0-9]+$ ]]; then
   echo "memo_sweep.sh: --budget takes whole seconds, not '$budget'" >&2
-  exit 2
-fi
-if ! [[ $precompile_jobs =~ ^[0-9]+$ ]] || [ "$precompile_jobs" -gt 64 ]; then
-  echo "memo_sweep.sh: --precompile takes a number of parallel jobs (0-64), not '$precompile_jobs'" >&2
-  exit 2
-fi
-if [ -n "$precompile_limit" ] && ! [[ $precompile_limit =~ ^[0-9]+$ ]]; then
-  echo "memo_sweep.sh: --precompile-limit takes whole seconds, not '$precompile_limit'" >&2
   exit 2
 fi
 
@@ -220,10 +206,6 @@ else
   OUT=${OUT:-/tmp/out}
   budget=${budget:-585} # the device call's 600 s, less packing and set-up
   source bundle/device_env.sh
-  # The driver's shader disk cache must hold every row's pipeline (tens of MB each for the
-  # classroom) through the call, for --precompile; NVIDIA's default cap is smaller.
-  export __GL_SHADER_DISK_CACHE=1 __GL_SHADER_DISK_CACHE_SIZE=$((16 << 30))
-  export __GL_SHADER_DISK_CACHE_SKIP_CLEANUP=1
 fi
 start=$(date +%s)
 mkdir -p "$OUT"
@@ -256,10 +238,10 @@ if [ $list = 1 ]; then
   exit 0
 fi
 
-# Row i's settings into the caller's locals limit table scene label cameras stride flags,
-# shrunk for the dry run.
-row_settings() {
-  IFS='|' read -r limit table scene label cameras stride flags <<<"${rows[$1]}"
+# One step: a bench call under its own time limit, skipped when the budget cannot hold it.
+run_step() {
+  local i=$1 device=$2 limit table scene label cameras stride flags
+  IFS='|' read -r limit table scene label cameras stride flags <<<"${rows[$i]}"
   if [ $dry = 1 ]; then
     cameras=4 limit=300
     [ "$stride" -gt 1 ] && stride=2
@@ -271,58 +253,6 @@ row_settings() {
     if [[ $flags =~ --cache-entries\ ([0-9]+) ]] && [ "${BASH_REMATCH[1]}" -gt 65536 ]; then
       flags=${flags/--cache-entries ${BASH_REMATCH[1]}/--cache-entries 65536}
     fi
-  fi
-}
-
-# Precompile (--precompile JOBS): a classroom row's driver compile of its 88 callables takes
-# about 30 s on the H200, on one core, which is half of a cached row's step and leaves 15 of
-# the machine's 16 cores idle. So every selected row's pipeline is first built by the same
-# binary with the same flags, JOBS rows at a time, each rendering one untimed frame; the
-# driver's shader disk cache keeps the pipelines, and each timed step, run alone afterwards
-# exactly as without precompiling, finds its pipeline there (its "pipeline" figure is then
-# the cache lookup). Nothing runs beside a timed step, so frame times are not affected. A
-# precompiled row's time limit is its table limit less the compile it no longer does.
-precompile_row() {
-  local i=$1 cap=$2 limit table scene label cameras stride flags
-  row_settings "$i"
-  local pathFlags=(--camera-frames "$cameras") t0 rc
-  t0=$(date +%s)
-  [[ " $flags " == *" --static-camera "* ]] && pathFlags=()
-  # shellcheck disable=SC2086 # $flags is a list of words from the table
-  timeout "$cap" "$m" bench "builtin:$scene" --sizes "$size" --paths "$paths" \
-    --bounces "$bounces" --warmup 0 --frames 1 "${pathFlags[@]}" --label "$label" \
-    --shader-cache "$work/shaders" $flags >"$work/precompiled/$i.txt" 2>&1
-  rc=$?
-  local ms
-  ms=$(grep -oE 'pipeline [0-9.]+ ms' "$work/precompiled/$i.txt" | grep -oE '[0-9.]+' | tail -n 1)
-  if [ $rc = 0 ] && [ -n "$ms" ]; then
-    echo "${ms%.*}" >"$work/precompiled/$i.ms"
-    echo "precompiled $scene $label in $(($(date +%s) - t0)) s (pipeline ${ms%.*} ms)"
-  else
-    echo "precompile of $scene $label stopped (exit $rc after $(($(date +%s) - t0)) s): its step compiles"
-  fi
-}
-precompile() {
-  local deadline=$(($(date +%s) + ${precompile_limit:-$((budget / 4))}))
-  mkdir -p "$work/precompiled"
-  echo "== precompiling ${#rows[@]} rows, $precompile_jobs at a time, until $((deadline - start)) s"
-  for i in "${!rows[@]}"; do
-    while [ "$(jobs -rp | wc -l)" -ge "$precompile_jobs" ]; do wait -n; done
-    local cap=$((deadline - $(date +%s)))
-    [ "$cap" -gt 5 ] || break
-    precompile_row "$i" "$cap" &
-  done
-  wait
-  echo "== precompiled $(ls "$work"/precompiled/*.ms 2>/dev/null | wc -l) of ${#rows[@]} rows in $(($(date +%s) - start)) s"
-}
-
-# One step: a bench call under its own time limit, skipped when the budget cannot hold it.
-run_step() {
-  local i=$1 device=$2 limit table scene label cameras stride flags
-  row_settings "$i"
-  if [ -s "$work/precompiled/$i.ms" ]; then
-    limit=$((limit - $(cat "$work/precompiled/$i.ms") / 1000))
-    [ "$limit" -ge 20 ] || limit=20
   fi
   local left=$((budget - ($(date +%s) - start)))
   if [ "$left" -lt "$limit" ]; then
@@ -384,9 +314,8 @@ fi
   nvidia-smi --query-gpu=name,driver_version,clocks.max.sm --format=csv 2>/dev/null || true
   "$m" render --list-devices 2>&1 || true
   echo "settings: $size P=$paths L=$bounces warmup=$warmup budget=${budget}s tables=$tables" \
-    "match='$match' devices='${DEVICES:-}' steps=${#rows[@]} precompile=$precompile_jobs"
+    "match='$match' devices='${DEVICES:-}' steps=${#rows[@]}"
 } 2>&1 | tee "$OUT/env.txt" | tee -a "$log"
-[ "$precompile_jobs" -gt 0 ] && precompile 2>&1 | tee -a "$log"
 if [ -z "${DEVICES:-}" ]; then
   lane "" ""
 else
