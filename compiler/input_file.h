@@ -1,4 +1,4 @@
-// Reading input files with bounds (issue 14; docs/limits.md): only regular files (a FIFO
+// Reading input files with bounds (docs/limits.md): only regular files (a FIFO
 // would block forever, /dev/zero never ends), no larger than a documented limit, checked
 // before anything is allocated, and file-system errors (symlink loops, over-long names)
 // turned into messages instead of exceptions. C++ standard library only, like the rest

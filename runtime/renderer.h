@@ -56,7 +56,7 @@ struct RendererOptions {
   CacheOptions cache;  // cleared at the start of every render
   // The floor run: every material replaced by constants (a base colour per material id,
   // roughness 0.5, metallic 0, the geometric normal) and no graph evaluated, for the cost
-  // of a free material (issue 4). Stats say materialDispatch "floor". Not with a cache.
+  // of a free material. Stats say materialDispatch "floor". Not with a cache.
   bool floorMaterials = false;
   // Thesis Fig. 6.9: the image shows each frame alone, pixels where a path missed the
   // cache in red. Needs the texel cache.

@@ -94,7 +94,7 @@ class MapIncluder : public glslang::TShader::Includer {
 // 64-bit FNV-1a of the SPIR-V bytes as two words), then the SPIR-V. A truncated or corrupt
 // entry (a full disk, a crash of an older version, a disk error) is found by the length and
 // the checksum, dropped with a warning and recompiled, instead of reaching the driver
-// (VK_ERROR_INVALID_SHADER_NV, -13, on every later run: issue 14).
+// (VK_ERROR_INVALID_SHADER_NV, -13, on every later run).
 constexpr std::uint32_t kCacheMagic = 0x4353474du;  // "MGSC"
 constexpr std::uint32_t kCacheVersion = 2;
 constexpr std::size_t kCacheHeaderWords = 5;

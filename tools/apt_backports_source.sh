@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Prints the deb822 entry for Debian's bookworm-backports suite, derived from the machine's
 # own Debian source entries, so that a machine using a mirror or a proxy, or reaching only
-# its configured archive, gets backports from that same archive and keyring (issue 14).
+# its configured archive, gets backports from that same archive and keyring.
 #
 # Reads ROOT/etc/apt/sources.list, ROOT/etc/apt/sources.list.d/*.list (one-line format:
 # `deb [signed-by=KEYRING] URI bookworm main`) and ROOT/etc/apt/sources.list.d/*.sources

@@ -1,4 +1,4 @@
-// Built-in procedural scenes for tests and benchmarks (issue 3): a closed classroom-like
+// Built-in procedural scenes for tests and benchmarks: a closed classroom-like
 // room with many procedural materials and an open landscape with one expensive terrain
 // material. They need no files, so the renderer can run them on the GPU machine.
 #pragma once

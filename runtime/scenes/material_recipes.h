@@ -1,8 +1,8 @@
 // Parameterized recipes that generate the built-in scenes' material graphs (.mgraph text):
 // wood, painted metal, plastic, fabric, tiles, plaster, … Each reads only the UV input, so
 // the compiler marks it cacheable (thesis §4.2), and each spends most of its time in
-// multi-octave noise, so that memoization has something to save (issue 4 needs the
-// no-memo/floor ratio of the thesis's Classroom scene).
+// multi-octave noise, so that memoization has something to save (the memoization
+// benchmarks need the no-memo/floor ratio of the thesis's Classroom scene).
 #pragma once
 
 #include <cstdint>

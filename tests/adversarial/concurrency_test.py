@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""N processes writing the same outputs (issue 14): every result file is complete and from
+"""N processes writing the same outputs: every result file is complete and from
 one process, every exit code tells the truth, and no temporary is left behind.
 
 - `diff --out shared.png`: process k compares against its own test image, so each writes

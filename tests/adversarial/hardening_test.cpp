@@ -1,4 +1,4 @@
-// Unit tests of the hardening pieces (issue 14): the one output-writing path
+// Unit tests of the hardening pieces: the one output-writing path
 // (runtime/atomic_file.h), the bounded input reader (compiler/input_file.h) and the glTF
 // pre-check (tools/io/gltf_precheck.h). The CLI-level tests are run_corpus.py and
 // concurrency_test.py beside this file.
@@ -139,7 +139,7 @@ std::string triangleBuffer(std::uint16_t lastIndex) {
   return bytes;
 }
 
-// Issue 14: vertex indices in an external .bin were not read, so assimp dropped a triangle
+// Vertex indices in an external .bin were not read, so assimp dropped a triangle
 // with a bad one without a word; a missing buffer file was assimp's vaguer error.
 TEST_F(Hardening, ExternalBufferIndicesAreChecked) {
   fs::create_directories(path("sub"));

@@ -1,4 +1,4 @@
-// Google Benchmark timings of the compiler (issue 2 targets on the 2-core machine: a
+// Google Benchmark timings of the compiler (targets on the 2-core machine: a
 // 1,000-node graph under 10 ms, 100 graphs of 100 nodes under 100 ms), and of loading the
 // node library (the test one and the real one). Graphs come from the deterministic
 // generator; the library is loaded outside the timed loops.

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Per-node Cycles comparison (issue 13, Acceptance): Cycles vs `memograph bake`.
+"""Per-node Cycles comparison: Cycles vs `memograph bake`.
 
     python3 tests/blender/compare_nodes.py [--cases noise,math] [--match REGEX]
         [--out DIR] [--memograph PATH] [--nodes DIR] [--handwritten DIR] [--table FILE]
@@ -118,7 +118,7 @@ def parse_args(argv):
     p.add_argument('--table', default=None, help='write the Markdown result table here')
     p.add_argument('--list', action='store_true', help='list the selected cases and exit')
     p.add_argument('--blender-budget', type=float, default=300.0, help='fail when the '
-                   'Blender part takes longer (seconds; issue 13: the whole Blender part of '
+                   'Blender part takes longer (seconds; the whole Blender part of '
                    'the suite stays under 5 minutes)')
     p.add_argument('--any-blender', action='store_true', help='accept a Blender other than 3.4')
     return p.parse_args(argv)

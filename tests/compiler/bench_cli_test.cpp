@@ -1,4 +1,4 @@
-// `memograph bench`'s options for the memoization sweeps (issue 4): a frame stride is
+// `memograph bench`'s options for the memoization sweeps: a frame stride is
 // refused with a cache, --label names the per-frame file so variants do not collide, and
 // --time-limit stops a run that would take too long and says so.
 #include <gtest/gtest.h>

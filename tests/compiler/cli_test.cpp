@@ -224,7 +224,7 @@ TEST_F(CliTest, RenderAndBenchRefuseBadCacheOptionValues) {
   EXPECT_FALSE(fs::exists(directory_ / "x.pfm"));
 }
 
-// Issue 14: the shader cache is an optimisation. An entry that cannot be written (here its
+// The shader cache is an optimisation. An entry that cannot be written (here its
 // folder is a file; a full disk is ShaderCache.AnUnwritableEntryIsAWarningAndLeavesNoTemporary
 // in tests/runtime, since a file-size limit also breaks lavapipe's file-backed memory) is a
 // warning, and the render goes on.

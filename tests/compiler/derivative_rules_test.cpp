@@ -1,4 +1,4 @@
-// Issue 17, item 5: derivatives that would be dropped or invented, the int → float cost, and
+// Derivatives that would be dropped or invented, the int → float cost, and
 // phase 3's exhaustive fallback on graphs that are not trees (docs/mgraph-format.md).
 #include <gtest/gtest.h>
 

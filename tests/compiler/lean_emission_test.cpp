@@ -1,4 +1,4 @@
-// Issue 17, item 7: a generated include carries only the prelude helpers and node functions
+// A generated include carries only the prelude helpers and node functions
 // its material reaches (docs/node-library.md), yet any number of includes, and the whole
 // prelude before them, still make one valid shader.
 #include <gtest/gtest.h>

@@ -82,7 +82,7 @@ TEST(ShaderCache, EachCallableMaterialHasItsOwnEntry) {
   std::filesystem::remove_all(directory);
 }
 
-// Issue 14: a truncated or corrupt entry used to reach the driver on every later run. It
+// A truncated or corrupt entry used to reach the driver on every later run. It
 // is now dropped (with a warning), compiled again and rewritten; no temporaries are left.
 TEST(ShaderCache, CorruptEntriesAreDroppedAndRecompiled) {
   const auto directory = std::filesystem::temp_directory_path() /
@@ -133,7 +133,7 @@ TEST(ShaderCache, CorruptEntriesAreDroppedAndRecompiled) {
   std::filesystem::remove_all(directory);
 }
 
-// Issue 14: a cache entry that cannot be written (a full disk; here a file-size limit, the
+// A cache entry that cannot be written (a full disk; here a file-size limit, the
 // same failed write(2) without root) is a warning; the compiled shader is returned and no
 // temporary is left behind. The compile runs in a child process with RLIMIT_FSIZE below
 // an entry's size and SIGXFSZ ignored, so each write fails with EFBIG part-way.

@@ -1,4 +1,4 @@
-// The texel cache's options (issue 4) on lavapipe: fp16 values (§5.3.1), the 64-bit counter
+// The texel cache's options on lavapipe: fp16 values (§5.3.1), the 64-bit counter
 // clock (§5.3.3), texel-centre snapping and secondary-only caching (§6.1), the occupancy
 // counter, the miss view of Fig. 6.9, and the floor run (no graph evaluated).
 #include <algorithm>
@@ -101,7 +101,7 @@ TEST(TexelCacheOptions, EntrySizesAndDefinesFollowTheOptions) {
   EXPECT_EQ(parseCacheClock("counter"), CacheClock::Counter);
 }
 
-// The defaults a user of --cache texel / --cache tile gets (issue 17, item 4): the best
+// The defaults a user of --cache texel / --cache tile gets: the best
 // configuration measured on the H200 (docs/gpu-results.md, Table 6.1): lru, the counter
 // clock (where the device has 64-bit buffer atomics), the update-counter read check,
 // 2^24 texels (2^20 4x4 tiles) fitted to the device, and per policy a clock shift.

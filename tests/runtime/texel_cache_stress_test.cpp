@@ -104,7 +104,7 @@ TEST(TexelCacheStress, LrwCounterClockEvictsTheOldestAcrossTheWrap) {
   EXPECT_TRUE(context.validationErrors().empty());
 }
 
-// Issue 17, item 2: the cone after a diffuse bounce (ray_cone.glsl, as the path tracer
+// The cone after a diffuse bounce (ray_cone.glsl, as the path tracer
 // grows it). Eq. 2.11's small-angle form gave 14 rad at alpha = 1 (0.99 clamp); the bounded
 // form 2 atan(sigma) equals it to first order for small alpha and is pi for a diffuse lobe.
 // The LOD at the second hit: a primary cone of one pixel (alpha0 = 1 mrad) meets a wall at

@@ -32,7 +32,7 @@ void expectAllCompile(const Scene& scene) {
     EXPECT_EQ(compiled->metadata.name, material.name);
     EXPECT_FALSE(compiled->glsl.empty());
     EXPECT_FALSE(compiled->hlsl.empty());
-    // Cacheable: the memoization benchmarks (issue 4) rely on every material using the cache.
+    // Cacheable: the memoization benchmarks rely on every material using the cache.
     EXPECT_TRUE(compiled->metadata.cacheable);
     for (const std::string& input : compiled->metadata.inputsUsed)
       EXPECT_EQ(input, "uv");

@@ -154,7 +154,7 @@ TEST(CameraPathExamples, MatchTheBuiltinGenerator) {
     const auto path = loadCameraPath(
         std::string(MEMOGRAPH_EXAMPLES_DIR) + "/camera_paths/" + scene + ".campath", diagnostics);
     ASSERT_TRUE(path.has_value()) << compiler::formatDiagnostics(diagnostics);
-    ASSERT_GE(path->frames.size(), 300u);  // issue 4's benchmarks run ≥ 300 frames
+    ASSERT_GE(path->frames.size(), 300u);  // the memoization benchmarks run ≥ 300 frames
     const CameraPath expected = makeBuiltinCameraPath(scene, static_cast<int>(path->frames.size()));
     for (std::size_t i = 0; i < expected.frames.size(); ++i) {
       ASSERT_LT(glm::distance(path->frames[i].position, expected.frames[i].position), 1e-3f) << i;

@@ -119,7 +119,7 @@ int runBench(std::span<const std::string_view> args) {
     return usageError(
         "bench", "--label takes letters, digits, '.', '_' and '-' only, not '" + runLabel + "'");
   // --time-limit is a deadline for the whole command, so a caller with a hard limit of its
-  // own (the issue-4 sweep's per-step timeout) gets figures back however long set-up took.
+  // own (the memoization sweep's per-step timeout) gets figures back however long set-up took.
   const auto start = std::chrono::steady_clock::now();
   double timeLimitSeconds = -1.0;  // none
   if (!timeLimit.empty() && (!parseReal(timeLimit, timeLimitSeconds) || timeLimitSeconds < 0.0))

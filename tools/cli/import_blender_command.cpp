@@ -1,7 +1,7 @@
 // memograph import-blender SCENE.blend --out DIR [--blender PATH] [--materials NAME...]:
 // runs Blender headless with the memograph exporter (tools/blender/export_memograph.py) and
 // writes one .mgraph per material into DIR (docs/blender.md). DIR is committed as a set
-// (issue 14; docs/limits.md): Blender exports into a staging folder beside DIR, and only a
+// (docs/limits.md): Blender exports into a staging folder beside DIR, and only a
 // complete, successful export reaches DIR.
 #include <fcntl.h>
 #include <signal.h>

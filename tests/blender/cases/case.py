@@ -1,4 +1,4 @@
-"""One per-node Cycles comparison case (issue 13, Acceptance).
+"""One per-node Cycles comparison case.
 
 A case names one Blender shader node, its settings, its constant inputs and the inputs that
 vary over the UV plane; the harness (../build_and_bake.py inside Blender, ../compare_nodes.py

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Exporter end-to-end tests (issue 13): combined graphs against Cycles, every warning path,
+"""Exporter end-to-end tests: combined graphs against Cycles, every warning path,
 bad input, the add-on zip. Needs Blender 3.4 (tools/setup.sh installs it) and a built
 memograph; without Blender it FAILS with a clear message, it never skips.
 
@@ -36,7 +36,7 @@ import zipfile
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(HERE)))
 SIZE = 64
-# Per-material tolerance (max abs error per channel). Analytic graphs: 1e-3 (issue 13).
+# Per-material tolerance (max abs error per channel). Analytic graphs: 1e-3.
 # Images: 8-bit PNG decoded and linearised by Cycles (OCIO) vs memograph's SRGBToLinear on
 # the stored value/255: the same texel, so 1e-3 too.
 TOLERANCE = {}

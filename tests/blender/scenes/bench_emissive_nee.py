@@ -1,5 +1,5 @@
 """Benchmark (not a test): emissive-triangle NEE against BSDF sampling alone, at equal time,
-in a scene lit only by an emissive panel (issue 15). Not registered in ctest: it measures.
+in a scene lit only by an emissive panel. Not registered in ctest: it measures.
 
     python3 bench_emissive_nee.py --memograph PATH [--scene DIR] [--size N] [--frames F]
 

@@ -1,4 +1,4 @@
-"""Builds one Blender test scene (issue 15), renders it with Cycles and exports it for memograph.
+"""Builds one Blender test scene, renders it with Cycles and exports it for memograph.
 
     blender -b --factory-startup --python build_scene.py -- --scene NAME --out DIR
             [--size N] [--samples S]

@@ -1,4 +1,4 @@
-"""Issue 15 acceptance: a Blender scene rendered by Cycles and by memograph (after the
+"""A Blender scene rendered by Cycles and by memograph (after the
 scene export), compared. One scene per run:
 
     python3 compare_scene.py --scene NAME --memograph PATH [--out DIR] [--blender PATH]

@@ -1,4 +1,4 @@
-"""Shader nodes -> memograph outputs (issue 13, item 3).
+"""Shader nodes -> memograph outputs.
 
 memograph materials have one BRDF (Principled subset: base colour, metallic, roughness,
 specular, specular tint, emission, opacity, normal; nodes/outputs.inc). A shader node is
