@@ -244,10 +244,15 @@ VkAccelerationStructureGeometryKHR tlasGeometry(VkDeviceAddress records) {
 
 }  // namespace
 
-TopLevelStructure::TopLevelStructure(const VulkanContext& context, std::uint32_t capacity)
+TopLevelStructure::TopLevelStructure(const VulkanContext& context, std::uint32_t capacity,
+                                     bool deviceWritten)
     : context_(&context), capacity_(std::max(capacity, 1u)) {
-  instances_ = hostBuffer(context, sizeof(VkAccelerationStructureInstanceKHR) * capacity_,
-                          kAccelerationBuildInput);
+  const VkDeviceSize recordBytes = sizeof(VkAccelerationStructureInstanceKHR) * capacity_;
+  instances_ = deviceWritten
+                   ? GpuBuffer(context, recordBytes,
+                               kAccelerationBuildInput | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                               VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)
+                   : hostBuffer(context, recordBytes, kAccelerationBuildInput);
   VkAccelerationStructureGeometryKHR geometry = tlasGeometry(instances_.address());
   VkAccelerationStructureBuildGeometryInfoKHR build = tlasBuildInfo(&geometry);
   VkAccelerationStructureBuildSizesInfoKHR sizes{

@@ -17,6 +17,21 @@ VulkanHandle<VkShaderModule> createShaderModule(VkDevice device,
       module, [device](VkShaderModule m) { vkDestroyShaderModule(device, m, nullptr); });
 }
 
+VulkanHandle<VkPipelineLayout> createPipelineLayout(VkDevice device, VkDescriptorSetLayout set,
+                                                    VkShaderStageFlags pushStages,
+                                                    std::uint32_t pushBytes) {
+  const VkPushConstantRange push{pushStages, 0, pushBytes};
+  VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  info.setLayoutCount = set != VK_NULL_HANDLE ? 1 : 0;
+  info.pSetLayouts = &set;
+  info.pushConstantRangeCount = pushStages != 0 ? 1 : 0;
+  info.pPushConstantRanges = &push;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  checkVk(vkCreatePipelineLayout(device, &info, nullptr, &layout), "vkCreatePipelineLayout");
+  return VulkanHandle<VkPipelineLayout>(
+      layout, [device](VkPipelineLayout l) { vkDestroyPipelineLayout(device, l, nullptr); });
+}
+
 VulkanHandle<VkPipeline> createComputePipeline(VkDevice device, VkShaderModule module,
                                                VkPipelineLayout layout, const char* what) {
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};

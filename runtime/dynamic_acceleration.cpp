@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstring>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -53,9 +54,30 @@ DynamicAccelerationStructures::DynamicAccelerationStructures(const VulkanContext
     box_ = buildCompactedBlases(context, boxVertices_, 3 * sizeof(float), boxIndices_,
                                 std::span<const MeshGeometry>(&cube, 1));
   }
-  tlas_ = std::make_unique<TopLevelStructure>(context, culling_.instanceCount());
+  tlas_ = std::make_unique<TopLevelStructure>(context, culling_.instanceCount(),
+                                              options.gpuInstanceFill);
+  if (options.gpuInstanceFill) {
+    // The records' templates: each instance's own (its BLAS filled in per frame) and, under
+    // LiPaC, its counting box and each hitbox's, as the host fill writes them.
+    std::vector<VkAccelerationStructureInstanceKHR> active, boxes;
+    for (std::uint32_t i = 0; i < culling_.instanceCount(); ++i)
+      active.push_back(instanceRecord(
+          transforms_[i], i, castsShadow_[i] ? gpu::kMaskSurface : gpu::kMaskLightQuad, 0));
+    if (hitFeedbackOn()) {
+      const VkDeviceAddress box = box_.blases.front().address();
+      for (std::uint32_t i = 0; i < culling_.instanceCount(); ++i)
+        boxes.push_back(
+            instanceRecord(boxTransform(culling_.bounds()[i]), i, gpu::kMaskCountingBox, box));
+      for (std::uint32_t h = 0; h < culling_.hitboxCount(); ++h)
+        boxes.push_back(instanceRecord(boxTransform(culling_.hitboxBounds(h)),
+                                       culling_.instanceCount() + h, gpu::kMaskCountingBox, box));
+    }
+    instanceFill_ = std::make_unique<GpuInstanceFill>(context, active, instanceMeshes_, boxes,
+                                                      culling_.hitboxCount(), meshCount_);
+  }
   if (hitFeedbackOn())
-    boxTlas_ = std::make_unique<TopLevelStructure>(context, culling_.counterCount());
+    boxTlas_ = std::make_unique<TopLevelStructure>(context, culling_.counterCount(),
+                                                   options.gpuInstanceFill);
   // The counters live on the device (the trace's atomics) and are copied to a host buffer
   // after each frame; 16 bytes at least, so the binding is valid without feedback too.
   const VkDeviceSize counterBytes =
@@ -101,7 +123,8 @@ void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float asp
 
   const auto recordStart = Clock::now();
   // The TLAS records: active instances whose BLAS is resident; the counting boxes' TLAS:
-  // omitted instances, then inactive hitboxes.
+  // omitted instances, then inactive hitboxes. With the GPU fill the host only counts them
+  // (the compute pass writes them from the same states and addresses, below).
   VkAccelerationStructureInstanceKHR* records = tlas_->records();
   VkAccelerationStructureInstanceKHR* boxes = boxTlas_ ? boxTlas_->records() : nullptr;
   std::uint32_t n = 0, boxCount = 0;
@@ -116,22 +139,44 @@ void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float asp
         ++waitingInstances;
         continue;
       }
-      records[n++] = instanceRecord(
-          transforms_[i], i, castsShadow_[i] ? gpu::kMaskSurface : gpu::kMaskLightQuad, blas);
-    } else if (states[i] == InstanceState::Omitted && boxes) {
-      boxes[boxCount++] =
-          instanceRecord(boxTransform(culling_.bounds()[i]), i, gpu::kMaskCountingBox, box);
+      if (records)
+        records[n] = instanceRecord(
+            transforms_[i], i, castsShadow_[i] ? gpu::kMaskSurface : gpu::kMaskLightQuad, blas);
+      ++n;
+    } else if (states[i] == InstanceState::Omitted && box) {
+      if (boxes)
+        boxes[boxCount] =
+            instanceRecord(boxTransform(culling_.bounds()[i]), i, gpu::kMaskCountingBox, box);
+      ++boxCount;
     }
   }
-  if (boxes) {
+  if (box) {
     for (std::uint32_t h = 0; h < culling_.hitboxCount(); ++h) {
       if (!culling_.hitboxUsed(h) || culling_.hitboxActive(h))
         continue;
-      boxes[boxCount++] = instanceRecord(boxTransform(culling_.hitboxBounds(h)),
+      if (boxes)
+        boxes[boxCount] = instanceRecord(boxTransform(culling_.hitboxBounds(h)),
                                          culling_.instanceCount() + h, gpu::kMaskCountingBox, box);
+      ++boxCount;
     }
   }
   boxRecords_ = boxCount;
+  if (instanceFill_) {
+    // The compute pass writes the records the loops above counted: it gets the same states
+    // and addresses.
+    std::vector<std::uint8_t> fillStates(culling_.counterCount(), 0);
+    std::memcpy(fillStates.data(), states.data(), states.size());
+    for (std::uint32_t h = 0; h < culling_.hitboxCount(); ++h)
+      fillStates[culling_.instanceCount() + h] =
+          hitFeedbackOn() && culling_.hitboxUsed(h) && !culling_.hitboxActive(h) ? 1 : 0;
+    std::vector<VkDeviceAddress> meshAddresses(meshCount_, 0);
+    for (std::uint32_t m = 0; m < meshCount_; ++m) {
+      meshAddresses[m] = animated_.address(m);
+      if (!meshAddresses[m])
+        meshAddresses[m] = blasCache_.address(m);
+    }
+    instanceFill_->upload(fillStates, meshAddresses);
+  }
   hostMilliseconds += std::chrono::duration<double, std::milli>(Clock::now() - recordStart).count();
   stats.cullingHostMilliseconds = hostMilliseconds;
   records_ = n;
@@ -169,6 +214,9 @@ void DynamicAccelerationStructures::recordTlasBuild(VkCommandBuffer commands,
   if (timestamps)
     vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
                         timestamps, first + 1);
+  if (instanceFill_)
+    instanceFill_->record(commands, tlas_->recordsAddress(),
+                          boxTlas_ ? boxTlas_->recordsAddress() : 0);
   tlas_->recordBuild(commands, records_);
   if (boxTlas_)
     boxTlas_->recordBuild(commands, boxRecords_);

@@ -15,6 +15,7 @@
 #include "runtime/animated_blases.h"
 #include "runtime/blas_cache.h"
 #include "runtime/gpu_buffer.h"
+#include "runtime/instance_fill.h"
 #include "runtime/render_stats.h"
 #include "runtime/scene.h"
 #include "runtime/scene_culling.h"
@@ -70,7 +71,8 @@ class DynamicAccelerationStructures {
   CompactedBlases box_;
   std::unique_ptr<TopLevelStructure> tlas_;
   std::uint32_t records_ = 0;
-  std::unique_ptr<TopLevelStructure> boxTlas_;  // LiPaC only
+  std::unique_ptr<TopLevelStructure> boxTlas_;     // LiPaC only
+  std::unique_ptr<GpuInstanceFill> instanceFill_;  // CullingOptions::gpuInstanceFill only
   std::uint32_t boxRecords_ = 0;
   GpuBuffer hitFeedback_;
   GpuBuffer hitReadback_;

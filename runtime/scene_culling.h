@@ -65,6 +65,11 @@ struct CullingOptions {
   // are per million rays of the frame) while the counting-box probes, a second trace per
   // ray, cost 1/N. 1: every ray counts.
   std::uint32_t feedbackStride = 1;
+  // The TLAS's instance records assembled by a compute pass from the instance states
+  // (GpuInstanceFill, seeds/001 §3.3.2) instead of written by the host. The same records in
+  // the same order, so the same picture; the host fill stays the default until the GPU
+  // machine has measured which is faster.
+  bool gpuInstanceFill = false;
 };
 
 // Throws std::invalid_argument with the option's flag name on a bad value.

@@ -110,13 +110,8 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
     vkDestroyDescriptorSetLayout(device, l, nullptr);
   });
 
-  VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  layoutInfo.setLayoutCount = 1;
-  layoutInfo.pSetLayouts = &setLayout;
-  VkPipelineLayout layout = VK_NULL_HANDLE;
-  checkVk(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &layout), "vkCreatePipelineLayout");
-  layout_ = VulkanHandle<VkPipelineLayout>(
-      layout, [device](VkPipelineLayout l) { vkDestroyPipelineLayout(device, l, nullptr); });
+  layout_ = createPipelineLayout(device, setLayout);
+  VkPipelineLayout layout = layout_.get();
 
   std::vector<std::string> defines = {"MG_TEXTURE_COUNT=" + std::to_string(textureCount),
                                       query ? "MG_BACKEND_QUERY=1" : "MG_BACKEND_PIPELINE=1"};

@@ -176,6 +176,7 @@ TEST_F(CliTest, CullingOptionsAreCheckedAndACulledRenderWritesItsTopView) {
       {" --culling lipac --hitbox-deactivate 30", "--hitbox-deactivate (30) must be below"},
       {" --culling lipac --hitbox-size -1", "--hitbox-size must be a positive number"},
       {" --culling frustum --low-frames x", "--low-frames takes a whole number, not 'x'"},
+      {" --culling lipac --instance-fill cpu", "--instance-fill takes host or gpu, not 'cpu'"},
       {" --blas-budget 64", "they need --culling frustum or --culling lipac"},
       {" --debug-culling " + top, "--debug-culling shows which instances culling keeps"},
   };

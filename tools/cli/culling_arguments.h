@@ -29,6 +29,9 @@ inline constexpr const char* kCullingHelp =
     "                        (default 8; doubled for a hitbox each time it deactivates)\n"
     "  --feedback-stride N   lipac: 1 in N 8x8-pixel blocks counts its rays each frame,\n"
     "                        weighted N (default 1: every ray; 1..64)\n"
+    "  --instance-fill host|gpu  culled or animated: the TLAS's instance records written by\n"
+    "                        the host, or assembled by a compute pass from the instance\n"
+    "                        states (the same records; default host)\n"
     "  --blas-budget MB      culled: evict BLASes no instance in the TLAS uses, least\n"
     "                        recently used first, past MB mebibytes (default: no limit)\n"
     "  --blas-build-budget T culled: build at most T triangles of BLASes a frame (at least\n"
@@ -42,7 +45,7 @@ struct CullingArguments {
   std::string mode = "none", radius = "30", hitboxSize = "50", hitboxActivate = "20",
               hitboxDeactivate = "2", instanceActivate = "4", instanceDeactivate = "0.4",
               lowFrames = "8", blasBudget = "0", blasBuildBudget = "0", blasRebuildEvery = "16",
-              blasKeepFrames = "8", feedbackStride = "1";
+              blasKeepFrames = "8", feedbackStride = "1", instanceFill = "host";
 
   void registerWith(ArgumentScanner& scanner) {
     scanner.option("--culling", &mode);
@@ -58,6 +61,7 @@ struct CullingArguments {
     scanner.option("--blas-rebuild-every", &blasRebuildEvery);
     scanner.option("--blas-keep-frames", &blasKeepFrames);
     scanner.option("--feedback-stride", &feedbackStride);
+    scanner.option("--instance-fill", &instanceFill);
   }
 
   // Throws std::invalid_argument with a message for the user.
@@ -89,6 +93,9 @@ struct CullingArguments {
     o.blasRebuildEvery = whole(blasRebuildEvery, "--blas-rebuild-every");
     o.blasKeepFrames = whole(blasKeepFrames, "--blas-keep-frames");
     o.feedbackStride = whole(feedbackStride, "--feedback-stride");
+    if (instanceFill != "host" && instanceFill != "gpu")
+      throw std::invalid_argument("--instance-fill takes host or gpu, not '" + instanceFill + "'");
+    o.gpuInstanceFill = instanceFill == "gpu";
     runtime::validateCullingOptions(o);
     return o;
   }

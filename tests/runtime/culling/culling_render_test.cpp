@@ -185,6 +185,30 @@ TEST(CulledRender, SampledFeedbackStillKeepsWhatOnlyTheMirrorShows) {
   EXPECT_GT(kept, 0u) << "of " << behind.size() << " instances behind the camera";
 }
 
+// The GPU instance fill (--instance-fill gpu) writes the records the host fill writes, in the
+// same order: the same picture bit for bit, the same states and TLAS counts, under LiPaC
+// (instances, omitted instances' and hitboxes' boxes) and without culling (the city's
+// animated flags keep the TLAS dynamic), on cameras far apart so that states change.
+TEST(CulledRender, TheGpuInstanceFillGivesTheHostFillsPicture) {
+  const Scene scene = smallCity();
+  const CameraPath path = makeBuiltinCameraPath("city", 300, kScale);
+  const std::vector<Camera> cameras = {path.frames[0], path.frames[120], mirrorCamera(),
+                                       mirrorCamera(), mirrorCamera()};
+  for (CullingMode mode : {CullingMode::Lipac, CullingMode::None}) {
+    RendererOptions host = options(mode, true);
+    RendererOptions gpu = host;
+    gpu.culling.gpuInstanceFill = true;
+    const RenderResult a = render(host, scene, settings(5, cameras));
+    const RenderResult b = render(gpu, scene, settings(5, cameras));
+    EXPECT_TRUE(sameImage(a.image, b.image)) << cullingModeName(mode);
+    EXPECT_EQ(a.instanceStates, b.instanceStates) << cullingModeName(mode);
+    ASSERT_EQ(a.stats.frames.size(), b.stats.frames.size());
+    for (std::size_t f = 0; f < a.stats.frames.size(); ++f)
+      EXPECT_EQ(a.stats.frames[f].tlasRecords, b.stats.frames[f].tlasRecords)
+          << cullingModeName(mode) << " frame " << f;
+  }
+}
+
 // Five cameras far apart on the path, then the mirror camera (which sees a small part of
 // the city) for two frames.
 std::vector<Camera> spreadPath() {

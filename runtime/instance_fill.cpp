@@ -1,0 +1,95 @@
+#include "runtime/instance_fill.h"
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+#include <string>
+
+#include "runtime/compute_pipeline.h"
+#include "runtime/shader_compiler.h"
+#include "runtime/shader_sources.h"
+#include "runtime/shaders/shared_types.h"
+
+namespace memograph::runtime {
+
+namespace {
+
+constexpr VkBufferUsageFlags kShaderRead =
+    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+
+glm::uvec2 split(VkDeviceAddress address) {
+  return {static_cast<std::uint32_t>(address), static_cast<std::uint32_t>(address >> 32)};
+}
+
+}  // namespace
+
+GpuInstanceFill::GpuInstanceFill(const VulkanContext& context,
+                                 std::span<const VkAccelerationStructureInstanceKHR> activeRecords,
+                                 std::span<const std::uint32_t> meshOfInstance,
+                                 std::span<const VkAccelerationStructureInstanceKHR> boxRecords,
+                                 std::uint32_t hitboxCount, std::uint32_t meshCount)
+    : instanceCount_(static_cast<std::uint32_t>(activeRecords.size())),
+      hitboxCount_(boxRecords.empty() ? 0 : hitboxCount),
+      meshCount_(meshCount) {
+  if (meshOfInstance.size() != activeRecords.size() ||
+      (!boxRecords.empty() && boxRecords.size() != activeRecords.size() + hitboxCount))
+    throw std::logic_error("GpuInstanceFill: one mesh and one box per instance, one per hitbox");
+  activeRecords_ = uploadBuffer(context, activeRecords, kShaderRead);
+  meshOfInstance_ = uploadBuffer(context, meshOfInstance, kShaderRead);
+  // Without LiPaC no box is ever kept (every state byte is Active or Inactive, no hitbox
+  // byte is set), so one record's worth stands in for the templates.
+  const VkAccelerationStructureInstanceKHR noBox{};
+  boxRecords_ = boxRecords.empty() ? uploadBuffer(context, &noBox, sizeof noBox, kShaderRead)
+                                   : uploadBuffer(context, boxRecords, kShaderRead);
+  states_ =
+      hostBuffer(context, (std::size_t(instanceCount_) + hitboxCount_ + 3) / 4 * 4, kShaderRead);
+  meshAddresses_ = hostBuffer(
+      context, std::max<std::size_t>(meshCount_, 1) * sizeof(VkDeviceAddress), kShaderRead);
+
+  VkDevice device = context.device();
+  std::map<std::string, std::string> files;
+  for (const auto& shader : embeddedShaders())
+    files[std::string(shader.name)] = std::string(shader.text);
+  ShaderCompiler compiler(std::move(files), {});
+  auto module = createShaderModule(
+      device, compiler.compile({"instance_fill.comp", ShaderStage::Compute, {}}));
+  layout_ = createPipelineLayout(device, VK_NULL_HANDLE, VK_SHADER_STAGE_COMPUTE_BIT,
+                                 sizeof(gpu::InstanceFillPush));
+  pipeline_ = createComputePipeline(device, module.get(), layout_.get(), "instance fill");
+}
+
+void GpuInstanceFill::upload(std::span<const std::uint8_t> states,
+                             std::span<const VkDeviceAddress> meshAddresses) {
+  if (states.size() != std::size_t(instanceCount_) + hitboxCount_ ||
+      meshAddresses.size() != meshCount_)
+    throw std::logic_error(
+        "GpuInstanceFill::upload: a state per instance and hitbox, an "
+        "address per mesh");
+  states_.write(states.data(), states.size());
+  meshAddresses_.write(meshAddresses.data(), meshAddresses.size_bytes());
+}
+
+void GpuInstanceFill::record(VkCommandBuffer commands, VkDeviceAddress records,
+                             VkDeviceAddress boxRecords) const {
+  gpu::InstanceFillPush push{};
+  push.counts = glm::uvec4(instanceCount_, hitboxCount_, split(boxRecords));
+  const glm::uvec2 active = split(activeRecords_.address()), boxes = split(boxRecords_.address());
+  const glm::uvec2 meshes = split(meshOfInstance_.address());
+  const glm::uvec2 addresses = split(meshAddresses_.address());
+  const glm::uvec2 states = split(states_.address()), out = split(records);
+  push.templates = glm::uvec4(active, boxes);
+  push.sources = glm::uvec4(meshes, addresses);
+  push.frame = glm::uvec4(states, out);
+  vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
+  vkCmdPushConstants(commands, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+  vkCmdDispatch(commands, 1, 1, 1);
+  // The build reads instance records as shader reads in its own stage.
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                       VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR, 0, 1, &barrier, 0,
+                       nullptr, 0, nullptr);
+}
+
+}  // namespace memograph::runtime
