@@ -40,10 +40,13 @@ DynamicAccelerationStructures::DynamicAccelerationStructures(const VulkanContext
                  options.blasBudgetBytes, options.blasBuildTriangles, options.blasKeepFrames),
       animated_(context, scene, buffers, options.blasRebuildEvery) {
   meshCount_ = static_cast<std::uint32_t>(scene.meshes.size());
-  for (const Instance& instance : scene.instances) {
+  // Each instance's TLAS record, made once: a frame copies it and fills in the BLAS address.
+  for (std::uint32_t i = 0; i < scene.instances.size(); ++i) {
+    const Instance& instance = scene.instances[i];
     instanceMeshes_.push_back(instance.mesh);
-    castsShadow_.push_back(instance.castsShadow ? 1 : 0);
-    transforms_.push_back(instance.objectToWorld);
+    instanceRecords_.push_back(
+        instanceRecord(instance.objectToWorld, i,
+                       instance.castsShadow ? gpu::kMaskSurface : gpu::kMaskLightQuad, 0));
   }
   if (hitFeedbackOn()) {
     boxVertices_ =
@@ -53,28 +56,22 @@ DynamicAccelerationStructures::DynamicAccelerationStructures(const VulkanContext
     const MeshGeometry cube{0, 8, 0, 12};
     box_ = buildCompactedBlases(context, boxVertices_, 3 * sizeof(float), boxIndices_,
                                 std::span<const MeshGeometry>(&cube, 1));
+    // The counting boxes' records, made once too: each instance's, then each hitbox's.
+    const VkDeviceAddress box = box_.blases.front().address();
+    for (std::uint32_t i = 0; i < culling_.instanceCount(); ++i)
+      boxRecords_.push_back(
+          instanceRecord(boxTransform(culling_.bounds()[i]), i, gpu::kMaskCountingBox, box));
+    for (std::uint32_t h = 0; h < culling_.hitboxCount(); ++h)
+      boxRecords_.push_back(instanceRecord(boxTransform(culling_.hitboxBounds(h)),
+                                           culling_.instanceCount() + h, gpu::kMaskCountingBox,
+                                           box));
   }
   tlas_ = std::make_unique<TopLevelStructure>(context, culling_.instanceCount(),
                                               options.gpuInstanceFill);
-  if (options.gpuInstanceFill) {
-    // The records' templates: each instance's own (its BLAS filled in per frame) and, under
-    // LiPaC, its counting box and each hitbox's, as the host fill writes them.
-    std::vector<VkAccelerationStructureInstanceKHR> active, boxes;
-    for (std::uint32_t i = 0; i < culling_.instanceCount(); ++i)
-      active.push_back(instanceRecord(
-          transforms_[i], i, castsShadow_[i] ? gpu::kMaskSurface : gpu::kMaskLightQuad, 0));
-    if (hitFeedbackOn()) {
-      const VkDeviceAddress box = box_.blases.front().address();
-      for (std::uint32_t i = 0; i < culling_.instanceCount(); ++i)
-        boxes.push_back(
-            instanceRecord(boxTransform(culling_.bounds()[i]), i, gpu::kMaskCountingBox, box));
-      for (std::uint32_t h = 0; h < culling_.hitboxCount(); ++h)
-        boxes.push_back(instanceRecord(boxTransform(culling_.hitboxBounds(h)),
-                                       culling_.instanceCount() + h, gpu::kMaskCountingBox, box));
-    }
-    instanceFill_ = std::make_unique<GpuInstanceFill>(context, active, instanceMeshes_, boxes,
-                                                      culling_.hitboxCount(), meshCount_);
-  }
+  if (options.gpuInstanceFill)
+    instanceFill_ =
+        std::make_unique<GpuInstanceFill>(context, instanceRecords_, instanceMeshes_, boxRecords_,
+                                          culling_.hitboxCount(), meshCount_);
   if (hitFeedbackOn())
     boxTlas_ = std::make_unique<TopLevelStructure>(context, culling_.counterCount(),
                                                    options.gpuInstanceFill);
@@ -122,59 +119,59 @@ void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float asp
       options_.mode == CullingMode::None ? std::vector<std::uint8_t>{} : animatedNeeded);
 
   const auto recordStart = Clock::now();
+  // Each mesh's BLAS this frame (0: not resident; its instances wait for the build).
+  std::vector<VkDeviceAddress> meshAddresses(meshCount_, 0);
+  for (std::uint32_t m = 0; m < meshCount_; ++m) {
+    meshAddresses[m] = animated_.address(m);
+    if (!meshAddresses[m])
+      meshAddresses[m] = blasCache_.address(m);
+  }
+  // Under LiPaC an inactive hitbox with instances stands in the boxes' TLAS.
+  const auto boxed = [&](std::uint32_t h) {
+    return hitFeedbackOn() && culling_.hitboxUsed(h) && !culling_.hitboxActive(h);
+  };
   // The TLAS records: active instances whose BLAS is resident; the counting boxes' TLAS:
-  // omitted instances, then inactive hitboxes. With the GPU fill the host only counts them
-  // (the compute pass writes them from the same states and addresses, below).
+  // omitted instances, then boxed hitboxes. With the GPU fill the host only counts them:
+  // the compute pass writes the same records from the same states and addresses.
   VkAccelerationStructureInstanceKHR* records = tlas_->records();
   VkAccelerationStructureInstanceKHR* boxes = boxTlas_ ? boxTlas_->records() : nullptr;
   std::uint32_t n = 0, boxCount = 0;
   std::uint32_t waitingInstances = 0;
-  const VkDeviceAddress box = hitFeedbackOn() ? box_.blases.front().address() : 0;
   for (std::uint32_t i = 0; i < states.size(); ++i) {
     if (states[i] == InstanceState::Active) {
-      VkDeviceAddress blas = animated_.address(instanceMeshes_[i]);
-      if (!blas)
-        blas = blasCache_.address(instanceMeshes_[i]);
+      const VkDeviceAddress blas = meshAddresses[instanceMeshes_[i]];
       if (!blas) {
         ++waitingInstances;
         continue;
       }
-      if (records)
-        records[n] = instanceRecord(
-            transforms_[i], i, castsShadow_[i] ? gpu::kMaskSurface : gpu::kMaskLightQuad, blas);
+      if (records) {
+        records[n] = instanceRecords_[i];
+        records[n].accelerationStructureReference = blas;
+      }
       ++n;
-    } else if (states[i] == InstanceState::Omitted && box) {
+    } else if (states[i] == InstanceState::Omitted && hitFeedbackOn()) {
       if (boxes)
-        boxes[boxCount] =
-            instanceRecord(boxTransform(culling_.bounds()[i]), i, gpu::kMaskCountingBox, box);
+        boxes[boxCount] = boxRecords_[i];
       ++boxCount;
     }
   }
-  if (box) {
-    for (std::uint32_t h = 0; h < culling_.hitboxCount(); ++h) {
-      if (!culling_.hitboxUsed(h) || culling_.hitboxActive(h))
-        continue;
-      if (boxes)
-        boxes[boxCount] = instanceRecord(boxTransform(culling_.hitboxBounds(h)),
-                                         culling_.instanceCount() + h, gpu::kMaskCountingBox, box);
-      ++boxCount;
-    }
+  for (std::uint32_t h = 0; h < culling_.hitboxCount(); ++h) {
+    if (!boxed(h))
+      continue;
+    if (boxes)
+      boxes[boxCount] = boxRecords_[culling_.instanceCount() + h];
+    ++boxCount;
   }
-  boxRecords_ = boxCount;
+  boxRecordCount_ = boxCount;
   if (instanceFill_) {
-    // The compute pass writes the records the loops above counted: it gets the same states
-    // and addresses.
+    // instance_fill.comp compares the state bytes with these values.
+    static_assert(sizeof(InstanceState) == 1 &&
+                  std::uint32_t(InstanceState::Omitted) == gpu::kInstanceStateOmitted &&
+                  std::uint32_t(InstanceState::Active) == gpu::kInstanceStateActive);
     std::vector<std::uint8_t> fillStates(culling_.counterCount(), 0);
     std::memcpy(fillStates.data(), states.data(), states.size());
     for (std::uint32_t h = 0; h < culling_.hitboxCount(); ++h)
-      fillStates[culling_.instanceCount() + h] =
-          hitFeedbackOn() && culling_.hitboxUsed(h) && !culling_.hitboxActive(h) ? 1 : 0;
-    std::vector<VkDeviceAddress> meshAddresses(meshCount_, 0);
-    for (std::uint32_t m = 0; m < meshCount_; ++m) {
-      meshAddresses[m] = animated_.address(m);
-      if (!meshAddresses[m])
-        meshAddresses[m] = blasCache_.address(m);
-    }
+      fillStates[culling_.instanceCount() + h] = boxed(h) ? 1 : 0;
     instanceFill_->upload(fillStates, meshAddresses);
   }
   hostMilliseconds += std::chrono::duration<double, std::milli>(Clock::now() - recordStart).count();
@@ -219,7 +216,7 @@ void DynamicAccelerationStructures::recordTlasBuild(VkCommandBuffer commands,
                           boxTlas_ ? boxTlas_->recordsAddress() : 0);
   tlas_->recordBuild(commands, records_);
   if (boxTlas_)
-    boxTlas_->recordBuild(commands, boxRecords_);
+    boxTlas_->recordBuild(commands, boxRecordCount_);
   if (timestamps)
     vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
                         timestamps, first + 2);

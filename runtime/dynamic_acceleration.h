@@ -61,8 +61,11 @@ class DynamicAccelerationStructures {
   SceneCulling culling_;
   std::uint32_t meshCount_ = 0;
   std::vector<std::uint32_t> instanceMeshes_;
-  std::vector<std::uint8_t> castsShadow_;
-  std::vector<glm::mat4> transforms_;
+  // TLAS records made once: each instance's (BLAS address 0, filled in per frame) and, under
+  // LiPaC, each instance's counting box then each hitbox's. The host fill copies them; the
+  // GPU fill uploads them.
+  std::vector<VkAccelerationStructureInstanceKHR> instanceRecords_;
+  std::vector<VkAccelerationStructureInstanceKHR> boxRecords_;
   BlasCache blasCache_;
   AnimatedBlases animated_;
   // The unit cube [0, 1]^3 that counting boxes instance.
@@ -73,7 +76,7 @@ class DynamicAccelerationStructures {
   std::uint32_t records_ = 0;
   std::unique_ptr<TopLevelStructure> boxTlas_;     // LiPaC only
   std::unique_ptr<GpuInstanceFill> instanceFill_;  // CullingOptions::gpuInstanceFill only
-  std::uint32_t boxRecords_ = 0;
+  std::uint32_t boxRecordCount_ = 0;
   GpuBuffer hitFeedback_;
   GpuBuffer hitReadback_;
 };

@@ -49,7 +49,7 @@ uint stateByte(uint i) {
 bool candidate(uint k, out InstanceRecord record) {
   uint n = push.counts.x;
   if (k < n) {
-    if (stateByte(k) != 2u) return false;  // InstanceState::Active
+    if (stateByte(k) != kInstanceStateActive) return false;
     uint mesh = Words(push.sources.xy).words[k];
     uvec2 blas = Addresses(push.sources.zw).addresses[mesh];
     if (blas == uvec2(0u)) return false;  // waiting for its build
@@ -58,7 +58,7 @@ bool candidate(uint k, out InstanceRecord record) {
     return true;
   }
   if (k < 2u * n) {
-    if (stateByte(k - n) != 1u) return false;  // InstanceState::Omitted
+    if (stateByte(k - n) != kInstanceStateOmitted) return false;
     record = RecordTemplates(push.templates.zw).templates[k - n];
     return true;
   }

@@ -66,6 +66,9 @@ MG_CONSTANT(uint, kRayMaskAll, 0x7F);           // BSDF rays
 // GPU every frame; instance_fill.comp): one work group of this many invocations walks the
 // candidates in order, so the records come out in the host fill's order.
 MG_CONSTANT(uint, kInstanceFillWorkgroup, 256);
+// The state bytes it reads: runtime::InstanceState's values (static_assert where uploaded).
+MG_CONSTANT(uint, kInstanceStateOmitted, 1);
+MG_CONSTANT(uint, kInstanceStateActive, 2);
 // Its push constants: buffer device addresses as (low, high) uint pairs.
 struct InstanceFillPush {
   uvec4 counts;     // x instances, y hitboxes, zw: the counting boxes' records out
