@@ -3,9 +3,11 @@
 # at 1920x1080, P = 6, L = 4 over a 300-camera path, in ONE device call of at most 600 s.
 # tools/bundle_memo_sweep.sh copies it to bundle/memo_sweep.sh; on the GPU machine:
 #   bash bundle/memo_sweep.sh [--tables defaults,6.1,6.1r,6.1s,6.1b,diag,6.2,6.3] [--match REGEX]
-#                             [--skip-done STEPS.tsv]... [--budget S] [--list]
+#                             [--skip-done STEPS.tsv]... [--budget S] [--order table|pipeline] [--list]
 #   (--skip-done: leave out the rows an earlier call's steps.tsv lists as ok, e.g. the calls
 #   kept under docs/results/memoization_h200/, which travel with the working tree;
+#   --order pipeline: run rows that differ only in --cache-entries one after the other, so the
+#   driver compiles their pipeline once (35 s on the classroom) instead of once a row;
 #   --list: print the rows selected and stop; MEMOGRAPH=bundle/ab/<rev>/memograph, after
 #   tools/bundle_ab.sh <rev>, continues a sweep with an earlier commit's binary)
 # and here, on lavapipe, end to end at a tiny size (64x36, a 4-camera path):
@@ -23,20 +25,22 @@
 # skipped (and listed as such), so a call always ends in time with the most important
 # figures. Run the rest in later calls with --tables / --match.
 set -uo pipefail
+shopt -s extglob
 
 usage() {
   sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'
 }
 
-dry=0 list=0 tables="defaults,6.1,6.1r,6.1s,6.1b,diag,6.2,6.3" match="" budget="" done_steps=()
+dry=0 list=0 tables="defaults,6.1,6.1r,6.1s,6.1b,diag,6.2,6.3" match="" budget="" order=table
+done_steps=()
 while [ $# -gt 0 ]; do
   case $1 in
   --dry-run) dry=1 ;;
   --list) list=1 ;;
-  --tables | --match | --budget | --skip-done)
+  --tables | --match | --budget | --skip-done | --order)
     [ $# -ge 2 ] || { echo "memo_sweep.sh: $1 needs a value" >&2; exit 2; }
     case $1 in
-    --tables) tables=$2 ;; --match) match=$2 ;; --budget) budget=$2 ;;
+    --tables) tables=$2 ;; --match) match=$2 ;; --budget) budget=$2 ;; --order) order=$2 ;;
     --skip-done)
       [ -r "$2" ] || { echo "memo_sweep.sh: --skip-done: cannot read '$2'" >&2; exit 2; }
       done_steps+=("$2") ;;
@@ -47,6 +51,10 @@ while [ $# -gt 0 ]; do
   esac
   shift
 done
+if [ "$order" != table ] && [ "$order" != pipeline ]; then
+  echo "memo_sweep.sh: --order takes table or pipeline, not '$order'" >&2
+  exit 2
+fi
 if [ -n "$budget" ] && ! [[ $budget =~ ^[0-9]+$ ]]; then
   echo "memo_sweep.sh: --budget takes whole seconds, not '$budget'" >&2
   exit 2
@@ -230,6 +238,17 @@ while IFS= read -r line; do
   [ -n "$done_rows" ] && grep -qxF "$scene/$label" <<<"$done_rows" && continue
   rows+=("$limit|$table|$scene|$label|$cameras|$stride|$flags")
 done <<<"$VARIANTS"
+# --order pipeline: a stable regrouping by scene and flags less the cache size, which is a
+# buffer size and not part of the pipeline (eviction, clock, kind and filter are), so that the
+# driver's shader cache (and --shader-cache) serves every row of a group after its first.
+if [ "$order" = pipeline ] && [ ${#rows[@]} -gt 0 ]; then
+  mapfile -t rows < <(for i in "${!rows[@]}"; do
+    IFS='|' read -r _ _ scene _ _ _ flags <<<"${rows[$i]}"
+    key="$scene ${flags/--cache-entries +([0-9])/}"
+    printf '%s\t%06d\t%s\n' "$key" "$i" "${rows[$i]}"
+  done | awk -F'\t' '!($1 in first) { first[$1] = NR } { printf "%06d\t%s\t%s\n", first[$1], $2, $3 }' |
+    sort -k1,1n -k2,2n | cut -f3-)
+fi
 if [ $list = 1 ]; then
   for row in "${rows[@]}"; do
     IFS='|' read -r limit table scene label _ <<<"$row"
