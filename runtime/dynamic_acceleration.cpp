@@ -76,9 +76,11 @@ DynamicAccelerationStructures::DynamicAccelerationStructures(const VulkanContext
     boxTlas_ = std::make_unique<TopLevelStructure>(context, culling_.counterCount(),
                                                    options.gpuInstanceFill);
   // The counters live on the device (the trace's atomics) and are copied to a host buffer
-  // after each frame; 16 bytes at least, so the binding is valid without feedback too.
+  // after each frame; 16 bytes at least, so the binding is valid without feedback too. One
+  // more uint after them: the trace's own tally of the counts it made (path_tracer.glsl), to
+  // check that the counts it buffers all arrive (FrameStats::feedbackCountsLost).
   const VkDeviceSize counterBytes =
-      std::max<VkDeviceSize>(16, VkDeviceSize(culling_.counterCount()) * sizeof(std::uint32_t));
+      std::max<VkDeviceSize>(16, VkDeviceSize(culling_.counterCount() + 1) * sizeof(std::uint32_t));
   hitFeedback_ = GpuBuffer(context, counterBytes,
                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                                VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -93,8 +95,15 @@ void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float asp
   const auto stateStart = Clock::now();
   std::vector<std::uint32_t> hits;
   if (hitFeedbackOn() && frame > 0) {
-    hits.resize(culling_.counterCount());
+    hits.resize(culling_.counterCount() + 1);
     hitReadback_.read(hits.data(), hits.size() * sizeof(std::uint32_t));
+    const std::uint64_t tally = hits.back();
+    hits.pop_back();
+    std::uint64_t arrived = 0;
+    for (const std::uint32_t h : hits)
+      arrived += h;
+    stats.feedbackCounts = tally;
+    stats.feedbackCountsLost = tally > arrived ? tally - arrived : 0;
   }
   culling_.update(camera, aspect, hits, previousRays);
 

@@ -35,7 +35,8 @@ class DynamicAccelerationStructures {
   VkAccelerationStructureKHR countingBoxes() const {
     return boxTlas_ ? boxTlas_->handle() : VK_NULL_HANDLE;
   }
-  // LiPaC's counters (binding kBindingHitFeedback): SceneCulling::counterCount() uints.
+  // LiPaC's counters (binding kBindingHitFeedback): SceneCulling::counterCount() uints, then
+  // the trace's tally of the counts it made.
   const GpuBuffer& hitFeedback() const { return hitFeedback_; }
   bool hitFeedbackOn() const { return options_.mode == CullingMode::Lipac; }
   const SceneCulling& culling() const { return culling_; }

@@ -63,6 +63,11 @@ struct FrameStats {
   // Host time of the frame's culling: reading the counters, the state update and writing
   // the TLAS records (what §3.3.2 runs in compute passes); BLAS builds excluded.
   double cullingHostMilliseconds = 0.0;
+  // LiPaC's feedback of the previous frame, read before this frame's update: the counts the
+  // trace made (each weighted by --feedback-stride), and how many of them its counters lack
+  // (0 unless an invocation's buffered counts were dropped). Not in the CSV.
+  std::uint64_t feedbackCounts = 0;
+  std::uint64_t feedbackCountsLost = 0;
   double cacheHitRate() const { return cacheLookups ? double(cacheHits) / cacheLookups : 0.0; }
 };
 

@@ -48,12 +48,14 @@ bool traceShadow(vec3 origin, vec3 direction, float tMax) {
 #ifdef MG_HIT_FEEDBACK
 layout(set = 0, binding = kBindingCountingBoxes) uniform accelerationStructureEXT countingBoxes;
 
-// The first counting box along a ray segment: its custom index (a hit-feedback counter
-// slot), or ~0u when the segment crosses none.
+// A counting box the ray segment crosses, the first the traversal finds (not necessarily the
+// nearest: the thesis's any-hit counts the first candidate too): its custom index (a
+// hit-feedback counter slot), or ~0u when the segment crosses none.
 uint traceCountingBox(vec3 origin, vec3 direction, float tMax) {
   rayQueryEXT query;
-  rayQueryInitializeEXT(query, countingBoxes, gl_RayFlagsOpaqueEXT, kMaskCountingBox, origin,
-                        0.0, direction, tMax);
+  rayQueryInitializeEXT(query, countingBoxes,
+                        gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT,
+                        kMaskCountingBox, origin, 0.0, direction, tMax);
   while (rayQueryProceedEXT(query)) {
   }
   if (rayQueryGetIntersectionTypeEXT(query, true) != gl_RayQueryCommittedIntersectionTriangleEXT)

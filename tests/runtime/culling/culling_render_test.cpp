@@ -107,6 +107,34 @@ TEST(CulledRender, TheFiguresAddUpInEveryMode) {
   }
 }
 
+// The trace adds an invocation's feedback counts up before it writes them (path_tracer.glsl,
+// a two-slot buffer); its own tally of the counts it made must equal what the counters hold,
+// on both backends and with sampled feedback, or counts were dropped on the way.
+TEST(CulledRender, EveryFeedbackCountTheTraceMadeArrives) {
+  const Scene scene = smallCity();
+  const Camera camera = mirrorCamera();
+  for (Backend backend : {Backend::RayQuery, Backend::RayTracingPipeline}) {
+    for (std::uint32_t stride : {1u, 4u}) {
+      SCOPED_TRACE(std::string(backendName(backend)) + ", feedback stride " +
+                   std::to_string(stride));
+      RendererOptions o = options(CullingMode::Lipac, true);
+      o.context.backend = backend;
+      o.culling.feedbackStride = stride;
+      RenderSettings s = settings(4, {camera});
+      s.pathsPerPixel = 3;  // runs of rays that count the same instance: the camera rays
+      const RenderResult r = render(o, scene, s);
+      ASSERT_EQ(r.stats.frames.size(), 4u);
+      for (std::size_t f = 1; f < r.stats.frames.size(); ++f) {
+        const FrameStats& frame = r.stats.frames[f];
+        EXPECT_GT(frame.feedbackCounts, 0u) << "frame " << f;
+        // A ray counts one instance and at most one box, each weighted by the stride.
+        EXPECT_LE(frame.feedbackCounts, 2u * stride * r.stats.frames[f - 1].rays) << "frame " << f;
+        EXPECT_EQ(frame.feedbackCountsLost, 0u) << "frame " << f;
+      }
+    }
+  }
+}
+
 TEST(CulledRender, LipacSettlesOnAStaticCameraAndRepeatsItsPicture) {
   const Scene scene = smallCity();
   const RenderSettings s = settings(32, {mirrorCamera()});
