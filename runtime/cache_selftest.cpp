@@ -283,9 +283,7 @@ ProgramResult runProgram(const VulkanContext& context, const Program& program) {
   if (program.invocations == 0 || program.invocations % 64 != 0)
     throw std::invalid_argument("cache self-test: invocations must be a positive multiple of 64");
   VkDevice device = context.device();
-  std::map<std::string, std::string> files;
-  for (const auto& shader : embeddedShaders())
-    files[std::string(shader.name)] = std::string(shader.text);
+  std::map<std::string, std::string> files = embeddedShaderFiles();
   files["cache_selftest.comp"] =
       std::string(kProgramHead) + program.functions + kMainOpen + program.body + "\n}\n";
   ShaderCompiler compiler(std::move(files), {});

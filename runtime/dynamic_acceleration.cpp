@@ -29,10 +29,9 @@ glm::mat4 boxTransform(const Bounds& box) {
 
 }  // namespace
 
-DynamicAccelerationStructures::DynamicAccelerationStructures(const VulkanContext& context,
-                                                             const Scene& scene,
-                                                             SceneBuffers& buffers,
-                                                             const CullingOptions& options)
+DynamicAccelerationStructures::DynamicAccelerationStructures(
+    const VulkanContext& context, const Scene& scene, SceneBuffers& buffers,
+    const CullingOptions& options, const std::filesystem::path& shaderCacheDirectory)
     : context_(context),
       options_(options),
       culling_(scene, options),
@@ -71,7 +70,7 @@ DynamicAccelerationStructures::DynamicAccelerationStructures(const VulkanContext
   if (options.gpuInstanceFill)
     instanceFill_ =
         std::make_unique<GpuInstanceFill>(context, instanceRecords_, instanceMeshes_, boxRecords_,
-                                          culling_.hitboxCount(), meshCount_);
+                                          culling_.hitboxCount(), meshCount_, shaderCacheDirectory);
   if (hitFeedbackOn())
     boxTlas_ = std::make_unique<TopLevelStructure>(context, culling_.counterCount(),
                                                    options.gpuInstanceFill);

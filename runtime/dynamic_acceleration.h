@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <vector>
 
@@ -26,9 +27,11 @@ namespace memograph::runtime {
 
 class DynamicAccelerationStructures {
  public:
-  // `scene` and `buffers` must outlive this object.
+  // `scene` and `buffers` must outlive this object. `shaderCacheDirectory`: where the GPU
+  // instance fill's shader is cached (none when empty).
   DynamicAccelerationStructures(const VulkanContext& context, const Scene& scene,
-                                SceneBuffers& buffers, const CullingOptions& options);
+                                SceneBuffers& buffers, const CullingOptions& options,
+                                const std::filesystem::path& shaderCacheDirectory);
 
   VkAccelerationStructureKHR tlas() const { return tlas_->handle(); }
   // LiPaC's counting boxes (binding kBindingCountingBoxes); VK_NULL_HANDLE without LiPaC.

@@ -27,7 +27,8 @@ GpuInstanceFill::GpuInstanceFill(const VulkanContext& context,
                                  std::span<const VkAccelerationStructureInstanceKHR> activeRecords,
                                  std::span<const std::uint32_t> meshOfInstance,
                                  std::span<const VkAccelerationStructureInstanceKHR> boxRecords,
-                                 std::uint32_t hitboxCount, std::uint32_t meshCount)
+                                 std::uint32_t hitboxCount, std::uint32_t meshCount,
+                                 const std::filesystem::path& shaderCacheDirectory)
     : instanceCount_(static_cast<std::uint32_t>(activeRecords.size())),
       hitboxCount_(boxRecords.empty() ? 0 : hitboxCount),
       meshCount_(meshCount) {
@@ -47,10 +48,7 @@ GpuInstanceFill::GpuInstanceFill(const VulkanContext& context,
       context, std::max<std::size_t>(meshCount_, 1) * sizeof(VkDeviceAddress), kShaderRead);
 
   VkDevice device = context.device();
-  std::map<std::string, std::string> files;
-  for (const auto& shader : embeddedShaders())
-    files[std::string(shader.name)] = std::string(shader.text);
-  ShaderCompiler compiler(std::move(files), {});
+  ShaderCompiler compiler(embeddedShaderFiles(), shaderCacheDirectory);
   auto module = createShaderModule(
       device, compiler.compile({"instance_fill.comp", ShaderStage::Compute, {}}));
   layout_ = createPipelineLayout(device, VK_NULL_HANDLE, VK_SHADER_STAGE_COMPUTE_BIT,

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <span>
 #include <vector>
 
@@ -23,11 +24,14 @@ class GpuInstanceFill {
   // `activeRecords`: each instance's record when active (its BLAS address is filled in per
   // frame from `meshOfInstance`); `boxRecords`: each instance's counting box, then each
   // hitbox's (empty without LiPaC: then no box is ever written); `meshCount` BLAS slots.
+  // The compute shader's SPIR-V is cached in `shaderCacheDirectory` (none when empty), as
+  // the renderer's are.
   GpuInstanceFill(const VulkanContext& context,
                   std::span<const VkAccelerationStructureInstanceKHR> activeRecords,
                   std::span<const std::uint32_t> meshOfInstance,
                   std::span<const VkAccelerationStructureInstanceKHR> boxRecords,
-                  std::uint32_t hitboxCount, std::uint32_t meshCount);
+                  std::uint32_t hitboxCount, std::uint32_t meshCount,
+                  const std::filesystem::path& shaderCacheDirectory);
 
   // Before the frame's submit: `states` one byte per instance (InstanceState) then one per
   // hitbox (1: it stands in the TLAS as a box); `meshAddresses` each mesh's BLAS, 0 when

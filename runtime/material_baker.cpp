@@ -51,9 +51,7 @@ BakeOutputs MaterialBaker::bake(const BakeMaterial& material, const BakeSettings
 
   // The shader: the embedded sources plus this material's include, entered through a
   // define so one bake.comp serves every material (and the SPIR-V cache keys on both).
-  std::map<std::string, std::string> files;
-  for (const auto& shader : embeddedShaders())
-    files[std::string(shader.name)] = std::string(shader.text);
+  std::map<std::string, std::string> files = embeddedShaderFiles();
   files["bake_material.glsl"] = material.glsl;
   GpuTextures textures(context, material.textures);
   ShaderCompiler compiler(std::move(files), shaderCacheDirectory_);

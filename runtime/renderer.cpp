@@ -188,6 +188,13 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   for (const auto& path : materials.texturePaths)
     textureImages.push_back(options_.textureLoader(path));
 
+  // Where compiled shaders are kept (none without the cache).
+  std::filesystem::path cacheDirectory;
+  if (options_.shaderCache) {
+    cacheDirectory = options_.shaderCacheDirectory.empty() ? defaultShaderCacheDirectory()
+                                                           : options_.shaderCacheDirectory;
+  }
+
   // Scene data, acceleration structures, textures.
   SceneBuffers buffers = uploadScene(context, scene, emissionKindsVerified(scene, materials));
   const CullingOptions& cullingOptions = options_.culling;
@@ -207,7 +214,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     noHitFeedback = GpuBuffer(context, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                               VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   } else {
-    dynamicAccel.emplace(context, scene, buffers, cullingOptions);
+    dynamicAccel.emplace(context, scene, buffers, cullingOptions, cacheDirectory);
     stats.accelerationStructures.blasCount = static_cast<std::uint32_t>(buffers.geometry.size());
     stats.accelerationStructures.instanceCount = static_cast<std::uint32_t>(scene.instances.size());
   }
@@ -217,14 +224,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
 
   // Shaders: the embedded sources plus the generated materials.glsl; with callables, also
   // one callable shader per distinct material.
-  std::map<std::string, std::string> files;
-  for (const auto& shader : embeddedShaders())
-    files[std::string(shader.name)] = std::string(shader.text);
-  std::filesystem::path cacheDirectory;
-  if (options_.shaderCache) {
-    cacheDirectory = options_.shaderCacheDirectory.empty() ? defaultShaderCacheDirectory()
-                                                           : options_.shaderCacheDirectory;
-  }
+  std::map<std::string, std::string> files = embeddedShaderFiles();
   // The floor run compiles no graph: the prelude (types, defaults) and no callables.
   const bool floor = options_.floorMaterials;
   bool callables = dispatch == MaterialDispatch::Callable && !floor;

@@ -1,7 +1,9 @@
 // The runtime's GLSL sources (runtime/shaders/*), embedded at build time.
 #pragma once
 
+#include <map>
 #include <span>
+#include <string>
 #include <string_view>
 
 namespace memograph::runtime {
@@ -12,5 +14,9 @@ struct ShaderSource {
 };
 
 std::span<const ShaderSource> embeddedShaders();
+
+// The same sources as a ShaderCompiler's file map (name to text), to which a caller adds
+// its own generated files.
+std::map<std::string, std::string> embeddedShaderFiles();
 
 }  // namespace memograph::runtime
