@@ -75,11 +75,12 @@ DynamicAccelerationStructures::DynamicAccelerationStructures(
     boxTlas_ = std::make_unique<TopLevelStructure>(context, culling_.counterCount(),
                                                    options.gpuInstanceFill);
   // The counters live on the device (the trace's atomics) and are copied to a host buffer
-  // after each frame; 16 bytes at least, so the binding is valid without feedback too. One
-  // more uint after them: the trace's own tally of the counts it made (path_tracer.glsl), to
-  // check that the counts it buffers all arrive (FrameStats::feedbackCountsLost).
+  // after each frame. One more uint after them: the trace's own tally of the counts it made
+  // (path_tracer.glsl: the buffer's last uint), to check that the counts it buffers all
+  // arrive (FrameStats::feedbackCountsLost); so the size is exact with feedback, and 16
+  // bytes without, only for the binding to be valid.
   const VkDeviceSize counterBytes =
-      std::max<VkDeviceSize>(16, VkDeviceSize(culling_.counterCount() + 1) * sizeof(std::uint32_t));
+      hitFeedbackOn() ? VkDeviceSize(culling_.counterCount() + 1) * sizeof(std::uint32_t) : 16;
   hitFeedback_ = GpuBuffer(context, counterBytes,
                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                                VK_BUFFER_USAGE_TRANSFER_DST_BIT,
