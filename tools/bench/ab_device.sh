@@ -27,7 +27,9 @@ flags=("$@")
 [ ${#flags[@]} -gt 0 ] || flags=(--cache texel --cache-entries 16777216 --eviction lru
   --clock counter --cache-read-check key)
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader >"$OUT/ab_env.txt" 2>&1 || true
+# A second run in the same call appends to ab_rows.csv under the header already there.
 first=1
+[ -s "$OUT/ab_rows.csv" ] && first=0
 for m in bundle/memograph bundle/ab/*/memograph; do
   [ -x "$m" ] || continue
   dir=$(dirname "$m")
