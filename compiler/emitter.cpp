@@ -1,6 +1,7 @@
 #include "compiler/emitter.h"
 
 #include <algorithm>
+#include <optional>
 #include <set>
 
 #include "compiler/conversions.h"
@@ -16,6 +17,33 @@ std::string joined(const std::vector<std::string>& items) {
   for (const auto& item : items)
     text += (text.empty() ? "" : ", ") + item;
   return text.empty() ? "none" : text;
+}
+
+// The function a node's call goes to: its chosen overload, or the library's specialisation
+// of it for the first int input that is given a constant and has one (docs/node-library.md,
+// "Specialisations"), whose call then leaves that argument out.
+struct NodeCall {
+  std::size_t function = 0;
+  std::optional<std::size_t> droppedParameter;
+};
+
+NodeCall callFor(const EmitInput& in, std::size_t node) {
+  const auto& resolved = in.graph.nodes[node];
+  const NodeType& type = *resolved.type;
+  const std::size_t chosen = *in.chosen[node];
+  const Overload& overload = type.overloads[chosen];
+  for (std::size_t s = 0; s < type.sockets.size(); ++s) {
+    const auto& input = resolved.inputs[s];
+    if (type.sockets[s].direction != Direction::In ||
+        overload.socketTypes[s].base != BaseType::Int || !input ||
+        input->kind == InputSource::Kind::Link || input->constant.components.size() != 1)
+      continue;
+    const double value = input->constant.components[0];
+    if (const auto special =
+            in.library.specialisation(type, chosen, s, static_cast<long long>(value)))
+      return {*special, type.sockets[s].parameterIndex};
+  }
+  return {overload.function, std::nullopt};
 }
 
 // Library functions reachable from the chosen overloads, from the prelude functions a host
@@ -49,10 +77,8 @@ std::vector<std::size_t> functionsToEmit(const EmitInput& in, Target target,
       stack.pop_back();
     }
   };
-  for (const std::size_t node : in.order) {
-    const auto& type = *in.graph.nodes[node].type;
-    visit(type.overloads[*in.chosen[node]].function);
-  }
+  for (const std::size_t node : in.order)
+    visit(callFor(in, node).function);
   // What the including shader may call to build MaterialInputs and defaults
   // (docs/material-interface.md), then what the material's own function calls.
   auto roots = identifiersIn(body);
@@ -184,7 +210,10 @@ std::string emitMaterial(const EmitInput& in, Target target) {
       argument = convertExpression(variableName(in.graph, source.producer, source.producerSocket),
                                    produced, wanted);
     }
-    std::string call = "  " + type.name + "(";
+    const NodeCall callee = callFor(in, node);
+    if (callee.droppedParameter)
+      arguments.erase(arguments.begin() + static_cast<std::ptrdiff_t>(*callee.droppedParameter));
+    std::string call = "  " + in.library.functions()[callee.function].name + "(";
     for (std::size_t i = 0; i < arguments.size(); ++i)
       call += (i ? ", " : "") + arguments[i];
     body += call + ");\n";

@@ -276,6 +276,8 @@ class Loader {
     function.returnType = instance.returnType;
     function.text = instance.text;
     function.guard = guardFor(instance.name, parameters);
+    for (const RawParameter& parameter : parameters)
+      function.parameterTypes.push_back(parameter.type);
     function.file = file.path;
     function.location = item.location;
     return function;
@@ -632,6 +634,23 @@ const std::vector<std::size_t>& NodeLibrary::functionsNamed(std::string_view nam
   static const std::vector<std::size_t> kNone;
   const auto found = parts_.functionsByName.find(name);
   return found == parts_.functionsByName.end() ? kNone : found->second;
+}
+
+std::optional<std::size_t> NodeLibrary::specialisation(const NodeType& node, std::size_t overload,
+                                                       std::size_t socket, long long value) const {
+  const LibraryFunction& general = parts_.functions[node.overloads.at(overload).function];
+  std::vector<std::string> wanted = general.parameterTypes;
+  const std::size_t removed = node.sockets.at(socket).parameterIndex;
+  if (removed >= wanted.size())
+    return std::nullopt;
+  wanted.erase(wanted.begin() + static_cast<std::ptrdiff_t>(removed));
+  const std::string name =
+      "mg_spec_" + node.name + "_" + node.sockets[socket].name + "_" + std::to_string(value);
+  for (const std::size_t candidate : functionsNamed(name)) {
+    if (parts_.functions[candidate].parameterTypes == wanted)
+      return candidate;
+  }
+  return std::nullopt;
 }
 
 const NodeType* NodeLibrary::find(std::string_view name) const {

@@ -30,11 +30,12 @@ struct Parameter {
 struct LibraryFunction {
   std::string name;
   std::string returnType;
-  std::vector<Parameter> parameters;  // nodes only (prelude and helper types stay text)
-  std::string text;                   // the whole instantiated definition, ready to emit
-  std::string guard;                  // include-guard macro, unique per name and parameter types
-  std::string file;                   // library file it came from
-  SourceLocation location;            // of the definition in that file
+  std::vector<Parameter> parameters;        // nodes only (prelude and helper types stay text)
+  std::vector<std::string> parameterTypes;  // every function: each parameter's type as written
+  std::string text;                         // the whole instantiated definition, ready to emit
+  std::string guard;        // include-guard macro, unique per name and parameter types
+  std::string file;         // library file it came from
+  SourceLocation location;  // of the definition in that file
   // Library functions it calls (NodeLibrary::functions()), by name: every overload of a
   // called name, and of its own name only the overloads defined before it (the only ones a
   // shader compiler lets it call).
@@ -98,6 +99,12 @@ class NodeLibrary {
   // Indices into functions() of every function (any target) named `name`, in definition
   // order; empty when there is none.
   const std::vector<std::size_t>& functionsNamed(std::string_view name) const;
+  // A node overload's specialisation for a constant int socket (docs/node-library.md,
+  // "Specialisations"): the helper mg_spec_<Node>_<Socket>_<value> whose parameters are the
+  // overload's without that socket, or none. The emitter calls it instead of the overload, so
+  // that the shader compilers never see the overload's other branches.
+  std::optional<std::size_t> specialisation(const NodeType& node, std::size_t overload,
+                                            std::size_t socket, long long value) const;
   // The whole prelude for a target: its target-specific file then common.inc, templates
   // expanded, each function under its include guard (LibraryFunction::guard), so that it can
   // precede material includes, which emit the prelude functions they reach under the same

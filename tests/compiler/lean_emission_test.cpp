@@ -53,7 +53,9 @@ TEST(LeanEmission, PreludeFunctionsComeFirstInDefinitionOrderEachGuarded) {
   const auto saturate = code.find("float mg_saturate(float a)");
   const auto mix = code.find("float3 mg_mix(float3 a, float3 b, float t)");
   const auto node = code.find("void Mix(");
-  const auto noise = code.find("void NoiseTexture(");
+  // NoiseTexture's Dimensions is its default, a constant: the call goes to the
+  // specialisation for it.
+  const auto noise = code.find("void mg_spec_NoiseTexture_Dimensions_2(");
   ASSERT_NE(saturate, std::string::npos);
   ASSERT_NE(mix, std::string::npos);
   ASSERT_NE(node, std::string::npos);
@@ -68,6 +70,40 @@ TEST(LeanEmission, PreludeFunctionsComeFirstInDefinitionOrderEachGuarded) {
   EXPECT_EQ(code.find("float3_D mg_mix("), std::string::npos);
   // Deterministic.
   EXPECT_EQ(compileText(kNoisy, realLibrary()).material->glsl, code);
+}
+
+// A node called with a constant enum goes to the library's specialisation for that value
+// (docs/node-library.md, "Specialisations"), so that the shader compilers never see the
+// node's other variants; a linked value keeps the node and all of them. Both compile.
+TEST(LeanEmission, AConstantEnumCallsTheNodesSpecialisation) {
+  const char* constant =
+      "material Constant;\nUVInput Out>1;\nNoiseTexture Vector<1 Dimensions=1 Fac>2;\n"
+      "BaseColorOutput In<2;\n";
+  const char* linked =
+      "material Linked;\nUVInput Out>1;\nIntConstant Value=1 Out>3;\n"
+      "NoiseTexture Vector<1 Dimensions<3 Fac>2;\nBaseColorOutput In<2;\n";
+  const auto special = compileText(constant, realLibrary());
+  const auto general = compileText(linked, realLibrary());
+  ASSERT_TRUE(special.material && general.material) << special.messages() << general.messages();
+  for (const std::string& code : {special.material->glsl, special.material->hlsl}) {
+    EXPECT_NE(code.find("  mg_spec_NoiseTexture_Dimensions_1(mg_to_float3(link1)"),
+              std::string::npos)
+        << code;
+    EXPECT_EQ(code.find("void NoiseTexture("), std::string::npos);
+    EXPECT_EQ(code.find("mg_cy_noise_texture3("), std::string::npos) << "another variant";
+    EXPECT_NE(code.find("mg_cy_noise_texture2("), std::string::npos);
+  }
+  for (const std::string& code : {general.material->glsl, general.material->hlsl}) {
+    EXPECT_NE(code.find("  NoiseTexture(mg_to_float3(link1)"), std::string::npos) << code;
+    EXPECT_EQ(code.find("mg_spec_NoiseTexture"), std::string::npos);
+    EXPECT_NE(code.find("mg_cy_noise_texture3("), std::string::npos);
+  }
+  auto glsl = compileGlslMaterials({special.material->glsl, general.material->glsl},
+                                   {"Constant", "Linked"});
+  EXPECT_TRUE(glsl.ok) << glsl.log;
+  auto hlsl = compileHlslMaterials({special.material->hlsl, general.material->hlsl},
+                                   {"Constant", "Linked"});
+  EXPECT_TRUE(hlsl.ok) << hlsl.log;
 }
 
 TEST(LeanEmission, SeveralLeanIncludesAndTheWholePreludeShareOneShader) {
