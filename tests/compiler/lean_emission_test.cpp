@@ -98,11 +98,29 @@ TEST(LeanEmission, AConstantEnumCallsTheNodesSpecialisation) {
     EXPECT_EQ(code.find("mg_spec_NoiseTexture"), std::string::npos);
     EXPECT_NE(code.find("mg_cy_noise_texture3("), std::string::npos);
   }
-  auto glsl = compileGlslMaterials({special.material->glsl, general.material->glsl},
-                                   {"Constant", "Linked"});
+  // Voronoi's enum sockets come first (Feature, Metric) without specialisations: the first
+  // that has one, Dimensions, is the one specialised, with and without derivatives.
+  const char* voronoi =
+      "material Cells;\nUVInput Out>1;\nVoronoiTexture Vector<1 Dimensions=1 Distance>2 "
+      "Color>4;\nImageTexture \"a.png\" UV<4 Color>3;\nMix A<3 B=(0,0,0) Factor<2 Out>5;\n"
+      "BaseColorOutput In<5;\n";
+  const auto cells = compileText(voronoi, realLibrary());
+  ASSERT_TRUE(cells.material) << cells.messages();
+  EXPECT_NE(
+      cells.material->glsl.find("  mg_spec_VoronoiTexture_Dimensions_1(link1, 5.0, 1.0, 0, 0,"),
+      std::string::npos)
+      << cells.material->glsl;
+  EXPECT_NE(cells.material->glsl.find("void mg_spec_VoronoiTexture_Dimensions_1(in float2_D"),
+            std::string::npos);
+  EXPECT_EQ(cells.material->glsl.find("void mg_voronoi("), std::string::npos);
+  EXPECT_EQ(cells.material->glsl.find("void mg_voronoi_D("), std::string::npos);
+  auto glsl =
+      compileGlslMaterials({special.material->glsl, general.material->glsl, cells.material->glsl},
+                           {"Constant", "Linked", "Cells"});
   EXPECT_TRUE(glsl.ok) << glsl.log;
-  auto hlsl = compileHlslMaterials({special.material->hlsl, general.material->hlsl},
-                                   {"Constant", "Linked"});
+  auto hlsl =
+      compileHlslMaterials({special.material->hlsl, general.material->hlsl, cells.material->hlsl},
+                           {"Constant", "Linked", "Cells"});
   EXPECT_TRUE(hlsl.ok) << hlsl.log;
 }
 
