@@ -46,12 +46,13 @@ NodeCall callFor(const EmitInput& in, std::size_t node) {
   return {overload.function, std::nullopt};
 }
 
-// Library functions reachable from the chosen overloads, from the prelude functions a host
+// Library functions reachable from each node's callee (`calls`), from the prelude functions a host
 // shader may call (mg_make_float*_D, mg_defaultMaterialOutputs) and from what the
 // material's function body calls itself (conversions, mg_const_*), for one target: the prelude's
 // first, in definition order (the order in which they compile as one file), then the families' in
 // call order, callees before callers.
 std::vector<std::size_t> functionsToEmit(const EmitInput& in, Target target,
+                                         const std::vector<NodeCall>& calls,
                                          const std::string& body) {
   const auto& functions = in.library.functions();
   std::vector<std::size_t> postOrder;
@@ -78,7 +79,7 @@ std::vector<std::size_t> functionsToEmit(const EmitInput& in, Target target,
     }
   };
   for (const std::size_t node : in.order)
-    visit(callFor(in, node).function);
+    visit(calls[node].function);
   // What the including shader may call to build MaterialInputs and defaults
   // (docs/material-interface.md), then what the material's own function calls.
   auto roots = identifiersIn(body);
@@ -153,6 +154,10 @@ std::string emitMaterial(const EmitInput& in, Target target) {
   for (std::size_t slot = 0; slot < meta.textures.size(); ++slot) {
     out += "// texture slot " + std::to_string(slot) + ": " + meta.textures[slot] + "\n";
   }
+  // Each node's callee, once: the call below and the functions to emit follow it.
+  std::vector<NodeCall> calls(in.graph.nodes.size());
+  for (const std::size_t node : in.order)
+    calls[node] = callFor(in, node);
   // The function first: what it calls decides which library functions come before it.
   std::string body = "\nvoid EvaluateMaterial_" + meta.name +
                      "(in MaterialInputs inputs, out MaterialOutputs outputs) {\n";
@@ -210,7 +215,7 @@ std::string emitMaterial(const EmitInput& in, Target target) {
       argument = convertExpression(variableName(in.graph, source.producer, source.producerSocket),
                                    produced, wanted);
     }
-    const NodeCall callee = callFor(in, node);
+    const NodeCall& callee = calls[node];
     if (callee.droppedParameter)
       arguments.erase(arguments.begin() + static_cast<std::ptrdiff_t>(*callee.droppedParameter));
     std::string call = "  " + in.library.functions()[callee.function].name + "(";
@@ -227,7 +232,7 @@ std::string emitMaterial(const EmitInput& in, Target target) {
   out += "\n#ifndef " + preludeGuard + "\n#define " + preludeGuard + "\n";
   out += in.library.preludeDeclarations(target);
   out += "#endif  // " + preludeGuard + "\n";
-  for (const std::size_t index : functionsToEmit(in, target, body)) {
+  for (const std::size_t index : functionsToEmit(in, target, calls, body)) {
     const auto& function = in.library.functions()[index];
     out += "\n#ifndef " + function.guard + "\n#define " + function.guard + "\n";
     out += function.text + "\n#endif\n";
