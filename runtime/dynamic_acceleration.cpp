@@ -77,7 +77,7 @@ DynamicAccelerationStructures::DynamicAccelerationStructures(
   // The counters live on the device (the trace's atomics) and are copied to a host buffer
   // after each frame. One more uint after them: the trace's own tally of the counts it made
   // (path_tracer.glsl: the buffer's last uint), to check that the counts it buffers all
-  // arrive (FrameStats::feedbackCountsLost); so the size is exact with feedback, and 16
+  // arrive (FrameStats::feedbackCountsArrived); so the size is exact with feedback, and 16
   // bytes without, only for the binding to be valid.
   const VkDeviceSize counterBytes =
       hitFeedbackOn() ? VkDeviceSize(culling_.counterCount() + 1) * sizeof(std::uint32_t) : 16;
@@ -97,13 +97,10 @@ void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float asp
   if (hitFeedbackOn() && frame > 0) {
     hits.resize(culling_.counterCount() + 1);
     hitReadback_.read(hits.data(), hits.size() * sizeof(std::uint32_t));
-    const std::uint64_t tally = hits.back();
+    stats.feedbackCounts = hits.back();
     hits.pop_back();
-    std::uint64_t arrived = 0;
     for (const std::uint32_t h : hits)
-      arrived += h;
-    stats.feedbackCounts = tally;
-    stats.feedbackCountsLost = tally > arrived ? tally - arrived : 0;
+      stats.feedbackCountsArrived += h;
   }
   culling_.update(camera, aspect, hits, previousRays);
 

@@ -64,10 +64,11 @@ struct FrameStats {
   // the TLAS records (what §3.3.2 runs in compute passes); BLAS builds excluded.
   double cullingHostMilliseconds = 0.0;
   // LiPaC's feedback of the previous frame, read before this frame's update: the counts the
-  // trace made (each weighted by --feedback-stride), and how many of them its counters lack
-  // (0 unless an invocation's buffered counts were dropped). Not in the CSV.
+  // trace made (each weighted by --feedback-stride, its own tally) and the sum its counters
+  // hold; they differ only when an invocation's buffered counts were dropped or written
+  // twice. Not in the CSV.
   std::uint64_t feedbackCounts = 0;
-  std::uint64_t feedbackCountsLost = 0;
+  std::uint64_t feedbackCountsArrived = 0;
   double cacheHitRate() const { return cacheLookups ? double(cacheHits) / cacheLookups : 0.0; }
 };
 

@@ -89,9 +89,9 @@ uvec2 g_feedbackCounts = uvec2(0u);
 // so that the host can check they all arrived.
 uint g_feedbackTally = 0u;
 
-void flushFeedbackSlot(uint i) {
+// Adds a slot's count to its counter; the caller then reuses the slot or is done with it.
+void writeFeedbackSlot(uint i) {
   if (g_feedbackCounts[i] != 0u) atomicAdd(hitCounts[g_feedbackSlots[i]], g_feedbackCounts[i]);
-  g_feedbackCounts[i] = 0u;
 }
 
 void bufferHitFeedback(uint slot, uint weight) {
@@ -102,7 +102,7 @@ void bufferHitFeedback(uint slot, uint weight) {
     g_feedbackCounts.y += weight;
   } else {
     // The older slot goes; the newer becomes the older.
-    flushFeedbackSlot(1u);
+    writeFeedbackSlot(1u);
     g_feedbackSlots.y = g_feedbackSlots.x;
     g_feedbackCounts.y = g_feedbackCounts.x;
     g_feedbackSlots.x = slot;
@@ -112,8 +112,8 @@ void bufferHitFeedback(uint slot, uint weight) {
 
 // What is still buffered, once the invocation's paths are done.
 void flushHitFeedback() {
-  flushFeedbackSlot(0u);
-  flushFeedbackSlot(1u);
+  writeFeedbackSlot(0u);
+  writeFeedbackSlot(1u);
 }
 
 // `weight` 0: this pixel does not count this frame (hitFeedbackWeight).
