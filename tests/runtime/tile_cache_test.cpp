@@ -208,12 +208,14 @@ TEST(TileCache, PartialSubgroupsComputeTilesInPasses) {
 // A tile whose entry cannot be locked (no eviction and a full probe range, or another
 // subgroup holds it) is not computed: nothing could store it, so its requesters evaluate
 // their own hits, one evaluation each instead of the tile's W x H. A 64-tile cache without
-// eviction is full after frame 0; from then on no tile is computed (the counter counts the
-// evaluations of tiles' first texels, so computing unstorable tiles would show), lookups
-// still hit the tiles it holds, and the picture stays within the tile cache's bound of the
-// uncached one. Before the change every missed tile was computed: 2x2, about 1500 tiles a
-// frame here.
-TEST(TileCache, AFullCacheWithoutEvictionComputesNoTiles) {
+// eviction is (nearly) full after frame 0; from then on a tile is computed only to fill an
+// entry still empty (the counter counts the evaluations of tiles' first texels, so computing
+// unstorable tiles would show), lookups still hit the tiles it holds, and the picture stays
+// within the tile cache's bound of the uncached one. Before the change every missed tile was
+// computed: 2x2, about 1500 tiles a frame here. "Nearly": a tile that finds its free entry
+// locked by another subgroup gives up, so under some schedules frame 0 leaves an entry in
+// reach empty and frame 1 fills it (seen once on lavapipe: 61 entries, then 62 with 1 tile).
+TEST(TileCache, AFullCacheWithoutEvictionComputesOnlyTilesItCanStore) {
   Scene scene = wallScene(stripesGraph(), true);
   RenderResult none =
       Renderer(cacheOptions(CacheMode::None, Backend::RayQuery)).render(scene, settings(3, 2));
@@ -224,15 +226,19 @@ TEST(TileCache, AFullCacheWithoutEvictionComputesNoTiles) {
   expectConsistentCounters(full.stats);
   ASSERT_EQ(full.stats.frames.size(), 3u);
   EXPECT_GT(full.stats.frames.front().cacheTilesComputed, 0u);
+  // Without eviction an entry is filled once: every tile computed fills one more, from the
+  // first frame on.
+  EXPECT_EQ(full.stats.frames.front().cacheTilesComputed, full.stats.frames.front().cacheOccupancy);
   for (std::size_t i = 1; i < full.stats.frames.size(); ++i) {
     const FrameStats& f = full.stats.frames[i];
-    // Full: every probe range the frame's tiles reach (I = H0 mod (S - D) never reaches
-    // the last entry).
-    EXPECT_EQ(f.cacheOccupancy, full.stats.frames.front().cacheOccupancy) << "frame " << f.frame;
+    const FrameStats& previous = full.stats.frames[i - 1];
+    // Nearly full: every probe range the frame's tiles reach (I = H0 mod (S - D) never
+    // reaches the last entry).
     EXPECT_GE(f.cacheOccupancy, 60u) << "frame " << f.frame;
     EXPECT_GT(f.cacheMisses, 0u) << "frame " << f.frame;
     EXPECT_GT(f.cacheHits, 0u) << "frame " << f.frame;
-    EXPECT_EQ(f.cacheTilesComputed, 0u) << "frame " << f.frame;
+    EXPECT_EQ(f.cacheTilesComputed, f.cacheOccupancy - previous.cacheOccupancy)
+        << "frame " << f.frame;
     EXPECT_EQ(f.cacheTileFallbacks, 0u) << "frame " << f.frame;
   }
   double flip = meanFlip(none.image, full.image);
