@@ -63,7 +63,9 @@ fi
 # Variants: one row per run. limit = the step's time limit in seconds on an H100/H200 (about
 # 1.5x the estimate, set-up included; raised for the rows that ran past it with bundles
 # 422fe9f, whose materials cost more than the first sweep's, and 50db56c: the small tile
-# caches' 480-500 ms frames); cameras = path length; stride > 1 only without a cache (the
+# caches' 480-500 ms frames, and the small texel caches without eviction or with random or
+# LRW-counter eviction, since texel_s21_lrw-frame took 125 s of its 150); cameras = path
+# length; stride > 1 only without a cache (the
 # bench refuses it otherwise). Labels are the contract with make_tables:
 #   <kind>_s<log2 texels>_<eviction>[-<clock>][_sec]   kind: texel, tile (4x4 nearest),
 #   tilebil (4x4 bilinear); sec: memoization at secondary hits only; none, floor: no cache.
@@ -159,11 +161,11 @@ read -r -d '' VARIANTS <<'TABLE'
   120   6.2   classroom  tile_s23_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lru --clock frame --cache-read-check key
   120   6.2   classroom  tile_s23_lrw-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lrw --clock counter --cache-read-check key
   120   6.2   classroom  tile_s23_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lru --clock counter --cache-read-check key
-  150   6.2   classroom  texel_s21_none        300     1      --cache texel --cache-entries 2097152 --eviction none --cache-read-check key
-  150   6.2   classroom  texel_s21_random      300     1      --cache texel --cache-entries 2097152 --eviction random --cache-read-check key
+  200   6.2   classroom  texel_s21_none        300     1      --cache texel --cache-entries 2097152 --eviction none --cache-read-check key
+  190   6.2   classroom  texel_s21_random      300     1      --cache texel --cache-entries 2097152 --eviction random --cache-read-check key
   150   6.2   classroom  texel_s21_lrw-frame   300     1      --cache texel --cache-entries 2097152 --eviction lrw --clock frame --cache-read-check key
   150   6.2   classroom  texel_s21_lru-frame   300     1      --cache texel --cache-entries 2097152 --eviction lru --clock frame --cache-read-check key
-  150   6.2   classroom  texel_s21_lrw-counter 300     1      --cache texel --cache-entries 2097152 --eviction lrw --clock counter --cache-read-check key
+  190   6.2   classroom  texel_s21_lrw-counter 300     1      --cache texel --cache-entries 2097152 --eviction lrw --clock counter --cache-read-check key
   150   6.2   classroom  texel_s21_lru-counter 300     1      --cache texel --cache-entries 2097152 --eviction lru --clock counter --cache-read-check key
   200   6.2   classroom  tile_s21_none         300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction none --cache-read-check key
   190   6.2   classroom  tile_s21_random       300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction random --cache-read-check key
