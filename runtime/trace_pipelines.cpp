@@ -59,23 +59,9 @@ VkPipeline createRayTracingPipeline(const VulkanContext& context,
 
 }  // namespace
 
-TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compiler,
-                             std::uint32_t textureCount, const MaterialCallables* callables,
-                             std::uint32_t pipelineThreads,
-                             const std::vector<std::string>& extraDefines, bool tileImage,
-                             bool tileFillPass)
-    : context_(context), backend_(context.backend()), tileFillPass_(tileFillPass) {
-  VkDevice device = context.device();
-  bool query = backend_ == Backend::RayQuery;
-  if (query && callables)
-    throw std::invalid_argument(
-        "callable material shaders need the ray-tracing pipeline backend (--backend pipeline); "
-        "the query backend dispatches materials with a switch");
-  // Callables read the textures (mg_SampleTexture) through the same set as the raygen.
-  VkShaderStageFlags stages =
-      query ? VK_SHADER_STAGE_COMPUTE_BIT
-            : VK_SHADER_STAGE_RAYGEN_BIT_KHR | (callables ? VK_SHADER_STAGE_CALLABLE_BIT_KHR : 0);
-
+VulkanHandle<VkDescriptorSetLayout> createTraceSetLayout(VkDevice device, VkShaderStageFlags stages,
+                                                         std::uint32_t textureCount, bool tileImage,
+                                                         bool wavefront) {
   using gpu::uint;
   std::vector<VkDescriptorSetLayoutBinding> bindings;
   auto add = [&](uint binding, VkDescriptorType type, uint count = 1) {
@@ -100,15 +86,41 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   add(gpu::kBindingCountingBoxes, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR);
   if (tileImage)
     add(gpu::kBindingTileImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+  if (wavefront) {
+    add(gpu::kBindingPathState, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    add(gpu::kBindingPathQueues, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    add(gpu::kBindingWavefrontControl, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  }
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   setInfo.bindingCount = static_cast<std::uint32_t>(bindings.size());
   setInfo.pBindings = bindings.data();
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
   checkVk(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &setLayout),
           "vkCreateDescriptorSetLayout");
-  setLayout_ = VulkanHandle<VkDescriptorSetLayout>(setLayout, [device](VkDescriptorSetLayout l) {
+  return VulkanHandle<VkDescriptorSetLayout>(setLayout, [device](VkDescriptorSetLayout l) {
     vkDestroyDescriptorSetLayout(device, l, nullptr);
   });
+}
+
+TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compiler,
+                             std::uint32_t textureCount, const MaterialCallables* callables,
+                             std::uint32_t pipelineThreads,
+                             const std::vector<std::string>& extraDefines, bool tileImage,
+                             bool tileFillPass)
+    : context_(context), backend_(context.backend()), tileFillPass_(tileFillPass) {
+  VkDevice device = context.device();
+  bool query = backend_ == Backend::RayQuery;
+  if (query && callables)
+    throw std::invalid_argument(
+        "callable material shaders need the ray-tracing pipeline backend (--backend pipeline); "
+        "the query backend dispatches materials with a switch");
+  // Callables read the textures (mg_SampleTexture) through the same set as the raygen.
+  VkShaderStageFlags stages =
+      query ? VK_SHADER_STAGE_COMPUTE_BIT
+            : VK_SHADER_STAGE_RAYGEN_BIT_KHR | (callables ? VK_SHADER_STAGE_CALLABLE_BIT_KHR : 0);
+
+  setLayout_ = createTraceSetLayout(device, stages, textureCount, tileImage);
+  VkDescriptorSetLayout setLayout = setLayout_.get();
 
   layout_ = createPipelineLayout(device, setLayout);
   VkPipelineLayout layout = layout_.get();

@@ -20,6 +20,12 @@
 
 namespace memograph::runtime {
 
+// The path tracer's descriptor set layout (every binding of shared_types.h) for `stages`;
+// `wavefront` adds the wavefront path tracer's path state, queues and control buffer.
+VulkanHandle<VkDescriptorSetLayout> createTraceSetLayout(VkDevice device, VkShaderStageFlags stages,
+                                                         std::uint32_t textureCount, bool tileImage,
+                                                         bool wavefront = false);
+
 class TracePipeline {
  public:
   // `callables`: null for the switch dispatch (materials.glsl holds every material); else
