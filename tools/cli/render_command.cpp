@@ -213,6 +213,9 @@ int runRender(std::span<const std::string_view> args) {
     return kExitFailure;
 #endif
   }
+  if (options.shading == runtime::Shading::Wavefront && !scene.animatedMeshes.empty())
+    return usageError("render", "--shading wavefront renders static scenes only; " + name +
+                                    " has animated meshes");
 #ifdef MEMOGRAPH_HAVE_IO
   options.textureLoader = [](const std::string& path) {
     compiler::Diagnostics textureDiagnostics;
