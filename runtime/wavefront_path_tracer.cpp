@@ -2,7 +2,6 @@
 
 #include <array>
 #include <cstddef>
-#include <cstring>
 #include <stdexcept>
 
 #include "runtime/compute_pipeline.h"
@@ -21,6 +20,12 @@ constexpr std::array<const char*, gpu::kWavefrontPassCount> kPassDefines = {
 constexpr std::array<const char*, gpu::kWavefrontPassCount> kPassNames = {
     "wavefront generate", "wavefront trace",  "wavefront shade",
     "wavefront queue",    "wavefront shadow", "wavefront finish"};
+
+// Where each pass's GPU time goes in FrameStats, indexed by gpu::kWavefront*.
+constexpr std::array<double FrameStats::*, gpu::kWavefrontPassCount> kPassTimes = {
+    &FrameStats::wavefrontGenerateMilliseconds, &FrameStats::wavefrontTraceMilliseconds,
+    &FrameStats::wavefrontShadeMilliseconds,    &FrameStats::wavefrontQueueMilliseconds,
+    &FrameStats::wavefrontShadowMilliseconds,   &FrameStats::wavefrontFinishMilliseconds};
 
 std::uint32_t workgroupsFor(std::uint64_t invocations) {
   return static_cast<std::uint32_t>((invocations + gpu::kWavefrontWorkgroupSize - 1) /
@@ -105,8 +110,8 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   if (query_)
     return;
 
-  // Ray-tracing pipeline: [trace raygen][shadow raygen][miss, shadow miss][hit], the hit and
-  // miss shaders the megakernel's (they only report the hit).
+  // Ray-tracing pipeline and its table: [trace raygen][shadow raygen][miss, shadow miss][hit],
+  // the hit and miss shaders the megakernel's (they only report the hit); the default stack.
   auto raygenDefines = [&](std::uint32_t pass) {
     std::vector<std::string> d = defines;
     d.push_back(kPassDefines[pass]);
@@ -119,83 +124,21 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   modules.push_back(
       createShaderModule(device, compiler.compile({"wavefront.glsl", ShaderStage::RayGen,
                                                    raygenDefines(gpu::kWavefrontShadow)})));
-  modules.push_back(
-      createShaderModule(device, compiler.compile({"trace_miss.rmiss", ShaderStage::Miss, {}})));
-  modules.push_back(
-      createShaderModule(device, compiler.compile({"trace_shadow.rmiss", ShaderStage::Miss, {}})));
-  modules.push_back(createShaderModule(
-      device, compiler.compile({"trace_hit.rchit", ShaderStage::ClosestHit, {}})));
-  const std::array<VkShaderStageFlagBits, 5> stageBits = {
-      VK_SHADER_STAGE_RAYGEN_BIT_KHR, VK_SHADER_STAGE_RAYGEN_BIT_KHR, VK_SHADER_STAGE_MISS_BIT_KHR,
-      VK_SHADER_STAGE_MISS_BIT_KHR, VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR};
-  constexpr std::uint32_t kShaderCount = 5;
-  constexpr std::uint32_t kHitGroup = 4;
-  std::array<VkPipelineShaderStageCreateInfo, kShaderCount> shaderStages{};
-  std::array<VkRayTracingShaderGroupCreateInfoKHR, kShaderCount> groups{};
-  for (std::uint32_t i = 0; i < kShaderCount; ++i) {
-    shaderStages[i] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-    shaderStages[i].stage = stageBits[i];
-    shaderStages[i].module = modules[i].get();
-    shaderStages[i].pName = "main";
-    groups[i] = {VK_STRUCTURE_TYPE_RAY_TRACING_SHADER_GROUP_CREATE_INFO_KHR};
-    groups[i].generalShader = VK_SHADER_UNUSED_KHR;
-    groups[i].closestHitShader = VK_SHADER_UNUSED_KHR;
-    groups[i].anyHitShader = VK_SHADER_UNUSED_KHR;
-    groups[i].intersectionShader = VK_SHADER_UNUSED_KHR;
-    if (i == kHitGroup) {
-      groups[i].type = VK_RAY_TRACING_SHADER_GROUP_TYPE_TRIANGLES_HIT_GROUP_KHR;
-      groups[i].closestHitShader = i;
-    } else {
-      groups[i].type = VK_RAY_TRACING_SHADER_GROUP_TYPE_GENERAL_KHR;
-      groups[i].generalShader = i;
-    }
-  }
-  VkRayTracingPipelineCreateInfoKHR info{VK_STRUCTURE_TYPE_RAY_TRACING_PIPELINE_CREATE_INFO_KHR};
-  info.stageCount = kShaderCount;
-  info.pStages = shaderStages.data();
-  info.groupCount = kShaderCount;
-  info.pGroups = groups.data();
-  info.maxPipelineRayRecursionDepth = 1;  // raygens trace; hit shaders do not
-  info.layout = layout_.get();
-  const DeviceFunctions& f = context.functions();
-  VkPipeline pipeline = VK_NULL_HANDLE;
-  checkVk(f.createRayTracingPipelines(device, VK_NULL_HANDLE, VK_NULL_HANDLE, 1, &info, nullptr,
-                                      &pipeline),
-          "vkCreateRayTracingPipelinesKHR (wavefront)");
-  rayTracing_ = VulkanHandle<VkPipeline>(
-      pipeline, [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); });
-
-  const auto& rt = context.info().rayTracingProperties;
-  const std::uint32_t handleSize = rt.shaderGroupHandleSize;
-  const VkDeviceSize stride = alignUp(handleSize, rt.shaderGroupHandleAlignment);
-  const VkDeviceSize base = rt.shaderGroupBaseAlignment;
-  std::vector<std::uint8_t> handles(std::size_t(handleSize) * kShaderCount);
-  checkVk(f.getRayTracingShaderGroupHandles(device, pipeline, 0, kShaderCount, handles.size(),
-                                            handles.data()),
-          "vkGetRayTracingShaderGroupHandlesKHR (wavefront)");
-  const VkDeviceSize raygenSize = alignUp(stride, base);
-  const VkDeviceSize traceOffset = 0;
-  const VkDeviceSize shadowOffset = raygenSize;
-  const VkDeviceSize missOffset = 2 * raygenSize;
-  const VkDeviceSize hitOffset = alignUp(missOffset + 2 * stride, base);
-  const VkDeviceSize tableSize = hitOffset + stride;
-  std::vector<std::uint8_t> table(tableSize, 0);
-  std::memcpy(&table[traceOffset], &handles[0], handleSize);
-  std::memcpy(&table[shadowOffset], &handles[handleSize], handleSize);
-  std::memcpy(&table[missOffset], &handles[2 * handleSize], handleSize);
-  std::memcpy(&table[missOffset + stride], &handles[3 * handleSize], handleSize);
-  std::memcpy(&table[hitOffset], &handles[4 * handleSize], handleSize);
-  shaderBindingTable_ = GpuBuffer(
-      context, tableSize + base,
-      VK_BUFFER_USAGE_SHADER_BINDING_TABLE_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
-      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-  const VkDeviceAddress tableAddress = alignUp(shaderBindingTable_.address(), base);
-  shaderBindingTable_.write(table.data(), table.size(),
-                            tableAddress - shaderBindingTable_.address());
-  traceRaygenRegion_ = {tableAddress + traceOffset, raygenSize, raygenSize};
-  shadowRaygenRegion_ = {tableAddress + shadowOffset, raygenSize, raygenSize};
-  missRegion_ = {tableAddress + missOffset, stride, 2 * stride};
-  hitRegion_ = {tableAddress + hitOffset, stride, stride};
+  std::vector<VkShaderStageFlagBits> stageBits = {VK_SHADER_STAGE_RAYGEN_BIT_KHR,
+                                                  VK_SHADER_STAGE_RAYGEN_BIT_KHR};
+  appendReportingShaders(device, compiler, modules, stageBits);
+  std::vector<VkShaderModule> moduleHandles;
+  for (const auto& module : modules)
+    moduleHandles.push_back(module.get());
+  rayTracing_ =
+      createRayTracingPipeline(context, moduleHandles, stageBits, layout_.get(), 1, false);
+  ShaderBindingTable table = createShaderBindingTable(context, rayTracing_.get(), 5,
+                                                      {{{0}, true}, {{1}, true}, {{2, 3}}, {{4}}});
+  shaderBindingTable_ = std::move(table.buffer);
+  traceRaygenRegion_ = table.regions[0];
+  shadowRaygenRegion_ = table.regions[1];
+  missRegion_ = table.regions[2];
+  hitRegion_ = table.regions[3];
 }
 
 std::uint32_t WavefrontPathTracer::timestampCount(std::uint32_t paths, std::uint32_t bounces) {
@@ -285,26 +228,7 @@ void WavefrontPathTracer::addPassTimes(const std::vector<std::uint64_t>& ticks, 
     return;
   for (std::size_t i = 0; i < passes.size(); ++i) {
     const double ms = double(ticks[i + 1] - ticks[i]) * millisecondsPerTick;
-    switch (passes[i]) {
-      case gpu::kWavefrontGenerate:
-        frame.wavefrontGenerateMilliseconds += ms;
-        break;
-      case gpu::kWavefrontTrace:
-        frame.wavefrontTraceMilliseconds += ms;
-        break;
-      case gpu::kWavefrontShade:
-        frame.wavefrontShadeMilliseconds += ms;
-        break;
-      case gpu::kWavefrontQueue:
-        frame.wavefrontQueueMilliseconds += ms;
-        break;
-      case gpu::kWavefrontShadow:
-        frame.wavefrontShadowMilliseconds += ms;
-        break;
-      default:
-        frame.wavefrontFinishMilliseconds += ms;
-        break;
-    }
+    frame.*kPassTimes[passes[i]] += ms;
   }
 }
 
