@@ -25,6 +25,10 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #endif
 
+#ifndef MG_MATERIAL_FLOOR
+#error the wavefront prototype shades the free-material floor only (MG_MATERIAL_FLOOR)
+#endif
+
 #define MG_RNG_COUNTER_BASED 1
 #include "shared_types.h"
 #include "materials.glsl"

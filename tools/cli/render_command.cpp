@@ -338,7 +338,8 @@ int runRender(std::span<const std::string_view> args) {
       return kExitFailure;
     }
     std::cerr << "rendered " << out << " on " << result.stats.device << " (" << result.stats.backend
-              << ", " << result.stats.materialDispatch << " materials): median "
+              << ", " << result.stats.materialDispatch << " materials"
+              << (result.stats.shading == "wavefront" ? ", wavefront" : "") << "): median "
               << result.stats.medianGpuMilliseconds() << " ms per frame; shaders "
               << result.stats.shadersCompiled << " compiled in "
               << result.stats.shaderCompileMilliseconds << " ms, pipeline "
