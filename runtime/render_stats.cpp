@@ -40,7 +40,9 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
          "waiting_instances,hitboxes,active_hitboxes,instance_state_changes,tlas_records,"
          "frame_blas_bytes,frame_tlas_bytes,frame_scratch_bytes,blas_builds,blas_updates,"
          "blas_evictions,"
-         "blas_build_gpu_ms,tlas_build_gpu_ms,culling_host_ms\n";
+         "blas_build_gpu_ms,tlas_build_gpu_ms,culling_host_ms,shading,"
+         "wavefront_generate_gpu_ms,wavefront_trace_gpu_ms,wavefront_shade_gpu_ms,"
+         "wavefront_queue_gpu_ms,wavefront_shadow_gpu_ms,wavefront_finish_gpu_ms\n";
   const auto& a = s.accelerationStructures;
   for (const auto& f : s.frames) {
     double mraysPerSecond = f.gpuMilliseconds > 0 ? f.rays / (f.gpuMilliseconds * 1e3) : 0.0;
@@ -63,7 +65,10 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
         << f.activeHitboxes << ',' << f.instanceStateChanges << ',' << f.tlasRecords << ','
         << f.blasBytes << ',' << f.tlasBytes << ',' << f.asScratchBytes << ',' << f.blasBuilds
         << ',' << f.blasUpdates << ',' << f.blasEvictions << ',' << f.blasBuildMilliseconds << ','
-        << f.tlasBuildMilliseconds << ',' << f.cullingHostMilliseconds << '\n';
+        << f.tlasBuildMilliseconds << ',' << f.cullingHostMilliseconds << ',' << s.shading << ','
+        << f.wavefrontGenerateMilliseconds << ',' << f.wavefrontTraceMilliseconds << ','
+        << f.wavefrontShadeMilliseconds << ',' << f.wavefrontQueueMilliseconds << ','
+        << f.wavefrontShadowMilliseconds << ',' << f.wavefrontFinishMilliseconds << '\n';
   }
 }
 

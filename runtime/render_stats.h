@@ -69,6 +69,14 @@ struct FrameStats {
   // twice. Not in the CSV.
   std::uint64_t feedbackCounts = 0;
   std::uint64_t feedbackCountsArrived = 0;
+  // The wavefront path tracer (--shading wavefront): GPU time of each kind of pass, summed
+  // over the frame's rounds and bounces (timestamps after every pass; 0 for the megakernel).
+  double wavefrontGenerateMilliseconds = 0.0;
+  double wavefrontTraceMilliseconds = 0.0;
+  double wavefrontShadeMilliseconds = 0.0;
+  double wavefrontQueueMilliseconds = 0.0;
+  double wavefrontShadowMilliseconds = 0.0;
+  double wavefrontFinishMilliseconds = 0.0;
   double cacheHitRate() const { return cacheLookups ? double(cacheHits) / cacheLookups : 0.0; }
 };
 
@@ -99,7 +107,8 @@ struct RenderStats {
   double shaderCompileMilliseconds = 0.0;    // GLSL → SPIR-V (0 when all came from the cache)
   std::uint32_t shaderCacheHits = 0;
   std::uint32_t shadersCompiled = 0;
-  std::string materialDispatch;  // "switch", "callable" or "floor" (no graph evaluated)
+  std::string materialDispatch;        // "switch", "callable" or "floor" (no graph evaluated)
+  std::string shading = "megakernel";  // "megakernel" or "wavefront" (--shading)
   // Shader modules and pipeline (the driver's own compile), excluding GLSL → SPIR-V.
   double pipelineCreateMilliseconds = 0.0;
   RayTracingStack rayTracingStack;  // pipeline backend only

@@ -25,6 +25,7 @@
 #include "runtime/trace_descriptors.h"
 #include "runtime/trace_pipelines.h"
 #include "runtime/vulkan_error.h"
+#include "runtime/wavefront_path_tracer.h"
 
 namespace memograph::runtime {
 
@@ -99,6 +100,34 @@ TextureImage loadTextureCore(const std::string& path) {
   return TextureImage{{readPfm(p)}};
 }
 
+const char* shadingName(Shading shading) {
+  return shading == Shading::Wavefront ? "wavefront" : "megakernel";
+}
+
+Shading parseShading(const std::string& text) {
+  if (text == "megakernel")
+    return Shading::Megakernel;
+  if (text == "wavefront")
+    return Shading::Wavefront;
+  throw std::invalid_argument("--shading takes megakernel or wavefront, not '" + text + "'");
+}
+
+void validateWavefrontOptions(const RendererOptions& options) {
+  if (options.shading != Shading::Wavefront)
+    return;
+  const std::string prefix = "--shading wavefront is a prototype of the free-material floor: ";
+  if (!options.floorMaterials)
+    throw std::invalid_argument(prefix + "it needs --floor-materials");
+  if (options.cache.mode != CacheMode::None)
+    throw std::invalid_argument(prefix + "it has no cache (--cache none)");
+  if (options.culling.mode != CullingMode::None)
+    throw std::invalid_argument(prefix + "it has no culling (--culling none)");
+  if (options.debugCacheMisses)
+    throw std::invalid_argument(prefix + "it has no --debug-misses view");
+  if (options.debugCullingSize > 0)
+    throw std::invalid_argument(prefix + "it has no --debug-culling view");
+}
+
 std::size_t countDistinctMaterialGraphs(const Scene& scene) {
   std::set<std::pair<std::string, std::string>> graphs;
   for (const auto& material : scene.materials) {
@@ -116,6 +145,16 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   validateSettings(settings);
   validateScene(scene);
   validateCullingOptions(options_.culling);
+  const bool wavefront = options_.shading == Shading::Wavefront;
+  if (wavefront) {
+    validateWavefrontOptions(options_);
+    if (settings.sharedPrimaryRay)
+      throw std::invalid_argument(
+          "--shading wavefront traces every path's own camera ray; it has no --shared-primary");
+    if (!scene.animatedMeshes.empty() && scene.animatedPosition)
+      throw std::invalid_argument(
+          "--shading wavefront renders static scenes only; this one has animated meshes");
+  }
   if (options_.debugCullingSize > 0 && options_.culling.mode == CullingMode::None)
     throw std::invalid_argument(
         "--debug-culling shows which instances culling keeps; it needs --culling frustum or "
@@ -284,11 +323,20 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   // LiPaC's hit counters and the counting-box probe, only where LiPaC runs.
   if (hitFeedback)
     shaderDefines.push_back("MG_HIT_FEEDBACK=1");
-  TracePipeline pipeline(context, compiler, textures.count(),
-                         materialCallables ? &*materialCallables : nullptr, pipelineThreads,
-                         shaderDefines, materialCache.tileImageView() != VK_NULL_HANDLE,
-                         materialCache.tileFillRows() > 0);
-  stats.rayTracingStack = pipeline.stack();
+  // One architecture or the other: the megakernel's pipeline, or the wavefront's passes.
+  std::optional<TracePipeline> pipeline;
+  std::optional<WavefrontPathTracer> wavefrontTracer;
+  stats.shading = shadingName(options_.shading);
+  if (wavefront) {
+    wavefrontTracer.emplace(context, compiler, textures.count(), shaderDefines, settings.width,
+                            settings.height);
+  } else {
+    pipeline.emplace(context, compiler, textures.count(),
+                     materialCallables ? &*materialCallables : nullptr, pipelineThreads,
+                     shaderDefines, materialCache.tileImageView() != VK_NULL_HANDLE,
+                     materialCache.tileFillRows() > 0);
+    stats.rayTracingStack = pipeline->stack();
+  }
   stats.pipelineCreateMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pipelineStart)
           .count() -
@@ -320,16 +368,31 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                            &textures,
                            dynamicAccel ? &dynamicAccel->hitFeedback() : &noHitFeedback,
                            dynamicAccel ? dynamicAccel->countingBoxes() : VK_NULL_HANDLE};
-  TraceDescriptorSet descriptors(context, pipeline.descriptorSetLayout(), resources);
+  if (wavefrontTracer) {
+    resources.pathState = &wavefrontTracer->pathState();
+    resources.pathQueues = &wavefrontTracer->pathQueues();
+    resources.wavefrontControl = &wavefrontTracer->control();
+  }
+  TraceDescriptorSet descriptors(
+      context,
+      wavefrontTracer ? wavefrontTracer->descriptorSetLayout() : pipeline->descriptorSetLayout(),
+      resources);
   VkDescriptorSet set = descriptors.get();
 
-  // Timestamps around each frame's trace.
+  // Timestamps around each frame's trace, then a dynamic set's animated BLASes and TLAS, then
+  // the wavefront's, one after each pass.
   bool timestamps = context.info().timestamps;
   VulkanHandle<VkQueryPool> timestampPool;
+  constexpr std::uint32_t kFirstWavefrontTimestamp = 5;
+  const std::uint32_t wavefrontTimestamps =
+      wavefrontTracer
+          ? WavefrontPathTracer::timestampCount(settings.pathsPerPixel, settings.raysPerPath)
+          : 0;
+  const std::uint32_t timestampCount = kFirstWavefrontTimestamp + wavefrontTimestamps;
   if (timestamps) {
     VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
     queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
-    queryInfo.queryCount = 5;  // the trace's, then a dynamic set's animated BLASes and TLAS
+    queryInfo.queryCount = timestampCount;
     VkQueryPool queryPool = VK_NULL_HANDLE;
     checkVk(vkCreateQueryPool(device, &queryInfo, nullptr, &queryPool), "vkCreateQueryPool");
     timestampPool = VulkanHandle<VkQueryPool>(
@@ -400,13 +463,18 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                            VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0, nullptr, 0,
                            nullptr);
       if (timestamps)
-        vkCmdResetQueryPool(commands, timestampPool.get(), 0, 5);
+        vkCmdResetQueryPool(commands, timestampPool.get(), 0, timestampCount);
       if (dynamicAccel)
         dynamicAccel->recordTlasBuild(commands, timestamps ? timestampPool.get() : VK_NULL_HANDLE,
                                       2);
       if (timestamps)
         vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestampPool.get(), 0);
-      pipeline.record(commands, set, settings.width, settings.height);
+      if (wavefrontTracer)
+        wavefrontTracer->record(commands, set, settings.pathsPerPixel, settings.raysPerPath,
+                                timestamps ? timestampPool.get() : VK_NULL_HANDLE,
+                                kFirstWavefrontTimestamp);
+      else
+        pipeline->record(commands, set, settings.width, settings.height);
       if (materialCache.tileFillRows() > 0) {
         // The deferred tile fill computes the tiles the trace queued (its stores, queue and
         // locks ordered after the trace's); the frame's time includes it.
@@ -415,7 +483,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
         vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
                              VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0, nullptr, 0,
                              nullptr);
-        pipeline.recordTileFill(commands, set, materialCache.tileFillRows());
+        pipeline->recordTileFill(commands, set, materialCache.tileFillRows());
       }
       if (timestamps)
         vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestampPool.get(), 1);
@@ -456,6 +524,16 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
       if (dynamicAccel) {
         frameStats.blasBuildMilliseconds += double(ticks[3] - ticks[2]) * period;
         frameStats.tlasBuildMilliseconds = double(ticks[4] - ticks[3]) * period;
+      }
+      if (wavefrontTracer) {
+        std::vector<std::uint64_t> passTicks(wavefrontTimestamps);
+        checkVk(vkGetQueryPoolResults(device, timestampPool.get(), kFirstWavefrontTimestamp,
+                                      wavefrontTimestamps, passTicks.size() * sizeof(std::uint64_t),
+                                      passTicks.data(), sizeof(std::uint64_t),
+                                      VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+                "vkGetQueryPoolResults (wavefront passes)");
+        WavefrontPathTracer::addPassTimes(passTicks, settings.pathsPerPixel, settings.raysPerPath,
+                                          period, frameStats);
       }
     }
     if (dynamicAccel) {

@@ -35,6 +35,15 @@ TextureImage loadTextureCore(const std::string& path);
 // stopped, where their 14 callables took 26 s.
 constexpr std::size_t kManyMaterialGraphs = 8;
 
+// How the path tracer is organised (docs/architecture.md, "Material-coherent shading"):
+// one kernel that runs each path to its end, or passes over queues of paths with their state
+// in memory (Laine, Karras and Aila, "Megakernels Considered Harmful", HPG 2013). The
+// wavefront is a prototype for the free-material floor only.
+enum class Shading { Megakernel, Wavefront };
+const char* shadingName(Shading shading);
+// "megakernel" or "wavefront"; throws std::invalid_argument naming the choices.
+Shading parseShading(const std::string& text);
+
 struct RendererOptions {
   ContextOptions context;
   bool shaderCache = true;
@@ -58,6 +67,9 @@ struct RendererOptions {
   // roughness 0.5, metallic 0, the geometric normal) and no graph evaluated, for the cost
   // of a free material. Stats say materialDispatch "floor". Not with a cache.
   bool floorMaterials = false;
+  // Wavefront: needs floorMaterials, and no cache, culling, debug view, shared primary ray or
+  // animated meshes (checked by validateWavefrontOptions and render()).
+  Shading shading = Shading::Megakernel;
   // Thesis Fig. 6.9: the image shows each frame alone, pixels where a path missed the
   // cache in red. Needs the texel cache.
   bool debugCacheMisses = false;
@@ -68,6 +80,10 @@ struct RendererOptions {
   // (RenderResult::cullingView; 0: none).
   std::uint32_t debugCullingSize = 0;
 };
+
+// Refuses (std::invalid_argument, naming the option) what the wavefront prototype does not
+// do: anything but the free-material floor without a cache, culling or debug view.
+void validateWavefrontOptions(const RendererOptions& options);
 
 // Materials that share a graph (same file or same text) count once.
 std::size_t countDistinctMaterialGraphs(const Scene& scene);

@@ -13,7 +13,7 @@ TraceDescriptorSet::TraceDescriptorSet(const VulkanContext& context,
   std::vector<VkDescriptorPoolSize> poolSizes = {
       {VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 2},
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 13},
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 16},
       {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, r.textures->count()}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -33,7 +33,7 @@ TraceDescriptorSet::TraceDescriptorSet(const VulkanContext& context,
 
   std::vector<VkWriteDescriptorSet> writes;
   std::vector<VkDescriptorBufferInfo> bufferInfos;
-  bufferInfos.reserve(16);
+  bufferInfos.reserve(20);  // the writes point into it: no reallocation
   // Each buffer is bound whole: a storage buffer must fit the device's storage-buffer range
   // (the cache's buffers were checked earlier under their options' names; this also covers
   // the scene's).
@@ -67,6 +67,12 @@ TraceDescriptorSet::TraceDescriptorSet(const VulkanContext& context,
   writeBuffer(gpu::kBindingTileLog, kStorage, r.cache->tileLog(), "the tile log");
   writeBuffer(gpu::kBindingTileQueue, kStorage, r.cache->tileQueue(), "the tile queue");
   writeBuffer(gpu::kBindingHitFeedback, kStorage, *r.hitFeedback, "the hit-feedback counters");
+  if (r.pathState) {
+    writeBuffer(gpu::kBindingPathState, kStorage, *r.pathState, "the wavefront's path state");
+    writeBuffer(gpu::kBindingPathQueues, kStorage, *r.pathQueues, "the wavefront's path queues");
+    writeBuffer(gpu::kBindingWavefrontControl, kStorage, *r.wavefrontControl,
+                "the wavefront's queue counts");
+  }
   VkDescriptorImageInfo tileImageInfo{VK_NULL_HANDLE, r.cache->tileImageView(),
                                       VK_IMAGE_LAYOUT_GENERAL};
   if (tileImageInfo.imageView != VK_NULL_HANDLE) {

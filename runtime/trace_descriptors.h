@@ -25,6 +25,11 @@ struct TraceResources {
   const GpuBuffer* hitFeedback = nullptr;  // LiPaC's hit counters (a dummy without)
   // LiPaC's counting boxes; VK_NULL_HANDLE without (no shader then uses the binding).
   VkAccelerationStructureKHR countingBoxes = VK_NULL_HANDLE;
+  // The wavefront path tracer's path state, queues and control (null for the megakernel,
+  // whose layout has no such bindings).
+  const GpuBuffer* pathState = nullptr;
+  const GpuBuffer* pathQueues = nullptr;
+  const GpuBuffer* wavefrontControl = nullptr;
 };
 
 class TraceDescriptorSet {

@@ -20,9 +20,9 @@ namespace {
 // host threads: a driver that compiles the pipeline's shaders itself (one per material with
 // callables) can then compile them in parallel. A driver that does not defer simply
 // creates the pipeline in the call.
-VkPipeline createRayTracingPipeline(const VulkanContext& context,
-                                    const VkRayTracingPipelineCreateInfoKHR& info,
-                                    std::uint32_t threads) {
+VkPipeline createWithDeferredOperation(const VulkanContext& context,
+                                       const VkRayTracingPipelineCreateInfoKHR& info,
+                                       std::uint32_t threads) {
   VkDevice device = context.device();
   const DeviceFunctions& f = context.functions();
   VkDeferredOperationKHR operation = VK_NULL_HANDLE;
@@ -59,23 +59,112 @@ VkPipeline createRayTracingPipeline(const VulkanContext& context,
 
 }  // namespace
 
-TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compiler,
-                             std::uint32_t textureCount, const MaterialCallables* callables,
-                             std::uint32_t pipelineThreads,
-                             const std::vector<std::string>& extraDefines, bool tileImage,
-                             bool tileFillPass)
-    : context_(context), backend_(context.backend()), tileFillPass_(tileFillPass) {
-  VkDevice device = context.device();
-  bool query = backend_ == Backend::RayQuery;
-  if (query && callables)
-    throw std::invalid_argument(
-        "callable material shaders need the ray-tracing pipeline backend (--backend pipeline); "
-        "the query backend dispatches materials with a switch");
-  // Callables read the textures (mg_SampleTexture) through the same set as the raygen.
-  VkShaderStageFlags stages =
-      query ? VK_SHADER_STAGE_COMPUTE_BIT
-            : VK_SHADER_STAGE_RAYGEN_BIT_KHR | (callables ? VK_SHADER_STAGE_CALLABLE_BIT_KHR : 0);
+void appendReportingShaders(VkDevice device, ShaderCompiler& compiler,
+                            std::vector<VulkanHandle<VkShaderModule>>& modules,
+                            std::vector<VkShaderStageFlagBits>& stages) {
+  modules.push_back(
+      createShaderModule(device, compiler.compile({"trace_miss.rmiss", ShaderStage::Miss, {}})));
+  modules.push_back(
+      createShaderModule(device, compiler.compile({"trace_shadow.rmiss", ShaderStage::Miss, {}})));
+  modules.push_back(createShaderModule(
+      device, compiler.compile({"trace_hit.rchit", ShaderStage::ClosestHit, {}})));
+  stages.insert(stages.end(), {VK_SHADER_STAGE_MISS_BIT_KHR, VK_SHADER_STAGE_MISS_BIT_KHR,
+                               VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR});
+}
 
+VulkanHandle<VkPipeline> createRayTracingPipeline(const VulkanContext& context,
+                                                  const std::vector<VkShaderModule>& modules,
+                                                  const std::vector<VkShaderStageFlagBits>& stages,
+                                                  VkPipelineLayout layout, std::uint32_t threads,
+                                                  bool dynamicStack) {
+  const auto shaderCount = static_cast<std::uint32_t>(modules.size());
+  std::vector<VkPipelineShaderStageCreateInfo> shaderStages(shaderCount);
+  std::vector<VkRayTracingShaderGroupCreateInfoKHR> groups(shaderCount);
+  for (std::uint32_t i = 0; i < shaderCount; ++i) {
+    shaderStages[i] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    shaderStages[i].stage = stages[i];
+    shaderStages[i].module = modules[i];
+    shaderStages[i].pName = "main";
+    groups[i] = {VK_STRUCTURE_TYPE_RAY_TRACING_SHADER_GROUP_CREATE_INFO_KHR};
+    groups[i].generalShader = VK_SHADER_UNUSED_KHR;
+    groups[i].closestHitShader = VK_SHADER_UNUSED_KHR;
+    groups[i].anyHitShader = VK_SHADER_UNUSED_KHR;
+    groups[i].intersectionShader = VK_SHADER_UNUSED_KHR;
+    if (stages[i] == VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR) {
+      groups[i].type = VK_RAY_TRACING_SHADER_GROUP_TYPE_TRIANGLES_HIT_GROUP_KHR;
+      groups[i].closestHitShader = i;
+    } else {
+      groups[i].type = VK_RAY_TRACING_SHADER_GROUP_TYPE_GENERAL_KHR;
+      groups[i].generalShader = i;
+    }
+  }
+  VkRayTracingPipelineCreateInfoKHR info{VK_STRUCTURE_TYPE_RAY_TRACING_PIPELINE_CREATE_INFO_KHR};
+  info.stageCount = shaderCount;
+  info.pStages = shaderStages.data();
+  info.groupCount = shaderCount;
+  info.pGroups = groups.data();
+  // Raygens trace; hit shaders never do. Callables do not count towards recursion.
+  info.maxPipelineRayRecursionDepth = 1;
+  info.layout = layout;
+  const VkDynamicState stackState = VK_DYNAMIC_STATE_RAY_TRACING_PIPELINE_STACK_SIZE_KHR;
+  VkPipelineDynamicStateCreateInfo dynamicState{
+      VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+  dynamicState.dynamicStateCount = 1;
+  dynamicState.pDynamicStates = &stackState;
+  if (dynamicStack)
+    info.pDynamicState = &dynamicState;
+  VkDevice device = context.device();
+  return VulkanHandle<VkPipeline>(
+      createWithDeferredOperation(context, info, threads),
+      [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); });
+}
+
+ShaderBindingTable createShaderBindingTable(const VulkanContext& context, VkPipeline pipeline,
+                                            std::uint32_t groupCount,
+                                            const std::vector<ShaderBindingRegion>& regions) {
+  const auto& rt = context.info().rayTracingProperties;
+  const std::uint32_t handleSize = rt.shaderGroupHandleSize;
+  const VkDeviceSize stride = alignUp(handleSize, rt.shaderGroupHandleAlignment);
+  const VkDeviceSize base = rt.shaderGroupBaseAlignment;
+  std::vector<std::uint8_t> handles(std::size_t(handleSize) * groupCount);
+  checkVk(context.functions().getRayTracingShaderGroupHandles(
+              context.device(), pipeline, 0, groupCount, handles.size(), handles.data()),
+          "vkGetRayTracingShaderGroupHandlesKHR");
+  // Each region's offset and record stride, then the records' bytes.
+  std::vector<VkDeviceSize> offsets, strides;
+  VkDeviceSize end = 0;
+  for (const auto& region : regions) {
+    const VkDeviceSize offset = alignUp(end, base);
+    offsets.push_back(offset);
+    strides.push_back(region.raygen ? alignUp(stride, base) : stride);
+    if (!region.groups.empty())
+      end = offset + (region.raygen ? alignUp(stride, base) : region.groups.size() * stride);
+  }
+  std::vector<std::uint8_t> table(end, 0);
+  for (std::size_t r = 0; r < regions.size(); ++r)
+    for (std::size_t i = 0; i < regions[r].groups.size(); ++i)
+      std::memcpy(&table[offsets[r] + i * strides[r]],
+                  &handles[std::size_t(regions[r].groups[i]) * handleSize], handleSize);
+  ShaderBindingTable sbt;
+  sbt.buffer = GpuBuffer(
+      context, end + base,
+      VK_BUFFER_USAGE_SHADER_BINDING_TABLE_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+  const VkDeviceAddress address = alignUp(sbt.buffer.address(), base);
+  sbt.buffer.write(table.data(), table.size(), address - sbt.buffer.address());
+  for (std::size_t r = 0; r < regions.size(); ++r) {
+    const VkDeviceSize records = regions[r].raygen ? 1 : regions[r].groups.size();
+    sbt.regions.push_back(regions[r].groups.empty()
+                              ? VkStridedDeviceAddressRegionKHR{}
+                              : VkStridedDeviceAddressRegionKHR{address + offsets[r], strides[r],
+                                                                records * strides[r]});
+  }
+  return sbt;
+}
+
+VulkanHandle<VkDescriptorSetLayout> createTraceSetLayout(VkDevice device, VkShaderStageFlags stages,
+                                                         std::uint32_t textureCount, bool tileImage,
+                                                         bool wavefront) {
   using gpu::uint;
   std::vector<VkDescriptorSetLayoutBinding> bindings;
   auto add = [&](uint binding, VkDescriptorType type, uint count = 1) {
@@ -100,15 +189,41 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   add(gpu::kBindingCountingBoxes, VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR);
   if (tileImage)
     add(gpu::kBindingTileImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE);
+  if (wavefront) {
+    add(gpu::kBindingPathState, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    add(gpu::kBindingPathQueues, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    add(gpu::kBindingWavefrontControl, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+  }
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   setInfo.bindingCount = static_cast<std::uint32_t>(bindings.size());
   setInfo.pBindings = bindings.data();
   VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
   checkVk(vkCreateDescriptorSetLayout(device, &setInfo, nullptr, &setLayout),
           "vkCreateDescriptorSetLayout");
-  setLayout_ = VulkanHandle<VkDescriptorSetLayout>(setLayout, [device](VkDescriptorSetLayout l) {
+  return VulkanHandle<VkDescriptorSetLayout>(setLayout, [device](VkDescriptorSetLayout l) {
     vkDestroyDescriptorSetLayout(device, l, nullptr);
   });
+}
+
+TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compiler,
+                             std::uint32_t textureCount, const MaterialCallables* callables,
+                             std::uint32_t pipelineThreads,
+                             const std::vector<std::string>& extraDefines, bool tileImage,
+                             bool tileFillPass)
+    : context_(context), backend_(context.backend()), tileFillPass_(tileFillPass) {
+  VkDevice device = context.device();
+  bool query = backend_ == Backend::RayQuery;
+  if (query && callables)
+    throw std::invalid_argument(
+        "callable material shaders need the ray-tracing pipeline backend (--backend pipeline); "
+        "the query backend dispatches materials with a switch");
+  // Callables read the textures (mg_SampleTexture) through the same set as the raygen.
+  VkShaderStageFlags stages =
+      query ? VK_SHADER_STAGE_COMPUTE_BIT
+            : VK_SHADER_STAGE_RAYGEN_BIT_KHR | (callables ? VK_SHADER_STAGE_CALLABLE_BIT_KHR : 0);
+
+  setLayout_ = createTraceSetLayout(device, stages, textureCount, tileImage);
+  VkDescriptorSetLayout setLayout = setLayout_.get();
 
   layout_ = createPipelineLayout(device, setLayout);
   VkPipelineLayout layout = layout_.get();
@@ -125,7 +240,6 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
     defines.push_back("MG_MATERIAL_COUNT=" + std::to_string(materialRecords));
   }
   defines.insert(defines.end(), extraDefines.begin(), extraDefines.end());
-  auto destroyPipeline = [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); };
   // The deferred tile fill's pass: the same source and defines, entered at the fill.
   std::vector<std::string> fillDefines = defines;
   fillDefines.push_back("MG_TILE_FILL_PASS=1");
@@ -152,15 +266,8 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   std::vector<VulkanHandle<VkShaderModule>> modules;
   modules.push_back(createShaderModule(
       device, compiler.compile({"path_tracer.glsl", ShaderStage::RayGen, defines})));
-  modules.push_back(
-      createShaderModule(device, compiler.compile({"trace_miss.rmiss", ShaderStage::Miss, {}})));
-  modules.push_back(
-      createShaderModule(device, compiler.compile({"trace_shadow.rmiss", ShaderStage::Miss, {}})));
-  modules.push_back(createShaderModule(
-      device, compiler.compile({"trace_hit.rchit", ShaderStage::ClosestHit, {}})));
-  std::vector<VkShaderStageFlagBits> stageBits = {
-      VK_SHADER_STAGE_RAYGEN_BIT_KHR, VK_SHADER_STAGE_MISS_BIT_KHR, VK_SHADER_STAGE_MISS_BIT_KHR,
-      VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR};
+  std::vector<VkShaderStageFlagBits> stageBits = {VK_SHADER_STAGE_RAYGEN_BIT_KHR};
+  appendReportingShaders(device, compiler, modules, stageBits);
   if (tileFillPass) {
     modules.push_back(createShaderModule(
         device, compiler.compile({"path_tracer.glsl", ShaderStage::RayGen, fillDefines})));
@@ -170,43 +277,13 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
     modules.push_back(createShaderModule(device, callables->spirv[i]));
     stageBits.push_back(VK_SHADER_STAGE_CALLABLE_BIT_KHR);
   }
-  std::vector<VkPipelineShaderStageCreateInfo> shaderStages(shaderCount);
-  std::vector<VkRayTracingShaderGroupCreateInfoKHR> groups(shaderCount);
-  for (std::uint32_t i = 0; i < shaderCount; ++i) {
-    shaderStages[i] = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
-    shaderStages[i].stage = stageBits[i];
-    shaderStages[i].module = modules[i].get();
-    shaderStages[i].pName = "main";
-    groups[i] = {VK_STRUCTURE_TYPE_RAY_TRACING_SHADER_GROUP_CREATE_INFO_KHR};
-    groups[i].generalShader = VK_SHADER_UNUSED_KHR;
-    groups[i].closestHitShader = VK_SHADER_UNUSED_KHR;
-    groups[i].anyHitShader = VK_SHADER_UNUSED_KHR;
-    groups[i].intersectionShader = VK_SHADER_UNUSED_KHR;
-    if (i == 3) {
-      groups[i].type = VK_RAY_TRACING_SHADER_GROUP_TYPE_TRIANGLES_HIT_GROUP_KHR;
-      groups[i].closestHitShader = i;
-    } else {
-      groups[i].type = VK_RAY_TRACING_SHADER_GROUP_TYPE_GENERAL_KHR;
-      groups[i].generalShader = i;
-    }
-  }
-  VkRayTracingPipelineCreateInfoKHR info{VK_STRUCTURE_TYPE_RAY_TRACING_PIPELINE_CREATE_INFO_KHR};
-  info.stageCount = shaderCount;
-  info.pStages = shaderStages.data();
-  info.groupCount = shaderCount;
-  info.pGroups = groups.data();
-  // Raygen traces; hit shaders never do. Callables do not count towards recursion.
-  info.maxPipelineRayRecursionDepth = 1;
-  info.layout = layout;
+  std::vector<VkShaderModule> moduleHandles;
+  for (const auto& module : modules)
+    moduleHandles.push_back(module.get());
   // The stack size is set per launch (below), not left to the spec's default.
-  const VkDynamicState stackState = VK_DYNAMIC_STATE_RAY_TRACING_PIPELINE_STACK_SIZE_KHR;
-  VkPipelineDynamicStateCreateInfo dynamicState{
-      VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-  dynamicState.dynamicStateCount = 1;
-  dynamicState.pDynamicStates = &stackState;
-  info.pDynamicState = &dynamicState;
-  VkPipeline pipeline = createRayTracingPipeline(context, info, pipelineThreads);
-  pipeline_ = VulkanHandle<VkPipeline>(pipeline, destroyPipeline);
+  pipeline_ =
+      createRayTracingPipeline(context, moduleHandles, stageBits, layout, pipelineThreads, true);
+  VkPipeline pipeline = pipeline_.get();
 
   // The pipeline stack. The spec's default assumes callables may be called from hit and
   // miss shaders while a ray is traced (raygen + max(hit, miss) + 2 x the largest callable).
@@ -232,46 +309,22 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   // Shader-binding table: [raygen][miss, shadow miss][hit][fill raygen][callable per
   // material id], each region base-aligned. Scene materials sharing a graph point at the
   // same callable group.
-  const auto& rt = context.info().rayTracingProperties;
-  std::uint32_t handleSize = rt.shaderGroupHandleSize;
-  VkDeviceSize stride = alignUp(handleSize, rt.shaderGroupHandleAlignment);
-  VkDeviceSize base = rt.shaderGroupBaseAlignment;
-  std::vector<std::uint8_t> handles(std::size_t(handleSize) * shaderCount);
-  checkVk(context.functions().getRayTracingShaderGroupHandles(device, pipeline, 0, shaderCount,
-                                                              handles.size(), handles.data()),
-          "vkGetRayTracingShaderGroupHandlesKHR");
-  VkDeviceSize raygenOffset = 0;
-  VkDeviceSize missOffset = alignUp(stride, base);
-  VkDeviceSize hitOffset = alignUp(missOffset + 2 * stride, base);
-  VkDeviceSize fillOffset = alignUp(hitOffset + stride, base);
-  VkDeviceSize callableOffset = tileFillPass ? alignUp(fillOffset + stride, base) : fillOffset;
-  VkDeviceSize tableSize = callableOffset + materialRecords * stride;
-  std::vector<std::uint8_t> table(tableSize, 0);
-  std::memcpy(&table[raygenOffset], &handles[0], handleSize);
-  std::memcpy(&table[missOffset], &handles[handleSize], handleSize);
-  std::memcpy(&table[missOffset + stride], &handles[2 * handleSize], handleSize);
-  std::memcpy(&table[hitOffset], &handles[3 * handleSize], handleSize);
-  if (tileFillPass)
-    std::memcpy(&table[fillOffset], &handles[4 * handleSize], handleSize);
-  for (std::uint32_t m = 0; m < materialRecords; ++m) {
-    std::uint32_t group = firstCallable + callables->shaderForMaterial[m];
-    std::memcpy(&table[callableOffset + m * stride], &handles[std::size_t(group) * handleSize],
-                handleSize);
-  }
-  shaderBindingTable_ = GpuBuffer(
-      context, tableSize + base,
-      VK_BUFFER_USAGE_SHADER_BINDING_TABLE_BIT_KHR | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
-      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-  VkDeviceAddress tableAddress = alignUp(shaderBindingTable_.address(), base);
-  shaderBindingTable_.write(table.data(), table.size(),
-                            tableAddress - shaderBindingTable_.address());
-  raygenRegion_ = {tableAddress + raygenOffset, alignUp(stride, base), alignUp(stride, base)};
-  missRegion_ = {tableAddress + missOffset, stride, 2 * stride};
-  hitRegion_ = {tableAddress + hitOffset, stride, stride};
-  if (tileFillPass)
-    fillRaygenRegion_ = {tableAddress + fillOffset, alignUp(stride, base), alignUp(stride, base)};
-  if (materialRecords > 0)
-    callableRegion_ = {tableAddress + callableOffset, stride, materialRecords * stride};
+  std::vector<std::uint32_t> callableGroups;
+  for (std::uint32_t m = 0; m < materialRecords; ++m)
+    callableGroups.push_back(firstCallable + callables->shaderForMaterial[m]);
+  ShaderBindingTable table = createShaderBindingTable(
+      context, pipeline, shaderCount,
+      {{{0}, true},
+       {{1, 2}},
+       {{3}},
+       {tileFillPass ? std::vector<std::uint32_t>{4} : std::vector<std::uint32_t>{}, true},
+       {callableGroups}});
+  shaderBindingTable_ = std::move(table.buffer);
+  raygenRegion_ = table.regions[0];
+  missRegion_ = table.regions[1];
+  hitRegion_ = table.regions[2];
+  fillRaygenRegion_ = table.regions[3];
+  callableRegion_ = table.regions[4];
 }
 
 void TracePipeline::record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t width,

@@ -20,6 +20,47 @@
 
 namespace memograph::runtime {
 
+// The path tracer's descriptor set layout (every binding of shared_types.h) for `stages`;
+// `wavefront` adds the wavefront path tracer's path state, queues and control buffer.
+VulkanHandle<VkDescriptorSetLayout> createTraceSetLayout(VkDevice device, VkShaderStageFlags stages,
+                                                         std::uint32_t textureCount, bool tileImage,
+                                                         bool wavefront = false);
+
+// Appends the report-only shaders (thesis §5.2) of every ray-tracing pipeline here, in this
+// order: the closest-hit rays' miss (trace_miss.rmiss), the shadow rays' miss
+// (trace_shadow.rmiss) and the closest hit (trace_hit.rchit), with their stages.
+void appendReportingShaders(VkDevice device, ShaderCompiler& compiler,
+                            std::vector<VulkanHandle<VkShaderModule>>& modules,
+                            std::vector<VkShaderStageFlagBits>& stages);
+
+// A ray-tracing pipeline of one group per shader, in `stages` order: a closest-hit shader
+// makes a triangle hit group, any other shader a general group (raygen, miss, callable).
+// Raygens trace, hit shaders do not (recursion depth 1). `dynamicStack`: the stack size is set
+// at each launch (vkCmdSetRayTracingPipelineStackSizeKHR). Created through a deferred
+// operation joined by up to `threads` host threads.
+VulkanHandle<VkPipeline> createRayTracingPipeline(const VulkanContext& context,
+                                                  const std::vector<VkShaderModule>& modules,
+                                                  const std::vector<VkShaderStageFlagBits>& stages,
+                                                  VkPipelineLayout layout, std::uint32_t threads,
+                                                  bool dynamicStack);
+
+// One region of a shader-binding table: a record for each group listed (a group may repeat).
+// A raygen region holds one record, its stride and size the base alignment.
+struct ShaderBindingRegion {
+  std::vector<std::uint32_t> groups;
+  bool raygen = false;
+};
+
+// A shader-binding table of `pipeline`'s `groupCount` groups: its buffer, and each region's
+// address range in the order given, each base-aligned (an empty region: all zero).
+struct ShaderBindingTable {
+  GpuBuffer buffer;
+  std::vector<VkStridedDeviceAddressRegionKHR> regions;
+};
+ShaderBindingTable createShaderBindingTable(const VulkanContext& context, VkPipeline pipeline,
+                                            std::uint32_t groupCount,
+                                            const std::vector<ShaderBindingRegion>& regions);
+
 class TracePipeline {
  public:
   // `callables`: null for the switch dispatch (materials.glsl holds every material); else

@@ -374,6 +374,10 @@ VulkanContext::VulkanContext(const ContextOptions& options)
   VkPhysicalDeviceRayTracingPipelineFeaturesKHR enablePipeline{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
   enablePipeline.rayTracingPipeline = VK_TRUE;
+  // Optional: only the wavefront path tracer's indirect launches use it.
+  info_.traceRaysIndirect = backend_ == Backend::RayTracingPipeline &&
+                            pipelineFeatures.rayTracingPipelineTraceRaysIndirect;
+  enablePipeline.rayTracingPipelineTraceRaysIndirect = info_.traceRaysIndirect;
   VkPhysicalDeviceFeatures2 enable2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
   enable2.features.shaderInt64 = info_.bufferInt64Atomics;
   enable2.pNext = &enable12;
@@ -446,6 +450,8 @@ VulkanContext::VulkanContext(const ContextOptions& options)
     loadDevice(device, "vkGetRayTracingShaderGroupHandlesKHR",
                functions_.getRayTracingShaderGroupHandles);
     loadDevice(device, "vkCmdTraceRaysKHR", functions_.cmdTraceRays);
+    if (info_.traceRaysIndirect)
+      loadDevice(device, "vkCmdTraceRaysIndirectKHR", functions_.cmdTraceRaysIndirect);
     loadDevice(device, "vkGetRayTracingShaderGroupStackSizeKHR",
                functions_.getRayTracingShaderGroupStackSize);
     loadDevice(device, "vkCmdSetRayTracingPipelineStackSizeKHR",

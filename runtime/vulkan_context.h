@@ -44,6 +44,8 @@ struct DeviceFunctions {
   PFN_vkCreateRayTracingPipelinesKHR createRayTracingPipelines = nullptr;
   PFN_vkGetRayTracingShaderGroupHandlesKHR getRayTracingShaderGroupHandles = nullptr;
   PFN_vkCmdTraceRaysKHR cmdTraceRays = nullptr;
+  // Where the device has rayTracingPipelineTraceRaysIndirect (the wavefront's trace passes).
+  PFN_vkCmdTraceRaysIndirectKHR cmdTraceRaysIndirect = nullptr;
   PFN_vkGetRayTracingShaderGroupStackSizeKHR getRayTracingShaderGroupStackSize = nullptr;
   PFN_vkCmdSetRayTracingPipelineStackSizeKHR cmdSetRayTracingPipelineStackSize = nullptr;
   // VK_KHR_deferred_host_operations (always enabled with acceleration structures): lets
@@ -61,6 +63,8 @@ struct DeviceInfo {
   std::uint32_t apiVersion = 0;
   bool rayQuery = false;
   bool rayTracingPipeline = false;
+  // vkCmdTraceRaysIndirectKHR enabled (pipeline backend): launch sizes read from a buffer.
+  bool traceRaysIndirect = false;
   float timestampPeriodNs = 1.0f;
   bool timestamps = false;
   VkPhysicalDeviceRayTracingPipelinePropertiesKHR rayTracingProperties{};

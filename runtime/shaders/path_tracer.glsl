@@ -36,35 +36,7 @@
 #include "trace_pipeline.glsl"
 #endif
 
-layout(set = 0, binding = kBindingFrame, std140) uniform FrameBlock {
-  FrameConstants frame;
-};
-layout(set = 0, binding = kBindingAccumulation, std430) buffer AccumulationBlock {
-  vec4 accumulation[];
-};
-layout(set = 0, binding = kBindingVertices, std430) readonly buffer VertexBlock {
-  Vertex vertices[];
-};
-layout(set = 0, binding = kBindingIndices, std430) readonly buffer IndexBlock {
-  uint indices[];
-};
-layout(set = 0, binding = kBindingInstances, std430) readonly buffer InstanceBlock {
-  Instance instances[];
-};
-layout(set = 0, binding = kBindingMeshes, std430) readonly buffer MeshBlock {
-  Mesh meshes[];
-};
-layout(set = 0, binding = kBindingLights, std430) readonly buffer LightBlock {
-  Light lights[];
-};
-layout(set = 0, binding = kBindingEnvironment, std430) readonly buffer EnvironmentBlock {
-  vec4 environmentTexels[];
-};
-layout(set = 0, binding = kBindingRayCounter, std430) buffer CounterBlock {
-  Counters counters;
-};
-
-const float kRayTMax = 1e30;
+#include "scene_bindings.glsl"
 
 #ifdef MG_HIT_FEEDBACK
 layout(set = 0, binding = kBindingHitFeedback, std430) buffer HitFeedbackBlock {
@@ -136,17 +108,7 @@ uint hitFeedbackWeight(uvec2 pixel) {
 #endif
 
 #if defined(MG_MATERIAL_FLOOR)
-// The floor run: every material replaced by constants, no graph evaluated, so the frame
-// time is the path tracer's alone (what a free material would cost). Each material keeps
-// a colour of its own (a hash of its id) so the image still tells materials apart.
-void evaluateMaterialDirect(uint materialId, MaterialInputs inputs,
-                            out MaterialOutputs outputs) {
-  outputs = mg_defaultMaterialOutputs(inputs);  // geometric normal, no emission, opaque
-  uint h = pcgHash(materialId ^ 0x9e3779b9u);
-  outputs.baseColor = vec3(0.2) + 0.6 * vec3(uvec3(h, h >> 8u, h >> 16u) & 255u) / 255.0;
-  outputs.roughness = 0.5;
-  outputs.metallic = 0.0;
-}
+#include "material_floor.glsl"
 #elif defined(MG_MATERIAL_CALLABLES)
 #include "material_call.glsl"
 layout(location = kMaterialCallLocation) callableDataEXT MaterialCall materialCall;
@@ -212,311 +174,22 @@ void evaluateMaterial(bool hasHit, uint materialId, MaterialInputs inputs, uint 
 #endif
 }
 
-// Moves a ray origin off a surface along its geometric normal, scaled to the float
-// precision at that position (Wächter and Binder, Ray Tracing Gems, ch. 6).
-vec3 offsetRayOrigin(vec3 p, vec3 n) {
-  const float kOrigin = 1.0 / 32.0;
-  const float kFloatScale = 1.0 / 65536.0;
-  const float kIntScale = 256.0;
-  ivec3 offset = ivec3(kIntScale * n);
-  vec3 pInt = vec3(intBitsToFloat(floatBitsToInt(p.x) + (p.x < 0.0 ? -offset.x : offset.x)),
-                   intBitsToFloat(floatBitsToInt(p.y) + (p.y < 0.0 ? -offset.y : offset.y)),
-                   intBitsToFloat(floatBitsToInt(p.z) + (p.z < 0.0 ? -offset.z : offset.z)));
-  return vec3(abs(p.x) < kOrigin ? p.x + kFloatScale * n.x : pInt.x,
-              abs(p.y) < kOrigin ? p.y + kFloatScale * n.y : pInt.y,
-              abs(p.z) < kOrigin ? p.z + kFloatScale * n.z : pInt.z);
-}
+#include "path_shading.glsl"
 
-// An orthonormal basis around n (Duff et al. 2017).
-void basisAround(vec3 n, out vec3 t, out vec3 b) {
-  float s = n.z >= 0.0 ? 1.0 : -1.0;
-  float a = -1.0 / (s + n.z);
-  float c = n.x * n.y * a;
-  t = vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
-  b = vec3(c, s + n.y * n.y * a, -n.y);
-}
-
-// Radiance arriving from the environment along direction d.
-vec3 environmentRadiance(vec3 d) {
-  vec3 scale = frame.environment.rgb;
-  if ((frame.path.z & kFlagEnvironmentImage) == 0u) return scale;
-  // Equirectangular: u around +y starting at -z, v from the zenith down.
-  uvec2 size = frame.environmentSize.xy;
-  float u = atan(d.x, -d.z) * (0.5 / kPi) + 0.5;
-  float v = acos(clamp(d.y, -1.0, 1.0)) / kPi;
-  uint x = min(uint(u * float(size.x)), size.x - 1u);
-  uint y = min(uint(v * float(size.y)), size.y - 1u);
-  return environmentTexels[y * size.x + x].rgb * scale;
-}
-
-// A hit turned into what shading needs: material inputs (with ray-cone derivatives) and
-// the geometric normal, facing the incoming ray.
-struct SurfaceHit {
-  MaterialInputs inputs;
-  uint materialId;
-  vec3 geometricNormal;
-  float curvature;
-  float coneWidth;
-  float lightAreaPdf;  // emissive NEE's area pdf of this point (0: not a sampled light)
-};
-
-SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
-  SurfaceHit s;
-  Instance instance = instances[hit.instanceIndex];
-  Mesh mesh = meshes[instance.ids.x];
-  s.materialId = instance.ids.y;
-  s.lightAreaPdf = instance.objectInfo.y;
-  uint firstVertex = mesh.ranges.x;
-  uint firstIndex = mesh.ranges.y + 3u * hit.primitiveIndex;
-  Vertex v0 = vertices[firstVertex + indices[firstIndex]];
-  Vertex v1 = vertices[firstVertex + indices[firstIndex + 1u]];
-  Vertex v2 = vertices[firstVertex + indices[firstIndex + 2u]];
-  vec3 w = vec3(1.0 - hit.barycentrics.x - hit.barycentrics.y, hit.barycentrics);
-
-  mat4 toWorld = instance.objectToWorld;
-  mat3 normalToWorld = mat3(instance.normalToWorld);
-  vec3 p0 = (toWorld * vec4(v0.position.xyz, 1.0)).xyz;
-  vec3 p1 = (toWorld * vec4(v1.position.xyz, 1.0)).xyz;
-  vec3 p2 = (toWorld * vec4(v2.position.xyz, 1.0)).xyz;
-  vec3 n0 = normalize(normalToWorld * v0.normal.xyz);
-  vec3 n1 = normalize(normalToWorld * v1.normal.xyz);
-  vec3 n2 = normalize(normalToWorld * v2.normal.xyz);
-  vec3 position = origin + hit.t * direction;
-
-  // Imported meshes hold degenerate triangles and zero normals: fall back rather than let a
-  // NaN into the accumulation.
-  vec3 n = w.x * n0 + w.y * n1 + w.z * n2;
-  vec3 ng = cross(p1 - p0, p2 - p0);
-  if (!(dot(ng, ng) > 1e-30)) ng = dot(n, n) > 1e-30 ? n : -direction;
-  ng = normalize(ng);
-  n = dot(n, n) > 1e-30 ? normalize(n) : ng;
-  // The front face winds counter-clockwise in object space; a mirroring transform reverses
-  // the winding of the world-space vertices, so the face normal flips with it (Blender's
-  // Geometry Backfacing).
-  vec3 front = determinant(mat3(toWorld)) < 0.0 ? -ng : ng;
-  bool backfacing = dot(front, direction) > 0.0;
-  // Two-sided surfaces: both normals face the ray.
-  if (dot(ng, direction) > 0.0) ng = -ng;
-  bool flipped = dot(n, ng) < 0.0;
-  if (flipped) n = -n;
-  s.geometricNormal = ng;
-  // The curvature of the normals the hit shades with: flipped on a back face (eq. 2.12 then
-  // sees a convex surface as convex from either side).
-  s.curvature = (flipped ? -1.0 : 1.0) * triangleCurvature(p0, p1, p2, n0, n1, n2);
-
-  // Eq. 2.10, then the footprint ellipse (eq. 2.13-2.16) mapped to UVs through the
-  // barycentrics of its vertex and co-vertex.
-  s.coneWidth = rayConeWidthAt(cone, hit.t);
-  vec3 axis1, axis2;
-  rayConeEllipseAxes(direction, ng, s.coneWidth, axis1, axis2);
-  vec2 b1 = barycentricsOf(position + axis1, p0, p1, p2);
-  vec2 b2 = barycentricsOf(position + axis2, p0, p1, p2);
-  vec2 uv0 = vec2(v0.position.w, v0.normal.w);
-  vec2 uv1 = vec2(v1.position.w, v1.normal.w);
-  vec2 uv2 = vec2(v2.position.w, v2.normal.w);
-  vec2 uv = w.x * uv0 + w.y * uv1 + w.z * uv2;
-  vec2 uvAt1 = uv0 + b1.x * (uv1 - uv0) + b1.y * (uv2 - uv0);
-  vec2 uvAt2 = uv0 + b2.x * (uv1 - uv0) + b2.y * (uv2 - uv0);
-
-  s.inputs.uv.v = uv;
-  s.inputs.uv.x = uvAt1 - uv;
-  s.inputs.uv.y = uvAt2 - uv;
-  s.inputs.position.v = position;
-  s.inputs.position.x = axis1;
-  s.inputs.position.y = axis2;
-  s.inputs.normal = n;
-
-  vec3 tangent;
-  float handedness = 1.0;
-  if ((mesh.ranges.z & kMeshHasTangents) != 0u) {
-    tangent = mat3(toWorld) * (w.x * v0.tangent.xyz + w.y * v1.tangent.xyz +
-                               w.z * v2.tangent.xyz);
-    handedness = v0.tangent.w < 0.0 ? -1.0 : 1.0;
-  } else {
-    // Tangent along +u from the triangle's UV parametrization.
-    vec2 duv1 = uv1 - uv0;
-    vec2 duv2 = uv2 - uv0;
-    float det = duv1.x * duv2.y - duv1.y * duv2.x;
-    tangent = abs(det) > 1e-12 ? ((p1 - p0) * duv2.y - (p2 - p0) * duv1.y) / det : vec3(0.0);
-  }
-  tangent = projectOnPlane(tangent, n);
-  if (dot(tangent, tangent) < 1e-12) {
-    vec3 unused;
-    basisAround(n, tangent, unused);
-  }
-  s.inputs.tangent = normalize(tangent);
-  s.inputs.bitangentSign = vec3(handedness, 0.0, 0.0);
-  s.inputs.vertexColor = (mesh.ranges.z & kMeshHasColors) != 0u
-                             ? w.x * v0.color + w.y * v1.color + w.z * v2.color
-                             : vec4(1.0);
-  s.inputs.view = -direction;
-  s.inputs.time = frame.cameraForward.w;
-  s.inputs.textureBase = 0;  // set per material by the switch case or the callable
-
-  // Object space (Blender's Object and Generated coordinates, Object Info): the hit and its
-  // footprint axes through the inverse transform, then the mesh's texture space. Compiled
-  // out for scenes whose materials read none of it (MG_OMIT_OBJECT_INPUTS, renderer.cpp).
-#ifndef MG_OMIT_OBJECT_INPUTS
-  mat4 toObject = instance.worldToObject;
-  s.inputs.objectPosition.v = (toObject * vec4(position, 1.0)).xyz;
-  s.inputs.objectPosition.x = mat3(toObject) * axis1;
-  s.inputs.objectPosition.y = mat3(toObject) * axis2;
-  vec3 toGenerated = 0.5 / mesh.textureSpaceSize.xyz;
-  s.inputs.generated.v =
-      (s.inputs.objectPosition.v - mesh.textureSpaceLocation.xyz) * toGenerated + 0.5;
-  s.inputs.generated.x = s.inputs.objectPosition.x * toGenerated;
-  s.inputs.generated.y = s.inputs.objectPosition.y * toGenerated;
-  s.inputs.geometricNormal = ng;
-  s.inputs.objectLocation = toWorld[3].xyz;
-  s.inputs.objectRandom = instance.objectInfo.x;
-  s.inputs.backfacing = backfacing ? 1.0 : 0.0;
-#endif
-  return s;
-}
-
-// The power heuristic (beta 2) for a sample of pdf a against a strategy of pdf b.
-float misWeight(float a, float b) {
-  float a2 = a * a;
-  float b2 = b * b;
-  return a2 + b2 > 0.0 ? a2 / (a2 + b2) : 0.0;
-}
-
-// One light sample of a shading point: the direction towards the light, the shadow ray's
-// length, and the radiance it brings over its pdf. An emissive triangle's (lightPdf > 0) is
-// MIS-weighted against BSDF sampling; with `evaluate` its emission is still to be taken
-// from the material's graph at `hit`.
-struct LightSample {
-  vec3 wi;
-  float tMax;
-  vec3 incident;   // L_i / pdf (an emitter to evaluate: 1 / pdf, times its emission later)
-  float lightPdf;  // solid-angle pdf of an emissive-triangle sample; 0 for punctual lights
-  bool evaluate;
-#ifdef MG_EMISSIVE_NEE
-  HitInfo hit;     // the triangle point, where `evaluate` needs it
-#endif
-};
-
-#ifdef MG_EMISSIVE_NEE
-// Emissive-triangle NEE (docs/runtime.md): one emissive triangle chosen by power (CDF in
-// the light buffer) and a uniform point on it. Its emission is the triangle record's
-// constant where the host knows the material emits one colour everywhere (no material
-// evaluation, so no second material call site in the kernel); otherwise the graph is
-// evaluated at the point once the shadow ray found it unblocked, a call site compiled in
-// only for scenes with such emitters (MG_NEE_EVALUATES_EMISSION). False: no contribution.
-bool sampleEmissiveTriangle(vec3 position, uint first, uint count, float u, inout Rng rng,
-                            out LightSample s) {
-  uint lo = 0u;
-  uint hi = count - 1u;
-  while (lo < hi) {
-    uint mid = (lo + hi) / 2u;
-    if (lights[first + mid].intensity.x < u) lo = mid + 1u;
-    else hi = mid;
-  }
-  Light tri = lights[first + lo];
-  s.hit.instanceIndex = floatBitsToUint(tri.spot.x);
-  s.hit.primitiveIndex = floatBitsToUint(tri.spot.y);
-  vec2 r = rngNext2(rng);
-  float su = sqrt(r.x);
-  s.hit.barycentrics = vec2(su * (1.0 - r.y), su * r.y);
-  Instance instance = instances[s.hit.instanceIndex];
-  Mesh mesh = meshes[instance.ids.x];
-  uint firstIndex = mesh.ranges.y + 3u * s.hit.primitiveIndex;
-  mat4 toWorld = instance.objectToWorld;
-  vec3 p0 = (toWorld * vec4(vertices[mesh.ranges.x + indices[firstIndex]].position.xyz, 1.0)).xyz;
-  vec3 p1 =
-      (toWorld * vec4(vertices[mesh.ranges.x + indices[firstIndex + 1u]].position.xyz, 1.0)).xyz;
-  vec3 p2 =
-      (toWorld * vec4(vertices[mesh.ranges.x + indices[firstIndex + 2u]].position.xyz, 1.0)).xyz;
-  vec3 target = (1.0 - s.hit.barycentrics.x - s.hit.barycentrics.y) * p0 +
-                s.hit.barycentrics.x * p1 + s.hit.barycentrics.y * p2;
-  vec3 toLight = target - position;
-  float d2 = dot(toLight, toLight);
-  if (!(d2 > 1e-12)) return false;
-  float distance = sqrt(d2);
-  s.wi = toLight / distance;
-  s.tMax = distance * (1.0 - 1e-3);
-  s.hit.t = distance;
-  vec3 lightNormal = cross(p1 - p0, p2 - p0);
-  float cosLight = abs(dot(normalize(lightNormal), s.wi));
-  float areaPdf = instance.objectInfo.y;
-  if (cosLight < 1e-6 || !(areaPdf > 0.0)) return false;
-  // A one-sided constant emitter (an area lamp) seen from behind.
-  if (tri.spotSmooth.w == 2.0 && dot(lightNormal, toLight) >= 0.0) return false;
-  s.lightPdf = areaPdf * d2 / cosLight;  // area to solid angle
-  s.evaluate = tri.spotSmooth.w == 0.0;
-  s.incident = (s.evaluate ? vec3(1.0) : tri.spotSmooth.xyz) / s.lightPdf;
-  return true;
-}
-#endif
-
-// A point, spot or directional light chosen uniformly (u in [0,1)). False: no contribution.
-bool samplePunctualLight(vec3 position, uint count, float u, out LightSample s) {
-  Light light = lights[min(uint(u * float(count)), count - 1u)];
-  s.lightPdf = 0.0;
-  s.evaluate = false;
-  uint lightType = uint(light.positionOrDirection.w);
-  if (lightType == kLightDirectional) {
-    s.wi = -normalize(light.positionOrDirection.xyz);
-    s.tMax = kRayTMax;
-    s.incident = light.intensity.rgb * float(count);  // irradiance perpendicular to the light
-    return true;
-  }
-  vec3 toLight = light.positionOrDirection.xyz - position;
-  float d2 = max(dot(toLight, toLight), 1e-12);
-  float distance = sqrt(d2);
-  s.wi = toLight / distance;
-  s.tMax = distance * (1.0 - 1e-4);
-  s.incident = light.intensity.rgb / d2 * float(count);  // radiant intensity over distance²
-  if (lightType == kLightSpot) {
-    // Cycles 3.4's spot_light_attenuation: the cosine to the axis, cut at the cone and
-    // smoothstepped over the blend width.
-    float attenuation = dot(-s.wi, light.spot.xyz);
-    if (attenuation <= light.spot.w) return false;
-    float t = attenuation - light.spot.w;
-    float smoothWidth = light.spotSmooth.x;
-    if (t < smoothWidth && smoothWidth != 0.0) attenuation *= smoothstep(0.0, smoothWidth, t);
-    s.incident *= attenuation;
-  }
-  return true;
-}
-
-// Direct light (thesis §5.2): one light through one shadow ray. With emissive triangles
-// (NEE, compiled in only for scenes that have them: MG_EMISSIVE_NEE) half the samples go to
-// them and half to the point, spot and directional lights; an emissive sample is
-// MIS-weighted (power heuristic) when `mis` (the path continues, so a BSDF ray can find the
-// same emitter). Returns f * cos * L_i / pdf.
-vec3 sampleDirectLight(vec3 position, vec3 ng, mat3 toLocal, vec3 wo, BrdfParameters brdf,
-                       bool mis, inout Rng rng, inout uint rays) {
-  uint lightCount = frame.path.w;
-  if (lightCount == 0u) return vec3(0.0);
-  float u = rngNext(rng);
+// Direct light (thesis §5.2): one light sample through one shadow ray, traced here; an
+// emissive sample is MIS-weighted when `mis` (path_shading.glsl). Returns f * cos * L_i / pdf.
+vec3 sampleDirectLight(ShadingPoint p, bool mis, inout Rng rng, inout uint rays) {
   LightSample s;
-#ifdef MG_EMISSIVE_NEE
-  // The triangle records follow the punctual lights, and each holds both counts.
-  Light lastLight = lights[lightCount - 1u];
-  uint punctual = uint(lastLight.intensity.y);
-  uint triangleCount = uint(lastLight.intensity.z);
-  bool pickTriangle = punctual == 0u || u < 0.5;
-  if (punctual > 0u) u = pickTriangle ? 2.0 * u : 2.0 * u - 1.0;
-  bool found = pickTriangle ? sampleEmissiveTriangle(position, punctual, triangleCount, u, rng, s)
-                            : samplePunctualLight(position, punctual, u, s);
-  // A triangle's pdf already holds its group's 1/2 (SceneBuffers upload); a punctual one's not
-  // (here punctual > 0, since the pick chose it).
-  if (!pickTriangle) s.incident *= 2.0;
-#else
-  bool found = samplePunctualLight(position, lightCount, u, s);
-#endif
-  if (!found || dot(s.wi, ng) <= 0.0) return vec3(0.0);
-  vec3 fCos = brdfEvaluateCos(brdf, toLocal * wo, toLocal * s.wi);
-  if (all(equal(fCos, vec3(0.0)))) return vec3(0.0);
+  vec3 fCos;
+  if (!sampleLightBeforeShadowRay(p, rng, s, fCos)) return vec3(0.0);
   rays += 1u;
-  if (traceShadow(offsetRayOrigin(position, ng), s.wi, s.tMax)) return vec3(0.0);
+  if (traceShadow(offsetRayOrigin(p.position, p.geometricNormal), s.wi, s.tMax)) return vec3(0.0);
 #ifdef MG_NEE_EVALUATES_EMISSION
   if (s.evaluate) {
     RayCone cone;
     cone.width = 0.0;
     cone.spread = 0.0;
-    SurfaceHit light = surfaceAt(s.hit, position, s.wi, cone);
+    SurfaceHit light = surfaceAt(s.hit, p.position, s.wi, cone);
     MaterialOutputs m;
     evaluateMaterialDirect(light.materialId, light.inputs, m);
     s.incident *= m.emission;
@@ -527,19 +200,9 @@ vec3 sampleDirectLight(vec3 position, vec3 ng, mat3 toLocal, vec3 wo, BrdfParame
   if (s.evaluate) return vec3(0.0);
 #endif
 #ifdef MG_EMISSIVE_NEE
-  if (s.lightPdf > 0.0 && mis)
-    s.incident *= misWeight(s.lightPdf, brdfPdf(brdf, toLocal * wo, toLocal * s.wi));
+  s.incident *= lightSampleMisWeight(s, p, mis);
 #endif
   return fCos * s.incident;
-}
-
-// The primary ray through a point of the pixel (jitter in [0,1)^2).
-void primaryRay(uvec2 pixel, vec2 jitter, out vec3 origin, out vec3 direction) {
-  vec2 size = vec2(frame.image.xy);
-  vec2 ndc = (vec2(pixel) + jitter) / size * 2.0 - 1.0;
-  origin = frame.cameraPosition.xyz;
-  direction = normalize(frame.cameraForward.xyz + ndc.x * frame.cameraRight.xyz -
-                        ndc.y * frame.cameraUp.xyz);
 }
 
 // P paths of L rays through one pixel; returns the mean radiance. Loops run the same number
@@ -609,55 +272,14 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
       evaluateMaterial(alive, s.materialId, s.inputs, bounce, m);
       if (!alive) continue;
 
-      vec3 n = dot(m.normal, m.normal) > 1e-30 ? normalize(m.normal) : s.geometricNormal;
-      if (dot(n, s.geometricNormal) < 0.0) n = -n;
-      vec3 t, b;
-      basisAround(n, t, b);
-      mat3 toLocal = transpose(mat3(t, b, n));
-      vec3 wo = -direction;
-      BrdfParameters brdf = brdfFromMaterial(m.baseColor, m.metallic, m.roughness, m.specular,
-                                             m.specularTint, m.cyclesPrincipled);
-      vec3 position = s.inputs.position.v;
-
+      ShadingPoint p = shadingPointAt(s, m, direction);
       // Emission found by a BSDF ray, MIS-weighted against emissive NEE at the last vertex.
-      float emissionWeight = 1.0;
-#ifdef MG_EMISSIVE_NEE
-      if (previousBsdfPdf > 0.0 && s.lightAreaPdf > 0.0) {
-        vec3 toHit = position - origin;
-        float cosLight = abs(dot(s.geometricNormal, direction));
-        float lightPdf = cosLight > 1e-6 ? s.lightAreaPdf * dot(toHit, toHit) / cosLight : 0.0;
-        emissionWeight = misWeight(previousBsdfPdf, lightPdf);
-      }
-#endif
-      radiance += throughput * m.emission * emissionWeight;
+      radiance += throughput * m.emission * emissionMisWeight(s, origin, direction, previousBsdfPdf);
       bool continues = bounce + 1u < rayCountPerPath;
-      radiance += throughput * sampleDirectLight(position, s.geometricNormal, toLocal, wo, brdf,
-                                                 continues, rng, rays);
+      radiance += throughput * sampleDirectLight(p, continues, rng, rays);
       if (bounce + 1u == rayCountPerPath) continue;
-
-      // BRDF importance sampling of the next direction (eq. 2.9 with the lobe mixture).
-      vec3 woLocal = toLocal * wo;
-      float uLobe = rngNext(rng);
-      vec3 wiLocal = brdfSample(brdf, woLocal, uLobe, rngNext2(rng));
-      float pdf = brdfPdf(brdf, woLocal, wiLocal);
-      vec3 wi = transpose(toLocal) * wiLocal;
-      if (pdf <= 0.0 || dot(wi, s.geometricNormal) <= 0.0) {
+      if (!continuePath(p, s, rng, throughput, previousBsdfPdf, cone, origin, direction))
         alive = false;
-        continue;
-      }
-      throughput *= brdfEvaluateCos(brdf, woLocal, wiLocal) / pdf;
-      previousBsdfPdf = pdf;
-
-      // The cone leaves with its width and a spread grown by roughness (eq. 2.11) and
-      // curvature (eq. 2.12); a diffuse bounce spreads like the roughest lobe.
-      bool specularLobe = uLobe < brdfSpecularProbability(brdf, woLocal);
-      cone.spread += rayConeRoughnessSpread(specularLobe ? brdf.alpha : 1.0) +
-                     rayConeCurvatureSpread(s.curvature, s.coneWidth, s.geometricNormal,
-                                            direction);
-      cone.spread = min(cone.spread, kRayConeMaxSpread);
-      cone.width = s.coneWidth;
-      origin = offsetRayOrigin(position, s.geometricNormal);
-      direction = wi;
     }
     // A path that still produced NaN or infinity (a material graph dividing by zero) is
     // dropped: one such sample would poison the pixel for every later frame.

@@ -8,6 +8,33 @@ uint pcgHash(uint value) {
   return (word >> 22u) ^ word;
 }
 
+#ifdef MG_RNG_COUNTER_BASED
+// The wavefront passes' generator (wavefront.glsl): every number is a hash of (pixel,
+// sample, bounce, dimension), with no state carried from one pass to the next, so a path's
+// numbers do not depend on the order in which the queues process paths (Laine, Karras and
+// Aila, "Megakernels Considered Harmful", HPG 2013, keep per-path state in memory; here the
+// generator needs only the key).
+struct Rng {
+  uint key;        // hash of pixel, sample (frame and path), bounce and seed
+  uint dimension;  // the next number's index along this bounce
+};
+
+// The generator of one bounce of one path; `sampleIndex` counts the pixel's samples over
+// frames (frame * P + path), `bounce` 0 is the camera ray's.
+Rng rngForPathVertex(uint pixelIndex, uint sampleIndex, uint bounce, uint seed) {
+  Rng rng;
+  rng.key = pcgHash(pixelIndex ^ pcgHash(sampleIndex ^ pcgHash(bounce ^ pcgHash(seed))));
+  rng.dimension = 0u;
+  return rng;
+}
+
+// A uniform float in [0, 1): the hash of the key and the dimension, 24 random mantissa bits.
+float rngNext(inout Rng rng) {
+  uint word = pcgHash(rng.key ^ pcgHash(rng.dimension));
+  rng.dimension += 1u;
+  return float(word >> 8u) * (1.0 / 16777216.0);
+}
+#else
 struct Rng {
   uint state;
 };
@@ -26,6 +53,7 @@ float rngNext(inout Rng rng) {
   word = (word >> 22u) ^ word;
   return float(word >> 8u) * (1.0 / 16777216.0);
 }
+#endif
 
 vec2 rngNext2(inout Rng rng) {
   float a = rngNext(rng);

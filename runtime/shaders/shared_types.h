@@ -52,7 +52,13 @@ MG_CONSTANT(uint, kBindingHitFeedback, 16);
 // LiPaC's counting boxes (inactive hitboxes, omitted instances) in a TLAS of their own, so
 // that path rays never traverse them and the feedback probe traverses nothing else.
 MG_CONSTANT(uint, kBindingCountingBoxes, 17);
-MG_CONSTANT(uint, kBindingCount, 18);
+// The wavefront path tracer (wavefront.glsl; --shading wavefront): the path state (SoA,
+// kPathStateFields vec4 arrays of one slot per pixel), the path queues (two live queues used
+// in turn, then the shadow queue, each a slot per pixel) and gpu::WavefrontControl.
+MG_CONSTANT(uint, kBindingPathState, 18);
+MG_CONSTANT(uint, kBindingPathQueues, 19);
+MG_CONSTANT(uint, kBindingWavefrontControl, 20);
+MG_CONSTANT(uint, kBindingCount, 21);
 
 // TLAS instance masks and the rays' cull masks. Surfaces answer every path ray; lights'
 // quads (Blender area lamps) only BSDF rays, as Cycles' lamps.
@@ -83,6 +89,39 @@ MG_CONSTANT(uint, kWorkgroupSize, 8);
 // slot), compute work groups of kFillWorkgroupSize along a row.
 MG_CONSTANT(uint, kFillRowInvocations, 4096);
 MG_CONSTANT(uint, kFillWorkgroupSize, 64);
+
+// The wavefront path tracer's passes (MG_WAVEFRONT_PASS, wavefront.glsl), in the order one
+// bounce records them: generate once a round, then trace, shade, queue and shadow per bounce,
+// finish once a round.
+MG_CONSTANT(uint, kWavefrontGenerate, 0);
+MG_CONSTANT(uint, kWavefrontTrace, 1);
+MG_CONSTANT(uint, kWavefrontShade, 2);
+MG_CONSTANT(uint, kWavefrontQueue, 3);
+MG_CONSTANT(uint, kWavefrontShadow, 4);
+MG_CONSTANT(uint, kWavefrontFinish, 5);
+MG_CONSTANT(uint, kWavefrontPassCount, 6);
+// Compute work-group size of the wavefront passes (one invocation per queued path).
+MG_CONSTANT(uint, kWavefrontWorkgroupSize, 64);
+// vec4 fields of a path's state: origin and cone width, direction and cone spread,
+// throughput and the last BSDF pdf, radiance and the hit's t, the hit (instance, primitive,
+// barycentrics as bits), the shadow ray's origin and length, its direction, the contribution
+// it brings when unblocked, and the pixel's sum over the rounds.
+MG_CONSTANT(uint, kPathStateFields, 9);
+
+// The wavefront's queue counts and indirect arguments (binding kBindingWavefrontControl).
+// Each launch block is a VkDispatchIndirectCommand (work groups) or a
+// VkTraceRaysIndirectCommandKHR (invocations) in its xyz.
+struct WavefrontControl {
+  uvec4 counts;        // x: paths in the live queue, y: appended to the next, z: shadow rays
+  uvec4 liveGroups;    // compute passes over the live queue
+  uvec4 liveLaunch;    // the pipeline backend's trace of the live queue
+  uvec4 shadowGroups;  // the query backend's shadow pass
+  uvec4 shadowLaunch;  // the pipeline backend's shadow pass
+};
+// Push constants of every wavefront pass.
+struct WavefrontPush {
+  uvec4 step;  // x round (path index of every pixel), y bounce, z live queue (0 or 1), w unused
+};
 
 // FrameConstants::flags bits.
 MG_CONSTANT(uint, kFlagSharedPrimaryRay, 1);
@@ -250,6 +289,7 @@ struct Light {
 
 #ifdef __cplusplus
 static_assert(sizeof(TileQueueHeader) == 16 && sizeof(TileFillItem) == 32);
+static_assert(sizeof(WavefrontControl) == 80 && sizeof(WavefrontPush) == 16);
 static_assert(sizeof(Counters) % 16 == 0 &&
               offsetof(Counters, cacheOccupancy) == kCountersPerFrameUints * sizeof(uint));
 }  // namespace memograph::runtime::gpu

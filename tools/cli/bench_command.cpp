@@ -181,7 +181,8 @@ int runBench(std::span<const std::string_view> args) {
            "cache_probe,cache_bytes,median_cache_hit_rate,label,warmup,frame_stride,camera_frames,"
         << benchSummaryCsvColumns()
         << ",cache_value_format,cache_clock,cache_snap_uv,cache_secondary_only,cache_tile,"
-           "culling,frames_requested,stopped_early\n";
+           "culling,shading,"
+        << wavefrontPassCsvColumns() << ",frames_requested,stopped_early\n";
   }
   try {
     for (const auto& sceneName : scenes) {
@@ -189,6 +190,9 @@ int runBench(std::span<const std::string_view> args) {
       auto spec = runtime::parseBuiltinSceneSpec(std::string_view(sceneName).substr(8), error);
       const std::string& name = spec->name;
       runtime::Scene scene = runtime::makeBuiltinScene(name, spec->options);
+      if (options.shading == runtime::Shading::Wavefront && !scene.animatedMeshes.empty())
+        return usageError("bench", "--shading wavefront renders static scenes only; " + sceneName +
+                                       " has animated meshes");
       if (rendererArguments.noEmissiveNee)
         scene.emissiveLightSampling = false;
       // Each scene gets its own renderer: --backend auto depends on its material count.
@@ -258,6 +262,12 @@ int runBench(std::span<const std::string_view> args) {
                     << "default " << stack.driverDefault << " B; raygen " << stack.raygen
                     << ", hit " << stack.closestHit << ", miss " << stack.miss
                     << ", largest callable " << stack.callableMax << ")\n";
+        if (result.stats.shading == "wavefront")
+          std::cout << "  wavefront passes, median GPU ms a frame: trace "
+                    << summary.medianWavefrontTraceMilliseconds << ", shade "
+                    << summary.medianWavefrontShadeMilliseconds << ", shadow "
+                    << summary.medianWavefrontShadowMilliseconds << ", queue "
+                    << summary.medianWavefrontQueueMilliseconds << "\n";
         if (stoppedEarly)
           std::cout << "  stopped by --time-limit " << timeLimit << " s after "
                     << result.stats.frames.size() << " of " << settings.frames << " frames ("
@@ -305,7 +315,9 @@ int runBench(std::span<const std::string_view> args) {
               << ',' << benchSummaryCsvValues(summary) << ',' << result.stats.cacheValueFormat
               << ',' << result.stats.cacheClock << ',' << int(result.stats.cacheSnapUv) << ','
               << int(result.stats.cacheSecondaryOnly) << ',' << result.stats.cacheTile << ','
-              << result.stats.culling << ',' << f << ',' << int(stoppedEarly) << '\n';
+              << result.stats.culling << ',' << result.stats.shading << ','
+              << wavefrontPassCsvValues(summary, result.stats.shading == "wavefront") << ',' << f
+              << ',' << int(stoppedEarly) << '\n';
         }
         if (!framesCsv.empty()) {
           std::ostringstream perFrame;

@@ -23,12 +23,16 @@ double median(std::vector<double> values) {
 
 TimedFrameSummary summarizeTimedFrames(std::span<const runtime::FrameStats> frames) {
   TimedFrameSummary summary;
-  std::vector<double> ms, mrays, hitRates;
+  std::vector<double> ms, mrays, hitRates, trace, shade, shadow, queue;
   std::vector<std::vector<double> > counters(runtime::frameCounters({}).size());
   for (const auto& frame : frames) {
     ms.push_back(frame.gpuMilliseconds);
     mrays.push_back(frame.gpuMilliseconds > 0 ? frame.rays / (frame.gpuMilliseconds * 1e3) : 0);
     hitRates.push_back(frame.cacheHitRate());
+    trace.push_back(frame.wavefrontTraceMilliseconds);
+    shade.push_back(frame.wavefrontShadeMilliseconds);
+    shadow.push_back(frame.wavefrontShadowMilliseconds);
+    queue.push_back(frame.wavefrontQueueMilliseconds);
     summary.cacheLookups += frame.cacheLookups;
     summary.cacheHits += frame.cacheHits;
     const auto values = runtime::frameCounters(frame);
@@ -38,6 +42,10 @@ TimedFrameSummary summarizeTimedFrames(std::span<const runtime::FrameStats> fram
   summary.medianMilliseconds = median(ms);
   summary.medianMraysPerSecond = median(mrays);
   summary.medianCacheHitRate = median(hitRates);
+  summary.medianWavefrontTraceMilliseconds = median(std::move(trace));
+  summary.medianWavefrontShadeMilliseconds = median(std::move(shade));
+  summary.medianWavefrontShadowMilliseconds = median(std::move(shadow));
+  summary.medianWavefrontQueueMilliseconds = median(std::move(queue));
   summary.totalCacheHitRate =
       summary.cacheLookups ? double(summary.cacheHits) / double(summary.cacheLookups) : 0.0;
   const auto names = runtime::frameCounters({});
@@ -68,6 +76,21 @@ std::string benchSummaryCsvValues(const TimedFrameSummary& summary) {
     out << ',' << value;
   for (double value : summary.counterPeaks)
     out << ',' << value;
+  return out.str();
+}
+
+std::string wavefrontPassCsvColumns() {
+  return "median_wavefront_trace_gpu_ms,median_wavefront_shade_gpu_ms,"
+         "median_wavefront_shadow_gpu_ms,median_wavefront_queue_gpu_ms";
+}
+
+std::string wavefrontPassCsvValues(const TimedFrameSummary& summary, bool wavefront) {
+  if (!wavefront)
+    return ",,,";
+  std::ostringstream out;
+  out << summary.medianWavefrontTraceMilliseconds << ',' << summary.medianWavefrontShadeMilliseconds
+      << ',' << summary.medianWavefrontShadowMilliseconds << ','
+      << summary.medianWavefrontQueueMilliseconds;
   return out.str();
 }
 

@@ -23,6 +23,12 @@ struct TimedFrameSummary {
   std::vector<double> counterMedians;
   // The largest value of each counter marked `peak`, in its order.
   std::vector<double> counterPeaks;
+  // The wavefront path tracer's passes (--shading wavefront): median GPU time of each kind,
+  // summed over a frame's rounds and bounces.
+  double medianWavefrontTraceMilliseconds = 0.0;
+  double medianWavefrontShadeMilliseconds = 0.0;
+  double medianWavefrontShadowMilliseconds = 0.0;
+  double medianWavefrontQueueMilliseconds = 0.0;
 };
 
 TimedFrameSummary summarizeTimedFrames(std::span<const runtime::FrameStats> frames);
@@ -31,5 +37,10 @@ TimedFrameSummary summarizeTimedFrames(std::span<const runtime::FrameStats> fram
 // values, so the per-frame counters' names come from one place.
 std::string benchSummaryCsvColumns();
 std::string benchSummaryCsvValues(const TimedFrameSummary& summary);
+
+// The wavefront passes' columns (median_wavefront_{trace,shade,shadow,queue}_gpu_ms) and
+// their values: empty for the megakernel, which has no passes.
+std::string wavefrontPassCsvColumns();
+std::string wavefrontPassCsvValues(const TimedFrameSummary& summary, bool wavefront);
 
 }  // namespace memograph::cli

@@ -213,6 +213,9 @@ int runRender(std::span<const std::string_view> args) {
     return kExitFailure;
 #endif
   }
+  if (options.shading == runtime::Shading::Wavefront && !scene.animatedMeshes.empty())
+    return usageError("render", "--shading wavefront renders static scenes only; " + name +
+                                    " has animated meshes");
 #ifdef MEMOGRAPH_HAVE_IO
   options.textureLoader = [](const std::string& path) {
     compiler::Diagnostics textureDiagnostics;
@@ -335,7 +338,8 @@ int runRender(std::span<const std::string_view> args) {
       return kExitFailure;
     }
     std::cerr << "rendered " << out << " on " << result.stats.device << " (" << result.stats.backend
-              << ", " << result.stats.materialDispatch << " materials): median "
+              << ", " << result.stats.materialDispatch << " materials"
+              << (result.stats.shading == "wavefront" ? ", wavefront" : "") << "): median "
               << result.stats.medianGpuMilliseconds() << " ms per frame; shaders "
               << result.stats.shadersCompiled << " compiled in "
               << result.stats.shaderCompileMilliseconds << " ms, pipeline "

@@ -29,12 +29,17 @@ inline constexpr const char* kRendererHelp =
     "  --shader-cache DIR    SPIR-V cache folder (default $XDG_CACHE_HOME/memograph)\n"
     "  --shared-primary      one primary ray through the pixel centre for all P paths of a\n"
     "                        pixel (thesis §5.1)\n"
-    "  --no-emissive-nee     no light sampling of emissive triangles (BSDF rays only)\n";
+    "  --no-emissive-nee     no light sampling of emissive triangles (BSDF rays only)\n"
+    "  --shading S           megakernel (default: one kernel runs each path to its end) or\n"
+    "                        wavefront (passes over queues of paths, their state in memory;\n"
+    "                        a prototype: only with --floor-materials, without a cache,\n"
+    "                        culling, --shared-primary, debug views or animated meshes)\n";
 
 struct RendererArguments {
   CacheArguments cache;
   CullingArguments culling;
-  std::string backend = "auto", materialDispatch = "auto", device = "-1", nodes, shaderCache;
+  std::string backend = "auto", materialDispatch = "auto", device = "-1", nodes, shaderCache,
+              shading = "megakernel";
   bool sharedPrimary = false;
   // A scene option, not a renderer one: the command applies it to each scene it loads.
   bool noEmissiveNee = false;
@@ -49,6 +54,7 @@ struct RendererArguments {
     scanner.option("--shader-cache", &shaderCache);
     scanner.flag("--shared-primary", &sharedPrimary);
     scanner.flag("--no-emissive-nee", &noEmissiveNee);
+    scanner.option("--shading", &shading);
   }
 
   // The renderer's options (the command adds its own, e.g. validation). Throws
@@ -69,6 +75,11 @@ struct RendererArguments {
     options.context.deviceIndex = device == "-1" ? -1 : int(deviceIndex);
     options.shaderCacheDirectory = shaderCache;
     options.nodeLibraryDirectory = nodes;
+    options.shading = runtime::parseShading(shading);
+    runtime::validateWavefrontOptions(options);
+    if (options.shading == runtime::Shading::Wavefront && sharedPrimary)
+      throw std::invalid_argument(
+          "--shading wavefront traces every path's own camera ray; it has no --shared-primary");
     return options;
   }
 };

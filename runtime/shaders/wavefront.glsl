@@ -1,0 +1,301 @@
+// The wavefront path tracer (--shading wavefront; a prototype for the free-material floor,
+// MG_MATERIAL_FLOOR): the path loop of path_tracer.glsl split into passes that each run over
+// a queue of paths, with the paths' state in memory between them (Laine, Karras and Aila,
+// "Megakernels Considered Harmful", HPG 2013, §4). One source, one pass per compile,
+// selected by the host's define:
+// - MG_WAVEFRONT_GENERATE: camera rays of one round (path `round` of every pixel) into the
+//   path state; the live queue holds every pixel;
+// - MG_WAVEFRONT_TRACE: the closest hit of every live path (the only passes besides the
+//   shadow pass that trace: a compute shader with ray queries, or the raygen of a ray-tracing
+//   pipeline launched indirectly);
+// - MG_WAVEFRONT_SHADE: the floor material, emission, one light sample (its shadow ray into
+//   the shadow queue) and the BSDF sample (the path into the next live queue);
+// - MG_WAVEFRONT_QUEUE: one invocation turns the queues' counts into the next passes'
+//   indirect arguments;
+// - MG_WAVEFRONT_SHADOW: traces the queued shadow rays and adds the unblocked contributions;
+// - MG_WAVEFRONT_FINISH: folds the round's radiance into the pixel's sum, and after the last
+//   round the mean into the accumulation buffer (as the megakernel's renderPixel does).
+// Shading is path_shading.glsl's, the megakernel's own; random numbers are counter-based
+// (rng.glsl, MG_RNG_COUNTER_BASED), keyed by pixel, sample, bounce and dimension, so no pass
+// order changes a sample. The megakernel draws from another stream: the two architectures'
+// images agree in the mean, not per pixel.
+#version 460
+#extension GL_GOOGLE_include_directive : require
+#ifdef MG_SUBGROUP_RAY_COUNT
+#extension GL_KHR_shader_subgroup_arithmetic : require
+#endif
+
+#ifndef MG_MATERIAL_FLOOR
+#error the wavefront prototype shades the free-material floor only (MG_MATERIAL_FLOOR)
+#endif
+
+#define MG_RNG_COUNTER_BASED 1
+#include "shared_types.h"
+#include "materials.glsl"
+#include "rng.glsl"
+#include "brdf.glsl"
+#include "ray_cone.glsl"
+
+#if defined(MG_WAVEFRONT_TRACE) || defined(MG_WAVEFRONT_SHADOW)
+#ifdef MG_BACKEND_QUERY
+#include "trace_query.glsl"
+#else
+#include "trace_pipeline.glsl"
+#endif
+#else
+#include "trace_hit.glsl"
+#endif
+
+#include "scene_bindings.glsl"
+#include "material_floor.glsl"
+#include "path_shading.glsl"
+
+layout(set = 0, binding = kBindingPathState, std430) buffer PathStateBlock {
+  vec4 pathState[];
+};
+layout(set = 0, binding = kBindingPathQueues, std430) buffer PathQueueBlock {
+  uint pathQueues[];
+};
+layout(set = 0, binding = kBindingWavefrontControl, std430) buffer WavefrontControlBlock {
+  WavefrontControl control;
+};
+layout(push_constant) uniform WavefrontPushBlock {
+  WavefrontPush push;
+};
+
+// The path state's fields (kPathStateFields vec4 arrays, one slot per pixel): each pass
+// reads and writes only the fields it needs, so a trace moves 3 of the 9.
+const uint kFieldOrigin = 0u;              // xyz origin, w ray-cone width
+const uint kFieldDirection = 1u;           // xyz direction, w ray-cone spread
+const uint kFieldThroughput = 2u;          // rgb throughput, w the last BSDF pdf (0: camera)
+const uint kFieldRadiance = 3u;            // rgb radiance so far, w the hit's t (< 0: miss)
+const uint kFieldHit = 4u;                 // instance, primitive, barycentrics (uint bits)
+const uint kFieldShadowOrigin = 5u;        // xyz origin, w length
+const uint kFieldShadowDirection = 6u;     // xyz direction
+const uint kFieldShadowContribution = 7u;  // rgb: what the shadow ray adds when unblocked
+const uint kFieldPixelSum = 8u;            // rgb: the pixel's radiance summed over rounds
+
+uint slotCount() {
+  return frame.image.x * frame.image.y;
+}
+
+uint fieldIndex(uint field, uint slot) {
+  return field * slotCount() + slot;
+}
+
+// Queue q: 0 and 1 the live queues (used in turn, bounce by bounce), 2 the shadow queue.
+uint queueIndex(uint queue, uint i) {
+  return queue * slotCount() + i;
+}
+
+uint workgroupsFor(uint invocations) {
+  return (invocations + kWavefrontWorkgroupSize - 1u) / kWavefrontWorkgroupSize;
+}
+
+// The pixel's sample index over frames: frame * P + the round's path.
+uint sampleIndexOf(uint round) {
+  return frame.image.z * max(frame.path.x, 1u) + round;
+}
+
+#if defined(MG_WAVEFRONT_TRACE) || defined(MG_WAVEFRONT_SHADOW)
+#ifdef MG_BACKEND_QUERY
+layout(local_size_x = kWavefrontWorkgroupSize) in;
+uint invocationIndex() {
+  return gl_GlobalInvocationID.x;
+}
+#else
+uint invocationIndex() {
+  return gl_LaunchIDEXT.x;
+}
+#endif
+#else
+layout(local_size_x = kWavefrontWorkgroupSize) in;
+uint invocationIndex() {
+  return gl_GlobalInvocationID.x;
+}
+#endif
+
+// Reserves `count` places of queue counter counts.y (the next live queue) or, with `shadow`,
+// counts.z (the shadow queue); returns the first.
+uint reserveQueuePlaces(bool shadow, uint count) {
+  return shadow ? atomicAdd(control.counts.z, count) : atomicAdd(control.counts.y, count);
+}
+
+// Appends `slot` to queue `queue` where `append` (the shadow queue with `shadow`). With
+// subgroup arithmetic one atomic per subgroup reserves the subgroup's places (every
+// invocation of the pass must come here, appending or not); otherwise one per path.
+void appendToQueue(uint queue, bool shadow, uint slot, bool append) {
+#ifdef MG_SUBGROUP_RAY_COUNT
+  uint wanted = append ? 1u : 0u;
+  uint total = subgroupAdd(wanted);
+  uint offset = subgroupExclusiveAdd(wanted);
+  uint base = 0u;
+  if (subgroupElect() && total > 0u) base = reserveQueuePlaces(shadow, total);
+  base = subgroupAdd(base);  // only the elected invocation holds a non-zero base
+  if (append) pathQueues[queueIndex(queue, base + offset)] = slot;
+#else
+  if (append) pathQueues[queueIndex(queue, reserveQueuePlaces(shadow, 1u))] = slot;
+#endif
+}
+
+#if defined(MG_WAVEFRONT_GENERATE)
+// Camera rays of round push.step.x: path `round` of every pixel, one slot per pixel.
+void main() {
+  uint slot = invocationIndex();
+  uint slots = slotCount();
+  if (slot == 0u) {
+    control.counts = uvec4(slots, 0u, 0u, 0u);
+    control.liveGroups = uvec4(workgroupsFor(slots), 1u, 1u, 0u);
+    control.liveLaunch = uvec4(slots, 1u, 1u, 0u);
+    atomicAdd(counters.rays, slots);
+  }
+  if (slot >= slots) return;
+  uvec2 pixel = uvec2(slot % frame.image.x, slot / frame.image.x);
+  Rng rng = rngForPathVertex(slot, sampleIndexOf(push.step.x), 0u, frame.image.w);
+  vec3 origin, direction;
+  primaryRay(pixel, rngNext2(rng), origin, direction);
+  pathState[fieldIndex(kFieldOrigin, slot)] = vec4(origin, 0.0);
+  pathState[fieldIndex(kFieldDirection, slot)] = vec4(direction, frame.cameraPosition.w);
+  pathState[fieldIndex(kFieldThroughput, slot)] = vec4(1.0, 1.0, 1.0, 0.0);
+  pathState[fieldIndex(kFieldRadiance, slot)] = vec4(0.0);
+  pathQueues[queueIndex(0u, slot)] = slot;
+}
+
+#elif defined(MG_WAVEFRONT_TRACE)
+// The closest hit of every live path; camera rays skip lights' quads, as in the megakernel.
+void main() {
+  uint i = invocationIndex();
+  if (i >= control.counts.x) return;
+  uint slot = pathQueues[queueIndex(push.step.z, i)];
+  vec3 origin = pathState[fieldIndex(kFieldOrigin, slot)].xyz;
+  vec3 direction = pathState[fieldIndex(kFieldDirection, slot)].xyz;
+  HitInfo hit = traceClosest(origin, direction, kRayTMax,
+                             push.step.y == 0u ? kRayMaskNoLightQuads : kRayMaskAll);
+  pathState[fieldIndex(kFieldHit, slot)] =
+      uintBitsToFloat(uvec4(hit.instanceIndex, hit.primitiveIndex, floatBitsToUint(hit.barycentrics)));
+  pathState[fieldIndex(kFieldRadiance, slot)].w = hit.t;
+}
+
+#elif defined(MG_WAVEFRONT_SHADE)
+// One vertex of every live path, as the megakernel's loop body shades it: a miss takes the
+// environment; a hit its floor material's emission, one light sample (queued as a shadow
+// ray) and, unless this is the last bounce, the BSDF's next ray (queued as a live path).
+void main() {
+  uint i = invocationIndex();
+  bool live = i < control.counts.x;
+  uint slot = live ? pathQueues[queueIndex(push.step.z, i)] : 0u;
+  bool queueShadow = false;
+  bool queueNext = false;
+  if (live) {
+    vec4 originField = pathState[fieldIndex(kFieldOrigin, slot)];
+    vec4 directionField = pathState[fieldIndex(kFieldDirection, slot)];
+    vec4 throughputField = pathState[fieldIndex(kFieldThroughput, slot)];
+    vec4 radianceField = pathState[fieldIndex(kFieldRadiance, slot)];
+    vec3 origin = originField.xyz;
+    vec3 direction = directionField.xyz;
+    vec3 throughput = throughputField.rgb;
+    float previousBsdfPdf = throughputField.w;
+    vec3 radiance = radianceField.rgb;
+    if (radianceField.w < 0.0) {
+      radiance += throughput * environmentRadiance(direction);
+    } else {
+      uvec4 hitBits = floatBitsToUint(pathState[fieldIndex(kFieldHit, slot)]);
+      HitInfo hit;
+      hit.instanceIndex = hitBits.x;
+      hit.primitiveIndex = hitBits.y;
+      hit.barycentrics = uintBitsToFloat(hitBits.zw);
+      hit.t = radianceField.w;
+      RayCone cone;
+      cone.width = originField.w;
+      cone.spread = directionField.w;
+      SurfaceHit s = surfaceAt(hit, origin, direction, cone);
+      MaterialOutputs m;
+      evaluateMaterialDirect(s.materialId, s.inputs, m);
+      ShadingPoint p = shadingPointAt(s, m, direction);
+      radiance += throughput * m.emission * emissionMisWeight(s, origin, direction, previousBsdfPdf);
+
+      uint bounce = push.step.y;
+      bool continues = bounce + 1u < frame.path.y;
+      // Key bounce + 1: key 0 is the camera ray's (the generate pass).
+      Rng rng = rngForPathVertex(slot, sampleIndexOf(push.step.x), bounce + 1u, frame.image.w);
+      LightSample light;
+      vec3 fCos;
+      if (sampleLightBeforeShadowRay(p, rng, light, fCos)) {
+        queueShadow = true;
+#ifdef MG_EMISSIVE_NEE
+        // A free material emits nothing: an emitter whose emission is its graph's adds 0
+        // (the megakernel's floor traces that ray and then drops it).
+        queueShadow = !light.evaluate;
+        light.incident *= lightSampleMisWeight(light, p, continues);
+#endif
+        pathState[fieldIndex(kFieldShadowOrigin, slot)] =
+            vec4(offsetRayOrigin(p.position, p.geometricNormal), light.tMax);
+        pathState[fieldIndex(kFieldShadowDirection, slot)] = vec4(light.wi, 0.0);
+        pathState[fieldIndex(kFieldShadowContribution, slot)] =
+            vec4(throughput * (fCos * light.incident), 0.0);
+      }
+      if (continues &&
+          continuePath(p, s, rng, throughput, previousBsdfPdf, cone, origin, direction)) {
+        queueNext = true;
+        pathState[fieldIndex(kFieldOrigin, slot)] = vec4(origin, cone.width);
+        pathState[fieldIndex(kFieldDirection, slot)] = vec4(direction, cone.spread);
+        pathState[fieldIndex(kFieldThroughput, slot)] = vec4(throughput, previousBsdfPdf);
+      }
+    }
+    pathState[fieldIndex(kFieldRadiance, slot)] = vec4(radiance, 0.0);
+  }
+  appendToQueue(2u, true, slot, queueShadow);
+  appendToQueue(1u - push.step.z, false, slot, queueNext);
+}
+
+#elif defined(MG_WAVEFRONT_QUEUE)
+// The queues' counts into the indirect arguments of the shadow pass and of the next bounce's
+// trace and shade; the appenders start again from 0. Rays are counted here, once a queue.
+// One work group, one invocation working.
+void main() {
+  if (invocationIndex() != 0u) return;
+  uint next = control.counts.y;
+  uint shadows = control.counts.z;
+  control.counts = uvec4(next, 0u, 0u, 0u);
+  control.liveGroups = uvec4(workgroupsFor(next), 1u, 1u, 0u);
+  control.liveLaunch = uvec4(next, 1u, 1u, 0u);
+  control.shadowGroups = uvec4(workgroupsFor(shadows), 1u, 1u, 0u);
+  control.shadowLaunch = uvec4(shadows, 1u, 1u, 0u);
+  atomicAdd(counters.rays, next + shadows);
+}
+
+#elif defined(MG_WAVEFRONT_SHADOW)
+// The queued shadow rays: an unblocked one adds its contribution to its path's radiance.
+void main() {
+  uint i = invocationIndex();
+  if (i >= control.shadowLaunch.x) return;
+  uint slot = pathQueues[queueIndex(2u, i)];
+  vec4 origin = pathState[fieldIndex(kFieldShadowOrigin, slot)];
+  vec3 direction = pathState[fieldIndex(kFieldShadowDirection, slot)].xyz;
+  if (traceShadow(origin.xyz, direction, origin.w)) return;
+  vec3 contribution = pathState[fieldIndex(kFieldShadowContribution, slot)].rgb;
+  pathState[fieldIndex(kFieldRadiance, slot)].rgb += contribution;
+}
+
+#elif defined(MG_WAVEFRONT_FINISH)
+// The round's radiance into the pixel's sum (a path with NaN or infinity dropped, as in the
+// megakernel); after the last round the pixel's mean of P paths into the running mean of the
+// accumulation buffer.
+void main() {
+  uint slot = invocationIndex();
+  if (slot >= slotCount()) return;
+  uint round = push.step.x;
+  vec3 radiance = pathState[fieldIndex(kFieldRadiance, slot)].rgb;
+  vec3 sum = round == 0u ? vec3(0.0) : pathState[fieldIndex(kFieldPixelSum, slot)].rgb;
+  if (!any(isnan(radiance)) && !any(isinf(radiance))) sum += radiance;
+  uint pathCount = max(frame.path.x, 1u);
+  if (round + 1u < pathCount) {
+    pathState[fieldIndex(kFieldPixelSum, slot)] = vec4(sum, 0.0);
+    return;
+  }
+  vec3 mean = sum / float(pathCount);
+  uint sampleIndex = frame.environmentSize.z;
+  vec3 previous = sampleIndex == 0u ? vec3(0.0) : accumulation[slot].rgb;
+  accumulation[slot] = vec4(mix(previous, mean, 1.0 / float(sampleIndex + 1u)), 1.0);
+}
+#endif

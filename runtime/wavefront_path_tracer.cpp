@@ -1,0 +1,235 @@
+#include "runtime/wavefront_path_tracer.h"
+
+#include <array>
+#include <cstddef>
+#include <stdexcept>
+
+#include "runtime/compute_pipeline.h"
+#include "runtime/shaders/shared_types.h"
+#include "runtime/trace_pipelines.h"
+#include "runtime/vulkan_error.h"
+
+namespace memograph::runtime {
+
+namespace {
+
+// The define that selects each pass of wavefront.glsl, indexed by gpu::kWavefront*.
+constexpr std::array<const char*, gpu::kWavefrontPassCount> kPassDefines = {
+    "MG_WAVEFRONT_GENERATE=1", "MG_WAVEFRONT_TRACE=1",  "MG_WAVEFRONT_SHADE=1",
+    "MG_WAVEFRONT_QUEUE=1",    "MG_WAVEFRONT_SHADOW=1", "MG_WAVEFRONT_FINISH=1"};
+constexpr std::array<const char*, gpu::kWavefrontPassCount> kPassNames = {
+    "wavefront generate", "wavefront trace",  "wavefront shade",
+    "wavefront queue",    "wavefront shadow", "wavefront finish"};
+
+// Where each pass's GPU time goes in FrameStats, indexed by gpu::kWavefront*.
+constexpr std::array<double FrameStats::*, gpu::kWavefrontPassCount> kPassTimes = {
+    &FrameStats::wavefrontGenerateMilliseconds, &FrameStats::wavefrontTraceMilliseconds,
+    &FrameStats::wavefrontShadeMilliseconds,    &FrameStats::wavefrontQueueMilliseconds,
+    &FrameStats::wavefrontShadowMilliseconds,   &FrameStats::wavefrontFinishMilliseconds};
+
+std::uint32_t workgroupsFor(std::uint64_t invocations) {
+  return static_cast<std::uint32_t>((invocations + gpu::kWavefrontWorkgroupSize - 1) /
+                                    gpu::kWavefrontWorkgroupSize);
+}
+
+// The passes of a frame in recording order (the timestamp after each says when it ended).
+std::vector<std::uint32_t> framePasses(std::uint32_t paths, std::uint32_t bounces) {
+  std::vector<std::uint32_t> passes;
+  for (std::uint32_t round = 0; round < paths; ++round) {
+    passes.push_back(gpu::kWavefrontGenerate);
+    for (std::uint32_t bounce = 0; bounce < bounces; ++bounce) {
+      passes.push_back(gpu::kWavefrontTrace);
+      passes.push_back(gpu::kWavefrontShade);
+      passes.push_back(gpu::kWavefrontQueue);
+      passes.push_back(gpu::kWavefrontShadow);
+    }
+    passes.push_back(gpu::kWavefrontFinish);
+  }
+  return passes;
+}
+
+}  // namespace
+
+WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCompiler& compiler,
+                                         std::uint32_t textureCount,
+                                         const std::vector<std::string>& extraDefines,
+                                         std::uint32_t width, std::uint32_t height)
+    : context_(context), query_(context.backend() == Backend::RayQuery), slots_(width * height) {
+  VkDevice device = context.device();
+  if (!query_ && !context.info().traceRaysIndirect)
+    throw std::runtime_error(
+        "--shading wavefront on the pipeline backend launches its traces with "
+        "vkCmdTraceRaysIndirectKHR, which " +
+        context.info().name + " lacks (rayTracingPipelineTraceRaysIndirect); use --backend query");
+  if (workgroupsFor(slots_) > context.info().limits.maxComputeWorkGroupCount[0])
+    throw std::invalid_argument("--shading wavefront: a " + std::to_string(width) + "x" +
+                                std::to_string(height) +
+                                " image needs more compute work groups in a row than the "
+                                "device has; render a smaller image");
+
+  // The path state (kPathStateFields vec4 a slot), the queues (two live, one shadow; a uint a
+  // slot) and the control block; each bound whole, so each must fit a storage binding.
+  const std::uint64_t stateBytes = std::uint64_t(slots_) * gpu::kPathStateFields * 16;
+  checkBufferSize(context, stateBytes,
+                  "--shading wavefront's path state (" + std::to_string(gpu::kPathStateFields) +
+                      " x 16 bytes a pixel)",
+                  true);
+  pathState_ = GpuBuffer(context, stateBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                         VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  pathQueues_ = GpuBuffer(context, std::uint64_t(slots_) * 3 * sizeof(std::uint32_t),
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  control_ = GpuBuffer(context, sizeof(gpu::WavefrontControl),
+                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                           VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                       VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+
+  VkShaderStageFlags stages = query_ ? VK_SHADER_STAGE_COMPUTE_BIT
+                                     : VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_RAYGEN_BIT_KHR;
+  setLayout_ = createTraceSetLayout(device, stages, textureCount, false, true);
+  layout_ = createPipelineLayout(device, setLayout_.get(), stages, sizeof(gpu::WavefrontPush));
+
+  std::vector<std::string> defines = {"MG_TEXTURE_COUNT=" + std::to_string(textureCount),
+                                      query_ ? "MG_BACKEND_QUERY=1" : "MG_BACKEND_PIPELINE=1"};
+  defines.insert(defines.end(), extraDefines.begin(), extraDefines.end());
+  const bool computeSubgroups =
+      (context.info().subgroupArithmeticStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0;
+  computePasses_.resize(gpu::kWavefrontPassCount);
+  for (std::uint32_t pass = 0; pass < gpu::kWavefrontPassCount; ++pass) {
+    const bool traces = pass == gpu::kWavefrontTrace || pass == gpu::kWavefrontShadow;
+    if (traces && !query_)
+      continue;
+    std::vector<std::string> passDefines = defines;
+    passDefines.push_back(kPassDefines[pass]);
+    if (computeSubgroups)
+      passDefines.push_back("MG_SUBGROUP_RAY_COUNT=1");
+    auto module = createShaderModule(
+        device, compiler.compile({"wavefront.glsl", ShaderStage::Compute, passDefines}));
+    computePasses_[pass] =
+        createComputePipeline(device, module.get(), layout_.get(), kPassNames[pass]);
+  }
+  if (query_)
+    return;
+
+  // Ray-tracing pipeline and its table: [trace raygen][shadow raygen][miss, shadow miss][hit],
+  // the hit and miss shaders the megakernel's (they only report the hit); the default stack.
+  auto raygenDefines = [&](std::uint32_t pass) {
+    std::vector<std::string> d = defines;
+    d.push_back(kPassDefines[pass]);
+    return d;
+  };
+  std::vector<VulkanHandle<VkShaderModule>> modules;
+  modules.push_back(
+      createShaderModule(device, compiler.compile({"wavefront.glsl", ShaderStage::RayGen,
+                                                   raygenDefines(gpu::kWavefrontTrace)})));
+  modules.push_back(
+      createShaderModule(device, compiler.compile({"wavefront.glsl", ShaderStage::RayGen,
+                                                   raygenDefines(gpu::kWavefrontShadow)})));
+  std::vector<VkShaderStageFlagBits> stageBits = {VK_SHADER_STAGE_RAYGEN_BIT_KHR,
+                                                  VK_SHADER_STAGE_RAYGEN_BIT_KHR};
+  appendReportingShaders(device, compiler, modules, stageBits);
+  std::vector<VkShaderModule> moduleHandles;
+  for (const auto& module : modules)
+    moduleHandles.push_back(module.get());
+  rayTracing_ =
+      createRayTracingPipeline(context, moduleHandles, stageBits, layout_.get(), 1, false);
+  ShaderBindingTable table = createShaderBindingTable(context, rayTracing_.get(), 5,
+                                                      {{{0}, true}, {{1}, true}, {{2, 3}}, {{4}}});
+  shaderBindingTable_ = std::move(table.buffer);
+  traceRaygenRegion_ = table.regions[0];
+  shadowRaygenRegion_ = table.regions[1];
+  missRegion_ = table.regions[2];
+  hitRegion_ = table.regions[3];
+}
+
+std::uint32_t WavefrontPathTracer::timestampCount(std::uint32_t paths, std::uint32_t bounces) {
+  return 1 + static_cast<std::uint32_t>(framePasses(paths, bounces).size());
+}
+
+void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pass,
+                                     std::uint32_t round, std::uint32_t bounce) const {
+  // Live queues alternate: bounce b traces queue b % 2 and appends to the other.
+  gpu::WavefrontPush push{};
+  push.step = glm::uvec4(round, bounce, bounce % 2, 0);
+  VkShaderStageFlags stages = query_ ? VK_SHADER_STAGE_COMPUTE_BIT
+                                     : VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_RAYGEN_BIT_KHR;
+  vkCmdPushConstants(commands, layout_.get(), stages, 0, sizeof push, &push);
+  const bool traces = pass == gpu::kWavefrontTrace || pass == gpu::kWavefrontShadow;
+  if (traces && !query_) {
+    // The launch size is the queue's count, written by the pass before (generate or queue).
+    const VkDeviceAddress launch =
+        control_.address() + (pass == gpu::kWavefrontTrace
+                                  ? offsetof(gpu::WavefrontControl, liveLaunch)
+                                  : offsetof(gpu::WavefrontControl, shadowLaunch));
+    const VkStridedDeviceAddressRegionKHR callables{};
+    vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, rayTracing_.get());
+    context_.functions().cmdTraceRaysIndirect(
+        commands, pass == gpu::kWavefrontTrace ? &traceRaygenRegion_ : &shadowRaygenRegion_,
+        &missRegion_, &hitRegion_, &callables, launch);
+    return;
+  }
+  vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, computePasses_[pass].get());
+  switch (pass) {
+    case gpu::kWavefrontGenerate:
+    case gpu::kWavefrontFinish:
+      vkCmdDispatch(commands, workgroupsFor(slots_), 1, 1);
+      break;
+    case gpu::kWavefrontQueue:
+      vkCmdDispatch(commands, 1, 1, 1);
+      break;
+    case gpu::kWavefrontShadow:
+      vkCmdDispatchIndirect(commands, control_.buffer(),
+                            offsetof(gpu::WavefrontControl, shadowGroups));
+      break;
+    default:  // trace and shade: over the live queue
+      vkCmdDispatchIndirect(commands, control_.buffer(),
+                            offsetof(gpu::WavefrontControl, liveGroups));
+      break;
+  }
+}
+
+void WavefrontPathTracer::record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t paths,
+                                 std::uint32_t bounces, VkQueryPool timestamps,
+                                 std::uint32_t firstQuery) const {
+  vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set, 0,
+                          nullptr);
+  if (!query_)
+    vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, layout_.get(), 0, 1,
+                            &set, 0, nullptr);
+  std::uint32_t query = firstQuery;
+  if (timestamps)
+    vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps, query++);
+  // Every pass reads what the one before wrote, the indirect ones their arguments too.
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  barrier.dstAccessMask =
+      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
+  std::uint32_t round = 0, bounce = 0;
+  for (std::uint32_t pass : framePasses(paths, bounces)) {
+    recordPass(commands, pass, round, bounce);
+    if (timestamps)
+      vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, query++);
+    vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                         VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0, nullptr, 0,
+                         nullptr);
+    if (pass == gpu::kWavefrontShadow)
+      ++bounce;
+    if (pass == gpu::kWavefrontFinish) {
+      ++round;
+      bounce = 0;
+    }
+  }
+}
+
+void WavefrontPathTracer::addPassTimes(const std::vector<std::uint64_t>& ticks, std::uint32_t paths,
+                                       std::uint32_t bounces, double millisecondsPerTick,
+                                       FrameStats& frame) {
+  const auto passes = framePasses(paths, bounces);
+  if (ticks.size() < passes.size() + 1)
+    return;
+  for (std::size_t i = 0; i < passes.size(); ++i) {
+    const double ms = double(ticks[i + 1] - ticks[i]) * millisecondsPerTick;
+    frame.*kPassTimes[passes[i]] += ms;
+  }
+}
+
+}  // namespace memograph::runtime

@@ -1,0 +1,74 @@
+// The wavefront path tracer on the host (--shading wavefront): the passes of
+// shaders/wavefront.glsl, their buffers (path state, queues, indirect arguments) and the
+// command sequence of a frame, with a timestamp after every pass. A prototype for the
+// free-material floor, to measure memory-resident path state against the megakernel
+// (Laine, Karras and Aila, "Megakernels Considered Harmful", HPG 2013).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "runtime/gpu_buffer.h"
+#include "runtime/render_stats.h"
+#include "runtime/shader_compiler.h"
+#include "runtime/vulkan_context.h"
+#include "runtime/vulkan_handle.h"
+
+namespace memograph::runtime {
+
+class WavefrontPathTracer {
+ public:
+  // Compiles the passes for the context's backend: every pass a compute pipeline on the query
+  // backend; on the pipeline backend trace and shadow are the raygens of one ray-tracing
+  // pipeline, launched with vkCmdTraceRaysIndirectKHR (refused, std::runtime_error, where the
+  // device lacks it). `extraDefines` as the megakernel's (floor, NEE, object inputs).
+  // Throws std::invalid_argument when a round's paths do not fit the device.
+  WavefrontPathTracer(const VulkanContext& context, ShaderCompiler& compiler,
+                      std::uint32_t textureCount, const std::vector<std::string>& extraDefines,
+                      std::uint32_t width, std::uint32_t height);
+
+  VkDescriptorSetLayout descriptorSetLayout() const { return setLayout_.get(); }
+  const GpuBuffer& pathState() const { return pathState_; }
+  const GpuBuffer& pathQueues() const { return pathQueues_; }
+  const GpuBuffer& control() const { return control_; }
+
+  // Timestamps record() writes into its pool from `firstQuery` on: one before the first pass,
+  // one after each pass.
+  static std::uint32_t timestampCount(std::uint32_t paths, std::uint32_t bounces);
+
+  // Records one frame: P rounds of one path per pixel, each generate, L x (trace, shade,
+  // queue, shadow), finish, with a barrier between passes. `timestamps` VK_NULL_HANDLE: none.
+  void record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t paths,
+              std::uint32_t bounces, VkQueryPool timestamps, std::uint32_t firstQuery) const;
+
+  // Adds the passes' GPU times to `frame` (its wavefront*Milliseconds) from the timestamps
+  // record() wrote, read back as `ticks` (timestampCount of them).
+  static void addPassTimes(const std::vector<std::uint64_t>& ticks, std::uint32_t paths,
+                           std::uint32_t bounces, double millisecondsPerTick, FrameStats& frame);
+
+ private:
+  const VulkanContext& context_;
+  bool query_ = true;
+  std::uint32_t slots_ = 0;  // paths of a round: one per pixel
+  VulkanHandle<VkDescriptorSetLayout> setLayout_;
+  VulkanHandle<VkPipelineLayout> layout_;
+  // Indexed by gpu::kWavefront*; trace and shadow empty on the pipeline backend.
+  std::vector<VulkanHandle<VkPipeline>> computePasses_;
+  VulkanHandle<VkPipeline> rayTracing_;  // pipeline backend: the trace and shadow raygens
+  GpuBuffer shaderBindingTable_;
+  VkStridedDeviceAddressRegionKHR traceRaygenRegion_{};
+  VkStridedDeviceAddressRegionKHR shadowRaygenRegion_{};
+  VkStridedDeviceAddressRegionKHR missRegion_{};
+  VkStridedDeviceAddressRegionKHR hitRegion_{};
+  GpuBuffer pathState_;
+  GpuBuffer pathQueues_;
+  GpuBuffer control_;
+
+  void recordPass(VkCommandBuffer commands, std::uint32_t pass, std::uint32_t round,
+                  std::uint32_t bounce) const;
+};
+
+}  // namespace memograph::runtime

@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# On the GPU machine, after tools/bundle_device.sh (carry bundle and .gl): the free-material
+# floor as a megakernel and as the wavefront prototype (--shading wavefront;
+# docs/architecture.md, "Material-coherent shading"), on the pipeline backend, one after
+# the other in one call so that they compare on one GPU. Classroom and landscape at
+# 1920x1080, P = 6, L = 4, every 10th camera of the built-in path (30 timed frames after 2
+# warm-up frames); each run under its own time limit, all within about 500 s. --local runs
+# here (no carried Vulkan loader), e.g. --local --size 64x36 --frames 2 on lavapipe to check
+# the script.
+#   bash tools/bench/wavefront_floor_device.sh [--local] [--size WxH] [--frames N]
+# e.g. run(carry=["bundle", ".gl"], command="bash tools/bench/wavefront_floor_device.sh").
+# Results in $OUT: wavefront_rows.csv (one bench line a run, with the wavefront's pass
+# columns median_wavefront_{trace,shade,shadow,queue}_gpu_ms) and wavefront_log.txt.
+set -uo pipefail
+frames=30 size=1920x1080 local=0
+while [ $# -gt 0 ]; do
+  case $1 in
+  --local) local=1; shift ;;
+  --size) size=$2; shift 2 ;;
+  --frames) frames=$2; shift 2 ;;
+  *) echo "unknown argument $1" >&2; exit 2 ;;
+  esac
+done
+[ $local = 1 ] || source bundle/device_env.sh
+OUT=${OUT:-/tmp/out}
+m=${MEMOGRAPH:-bundle/memograph}
+mkdir -p "$OUT"
+rows="$OUT/wavefront_rows.csv"
+log="$OUT/wavefront_log.txt"
+: >"$rows"
+: >"$log"
+if command -v nvidia-smi >/dev/null; then
+  nvidia-smi --query-gpu=name,driver_version --format=csv,noheader >>"$log" 2>&1
+fi
+first=1
+# scene, limit in seconds (the classroom compiles 88 graphs before its first frame).
+for entry in landscape:100 classroom:140; do
+  scene=${entry%%:*}
+  limit=${entry##*:}
+  for shading in megakernel wavefront; do
+    echo "== $scene $shading $size (limit $limit s)" | tee -a "$log"
+    t0=$(date +%s)
+    csv="/tmp/wavefront_${scene}_${shading}.csv"
+    rm -f "$csv"
+    timeout "$limit" "$m" bench "builtin:$scene" --backend pipeline --sizes "$size" --paths 6 \
+      --bounces 4 --warmup 2 --frames "$frames" --frame-stride 10 --floor-materials \
+      --shading "$shading" --time-limit $((limit - 15)) --label "$shading" \
+      --shader-cache /tmp/wavefront_shaders --csv "$csv" 2>&1 | tail -6 | tee -a "$log"
+    echo "rc=${PIPESTATUS[0]} seconds=$(($(date +%s) - t0))" | tee -a "$log"
+    if [ -s "$csv" ]; then
+      if [ $first = 1 ]; then cat "$csv"; first=0; else tail -n +2 "$csv"; fi >>"$rows"
+    fi
+  done
+done
