@@ -22,9 +22,10 @@ int main(int argc, char** argv) {
       "a walk at eye height (1.6 m) along the window aisle, across the front past the\n"
       "blackboard, down the middle aisle, past the bookcases and back along the left wall",
       "a loop 25-40 m above the terrain around the valley, over both groves",
-      "in from 150 m above the city, down the main street towards the mirror wall at its\n"
-      "end (the mirror shows what is behind the camera), past the wall and up and out\n"
-      "(the full-size city, scale=1)"};
+      "the street path (path=street): in from 60 m south of the city at 12 m, down the main\n"
+      "street at 9 m towards the mirror wall at its end (the mirror shows what is behind the\n"
+      "camera; frames 87-161 face it), past the wall's east side, east along the north edge,\n"
+      "down the next street east and back round to the start (the full-size city, scale=1)"};
   static_assert(std::size(descriptions) == 3, "one description per built-in scene");
   int i = 0;
   for (const std::string& scene : builtinSceneNames()) {
