@@ -254,7 +254,7 @@ std::vector<glm::vec3> cityKeysAlong(const std::vector<glm::vec3>& corners, floa
 // mirror wall at its end (the frames where the mirror shows what is behind the camera),
 // past the wall's east side into the street along the city's north edge, east to the next
 // street (x = kCityBlockSize), down it to the south edge and back round to the start. At
-// 9 m the camera is above every prop (flag poles, the tallest, are 8 m) and below the
+// 9 m the camera is above every prop (flag poles, the tallest, are 8 m) and below most
 // buildings' roofs, which hide the rest of the city, as a player's street does.
 CameraPath cityStreetPath(int frames, double cityScale) {
   const float h = cityHalfSize(cityScale);
