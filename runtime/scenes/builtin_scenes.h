@@ -47,8 +47,8 @@ std::vector<std::string> builtinSceneNames();
 // A built-in scene named on a command line: `NAME[:KEY=VALUE[,KEY=VALUE…]]`, keys
 // `octaves`, `layers` (MaterialCost), `terrain` (terrainCells), `nee` (0 or 1:
 // emissiveNee), `scale` (a number in (0, 1]: cityScale) and `path` (street or aerial:
-// cityPath), e.g. `classroom:octaves=10,layers=3` or `city:scale=0.05,path=aerial`. The CLI strips
-// its own `builtin:` prefix first.
+// cityPath), e.g. `classroom:octaves=10,layers=3` or `city:scale=0.05,path=aerial`. The
+// CLI strips its own `builtin:` prefix first.
 struct BuiltinSceneSpec {
   std::string name;
   BuiltinSceneOptions options;
