@@ -40,6 +40,19 @@ std::optional<BuiltinSceneSpec> parseBuiltinSceneSpec(std::string_view text, std
       spec.options.cityScale = scale;
       continue;
     }
+    if (key == "path") {
+      if (value == "street") {
+        spec.options.cityPath = CityCameraPath::Street;
+      } else if (value == "aerial") {
+        spec.options.cityPath = CityCameraPath::Aerial;
+      } else {
+        error = "bad option '" + std::string(item) + "' for built-in scene '" + spec.name +
+                "': path is street (the default: low through the streets) or aerial (in from "
+                "high above the city)";
+        return std::nullopt;
+      }
+      continue;
+    }
     int number = 0;
     const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), number);
     if (equals == std::string_view::npos || value.empty() || ec != std::errc() ||
@@ -63,7 +76,7 @@ std::optional<BuiltinSceneSpec> parseBuiltinSceneSpec(std::string_view text, std
       spec.options.emissiveNee = number == 1;
     } else {
       error = "unknown option '" + std::string(key) + "' for built-in scene '" + spec.name +
-              "'; known options: octaves, layers, terrain, nee, scale";
+              "'; known options: octaves, layers, terrain, nee, scale, path";
       return std::nullopt;
     }
   }

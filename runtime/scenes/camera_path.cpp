@@ -184,9 +184,9 @@ CameraPath sampleClosedPath(const std::vector<glm::vec3>& eyes,
     previous = point;
   }
   CameraPath path;
+  std::size_t k = 1;  // frames go forwards, so the search goes on from the last frame's
   for (int f = 0; f < frames; ++f) {
     const float wanted = length.back() * static_cast<float>(f) / static_cast<float>(frames);
-    std::size_t k = 1;
     while (k + 1 < length.size() && length[k] < wanted)
       ++k;
     const float segment = length[k] - length[k - 1];
@@ -206,9 +206,81 @@ CameraPath sampleClosedPath(const std::vector<glm::vec3>& eyes,
   return path;
 }
 
+// From high outside the city down into the main street (x = 0), along it towards the
+// mirror wall at its end (the frames where the mirror shows what is behind the camera), past
+// the wall's side into the cross street, and up and out again.
+CameraPath cityAerialPath(int frames, double cityScale) {
+  const float h = cityHalfSize(cityScale);
+  const std::vector<glm::vec3> eyes = {
+      {-1.6f * h, 150.0f, -1.6f * h}, {-0.6f * h, 80.0f, -1.3f * h}, {0.0f, 25.0f, -1.1f * h},
+      {0.0f, 2.0f, -0.85f * h},       {0.0f, 2.0f, -0.3f * h},       {0.0f, 2.0f, 0.3f * h},
+      {0.0f, 2.0f, h - 45.0f},        {8.0f, 2.0f, h - 15.0f},       {30.0f, 4.0f, h},
+      {0.8f * h, 60.0f, 1.3f * h},    {-0.5f * h, 150.0f, 1.6f * h}, {-1.7f * h, 170.0f, 0.0f}};
+  const std::vector<glm::vec3> targets = {
+      {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -0.5f * h}, {0.0f, 5.0f, -0.6f * h}, {0.0f, 2.0f, 0.0f},
+      {0.0f, 2.0f, h},    {0.0f, 2.0f, h},         {0.0f, 3.0f, h},         {8.0f, 2.0f, h + 30.0f},
+      {h, 10.0f, h},      {0.0f, 0.0f, 0.0f},      {0.0f, 0.0f, 0.0f},      {0.0f, 0.0f, 0.0f}};
+  // Heights near the ground are above it; the spline keeps at least 1.7 m of clearance.
+  std::vector<glm::vec3> groundEyes = eyes, groundTargets = targets;
+  for (glm::vec3& e : groundEyes)
+    e.y += cityTerrainHeight(e.x, e.z);
+  for (glm::vec3& t : groundTargets)
+    t.y += cityTerrainHeight(t.x, t.z);
+  CameraPath path = sampleClosedPath(groundEyes, groundTargets, 60.0f, frames);
+  for (Camera& c : path.frames)
+    c.position.y = std::max(c.position.y, cityTerrainHeight(c.position.x, c.position.z) + 1.7f);
+  return path;
+}
+
+// Keys along a closed polyline of corners (x, height above the ground, z), on the ground,
+// at most `spacing` metres apart: a uniform Catmull-Rom through keys this dense follows the
+// polyline, straight where it is straight and rounded within a spacing of each corner, so
+// the corners alone say where the camera goes and how far it stays from the buildings.
+std::vector<glm::vec3> cityKeysAlong(const std::vector<glm::vec3>& corners, float spacing) {
+  std::vector<glm::vec3> keys;
+  for (std::size_t i = 0; i < corners.size(); ++i) {
+    const glm::vec3 a = corners[i], b = corners[(i + 1) % corners.size()];
+    const float length = glm::distance(glm::vec2(a.x, a.z), glm::vec2(b.x, b.z));
+    const int steps = std::max(1, static_cast<int>(std::ceil(length / spacing)));
+    for (int k = 0; k < steps; ++k) {
+      const glm::vec3 p = glm::mix(a, b, static_cast<float>(k) / static_cast<float>(steps));
+      keys.push_back({p.x, cityTerrainHeight(p.x, p.z) + p.y, p.z});
+    }
+  }
+  return keys;
+}
+
+// In from 60 m south of the city at 12 m, down the main street (x = 0) at 9 m towards the
+// mirror wall at its end (the frames where the mirror shows what is behind the camera),
+// past the wall's east side into the street along the city's north edge, east to the next
+// street (x = kCityBlockSize), down it to the south edge and back round to the start. At
+// 9 m the camera is above every prop (flag poles, the tallest, are 8 m) and below most
+// buildings' roofs, which hide the rest of the city, as a player's street does.
+CameraPath cityStreetPath(int frames, double cityScale) {
+  const float h = cityHalfSize(cityScale);
+  const float east = kCityBlockSize;
+  // The mirror (|x| <= 6 m) and the corner buildings of the block east of the main street
+  // (x >= 10.7 m, z <= h - 10.7 m) leave a gap 4.7 m wide round the wall's east end: the
+  // camera passes it at x = 8.5 m.
+  const float pastMirror = 8.5f;
+  const std::vector<glm::vec3> corners = {
+      {0.0f, 12.0f, -h - 60.0f},     {0.0f, 9.0f, -h + 30.0f},         {0.0f, 9.0f, h - 50.0f},
+      {pastMirror, 9.0f, h - 22.0f}, {pastMirror, 9.0f, h - 6.0f},     {22.0f, 9.0f, h},
+      {east - 16.0f, 9.0f, h},       {east, 9.0f, h - 16.0f},          {east, 9.0f, -h + 30.0f},
+      {east, 11.0f, -h - 40.0f},     {0.6f * east, 12.0f, -h - 95.0f}, {0.0f, 12.0f, -h - 95.0f}};
+  const std::vector<glm::vec3> eyes = cityKeysAlong(corners, 5.0f);
+  // Looking ahead along the path, about 40 m (8 keys) on and 3 m down: down the main street
+  // that is at the mirror, and the view turns into each street before the camera does.
+  std::vector<glm::vec3> targets;
+  for (std::size_t i = 0; i < eyes.size(); ++i)
+    targets.push_back(eyes[(i + 8) % eyes.size()] - glm::vec3(0.0f, 3.0f, 0.0f));
+  return sampleClosedPath(eyes, targets, 60.0f, frames);
+}
+
 }  // namespace
 
-CameraPath makeBuiltinCameraPath(std::string_view scene, int frames, double cityScale) {
+CameraPath makeBuiltinCameraPath(std::string_view scene, int frames, double cityScale,
+                                 CityCameraPath cityPath) {
   if (frames < 1)
     throw std::invalid_argument("a camera path needs at least one frame");
   if (scene == "classroom") {
@@ -250,32 +322,9 @@ CameraPath makeBuiltinCameraPath(std::string_view scene, int frames, double city
     }
     return path;
   }
-  if (scene == "city") {
-    // From high outside the city down into the main street (x = 0), along it towards the
-    // mirror wall at its end (the frames where the mirror shows what is behind the camera),
-    // past the wall's side into the cross street, and up and out again.
-    const float h = cityHalfSize(cityScale);
-    const std::vector<glm::vec3> eyes = {
-        {-1.6f * h, 150.0f, -1.6f * h}, {-0.6f * h, 80.0f, -1.3f * h}, {0.0f, 25.0f, -1.1f * h},
-        {0.0f, 2.0f, -0.85f * h},       {0.0f, 2.0f, -0.3f * h},       {0.0f, 2.0f, 0.3f * h},
-        {0.0f, 2.0f, h - 45.0f},        {8.0f, 2.0f, h - 15.0f},       {30.0f, 4.0f, h},
-        {0.8f * h, 60.0f, 1.3f * h},    {-0.5f * h, 150.0f, 1.6f * h}, {-1.7f * h, 170.0f, 0.0f}};
-    const std::vector<glm::vec3> targets = {
-        {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -0.5f * h}, {0.0f, 5.0f, -0.6f * h},
-        {0.0f, 2.0f, 0.0f}, {0.0f, 2.0f, h},         {0.0f, 2.0f, h},
-        {0.0f, 3.0f, h},    {8.0f, 2.0f, h + 30.0f}, {h, 10.0f, h},
-        {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f},      {0.0f, 0.0f, 0.0f}};
-    // Heights near the ground are above it; the spline keeps at least 1.7 m of clearance.
-    std::vector<glm::vec3> groundEyes = eyes, groundTargets = targets;
-    for (glm::vec3& e : groundEyes)
-      e.y += cityTerrainHeight(e.x, e.z);
-    for (glm::vec3& t : groundTargets)
-      t.y += cityTerrainHeight(t.x, t.z);
-    CameraPath path = sampleClosedPath(groundEyes, groundTargets, 60.0f, frames);
-    for (Camera& c : path.frames)
-      c.position.y = std::max(c.position.y, cityTerrainHeight(c.position.x, c.position.z) + 1.7f);
-    return path;
-  }
+  if (scene == "city")
+    return cityPath == CityCameraPath::Street ? cityStreetPath(frames, cityScale)
+                                              : cityAerialPath(frames, cityScale);
   std::string known;
   for (const std::string& n : builtinSceneNames())
     known += (known.empty() ? "" : ", ") + n;

@@ -24,6 +24,7 @@
 #include "compiler/diagnostics.h"
 #include "compiler/source_file.h"
 #include "runtime/scene.h"
+#include "runtime/scenes/builtin_scenes.h"
 
 namespace memograph::runtime {
 
@@ -45,11 +46,13 @@ std::optional<CameraPath> loadCameraPath(const std::string& path,
 std::string formatCameraPath(const CameraPath& path, std::string_view headerComment = {});
 
 // A path for a built-in scene ("classroom": a walk through the aisles past the blackboard
-// and the bookcases; "landscape": a fly-over of the terrain and the two groves; "city": in
-// from above, down the main street towards the mirror wall, past it and out), sampled at
-// `frames` frames along a closed smooth curve at constant speed. `cityScale` is the city's
-// (BuiltinSceneOptions::cityScale). Throws std::invalid_argument for an unknown scene or
-// frames < 1.
-CameraPath makeBuiltinCameraPath(std::string_view scene, int frames = 360, double cityScale = 1.0);
+// and the bookcases; "landscape": a fly-over of the terrain and the two groves; "city": see
+// CityCameraPath: by default in from the south at 12 m, down the main street at 9 m towards
+// the mirror wall, past its east side, along the city's north edge into the next street east,
+// down it and back to the start), sampled at `frames` frames along a closed smooth curve at
+// constant speed. `cityScale` and `cityPath` are the city's (BuiltinSceneOptions). Throws
+// std::invalid_argument for an unknown scene or frames < 1.
+CameraPath makeBuiltinCameraPath(std::string_view scene, int frames = 360, double cityScale = 1.0,
+                                 CityCameraPath cityPath = CityCameraPath::Street);
 
 }  // namespace memograph::runtime

@@ -345,7 +345,7 @@ Scene makeCityScene(const BuiltinSceneOptions& options) {
   scene.animatedPosition = [](std::size_t flag, glm::vec3 rest, float seconds) {
     return rest + cityFlagDisplacement(rest, seconds, static_cast<int>(flag));
   };
-  const CameraPath path = makeBuiltinCameraPath("city", 1, options.cityScale);
+  const CameraPath path = makeBuiltinCameraPath("city", 1, options.cityScale, options.cityPath);
   scene.camera = path.frames.front();
   return std::move(scene);
 }

@@ -145,7 +145,8 @@ TEST_F(CliTest, RenderReportsAMissingEnvironmentImageBeforeTouchingTheGpu) {
 
 // The small city (40 buildings, 6 flags) renders as it is: `--backend auto` takes the
 // pipeline with callables for its 14 graphs, which lavapipe compiles in seconds (one query
-// shader holding all of them ran past 16 minutes). A bad scale is a usage error (exit 2).
+// shader holding all of them ran past 16 minutes). A bad scale or camera path is a usage
+// error (exit 2), in render and in bench.
 TEST_F(CliTest, TheSmallCityRendersWithTheDefaultBackend) {
   if (runCli("bench --help").exitCode != 0)
     GTEST_SKIP() << "this memograph has no renderer";
@@ -153,6 +154,12 @@ TEST_F(CliTest, TheSmallCityRendersWithTheDefaultBackend) {
   const auto bad = runCli("render builtin:city:scale=2 --out " + out);
   EXPECT_EQ(bad.exitCode, 2) << bad.output;  // a usage error
   EXPECT_NE(bad.output.find("scale is a number in (0, 1]"), std::string::npos) << bad.output;
+  for (const std::string command : {"render builtin:city:scale=0.02,path=bogus --out " + out,
+                                    std::string("bench builtin:city:path=bogus --sizes 16x9")}) {
+    const auto badPath = runCli(command);
+    EXPECT_EQ(badPath.exitCode, 2) << command << ": " << badPath.output;
+    EXPECT_NE(badPath.output.find("path is street"), std::string::npos) << badPath.output;
+  }
   const auto run = runCli(
       "render builtin:city:scale=0.02 --size 16x9 --paths 1 --bounces 2 "
       "--frames 1 --out " +

@@ -146,6 +146,14 @@ TEST(CameraPath, UnknownSceneIsRejected) {
 namespace memograph::runtime {
 namespace {
 
+void expectSameFrames(const CameraPath& file, const CameraPath& expected) {
+  ASSERT_EQ(file.frames.size(), expected.frames.size());
+  for (std::size_t i = 0; i < expected.frames.size(); ++i) {
+    ASSERT_LT(glm::distance(file.frames[i].position, expected.frames[i].position), 1e-3f) << i;
+    ASSERT_LT(glm::distance(file.frames[i].target, expected.frames[i].target), 1e-3f) << i;
+  }
+}
+
 // The committed example files parse and match the generator (they are its output).
 TEST(CameraPathExamples, MatchTheBuiltinGenerator) {
   for (const std::string& scene : builtinSceneNames()) {
@@ -156,11 +164,14 @@ TEST(CameraPathExamples, MatchTheBuiltinGenerator) {
     ASSERT_TRUE(path.has_value()) << compiler::formatDiagnostics(diagnostics);
     ASSERT_GE(path->frames.size(), 300u);  // the memoization benchmarks run ≥ 300 frames
     const CameraPath expected = makeBuiltinCameraPath(scene, static_cast<int>(path->frames.size()));
-    for (std::size_t i = 0; i < expected.frames.size(); ++i) {
-      ASSERT_LT(glm::distance(path->frames[i].position, expected.frames[i].position), 1e-3f) << i;
-      ASSERT_LT(glm::distance(path->frames[i].target, expected.frames[i].target), 1e-3f) << i;
-    }
+    expectSameFrames(*path, expected);
   }
+  compiler::Diagnostics diagnostics;
+  const auto aerial = loadCameraPath(
+      std::string(MEMOGRAPH_EXAMPLES_DIR) + "/camera_paths/city_aerial.campath", diagnostics);
+  ASSERT_TRUE(aerial.has_value()) << compiler::formatDiagnostics(diagnostics);
+  expectSameFrames(*aerial, makeBuiltinCameraPath("city", static_cast<int>(aerial->frames.size()),
+                                                  1.0, CityCameraPath::Aerial));
 }
 
 }  // namespace

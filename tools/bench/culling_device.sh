@@ -4,9 +4,13 @@
 #   bench      the city's camera path (360 frames; STRIDE=k renders every k-th camera):
 #              per frame the trace's GPU time, BLAS and TLAS build times, AS bytes, instance
 #              counts (frames_<mode>.csv), and bench's summary line per mode (bench.csv)
-#   pictures   each mode at three cameras of the path, two facing the mirror (120, 135) and
-#              one flying in (60): the 8 cameras before it, then 4 frames at it (the image is
-#              those 4), seed 1; LDR-FLIP of frustum and lipac against none (pictures.txt)
+#   pictures   each mode at three cameras of the street path, two in the main street facing
+#              the mirror (120: 336 m from it, 153: 84 m; what they see in it is behind them)
+#              and one flying in (8): the 8 cameras before it, then 4 frames at it (the image
+#              is those 4), seed 1; LDR-FLIP of frustum and lipac against none (pictures.txt,
+#              each camera's role in its header). With SCENE=builtin:city:path=aerial, the
+#              aerial path's cameras (city_aerial.campath): 120 and 135 facing the mirror, 60
+#              flying in, as docs/results/culling_h200.md pictured them
 # After tools/bundle_device.sh, on the GPU machine (tools/ and examples/ travel as tracked
 # files; carry bundle and .gl):
 #   bash tools/bench/culling_device.sh [bench] [pictures]
@@ -28,6 +32,15 @@ size=${SIZE:-1920x1080}
 paths=${PATHS:-6}
 limit=${LIMIT:-170}
 path=examples/camera_paths/city.campath
+declare -A role=([120]=mirror [153]=mirror [8]="flying in")
+picture_cameras="120 153 8"
+case $scene in
+*path=aerial*)
+  path=examples/camera_paths/city_aerial.campath
+  role=([120]=mirror [135]=mirror [60]="flying in")
+  picture_cameras="120 135 60"
+  ;;
+esac
 work=$(mktemp -d)
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader >"$OUT/env.txt" 2>&1
 cat bundle/VERSION >>"$OUT/env.txt" 2>/dev/null
@@ -51,7 +64,7 @@ bench() {
 pictures() {
   local cameras
   mapfile -t cameras < <(grep -v '^#' "$path" | grep .)
-  for k in 120 135 60; do
+  for k in $picture_cameras; do
     printf '%s\n' "${cameras[@]:k-8:8}" >"$work/path_$k.campath"
     for _ in 1 2 3 4; do echo "${cameras[k]}" >>"$work/path_$k.campath"; done
     for mode in none frustum lipac; do
@@ -65,11 +78,11 @@ pictures() {
       tail -n 1 "$work/${k}_$mode.csv" | sed "s/^/$k,$mode,/" >>"$OUT/pictures_stats.csv" 2>/dev/null
     done
     for mode in frustum lipac; do
-      echo "== camera $k: $mode against none" >>"$OUT/pictures.txt"
+      echo "== camera $k (${role[$k]}): $mode against none" >>"$OUT/pictures.txt"
       "$m" diff "$work/${k}_none.pfm" "$work/${k}_$mode.pfm" >>"$OUT/pictures.txt" 2>&1
     done
   done
-  head -1 "$work/60_none.csv" >"$OUT/pictures_stats_header.csv" 2>/dev/null
+  head -1 "$work/${k}_none.csv" >"$OUT/pictures_stats_header.csv" 2>/dev/null
 }
 
 [ $# -gt 0 ] || set -- bench pictures

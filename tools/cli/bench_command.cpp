@@ -221,7 +221,8 @@ int runBench(std::span<const std::string_view> args) {
       std::vector<runtime::Camera> cameras;
       if (!staticCamera) {
         const auto path =
-            runtime::makeBuiltinCameraPath(name, int(plan.pathCameras), spec->options.cityScale)
+            runtime::makeBuiltinCameraPath(name, int(plan.pathCameras), spec->options.cityScale,
+                                           spec->options.cityPath)
                 .frames;
         for (std::uint32_t frame = 0; frame < w + f; ++frame)
           cameras.push_back(path[benchCameraIndex(plan, frame)]);

@@ -59,6 +59,20 @@ class MakeCullingReportTest(unittest.TestCase):
         self.assertEqual([c.strip() for c in mirror.strip("|").split("|")][1:],
                          ["0.0310", "0.0042"])
 
+    def test_the_pictures_rows_name_each_cameras_role(self):
+        run = os.path.join(self.dir.name, "run")
+        os.makedirs(run)
+        write_frames(os.path.join(run, "frames_none.csv"), [(100.0, 1000, 0.0, 20000)])
+        with open(os.path.join(run, "pictures.txt"), "w") as f:
+            for camera, role, flip in [("153", "mirror", 0.002), ("8", "flying in", 0.0003)]:
+                f.write(f"== camera {camera} ({role}): lipac against none\n  mean  {flip}\n")
+        result, text = self.run_report(run)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        rows = [line for line in text.splitlines() if "(camera " in line]
+        self.assertEqual([row.split("|")[1].strip() for row in rows],
+                         ["mirror (camera 153)", "flying in (camera 8)"])
+        self.assertEqual(rows[0].split("|")[3].strip(), "0.0020")
+
     def test_bad_input_exits_1(self):
         result, _ = self.run_report(os.path.join(self.dir.name, "missing"))
         self.assertEqual(result.returncode, 1)
