@@ -88,13 +88,21 @@ DynamicAccelerationStructures::DynamicAccelerationStructures(
   hitReadback_ = hostBuffer(context, counterBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
 }
 
+void DynamicAccelerationStructures::prepareFirstLook(const Camera& camera, float aspect,
+                                                     float seconds, FrameStats& stats) {
+  const auto stateStart = std::chrono::steady_clock::now();
+  culling_.firstLook(camera, aspect);
+  firstLookTraced_ = true;
+  prepareStructures(0, seconds, stats, stateStart);
+}
+
 void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float aspect,
                                                  std::uint32_t frame, float seconds,
                                                  std::uint64_t previousRays, FrameStats& stats) {
-  using Clock = std::chrono::steady_clock;
-  const auto stateStart = Clock::now();
+  const auto stateStart = std::chrono::steady_clock::now();
   std::vector<std::uint32_t> hits;
-  if (hitFeedbackOn() && frame > 0) {
+  // The first frame reads the probe frame's counters when a first look was traced.
+  if (hitFeedbackOn() && (frame > 0 || firstLookTraced_)) {
     hits.resize(culling_.counterCount() + 1);
     hitReadback_.read(hits.data(), hits.size() * sizeof(std::uint32_t));
     stats.feedbackCounts = hits.back();
@@ -103,7 +111,13 @@ void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float asp
       stats.feedbackCountsArrived += h;
   }
   culling_.update(camera, aspect, hits, previousRays);
+  prepareStructures(frame, seconds, stats, stateStart);
+}
 
+void DynamicAccelerationStructures::prepareStructures(
+    std::uint32_t frame, float seconds, FrameStats& stats,
+    std::chrono::steady_clock::time_point stateStart) {
+  using Clock = std::chrono::steady_clock;
   // The meshes the active instances use: animated ones are moved and updated (all of them
   // without culling), the others come from the BLAS cache.
   const std::vector<InstanceState>& states = culling_.states();

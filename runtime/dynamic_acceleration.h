@@ -7,6 +7,7 @@
 // each omitted instance's or inactive hitbox's bounds).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -49,6 +50,11 @@ class DynamicAccelerationStructures {
   // records. Fills the frame's culling fields of `stats`.
   void prepareFrame(const Camera& camera, float aspect, std::uint32_t frame, float seconds,
                     std::uint64_t previousRays, FrameStats& stats);
+  // LiPaC's first look (SceneCulling::firstLook), when wantsFirstLook(): the probe frame's
+  // states and structures, for one trace of the first camera whose counters the first
+  // prepareFrame then reads. Fills `stats` as prepareFrame does.
+  bool wantsFirstLook() const { return culling_.wantsFirstLook(); }
+  void prepareFirstLook(const Camera& camera, float aspect, float seconds, FrameStats& stats);
   // In the frame's command buffer, with the other clears (the caller's barrier orders them
   // before the trace): zeroes the hit counters.
   void recordClears(VkCommandBuffer commands) const;
@@ -60,6 +66,10 @@ class DynamicAccelerationStructures {
   void recordAfterTrace(VkCommandBuffer commands) const;
 
  private:
+  // After the states: builds and evicts BLASes and writes the TLAS records (both prepares).
+  void prepareStructures(std::uint32_t frame, float seconds, FrameStats& stats,
+                         std::chrono::steady_clock::time_point stateStart);
+
   const VulkanContext& context_;
   CullingOptions options_;
   SceneCulling culling_;
@@ -83,6 +93,7 @@ class DynamicAccelerationStructures {
   std::uint32_t boxRecordCount_ = 0;
   GpuBuffer hitFeedback_;
   GpuBuffer hitReadback_;
+  bool firstLookTraced_ = false;
 };
 
 }  // namespace memograph::runtime

@@ -414,37 +414,9 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   frame.cache =
       glm::uvec4(materialCache.entryCount(), 0u, mipBiasBits, materialCache.tilesPerRow());
 
-  Camera previousCamera;
-  std::uint32_t sampleIndex = 0;
-  std::uint64_t previousRays = 0;
-  for (std::uint32_t f = 0; f < settings.frames; ++f) {
-    const Camera& camera =
-        settings.cameraPath.empty()
-            ? scene.camera
-            : settings.cameraPath[std::min<std::size_t>(f, settings.cameraPath.size() - 1)];
-    if (f > 0 && !sameCamera(camera, previousCamera))
-      sampleIndex = 0;
-    previousCamera = camera;
-    frame.cameraForward.w = float(f) * settings.secondsPerFrame;
-    setCamera(frame, camera, settings.width, settings.height);
-    frame.image.z = f;
-    frame.environmentSize.z = sampleIndex;
-    frame.cache.y = f + 1u;  // the frame clock of §5.3.3 (0: never used)
-    frameBuffer.write(&frame, sizeof frame);
-    FrameStats frameStats;
-    frameStats.frame = f;
-    if (dynamicAccel) {
-      dynamicAccel->prepareFrame(camera, float(settings.width) / float(settings.height), f,
-                                 frame.cameraForward.w, previousRays, frameStats);
-    } else {
-      const AccelerationStructureStats& a = staticAccel->stats();
-      frameStats.activeInstances = frameStats.tlasRecords = a.instanceCount;
-      frameStats.blasBytes = a.blasBytes;
-      frameStats.tlasBytes = a.tlasBytes;
-      frameStats.asScratchBytes = staticAccel->residentScratchBytes();
-    }
-
-    auto start = std::chrono::steady_clock::now();
+  // One frame's commands: clears, the TLAS build, the trace (and tile fill), the read-backs.
+  // `f` == 0 clears the cache and the counters that persist.
+  const auto submitFrame = [&](std::uint32_t f) {
     context.submitAndWait([&](VkCommandBuffer commands) {
       // The cache is cleared once, before the first frame: every key kCacheKeyEmpty (0),
       // every clock 0, and with it the counters that persist (occupancy, counter clock);
@@ -496,6 +468,52 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
       if (dynamicAccel)
         dynamicAccel->recordAfterTrace(commands);
     });
+  };
+
+  Camera previousCamera;
+  std::uint32_t sampleIndex = 0;
+  std::uint64_t previousRays = 0;
+  for (std::uint32_t f = 0; f < settings.frames; ++f) {
+    const Camera& camera =
+        settings.cameraPath.empty()
+            ? scene.camera
+            : settings.cameraPath[std::min<std::size_t>(f, settings.cameraPath.size() - 1)];
+    if (f > 0 && !sameCamera(camera, previousCamera))
+      sampleIndex = 0;
+    previousCamera = camera;
+    frame.cameraForward.w = float(f) * settings.secondsPerFrame;
+    setCamera(frame, camera, settings.width, settings.height);
+    frame.image.z = f;
+    frame.environmentSize.z = sampleIndex;
+    frame.cache.y = f + 1u;  // the frame clock of §5.3.3 (0: never used)
+    frameBuffer.write(&frame, sizeof frame);
+    FrameStats frameStats;
+    frameStats.frame = f;
+    FrameStats firstLook;
+    if (f == 0 && dynamicAccel && dynamicAccel->wantsFirstLook()) {
+      // LiPaC's first look (SceneCulling::firstLook): one trace of the first camera, its image
+      // replaced by frame 0's and its figures folded into frame 0's, whose culling reads its
+      // counters.
+      dynamicAccel->prepareFirstLook(camera, float(settings.width) / float(settings.height),
+                                     frame.cameraForward.w, firstLook);
+      submitFrame(0);
+      gpu::Counters counters{};
+      rayReadback.read(&counters, sizeof counters);
+      previousRays = counters.rays;
+    }
+    if (dynamicAccel) {
+      dynamicAccel->prepareFrame(camera, float(settings.width) / float(settings.height), f,
+                                 frame.cameraForward.w, previousRays, frameStats);
+    } else {
+      const AccelerationStructureStats& a = staticAccel->stats();
+      frameStats.activeInstances = frameStats.tlasRecords = a.instanceCount;
+      frameStats.blasBytes = a.blasBytes;
+      frameStats.tlasBytes = a.tlasBytes;
+      frameStats.asScratchBytes = staticAccel->residentScratchBytes();
+    }
+
+    auto start = std::chrono::steady_clock::now();
+    submitFrame(f);
     frameStats.wallMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     gpu::Counters counters{};
@@ -535,6 +553,14 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
         WavefrontPathTracer::addPassTimes(passTicks, settings.pathsPerPixel, settings.raysPerPath,
                                           period, frameStats);
       }
+    }
+    if (firstLook.blasBytes > 0) {
+      frameStats.blasBuilds += firstLook.blasBuilds;
+      frameStats.blasUpdates += firstLook.blasUpdates;
+      frameStats.blasEvictions += firstLook.blasEvictions;
+      frameStats.blasBuildMilliseconds += firstLook.blasBuildMilliseconds;
+      frameStats.blasBytes = std::max(frameStats.blasBytes, firstLook.blasBytes);
+      frameStats.asScratchBytes = std::max(frameStats.asScratchBytes, firstLook.asScratchBytes);
     }
     if (dynamicAccel) {
       // The render's figures: the peak of what was resident.

@@ -231,6 +231,35 @@ void SceneCulling::setState(std::uint32_t instance, InstanceState state) {
   }
 }
 
+bool SceneCulling::wantsFirstLook() const {
+  return options_.mode == CullingMode::Lipac && options_.firstLook && first_ && !firstLookDone_ &&
+         !hitboxActive_.empty();
+}
+
+void SceneCulling::firstLook(const Camera& camera, float aspect) {
+  counts_.changes = 0;
+  const Frustum frustum = cameraFrustum(camera, aspect);
+  for (std::uint32_t h = 0; h < hitboxCount(); ++h) {
+    hitboxActive_[h] = !hitboxInstances_[h].empty() && frustum.intersects(hitboxBounds_[h]);
+    hitboxLowFrames_[h] = 0;
+  }
+  for (std::uint32_t i = 0; i < instanceCount(); ++i) {
+    // Seen in this frustum now: update() will not count it as appearing.
+    inFrustum_[i] = frustum.intersects(bounds_[i]);
+    lowFrames_[i] = 0;
+    appeared_[i] = 0;
+    if (alwaysOn_[i])
+      setState(i, InstanceState::Active);
+    else if (!hitboxActive_[instanceHitbox_[i]])
+      setState(i, InstanceState::Inactive);
+    else
+      setState(i, ownBlas_[i] ? InstanceState::Omitted : InstanceState::Active);
+  }
+  firstLookDone_ = true;
+  first_ = false;
+  count();
+}
+
 void SceneCulling::update(const Camera& camera, float aspect, std::span<const std::uint32_t> hits,
                           std::uint64_t rays) {
   counts_.changes = 0;

@@ -70,6 +70,10 @@ struct CullingOptions {
   // the same order, so the same picture; the host fill stays the default until the GPU
   // machine has measured which is faster.
   bool gpuInstanceFill = false;
+  // lipac: before the first frame, a probe trace of the first camera (SceneCulling::firstLook)
+  // decides which instances it needs. Off: the first frame activates every instance that is
+  // large in its frustum, hidden ones too (the whole city from a path that flies in).
+  bool firstLook = true;
 };
 
 // Throws std::invalid_argument with the option's flag name on a bad value.
@@ -123,6 +127,16 @@ class SceneCulling {
   std::uint32_t hitboxOf(std::uint32_t instance) const { return instanceHitbox_[instance]; }
   const CullingCounts& counts() const { return counts_; }
 
+  // LiPaC's first look, instead of treating everything in the first frustum as appearing:
+  // the hitboxes the frustum reaches start active, their instances with their own BLAS
+  // omitted (a counting box each) and the shared ones active, the rest inactive. The renderer
+  // traces the first camera once with these states (the probe frame, its image discarded),
+  // then update() with its counters activates the omitted instances its rays reached above
+  // σ_a, as on any frame: the first frame holds what the camera reaches, not all it faces.
+  // Needed (once) when wantsFirstLook().
+  bool wantsFirstLook() const;
+  void firstLook(const Camera& camera, float aspect);
+
  private:
   void updateFrustum(const Frustum& frustum, const Camera& camera);
   void updateLipac(const Frustum& frustum, const Camera& camera,
@@ -154,6 +168,7 @@ class SceneCulling {
   std::vector<std::uint32_t> hitboxLowNeeded_;
   CullingCounts counts_;
   bool first_ = true;
+  bool firstLookDone_ = false;
 };
 
 }  // namespace memograph::runtime

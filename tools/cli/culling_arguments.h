@@ -29,6 +29,10 @@ inline constexpr const char* kCullingHelp =
     "                        (default 8; doubled for a hitbox each time it deactivates)\n"
     "  --feedback-stride N   lipac: 1 in N 8x8-pixel blocks counts its rays each frame,\n"
     "                        weighted N (default 1: every ray; 1..64)\n"
+    "  --first-look on|off   lipac: before the first frame, trace its camera once with the\n"
+    "                        hitboxes it faces active and their own-BLAS instances as\n"
+    "                        counting boxes, so the first frame holds what its rays reach\n"
+    "                        (default on); off: it holds every instance large in its frustum\n"
     "  --instance-fill host|gpu  culled or animated: the TLAS's instance records written by\n"
     "                        the host, or assembled by a compute pass from the instance\n"
     "                        states (the same records; default host)\n"
@@ -45,7 +49,7 @@ struct CullingArguments {
   std::string mode = "none", radius = "30", hitboxSize = "50", hitboxActivate = "20",
               hitboxDeactivate = "2", instanceActivate = "4", instanceDeactivate = "0.4",
               lowFrames = "8", blasBudget = "0", blasBuildBudget = "0", blasRebuildEvery = "16",
-              blasKeepFrames = "8", feedbackStride = "1", instanceFill = "host";
+              blasKeepFrames = "8", feedbackStride = "1", instanceFill = "host", firstLook = "on";
 
   void registerWith(ArgumentScanner& scanner) {
     scanner.option("--culling", &mode);
@@ -62,6 +66,7 @@ struct CullingArguments {
     scanner.option("--blas-keep-frames", &blasKeepFrames);
     scanner.option("--feedback-stride", &feedbackStride);
     scanner.option("--instance-fill", &instanceFill);
+    scanner.option("--first-look", &firstLook);
   }
 
   // Throws std::invalid_argument with a message for the user.
@@ -96,6 +101,9 @@ struct CullingArguments {
     if (instanceFill != "host" && instanceFill != "gpu")
       throw std::invalid_argument("--instance-fill takes host or gpu, not '" + instanceFill + "'");
     o.gpuInstanceFill = instanceFill == "gpu";
+    if (firstLook != "on" && firstLook != "off")
+      throw std::invalid_argument("--first-look takes on or off, not '" + firstLook + "'");
+    o.firstLook = firstLook == "on";
     runtime::validateCullingOptions(o);
     return o;
   }

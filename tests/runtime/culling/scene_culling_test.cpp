@@ -225,6 +225,34 @@ TEST(Lipac, InstancesThatAppearLargeAreActivatedAtOnce) {
   EXPECT_EQ(near.states()[0], InstanceState::Active);
 }
 
+// The first look: the hitboxes in view start active (shared meshes active, own meshes as
+// counting boxes), nothing counts as appearing in the first update, and there the omitted
+// instances the probe's rays reached above σ_a are activated, the others stay boxes.
+TEST(Lipac, TheFirstLookActivatesOnlyWhatTheProbeReached) {
+  SceneCulling culling(row(), lipac());
+  ASSERT_TRUE(culling.wantsFirstLook());
+  culling.firstLook(farAway(), 1.0f);
+  EXPECT_FALSE(culling.wantsFirstLook());
+  for (std::uint32_t h = 0; h < culling.hitboxCount(); ++h)
+    EXPECT_EQ(culling.hitboxActive(h), culling.hitboxUsed(h)) << h;
+  EXPECT_EQ(culling.states()[0], InstanceState::Active) << "shared mesh";
+  EXPECT_EQ(culling.states()[4], InstanceState::Omitted) << "own mesh: a box counts";
+
+  std::vector<std::uint32_t> hits(culling.counterCount(), 0);
+  hits[0] = 50;
+  culling.update(farAway(), 1.0f, hits, kRays);
+  EXPECT_EQ(culling.states()[4], InstanceState::Omitted) << "not reached: still a box";
+  SceneCulling reached(row(), lipac());
+  reached.firstLook(farAway(), 1.0f);
+  hits[4] = 4;  // σ_a
+  reached.update(farAway(), 1.0f, hits, kRays);
+  EXPECT_EQ(reached.states()[4], InstanceState::Active);
+
+  CullingOptions off = lipac();
+  off.firstLook = false;
+  EXPECT_FALSE(SceneCulling(row(), off).wantsFirstLook());
+}
+
 TEST(CullingOptions, BadValuesAreRefusedWithTheirFlag) {
   auto message = [](CullingOptions o) {
     try {
