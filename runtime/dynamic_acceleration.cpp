@@ -88,12 +88,13 @@ DynamicAccelerationStructures::DynamicAccelerationStructures(
   hitReadback_ = hostBuffer(context, counterBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
 }
 
-void DynamicAccelerationStructures::prepareFirstLook(const Camera& camera, float aspect,
-                                                     float seconds, FrameStats& stats) {
+void DynamicAccelerationStructures::prepareLook(const Camera& camera, float aspect,
+                                                std::uint32_t frame, float seconds,
+                                                FrameStats& stats) {
   const auto stateStart = std::chrono::steady_clock::now();
-  culling_.firstLook(camera, aspect);
-  firstLookTraced_ = true;
-  prepareStructures(0, seconds, stats, stateStart);
+  culling_.look(camera, aspect);
+  lookTraced_ = true;
+  prepareStructures(frame, seconds, stats, stateStart);
 }
 
 void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float aspect,
@@ -101,8 +102,8 @@ void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float asp
                                                  std::uint64_t previousRays, FrameStats& stats) {
   const auto stateStart = std::chrono::steady_clock::now();
   std::vector<std::uint32_t> hits;
-  // The first frame reads the probe frame's counters when a first look was traced.
-  if (hitFeedbackOn() && (frame > 0 || firstLookTraced_)) {
+  // Frame 0 has counters to read only when a look traced its camera first.
+  if (hitFeedbackOn() && (frame > 0 || lookTraced_)) {
     hits.resize(culling_.counterCount() + 1);
     hitReadback_.read(hits.data(), hits.size() * sizeof(std::uint32_t));
     stats.feedbackCounts = hits.back();

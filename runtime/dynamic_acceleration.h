@@ -50,11 +50,14 @@ class DynamicAccelerationStructures {
   // records. Fills the frame's culling fields of `stats`.
   void prepareFrame(const Camera& camera, float aspect, std::uint32_t frame, float seconds,
                     std::uint64_t previousRays, FrameStats& stats);
-  // LiPaC's first look (SceneCulling::firstLook), when wantsFirstLook(): the probe frame's
-  // states and structures, for one trace of the first camera whose counters the first
-  // prepareFrame then reads. Fills `stats` as prepareFrame does.
-  bool wantsFirstLook() const { return culling_.wantsFirstLook(); }
-  void prepareFirstLook(const Camera& camera, float aspect, float seconds, FrameStats& stats);
+  // LiPaC's look (SceneCulling::look), when wantsLook(): the probe's states and structures,
+  // for one trace of the frame's camera whose counters the frame's prepareFrame then reads.
+  // Fills `stats` as prepareFrame does.
+  bool wantsLook(const Camera& camera, float aspect) const {
+    return culling_.wantsLook(camera, aspect);
+  }
+  void prepareLook(const Camera& camera, float aspect, std::uint32_t frame, float seconds,
+                   FrameStats& stats);
   // In the frame's command buffer, with the other clears (the caller's barrier orders them
   // before the trace): zeroes the hit counters.
   void recordClears(VkCommandBuffer commands) const;
@@ -93,7 +96,7 @@ class DynamicAccelerationStructures {
   std::uint32_t boxRecordCount_ = 0;
   GpuBuffer hitFeedback_;
   GpuBuffer hitReadback_;
-  bool firstLookTraced_ = false;
+  bool lookTraced_ = false;  // the read-back holds a look's counters (frame 0 reads them)
 };
 
 }  // namespace memograph::runtime

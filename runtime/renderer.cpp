@@ -470,6 +470,18 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     });
   };
 
+  // The last submitted trace's GPU time (timestamps 0 and 1), 0 without timestamps.
+  const auto readTraceMilliseconds = [&]() {
+    if (!timestamps)
+      return 0.0;
+    std::uint64_t ticks[2] = {0, 0};
+    checkVk(vkGetQueryPoolResults(device, timestampPool.get(), 0, 2, sizeof ticks, ticks,
+                                  sizeof(std::uint64_t),
+                                  VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+            "vkGetQueryPoolResults (timestamps)");
+    return double(ticks[1] - ticks[0]) * context.info().timestampPeriodNs * 1e-6;
+  };
+
   Camera previousCamera;
   std::uint32_t sampleIndex = 0;
   std::uint64_t previousRays = 0;
@@ -489,21 +501,24 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     frameBuffer.write(&frame, sizeof frame);
     FrameStats frameStats;
     frameStats.frame = f;
-    FrameStats firstLook;
-    if (f == 0 && dynamicAccel && dynamicAccel->wantsFirstLook()) {
-      // LiPaC's first look (SceneCulling::firstLook): one trace of the first camera, its image
-      // replaced by frame 0's and its figures folded into frame 0's, whose culling reads its
-      // counters.
-      dynamicAccel->prepareFirstLook(camera, float(settings.width) / float(settings.height),
-                                     frame.cameraForward.w, firstLook);
-      submitFrame(0);
+    FrameStats look;
+    const float aspect = float(settings.width) / float(settings.height);
+    // A look only where the frame starts the pixels' sums afresh (a new camera), so that the
+    // probe's sample is replaced, not averaged in.
+    if (sampleIndex == 0 && dynamicAccel && dynamicAccel->wantsLook(camera, aspect)) {
+      // LiPaC's look (SceneCulling::look): one trace of this frame's camera, its image replaced
+      // by the frame's, its builds and GPU time folded into the frame's figures, its counters
+      // read by the frame's culling update.
+      dynamicAccel->prepareLook(camera, aspect, f, frame.cameraForward.w, look);
+      submitFrame(f);
       gpu::Counters counters{};
       rayReadback.read(&counters, sizeof counters);
       previousRays = counters.rays;
+      look.lookMilliseconds = readTraceMilliseconds();
     }
     if (dynamicAccel) {
-      dynamicAccel->prepareFrame(camera, float(settings.width) / float(settings.height), f,
-                                 frame.cameraForward.w, previousRays, frameStats);
+      dynamicAccel->prepareFrame(camera, aspect, f, frame.cameraForward.w, previousRays,
+                                 frameStats);
     } else {
       const AccelerationStructureStats& a = staticAccel->stats();
       frameStats.activeInstances = frameStats.tlasRecords = a.instanceCount;
@@ -554,13 +569,16 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                                           period, frameStats);
       }
     }
-    if (firstLook.blasBytes > 0) {
-      frameStats.blasBuilds += firstLook.blasBuilds;
-      frameStats.blasUpdates += firstLook.blasUpdates;
-      frameStats.blasEvictions += firstLook.blasEvictions;
-      frameStats.blasBuildMilliseconds += firstLook.blasBuildMilliseconds;
-      frameStats.blasBytes = std::max(frameStats.blasBytes, firstLook.blasBytes);
-      frameStats.asScratchBytes = std::max(frameStats.asScratchBytes, firstLook.asScratchBytes);
+    if (look.blasBytes > 0) {
+      frameStats.looks = 1;
+      frameStats.lookMilliseconds = look.lookMilliseconds;
+      frameStats.gpuMilliseconds += look.lookMilliseconds;
+      frameStats.blasBuilds += look.blasBuilds;
+      frameStats.blasUpdates += look.blasUpdates;
+      frameStats.blasEvictions += look.blasEvictions;
+      frameStats.blasBuildMilliseconds += look.blasBuildMilliseconds;
+      frameStats.blasBytes = std::max(frameStats.blasBytes, look.blasBytes);
+      frameStats.asScratchBytes = std::max(frameStats.asScratchBytes, look.asScratchBytes);
     }
     if (dynamicAccel) {
       // The render's figures: the peak of what was resident.

@@ -106,6 +106,8 @@ void validateCullingOptions(const CullingOptions& o) {
     throw std::invalid_argument("--blas-rebuild-every must be in 1.." +
                                 std::to_string(kMaxLowFrames) + ", not " +
                                 std::to_string(o.blasRebuildEvery));
+  if (o.lookAppearing == 0)
+    throw std::invalid_argument("--look-appearing must be at least 1 (--looks off: no looks)");
   if (o.feedbackStride == 0 || o.feedbackStride > 64)
     throw std::invalid_argument("--feedback-stride must be in 1..64, not " +
                                 std::to_string(o.feedbackStride));
@@ -231,31 +233,57 @@ void SceneCulling::setState(std::uint32_t instance, InstanceState state) {
   }
 }
 
-bool SceneCulling::wantsFirstLook() const {
-  return options_.mode == CullingMode::Lipac && options_.firstLook && first_ && !firstLookDone_ &&
-         !hitboxActive_.empty();
+bool SceneCulling::appearsLarge(std::uint32_t instance, const Camera& camera) const {
+  const float minAngle = options_.appearMinFraction * glm::radians(camera.verticalFovDegrees);
+  const Bounds& b = bounds_[instance];
+  const float radius = 0.5f * glm::length(b.hi - b.lo);
+  const float distance = glm::length(b.centre() - camera.position);
+  return distance <= radius || std::asin(radius / distance) >= minAngle;
 }
 
-void SceneCulling::firstLook(const Camera& camera, float aspect) {
+bool SceneCulling::wantsLook(const Camera& camera, float aspect) const {
+  if (options_.mode != CullingMode::Lipac || !options_.looks || hitboxActive_.empty())
+    return false;
+  if (first_)
+    return true;
+  const Frustum frustum = cameraFrustum(camera, aspect);
+  std::uint32_t appearing = 0;
+  for (std::uint32_t i = 0; i < instanceCount(); ++i) {
+    if (alwaysOn_[i] || !ownBlas_[i] || inFrustum_[i] || states_[i] == InstanceState::Active ||
+        !frustum.intersects(bounds_[i]) || !appearsLarge(i, camera))
+      continue;
+    if (++appearing >= options_.lookAppearing)
+      return true;
+  }
+  return false;
+}
+
+void SceneCulling::look(const Camera& camera, float aspect) {
   counts_.changes = 0;
   const Frustum frustum = cameraFrustum(camera, aspect);
+  std::vector<std::uint8_t> opened(hitboxCount(), 0);
   for (std::uint32_t h = 0; h < hitboxCount(); ++h) {
-    hitboxActive_[h] = !hitboxInstances_[h].empty() && frustum.intersects(hitboxBounds_[h]);
+    if (hitboxActive_[h] || hitboxInstances_[h].empty() || !frustum.intersects(hitboxBounds_[h]))
+      continue;
+    hitboxActive_[h] = 1;
     hitboxLowFrames_[h] = 0;
+    opened[h] = 1;
   }
   for (std::uint32_t i = 0; i < instanceCount(); ++i) {
     // Seen in this frustum now: update() will not count it as appearing.
     inFrustum_[i] = frustum.intersects(bounds_[i]);
-    lowFrames_[i] = 0;
-    appeared_[i] = 0;
-    if (alwaysOn_[i])
+    if (alwaysOn_[i]) {
       setState(i, InstanceState::Active);
-    else if (!hitboxActive_[instanceHitbox_[i]])
-      setState(i, InstanceState::Inactive);
-    else
+      continue;
+    }
+    // Instances of hitboxes already active, or still inactive, keep their states (one that
+    // appeared stays while it is hit).
+    if (opened[instanceHitbox_[i]]) {
+      lowFrames_[i] = 0;
+      appeared_[i] = 0;
       setState(i, ownBlas_[i] ? InstanceState::Omitted : InstanceState::Active);
+    }
   }
-  firstLookDone_ = true;
   first_ = false;
   count();
 }
@@ -371,7 +399,6 @@ void SceneCulling::updateLipac(const Frustum& frustum, const Camera& camera,
   }
   // Instances that enter the frustum large enough to be seen at once are activated now
   // (§3.3.2: the feedback would show them a frame or more late).
-  const float minAngle = options_.appearMinFraction * glm::radians(camera.verticalFovDegrees);
   for (std::uint32_t i = 0; i < n; ++i) {
     if (alwaysOn_[i]) {
       setState(i, InstanceState::Active);
@@ -382,10 +409,7 @@ void SceneCulling::updateLipac(const Frustum& frustum, const Camera& camera,
     inFrustum_[i] = inside;
     if (!appeared || states_[i] == InstanceState::Active)
       continue;
-    const float radius = 0.5f * glm::length(bounds_[i].hi - bounds_[i].lo);
-    const float distance = glm::length(bounds_[i].centre() - camera.position);
-    const bool large = distance <= radius || std::asin(radius / distance) >= minAngle;
-    if (large) {
+    if (appearsLarge(i, camera)) {
       lowFrames_[i] = 0;
       appeared_[i] = hitboxActive_.empty() || !hitboxActive_[instanceHitbox_[i]];
       setState(i, InstanceState::Active);

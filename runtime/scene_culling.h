@@ -70,10 +70,13 @@ struct CullingOptions {
   // the same order, so the same picture; the host fill stays the default until the GPU
   // machine has measured which is faster.
   bool gpuInstanceFill = false;
-  // lipac: before the first frame, a probe trace of the first camera (SceneCulling::firstLook)
-  // decides which instances it needs. Off: the first frame activates every instance that is
-  // large in its frustum, hidden ones too (the whole city from a path that flies in).
-  bool firstLook = true;
+  // lipac: looks (SceneCulling::look): before the first frame, and before a frame whose
+  // frustum brings at least `lookAppearing` instances with their own BLAS into view at once, a
+  // probe trace of its camera decides which of them it needs. Off: those frames activate every
+  // instance that appears large in the frustum, hidden ones too (the whole city from a path
+  // that flies in or turns towards it).
+  bool looks = true;
+  std::uint32_t lookAppearing = 8;
 };
 
 // Throws std::invalid_argument with the option's flag name on a bad value.
@@ -127,21 +130,24 @@ class SceneCulling {
   std::uint32_t hitboxOf(std::uint32_t instance) const { return instanceHitbox_[instance]; }
   const CullingCounts& counts() const { return counts_; }
 
-  // LiPaC's first look, instead of treating everything in the first frustum as appearing:
-  // the hitboxes the frustum reaches start active, their instances with their own BLAS
-  // omitted (a counting box each) and the shared ones active, the rest inactive. The renderer
-  // traces the first camera once with these states (the probe frame, its image discarded),
-  // then update() with its counters activates the omitted instances its rays reached above
-  // σ_a, as on any frame: the first frame holds what the camera reaches, not all it faces.
-  // Needed (once) when wantsFirstLook().
-  bool wantsFirstLook() const;
-  void firstLook(const Camera& camera, float aspect);
+  // LiPaC's look, instead of activating every instance that appears large in the frustum:
+  // the inactive hitboxes the frustum reaches become active, their instances with their own
+  // BLAS omitted (a counting box each) and the shared ones active; active hitboxes keep their
+  // states. The renderer traces the camera once with these states (the probe, its image
+  // discarded), then update() with its counters activates the omitted instances its rays
+  // reached above σ_a, as on any frame, and nothing in this frustum counts as appearing: the
+  // frame holds what the camera reaches, not all it faces. wantsLook: before the first frame,
+  // or when at least `lookAppearing` own-BLAS instances not active would appear large.
+  bool wantsLook(const Camera& camera, float aspect) const;
+  void look(const Camera& camera, float aspect);
 
  private:
   void updateFrustum(const Frustum& frustum, const Camera& camera);
   void updateLipac(const Frustum& frustum, const Camera& camera,
                    std::span<const std::uint32_t> hits, std::uint64_t rays);
   void setState(std::uint32_t instance, InstanceState state);
+  // Its bounding sphere is at least appearMinFraction of the vertical field of view.
+  bool appearsLarge(std::uint32_t instance, const Camera& camera) const;
   void count();
 
   CullingOptions options_;
@@ -168,7 +174,6 @@ class SceneCulling {
   std::vector<std::uint32_t> hitboxLowNeeded_;
   CullingCounts counts_;
   bool first_ = true;
-  bool firstLookDone_ = false;
 };
 
 }  // namespace memograph::runtime

@@ -184,7 +184,8 @@ TEST_F(CliTest, CullingOptionsAreCheckedAndACulledRenderWritesItsTopView) {
       {" --culling lipac --hitbox-size -1", "--hitbox-size must be a positive number"},
       {" --culling frustum --low-frames x", "--low-frames takes a whole number, not 'x'"},
       {" --culling lipac --instance-fill cpu", "--instance-fill takes host or gpu, not 'cpu'"},
-      {" --culling lipac --first-look maybe", "--first-look takes on or off, not 'maybe'"},
+      {" --culling lipac --looks maybe", "--looks takes on or off, not 'maybe'"},
+      {" --culling lipac --look-appearing -3", "--look-appearing takes a whole number, not '-3'"},
       {" --blas-budget 64", "they need --culling frustum or --culling lipac"},
       {" --debug-culling " + top, "--debug-culling shows which instances culling keeps"},
   };

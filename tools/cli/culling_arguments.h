@@ -29,10 +29,14 @@ inline constexpr const char* kCullingHelp =
     "                        (default 8; doubled for a hitbox each time it deactivates)\n"
     "  --feedback-stride N   lipac: 1 in N 8x8-pixel blocks counts its rays each frame,\n"
     "                        weighted N (default 1: every ray; 1..64)\n"
-    "  --first-look on|off   lipac: before the first frame, trace its camera once with the\n"
-    "                        hitboxes it faces active and their own-BLAS instances as\n"
-    "                        counting boxes, so the first frame holds what its rays reach\n"
-    "                        (default on); off: it holds every instance large in its frustum\n"
+    "  --looks on|off        lipac: before the first frame, and before one that brings\n"
+    "                        --look-appearing instances with their own BLAS into view at\n"
+    "                        once, trace its camera once with the hitboxes it faces active\n"
+    "                        and those instances as counting boxes, so the frame holds what\n"
+    "                        its rays reach (default on); off: it holds every instance that\n"
+    "                        appears large in its frustum, hidden ones too\n"
+    "  --look-appearing N    lipac: instances appearing at once that call for a look\n"
+    "                        (default 8)\n"
     "  --instance-fill host|gpu  culled or animated: the TLAS's instance records written by\n"
     "                        the host, or assembled by a compute pass from the instance\n"
     "                        states (the same records; default host)\n"
@@ -49,7 +53,8 @@ struct CullingArguments {
   std::string mode = "none", radius = "30", hitboxSize = "50", hitboxActivate = "20",
               hitboxDeactivate = "2", instanceActivate = "4", instanceDeactivate = "0.4",
               lowFrames = "8", blasBudget = "0", blasBuildBudget = "0", blasRebuildEvery = "16",
-              blasKeepFrames = "8", feedbackStride = "1", instanceFill = "host", firstLook = "on";
+              blasKeepFrames = "8", feedbackStride = "1", instanceFill = "host", looks = "on",
+              lookAppearing = "8";
 
   void registerWith(ArgumentScanner& scanner) {
     scanner.option("--culling", &mode);
@@ -66,7 +71,8 @@ struct CullingArguments {
     scanner.option("--blas-keep-frames", &blasKeepFrames);
     scanner.option("--feedback-stride", &feedbackStride);
     scanner.option("--instance-fill", &instanceFill);
-    scanner.option("--first-look", &firstLook);
+    scanner.option("--looks", &looks);
+    scanner.option("--look-appearing", &lookAppearing);
   }
 
   // Throws std::invalid_argument with a message for the user.
@@ -101,9 +107,10 @@ struct CullingArguments {
     if (instanceFill != "host" && instanceFill != "gpu")
       throw std::invalid_argument("--instance-fill takes host or gpu, not '" + instanceFill + "'");
     o.gpuInstanceFill = instanceFill == "gpu";
-    if (firstLook != "on" && firstLook != "off")
-      throw std::invalid_argument("--first-look takes on or off, not '" + firstLook + "'");
-    o.firstLook = firstLook == "on";
+    if (looks != "on" && looks != "off")
+      throw std::invalid_argument("--looks takes on or off, not '" + looks + "'");
+    o.looks = looks == "on";
+    o.lookAppearing = whole(lookAppearing, "--look-appearing");
     runtime::validateCullingOptions(o);
     return o;
   }

@@ -223,7 +223,7 @@ TEST(CulledRender, TheFirstLookHoldsWhatTheFirstCameraReaches) {
   const RenderSettings s = settings(1, {approach});
   RendererOptions o = options(CullingMode::Lipac, true);
   const RenderResult withFirstLook = render(o, scene, s);
-  o.culling.firstLook = false;
+  o.culling.looks = false;
   const RenderResult without = render(o, scene, s);
   const RenderResult unculled = render(options(CullingMode::None, true), scene, s);
   const FrameStats& a = withFirstLook.stats.frames.front();

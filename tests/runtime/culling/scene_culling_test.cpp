@@ -225,14 +225,14 @@ TEST(Lipac, InstancesThatAppearLargeAreActivatedAtOnce) {
   EXPECT_EQ(near.states()[0], InstanceState::Active);
 }
 
-// The first look: the hitboxes in view start active (shared meshes active, own meshes as
+// The first frame's look: the hitboxes in view start active (shared meshes active, own meshes as
 // counting boxes), nothing counts as appearing in the first update, and there the omitted
 // instances the probe's rays reached above σ_a are activated, the others stay boxes.
-TEST(Lipac, TheFirstLookActivatesOnlyWhatTheProbeReached) {
+TEST(Lipac, ALookActivatesOnlyWhatTheProbeReached) {
   SceneCulling culling(row(), lipac());
-  ASSERT_TRUE(culling.wantsFirstLook());
-  culling.firstLook(farAway(), 1.0f);
-  EXPECT_FALSE(culling.wantsFirstLook());
+  ASSERT_TRUE(culling.wantsLook(farAway(), 1.0f));
+  culling.look(farAway(), 1.0f);
+  EXPECT_FALSE(culling.wantsLook(farAway(), 1.0f)) << "nothing appears in the same view";
   for (std::uint32_t h = 0; h < culling.hitboxCount(); ++h)
     EXPECT_EQ(culling.hitboxActive(h), culling.hitboxUsed(h)) << h;
   EXPECT_EQ(culling.states()[0], InstanceState::Active) << "shared mesh";
@@ -243,14 +243,41 @@ TEST(Lipac, TheFirstLookActivatesOnlyWhatTheProbeReached) {
   culling.update(farAway(), 1.0f, hits, kRays);
   EXPECT_EQ(culling.states()[4], InstanceState::Omitted) << "not reached: still a box";
   SceneCulling reached(row(), lipac());
-  reached.firstLook(farAway(), 1.0f);
+  reached.look(farAway(), 1.0f);
   hits[4] = 4;  // σ_a
   reached.update(farAway(), 1.0f, hits, kRays);
   EXPECT_EQ(reached.states()[4], InstanceState::Active);
 
   CullingOptions off = lipac();
-  off.firstLook = false;
-  EXPECT_FALSE(SceneCulling(row(), off).wantsFirstLook());
+  off.looks = false;
+  EXPECT_FALSE(SceneCulling(row(), off).wantsLook(farAway(), 1.0f));
+}
+
+// A look later on: turning to face an instance with its own BLAS, near and large, asks for
+// one when at least lookAppearing such instances appear; after it the instance is a counting
+// box, not activated as appearing, until the probe's rays reach it.
+TEST(Lipac, TurningToFaceHiddenOwnMeshesAsksForALook) {
+  CullingOptions o = lipac();
+  o.lookAppearing = 1;
+  SceneCulling culling(row(), o);
+  culling.look(lookingAway(), 1.0f);
+  culling.update(lookingAway(), 1.0f, std::vector<std::uint32_t>(culling.counterCount(), 0), kRays);
+  Camera facing;
+  facing.position = {210.5f, 0.5f, 5.0f};
+  facing.target = {210.5f, 0.5f, 0.5f};  // instance 4, 4.5 away: large
+  o.lookAppearing = 2;
+  SceneCulling twoNeeded(row(), o);
+  twoNeeded.look(lookingAway(), 1.0f);
+  EXPECT_FALSE(twoNeeded.wantsLook(facing, 1.0f)) << "one own mesh appears, two needed";
+  ASSERT_TRUE(culling.wantsLook(facing, 1.0f));
+  culling.look(facing, 1.0f);
+  EXPECT_EQ(culling.states()[4], InstanceState::Omitted);
+  culling.update(facing, 1.0f, std::vector<std::uint32_t>(culling.counterCount(), 0), kRays);
+  EXPECT_EQ(culling.states()[4], InstanceState::Omitted) << "not activated as appearing";
+  std::vector<std::uint32_t> hits(culling.counterCount(), 0);
+  hits[4] = 4;
+  culling.update(facing, 1.0f, hits, kRays);
+  EXPECT_EQ(culling.states()[4], InstanceState::Active);
 }
 
 TEST(CullingOptions, BadValuesAreRefusedWithTheirFlag) {
