@@ -152,6 +152,17 @@ TEST(Wavefront, OptionsThePrototypeLacksAreRefused) {
   RenderSettings shared = s;
   shared.sharedPrimaryRay = true;
   refuses(floorOptions(Backend::RayQuery, Shading::Wavefront), shared, "--shared-primary");
+  // An emitter whose emission NEE must take from its graph at the light point: the wavefront
+  // has no material pass for light points.
+  Scene emitting = scene;
+  emitting.materials[0].emissionEstimate = glm::vec3(1.0f);
+  emitting.materials[0].emissionKind = MaterialRef::EmissionKind::Graph;
+  try {
+    Renderer(graphOptions(Backend::RayQuery, Shading::Wavefront)).render(emitting, s);
+    ADD_FAILURE() << "rendered; expected a refusal naming the emitter";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("emitter's graph"), std::string::npos) << e.what();
+  }
   EXPECT_THROW(parseShading("wave"), std::invalid_argument);
   EXPECT_EQ(parseShading("wavefront"), Shading::Wavefront);
 }
@@ -238,6 +249,10 @@ TEST(Wavefront, TheCliRefusesBadCombinationsAsUsageErrors) {
                    "--culling frustum"),
             2);
   EXPECT_FALSE(std::filesystem::exists(out));
+  // Without --floor-materials it renders the scene's graphs.
+  EXPECT_EQ(runCli(render + "--shading wavefront --paths 1 --bounces 2"), 0);
+  EXPECT_TRUE(std::filesystem::exists(out));
+  std::filesystem::remove(out);
 }
 
 TEST(Wavefront, BenchCsvHasThePassColumns) {
