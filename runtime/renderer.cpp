@@ -332,12 +332,12 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   // One architecture or the other: the megakernel's pipeline, or the wavefront's passes.
   std::optional<TracePipeline> pipeline;
   std::optional<WavefrontPathTracer> wavefrontTracer;
-  double materialPassCompileMilliseconds = 0.0;
   stats.shading = shadingName(options_.shading);
   if (wavefront) {
     wavefrontTracer.emplace(context, compiler, textures.count(), shaderDefines, settings.width,
                             settings.height, floor ? nullptr : &materials);
-    materialPassCompileMilliseconds = wavefrontTracer->materialShaderCompileMilliseconds();
+    // The wavefront has no callables: its material pipelines' compiles count in their place.
+    callableStats = wavefrontTracer->materialShaderStats();
   } else {
     pipeline.emplace(context, compiler, textures.count(),
                      materialCallables ? &*materialCallables : nullptr, pipelineThreads,
@@ -348,10 +348,9 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   stats.pipelineCreateMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pipelineStart)
           .count() -
-      compiler.stats().compileMilliseconds - materialPassCompileMilliseconds;
-  stats.shaderCompileMilliseconds = compiler.stats().compileMilliseconds +
-                                    callableStats.compileMilliseconds +
-                                    materialPassCompileMilliseconds;
+      compiler.stats().compileMilliseconds - (wavefront ? callableStats.compileMilliseconds : 0.0);
+  stats.shaderCompileMilliseconds =
+      compiler.stats().compileMilliseconds + callableStats.compileMilliseconds;
   stats.shaderCacheHits = compiler.stats().hits + callableStats.hits;
   stats.shadersCompiled = compiler.stats().compiled + callableStats.compiled;
 

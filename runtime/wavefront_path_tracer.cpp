@@ -1,7 +1,6 @@
 #include "runtime/wavefront_path_tracer.h"
 
 #include <array>
-#include <chrono>
 #include <cstddef>
 #include <stdexcept>
 
@@ -149,8 +148,6 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   // material callable is), so no compile ever sees all of a scene's graphs: the query
   // backend's megakernel inlines every one (the classroom's 88 do not compile on lavapipe).
   if (materials) {
-    const auto compileStart = std::chrono::steady_clock::now();
-    double pipelineMilliseconds = 0.0;
     for (const DistinctMaterial& material : materials->distinct) {
       std::vector<std::string> materialDefines = defines;
       materialDefines.push_back(kPassDefines[gpu::kWavefrontMaterial]);
@@ -160,17 +157,12 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
       auto module = createShaderModule(
           device,
           materialCompiler.compile({"wavefront.glsl", ShaderStage::Compute, materialDefines}));
-      const auto pipelineStart = std::chrono::steady_clock::now();
+      materialShaderStats_.hits += materialCompiler.stats().hits;
+      materialShaderStats_.compiled += materialCompiler.stats().compiled;
+      materialShaderStats_.compileMilliseconds += materialCompiler.stats().compileMilliseconds;
       materialPasses_.push_back(createComputePipeline(
           device, module.get(), layout_.get(), ("wavefront material " + material.name).c_str()));
-      pipelineMilliseconds += std::chrono::duration<double, std::milli>(
-                                  std::chrono::steady_clock::now() - pipelineStart)
-                                  .count();
     }
-    materialCompileMilliseconds_ =
-        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - compileStart)
-            .count() -
-        pipelineMilliseconds;
   }
   if (query_)
     return;

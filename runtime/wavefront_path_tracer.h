@@ -52,8 +52,8 @@ class WavefrontPathTracer {
   // Hits each bin's material pass evaluated in the last frame record() recorded (read after
   // it completed); empty with the floor.
   std::vector<std::uint32_t> binHits() const;
-  // Time spent compiling the material pipelines' GLSL (they have compilers of their own).
-  double materialShaderCompileMilliseconds() const { return materialCompileMilliseconds_; }
+  // The material pipelines' GLSL compiles (they have compilers of their own).
+  const ShaderCacheStats& materialShaderStats() const { return materialShaderStats_; }
 
   // Records one frame: P rounds of one path per pixel, each generate, L x (trace, [bin count,
   // bin offsets, bin scatter, material passes,] shade, queue, shadow), finish, with a barrier
@@ -76,7 +76,7 @@ class WavefrontPathTracer {
   std::vector<VulkanHandle<VkPipeline>> computePasses_;
   // One a distinct material graph (material bin), indexed by bin; empty with the floor.
   std::vector<VulkanHandle<VkPipeline>> materialPasses_;
-  double materialCompileMilliseconds_ = 0.0;
+  ShaderCacheStats materialShaderStats_;
   VulkanHandle<VkPipeline> rayTracing_;  // pipeline backend: the trace and shadow raygens
   GpuBuffer shaderBindingTable_;
   VkStridedDeviceAddressRegionKHR traceRaygenRegion_{};
