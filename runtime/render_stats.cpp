@@ -42,8 +42,8 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
          "blas_evictions,"
          "blas_build_gpu_ms,tlas_build_gpu_ms,culling_host_ms,shading,"
          "wavefront_generate_gpu_ms,wavefront_trace_gpu_ms,wavefront_shade_gpu_ms,"
-         "wavefront_queue_gpu_ms,wavefront_shadow_gpu_ms,wavefront_finish_gpu_ms,looks,"
-         "look_gpu_ms\n";
+         "wavefront_queue_gpu_ms,wavefront_shadow_gpu_ms,wavefront_finish_gpu_ms,"
+         "wavefront_bin_gpu_ms,wavefront_material_gpu_ms,looks,look_gpu_ms\n";
   const auto& a = s.accelerationStructures;
   for (const auto& f : s.frames) {
     double mraysPerSecond = f.gpuMilliseconds > 0 ? f.rays / (f.gpuMilliseconds * 1e3) : 0.0;
@@ -69,7 +69,8 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
         << f.tlasBuildMilliseconds << ',' << f.cullingHostMilliseconds << ',' << s.shading << ','
         << f.wavefrontGenerateMilliseconds << ',' << f.wavefrontTraceMilliseconds << ','
         << f.wavefrontShadeMilliseconds << ',' << f.wavefrontQueueMilliseconds << ','
-        << f.wavefrontShadowMilliseconds << ',' << f.wavefrontFinishMilliseconds << ',' << f.looks
+        << f.wavefrontShadowMilliseconds << ',' << f.wavefrontFinishMilliseconds << ','
+        << f.wavefrontBinMilliseconds << ',' << f.wavefrontMaterialMilliseconds << ',' << f.looks
         << ',' << f.lookMilliseconds << '\n';
   }
 }

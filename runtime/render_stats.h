@@ -81,6 +81,12 @@ struct FrameStats {
   double wavefrontQueueMilliseconds = 0.0;
   double wavefrontShadowMilliseconds = 0.0;
   double wavefrontFinishMilliseconds = 0.0;
+  // With material graphs: the three binning passes, and every bin's material pass.
+  double wavefrontBinMilliseconds = 0.0;
+  double wavefrontMaterialMilliseconds = 0.0;
+  // Hits each material bin (distinct graph, in LinkedMaterials::distinct order) evaluated
+  // over the frame's rounds and bounces. Not in the CSV.
+  std::vector<std::uint32_t> wavefrontBinHits;
   double cacheHitRate() const { return cacheLookups ? double(cacheHits) / cacheLookups : 0.0; }
 };
 

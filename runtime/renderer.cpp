@@ -115,9 +115,7 @@ Shading parseShading(const std::string& text) {
 void validateWavefrontOptions(const RendererOptions& options) {
   if (options.shading != Shading::Wavefront)
     return;
-  const std::string prefix = "--shading wavefront is a prototype of the free-material floor: ";
-  if (!options.floorMaterials)
-    throw std::invalid_argument(prefix + "it needs --floor-materials");
+  const std::string prefix = "--shading wavefront is a prototype: ";
   if (options.cache.mode != CacheMode::None)
     throw std::invalid_argument(prefix + "it has no cache (--cache none)");
   if (options.culling.mode != CullingMode::None)
@@ -204,7 +202,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   linkOptions.nodeLibraryDirectory = options_.nodeLibraryDirectory;
   LinkedMaterials materials = linkMaterials(scene.materials, linkOptions);
   const std::size_t distinctMaterials = materials.distinct.size();
-  if (dispatch == MaterialDispatch::Switch && !options_.floorMaterials &&
+  // The wavefront compiles each graph into a pipeline of its own: no switch to outgrow.
+  if (dispatch == MaterialDispatch::Switch && !options_.floorMaterials && !wavefront &&
       context.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU && options_.cpuSwitchMaterialLimit > 0 &&
       distinctMaterials > options_.cpuSwitchMaterialLimit) {
     // Fail in a second rather than after minutes and gigabytes of LLVM.
@@ -216,7 +215,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
         context.info().name + " (about 110 MB per material). Render with " +
         (context.backend() == Backend::RayQuery
              ? std::string("--backend pipeline, which compiles one small callable shader per "
-                           "material")
+                           "material, or --shading wavefront, one small pipeline per material")
              : std::string("--material-dispatch callable (the pipeline backend's default)")) +
         " (library callers: or raise RendererOptions::cpuSwitchMaterialLimit, now " +
         std::to_string(options_.cpuSwitchMaterialLimit) + ")");
@@ -266,8 +265,9 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   std::map<std::string, std::string> files = embeddedShaderFiles();
   // The floor run compiles no graph: the prelude (types, defaults) and no callables.
   const bool floor = options_.floorMaterials;
-  bool callables = dispatch == MaterialDispatch::Callable && !floor;
-  stats.materialDispatch = floor ? "floor" : materialDispatchName(dispatch);
+  // The wavefront evaluates graphs in material passes of its own, on either backend.
+  bool callables = dispatch == MaterialDispatch::Callable && !floor && !wavefront;
+  stats.materialDispatch = floor ? "floor" : wavefront ? "batched" : materialDispatchName(dispatch);
   ShaderCacheStats callableStats;
   std::optional<MaterialCallables> materialCallables;
   // MaterialInputs without the object-space members when no graph reads them: the callable
@@ -284,7 +284,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     callableOptions.threads = options_.shaderCompileThreads;
     materialCallables = compileMaterialCallables(materials, callableOptions, callableStats);
   }
-  files["materials.glsl"] = callables || floor ? materials.preludeSource : materials.source;
+  files["materials.glsl"] =
+      callables || floor || wavefront ? materials.preludeSource : materials.source;
   ShaderCompiler compiler(std::move(files), cacheDirectory);
   auto pipelineStart = std::chrono::steady_clock::now();
   std::uint32_t threads = options_.shaderCompileThreads
@@ -318,8 +319,13 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   // have such emitters (path_tracer.glsl).
   if (buffers.emissiveTriangles)
     shaderDefines.push_back("MG_EMISSIVE_NEE=1");
-  if (buffers.neeEvaluatesEmission && !floor)
+  if (buffers.neeEvaluatesEmission && !floor) {
+    if (wavefront)
+      throw std::invalid_argument(
+          "--shading wavefront evaluates no emitter's graph for a light sample, and this "
+          "scene's emission is not a known constant; use --shading megakernel");
     shaderDefines.push_back("MG_NEE_EVALUATES_EMISSION=1");
+  }
   // LiPaC's hit counters and the counting-box probe, only where LiPaC runs.
   if (hitFeedback)
     shaderDefines.push_back("MG_HIT_FEEDBACK=1");
@@ -329,7 +335,9 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   stats.shading = shadingName(options_.shading);
   if (wavefront) {
     wavefrontTracer.emplace(context, compiler, textures.count(), shaderDefines, settings.width,
-                            settings.height);
+                            settings.height, floor ? nullptr : &materials);
+    // The wavefront has no callables: its material pipelines' compiles count in their place.
+    callableStats = wavefrontTracer->materialShaderStats();
   } else {
     pipeline.emplace(context, compiler, textures.count(),
                      materialCallables ? &*materialCallables : nullptr, pipelineThreads,
@@ -340,7 +348,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   stats.pipelineCreateMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pipelineStart)
           .count() -
-      compiler.stats().compileMilliseconds;
+      compiler.stats().compileMilliseconds - (wavefront ? callableStats.compileMilliseconds : 0.0);
   stats.shaderCompileMilliseconds =
       compiler.stats().compileMilliseconds + callableStats.compileMilliseconds;
   stats.shaderCacheHits = compiler.stats().hits + callableStats.hits;
@@ -386,7 +394,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   constexpr std::uint32_t kFirstWavefrontTimestamp = 5;
   const std::uint32_t wavefrontTimestamps =
       wavefrontTracer
-          ? WavefrontPathTracer::timestampCount(settings.pathsPerPixel, settings.raysPerPath)
+          ? wavefrontTracer->timestampCount(settings.pathsPerPixel, settings.raysPerPath)
           : 0;
   const std::uint32_t timestampCount = kFirstWavefrontTimestamp + wavefrontTimestamps;
   if (timestamps) {
@@ -545,6 +553,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     frameStats.cacheTileFallbacks = counters.cacheTileFallbacks;
     frameStats.cacheTileRepacks = counters.cacheTileRepacks;
     frameStats.cacheTilesPublished = counters.cacheTilesPublished;
+    if (wavefrontTracer)
+      frameStats.wavefrontBinHits = wavefrontTracer->binHits();
     if (timestamps) {
       std::uint64_t ticks[5] = {0, 0, 0, 0, 0};
       const std::uint32_t queries = dynamicAccel ? 5 : 2;
@@ -565,8 +575,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                                       passTicks.data(), sizeof(std::uint64_t),
                                       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
                 "vkGetQueryPoolResults (wavefront passes)");
-        WavefrontPathTracer::addPassTimes(passTicks, settings.pathsPerPixel, settings.raysPerPath,
-                                          period, frameStats);
+        wavefrontTracer->addPassTimes(passTicks, settings.pathsPerPixel, settings.raysPerPath,
+                                      period, frameStats);
       }
     }
     if (look.blasBytes > 0) {

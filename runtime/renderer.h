@@ -38,7 +38,7 @@ constexpr std::size_t kManyMaterialGraphs = 8;
 // How the path tracer is organised (docs/architecture.md, "Material-coherent shading"):
 // one kernel that runs each path to its end, or passes over queues of paths with their state
 // in memory (Laine, Karras and Aila, "Megakernels Considered Harmful", HPG 2013). The
-// wavefront is a prototype for the free-material floor only.
+// wavefront is a prototype (with the floor's constants or the scene's graphs).
 enum class Shading { Megakernel, Wavefront };
 const char* shadingName(Shading shading);
 // "megakernel" or "wavefront"; throws std::invalid_argument naming the choices.

@@ -212,6 +212,12 @@ ShaderCompiler::ShaderCompiler(std::map<std::string, std::string> files,
                                std::filesystem::path cacheDirectory)
     : files_(std::move(files)), cacheDirectory_(std::move(cacheDirectory)) {}
 
+ShaderCompiler ShaderCompiler::withFile(const std::string& name, std::string text) const {
+  std::map<std::string, std::string> files = files_;
+  files[name] = std::move(text);
+  return ShaderCompiler(std::move(files), cacheDirectory_);
+}
+
 std::vector<std::uint32_t> ShaderCompiler::compile(const ShaderCompileRequest& request) {
   auto entry = files_.find(request.entryFile);
   if (entry == files_.end())

@@ -39,6 +39,10 @@ class ShaderCompiler {
 
   const ShaderCacheStats& stats() const { return stats_; }
 
+  // A compiler that sees this one's files plus `name` (replacing one of that name): one
+  // generated include per shader, as the per-material shaders need, with fresh statistics.
+  ShaderCompiler withFile(const std::string& name, std::string text) const;
+
  private:
   std::map<std::string, std::string> files_;
   std::filesystem::path cacheDirectory_;

@@ -15,30 +15,47 @@ namespace {
 
 // The define that selects each pass of wavefront.glsl, indexed by gpu::kWavefront*.
 constexpr std::array<const char*, gpu::kWavefrontPassCount> kPassDefines = {
-    "MG_WAVEFRONT_GENERATE=1", "MG_WAVEFRONT_TRACE=1",  "MG_WAVEFRONT_SHADE=1",
-    "MG_WAVEFRONT_QUEUE=1",    "MG_WAVEFRONT_SHADOW=1", "MG_WAVEFRONT_FINISH=1"};
+    "MG_WAVEFRONT_GENERATE=1",  "MG_WAVEFRONT_TRACE=1",       "MG_WAVEFRONT_SHADE=1",
+    "MG_WAVEFRONT_QUEUE=1",     "MG_WAVEFRONT_SHADOW=1",      "MG_WAVEFRONT_FINISH=1",
+    "MG_WAVEFRONT_BIN_COUNT=1", "MG_WAVEFRONT_BIN_OFFSETS=1", "MG_WAVEFRONT_BIN_SCATTER=1",
+    "MG_WAVEFRONT_MATERIAL=1"};
 constexpr std::array<const char*, gpu::kWavefrontPassCount> kPassNames = {
-    "wavefront generate", "wavefront trace",  "wavefront shade",
-    "wavefront queue",    "wavefront shadow", "wavefront finish"};
+    "wavefront generate",    "wavefront trace",   "wavefront shade",     "wavefront queue",
+    "wavefront shadow",      "wavefront finish",  "wavefront bin count", "wavefront bin offsets",
+    "wavefront bin scatter", "wavefront material"};
 
-// Where each pass's GPU time goes in FrameStats, indexed by gpu::kWavefront*.
+// Where each pass's GPU time goes in FrameStats, indexed by gpu::kWavefront*: the three
+// binning passes together, the material passes of a bounce together.
 constexpr std::array<double FrameStats::*, gpu::kWavefrontPassCount> kPassTimes = {
     &FrameStats::wavefrontGenerateMilliseconds, &FrameStats::wavefrontTraceMilliseconds,
     &FrameStats::wavefrontShadeMilliseconds,    &FrameStats::wavefrontQueueMilliseconds,
-    &FrameStats::wavefrontShadowMilliseconds,   &FrameStats::wavefrontFinishMilliseconds};
+    &FrameStats::wavefrontShadowMilliseconds,   &FrameStats::wavefrontFinishMilliseconds,
+    &FrameStats::wavefrontBinMilliseconds,      &FrameStats::wavefrontBinMilliseconds,
+    &FrameStats::wavefrontBinMilliseconds,      &FrameStats::wavefrontMaterialMilliseconds};
+
+// The bytes of a bin's record after gpu::WavefrontControl: its material pass's dispatch
+// arguments and its counts (shared_types.h).
+constexpr std::uint64_t kBinRecordBytes = 2 * 16;
 
 std::uint32_t workgroupsFor(std::uint64_t invocations) {
   return static_cast<std::uint32_t>((invocations + gpu::kWavefrontWorkgroupSize - 1) /
                                     gpu::kWavefrontWorkgroupSize);
 }
 
-// The passes of a frame in recording order (the timestamp after each says when it ended).
-std::vector<std::uint32_t> framePasses(std::uint32_t paths, std::uint32_t bounces) {
+// The passes of a frame in recording order (the timestamp after each says when it ended);
+// kWavefrontMaterial stands for every bin's material pass of the bounce.
+std::vector<std::uint32_t> framePasses(std::uint32_t paths, std::uint32_t bounces, bool materials) {
   std::vector<std::uint32_t> passes;
   for (std::uint32_t round = 0; round < paths; ++round) {
     passes.push_back(gpu::kWavefrontGenerate);
     for (std::uint32_t bounce = 0; bounce < bounces; ++bounce) {
       passes.push_back(gpu::kWavefrontTrace);
+      if (materials) {
+        passes.push_back(gpu::kWavefrontBinCount);
+        passes.push_back(gpu::kWavefrontBinOffsets);
+        passes.push_back(gpu::kWavefrontBinScatter);
+        passes.push_back(gpu::kWavefrontMaterial);
+      }
       passes.push_back(gpu::kWavefrontShade);
       passes.push_back(gpu::kWavefrontQueue);
       passes.push_back(gpu::kWavefrontShadow);
@@ -53,7 +70,8 @@ std::vector<std::uint32_t> framePasses(std::uint32_t paths, std::uint32_t bounce
 WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCompiler& compiler,
                                          std::uint32_t textureCount,
                                          const std::vector<std::string>& extraDefines,
-                                         std::uint32_t width, std::uint32_t height)
+                                         std::uint32_t width, std::uint32_t height,
+                                         const LinkedMaterials* materials)
     : context_(context), query_(context.backend() == Backend::RayQuery), slots_(width * height) {
   VkDevice device = context.device();
   if (!query_ && !context.info().traceRaysIndirect)
@@ -67,22 +85,30 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
                                 " image needs more compute work groups in a row than the "
                                 "device has; render a smaller image");
 
-  // The path state (kPathStateFields vec4 a slot), the queues (two live, one shadow; a uint a
-  // slot) and the control block; each bound whole, so each must fit a storage binding.
-  const std::uint64_t stateBytes = std::uint64_t(slots_) * gpu::kPathStateFields * 16;
-  checkBufferSize(context, stateBytes,
-                  "--shading wavefront's path state (" + std::to_string(gpu::kPathStateFields) +
-                      " x 16 bytes a pixel)",
-                  true);
+  // The path state (vec4 fields a slot, four more for material outputs), the queues (two
+  // live, one shadow, with materials the material-sorted one; a uint a slot) and the control
+  // block (with a record a material bin); each bound whole, so each must fit a storage
+  // binding. Bins are distinct graphs: materials sharing a graph share its pipeline.
+  const std::uint32_t bins = materials ? static_cast<std::uint32_t>(materials->distinct.size()) : 0;
+  const std::uint32_t fields =
+      materials ? gpu::kPathStateFieldsWithMaterials : gpu::kPathStateFields;
+  const std::uint64_t stateBytes = std::uint64_t(slots_) * fields * 16;
+  checkBufferSize(
+      context, stateBytes,
+      "--shading wavefront's path state (" + std::to_string(fields) + " x 16 bytes a pixel)", true);
   pathState_ = GpuBuffer(context, stateBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                          VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  pathQueues_ = GpuBuffer(context, std::uint64_t(slots_) * 3 * sizeof(std::uint32_t),
-                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  control_ = GpuBuffer(context, sizeof(gpu::WavefrontControl),
+  pathQueues_ =
+      GpuBuffer(context, std::uint64_t(slots_) * (materials ? 4 : 3) * sizeof(std::uint32_t),
+                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  control_ = GpuBuffer(context, sizeof(gpu::WavefrontControl) + bins * kBinRecordBytes,
                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
-                           VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                           VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                           VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
 
+  if (bins > 0)
+    binReadback_ = hostBuffer(context, bins * kBinRecordBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
   VkShaderStageFlags stages = query_ ? VK_SHADER_STAGE_COMPUTE_BIT
                                      : VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_RAYGEN_BIT_KHR;
   setLayout_ = createTraceSetLayout(device, stages, textureCount, false, true);
@@ -91,12 +117,23 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   std::vector<std::string> defines = {"MG_TEXTURE_COUNT=" + std::to_string(textureCount),
                                       query_ ? "MG_BACKEND_QUERY=1" : "MG_BACKEND_PIPELINE=1"};
   defines.insert(defines.end(), extraDefines.begin(), extraDefines.end());
+  if (materials) {
+    // Scene material id -> bin (its distinct graph), for the binning passes' lookup.
+    std::string binOf = "uint[](";
+    for (std::size_t i = 0; i < materials->materials.size(); ++i)
+      binOf += (i ? ", " : "") + std::to_string(materials->materials[i].distinctIndex) + "u";
+    defines.push_back("MG_MATERIAL_COUNT=" + std::to_string(materials->materials.size()));
+    defines.push_back("MG_MATERIAL_BIN_COUNT=" + std::to_string(bins));
+    defines.push_back("MG_MATERIAL_BIN_OF=" + binOf + ")");
+  }
   const bool computeSubgroups =
       (context.info().subgroupArithmeticStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0;
   computePasses_.resize(gpu::kWavefrontPassCount);
   for (std::uint32_t pass = 0; pass < gpu::kWavefrontPassCount; ++pass) {
     const bool traces = pass == gpu::kWavefrontTrace || pass == gpu::kWavefrontShadow;
-    if (traces && !query_)
+    const bool binning = pass == gpu::kWavefrontBinCount || pass == gpu::kWavefrontBinOffsets ||
+                         pass == gpu::kWavefrontBinScatter;
+    if ((traces && !query_) || (binning && !materials) || pass == gpu::kWavefrontMaterial)
       continue;
     std::vector<std::string> passDefines = defines;
     passDefines.push_back(kPassDefines[pass]);
@@ -106,6 +143,26 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
         device, compiler.compile({"wavefront.glsl", ShaderStage::Compute, passDefines}));
     computePasses_[pass] =
         createComputePipeline(device, module.get(), layout_.get(), kPassNames[pass]);
+  }
+  // One small pipeline per distinct graph, compiled with only that graph's include (as a
+  // material callable is), so no compile ever sees all of a scene's graphs: the query
+  // backend's megakernel inlines every one (the classroom's 88 do not compile on lavapipe).
+  if (materials) {
+    for (const DistinctMaterial& material : materials->distinct) {
+      std::vector<std::string> materialDefines = defines;
+      materialDefines.push_back(kPassDefines[gpu::kWavefrontMaterial]);
+      materialDefines.push_back("MG_TEXTURE_BASE=" + std::to_string(material.textureBase));
+      materialDefines.push_back("MG_EVALUATE_MATERIAL=EvaluateMaterial_" + material.name);
+      ShaderCompiler materialCompiler = compiler.withFile("material.glsl", material.include);
+      auto module = createShaderModule(
+          device,
+          materialCompiler.compile({"wavefront.glsl", ShaderStage::Compute, materialDefines}));
+      materialShaderStats_.hits += materialCompiler.stats().hits;
+      materialShaderStats_.compiled += materialCompiler.stats().compiled;
+      materialShaderStats_.compileMilliseconds += materialCompiler.stats().compileMilliseconds;
+      materialPasses_.push_back(createComputePipeline(
+          device, module.get(), layout_.get(), ("wavefront material " + material.name).c_str()));
+    }
   }
   if (query_)
     return;
@@ -141,8 +198,10 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   hitRegion_ = table.regions[3];
 }
 
-std::uint32_t WavefrontPathTracer::timestampCount(std::uint32_t paths, std::uint32_t bounces) {
-  return 1 + static_cast<std::uint32_t>(framePasses(paths, bounces).size());
+std::uint32_t WavefrontPathTracer::timestampCount(std::uint32_t paths,
+                                                  std::uint32_t bounces) const {
+  return 1 +
+         static_cast<std::uint32_t>(framePasses(paths, bounces, !materialPasses_.empty()).size());
 }
 
 void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pass,
@@ -167,6 +226,18 @@ void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pas
         &missRegion_, &hitRegion_, &callables, launch);
     return;
   }
+  if (pass == gpu::kWavefrontMaterial) {
+    // Every bin's graph over its batch, each sized by the offsets pass; the bins' slots are
+    // disjoint, so no barrier between them.
+    for (std::uint32_t bin = 0; bin < materialPasses_.size(); ++bin) {
+      push.step.w = bin;
+      vkCmdPushConstants(commands, layout_.get(), stages, 0, sizeof push, &push);
+      vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, materialPasses_[bin].get());
+      vkCmdDispatchIndirect(commands, control_.buffer(),
+                            sizeof(gpu::WavefrontControl) + bin * kBinRecordBytes);
+    }
+    return;
+  }
   vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, computePasses_[pass].get());
   switch (pass) {
     case gpu::kWavefrontGenerate:
@@ -174,13 +245,14 @@ void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pas
       vkCmdDispatch(commands, workgroupsFor(slots_), 1, 1);
       break;
     case gpu::kWavefrontQueue:
+    case gpu::kWavefrontBinOffsets:
       vkCmdDispatch(commands, 1, 1, 1);
       break;
     case gpu::kWavefrontShadow:
       vkCmdDispatchIndirect(commands, control_.buffer(),
                             offsetof(gpu::WavefrontControl, shadowGroups));
       break;
-    default:  // trace and shade: over the live queue
+    default:  // trace, shade, bin count and scatter: over the live queue
       vkCmdDispatchIndirect(commands, control_.buffer(),
                             offsetof(gpu::WavefrontControl, liveGroups));
       break;
@@ -195,16 +267,26 @@ void WavefrontPathTracer::record(VkCommandBuffer commands, VkDescriptorSet set, 
   if (!query_)
     vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, layout_.get(), 0, 1,
                             &set, 0, nullptr);
+  const bool materials = !materialPasses_.empty();
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  if (materials) {
+    // The bins' counters and frame sums start from 0.
+    vkCmdFillBuffer(commands, control_.buffer(), 0, VK_WHOLE_SIZE, 0);
+    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                         VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0, nullptr, 0,
+                         nullptr);
+  }
   std::uint32_t query = firstQuery;
   if (timestamps)
     vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps, query++);
   // Every pass reads what the one before wrote, the indirect ones their arguments too.
-  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
   barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
   barrier.dstAccessMask =
       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
   std::uint32_t round = 0, bounce = 0;
-  for (std::uint32_t pass : framePasses(paths, bounces)) {
+  for (std::uint32_t pass : framePasses(paths, bounces, !materialPasses_.empty())) {
     recordPass(commands, pass, round, bounce);
     if (timestamps)
       vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, query++);
@@ -218,12 +300,32 @@ void WavefrontPathTracer::record(VkCommandBuffer commands, VkDescriptorSet set, 
       bounce = 0;
     }
   }
+  if (materials) {
+    // The last pass's barrier made its writes visible to shaders; the copy is a transfer.
+    barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+    VkBufferCopy copy{sizeof(gpu::WavefrontControl), 0, materialPasses_.size() * kBinRecordBytes};
+    vkCmdCopyBuffer(commands, control_.buffer(), binReadback_.buffer(), 1, &copy);
+  }
+}
+
+std::vector<std::uint32_t> WavefrontPathTracer::binHits() const {
+  std::vector<std::uint32_t> hits;
+  if (materialPasses_.empty())
+    return hits;
+  std::vector<glm::uvec4> records(materialPasses_.size() * 2);
+  binReadback_.read(records.data(), records.size() * sizeof(glm::uvec4));
+  for (std::size_t bin = 0; bin < materialPasses_.size(); ++bin)
+    hits.push_back(records[2 * bin].w);
+  return hits;
 }
 
 void WavefrontPathTracer::addPassTimes(const std::vector<std::uint64_t>& ticks, std::uint32_t paths,
                                        std::uint32_t bounces, double millisecondsPerTick,
-                                       FrameStats& frame) {
-  const auto passes = framePasses(paths, bounces);
+                                       FrameStats& frame) const {
+  const auto passes = framePasses(paths, bounces, !materialPasses_.empty());
   if (ticks.size() < passes.size() + 1)
     return;
   for (std::size_t i = 0; i < passes.size(); ++i) {

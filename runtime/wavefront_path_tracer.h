@@ -1,8 +1,9 @@
 // The wavefront path tracer on the host (--shading wavefront): the passes of
 // shaders/wavefront.glsl, their buffers (path state, queues, indirect arguments) and the
-// command sequence of a frame, with a timestamp after every pass. A prototype for the
-// free-material floor, to measure memory-resident path state against the megakernel
-// (Laine, Karras and Aila, "Megakernels Considered Harmful", HPG 2013).
+// command sequence of a frame, with a timestamp after every pass. Memory-resident path state
+// against the megakernel (Laine, Karras and Aila, "Megakernels Considered Harmful", HPG
+// 2013): with the free-material floor's constants, or with the scene's material graphs,
+// each evaluated by a small compute pipeline of its own over the hits sorted by material.
 #pragma once
 
 #include <cstdint>
@@ -12,6 +13,7 @@
 #include <vulkan/vulkan.h>
 
 #include "runtime/gpu_buffer.h"
+#include "runtime/material_linker.h"
 #include "runtime/render_stats.h"
 #include "runtime/shader_compiler.h"
 #include "runtime/vulkan_context.h"
@@ -25,10 +27,14 @@ class WavefrontPathTracer {
   // backend; on the pipeline backend trace and shadow are the raygens of one ray-tracing
   // pipeline, launched with vkCmdTraceRaysIndirectKHR (refused, std::runtime_error, where the
   // device lacks it). `extraDefines` as the megakernel's (floor, NEE, object inputs).
-  // Throws std::invalid_argument when a round's paths do not fit the device.
+  // `materials` null: the floor (MG_MATERIAL_FLOOR in extraDefines); otherwise the scene's
+  // linked graphs, one material pipeline per distinct graph, compiled from `compiler`'s files
+  // plus that graph's include. Throws std::invalid_argument when a round's paths do not fit
+  // the device.
   WavefrontPathTracer(const VulkanContext& context, ShaderCompiler& compiler,
                       std::uint32_t textureCount, const std::vector<std::string>& extraDefines,
-                      std::uint32_t width, std::uint32_t height);
+                      std::uint32_t width, std::uint32_t height,
+                      const LinkedMaterials* materials = nullptr);
 
   VkDescriptorSetLayout descriptorSetLayout() const { return setLayout_.get(); }
   const GpuBuffer& pathState() const { return pathState_; }
@@ -37,17 +43,28 @@ class WavefrontPathTracer {
 
   // Timestamps record() writes into its pool from `firstQuery` on: one before the first pass,
   // one after each pass.
-  static std::uint32_t timestampCount(std::uint32_t paths, std::uint32_t bounces);
+  std::uint32_t timestampCount(std::uint32_t paths, std::uint32_t bounces) const;
 
-  // Records one frame: P rounds of one path per pixel, each generate, L x (trace, shade,
-  // queue, shadow), finish, with a barrier between passes. `timestamps` VK_NULL_HANDLE: none.
+  // Material bins (distinct graphs, each a material pipeline); 0 with the floor.
+  std::uint32_t materialBinCount() const {
+    return static_cast<std::uint32_t>(materialPasses_.size());
+  }
+  // Hits each bin's material pass evaluated in the last frame record() recorded (read after
+  // it completed); empty with the floor.
+  std::vector<std::uint32_t> binHits() const;
+  // The material pipelines' GLSL compiles (they have compilers of their own).
+  const ShaderCacheStats& materialShaderStats() const { return materialShaderStats_; }
+
+  // Records one frame: P rounds of one path per pixel, each generate, L x (trace, [bin count,
+  // bin offsets, bin scatter, material passes,] shade, queue, shadow), finish, with a barrier
+  // between passes. `timestamps` VK_NULL_HANDLE: none.
   void record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t paths,
               std::uint32_t bounces, VkQueryPool timestamps, std::uint32_t firstQuery) const;
 
   // Adds the passes' GPU times to `frame` (its wavefront*Milliseconds) from the timestamps
   // record() wrote, read back as `ticks` (timestampCount of them).
-  static void addPassTimes(const std::vector<std::uint64_t>& ticks, std::uint32_t paths,
-                           std::uint32_t bounces, double millisecondsPerTick, FrameStats& frame);
+  void addPassTimes(const std::vector<std::uint64_t>& ticks, std::uint32_t paths,
+                    std::uint32_t bounces, double millisecondsPerTick, FrameStats& frame) const;
 
  private:
   const VulkanContext& context_;
@@ -57,6 +74,9 @@ class WavefrontPathTracer {
   VulkanHandle<VkPipelineLayout> layout_;
   // Indexed by gpu::kWavefront*; trace and shadow empty on the pipeline backend.
   std::vector<VulkanHandle<VkPipeline>> computePasses_;
+  // One a distinct material graph (material bin), indexed by bin; empty with the floor.
+  std::vector<VulkanHandle<VkPipeline>> materialPasses_;
+  ShaderCacheStats materialShaderStats_;
   VulkanHandle<VkPipeline> rayTracing_;  // pipeline backend: the trace and shadow raygens
   GpuBuffer shaderBindingTable_;
   VkStridedDeviceAddressRegionKHR traceRaygenRegion_{};
@@ -66,6 +86,7 @@ class WavefrontPathTracer {
   GpuBuffer pathState_;
   GpuBuffer pathQueues_;
   GpuBuffer control_;
+  GpuBuffer binReadback_;  // host-visible copy of the bins' records after a frame
 
   void recordPass(VkCommandBuffer commands, std::uint32_t pass, std::uint32_t round,
                   std::uint32_t bounce) const;

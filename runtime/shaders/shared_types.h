@@ -91,7 +91,8 @@ MG_CONSTANT(uint, kFillRowInvocations, 4096);
 MG_CONSTANT(uint, kFillWorkgroupSize, 64);
 
 // The wavefront path tracer's passes (MG_WAVEFRONT_PASS, wavefront.glsl), in the order one
-// bounce records them: generate once a round, then trace, shade, queue and shadow per bounce,
+// bounce records them: generate once a round, then trace, (with material graphs: bin count,
+// bin offsets, bin scatter, one material pass per graph,) shade, queue and shadow per bounce,
 // finish once a round.
 MG_CONSTANT(uint, kWavefrontGenerate, 0);
 MG_CONSTANT(uint, kWavefrontTrace, 1);
@@ -99,7 +100,11 @@ MG_CONSTANT(uint, kWavefrontShade, 2);
 MG_CONSTANT(uint, kWavefrontQueue, 3);
 MG_CONSTANT(uint, kWavefrontShadow, 4);
 MG_CONSTANT(uint, kWavefrontFinish, 5);
-MG_CONSTANT(uint, kWavefrontPassCount, 6);
+MG_CONSTANT(uint, kWavefrontBinCount, 6);
+MG_CONSTANT(uint, kWavefrontBinOffsets, 7);
+MG_CONSTANT(uint, kWavefrontBinScatter, 8);
+MG_CONSTANT(uint, kWavefrontMaterial, 9);
+MG_CONSTANT(uint, kWavefrontPassCount, 10);
 // Compute work-group size of the wavefront passes (one invocation per queued path).
 MG_CONSTANT(uint, kWavefrontWorkgroupSize, 64);
 // vec4 fields of a path's state: origin and cone width, direction and cone spread,
@@ -107,10 +112,16 @@ MG_CONSTANT(uint, kWavefrontWorkgroupSize, 64);
 // barycentrics as bits), the shadow ray's origin and length, its direction, the contribution
 // it brings when unblocked, and the pixel's sum over the rounds.
 MG_CONSTANT(uint, kPathStateFields, 9);
+// With material graphs, four more: the material's outputs at the hit (what the shade pass's
+// BSDF needs), written by the material passes.
+MG_CONSTANT(uint, kPathStateFieldsWithMaterials, 13);
 
 // The wavefront's queue counts and indirect arguments (binding kBindingWavefrontControl).
 // Each launch block is a VkDispatchIndirectCommand (work groups) or a
-// VkTraceRaysIndirectCommandKHR (invocations) in its xyz.
+// VkTraceRaysIndirectCommandKHR (invocations) in its xyz. With material graphs the block
+// goes on with two uvec4 per material bin (one bin per distinct graph): the bin's material
+// pass's VkDispatchIndirectCommand, then (hits counted, first place in the material-sorted
+// queue, scatter cursor, hits in the batch).
 struct WavefrontControl {
   uvec4 counts;        // x: paths in the live queue, y: appended to the next, z: shadow rays
   uvec4 liveGroups;    // compute passes over the live queue
@@ -120,7 +131,7 @@ struct WavefrontControl {
 };
 // Push constants of every wavefront pass.
 struct WavefrontPush {
-  uvec4 step;  // x round (path index of every pixel), y bounce, z live queue (0 or 1), w unused
+  uvec4 step;  // x round (path index of every pixel), y bounce, z live queue (0 or 1), w bin
 };
 
 // FrameConstants::flags bits.

@@ -1,15 +1,22 @@
-// The wavefront path tracer (--shading wavefront; a prototype for the free-material floor,
-// MG_MATERIAL_FLOOR): the path loop of path_tracer.glsl split into passes that each run over
-// a queue of paths, with the paths' state in memory between them (Laine, Karras and Aila,
-// "Megakernels Considered Harmful", HPG 2013, §4). One source, one pass per compile,
-// selected by the host's define:
+// The wavefront path tracer (--shading wavefront): the path loop of path_tracer.glsl split
+// into passes that each run over a queue of paths, with the paths' state in memory between
+// them (Laine, Karras and Aila, "Megakernels Considered Harmful", HPG 2013, §4). One source,
+// one pass per compile, selected by the host's define:
 // - MG_WAVEFRONT_GENERATE: camera rays of one round (path `round` of every pixel) into the
 //   path state; the live queue holds every pixel;
 // - MG_WAVEFRONT_TRACE: the closest hit of every live path (the only passes besides the
 //   shadow pass that trace: a compute shader with ray queries, or the raygen of a ray-tracing
 //   pipeline launched indirectly);
-// - MG_WAVEFRONT_SHADE: the floor material, emission, one light sample (its shadow ray into
-//   the shadow queue) and the BSDF sample (the path into the next live queue);
+// - with material graphs (no MG_MATERIAL_FLOOR), the hits sorted by material and each
+//   material's graph evaluated for its batch (the paper's §4: one kernel per material):
+//   MG_WAVEFRONT_BIN_COUNT counts the live hits of each bin (one bin per distinct graph),
+//   MG_WAVEFRONT_BIN_OFFSETS turns the counts into an exclusive prefix sum and the bins'
+//   indirect arguments, MG_WAVEFRONT_BIN_SCATTER writes the hits' slots into the
+//   material-sorted queue, and MG_WAVEFRONT_MATERIAL (compiled once per distinct graph with
+//   only its include, "material.glsl") evaluates its bin's hits into the path state;
+// - MG_WAVEFRONT_SHADE: the material's outputs (the floor's constants, or the material
+//   pass's), emission, one light sample (its shadow ray into the shadow queue) and the BSDF
+//   sample (the path into the next live queue);
 // - MG_WAVEFRONT_QUEUE: one invocation turns the queues' counts into the next passes'
 //   indirect arguments;
 // - MG_WAVEFRONT_SHADOW: traces the queued shadow rays and adds the unblocked contributions;
@@ -24,9 +31,12 @@
 #ifdef MG_SUBGROUP_RAY_COUNT
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #endif
+#ifdef MG_WAVEFRONT_MATERIAL
+#extension GL_EXT_nonuniform_qualifier : require  // material_textures.glsl
+#endif
 
-#ifndef MG_MATERIAL_FLOOR
-#error the wavefront prototype shades the free-material floor only (MG_MATERIAL_FLOOR)
+#ifdef MG_NEE_EVALUATES_EMISSION
+#error the wavefront evaluates no emitter's graph for a light sample (MG_NEE_EVALUATES_EMISSION)
 #endif
 
 #define MG_RNG_COUNTER_BASED 1
@@ -47,7 +57,14 @@
 #endif
 
 #include "scene_bindings.glsl"
+#if defined(MG_MATERIAL_FLOOR)
 #include "material_floor.glsl"
+#elif defined(MG_WAVEFRONT_MATERIAL)
+// One distinct graph's include (the host's "material.glsl"; its EvaluateMaterial_<Name> is
+// MG_EVALUATE_MATERIAL, its first texture slot MG_TEXTURE_BASE), as a material callable has.
+#include "material.glsl"
+#include "material_textures.glsl"
+#endif
 #include "path_shading.glsl"
 
 layout(set = 0, binding = kBindingPathState, std430) buffer PathStateBlock {
@@ -58,6 +75,7 @@ layout(set = 0, binding = kBindingPathQueues, std430) buffer PathQueueBlock {
 };
 layout(set = 0, binding = kBindingWavefrontControl, std430) buffer WavefrontControlBlock {
   WavefrontControl control;
+  uvec4 materialBins[];  // two a bin (shared_types.h); none with the floor
 };
 layout(push_constant) uniform WavefrontPushBlock {
   WavefrontPush push;
@@ -74,6 +92,11 @@ const uint kFieldShadowOrigin = 5u;        // xyz origin, w length
 const uint kFieldShadowDirection = 6u;     // xyz direction
 const uint kFieldShadowContribution = 7u;  // rgb: what the shadow ray adds when unblocked
 const uint kFieldPixelSum = 8u;            // rgb: the pixel's radiance summed over rounds
+// With material graphs: the material's outputs at the hit (MaterialOutputs, 15 floats).
+const uint kFieldMaterialBase = 9u;        // baseColor, metallic
+const uint kFieldMaterialNormal = 10u;     // normal, roughness
+const uint kFieldMaterialEmission = 11u;   // emission, specular
+const uint kFieldMaterialRest = 12u;       // specularTint, cyclesPrincipled, opacity
 
 uint slotCount() {
   return frame.image.x * frame.image.y;
@@ -83,7 +106,8 @@ uint fieldIndex(uint field, uint slot) {
   return field * slotCount() + slot;
 }
 
-// Queue q: 0 and 1 the live queues (used in turn, bounce by bounce), 2 the shadow queue.
+// Queue q: 0 and 1 the live queues (used in turn, bounce by bounce), 2 the shadow queue, 3
+// (with material graphs) the live hits' slots sorted by material bin.
 uint queueIndex(uint queue, uint i) {
   return queue * slotCount() + i;
 }
@@ -138,6 +162,70 @@ void appendToQueue(uint queue, bool shadow, uint slot, bool append) {
 #endif
 }
 
+// The surface a live path's traced hit lies on (its ray, cone and hit from the path state),
+// as the megakernel's loop body builds it: the material passes and the shade pass both
+// start from here.
+SurfaceHit surfaceOfPath(uint slot, out vec3 origin, out vec3 direction, out RayCone cone) {
+  vec4 originField = pathState[fieldIndex(kFieldOrigin, slot)];
+  vec4 directionField = pathState[fieldIndex(kFieldDirection, slot)];
+  origin = originField.xyz;
+  direction = directionField.xyz;
+  uvec4 hitBits = floatBitsToUint(pathState[fieldIndex(kFieldHit, slot)]);
+  HitInfo hit;
+  hit.instanceIndex = hitBits.x;
+  hit.primitiveIndex = hitBits.y;
+  hit.barycentrics = uintBitsToFloat(hitBits.zw);
+  hit.t = pathState[fieldIndex(kFieldRadiance, slot)].w;
+  cone.width = originField.w;
+  cone.spread = directionField.w;
+  return surfaceAt(hit, origin, direction, cone);
+}
+
+#ifndef MG_MATERIAL_FLOOR
+// The material bin of a live path's hit (one bin per distinct graph; the host's
+// MG_MATERIAL_BIN_OF maps scene material ids to bins); kNoBin for a miss, or for a material
+// id past the scene's, which the shade pass gives the default outputs (as the switch does).
+const uint kNoBin = 0xffffffffu;
+const uint kBinOfMaterial[MG_MATERIAL_COUNT] = MG_MATERIAL_BIN_OF;
+
+uint binOfPath(uint slot) {
+  if (pathState[fieldIndex(kFieldRadiance, slot)].w < 0.0) return kNoBin;
+  uint instance = floatBitsToUint(pathState[fieldIndex(kFieldHit, slot)].x);
+  uint materialId = instances[instance].ids.y;
+  return materialId < uint(MG_MATERIAL_COUNT) ? kBinOfMaterial[materialId] : kNoBin;
+}
+#endif
+
+#if !defined(MG_MATERIAL_FLOOR) && (defined(MG_WAVEFRONT_MATERIAL) || defined(MG_WAVEFRONT_SHADE))
+// The material's outputs at a path's hit, from the material pass to the shade pass.
+void storeMaterialOutputs(uint slot, MaterialOutputs m) {
+  pathState[fieldIndex(kFieldMaterialBase, slot)] = vec4(m.baseColor, m.metallic);
+  pathState[fieldIndex(kFieldMaterialNormal, slot)] = vec4(m.normal, m.roughness);
+  pathState[fieldIndex(kFieldMaterialEmission, slot)] = vec4(m.emission, m.specular);
+  pathState[fieldIndex(kFieldMaterialRest, slot)] =
+      vec4(m.specularTint, m.cyclesPrincipled, m.opacity, 0.0);
+}
+
+MaterialOutputs loadMaterialOutputs(uint slot, SurfaceHit s) {
+  MaterialOutputs m = mg_defaultMaterialOutputs(s.inputs);
+  if (s.materialId >= uint(MG_MATERIAL_COUNT)) return m;  // no bin evaluated it
+  vec4 base = pathState[fieldIndex(kFieldMaterialBase, slot)];
+  vec4 normal = pathState[fieldIndex(kFieldMaterialNormal, slot)];
+  vec4 emission = pathState[fieldIndex(kFieldMaterialEmission, slot)];
+  vec4 rest = pathState[fieldIndex(kFieldMaterialRest, slot)];
+  m.baseColor = base.rgb;
+  m.metallic = base.w;
+  m.normal = normal.xyz;
+  m.roughness = normal.w;
+  m.emission = emission.rgb;
+  m.specular = emission.w;
+  m.specularTint = rest.x;
+  m.cyclesPrincipled = rest.y;
+  m.opacity = rest.z;
+  return m;
+}
+#endif
+
 #if defined(MG_WAVEFRONT_GENERATE)
 // Camera rays of round push.step.x: path `round` of every pixel, one slot per pixel.
 void main() {
@@ -176,6 +264,61 @@ void main() {
   pathState[fieldIndex(kFieldRadiance, slot)].w = hit.t;
 }
 
+#elif defined(MG_WAVEFRONT_BIN_COUNT)
+// Counts the live hits of each material bin (a miss is shaded without a material).
+void main() {
+  uint i = invocationIndex();
+  if (i >= control.counts.x) return;
+  uint bin = binOfPath(pathQueues[queueIndex(push.step.z, i)]);
+  if (bin != kNoBin) atomicAdd(materialBins[2u * bin + 1u].x, 1u);
+}
+
+#elif defined(MG_WAVEFRONT_BIN_OFFSETS)
+// The bins' counts into an exclusive prefix sum (each bin's first place in the material-
+// sorted queue) and each bin's material-pass arguments; the counters start again from 0 (the
+// host zeroes the records before a frame). The arguments' w sums the bin's hits over the
+// frame, for FrameStats. A few hundred bins at most: one invocation walks them.
+void main() {
+  if (invocationIndex() != 0u) return;
+  uint offset = 0u;
+  for (uint bin = 0u; bin < uint(MG_MATERIAL_BIN_COUNT); ++bin) {
+    uint count = materialBins[2u * bin + 1u].x;
+    uint frameHits = materialBins[2u * bin].w + count;
+    materialBins[2u * bin] = uvec4(workgroupsFor(count), 1u, 1u, frameHits);
+    materialBins[2u * bin + 1u] = uvec4(0u, offset, offset, count);
+    offset += count;
+  }
+}
+
+#elif defined(MG_WAVEFRONT_BIN_SCATTER)
+// The live hits' slots into the material-sorted queue, each at its bin's cursor.
+void main() {
+  uint i = invocationIndex();
+  if (i >= control.counts.x) return;
+  uint slot = pathQueues[queueIndex(push.step.z, i)];
+  uint bin = binOfPath(slot);
+  if (bin == kNoBin) return;
+  pathQueues[queueIndex(3u, atomicAdd(materialBins[2u * bin + 1u].z, 1u))] = slot;
+}
+
+#elif defined(MG_WAVEFRONT_MATERIAL)
+// One distinct graph over its bin's batch (bin push.step.w) of the material-sorted queue:
+// the material inputs built from the hit as the megakernel builds them, the graph's outputs
+// into the path state for the shade pass.
+void main() {
+  uvec4 bin = materialBins[2u * push.step.w + 1u];
+  uint i = invocationIndex();
+  if (i >= bin.w) return;
+  uint slot = pathQueues[queueIndex(3u, bin.y + i)];
+  vec3 origin, direction;
+  RayCone cone;
+  SurfaceHit s = surfaceOfPath(slot, origin, direction, cone);
+  s.inputs.textureBase = MG_TEXTURE_BASE;  // as the switch's case sets it
+  MaterialOutputs m;
+  MG_EVALUATE_MATERIAL(s.inputs, m);
+  storeMaterialOutputs(slot, m);
+}
+
 #elif defined(MG_WAVEFRONT_SHADE)
 // One vertex of every live path, as the megakernel's loop body shades it: a miss takes the
 // environment; a hit its floor material's emission, one light sample (queued as a shadow
@@ -187,30 +330,23 @@ void main() {
   bool queueShadow = false;
   bool queueNext = false;
   if (live) {
-    vec4 originField = pathState[fieldIndex(kFieldOrigin, slot)];
-    vec4 directionField = pathState[fieldIndex(kFieldDirection, slot)];
     vec4 throughputField = pathState[fieldIndex(kFieldThroughput, slot)];
     vec4 radianceField = pathState[fieldIndex(kFieldRadiance, slot)];
-    vec3 origin = originField.xyz;
-    vec3 direction = directionField.xyz;
     vec3 throughput = throughputField.rgb;
     float previousBsdfPdf = throughputField.w;
     vec3 radiance = radianceField.rgb;
     if (radianceField.w < 0.0) {
-      radiance += throughput * environmentRadiance(direction);
+      radiance += throughput * environmentRadiance(pathState[fieldIndex(kFieldDirection, slot)].xyz);
     } else {
-      uvec4 hitBits = floatBitsToUint(pathState[fieldIndex(kFieldHit, slot)]);
-      HitInfo hit;
-      hit.instanceIndex = hitBits.x;
-      hit.primitiveIndex = hitBits.y;
-      hit.barycentrics = uintBitsToFloat(hitBits.zw);
-      hit.t = radianceField.w;
+      vec3 origin, direction;
       RayCone cone;
-      cone.width = originField.w;
-      cone.spread = directionField.w;
-      SurfaceHit s = surfaceAt(hit, origin, direction, cone);
+      SurfaceHit s = surfaceOfPath(slot, origin, direction, cone);
       MaterialOutputs m;
+#ifdef MG_MATERIAL_FLOOR
       evaluateMaterialDirect(s.materialId, s.inputs, m);
+#else
+      m = loadMaterialOutputs(slot, s);
+#endif
       ShadingPoint p = shadingPointAt(s, m, direction);
       radiance += throughput * m.emission * emissionMisWeight(s, origin, direction, previousBsdfPdf);
 

@@ -268,7 +268,9 @@ int runBench(std::span<const std::string_view> args) {
                     << summary.medianWavefrontTraceMilliseconds << ", shade "
                     << summary.medianWavefrontShadeMilliseconds << ", shadow "
                     << summary.medianWavefrontShadowMilliseconds << ", queue "
-                    << summary.medianWavefrontQueueMilliseconds << "\n";
+                    << summary.medianWavefrontQueueMilliseconds << ", bin "
+                    << summary.medianWavefrontBinMilliseconds << ", material "
+                    << summary.medianWavefrontMaterialMilliseconds << "\n";
         if (stoppedEarly)
           std::cout << "  stopped by --time-limit " << timeLimit << " s after "
                     << result.stats.frames.size() << " of " << settings.frames << " frames ("

@@ -23,7 +23,7 @@ double median(std::vector<double> values) {
 
 TimedFrameSummary summarizeTimedFrames(std::span<const runtime::FrameStats> frames) {
   TimedFrameSummary summary;
-  std::vector<double> ms, mrays, hitRates, trace, shade, shadow, queue;
+  std::vector<double> ms, mrays, hitRates, trace, shade, shadow, queue, bin, material;
   std::vector<std::vector<double> > counters(runtime::frameCounters({}).size());
   for (const auto& frame : frames) {
     ms.push_back(frame.gpuMilliseconds);
@@ -33,6 +33,8 @@ TimedFrameSummary summarizeTimedFrames(std::span<const runtime::FrameStats> fram
     shade.push_back(frame.wavefrontShadeMilliseconds);
     shadow.push_back(frame.wavefrontShadowMilliseconds);
     queue.push_back(frame.wavefrontQueueMilliseconds);
+    bin.push_back(frame.wavefrontBinMilliseconds);
+    material.push_back(frame.wavefrontMaterialMilliseconds);
     summary.cacheLookups += frame.cacheLookups;
     summary.cacheHits += frame.cacheHits;
     const auto values = runtime::frameCounters(frame);
@@ -46,6 +48,8 @@ TimedFrameSummary summarizeTimedFrames(std::span<const runtime::FrameStats> fram
   summary.medianWavefrontShadeMilliseconds = median(std::move(shade));
   summary.medianWavefrontShadowMilliseconds = median(std::move(shadow));
   summary.medianWavefrontQueueMilliseconds = median(std::move(queue));
+  summary.medianWavefrontBinMilliseconds = median(std::move(bin));
+  summary.medianWavefrontMaterialMilliseconds = median(std::move(material));
   summary.totalCacheHitRate =
       summary.cacheLookups ? double(summary.cacheHits) / double(summary.cacheLookups) : 0.0;
   const auto names = runtime::frameCounters({});
@@ -81,16 +85,18 @@ std::string benchSummaryCsvValues(const TimedFrameSummary& summary) {
 
 std::string wavefrontPassCsvColumns() {
   return "median_wavefront_trace_gpu_ms,median_wavefront_shade_gpu_ms,"
-         "median_wavefront_shadow_gpu_ms,median_wavefront_queue_gpu_ms";
+         "median_wavefront_shadow_gpu_ms,median_wavefront_queue_gpu_ms,"
+         "median_wavefront_bin_gpu_ms,median_wavefront_material_gpu_ms";
 }
 
 std::string wavefrontPassCsvValues(const TimedFrameSummary& summary, bool wavefront) {
   if (!wavefront)
-    return ",,,";
+    return ",,,,,";
   std::ostringstream out;
   out << summary.medianWavefrontTraceMilliseconds << ',' << summary.medianWavefrontShadeMilliseconds
       << ',' << summary.medianWavefrontShadowMilliseconds << ','
-      << summary.medianWavefrontQueueMilliseconds;
+      << summary.medianWavefrontQueueMilliseconds << ',' << summary.medianWavefrontBinMilliseconds
+      << ',' << summary.medianWavefrontMaterialMilliseconds;
   return out.str();
 }
 

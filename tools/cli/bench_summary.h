@@ -29,6 +29,8 @@ struct TimedFrameSummary {
   double medianWavefrontShadeMilliseconds = 0.0;
   double medianWavefrontShadowMilliseconds = 0.0;
   double medianWavefrontQueueMilliseconds = 0.0;
+  double medianWavefrontBinMilliseconds = 0.0;
+  double medianWavefrontMaterialMilliseconds = 0.0;
 };
 
 TimedFrameSummary summarizeTimedFrames(std::span<const runtime::FrameStats> frames);

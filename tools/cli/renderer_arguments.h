@@ -31,9 +31,10 @@ inline constexpr const char* kRendererHelp =
     "                        pixel (thesis §5.1)\n"
     "  --no-emissive-nee     no light sampling of emissive triangles (BSDF rays only)\n"
     "  --shading S           megakernel (default: one kernel runs each path to its end) or\n"
-    "                        wavefront (passes over queues of paths, their state in memory;\n"
-    "                        a prototype: only with --floor-materials, without a cache,\n"
-    "                        culling, --shared-primary, debug views or animated meshes)\n";
+    "                        wavefront (passes over queues of paths, their state in memory,\n"
+    "                        materials evaluated in batches sorted by material; a\n"
+    "                        prototype: without a cache, culling, --shared-primary, debug\n"
+    "                        views or animated meshes)\n";
 
 struct RendererArguments {
   CacheArguments cache;
