@@ -6,16 +6,19 @@
 # 1920x1080, P = 6, L = 4, every 10th camera of the built-in path (30 timed frames after 2
 # warm-up frames); each run under its own time limit, all within about 500 s. --local runs
 # here (no carried Vulkan loader), e.g. --local --size 64x36 --frames 2 on lavapipe to check
-# the script.
-#   bash tools/bench/wavefront_floor_device.sh [--local] [--size WxH] [--frames N]
+# the script. --materials: the scenes' material graphs without a cache instead of the floor
+# (the wavefront's per-material passes against the megakernel's callables), in a call of its
+# own (its limits also add up to about 500 s).
+#   bash tools/bench/wavefront_floor_device.sh [--local] [--materials] [--size WxH] [--frames N]
 # e.g. run(carry=["bundle", ".gl"], command="bash tools/bench/wavefront_floor_device.sh").
 # Results in $OUT: wavefront_rows.csv (one bench line a run, with the wavefront's pass
 # columns median_wavefront_{trace,shade,shadow,queue}_gpu_ms) and wavefront_log.txt.
 set -uo pipefail
-frames=30 size=1920x1080 local=0
+frames=30 size=1920x1080 local=0 materials=0
 while [ $# -gt 0 ]; do
   case $1 in
   --local) local=1; shift ;;
+  --materials) materials=1; shift ;;
   --size) size=$2; shift 2 ;;
   --frames) frames=$2; shift 2 ;;
   *) echo "unknown argument $1" >&2; exit 2 ;;
@@ -33,8 +36,11 @@ if command -v nvidia-smi >/dev/null; then
   nvidia-smi --query-gpu=name,driver_version --format=csv,noheader >>"$log" 2>&1
 fi
 first=1
-# scene, limit in seconds (the classroom compiles 88 graphs before its first frame).
-for entry in landscape:100 classroom:140; do
+# scene, limit in seconds (the classroom compiles 88 graphs before its first frame; with its
+# graphs the megakernel's frame is about 2.7 s on the H200).
+entries="landscape:100 classroom:140" floor=--floor-materials
+[ $materials = 0 ] || { entries="landscape:80 classroom:160"; floor=; }
+for entry in $entries; do
   scene=${entry%%:*}
   limit=${entry##*:}
   for shading in megakernel wavefront; do
@@ -43,7 +49,7 @@ for entry in landscape:100 classroom:140; do
     csv="/tmp/wavefront_${scene}_${shading}.csv"
     rm -f "$csv"
     timeout "$limit" "$m" bench "builtin:$scene" --backend pipeline --sizes "$size" --paths 6 \
-      --bounces 4 --warmup 2 --frames "$frames" --frame-stride 10 --floor-materials \
+      --bounces 4 --warmup 2 --frames "$frames" --frame-stride 10 $floor \
       --shading "$shading" --time-limit $((limit - 15)) --label "$shading" \
       --shader-cache /tmp/wavefront_shaders --csv "$csv" 2>&1 | tail -6 | tee -a "$log"
     echo "rc=${PIPESTATUS[0]} seconds=$(($(date +%s) - t0))" | tee -a "$log"
