@@ -88,13 +88,21 @@ DynamicAccelerationStructures::DynamicAccelerationStructures(
   hitReadback_ = hostBuffer(context, counterBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
 }
 
-void DynamicAccelerationStructures::prepareLook(const Camera& camera, float aspect,
+bool DynamicAccelerationStructures::prepareLook(const Camera& camera, float aspect,
                                                 std::uint32_t frame, float seconds,
                                                 FrameStats& stats) {
-  const auto stateStart = std::chrono::steady_clock::now();
+  using Clock = std::chrono::steady_clock;
+  const auto stateStart = Clock::now();
+  if (!culling_.wantsLook(camera, aspect)) {
+    stats.cullingHostMilliseconds =
+        std::chrono::duration<double, std::milli>(Clock::now() - stateStart).count();
+    return false;
+  }
   culling_.look(camera, aspect);
   lookTraced_ = true;
   prepareStructures(frame, seconds, stats, stateStart);
+  stats.looks = 1;
+  return true;
 }
 
 void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float aspect,

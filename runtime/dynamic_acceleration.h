@@ -50,13 +50,12 @@ class DynamicAccelerationStructures {
   // records. Fills the frame's culling fields of `stats`.
   void prepareFrame(const Camera& camera, float aspect, std::uint32_t frame, float seconds,
                     std::uint64_t previousRays, FrameStats& stats);
-  // LiPaC's look (SceneCulling::look), when wantsLook(): the probe's states and structures,
-  // for one trace of the frame's camera whose counters the frame's prepareFrame then reads.
-  // Fills `stats` as prepareFrame does.
-  bool wantsLook(const Camera& camera, float aspect) const {
-    return culling_.wantsLook(camera, aspect);
-  }
-  void prepareLook(const Camera& camera, float aspect, std::uint32_t frame, float seconds,
+  // LiPaC's look (SceneCulling::look), where the culling wants one for this camera: the
+  // probe's states and structures, for one trace of the frame's camera whose counters the
+  // frame's prepareFrame then reads; fills `stats` as prepareFrame does, with looks = 1.
+  // Returns whether it prepared one; the check's host time is in
+  // stats.cullingHostMilliseconds either way (the frame adds it to its own).
+  bool prepareLook(const Camera& camera, float aspect, std::uint32_t frame, float seconds,
                    FrameStats& stats);
   // In the frame's command buffer, with the other clears (the caller's barrier orders them
   // before the trace): zeroes the hit counters.

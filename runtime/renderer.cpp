@@ -478,16 +478,14 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     });
   };
 
-  // The last submitted trace's GPU time (timestamps 0 and 1), 0 without timestamps.
-  const auto readTraceMilliseconds = [&]() {
-    if (!timestamps)
-      return 0.0;
-    std::uint64_t ticks[2] = {0, 0};
-    checkVk(vkGetQueryPoolResults(device, timestampPool.get(), 0, 2, sizeof ticks, ticks,
-                                  sizeof(std::uint64_t),
+  // The last submitted frame's timestamps first..first+count-1 (0, 1: the trace; 2-4: the
+  // builds; from kFirstWavefrontTimestamp: the wavefront's passes).
+  const double millisecondsPerTick = context.info().timestampPeriodNs * 1e-6;
+  const auto readTimestamps = [&](std::uint32_t first, std::uint32_t count, std::uint64_t* ticks) {
+    checkVk(vkGetQueryPoolResults(device, timestampPool.get(), first, count,
+                                  count * sizeof(std::uint64_t), ticks, sizeof(std::uint64_t),
                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
             "vkGetQueryPoolResults (timestamps)");
-    return double(ticks[1] - ticks[0]) * context.info().timestampPeriodNs * 1e-6;
   };
 
   Camera previousCamera;
@@ -513,16 +511,22 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     const float aspect = float(settings.width) / float(settings.height);
     // A look only where the frame starts the pixels' sums afresh (a new camera), so that the
     // probe's sample is replaced, not averaged in.
-    if (sampleIndex == 0 && dynamicAccel && dynamicAccel->wantsLook(camera, aspect)) {
+    if (sampleIndex == 0 && dynamicAccel &&
+        dynamicAccel->prepareLook(camera, aspect, f, frame.cameraForward.w, look)) {
       // LiPaC's look (SceneCulling::look): one trace of this frame's camera, its image replaced
-      // by the frame's, its builds and GPU time folded into the frame's figures, its counters
-      // read by the frame's culling update.
-      dynamicAccel->prepareLook(camera, aspect, f, frame.cameraForward.w, look);
+      // by the frame's, its builds, host and GPU time folded into the frame's figures, its
+      // counters read by the frame's culling update.
       submitFrame(f);
       gpu::Counters counters{};
       rayReadback.read(&counters, sizeof counters);
       previousRays = counters.rays;
-      look.lookMilliseconds = readTraceMilliseconds();
+      if (timestamps) {
+        std::uint64_t ticks[5] = {0, 0, 0, 0, 0};
+        readTimestamps(0, 5, ticks);
+        look.lookMilliseconds = double(ticks[1] - ticks[0]) * millisecondsPerTick;
+        look.blasBuildMilliseconds += double(ticks[3] - ticks[2]) * millisecondsPerTick;
+        look.tlasBuildMilliseconds = double(ticks[4] - ticks[3]) * millisecondsPerTick;
+      }
     }
     if (dynamicAccel) {
       dynamicAccel->prepareFrame(camera, aspect, f, frame.cameraForward.w, previousRays,
@@ -557,29 +561,21 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
       frameStats.wavefrontBinHits = wavefrontTracer->binHits();
     if (timestamps) {
       std::uint64_t ticks[5] = {0, 0, 0, 0, 0};
-      const std::uint32_t queries = dynamicAccel ? 5 : 2;
-      checkVk(vkGetQueryPoolResults(device, timestampPool.get(), 0, queries,
-                                    queries * sizeof(std::uint64_t), ticks, sizeof(std::uint64_t),
-                                    VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
-              "vkGetQueryPoolResults (timestamps)");
-      const double period = context.info().timestampPeriodNs * 1e-6;
-      frameStats.gpuMilliseconds = double(ticks[1] - ticks[0]) * period;
+      readTimestamps(0, dynamicAccel ? 5 : 2, ticks);
+      frameStats.gpuMilliseconds = double(ticks[1] - ticks[0]) * millisecondsPerTick;
       if (dynamicAccel) {
-        frameStats.blasBuildMilliseconds += double(ticks[3] - ticks[2]) * period;
-        frameStats.tlasBuildMilliseconds = double(ticks[4] - ticks[3]) * period;
+        frameStats.blasBuildMilliseconds += double(ticks[3] - ticks[2]) * millisecondsPerTick;
+        frameStats.tlasBuildMilliseconds = double(ticks[4] - ticks[3]) * millisecondsPerTick;
       }
       if (wavefrontTracer) {
         std::vector<std::uint64_t> passTicks(wavefrontTimestamps);
-        checkVk(vkGetQueryPoolResults(device, timestampPool.get(), kFirstWavefrontTimestamp,
-                                      wavefrontTimestamps, passTicks.size() * sizeof(std::uint64_t),
-                                      passTicks.data(), sizeof(std::uint64_t),
-                                      VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
-                "vkGetQueryPoolResults (wavefront passes)");
+        readTimestamps(kFirstWavefrontTimestamp, wavefrontTimestamps, passTicks.data());
         wavefrontTracer->addPassTimes(passTicks, settings.pathsPerPixel, settings.raysPerPath,
-                                      period, frameStats);
+                                      millisecondsPerTick, frameStats);
       }
     }
-    if (look.blasBytes > 0) {
+    frameStats.cullingHostMilliseconds += look.cullingHostMilliseconds;
+    if (look.looks) {
       frameStats.looks = 1;
       frameStats.lookMilliseconds = look.lookMilliseconds;
       frameStats.gpuMilliseconds += look.lookMilliseconds;
@@ -587,6 +583,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
       frameStats.blasUpdates += look.blasUpdates;
       frameStats.blasEvictions += look.blasEvictions;
       frameStats.blasBuildMilliseconds += look.blasBuildMilliseconds;
+      frameStats.tlasBuildMilliseconds += look.tlasBuildMilliseconds;
       frameStats.blasBytes = std::max(frameStats.blasBytes, look.blasBytes);
       frameStats.asScratchBytes = std::max(frameStats.asScratchBytes, look.asScratchBytes);
     }

@@ -286,7 +286,7 @@ void WavefrontPathTracer::record(VkCommandBuffer commands, VkDescriptorSet set, 
   barrier.dstAccessMask =
       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
   std::uint32_t round = 0, bounce = 0;
-  for (std::uint32_t pass : framePasses(paths, bounces, !materialPasses_.empty())) {
+  for (std::uint32_t pass : framePasses(paths, bounces, materials)) {
     recordPass(commands, pass, round, bounce);
     if (timestamps)
       vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, query++);

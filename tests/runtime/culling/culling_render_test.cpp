@@ -229,6 +229,11 @@ TEST(CulledRender, TheFirstLookHoldsWhatTheFirstCameraReaches) {
   const FrameStats& a = withFirstLook.stats.frames.front();
   const FrameStats& b = without.stats.frames.front();
   EXPECT_LT(a.blasBytes, b.blasBytes);
+  // The look is counted, and its probe's GPU time is part of the frame's.
+  EXPECT_EQ(a.looks, 1u);
+  EXPECT_EQ(b.looks, 0u);
+  EXPECT_GT(a.lookMilliseconds, 0.0);
+  EXPECT_GT(a.gpuMilliseconds, a.lookMilliseconds);
   // The probe registers the first box a ray crosses, so an instance seen only past another's
   // box waits a frame (a few pixels at 64x36 and one path: a mean difference of 0.09 % of the
   // image's mean against 0.02 % without the first look; at 192x108, P = 4, L = 3 its mean
