@@ -169,9 +169,9 @@ read -r -d '' VARIANTS <<'TABLE'
   150   6.2   classroom  texel_s21_lru-counter 300     1      --cache texel --cache-entries 2097152 --eviction lru --clock counter --cache-read-check key
   240   6.2   classroom  tile_s21_none         300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction none --cache-read-check key
   260   6.2   classroom  tile_s21_random       300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction random --cache-read-check key
-  250   6.2   classroom  tile_s21_lrw-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lrw --clock frame --cache-read-check key
+  310   6.2   classroom  tile_s21_lrw-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lrw --clock frame --cache-read-check key
   230   6.2   classroom  tile_s21_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock frame --cache-read-check key
-  280   6.2   classroom  tile_s21_lrw-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lrw --clock counter --cache-read-check key
+  320   6.2   classroom  tile_s21_lrw-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lrw --clock counter --cache-read-check key
   200   6.2   classroom  tile_s21_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock counter --cache-read-check key
 # Table 6.3: cache sizes, LRU with the counter clock (2^21 and 2^23 on the classroom are
 # Table 6.2's lru-counter runs, so they are not repeated here).
@@ -181,7 +181,7 @@ read -r -d '' VARIANTS <<'TABLE'
   150   6.3   classroom  texel_s22_lru-counter 300     1      --cache texel --cache-entries 4194304 --eviction lru --clock counter --cache-read-check key
   240   6.3   classroom  tile_s18_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 16384 --eviction lru --clock counter --cache-read-check key
   150   6.3   classroom  tile_s19_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 32768 --eviction lru --clock counter --cache-read-check key
-  150   6.3   classroom  tile_s20_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 65536 --eviction lru --clock counter --cache-read-check key
+  220   6.3   classroom  tile_s20_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 65536 --eviction lru --clock counter --cache-read-check key
   150   6.3   classroom  tile_s22_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 262144 --eviction lru --clock counter --cache-read-check key
   60    6.3   landscape  texel_s18_lru-counter 300     1      --cache texel --cache-entries 262144 --eviction lru --clock counter --cache-read-check key
   60    6.3   landscape  texel_s19_lru-counter 300     1      --cache texel --cache-entries 524288 --eviction lru --clock counter --cache-read-check key
@@ -191,10 +191,10 @@ read -r -d '' VARIANTS <<'TABLE'
   60    6.3   landscape  texel_s23_lru-counter 300     1      --cache texel --cache-entries 8388608 --eviction lru --clock counter --cache-read-check key
   90    6.3   landscape  tile_s18_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 16384 --eviction lru --clock counter --cache-read-check key
   90    6.3   landscape  tile_s19_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 32768 --eviction lru --clock counter --cache-read-check key
-  60    6.3   landscape  tile_s20_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 65536 --eviction lru --clock counter --cache-read-check key
-  60    6.3   landscape  tile_s21_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock counter --cache-read-check key
-  60    6.3   landscape  tile_s22_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 262144 --eviction lru --clock counter --cache-read-check key
-  60    6.3   landscape  tile_s23_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lru --clock counter --cache-read-check key
+  90    6.3   landscape  tile_s20_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 65536 --eviction lru --clock counter --cache-read-check key
+  90    6.3   landscape  tile_s21_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock counter --cache-read-check key
+  90    6.3   landscape  tile_s22_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 262144 --eviction lru --clock counter --cache-read-check key
+  90    6.3   landscape  tile_s23_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lru --clock counter --cache-read-check key
 TABLE
 
 # Settings of a real run and of the dry run. The dry run keeps every variant and flag but
