@@ -84,6 +84,9 @@ struct FrameStats {
   // With material graphs: the three binning passes, and every bin's material pass.
   double wavefrontBinMilliseconds = 0.0;
   double wavefrontMaterialMilliseconds = 0.0;
+  // With the texel cache: the lookup pass (a hit's values read, a miss binned for its
+  // material pass, which inserts it).
+  double wavefrontLookupMilliseconds = 0.0;
   // Hits each material bin (distinct graph, in LinkedMaterials::distinct order) evaluated
   // over the frame's rounds and bounces. Not in the CSV.
   std::vector<std::uint32_t> wavefrontBinHits;
@@ -119,6 +122,10 @@ struct RenderStats {
   std::uint32_t shadersCompiled = 0;
   std::string materialDispatch;        // "switch", "callable" or "floor" (no graph evaluated)
   std::string shading = "megakernel";  // "megakernel" or "wavefront" (--shading)
+  // The wavefront's paths in flight (its path state's slots, --wavefront-paths) and the
+  // chunks a round of the image ran in (1 when every pixel has a slot); 0 for the megakernel.
+  std::uint32_t wavefrontPathSlots = 0;
+  std::uint32_t wavefrontChunks = 0;
   // Shader modules and pipeline (the driver's own compile), excluding GLSL → SPIR-V.
   double pipelineCreateMilliseconds = 0.0;
   RayTracingStack rayTracingStack;  // pipeline backend only

@@ -113,11 +113,21 @@ Shading parseShading(const std::string& text) {
 }
 
 void validateWavefrontOptions(const RendererOptions& options) {
-  if (options.shading != Shading::Wavefront)
+  if (options.shading != Shading::Wavefront) {
+    if (options.wavefrontPaths > 0)
+      throw std::invalid_argument(
+          "--wavefront-paths sets the wavefront's paths in flight; it needs --shading wavefront");
     return;
+  }
   const std::string prefix = "--shading wavefront is a prototype: ";
-  if (options.cache.mode != CacheMode::None)
-    throw std::invalid_argument(prefix + "it has no cache (--cache none)");
+  if (options.cache.mode == CacheMode::Tile)
+    throw std::invalid_argument(prefix +
+                                "it has the texel cache but not the tile cache (--cache texel or "
+                                "none, or --shading megakernel)");
+  if (options.cache.mode == CacheMode::Texel && options.floorMaterials)
+    throw std::invalid_argument(
+        "--shading wavefront looks the texel cache up for its material passes, and the "
+        "free-material floor has none; time the floor's lookups with --shading megakernel");
   if (options.culling.mode != CullingMode::None)
     throw std::invalid_argument(prefix + "it has no culling (--culling none)");
   if (options.debugCacheMisses)
@@ -144,8 +154,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   validateScene(scene);
   validateCullingOptions(options_.culling);
   const bool wavefront = options_.shading == Shading::Wavefront;
+  validateWavefrontOptions(options_);
   if (wavefront) {
-    validateWavefrontOptions(options_);
     if (settings.sharedPrimaryRay)
       throw std::invalid_argument(
           "--shading wavefront traces every path's own camera ray; it has no --shared-primary");
@@ -335,7 +345,10 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   stats.shading = shadingName(options_.shading);
   if (wavefront) {
     wavefrontTracer.emplace(context, compiler, textures.count(), shaderDefines, settings.width,
-                            settings.height, floor ? nullptr : &materials);
+                            settings.height, floor ? nullptr : &materials,
+                            cache.mode == CacheMode::Texel, options_.wavefrontPaths);
+    stats.wavefrontPathSlots = wavefrontTracer->pathSlots();
+    stats.wavefrontChunks = wavefrontTracer->chunks();
     // The wavefront has no callables: its material pipelines' compiles count in their place.
     callableStats = wavefrontTracer->materialShaderStats();
   } else {

@@ -67,9 +67,14 @@ struct RendererOptions {
   // roughness 0.5, metallic 0, the geometric normal) and no graph evaluated, for the cost
   // of a free material. Stats say materialDispatch "floor". Not with a cache.
   bool floorMaterials = false;
-  // Wavefront: needs floorMaterials, and no cache, culling, debug view, shared primary ray or
-  // animated meshes (checked by validateWavefrontOptions and render()).
+  // Wavefront: no tile cache, culling, debug view, shared primary ray or animated meshes, and
+  // the texel cache only with the scene's graphs (checked by validateWavefrontOptions and
+  // render()).
   Shading shading = Shading::Megakernel;
+  // The wavefront's paths in flight (its path state's capacity); a round over more pixels
+  // runs in chunks of this many. 0: every pixel, or what the device's storage-buffer range
+  // holds. Non-zero needs Shading::Wavefront.
+  std::uint32_t wavefrontPaths = 0;
   // Thesis Fig. 6.9: the image shows each frame alone, pixels where a path missed the
   // cache in red. Needs the texel cache.
   bool debugCacheMisses = false;
@@ -82,7 +87,8 @@ struct RendererOptions {
 };
 
 // Refuses (std::invalid_argument, naming the option) what the wavefront prototype does not
-// do: anything but the free-material floor without a cache, culling or debug view.
+// do (the tile cache, culling, debug views, the texel cache on the floor), and
+// wavefrontPaths without the wavefront.
 void validateWavefrontOptions(const RendererOptions& options);
 
 // Materials that share a graph (same file or same text) count once.

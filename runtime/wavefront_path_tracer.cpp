@@ -18,11 +18,11 @@ constexpr std::array<const char*, gpu::kWavefrontPassCount> kPassDefines = {
     "MG_WAVEFRONT_GENERATE=1",  "MG_WAVEFRONT_TRACE=1",       "MG_WAVEFRONT_SHADE=1",
     "MG_WAVEFRONT_QUEUE=1",     "MG_WAVEFRONT_SHADOW=1",      "MG_WAVEFRONT_FINISH=1",
     "MG_WAVEFRONT_BIN_COUNT=1", "MG_WAVEFRONT_BIN_OFFSETS=1", "MG_WAVEFRONT_BIN_SCATTER=1",
-    "MG_WAVEFRONT_MATERIAL=1"};
+    "MG_WAVEFRONT_MATERIAL=1",  "MG_WAVEFRONT_LOOKUP=1"};
 constexpr std::array<const char*, gpu::kWavefrontPassCount> kPassNames = {
-    "wavefront generate",    "wavefront trace",   "wavefront shade",     "wavefront queue",
-    "wavefront shadow",      "wavefront finish",  "wavefront bin count", "wavefront bin offsets",
-    "wavefront bin scatter", "wavefront material"};
+    "wavefront generate",    "wavefront trace",    "wavefront shade",     "wavefront queue",
+    "wavefront shadow",      "wavefront finish",   "wavefront bin count", "wavefront bin offsets",
+    "wavefront bin scatter", "wavefront material", "wavefront lookup"};
 
 // Where each pass's GPU time goes in FrameStats, indexed by gpu::kWavefront*: the three
 // binning passes together, the material passes of a bounce together.
@@ -31,7 +31,8 @@ constexpr std::array<double FrameStats::*, gpu::kWavefrontPassCount> kPassTimes 
     &FrameStats::wavefrontShadeMilliseconds,    &FrameStats::wavefrontQueueMilliseconds,
     &FrameStats::wavefrontShadowMilliseconds,   &FrameStats::wavefrontFinishMilliseconds,
     &FrameStats::wavefrontBinMilliseconds,      &FrameStats::wavefrontBinMilliseconds,
-    &FrameStats::wavefrontBinMilliseconds,      &FrameStats::wavefrontMaterialMilliseconds};
+    &FrameStats::wavefrontBinMilliseconds,      &FrameStats::wavefrontMaterialMilliseconds,
+    &FrameStats::wavefrontLookupMilliseconds};
 
 // The bytes of a bin's record after gpu::WavefrontControl: its material pass's dispatch
 // arguments and its counts (shared_types.h).
@@ -43,14 +44,18 @@ std::uint32_t workgroupsFor(std::uint64_t invocations) {
 }
 
 // The passes of a frame in recording order (the timestamp after each says when it ended);
-// kWavefrontMaterial stands for every bin's material pass of the bounce.
-std::vector<std::uint32_t> framePasses(std::uint32_t paths, std::uint32_t bounces, bool materials) {
+// kWavefrontMaterial stands for every bin's material pass of the bounce; `lookup`: the texel
+// cache's lookup before the binning. Every chunk of pixels runs all P rounds before the next.
+std::vector<std::uint32_t> framePasses(std::uint32_t chunks, std::uint32_t paths,
+                                       std::uint32_t bounces, bool materials, bool lookup) {
   std::vector<std::uint32_t> passes;
-  for (std::uint32_t round = 0; round < paths; ++round) {
+  for (std::uint32_t round = 0; round < chunks * paths; ++round) {
     passes.push_back(gpu::kWavefrontGenerate);
     for (std::uint32_t bounce = 0; bounce < bounces; ++bounce) {
       passes.push_back(gpu::kWavefrontTrace);
       if (materials) {
+        if (lookup)
+          passes.push_back(gpu::kWavefrontLookup);
         passes.push_back(gpu::kWavefrontBinCount);
         passes.push_back(gpu::kWavefrontBinOffsets);
         passes.push_back(gpu::kWavefrontBinScatter);
@@ -71,20 +76,22 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
                                          std::uint32_t textureCount,
                                          const std::vector<std::string>& extraDefines,
                                          std::uint32_t width, std::uint32_t height,
-                                         const LinkedMaterials* materials)
-    : context_(context), query_(context.backend() == Backend::RayQuery), slots_(width * height) {
+                                         const LinkedMaterials* materials, bool texelCache,
+                                         std::uint32_t pathSlots)
+    : context_(context),
+      query_(context.backend() == Backend::RayQuery),
+      lookup_(texelCache),
+      pixels_(width * height) {
   VkDevice device = context.device();
+  if (texelCache && !materials)
+    throw std::invalid_argument(
+        "--shading wavefront looks the texel cache up for its material passes; the free-material "
+        "floor has none (use --shading megakernel to time the floor's lookups)");
   if (!query_ && !context.info().traceRaysIndirect)
     throw std::runtime_error(
         "--shading wavefront on the pipeline backend launches its traces with "
         "vkCmdTraceRaysIndirectKHR, which " +
         context.info().name + " lacks (rayTracingPipelineTraceRaysIndirect); use --backend query");
-  if (workgroupsFor(slots_) > context.info().limits.maxComputeWorkGroupCount[0])
-    throw std::invalid_argument("--shading wavefront: a " + std::to_string(width) + "x" +
-                                std::to_string(height) +
-                                " image needs more compute work groups in a row than the "
-                                "device has; render a smaller image");
-
   // The path state (vec4 fields a slot, four more for material outputs), the queues (two
   // live, one shadow, with materials the material-sorted one; a uint a slot) and the control
   // block (with a record a material bin); each bound whole, so each must fit a storage
@@ -92,10 +99,30 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   const std::uint32_t bins = materials ? static_cast<std::uint32_t>(materials->distinct.size()) : 0;
   const std::uint32_t fields =
       materials ? gpu::kPathStateFieldsWithMaterials : gpu::kPathStateFields;
+  // Paths in flight: as asked, else every pixel, or as many as one storage binding of path
+  // state, a row of work groups and the largest allocation hold (lavapipe's 128 MiB range:
+  // about 645,000 with graphs, so a 1080p round there runs in 4 chunks).
+  const DeviceInfo& info = context.info();
+  std::uint64_t fitted =
+      std::uint64_t(info.limits.maxComputeWorkGroupCount[0]) * gpu::kWavefrontWorkgroupSize;
+  for (std::uint64_t limit : {std::uint64_t(info.limits.maxStorageBufferRange),
+                              std::uint64_t(info.maxMemoryAllocationSize)})
+    if (limit > 0)
+      fitted = std::min(fitted, limit / (std::uint64_t(fields) * 16));
+  slots_ = pathSlots > 0 ? std::min(pathSlots, pixels_)
+                         : static_cast<std::uint32_t>(std::min<std::uint64_t>(pixels_, fitted));
+  if (slots_ == 0)
+    throw std::invalid_argument("--shading wavefront: the device holds no path state");
+  chunks_ = (pixels_ + slots_ - 1) / slots_;
+  if (workgroupsFor(slots_) > info.limits.maxComputeWorkGroupCount[0])
+    throw std::invalid_argument("--wavefront-paths " + std::to_string(slots_) +
+                                " needs more compute work groups in a row than " + info.name +
+                                " has; ask for fewer");
   const std::uint64_t stateBytes = std::uint64_t(slots_) * fields * 16;
-  checkBufferSize(
-      context, stateBytes,
-      "--shading wavefront's path state (" + std::to_string(fields) + " x 16 bytes a pixel)", true);
+  checkBufferSize(context, stateBytes,
+                  "--wavefront-paths " + std::to_string(slots_) + ": the path state (" +
+                      std::to_string(fields) + " x 16 bytes a path)",
+                  true);
   pathState_ = GpuBuffer(context, stateBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                          VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   pathQueues_ =
@@ -133,7 +160,8 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
     const bool traces = pass == gpu::kWavefrontTrace || pass == gpu::kWavefrontShadow;
     const bool binning = pass == gpu::kWavefrontBinCount || pass == gpu::kWavefrontBinOffsets ||
                          pass == gpu::kWavefrontBinScatter;
-    if ((traces && !query_) || (binning && !materials) || pass == gpu::kWavefrontMaterial)
+    if ((traces && !query_) || (binning && !materials) || pass == gpu::kWavefrontMaterial ||
+        (pass == gpu::kWavefrontLookup && !lookup_))
       continue;
     std::vector<std::string> passDefines = defines;
     passDefines.push_back(kPassDefines[pass]);
@@ -200,15 +228,19 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
 
 std::uint32_t WavefrontPathTracer::timestampCount(std::uint32_t paths,
                                                   std::uint32_t bounces) const {
-  return 1 +
-         static_cast<std::uint32_t>(framePasses(paths, bounces, !materialPasses_.empty()).size());
+  return 1 + static_cast<std::uint32_t>(
+                 framePasses(chunks_, paths, bounces, !materialPasses_.empty(), lookup_).size());
 }
 
 void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pass,
-                                     std::uint32_t round, std::uint32_t bounce) const {
+                                     std::uint32_t chunk, std::uint32_t round,
+                                     std::uint32_t bounce) const {
   // Live queues alternate: bounce b traces queue b % 2 and appends to the other.
   gpu::WavefrontPush push{};
   push.step = glm::uvec4(round, bounce, bounce % 2, 0);
+  const std::uint32_t firstPixel = chunk * slots_;
+  const std::uint32_t chunkPixels = std::min(slots_, pixels_ - firstPixel);
+  push.chunk = glm::uvec4(slots_, firstPixel, chunkPixels, 0);
   VkShaderStageFlags stages = query_ ? VK_SHADER_STAGE_COMPUTE_BIT
                                      : VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_RAYGEN_BIT_KHR;
   vkCmdPushConstants(commands, layout_.get(), stages, 0, sizeof push, &push);
@@ -242,7 +274,7 @@ void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pas
   switch (pass) {
     case gpu::kWavefrontGenerate:
     case gpu::kWavefrontFinish:
-      vkCmdDispatch(commands, workgroupsFor(slots_), 1, 1);
+      vkCmdDispatch(commands, workgroupsFor(chunkPixels), 1, 1);
       break;
     case gpu::kWavefrontQueue:
     case gpu::kWavefrontBinOffsets:
@@ -285,9 +317,9 @@ void WavefrontPathTracer::record(VkCommandBuffer commands, VkDescriptorSet set, 
   barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
   barrier.dstAccessMask =
       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
-  std::uint32_t round = 0, bounce = 0;
-  for (std::uint32_t pass : framePasses(paths, bounces, materials)) {
-    recordPass(commands, pass, round, bounce);
+  std::uint32_t chunk = 0, round = 0, bounce = 0;
+  for (std::uint32_t pass : framePasses(chunks_, paths, bounces, materials, lookup_)) {
+    recordPass(commands, pass, chunk, round, bounce);
     if (timestamps)
       vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, query++);
     vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
@@ -296,8 +328,11 @@ void WavefrontPathTracer::record(VkCommandBuffer commands, VkDescriptorSet set, 
     if (pass == gpu::kWavefrontShadow)
       ++bounce;
     if (pass == gpu::kWavefrontFinish) {
-      ++round;
       bounce = 0;
+      if (++round == paths) {
+        round = 0;
+        ++chunk;
+      }
     }
   }
   if (materials) {
@@ -325,7 +360,7 @@ std::vector<std::uint32_t> WavefrontPathTracer::binHits() const {
 void WavefrontPathTracer::addPassTimes(const std::vector<std::uint64_t>& ticks, std::uint32_t paths,
                                        std::uint32_t bounces, double millisecondsPerTick,
                                        FrameStats& frame) const {
-  const auto passes = framePasses(paths, bounces, !materialPasses_.empty());
+  const auto passes = framePasses(chunks_, paths, bounces, !materialPasses_.empty(), lookup_);
   if (ticks.size() < passes.size() + 1)
     return;
   for (std::size_t i = 0; i < passes.size(); ++i) {

@@ -29,14 +29,23 @@ class WavefrontPathTracer {
   // device lacks it). `extraDefines` as the megakernel's (floor, NEE, object inputs).
   // `materials` null: the floor (MG_MATERIAL_FLOOR in extraDefines); otherwise the scene's
   // linked graphs, one material pipeline per distinct graph, compiled from `compiler`'s files
-  // plus that graph's include. Throws std::invalid_argument when a round's paths do not fit
-  // the device.
+  // plus that graph's include. `texelCache` (MG_CACHE_TEXEL in extraDefines, with
+  // materials): a lookup pass before the binning, and the material passes insert their
+  // misses. `pathSlots`: the path state's capacity, paths in flight (0: every pixel, or as many
+  // as the device's storage-buffer range and work-group count allow); a round over more
+  // pixels than that runs in chunks of at most that many, one after another (chunks()).
+  // Throws std::invalid_argument when a given capacity does not fit the device, or for a
+  // texel cache without materials.
   WavefrontPathTracer(const VulkanContext& context, ShaderCompiler& compiler,
                       std::uint32_t textureCount, const std::vector<std::string>& extraDefines,
                       std::uint32_t width, std::uint32_t height,
-                      const LinkedMaterials* materials = nullptr);
+                      const LinkedMaterials* materials = nullptr, bool texelCache = false,
+                      std::uint32_t pathSlots = 0);
 
   VkDescriptorSetLayout descriptorSetLayout() const { return setLayout_.get(); }
+  // Paths in flight (the path state's slots) and the chunks a round of the image takes.
+  std::uint32_t pathSlots() const { return slots_; }
+  std::uint32_t chunks() const { return chunks_; }
   const GpuBuffer& pathState() const { return pathState_; }
   const GpuBuffer& pathQueues() const { return pathQueues_; }
   const GpuBuffer& control() const { return control_; }
@@ -55,9 +64,10 @@ class WavefrontPathTracer {
   // The material pipelines' GLSL compiles (they have compilers of their own).
   const ShaderCacheStats& materialShaderStats() const { return materialShaderStats_; }
 
-  // Records one frame: P rounds of one path per pixel, each generate, L x (trace, [bin count,
-  // bin offsets, bin scatter, material passes,] shade, queue, shadow), finish, with a barrier
-  // between passes. `timestamps` VK_NULL_HANDLE: none.
+  // Records one frame: per chunk of pixels, P rounds of one path a pixel, each generate, L x
+  // (trace, [[lookup,]
+  // bin count, bin offsets, bin scatter, material passes,] shade, queue, shadow), finish, with a
+  // barrier between passes. `timestamps` VK_NULL_HANDLE: none.
   void record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t paths,
               std::uint32_t bounces, VkQueryPool timestamps, std::uint32_t firstQuery) const;
 
@@ -69,7 +79,10 @@ class WavefrontPathTracer {
  private:
   const VulkanContext& context_;
   bool query_ = true;
-  std::uint32_t slots_ = 0;  // paths of a round: one per pixel
+  bool lookup_ = false;  // the texel cache's lookup pass
+  std::uint32_t pixels_ = 0;
+  std::uint32_t slots_ = 0;   // paths in flight: a pixel's each, up to the capacity
+  std::uint32_t chunks_ = 1;  // chunks of at most slots_ pixels a round takes
   VulkanHandle<VkDescriptorSetLayout> setLayout_;
   VulkanHandle<VkPipelineLayout> layout_;
   // Indexed by gpu::kWavefront*; trace and shadow empty on the pipeline backend.
@@ -88,8 +101,8 @@ class WavefrontPathTracer {
   GpuBuffer control_;
   GpuBuffer binReadback_;  // host-visible copy of the bins' records after a frame
 
-  void recordPass(VkCommandBuffer commands, std::uint32_t pass, std::uint32_t round,
-                  std::uint32_t bounce) const;
+  void recordPass(VkCommandBuffer commands, std::uint32_t pass, std::uint32_t chunk,
+                  std::uint32_t round, std::uint32_t bounce) const;
 };
 
 }  // namespace memograph::runtime

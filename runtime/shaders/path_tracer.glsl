@@ -328,17 +328,7 @@ void renderPixel(uvec2 pixel, bool inside) {
 #endif
 #endif
 #if defined(MG_CACHE_TEXEL) || defined(MG_CACHE_TILE)
-#ifdef MG_SUBGROUP_RAY_COUNT
-  uvec3 cacheCounts = subgroupAdd(uvec3(g_cacheLookups, g_cacheHits, g_cacheMisses));
-  if (subgroupElect() && cacheCounts.x > 0u) {
-#else
-  uvec3 cacheCounts = uvec3(g_cacheLookups, g_cacheHits, g_cacheMisses);
-  if (cacheCounts.x > 0u) {
-#endif
-    atomicAdd(counters.cacheLookups, cacheCounts.x);
-    atomicAdd(counters.cacheHits, cacheCounts.y);
-    atomicAdd(counters.cacheMisses, cacheCounts.z);
-  }
+  cacheAddCounts();
 #endif
 #ifdef MG_CACHE_TILE
   // The subgroup computation of tiles needs subgroup operations, so its sums have them; the

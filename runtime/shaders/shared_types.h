@@ -91,9 +91,9 @@ MG_CONSTANT(uint, kFillRowInvocations, 4096);
 MG_CONSTANT(uint, kFillWorkgroupSize, 64);
 
 // The wavefront path tracer's passes (MG_WAVEFRONT_PASS, wavefront.glsl), in the order one
-// bounce records them: generate once a round, then trace, (with material graphs: bin count,
-// bin offsets, bin scatter, one material pass per graph,) shade, queue and shadow per bounce,
-// finish once a round.
+// bounce records them: generate once a round, then trace, (with material graphs: with the
+// texel cache a lookup, then bin count, bin offsets, bin scatter, one material pass per
+// graph,) shade, queue and shadow per bounce, finish once a round.
 MG_CONSTANT(uint, kWavefrontGenerate, 0);
 MG_CONSTANT(uint, kWavefrontTrace, 1);
 MG_CONSTANT(uint, kWavefrontShade, 2);
@@ -104,7 +104,8 @@ MG_CONSTANT(uint, kWavefrontBinCount, 6);
 MG_CONSTANT(uint, kWavefrontBinOffsets, 7);
 MG_CONSTANT(uint, kWavefrontBinScatter, 8);
 MG_CONSTANT(uint, kWavefrontMaterial, 9);
-MG_CONSTANT(uint, kWavefrontPassCount, 10);
+MG_CONSTANT(uint, kWavefrontLookup, 10);
+MG_CONSTANT(uint, kWavefrontPassCount, 11);
 // Compute work-group size of the wavefront passes (one invocation per queued path).
 MG_CONSTANT(uint, kWavefrontWorkgroupSize, 64);
 // vec4 fields of a path's state: origin and cone width, direction and cone spread,
@@ -129,9 +130,12 @@ struct WavefrontControl {
   uvec4 shadowGroups;  // the query backend's shadow pass
   uvec4 shadowLaunch;  // the pipeline backend's shadow pass
 };
-// Push constants of every wavefront pass.
+// Push constants of every wavefront pass. A round of one path a pixel runs in chunks of at
+// most `slots` pixels when the image has more pixels than the path state has slots (its
+// capacity, RendererOptions::wavefrontPaths): chunk c covers pixels c * slots onwards.
 struct WavefrontPush {
-  uvec4 step;  // x round (path index of every pixel), y bounce, z live queue (0 or 1), w bin
+  uvec4 step;   // x round (path index of every pixel), y bounce, z live queue (0 or 1), w bin
+  uvec4 chunk;  // x slots (the path state's capacity), y the chunk's first pixel, z its pixels
 };
 
 // FrameConstants::flags bits.
@@ -300,7 +304,7 @@ struct Light {
 
 #ifdef __cplusplus
 static_assert(sizeof(TileQueueHeader) == 16 && sizeof(TileFillItem) == 32);
-static_assert(sizeof(WavefrontControl) == 80 && sizeof(WavefrontPush) == 16);
+static_assert(sizeof(WavefrontControl) == 80 && sizeof(WavefrontPush) == 32);
 static_assert(sizeof(Counters) % 16 == 0 &&
               offsetof(Counters, cacheOccupancy) == kCountersPerFrameUints * sizeof(uint));
 }  // namespace memograph::runtime::gpu

@@ -1,6 +1,7 @@
 // The texel cache of thesis §4.2-4.5 and §5.3: material graph outputs memoized in one hash
-// table of entries keyed by (material, mip level, texel). Included by path_tracer.glsl when
-// the host defines MG_CACHE_TEXEL, with
+// table of entries keyed by (material, mip level, texel). Included by path_tracer.glsl (and
+// by wavefront.glsl's lookup and material passes, MG_WAVEFRONT) when the host defines
+// MG_CACHE_TEXEL, with
 //   MG_CACHE_VALUES    floats per entry (the largest cacheable material's written outputs),
 //   MG_CACHE_PROBE     the linear probing distance D (1..kCacheMaxProbe),
 //   MG_CACHE_EVICTION  kCacheEviction{None, Lru, Lrw, Random} (0..3),
@@ -59,6 +60,28 @@ uint g_cacheHits = 0u;
 uint g_cacheMisses = 0u;
 // Whether any lookup of this invocation missed: the debug view of thesis Fig. 6.9.
 bool g_cacheMissed = false;
+
+// Adds this invocation's lookups, hits and misses to gpu::Counters: with subgroup arithmetic
+// one atomic each per subgroup, so every invocation of the subgroup must call it.
+void cacheAddCounts() {
+#ifdef MG_SUBGROUP_RAY_COUNT
+  uvec3 cacheCounts = subgroupAdd(uvec3(g_cacheLookups, g_cacheHits, g_cacheMisses));
+  if (subgroupElect() && cacheCounts.x > 0u) {
+#else
+  uvec3 cacheCounts = uvec3(g_cacheLookups, g_cacheHits, g_cacheMisses);
+  if (cacheCounts.x > 0u) {
+#endif
+    atomicAdd(counters.cacheLookups, cacheCounts.x);
+    atomicAdd(counters.cacheHits, cacheCounts.y);
+    atomicAdd(counters.cacheMisses, cacheCounts.z);
+  }
+}
+
+// Scene material `materialId`'s cache record (mg_materialCacheInfo; none past the scene's).
+uvec4 cacheInfoOf(uint materialId) {
+  return materialId < uint(mg_materialCacheInfo.length()) ? mg_materialCacheInfo[materialId]
+                                                          : uvec4(0u);
+}
 
 // The 32-bit PCG hash (O'Neill 2014, in the RXS-M-XS form of Jarzynski and Olano 2020),
 // the hash() of eq. 5.8-5.9; runtime::pcgHash is the host's copy. Defined here, not taken
@@ -427,6 +450,8 @@ void cacheWrite(CacheKey key, float values[MG_CACHE_VALUES]) {
   cacheUnlock(uint(entry), key);
 }
 
+// The wavefront splits this into its lookup pass and its material passes (wavefront.glsl).
+#ifndef MG_WAVEFRONT
 // Cacheable materials (mask != 0) read the cache and on a miss evaluate and insert;
 // others are evaluated directly and never touch the cache. With MG_CACHE_SNAP_UV a miss
 // evaluates at the texel centre (§6.1: "rounding the texture coordinates to the nearest
@@ -435,8 +460,7 @@ void cacheWrite(CacheKey key, float values[MG_CACHE_VALUES]) {
 // value, not that of whichever hit inside the texel came first (its footprint picks an image
 // texture's mip level); this hit then shades with that value too.
 void evaluateMaterialCached(uint materialId, MaterialInputs inputs, out MaterialOutputs outputs) {
-  uvec4 info = materialId < uint(mg_materialCacheInfo.length()) ? mg_materialCacheInfo[materialId]
-                                                                : uvec4(0u);
+  uvec4 info = cacheInfoOf(materialId);
   CacheKey key;
   if (info.x == 0u || frame.cache.x == 0u || !cacheKeyFor(info, inputs, key)) {
     evaluateMaterialDirect(materialId, inputs, outputs);
@@ -459,5 +483,7 @@ void evaluateMaterialCached(uint materialId, MaterialInputs inputs, out Material
   cachePack(info.x, outputs, values);
   cacheWrite(key, values);
 }
+
+#endif  // MG_WAVEFRONT
 
 #endif

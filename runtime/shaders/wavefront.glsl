@@ -14,6 +14,10 @@
 //   indirect arguments, MG_WAVEFRONT_BIN_SCATTER writes the hits' slots into the
 //   material-sorted queue, and MG_WAVEFRONT_MATERIAL (compiled once per distinct graph with
 //   only its include, "material.glsl") evaluates its bin's hits into the path state;
+// - with the texel cache (MG_CACHE_TEXEL), MG_WAVEFRONT_LOOKUP first looks every live hit up
+//   (thesis §5.3): a hit's cached values become its material outputs and only the misses are
+//   binned; the material passes insert what they evaluate (lock, values, unlock, as the
+//   megakernel's evaluateMaterialCached does);
 // - MG_WAVEFRONT_SHADE: the material's outputs (the floor's constants, or the material
 //   pass's), emission, one light sample (its shadow ray into the shadow queue) and the BSDF
 //   sample (the path into the next live queue);
@@ -34,12 +38,18 @@
 #ifdef MG_WAVEFRONT_MATERIAL
 #extension GL_EXT_nonuniform_qualifier : require  // material_textures.glsl
 #endif
+#ifdef MG_CACHE_CLOCK_COUNTER
+// The texel cache's 64-bit counter clock (§5.3.3): gpu::Counters::cacheClock is a uint64_t.
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_shader_atomic_int64 : require
+#endif
 
 #ifdef MG_NEE_EVALUATES_EMISSION
 #error the wavefront evaluates no emitter's graph for a light sample (MG_NEE_EVALUATES_EMISSION)
 #endif
 
 #define MG_RNG_COUNTER_BASED 1
+#define MG_WAVEFRONT 1
 #include "shared_types.h"
 #include "materials.glsl"
 #include "rng.glsl"
@@ -66,6 +76,10 @@
 #include "material_textures.glsl"
 #endif
 #include "path_shading.glsl"
+// The texel cache where it is read (the lookup pass) and written (the material passes).
+#if defined(MG_CACHE_TEXEL) && (defined(MG_WAVEFRONT_LOOKUP) || defined(MG_WAVEFRONT_MATERIAL))
+#include "texel_cache.glsl"
+#endif
 
 layout(set = 0, binding = kBindingPathState, std430) buffer PathStateBlock {
   vec4 pathState[];
@@ -96,10 +110,18 @@ const uint kFieldPixelSum = 8u;            // rgb: the pixel's radiance summed o
 const uint kFieldMaterialBase = 9u;        // baseColor, metallic
 const uint kFieldMaterialNormal = 10u;     // normal, roughness
 const uint kFieldMaterialEmission = 11u;   // emission, specular
-const uint kFieldMaterialRest = 12u;       // specularTint, cyclesPrincipled, opacity
+const uint kFieldMaterialRest = 12u;       // specularTint, cyclesPrincipled, opacity, and
+                                           // with the texel cache the bin to evaluate (w)
 
+// The path state's slots (its capacity: every pixel, or a chunk of them; push.chunk).
 uint slotCount() {
-  return frame.image.x * frame.image.y;
+  return push.chunk.x;
+}
+
+// The pixel (index into the image) whose path slot `slot` holds in this chunk: the key of its
+// random numbers, so a round split into chunks draws what it draws whole.
+uint pixelOfSlot(uint slot) {
+  return push.chunk.y + slot;
 }
 
 uint fieldIndex(uint field, uint slot) {
@@ -194,9 +216,32 @@ uint binOfPath(uint slot) {
   uint materialId = instances[instance].ids.y;
   return materialId < uint(MG_MATERIAL_COUNT) ? kBinOfMaterial[materialId] : kNoBin;
 }
+
+// The bin whose material pass must evaluate a live path's hit: with the texel cache what
+// the lookup pass left (kNoBin after a cache hit), otherwise the hit's own.
+uint binToEvaluate(uint slot) {
+#ifdef MG_CACHE_TEXEL
+  return floatBitsToUint(pathState[fieldIndex(kFieldMaterialRest, slot)].w);
+#else
+  return binOfPath(slot);
+#endif
+}
 #endif
 
-#if !defined(MG_MATERIAL_FLOOR) && (defined(MG_WAVEFRONT_MATERIAL) || defined(MG_WAVEFRONT_SHADE))
+#ifdef MG_CACHE_TEXEL
+// Whether bounce `bounce`'s hits use the cache: with MG_CACHE_SECONDARY_ONLY the camera rays'
+// hits evaluate their graphs directly (§6.1, Fig. 6.6), as in the megakernel.
+bool cacheTakesBounce(uint bounce) {
+#ifdef MG_CACHE_SECONDARY_ONLY
+  return bounce != 0u;
+#else
+  return true;
+#endif
+}
+#endif
+
+#if !defined(MG_MATERIAL_FLOOR) && \
+    (defined(MG_WAVEFRONT_MATERIAL) || defined(MG_WAVEFRONT_SHADE) || defined(MG_WAVEFRONT_LOOKUP))
 // The material's outputs at a path's hit, from the material pass to the shade pass.
 void storeMaterialOutputs(uint slot, MaterialOutputs m) {
   pathState[fieldIndex(kFieldMaterialBase, slot)] = vec4(m.baseColor, m.metallic);
@@ -227,10 +272,11 @@ MaterialOutputs loadMaterialOutputs(uint slot, SurfaceHit s) {
 #endif
 
 #if defined(MG_WAVEFRONT_GENERATE)
-// Camera rays of round push.step.x: path `round` of every pixel, one slot per pixel.
+// Camera rays of round push.step.x: path `round` of every pixel of the chunk, one slot per
+// pixel.
 void main() {
   uint slot = invocationIndex();
-  uint slots = slotCount();
+  uint slots = push.chunk.z;
   if (slot == 0u) {
     control.counts = uvec4(slots, 0u, 0u, 0u);
     control.liveGroups = uvec4(workgroupsFor(slots), 1u, 1u, 0u);
@@ -238,8 +284,9 @@ void main() {
     atomicAdd(counters.rays, slots);
   }
   if (slot >= slots) return;
-  uvec2 pixel = uvec2(slot % frame.image.x, slot / frame.image.x);
-  Rng rng = rngForPathVertex(slot, sampleIndexOf(push.step.x), 0u, frame.image.w);
+  uint pixelIndex = pixelOfSlot(slot);
+  uvec2 pixel = uvec2(pixelIndex % frame.image.x, pixelIndex / frame.image.x);
+  Rng rng = rngForPathVertex(pixelIndex, sampleIndexOf(push.step.x), 0u, frame.image.w);
   vec3 origin, direction;
   primaryRay(pixel, rngNext2(rng), origin, direction);
   pathState[fieldIndex(kFieldOrigin, slot)] = vec4(origin, 0.0);
@@ -264,12 +311,47 @@ void main() {
   pathState[fieldIndex(kFieldRadiance, slot)].w = hit.t;
 }
 
+#elif defined(MG_WAVEFRONT_LOOKUP)
+// The texel cache's lookup (thesis §5.3) of every live hit, as the megakernel's
+// evaluateMaterialCached begins: a cache hit's values become the hit's material outputs (the
+// members its material does not cache as mg_defaultMaterialOutputs leaves them); a cache
+// miss, a material the cache does not take or a hit without usable texture coordinates is
+// left to its bin's material pass. The bin goes into the path state for the binning passes
+// (kNoBin: nothing to evaluate, a ray that missed the scene too).
+void main() {
+  uint i = invocationIndex();
+  if (i < control.counts.x) {
+    uint slot = pathQueues[queueIndex(push.step.z, i)];
+    uint bin = binOfPath(slot);
+    if (bin != kNoBin && cacheTakesBounce(push.step.y)) {
+      vec3 origin, direction;
+      RayCone cone;
+      SurfaceHit s = surfaceOfPath(slot, origin, direction, cone);
+      uvec4 info = cacheInfoOf(s.materialId);
+      CacheKey key;
+      if (info.x != 0u && frame.cache.x != 0u && cacheKeyFor(info, s.inputs, key)) {
+        g_cacheLookups += 1u;
+        float values[MG_CACHE_VALUES];
+        if (cacheRead(key, values)) {
+          g_cacheHits += 1u;
+          storeMaterialOutputs(slot, cacheUnpack(info.x, values, s.inputs));
+          bin = kNoBin;
+        } else {
+          g_cacheMisses += 1u;
+        }
+      }
+    }
+    pathState[fieldIndex(kFieldMaterialRest, slot)].w = uintBitsToFloat(bin);
+  }
+  cacheAddCounts();  // with subgroup arithmetic, every invocation of the subgroup
+}
+
 #elif defined(MG_WAVEFRONT_BIN_COUNT)
 // Counts the live hits of each material bin (a miss is shaded without a material).
 void main() {
   uint i = invocationIndex();
   if (i >= control.counts.x) return;
-  uint bin = binOfPath(pathQueues[queueIndex(push.step.z, i)]);
+  uint bin = binToEvaluate(pathQueues[queueIndex(push.step.z, i)]);
   if (bin != kNoBin) atomicAdd(materialBins[2u * bin + 1u].x, 1u);
 }
 
@@ -296,7 +378,7 @@ void main() {
   uint i = invocationIndex();
   if (i >= control.counts.x) return;
   uint slot = pathQueues[queueIndex(push.step.z, i)];
-  uint bin = binOfPath(slot);
+  uint bin = binToEvaluate(slot);
   if (bin == kNoBin) return;
   pathQueues[queueIndex(3u, atomicAdd(materialBins[2u * bin + 1u].z, 1u))] = slot;
 }
@@ -315,7 +397,28 @@ void main() {
   SurfaceHit s = surfaceOfPath(slot, origin, direction, cone);
   s.inputs.textureBase = MG_TEXTURE_BASE;  // as the switch's case sets it
   MaterialOutputs m;
+#ifdef MG_CACHE_TEXEL
+  // A miss of the lookup pass: evaluated (at its texel's centre with MG_CACHE_SNAP_UV) and
+  // inserted, as evaluateMaterialCached does after its read; the same key, recomputed.
+  uvec4 info = cacheInfoOf(s.materialId);
+  CacheKey key;
+  bool insert = cacheTakesBounce(push.step.y) && info.x != 0u && frame.cache.x != 0u &&
+                cacheKeyFor(info, s.inputs, key);
+  MaterialInputs inputs = s.inputs;
+#ifdef MG_CACHE_SNAP_UV
+  if (insert) inputs = texelInputs(inputs, key.texelUv, key.texelSize);
+#endif
+  MG_EVALUATE_MATERIAL(inputs, m);
+  // Paths of one bounce that missed the same texel all come here (the lookups came first);
+  // only the first to insert finds no entry, so the probe range keeps one copy, not many.
+  if (insert && cacheFind(key) < 0) {
+    float values[MG_CACHE_VALUES];
+    cachePack(info.x, m, values);
+    cacheWrite(key, values);
+  }
+#else
   MG_EVALUATE_MATERIAL(s.inputs, m);
+#endif
   storeMaterialOutputs(slot, m);
 }
 
@@ -353,7 +456,8 @@ void main() {
       uint bounce = push.step.y;
       bool continues = bounce + 1u < frame.path.y;
       // Key bounce + 1: key 0 is the camera ray's (the generate pass).
-      Rng rng = rngForPathVertex(slot, sampleIndexOf(push.step.x), bounce + 1u, frame.image.w);
+      Rng rng = rngForPathVertex(pixelOfSlot(slot), sampleIndexOf(push.step.x), bounce + 1u,
+                                 frame.image.w);
       LightSample light;
       vec3 fCos;
       if (sampleLightBeforeShadowRay(p, rng, light, fCos)) {
@@ -419,7 +523,7 @@ void main() {
 // accumulation buffer.
 void main() {
   uint slot = invocationIndex();
-  if (slot >= slotCount()) return;
+  if (slot >= push.chunk.z) return;
   uint round = push.step.x;
   vec3 radiance = pathState[fieldIndex(kFieldRadiance, slot)].rgb;
   vec3 sum = round == 0u ? vec3(0.0) : pathState[fieldIndex(kFieldPixelSum, slot)].rgb;
@@ -431,7 +535,8 @@ void main() {
   }
   vec3 mean = sum / float(pathCount);
   uint sampleIndex = frame.environmentSize.z;
-  vec3 previous = sampleIndex == 0u ? vec3(0.0) : accumulation[slot].rgb;
-  accumulation[slot] = vec4(mix(previous, mean, 1.0 / float(sampleIndex + 1u)), 1.0);
+  uint pixel = pixelOfSlot(slot);
+  vec3 previous = sampleIndex == 0u ? vec3(0.0) : accumulation[pixel].rgb;
+  accumulation[pixel] = vec4(mix(previous, mean, 1.0 / float(sampleIndex + 1u)), 1.0);
 }
 #endif

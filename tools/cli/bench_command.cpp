@@ -270,7 +270,10 @@ int runBench(std::span<const std::string_view> args) {
                     << summary.medianWavefrontShadowMilliseconds << ", queue "
                     << summary.medianWavefrontQueueMilliseconds << ", bin "
                     << summary.medianWavefrontBinMilliseconds << ", material "
-                    << summary.medianWavefrontMaterialMilliseconds << "\n";
+                    << summary.medianWavefrontMaterialMilliseconds << ", lookup "
+                    << summary.medianWavefrontLookupMilliseconds << "; "
+                    << result.stats.wavefrontPathSlots << " paths in flight, "
+                    << result.stats.wavefrontChunks << " chunk(s) a round\n";
         if (stoppedEarly)
           std::cout << "  stopped by --time-limit " << timeLimit << " s after "
                     << result.stats.frames.size() << " of " << settings.frames << " frames ("
@@ -319,8 +322,8 @@ int runBench(std::span<const std::string_view> args) {
               << ',' << result.stats.cacheClock << ',' << int(result.stats.cacheSnapUv) << ','
               << int(result.stats.cacheSecondaryOnly) << ',' << result.stats.cacheTile << ','
               << result.stats.culling << ',' << result.stats.shading << ','
-              << wavefrontPassCsvValues(summary, result.stats.shading == "wavefront") << ',' << f
-              << ',' << int(stoppedEarly) << '\n';
+              << wavefrontPassCsvValues(summary, result.stats) << ',' << f << ','
+              << int(stoppedEarly) << '\n';
         }
         if (!framesCsv.empty()) {
           std::ostringstream perFrame;

@@ -23,7 +23,7 @@ double median(std::vector<double> values) {
 
 TimedFrameSummary summarizeTimedFrames(std::span<const runtime::FrameStats> frames) {
   TimedFrameSummary summary;
-  std::vector<double> ms, mrays, hitRates, trace, shade, shadow, queue, bin, material;
+  std::vector<double> ms, mrays, hitRates, trace, shade, shadow, queue, bin, material, lookup;
   std::vector<std::vector<double> > counters(runtime::frameCounters({}).size());
   for (const auto& frame : frames) {
     ms.push_back(frame.gpuMilliseconds);
@@ -35,6 +35,7 @@ TimedFrameSummary summarizeTimedFrames(std::span<const runtime::FrameStats> fram
     queue.push_back(frame.wavefrontQueueMilliseconds);
     bin.push_back(frame.wavefrontBinMilliseconds);
     material.push_back(frame.wavefrontMaterialMilliseconds);
+    lookup.push_back(frame.wavefrontLookupMilliseconds);
     summary.cacheLookups += frame.cacheLookups;
     summary.cacheHits += frame.cacheHits;
     const auto values = runtime::frameCounters(frame);
@@ -50,6 +51,7 @@ TimedFrameSummary summarizeTimedFrames(std::span<const runtime::FrameStats> fram
   summary.medianWavefrontQueueMilliseconds = median(std::move(queue));
   summary.medianWavefrontBinMilliseconds = median(std::move(bin));
   summary.medianWavefrontMaterialMilliseconds = median(std::move(material));
+  summary.medianWavefrontLookupMilliseconds = median(std::move(lookup));
   summary.totalCacheHitRate =
       summary.cacheLookups ? double(summary.cacheHits) / double(summary.cacheLookups) : 0.0;
   const auto names = runtime::frameCounters({});
@@ -86,17 +88,21 @@ std::string benchSummaryCsvValues(const TimedFrameSummary& summary) {
 std::string wavefrontPassCsvColumns() {
   return "median_wavefront_trace_gpu_ms,median_wavefront_shade_gpu_ms,"
          "median_wavefront_shadow_gpu_ms,median_wavefront_queue_gpu_ms,"
-         "median_wavefront_bin_gpu_ms,median_wavefront_material_gpu_ms";
+         "median_wavefront_bin_gpu_ms,median_wavefront_material_gpu_ms,"
+         "median_wavefront_lookup_gpu_ms,wavefront_paths,wavefront_chunks";
 }
 
-std::string wavefrontPassCsvValues(const TimedFrameSummary& summary, bool wavefront) {
-  if (!wavefront)
-    return ",,,,,";
+std::string wavefrontPassCsvValues(const TimedFrameSummary& summary,
+                                   const runtime::RenderStats& stats) {
+  if (stats.shading != "wavefront")
+    return ",,,,,,,,";
   std::ostringstream out;
   out << summary.medianWavefrontTraceMilliseconds << ',' << summary.medianWavefrontShadeMilliseconds
       << ',' << summary.medianWavefrontShadowMilliseconds << ','
       << summary.medianWavefrontQueueMilliseconds << ',' << summary.medianWavefrontBinMilliseconds
-      << ',' << summary.medianWavefrontMaterialMilliseconds;
+      << ',' << summary.medianWavefrontMaterialMilliseconds << ','
+      << summary.medianWavefrontLookupMilliseconds << ',' << stats.wavefrontPathSlots << ','
+      << stats.wavefrontChunks;
   return out.str();
 }
 

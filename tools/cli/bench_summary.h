@@ -31,6 +31,7 @@ struct TimedFrameSummary {
   double medianWavefrontQueueMilliseconds = 0.0;
   double medianWavefrontBinMilliseconds = 0.0;
   double medianWavefrontMaterialMilliseconds = 0.0;
+  double medianWavefrontLookupMilliseconds = 0.0;
 };
 
 TimedFrameSummary summarizeTimedFrames(std::span<const runtime::FrameStats> frames);
@@ -40,9 +41,12 @@ TimedFrameSummary summarizeTimedFrames(std::span<const runtime::FrameStats> fram
 std::string benchSummaryCsvColumns();
 std::string benchSummaryCsvValues(const TimedFrameSummary& summary);
 
-// The wavefront passes' columns (median_wavefront_{trace,shade,shadow,queue}_gpu_ms) and
+// The wavefront passes' columns (median_wavefront_{trace,shade,shadow,queue,bin,material,
+// lookup}_gpu_ms, then wavefront_paths and wavefront_chunks: paths in flight, chunks a round)
+// and
 // their values: empty for the megakernel, which has no passes.
 std::string wavefrontPassCsvColumns();
-std::string wavefrontPassCsvValues(const TimedFrameSummary& summary, bool wavefront);
+std::string wavefrontPassCsvValues(const TimedFrameSummary& summary,
+                                   const runtime::RenderStats& stats);
 
 }  // namespace memograph::cli

@@ -33,14 +33,17 @@ inline constexpr const char* kRendererHelp =
     "  --shading S           megakernel (default: one kernel runs each path to its end) or\n"
     "                        wavefront (passes over queues of paths, their state in memory,\n"
     "                        materials evaluated in batches sorted by material; a\n"
-    "                        prototype: without a cache, culling, --shared-primary, debug\n"
-    "                        views or animated meshes)\n";
+    "                        prototype: the texel cache but not the tile cache, no culling,\n"
+    "                        --shared-primary, debug views or animated meshes)\n"
+    "  --wavefront-paths N   the wavefront's paths in flight (its path state's slots; 0, the\n"
+    "                        default: every pixel, or what the device's storage-buffer range\n"
+    "                        holds); a round over more pixels runs in chunks of N\n";
 
 struct RendererArguments {
   CacheArguments cache;
   CullingArguments culling;
   std::string backend = "auto", materialDispatch = "auto", device = "-1", nodes, shaderCache,
-              shading = "megakernel";
+              shading = "megakernel", wavefrontPaths = "0";
   bool sharedPrimary = false;
   // A scene option, not a renderer one: the command applies it to each scene it loads.
   bool noEmissiveNee = false;
@@ -56,6 +59,7 @@ struct RendererArguments {
     scanner.flag("--shared-primary", &sharedPrimary);
     scanner.flag("--no-emissive-nee", &noEmissiveNee);
     scanner.option("--shading", &shading);
+    scanner.option("--wavefront-paths", &wavefrontPaths);
   }
 
   // The renderer's options (the command adds its own, e.g. validation). Throws
@@ -77,6 +81,11 @@ struct RendererArguments {
     options.shaderCacheDirectory = shaderCache;
     options.nodeLibraryDirectory = nodes;
     options.shading = runtime::parseShading(shading);
+    if (!parseNumber(wavefrontPaths, options.wavefrontPaths))
+      throw std::invalid_argument(
+          "--wavefront-paths takes a number of paths (0: the default), "
+          "not '" +
+          wavefrontPaths + "'");
     runtime::validateWavefrontOptions(options);
     if (options.shading == runtime::Shading::Wavefront && sharedPrimary)
       throw std::invalid_argument(

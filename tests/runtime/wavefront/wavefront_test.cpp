@@ -1,8 +1,9 @@
 // The wavefront path tracer (--shading wavefront) on lavapipe, with the free-material floor
-// and with the scenes' material graphs (evaluated in batches sorted by material): both
-// backends give the same image, its mean agrees with the megakernel's on the landscape and
-// the classroom (the two draw different random numbers, so means, not pixels), its passes
-// are timed, and what the prototype does not do is refused, in the library and the CLI.
+// and with the scenes' material graphs (evaluated in batches sorted by material), with and
+// without the texel cache: both backends give the same image, its mean agrees with the
+// megakernel's on the landscape and the classroom (the two draw different random numbers, so
+// means, not pixels), its passes are timed, the cache's lookups spare material evaluations,
+// and what the prototype does not do is refused, in the library and the CLI.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -10,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <tuple>
 
 #include <gtest/gtest.h>
 
@@ -31,6 +33,15 @@ RendererOptions floorOptions(Backend backend, Shading shading, bool floor = true
 
 RendererOptions graphOptions(Backend backend, Shading shading) {
   return floorOptions(backend, shading, false);
+}
+
+// The scene's graphs with the texel cache (the defaults for the rest: LRU, the counter clock
+// where the device has 64-bit atomics).
+RendererOptions texelCacheOptions(Backend backend, Shading shading) {
+  RendererOptions options = graphOptions(backend, shading);
+  options.cache.mode = CacheMode::Texel;
+  options.cache.entries = 1u << 16;
+  return options;
 }
 
 RenderSettings settings(std::uint32_t width, std::uint32_t height, std::uint32_t paths,
@@ -78,17 +89,23 @@ TEST(Wavefront, QueryAndPipelineGiveTheSameImage) {
 // callables on the pipeline backend), L = 4, at `paths` x `frames` samples per pixel.
 double meanDifference(const std::string& sceneName, std::uint32_t width, std::uint32_t height,
                       std::uint32_t paths, std::uint32_t frames,
-                      Backend backend = Backend::RayQuery, bool floor = true) {
+                      Backend backend = Backend::RayQuery, bool floor = true,
+                      bool texelCache = false) {
   const Scene scene = makeBuiltinScene(sceneName, {});
   const RenderSettings s = settings(width, height, paths, 4, frames);
-  const double megakernel = meanRadiance(
-      Renderer(floorOptions(backend, Shading::Megakernel, floor)).render(scene, s).image);
-  const double wavefront = meanRadiance(
-      Renderer(floorOptions(backend, Shading::Wavefront, floor)).render(scene, s).image);
+  auto options = [&](Shading shading) {
+    return texelCache ? texelCacheOptions(backend, shading) : floorOptions(backend, shading, floor);
+  };
+  const double megakernel =
+      meanRadiance(Renderer(options(Shading::Megakernel)).render(scene, s).image);
+  const double wavefront =
+      meanRadiance(Renderer(options(Shading::Wavefront)).render(scene, s).image);
   EXPECT_GT(megakernel, 0.0);
   std::printf("%s%s: megakernel mean %.6f, wavefront %.6f (%+.3f %%)\n", sceneName.c_str(),
-              floor ? "" : " with graphs", megakernel, wavefront,
-              100.0 * (wavefront / megakernel - 1.0));
+              texelCache ? " with the texel cache"
+              : floor    ? ""
+                         : " with graphs",
+              megakernel, wavefront, 100.0 * (wavefront / megakernel - 1.0));
   return wavefront / megakernel - 1.0;
 }
 
@@ -106,6 +123,34 @@ TEST(Wavefront, MeanMatchesTheMegakernelOnTheLandscape) {
 // (measured: -100 %).
 TEST(Wavefront, MeanMatchesTheMegakernelOnTheClassroom) {
   EXPECT_LT(std::abs(meanDifference("classroom", 24, 14, 8, 64)), 0.12);
+}
+
+// A round split into chunks (a path state of fewer slots than pixels, --wavefront-paths)
+// draws the same random numbers for the same pixels, so the image is the same bit for bit:
+// the floor in 3 chunks of 50 of its 144 pixels, the graphs in 21 chunks of 7.
+TEST(Wavefront, ARoundSplitIntoChunksGivesTheSameImage) {
+  const Scene scene = makeBuiltinScene("landscape", {});
+  const RenderSettings s = settings(16, 9, 2, 3, 2);
+  for (auto [floor, slots, chunks] : {std::tuple(true, 50u, 3u), std::tuple(false, 7u, 21u)}) {
+    RendererOptions whole = floorOptions(Backend::RayQuery, Shading::Wavefront, floor);
+    RendererOptions split = whole;
+    split.wavefrontPaths = slots;
+    RenderResult a = Renderer(whole).render(scene, s);
+    RenderResult b = Renderer(split).render(scene, s);
+    EXPECT_EQ(a.stats.wavefrontPathSlots, 16u * 9u);
+    EXPECT_EQ(a.stats.wavefrontChunks, 1u);
+    EXPECT_EQ(b.stats.wavefrontPathSlots, slots);
+    EXPECT_EQ(b.stats.wavefrontChunks, chunks);
+    EXPECT_EQ(a.image.rgba, b.image.rgba) << (floor ? "floor" : "graphs");
+    EXPECT_GT(meanRadiance(b.image), 0.0);
+    // The same rays, and the passes of every chunk timed.
+    EXPECT_EQ(a.stats.frames.at(1).rays, b.stats.frames.at(1).rays);
+    EXPECT_GT(b.stats.frames.at(1).wavefrontTraceMilliseconds, 0.0);
+  }
+  // The capacity is the wavefront's: the megakernel refuses it.
+  RendererOptions megakernel = floorOptions(Backend::RayQuery, Shading::Megakernel);
+  megakernel.wavefrontPaths = 64;
+  EXPECT_THROW(Renderer(megakernel).render(scene, s), std::invalid_argument);
 }
 
 // The statistics of one frame of the landscape.
@@ -143,9 +188,14 @@ TEST(Wavefront, OptionsThePrototypeLacksAreRefused) {
       EXPECT_NE(std::string(e.what()).find(named), std::string::npos) << e.what();
     }
   };
+  // The texel cache needs the material passes (the floor has none); the tile cache is not
+  // built into the wavefront.
   RendererOptions cached = floorOptions(Backend::RayQuery, Shading::Wavefront);
   cached.cache.mode = CacheMode::Texel;
-  refuses(cached, s, "cache");
+  refuses(cached, s, "floor");
+  RendererOptions tiled = graphOptions(Backend::RayQuery, Shading::Wavefront);
+  tiled.cache.mode = CacheMode::Tile;
+  refuses(tiled, s, "tile cache");
   RendererOptions culled = floorOptions(Backend::RayQuery, Shading::Wavefront);
   culled.culling.mode = CullingMode::Frustum;
   refuses(culled, s, "culling");
@@ -206,12 +256,51 @@ TEST(Wavefront, HitsAreBinnedByMaterial) {
   EXPECT_GT(frame.wavefrontBinMilliseconds, 0.0);
 }
 
+// With the texel cache (thesis §5.3) the lookup pass reads every live hit first and only the
+// misses reach the material passes, which insert them: the mean stays the megakernel's with
+// the same cache (the landscape at the graphs' 48x27 pixels and 64 samples, tolerance 1.5 %).
+TEST(Wavefront, TexelCacheMeanMatchesTheMegakernelsWithTheCache) {
+  EXPECT_LT(std::abs(meanDifference("landscape", 48, 27, 4, 16, Backend::RayQuery, false, true)),
+            0.015);
+}
+
+// The cache's counts add up, its lookup pass is timed, and a warm cache spares evaluations:
+// the second frame's material passes evaluate fewer hits than the first's, and at least its
+// misses (each miss is evaluated; hits of materials the cache does not take are too).
+TEST(Wavefront, TexelCacheLookupsSpareMaterialEvaluations) {
+  const Scene scene = makeBuiltinScene("landscape", {});
+  RenderResult result = Renderer(texelCacheOptions(Backend::RayQuery, Shading::Wavefront))
+                            .render(scene, settings(32, 18, 2, 3, 2));
+  ASSERT_EQ(result.stats.frames.size(), 2u);
+  auto evaluated = [](const FrameStats& frame) {
+    std::uint64_t sum = 0;
+    for (std::uint32_t count : frame.wavefrontBinHits)
+      sum += count;
+    return sum;
+  };
+  const FrameStats& first = result.stats.frames[0];
+  const FrameStats& second = result.stats.frames[1];
+  for (const FrameStats* frame : {&first, &second}) {
+    EXPECT_GT(frame->cacheLookups, 0u);
+    EXPECT_EQ(frame->cacheLookups, frame->cacheHits + frame->cacheMisses);
+    EXPECT_GE(evaluated(*frame), frame->cacheMisses);
+    EXPECT_GT(frame->wavefrontLookupMilliseconds, 0.0);
+  }
+  EXPECT_GT(second.cacheHits, first.cacheHits);
+  EXPECT_LT(evaluated(second), evaluated(first));
+  std::printf("evaluated %llu then %llu; hit rate %.3f then %.3f\n",
+              (unsigned long long)evaluated(first), (unsigned long long)evaluated(second),
+              first.cacheHitRate(), second.cacheHitRate());
+}
+
 // The classroom's 88 graphs do not compile into the query backend's megakernel on lavapipe;
-// the wavefront compiles each into a pipeline of its own, so the query backend renders it.
+// the wavefront compiles each into a pipeline of its own, so the query backend renders it,
+// here with the texel cache looked up and filled by those pipelines.
 TEST(Wavefront, TheClassroomRendersWithGraphsOnTheQueryBackend) {
   const Scene scene = makeBuiltinScene("classroom", {});
-  RenderResult result = Renderer(graphOptions(Backend::RayQuery, Shading::Wavefront))
+  RenderResult result = Renderer(texelCacheOptions(Backend::RayQuery, Shading::Wavefront))
                             .render(scene, settings(32, 18, 1, 2, 1));
+  EXPECT_GT(result.stats.frames.at(0).cacheLookups, 0u);
   double sum = 0.0;
   for (float value : result.image.rgba) {
     ASSERT_TRUE(std::isfinite(value));
@@ -241,10 +330,12 @@ TEST(Wavefront, TheCliRefusesBadCombinationsAsUsageErrors) {
   EXPECT_EQ(runCli(render + "--shading wavefront --floor-materials --shared-primary"), 2);
   EXPECT_EQ(runCli(render + "--shading wavefront --floor-materials --debug-misses"), 2);
   EXPECT_EQ(runCli(render + "--shading sideways --floor-materials"), 2);
+  EXPECT_EQ(runCli(render + "--floor-materials --wavefront-paths 64"), 2);  // megakernel
+  EXPECT_EQ(runCli(render + "--shading wavefront --floor-materials --wavefront-paths many"), 2);
   EXPECT_EQ(runCli("render builtin:city:scale=0.02 --size 8x8 --out " + out +
                    " --shading wavefront --floor-materials"),
             2);  // the city's flags are animated
-  EXPECT_EQ(runCli(render + "--shading wavefront --cache texel"), 2);  // with graphs too
+  EXPECT_EQ(runCli(render + "--shading wavefront --cache tile"), 2);  // with graphs too
   EXPECT_EQ(runCli("bench builtin:landscape --sizes 8x8 --frames 1 --shading wavefront "
                    "--culling frustum"),
             2);
@@ -275,15 +366,17 @@ TEST(Wavefront, BenchCsvHasThePassColumns) {
   EXPECT_NE(header.find(",shading,median_wavefront_trace_gpu_ms,median_wavefront_shade_gpu_ms,"
                         "median_wavefront_shadow_gpu_ms,median_wavefront_queue_gpu_ms,"
                         "median_wavefront_bin_gpu_ms,median_wavefront_material_gpu_ms,"
+                        "median_wavefront_lookup_gpu_ms,wavefront_paths,wavefront_chunks,"
                         "frames_requested,stopped_early"),
             std::string::npos)
       << header;
   EXPECT_NE(row.find(",wavefront,"), std::string::npos) << row;
+  EXPECT_TRUE(row.ends_with(",144,1,2,0")) << row;                // 16x9 paths in flight, one chunk
   EXPECT_EQ(row.find(",wavefront,,"), std::string::npos) << row;  // the medians are there
-  EXPECT_TRUE(row.ends_with(",2,0")) << row;  // frames_requested, stopped_early stay last
+  // frames_requested, stopped_early stay last (checked above with the wavefront's two)
   auto [megakernelHeader, megakernelRow] = lines(megakernel);
   EXPECT_EQ(megakernelHeader, header);
-  EXPECT_NE(megakernelRow.find(",megakernel,,,,,,"), std::string::npos) << megakernelRow;
+  EXPECT_NE(megakernelRow.find(",megakernel,,,,,,,,,,2,0"), std::string::npos) << megakernelRow;
   std::filesystem::remove(wavefront);
   std::filesystem::remove(megakernel);
 }
