@@ -344,9 +344,13 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   std::optional<WavefrontPathTracer> wavefrontTracer;
   stats.shading = shadingName(options_.shading);
   if (wavefront) {
+    WavefrontSetup setup;
+    setup.materials = floor ? nullptr : &materials;
+    setup.texelCache = cache.mode == CacheMode::Texel;
+    setup.pathSlots = options_.wavefrontPaths;
+    setup.compileThreads = options_.shaderCompileThreads;
     wavefrontTracer.emplace(context, compiler, textures.count(), shaderDefines, settings.width,
-                            settings.height, floor ? nullptr : &materials,
-                            cache.mode == CacheMode::Texel, options_.wavefrontPaths);
+                            settings.height, setup);
     stats.wavefrontPathSlots = wavefrontTracer->pathSlots();
     stats.wavefrontChunks = wavefrontTracer->chunks();
     // The wavefront has no callables: its material pipelines' compiles count in their place.

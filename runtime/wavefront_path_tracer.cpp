@@ -1,10 +1,15 @@
 #include "runtime/wavefront_path_tracer.h"
 
+#include <algorithm>
 #include <array>
+#include <atomic>
 #include <cstddef>
+#include <exception>
 #include <stdexcept>
+#include <thread>
 
 #include "runtime/compute_pipeline.h"
+#include "runtime/material_shaders.h"
 #include "runtime/shaders/shared_types.h"
 #include "runtime/trace_pipelines.h"
 #include "runtime/vulkan_error.h"
@@ -76,14 +81,15 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
                                          std::uint32_t textureCount,
                                          const std::vector<std::string>& extraDefines,
                                          std::uint32_t width, std::uint32_t height,
-                                         const LinkedMaterials* materials, bool texelCache,
-                                         std::uint32_t pathSlots)
+                                         const WavefrontSetup& setup)
     : context_(context),
       query_(context.backend() == Backend::RayQuery),
-      lookup_(texelCache),
+      lookup_(setup.texelCache),
       pixels_(width * height) {
   VkDevice device = context.device();
-  if (texelCache && !materials)
+  const LinkedMaterials* materials = setup.materials;
+  const std::uint32_t pathSlots = setup.pathSlots;
+  if (lookup_ && !materials)
     throw std::invalid_argument(
         "--shading wavefront looks the texel cache up for its material passes; the free-material "
         "floor has none (use --shading megakernel to time the floor's lookups)");
@@ -175,22 +181,44 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   // One small pipeline per distinct graph, compiled with only that graph's include (as a
   // material callable is), so no compile ever sees all of a scene's graphs: the query
   // backend's megakernel inlines every one (the classroom's 88 do not compile on lavapipe).
+  // The GLSL compiles and the driver's pipeline compiles both run on several threads (the
+  // classroom's 88 graphs took about 115 s of glslang on one core).
   if (materials) {
-    for (const DistinctMaterial& material : materials->distinct) {
-      std::vector<std::string> materialDefines = defines;
-      materialDefines.push_back(kPassDefines[gpu::kWavefrontMaterial]);
-      materialDefines.push_back("MG_TEXTURE_BASE=" + std::to_string(material.textureBase));
-      materialDefines.push_back("MG_EVALUATE_MATERIAL=EvaluateMaterial_" + material.name);
-      ShaderCompiler materialCompiler = compiler.withFile("material.glsl", material.include);
-      auto module = createShaderModule(
-          device,
-          materialCompiler.compile({"wavefront.glsl", ShaderStage::Compute, materialDefines}));
-      materialShaderStats_.hits += materialCompiler.stats().hits;
-      materialShaderStats_.compiled += materialCompiler.stats().compiled;
-      materialShaderStats_.compileMilliseconds += materialCompiler.stats().compileMilliseconds;
-      materialPasses_.push_back(createComputePipeline(
-          device, module.get(), layout_.get(), ("wavefront material " + material.name).c_str()));
-    }
+    MaterialShaderRequest request;
+    request.source = "wavefront.glsl";
+    request.stage = ShaderStage::Compute;
+    request.defines = defines;
+    request.defines.push_back(kPassDefines[gpu::kWavefrontMaterial]);
+    request.threads = setup.compileThreads;
+    request.what = "wavefront material pass";
+    const auto spirv = compileMaterialShaders(compiler, *materials, request, materialShaderStats_);
+    materialPasses_.resize(spirv.size());
+    std::atomic<std::size_t> next{0};
+    std::vector<std::exception_ptr> errors(spirv.size());
+    auto createPipelines = [&] {
+      for (std::size_t bin = next++; bin < spirv.size(); bin = next++) {
+        try {
+          auto module = createShaderModule(device, spirv[bin]);
+          materialPasses_[bin] = createComputePipeline(
+              device, module.get(), layout_.get(),
+              ("wavefront material " + materials->distinct[bin].name).c_str());
+        } catch (...) {
+          errors[bin] = std::current_exception();
+        }
+      }
+    };
+    std::uint32_t threads = setup.compileThreads
+                                ? setup.compileThreads
+                                : std::max(1u, std::thread::hardware_concurrency());
+    std::vector<std::thread> workers;
+    for (std::uint32_t t = 1; t < std::min<std::size_t>(threads, spirv.size()); ++t)
+      workers.emplace_back(createPipelines);
+    createPipelines();
+    for (auto& worker : workers)
+      worker.join();
+    for (const auto& error : errors)
+      if (error)
+        std::rethrow_exception(error);
   }
   if (query_)
     return;

@@ -21,26 +21,33 @@
 
 namespace memograph::runtime {
 
+// What the wavefront renders beyond the megakernel's defines.
+struct WavefrontSetup {
+  // Null: the floor (MG_MATERIAL_FLOOR in the defines); otherwise the scene's linked graphs,
+  // one material pipeline per distinct graph.
+  const LinkedMaterials* materials = nullptr;
+  // MG_CACHE_TEXEL in the defines, with materials: a lookup pass before the binning, and the
+  // material passes insert their misses.
+  bool texelCache = false;
+  // The path state's capacity, paths in flight (0: every pixel, or as many as the device's
+  // storage-buffer range and work-group count allow); a round over more pixels runs in
+  // chunks of at most that many, one after another.
+  std::uint32_t pathSlots = 0;
+  std::uint32_t compileThreads = 0;  // the material shaders' GLSL compiles; 0: one per core
+};
+
 class WavefrontPathTracer {
  public:
   // Compiles the passes for the context's backend: every pass a compute pipeline on the query
   // backend; on the pipeline backend trace and shadow are the raygens of one ray-tracing
   // pipeline, launched with vkCmdTraceRaysIndirectKHR (refused, std::runtime_error, where the
-  // device lacks it). `extraDefines` as the megakernel's (floor, NEE, object inputs).
-  // `materials` null: the floor (MG_MATERIAL_FLOOR in extraDefines); otherwise the scene's
-  // linked graphs, one material pipeline per distinct graph, compiled from `compiler`'s files
-  // plus that graph's include. `texelCache` (MG_CACHE_TEXEL in extraDefines, with
-  // materials): a lookup pass before the binning, and the material passes insert their
-  // misses. `pathSlots`: the path state's capacity, paths in flight (0: every pixel, or as many
-  // as the device's storage-buffer range and work-group count allow); a round over more
-  // pixels than that runs in chunks of at most that many, one after another (chunks()).
-  // Throws std::invalid_argument when a given capacity does not fit the device, or for a
-  // texel cache without materials.
+  // device lacks it). `extraDefines` as the megakernel's (floor, cache, NEE, object inputs).
+  // The material pipelines compile from `compiler`'s files plus each graph's include, on
+  // `setup.compileThreads` threads. Throws std::invalid_argument when a given capacity does
+  // not fit the device, or for a texel cache without materials.
   WavefrontPathTracer(const VulkanContext& context, ShaderCompiler& compiler,
                       std::uint32_t textureCount, const std::vector<std::string>& extraDefines,
-                      std::uint32_t width, std::uint32_t height,
-                      const LinkedMaterials* materials = nullptr, bool texelCache = false,
-                      std::uint32_t pathSlots = 0);
+                      std::uint32_t width, std::uint32_t height, const WavefrontSetup& setup);
 
   VkDescriptorSetLayout descriptorSetLayout() const { return setLayout_.get(); }
   // Paths in flight (the path state's slots) and the chunks a round of the image takes.

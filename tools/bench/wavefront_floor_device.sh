@@ -8,17 +8,24 @@
 # here (no carried Vulkan loader), e.g. --local --size 64x36 --frames 2 on lavapipe to check
 # the script. --materials: the scenes' material graphs without a cache instead of the floor
 # (the wavefront's per-material passes against the megakernel's callables), in a call of its
-# own (its limits also add up to about 500 s).
-#   bash tools/bench/wavefront_floor_device.sh [--local] [--materials] [--size WxH] [--frames N]
+# own (its limits also add up to about 500 s). --texel-cache: the graphs with the default
+# texel cache (--cache texel: what a user gets), the wavefront's lookup pass against the
+# megakernel's lookups, in a call of its own too: a cached frame depends on the frames
+# before it, so these render the first 100 cameras of the path one after another (--frames
+# sets how many) instead of every 10th.
+#   bash tools/bench/wavefront_floor_device.sh [--local] [--materials | --texel-cache]
+#        [--size WxH] [--frames N]
 # e.g. run(carry=["bundle", ".gl"], command="bash tools/bench/wavefront_floor_device.sh").
 # Results in $OUT: wavefront_rows.csv (one bench line a run, with the wavefront's pass
-# columns median_wavefront_{trace,shade,shadow,queue}_gpu_ms) and wavefront_log.txt.
+# columns median_wavefront_{trace,shade,shadow,queue,bin,material,lookup}_gpu_ms) and
+# wavefront_log.txt.
 set -uo pipefail
-frames=30 size=1920x1080 local=0 materials=0
+frames= size=1920x1080 local=0 materials=0 cache=()
 while [ $# -gt 0 ]; do
   case $1 in
   --local) local=1; shift ;;
   --materials) materials=1; shift ;;
+  --texel-cache) materials=1; cache=(--cache texel); shift ;;
   --size) size=$2; shift 2 ;;
   --frames) frames=$2; shift 2 ;;
   *) echo "unknown argument $1" >&2; exit 2 ;;
@@ -40,6 +47,9 @@ first=1
 # graphs the megakernel's frame is about 2.7 s on the H200).
 entries="landscape:100 classroom:140" floor=--floor-materials
 [ $materials = 0 ] || { entries="landscape:80 classroom:160"; floor=; }
+stride=(--frame-stride 10)
+[ ${#cache[@]} = 0 ] || { entries="landscape:90 classroom:150"; stride=(--camera-frames 300); }
+frames=${frames:-$([ ${#cache[@]} = 0 ] && echo 30 || echo 100)}
 for entry in $entries; do
   scene=${entry%%:*}
   limit=${entry##*:}
@@ -49,7 +59,7 @@ for entry in $entries; do
     csv="/tmp/wavefront_${scene}_${shading}.csv"
     rm -f "$csv"
     timeout "$limit" "$m" bench "builtin:$scene" --backend pipeline --sizes "$size" --paths 6 \
-      --bounces 4 --warmup 2 --frames "$frames" --frame-stride 10 $floor \
+      --bounces 4 --warmup 2 --frames "$frames" "${stride[@]}" $floor "${cache[@]}" \
       --shading "$shading" --time-limit $((limit - 15)) --label "$shading" \
       --shader-cache /tmp/wavefront_shaders --csv "$csv" 2>&1 | tail -6 | tee -a "$log"
     echo "rc=${PIPESTATUS[0]} seconds=$(($(date +%s) - t0))" | tee -a "$log"
