@@ -156,9 +156,6 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   const bool wavefront = options_.shading == Shading::Wavefront;
   validateWavefrontOptions(options_);
   if (wavefront) {
-    if (settings.sharedPrimaryRay)
-      throw std::invalid_argument(
-          "--shading wavefront traces every path's own camera ray; it has no --shared-primary");
     if (!scene.animatedMeshes.empty() && scene.animatedPosition)
       throw std::invalid_argument(
           "--shading wavefront renders static scenes only; this one has animated meshes");

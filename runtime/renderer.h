@@ -67,7 +67,7 @@ struct RendererOptions {
   // roughness 0.5, metallic 0, the geometric normal) and no graph evaluated, for the cost
   // of a free material. Stats say materialDispatch "floor". Not with a cache.
   bool floorMaterials = false;
-  // Wavefront: no tile cache, culling, debug view, shared primary ray or animated meshes, and
+  // Wavefront: no tile cache, culling, debug view or animated meshes, and
   // the texel cache only with the scene's graphs (checked by validateWavefrontOptions and
   // render()).
   Shading shading = Shading::Megakernel;

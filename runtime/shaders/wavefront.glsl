@@ -287,8 +287,12 @@ void main() {
   uint pixelIndex = pixelOfSlot(slot);
   uvec2 pixel = uvec2(pixelIndex % frame.image.x, pixelIndex / frame.image.x);
   Rng rng = rngForPathVertex(pixelIndex, sampleIndexOf(push.step.x), 0u, frame.image.w);
+  // --shared-primary (thesis §5.1): every round's camera ray through the pixel centre. The
+  // megakernel traces it once for the P paths; each round here traces it again (the same
+  // hit), so the wavefront counts P camera rays a pixel where the megakernel counts one.
+  bool sharedPrimary = (frame.path.z & kFlagSharedPrimaryRay) != 0u;
   vec3 origin, direction;
-  primaryRay(pixel, rngNext2(rng), origin, direction);
+  primaryRay(pixel, sharedPrimary ? vec2(0.5) : rngNext2(rng), origin, direction);
   pathState[fieldIndex(kFieldOrigin, slot)] = vec4(origin, 0.0);
   pathState[fieldIndex(kFieldDirection, slot)] = vec4(direction, frame.cameraPosition.w);
   pathState[fieldIndex(kFieldThroughput, slot)] = vec4(1.0, 1.0, 1.0, 0.0);

@@ -1,6 +1,6 @@
 // A Lambert-dominated plane under one point light: with one ray per path (direct light
 // only) each pixel is f(wo, wi) * E, where E = I cos(theta) / d^2 is the analytic
-// irradiance and f the thesis §2.1 BRDF evaluated here on the CPU.
+// irradiance and f the thesis §2.1 BRDF evaluated here on the CPU. In both architectures.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -24,7 +24,9 @@ double brdf(double albedo, double roughness, glm::dvec3 n, glm::dvec3 wo, glm::d
   return albedo * 0.96 / kPi + f * g1(ni) * g1(no) * d / (4 * ni * no);
 }
 
-TEST(PointLight, LambertPlaneMatchesAnalyticIrradiance) {
+class PointLight : public ::testing::TestWithParam<Shading> {};
+
+TEST_P(PointLight, LambertPlaneMatchesAnalyticIrradiance) {
   const double albedo = 0.5, roughness = 1.0, intensity = 10.0;
   const glm::dvec3 light(0.3, 2.0, -0.2);
   Scene scene;
@@ -37,7 +39,9 @@ TEST(PointLight, LambertPlaneMatchesAnalyticIrradiance) {
   scene.camera.target = {0, 0, 0};
   scene.camera.verticalFovDegrees = 40.0f;
 
-  Renderer renderer(testing::testOptions());
+  RendererOptions options = testing::testOptions();
+  options.shading = GetParam();
+  Renderer renderer(options);
   RenderSettings settings;
   settings.width = settings.height = 32;
   settings.raysPerPath = 1;
@@ -67,9 +71,13 @@ TEST(PointLight, LambertPlaneMatchesAnalyticIrradiance) {
       EXPECT_NEAR(got, expected, 0.01 * expected) << "pixel " << x << "," << y;
     }
   }
-  std::printf("point light: worst relative error %.5f\n", worst);
+  std::printf("point light (%s): worst relative error %.5f\n", shadingName(GetParam()), worst);
   EXPECT_TRUE(renderer.context().validationErrors().empty());
 }
+
+INSTANTIATE_TEST_SUITE_P(BothArchitectures, PointLight,
+                         ::testing::Values(Shading::Megakernel, Shading::Wavefront),
+                         [](const auto& info) { return std::string(shadingName(info.param)); });
 
 }  // namespace
 }  // namespace memograph::runtime

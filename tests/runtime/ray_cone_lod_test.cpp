@@ -1,7 +1,8 @@
 // Ray-cone LOD (thesis §2.2, eq. 2.10-2.16): a checker texture on a plane facing the camera
 // at growing distances is sampled at the mip level the formula predicts. Each mip level of
 // the test texture has its own red value (level / (levels - 1)) under a green checker, so
-// the red channel of the emitted colour reads back the (trilinearly blended) level.
+// the red channel of the emitted colour reads back the (trilinearly blended) level. In both
+// architectures.
 #include <cmath>
 
 #include <gtest/gtest.h>
@@ -22,12 +23,15 @@ EmissionOutput Color<1;
 BaseColorOutput Color=(0, 0, 0);
 )";
 
-TEST(RayConeLod, CheckerAtGrowingDistanceSelectsPredictedMip) {
+class RayConeLod : public ::testing::TestWithParam<Shading> {};
+
+TEST_P(RayConeLod, CheckerAtGrowingDistanceSelectsPredictedMip) {
   const float planeSize = 4.0f;
   const float fovDegrees = 30.0f;
   const std::uint32_t size = 33;  // odd: the centre pixel's ray is the optical axis
   std::vector<std::string> requested;
   RendererOptions options = testing::testOptions();
+  options.shading = GetParam();
   options.textureLoader = [&](const std::string& path) {
     requested.push_back(path);
     return testing::levelTaggedChecker(kTextureSize, kLevels, 4);
@@ -67,6 +71,10 @@ TEST(RayConeLod, CheckerAtGrowingDistanceSelectsPredictedMip) {
   ASSERT_FALSE(requested.empty());
   EXPECT_EQ(requested.front(), "checker.pfm");
 }
+
+INSTANTIATE_TEST_SUITE_P(BothArchitectures, RayConeLod,
+                         ::testing::Values(Shading::Megakernel, Shading::Wavefront),
+                         [](const auto& info) { return std::string(shadingName(info.param)); });
 
 }  // namespace
 }  // namespace memograph::runtime

@@ -1,7 +1,8 @@
 // The texel cache (thesis §4.2-4.5, §5.3) on lavapipe: a static camera's image with the
 // cache stays close to the uncached one (LDR-FLIP), its hit rate climbs above 99 %, a
 // material that reads more than uv never touches the cache, and a cache far too small for
-// the scene still renders (probe ranges full, writes dropped) without hanging.
+// the scene still renders (probe ranges full, writes dropped) without hanging; the
+// behavioural ones in both architectures (megakernel and wavefront).
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -91,9 +92,22 @@ TEST(TexelCache, SpecularTintAndCyclesWeightingSurviveBothCacheKinds) {
   }
 }
 
-TEST(TexelCache, StaticCameraHitRateExceeds99PercentAfterAFewFrames) {
+// The texel cache in both architectures: the megakernel, and the wavefront's lookup pass and
+// material passes (--shading wavefront), whose inserts come after all lookups of a bounce.
+class TexelCacheInBothArchitectures : public ::testing::TestWithParam<Shading> {
+ protected:
+  RendererOptions options(CacheMode mode, Backend backend = Backend::Auto,
+                          std::optional<std::uint32_t> entries = 1u << 16,
+                          CacheEviction eviction = CacheEviction::Lru) const {
+    RendererOptions o = cacheOptions(mode, backend, entries, eviction);
+    o.shading = GetParam();
+    return o;
+  }
+};
+
+TEST_P(TexelCacheInBothArchitectures, StaticCameraHitRateExceeds99PercentAfterAFewFrames) {
   Scene scene = wallScene(stripesGraph(), false);
-  Renderer renderer(cacheOptions(CacheMode::Texel));
+  Renderer renderer(options(CacheMode::Texel));
   RenderResult result = renderer.render(scene, settings(12, 1));
   expectConsistentCounters(result.stats);
   const FrameStats& first = result.stats.frames.front();
@@ -112,11 +126,14 @@ TEST(TexelCache, StaticCameraHitRateExceeds99PercentAfterAFewFrames) {
 // footprint wide, so the stripes are quantized like a nearest-filtered texture of about one
 // texel per pixel. Bound: mean LDR-FLIP below 0.06 (measured on lavapipe: 0.041 query,
 // 0.043 callables; the printed figure).
-void expectCloseToUncached(Backend backend, bool updateCounter = true) {
+void expectCloseToUncached(Backend backend, bool updateCounter = true,
+                           Shading shading = Shading::Megakernel) {
   Scene scene = wallScene(stripesGraph(), true);
-  RenderResult off =
-      Renderer(cacheOptions(CacheMode::None, backend)).render(scene, settings(6, 3, 2));
+  RendererOptions offOptions = cacheOptions(CacheMode::None, backend);
+  offOptions.shading = shading;
+  RenderResult off = Renderer(offOptions).render(scene, settings(6, 3, 2));
   RendererOptions onOptions = cacheOptions(CacheMode::Texel, backend);
+  onOptions.shading = shading;
   onOptions.cache.updateCounter = updateCounter;
   RenderResult on = Renderer(onOptions).render(scene, settings(6, 3, 2));
   EXPECT_EQ(on.stats.cacheReadCheck, updateCounter ? "counter" : "key");
@@ -125,10 +142,10 @@ void expectCloseToUncached(Backend backend, bool updateCounter = true) {
     EXPECT_EQ(f.cacheLookups, 0u);
   double flip = meanFlip(off.image, on.image);
   std::printf(
-      "texel cache (read check %s) vs none (%s backend, %s): mean LDR-FLIP %.4f, last frame "
-      "hit rate %.2f %%\n",
+      "texel cache (read check %s) vs none (%s backend, %s, %s): mean LDR-FLIP %.4f, last "
+      "frame hit rate %.2f %%\n",
       on.stats.cacheReadCheck.c_str(), on.stats.backend.c_str(), on.stats.materialDispatch.c_str(),
-      flip, 100.0 * on.stats.frames.back().cacheHitRate());
+      on.stats.shading.c_str(), flip, 100.0 * on.stats.frames.back().cacheHitRate());
   EXPECT_GT(on.stats.frames.back().cacheLookups, 0u);
   EXPECT_LT(flip, 0.06);
 }
@@ -143,6 +160,10 @@ TEST(TexelCache, CachedImageIsCloseToUncachedWithCallables) {
 
 // The thesis's key read check (key, values, key) renders like the update counter, the
 // default. (That the counter closes the A-B-A race: TexelCacheStress.)
+TEST(TexelCache, CachedImageIsCloseToUncachedInTheWavefront) {
+  expectCloseToUncached(Backend::RayQuery, true, Shading::Wavefront);
+}
+
 TEST(TexelCache, KeyReadCheckRendersLikeTheUpdateCounter) {
   expectCloseToUncached(Backend::RayQuery, false);
 }
@@ -168,10 +189,10 @@ TEST(TexelCache, MipBiasTradesHitRateForFidelity) {
   EXPECT_GT(hitRate[1], hitRate[2]);
 }
 
-TEST(TexelCache, NonCacheableMaterialNeverTouchesTheCache) {
+TEST_P(TexelCacheInBothArchitectures, NonCacheableMaterialNeverTouchesTheCache) {
   Scene scene = wallScene(positionGraph(), false);
-  RenderResult off = Renderer(cacheOptions(CacheMode::None)).render(scene, settings(3, 2));
-  RenderResult on = Renderer(cacheOptions(CacheMode::Texel)).render(scene, settings(3, 2));
+  RenderResult off = Renderer(options(CacheMode::None)).render(scene, settings(3, 2));
+  RenderResult on = Renderer(options(CacheMode::Texel)).render(scene, settings(3, 2));
   for (const FrameStats& f : on.stats.frames) {
     EXPECT_EQ(f.cacheLookups, 0u) << "frame " << f.frame;
     EXPECT_EQ(f.cacheHits, 0u);
@@ -184,13 +205,13 @@ TEST(TexelCache, NonCacheableMaterialNeverTouchesTheCache) {
   EXPECT_LE(maxAbs, 1e-6);
 }
 
-TEST(TexelCache, FarTooFewEntriesStillRenders) {
+TEST_P(TexelCacheInBothArchitectures, FarTooFewEntriesStillRenders) {
   Scene scene = wallScene(stripesGraph(), true);
-  RenderResult off = Renderer(cacheOptions(CacheMode::None)).render(scene, settings(3, 3));
+  RenderResult off = Renderer(options(CacheMode::None)).render(scene, settings(3, 3));
   for (CacheEviction eviction :
        {CacheEviction::None, CacheEviction::Lru, CacheEviction::Lrw, CacheEviction::Random}) {
     // S = D + 1: one probe range, nine entries for hundreds of texels.
-    RenderResult on = Renderer(cacheOptions(CacheMode::Texel, Backend::Auto, 9, eviction))
+    RenderResult on = Renderer(options(CacheMode::Texel, Backend::Auto, 9, eviction))
                           .render(scene, settings(3, 3));
     expectConsistentCounters(on.stats);
     for (float value : on.image.rgba)
@@ -211,14 +232,14 @@ TEST(TexelCache, FarTooFewEntriesStillRenders) {
 // Thesis Fig. 6.14's trend: a camera panning along a long wall with a cache of a few frames'
 // texels. Without eviction the hit rate falls once the cache is full (new texels find no
 // empty entry); with lru it stays high (consecutive frames overlap).
-TEST(TexelCache, PanningCameraKeepsItsHitRateOnlyWithEviction) {
+TEST_P(TexelCacheInBothArchitectures, PanningCameraKeepsItsHitRateOnlyWithEviction) {
   Scene scene = testing::panningWallScene();
   RenderSettings s = testing::panningSettings();
   double early[2], late[2];
   for (int i = 0; i < 2; ++i) {
     CacheEviction eviction = i == 0 ? CacheEviction::None : CacheEviction::Lru;
     RenderResult r =
-        Renderer(cacheOptions(CacheMode::Texel, Backend::Auto, 1024, eviction)).render(scene, s);
+        Renderer(options(CacheMode::Texel, Backend::Auto, 1024, eviction)).render(scene, s);
     expectConsistentCounters(r.stats);
     auto mean = [&](std::size_t from, std::size_t to) {
       double sum = 0;
@@ -336,6 +357,10 @@ TEST(TexelCache, DefaultEntriesFitTheStorageBufferRange) {
     }
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(BothArchitectures, TexelCacheInBothArchitectures,
+                         ::testing::Values(Shading::Megakernel, Shading::Wavefront),
+                         [](const auto& info) { return std::string(shadingName(info.param)); });
 
 }  // namespace
 }  // namespace memograph::runtime

@@ -34,7 +34,7 @@ inline constexpr const char* kRendererHelp =
     "                        wavefront (passes over queues of paths, their state in memory,\n"
     "                        materials evaluated in batches sorted by material; a\n"
     "                        prototype: the texel cache but not the tile cache, no culling,\n"
-    "                        --shared-primary, debug views or animated meshes)\n"
+    "                        debug views or animated meshes)\n"
     "  --wavefront-paths N   the wavefront's paths in flight (its path state's slots; 0, the\n"
     "                        default: every pixel, or what the device's storage-buffer range\n"
     "                        holds); a round over more pixels runs in chunks of N\n";
@@ -87,9 +87,6 @@ struct RendererArguments {
           "not '" +
           wavefrontPaths + "'");
     runtime::validateWavefrontOptions(options);
-    if (options.shading == runtime::Shading::Wavefront && sharedPrimary)
-      throw std::invalid_argument(
-          "--shading wavefront traces every path's own camera ray; it has no --shared-primary");
     return options;
   }
 };

@@ -199,9 +199,6 @@ TEST(Wavefront, OptionsThePrototypeLacksAreRefused) {
   RendererOptions culled = floorOptions(Backend::RayQuery, Shading::Wavefront);
   culled.culling.mode = CullingMode::Frustum;
   refuses(culled, s, "culling");
-  RenderSettings shared = s;
-  shared.sharedPrimaryRay = true;
-  refuses(floorOptions(Backend::RayQuery, Shading::Wavefront), shared, "--shared-primary");
   // An emitter whose emission NEE must take from its graph at the light point: the wavefront
   // has no material pass for light points.
   Scene emitting = scene;
@@ -327,7 +324,6 @@ TEST(Wavefront, TheCliRefusesBadCombinationsAsUsageErrors) {
   const std::string render = "render builtin:landscape --size 8x8 --out " + out + " ";
   EXPECT_EQ(runCli(render + "--shading wavefront --floor-materials --cache texel"), 2);
   EXPECT_EQ(runCli(render + "--shading wavefront --floor-materials --culling frustum"), 2);
-  EXPECT_EQ(runCli(render + "--shading wavefront --floor-materials --shared-primary"), 2);
   EXPECT_EQ(runCli(render + "--shading wavefront --floor-materials --debug-misses"), 2);
   EXPECT_EQ(runCli(render + "--shading sideways --floor-materials"), 2);
   EXPECT_EQ(runCli(render + "--floor-materials --wavefront-paths 64"), 2);  // megakernel
