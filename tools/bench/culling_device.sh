@@ -11,6 +11,11 @@
 #              each camera's role in its header). With SCENE=builtin:city:path=aerial, the
 #              aerial path's cameras (city_aerial.campath): 120 and 135 facing the mirror, 60
 #              flying in, as docs/results/culling_h200.md pictured them
+#   looks      LiPaC's looks swept: --looks off, then --look-appearing in LOOKS (default
+#              "2 4 16"; 8 is the bench step's lipac row), each a bench run of the path as
+#              above (looks.csv: bench's summary line each, labelled lipac_looks_off,
+#              lipac_appearing_N; frames_lipac_<label>.csv: per frame, with the looks and
+#              their GPU time); peak AS bytes against the whole scene's decide the default
 # After tools/bundle_device.sh, on the GPU machine (tools/ and examples/ travel as tracked
 # files; carry bundle and .gl):
 #   bash tools/bench/culling_device.sh [bench] [pictures]
@@ -46,18 +51,48 @@ nvidia-smi --query-gpu=name,driver_version --format=csv,noheader >"$OUT/env.txt"
 cat bundle/VERSION >>"$OUT/env.txt" 2>/dev/null
 echo "stride=$stride limit=$limit extra='${EXTRA:-}'" >>"$OUT/env.txt"
 
+# Appends bench CSV $1 to $2, its header only when $2 is new. (A test inside a compound
+# command redirected to $2 always found $2: the redirection creates it first, so bench.csv
+# came back without its header.)
+append_csv() {
+  [ -f "$1" ] || return 0
+  if [ -s "$2" ]; then tail -n +2 "$1" >>"$2"; else cat "$1" >"$2"; fi
+}
+
+# One bench run of the path: `label`, then its flags.
+bench_run() {
+  local label=$1
+  shift
+  echo "== bench $label" | tee -a "$OUT/log.txt"
+  # shellcheck disable=SC2086 # EXTRA is a list of flags
+  timeout "$limit" "$m" bench "$scene" --sizes "$size" --paths "$paths" --bounces 4 \
+    --warmup 0 --frames $((360 / stride)) --camera-frames 360 --frame-stride "$stride" \
+    --time-limit $((limit - 10)) --label "$label" --shader-cache "$work/sc" \
+    --csv "$work/bench_$label.csv" --frames-csv "$work/$label." "$@" ${EXTRA:-} 2>&1 |
+    tail -8 >>"$OUT/log.txt"
+  echo "rc=${PIPESTATUS[0]}" >>"$OUT/log.txt"
+}
+
+looks() {
+  local label
+  for setting in off ${LOOKS:-2 4 16}; do
+    if [ "$setting" = off ]; then
+      label=lipac_looks_off
+      bench_run "$label" --culling lipac --looks off
+    else
+      label=lipac_appearing_$setting
+      bench_run "$label" --culling lipac --look-appearing "$setting"
+    fi
+    append_csv "$work/bench_$label.csv" "$OUT/looks.csv"
+    cp "$work/$label."*_"$size".csv "$OUT/frames_$label.csv" 2>/dev/null
+  done
+}
+
 bench() {
   for mode in none frustum lipac; do
-    echo "== bench $mode" | tee -a "$OUT/log.txt"
-    # shellcheck disable=SC2086 # EXTRA is a list of flags
-    timeout "$limit" "$m" bench "$scene" --sizes "$size" --paths "$paths" --bounces 4 \
-      --warmup 0 --frames $((360 / stride)) --camera-frames 360 --frame-stride "$stride" \
-      --time-limit $((limit - 10)) --culling "$mode" --label "$mode" --shader-cache "$work/sc" \
-      --csv "$work/bench_$mode.csv" --frames-csv "$work/" ${EXTRA:-} 2>&1 | tail -8 >>"$OUT/log.txt"
-    echo "rc=${PIPESTATUS[0]}" >>"$OUT/log.txt"
-    if [ -f "$OUT/bench.csv" ]; then tail -n +2 "$work/bench_$mode.csv"; else cat "$work/bench_$mode.csv"; fi \
-      >>"$OUT/bench.csv" 2>/dev/null
-    cp "$work"/*_"$mode"_"$size".csv "$OUT/frames_$mode.csv" 2>/dev/null
+    bench_run "$mode" --culling "$mode"
+    append_csv "$work/bench_$mode.csv" "$OUT/bench.csv"
+    cp "$work/$mode."*_"$size".csv "$OUT/frames_$mode.csv" 2>/dev/null
   done
 }
 
@@ -90,6 +125,7 @@ for step in "$@"; do
   case $step in
   bench) bench ;;
   pictures) pictures ;;
+  looks) looks ;;
   *) echo "culling_device.sh: unknown step '$step'" >&2; exit 2 ;;
   esac
 done

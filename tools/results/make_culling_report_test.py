@@ -59,6 +59,22 @@ class MakeCullingReportTest(unittest.TestCase):
         self.assertEqual([c.strip() for c in mirror.strip("|").split("|")][1:],
                          ["0.0310", "0.0042"])
 
+    def test_the_looks_variants_are_rows_of_their_own(self):
+        run = os.path.join(self.dir.name, "run")
+        os.makedirs(run)
+        write_frames(os.path.join(run, "frames_none.csv"), [(100.0, 1000, 0.0, 20000)])
+        write_frames(os.path.join(run, "frames_lipac_appearing_16.csv"),
+                     [(90.0, 500, 1.0, 3000)])
+        write_frames(os.path.join(run, "frames_lipac_appearing_2.csv"), [(90.0, 250, 1.0, 3000)])
+        write_frames(os.path.join(run, "frames_lipac_looks_off.csv"), [(90.0, 900, 1.0, 3000)])
+        result, text = self.run_report(run)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        rows = [line.split("|")[1].strip() for line in text.splitlines()
+                if line.startswith("| lipac_")]
+        self.assertEqual(rows, ["lipac_looks_off", "lipac_appearing_2", "lipac_appearing_16"])
+        two = next(line for line in text.splitlines() if line.startswith("| lipac_appearing_2 |"))
+        self.assertEqual([c.strip() for c in two.strip("|").split("|")][4], "0.25×")
+
     def test_the_pictures_rows_name_each_cameras_role(self):
         run = os.path.join(self.dir.name, "run")
         os.makedirs(run)
