@@ -120,14 +120,10 @@ void validateWavefrontOptions(const RendererOptions& options) {
     return;
   }
   const std::string prefix = "--shading wavefront is a prototype: ";
-  if (options.cache.mode == CacheMode::Tile)
-    throw std::invalid_argument(prefix +
-                                "it has the texel cache but not the tile cache (--cache texel or "
-                                "none, or --shading megakernel)");
-  if (options.cache.mode == CacheMode::Texel && options.floorMaterials)
+  if (options.cache.mode != CacheMode::None && options.floorMaterials)
     throw std::invalid_argument(
-        "--shading wavefront looks the texel cache up for its material passes, and the "
-        "free-material floor has none; time the floor's lookups with --shading megakernel");
+        "--shading wavefront fills the cache in its material passes, and the free-material "
+        "floor has none; time the floor's lookups with --shading megakernel");
   if (options.culling.mode != CullingMode::None)
     throw std::invalid_argument(prefix + "it has no culling (--culling none)");
   if (options.debugCacheMisses)
@@ -186,7 +182,12 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
 
   MaterialDispatch dispatch = resolveMaterialDispatch(options_.materialDispatch, context.backend());
   // Unset clock options resolved for this device (cache_options.h).
-  const CacheOptions cache = resolveCacheOptions(options_.cache, context.info().bufferInt64Atomics,
+  // The wavefront computes missing tiles in its material passes, from the deferred fill's
+  // queue: there is no subgroup of lookups to share a tile's texels out.
+  CacheOptions requested = options_.cache;
+  if (wavefront && requested.mode == CacheMode::Tile)
+    requested.tileFill = TileFill::Deferred;
+  const CacheOptions cache = resolveCacheOptions(requested, context.info().bufferInt64Atomics,
                                                  std::uint64_t(settings.width) * settings.height *
                                                      settings.pathsPerPixel * settings.raysPerPath);
   const bool cacheOn = cache.mode != CacheMode::None;
@@ -343,7 +344,9 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   if (wavefront) {
     WavefrontSetup setup;
     setup.materials = floor ? nullptr : &materials;
-    setup.texelCache = cache.mode == CacheMode::Texel;
+    setup.cacheLookups = cacheOn;
+    setup.tileQueueCapacity = cache.mode == CacheMode::Tile ? cache.tileQueue : 0;
+    setup.tileImage = materialCache.tileImageView() != VK_NULL_HANDLE;
     setup.pathSlots = options_.wavefrontPaths;
     setup.compileThreads = options_.shaderCompileThreads;
     wavefrontTracer.emplace(context, compiler, textures.count(), shaderDefines, settings.width,
@@ -469,7 +472,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                                 kFirstWavefrontTimestamp);
       else
         pipeline->record(commands, set, settings.width, settings.height);
-      if (materialCache.tileFillRows() > 0) {
+      if (materialCache.tileFillRows() > 0 && pipeline) {
         // The deferred tile fill computes the tiles the trace queued (its stores, queue and
         // locks ordered after the trace's); the frame's time includes it.
         barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;

@@ -67,9 +67,9 @@ struct RendererOptions {
   // roughness 0.5, metallic 0, the geometric normal) and no graph evaluated, for the cost
   // of a free material. Stats say materialDispatch "floor". Not with a cache.
   bool floorMaterials = false;
-  // Wavefront: no tile cache, culling, debug view or animated meshes, and
-  // the texel cache only with the scene's graphs (checked by validateWavefrontOptions and
-  // render()).
+  // Wavefront: no culling, debug view or animated meshes, and a cache only with the scene's
+  // graphs (checked by validateWavefrontOptions and render()); the tile cache always fills
+  // through the deferred fill's queue.
   Shading shading = Shading::Megakernel;
   // The wavefront's paths in flight (its path state's capacity); a round over more pixels
   // runs in chunks of this many. 0: every pixel, or what the device's storage-buffer range
@@ -87,7 +87,7 @@ struct RendererOptions {
 };
 
 // Refuses (std::invalid_argument, naming the option) what the wavefront prototype does not
-// do (the tile cache, culling, debug views, the texel cache on the floor), and
+// do (culling, debug views, a cache on the floor), and
 // wavefrontPaths without the wavefront.
 void validateWavefrontOptions(const RendererOptions& options);
 

@@ -40,8 +40,8 @@ constexpr std::array<double FrameStats::*, gpu::kWavefrontPassCount> kPassTimes 
     &FrameStats::wavefrontLookupMilliseconds};
 
 // The bytes of a bin's record after gpu::WavefrontControl: its material pass's dispatch
-// arguments and its counts (shared_types.h).
-constexpr std::uint64_t kBinRecordBytes = 2 * 16;
+// arguments, its hits' counts and its queued tiles' counts (shared_types.h).
+constexpr std::uint64_t kBinRecordBytes = 3 * 16;
 
 std::uint32_t workgroupsFor(std::uint64_t invocations) {
   return static_cast<std::uint32_t>((invocations + gpu::kWavefrontWorkgroupSize - 1) /
@@ -84,15 +84,15 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
                                          const WavefrontSetup& setup)
     : context_(context),
       query_(context.backend() == Backend::RayQuery),
-      lookup_(setup.texelCache),
+      lookup_(setup.cacheLookups),
       pixels_(width * height) {
   VkDevice device = context.device();
   const LinkedMaterials* materials = setup.materials;
   const std::uint32_t pathSlots = setup.pathSlots;
   if (lookup_ && !materials)
     throw std::invalid_argument(
-        "--shading wavefront looks the texel cache up for its material passes; the free-material "
-        "floor has none (use --shading megakernel to time the floor's lookups)");
+        "--shading wavefront fills the cache in its material passes; the free-material floor "
+        "has none (use --shading megakernel to time the floor's lookups)");
   if (!query_ && !context.info().traceRaysIndirect)
     throw std::runtime_error(
         "--shading wavefront on the pipeline backend launches its traces with "
@@ -131,9 +131,13 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
                   true);
   pathState_ = GpuBuffer(context, stateBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                          VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  pathQueues_ =
-      GpuBuffer(context, std::uint64_t(slots_) * (materials ? 4 : 3) * sizeof(std::uint32_t),
-                VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  // With the tile cache the queued tiles' sorted list follows the four queues.
+  const std::uint64_t queueWords =
+      std::uint64_t(slots_) * (materials ? 4 : 3) + (materials ? setup.tileQueueCapacity : 0);
+  checkBufferSize(context, queueWords * sizeof(std::uint32_t), "--shading wavefront's queues",
+                  true);
+  pathQueues_ = GpuBuffer(context, queueWords * sizeof(std::uint32_t),
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   control_ = GpuBuffer(context, sizeof(gpu::WavefrontControl) + bins * kBinRecordBytes,
                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
                            VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
@@ -144,7 +148,7 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
     binReadback_ = hostBuffer(context, bins * kBinRecordBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
   VkShaderStageFlags stages = query_ ? VK_SHADER_STAGE_COMPUTE_BIT
                                      : VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_RAYGEN_BIT_KHR;
-  setLayout_ = createTraceSetLayout(device, stages, textureCount, false, true);
+  setLayout_ = createTraceSetLayout(device, stages, textureCount, setup.tileImage, true);
   layout_ = createPipelineLayout(device, setLayout_.get(), stages, sizeof(gpu::WavefrontPush));
 
   std::vector<std::string> defines = {"MG_TEXTURE_COUNT=" + std::to_string(textureCount),
@@ -378,10 +382,11 @@ std::vector<std::uint32_t> WavefrontPathTracer::binHits() const {
   std::vector<std::uint32_t> hits;
   if (materialPasses_.empty())
     return hits;
-  std::vector<glm::uvec4> records(materialPasses_.size() * 2);
+  constexpr std::size_t kRecords = kBinRecordBytes / sizeof(glm::uvec4);
+  std::vector<glm::uvec4> records(materialPasses_.size() * kRecords);
   binReadback_.read(records.data(), records.size() * sizeof(glm::uvec4));
   for (std::size_t bin = 0; bin < materialPasses_.size(); ++bin)
-    hits.push_back(records[2 * bin].w);
+    hits.push_back(records[kRecords * bin].w);
   return hits;
 }
 

@@ -26,9 +26,13 @@ struct WavefrontSetup {
   // Null: the floor (MG_MATERIAL_FLOOR in the defines); otherwise the scene's linked graphs,
   // one material pipeline per distinct graph.
   const LinkedMaterials* materials = nullptr;
-  // MG_CACHE_TEXEL in the defines, with materials: a lookup pass before the binning, and the
-  // material passes insert their misses.
-  bool texelCache = false;
+  // A cache's defines (MG_CACHE_TEXEL, or MG_CACHE_TILE with MG_TILE_FILL_DEFERRED), with
+  // materials: a lookup pass before the binning; the material passes insert the texel
+  // cache's misses, or compute the tiles the lookups queued (tileQueueCapacity of them at
+  // most a bounce: the sorted tile list's length).
+  bool cacheLookups = false;
+  std::uint32_t tileQueueCapacity = 0;
+  bool tileImage = false;  // the tile cache stores its texels in an image (a binding more)
   // The path state's capacity, paths in flight (0: every pixel, or as many as the device's
   // storage-buffer range and work-group count allow); a round over more pixels runs in
   // chunks of at most that many, one after another.

@@ -331,21 +331,7 @@ void renderPixel(uvec2 pixel, bool inside) {
   cacheAddCounts();
 #endif
 #ifdef MG_CACHE_TILE
-  // The subgroup computation of tiles needs subgroup operations, so its sums have them; the
-  // deferred fill runs without (lavapipe's raygen has none).
-#if defined(MG_SUBGROUP_RAY_COUNT) || !defined(MG_TILE_FILL_DEFERRED)
-  uvec4 tileCounts =
-      subgroupAdd(uvec4(g_tilesComputed, g_duplicateTiles, g_tileFallbacks, g_tileRepacks));
-  if (subgroupElect() && any(notEqual(tileCounts, uvec4(0u)))) {
-#else
-  uvec4 tileCounts = uvec4(g_tilesComputed, g_duplicateTiles, g_tileFallbacks, g_tileRepacks);
-  if (any(notEqual(tileCounts, uvec4(0u)))) {
-#endif
-    atomicAdd(counters.cacheTilesComputed, tileCounts.x);
-    atomicAdd(counters.cacheDuplicateTiles, tileCounts.y);
-    atomicAdd(counters.cacheTileFallbacks, tileCounts.z);
-    atomicAdd(counters.cacheTileRepacks, tileCounts.w);
-  }
+  tileAddCounts();
 #ifndef MG_TILE_FILL_DEFERRED
   // Tiles this subgroup's lanes published (each by the lane that stored its last texel).
   uint tilesPublished = subgroupAdd(g_tilesPublished);

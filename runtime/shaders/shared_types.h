@@ -120,9 +120,10 @@ MG_CONSTANT(uint, kPathStateFieldsWithMaterials, 13);
 // The wavefront's queue counts and indirect arguments (binding kBindingWavefrontControl).
 // Each launch block is a VkDispatchIndirectCommand (work groups) or a
 // VkTraceRaysIndirectCommandKHR (invocations) in its xyz. With material graphs the block
-// goes on with two uvec4 per material bin (one bin per distinct graph): the bin's material
+// goes on with three uvec4 per material bin (one bin per distinct graph): the bin's material
 // pass's VkDispatchIndirectCommand, then (hits counted, first place in the material-sorted
-// queue, scatter cursor, hits in the batch).
+// queue, scatter cursor, hits in the batch), then the same for the bin's queued tiles (with
+// the tile cache; zero otherwise).
 struct WavefrontControl {
   uvec4 counts;        // x: paths in the live queue, y: appended to the next, z: shadow rays
   uvec4 liveGroups;    // compute passes over the live queue

@@ -142,6 +142,25 @@ void tileStorageBarrier() {
   cacheFence();
 }
 
+// Adds this invocation's tile counts to gpu::Counters. The subgroup computation of tiles needs
+// subgroup operations, so its sums have them (every invocation of the subgroup must call
+// it); the deferred fill runs without (lavapipe's raygen has none).
+void tileAddCounts() {
+#if defined(MG_SUBGROUP_RAY_COUNT) || !defined(MG_TILE_FILL_DEFERRED)
+  uvec4 tileCounts =
+      subgroupAdd(uvec4(g_tilesComputed, g_duplicateTiles, g_tileFallbacks, g_tileRepacks));
+  if (subgroupElect() && any(notEqual(tileCounts, uvec4(0u)))) {
+#else
+  uvec4 tileCounts = uvec4(g_tilesComputed, g_duplicateTiles, g_tileFallbacks, g_tileRepacks);
+  if (any(notEqual(tileCounts, uvec4(0u)))) {
+#endif
+    atomicAdd(counters.cacheTilesComputed, tileCounts.x);
+    atomicAdd(counters.cacheDuplicateTiles, tileCounts.y);
+    atomicAdd(counters.cacheTileFallbacks, tileCounts.z);
+    atomicAdd(counters.cacheTileRepacks, tileCounts.w);
+  }
+}
+
 // ---- Keys and filtering (§5.4.2) ---------------------------------------------------------
 
 // A lookup's tile: its key, mip level, position in multiples of the tile size (eq.
@@ -268,15 +287,10 @@ void tileEnqueue(uint materialId, TileRequest tile) {
   tileQueue[slot].texelsDone = 0u;
 }
 
-#ifdef MG_TILE_FILL_PASS
-// The fill pass: invocation i computes texel i % (W*H) of queue slot i / (W*H), stores it,
-// and the last of a tile's invocations to finish publishes the entry (its key unlocks it).
-// Cacheable materials read nothing but uv (§4.2), so the other inputs are placeholders.
-void tileFillTexel(uint invocation) {
-  uint slot = invocation / kTileTexels;
-  uint texel = invocation % kTileTexels;
-  if (slot >= min(tileQueueHeader.count, kTileQueueCapacity)) return;
-  TileFillItem item = tileQueue[slot];
+// The inputs of texel `texel` of a queued tile. Cacheable materials read nothing but uv
+// (§4.2), so the other inputs are placeholders; textureBase is the caller's (the switch's
+// case sets it, a wavefront material pass has its own).
+MaterialInputs tileFillInputs(TileFillItem item, uint texel) {
   MaterialInputs inputs;
   inputs.position.v = vec3(0.0);
   inputs.position.x = vec3(0.0);
@@ -297,9 +311,12 @@ void tileFillTexel(uint invocation) {
   inputs.backfacing = 0.0;
 #endif
   vec2 tile = vec2(uintBitsToFloat(item.tileX), uintBitsToFloat(item.tileY));
-  inputs = tileTexelInputs(inputs, int(item.level), tile, texel);
-  MaterialOutputs outputs;
-  evaluateMaterialDirect(item.materialId, inputs, outputs);
+  return tileTexelInputs(inputs, int(item.level), tile, texel);
+}
+
+// Stores the computed texel `texel` of queue slot `slot`; the last of the tile's texels to be
+// stored publishes the entry (its key unlocks it).
+void tileFillStore(uint slot, TileFillItem item, uint texel, MaterialOutputs outputs) {
   float values[MG_CACHE_VALUES];
   cachePack(mg_materialCacheInfo[item.materialId].x, outputs, values);
   tileStoreTexel(item.entry, texel, values);
@@ -314,6 +331,18 @@ void tileFillTexel(uint invocation) {
     cacheUnlock(item.entry, key);
     atomicAdd(counters.cacheTilesPublished, 1u);
   }
+}
+
+#ifdef MG_TILE_FILL_PASS
+// The fill pass: invocation i computes texel i % (W*H) of queue slot i / (W*H).
+void tileFillTexel(uint invocation) {
+  uint slot = invocation / kTileTexels;
+  uint texel = invocation % kTileTexels;
+  if (slot >= min(tileQueueHeader.count, kTileQueueCapacity)) return;
+  TileFillItem item = tileQueue[slot];
+  MaterialOutputs outputs;
+  evaluateMaterialDirect(item.materialId, tileFillInputs(item, texel), outputs);
+  tileFillStore(slot, item, texel, outputs);
 }
 #endif
 #else
@@ -627,6 +656,7 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
 
 #endif  // MG_TILE_FILL_DEFERRED
 
+#ifndef MG_WAVEFRONT
 // The tile cache's material evaluation. Every lane of the subgroup calls it at the same
 // point; `hasHit` is false for lanes without a hit (their outputs are meaningless).
 // Cacheable materials read their tile; the subgroup computes the missing tiles together;
@@ -682,5 +712,7 @@ void evaluateMaterialTiled(bool hasHit, uint materialId, MaterialInputs inputs,
     outputs = mg_defaultMaterialOutputs(inputs);
   }
 }
+
+#endif  // MG_WAVEFRONT
 
 #endif

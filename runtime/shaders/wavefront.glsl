@@ -17,7 +17,10 @@
 // - with the texel cache (MG_CACHE_TEXEL), MG_WAVEFRONT_LOOKUP first looks every live hit up
 //   (thesis §5.3): a hit's cached values become its material outputs and only the misses are
 //   binned; the material passes insert what they evaluate (lock, values, unlock, as the
-//   megakernel's evaluateMaterialCached does);
+//   megakernel's evaluateMaterialCached does); with the tile cache (MG_CACHE_TILE, its
+//   deferred fill's queue) the lookup reads the hit's tile and queues a missing one, and each
+//   bin's material pass also computes its bin's queued tiles, one invocation a texel, so the
+//   next bounce finds them;
 // - MG_WAVEFRONT_SHADE: the material's outputs (the floor's constants, or the material
 //   pass's), emission, one light sample (its shadow ray into the shadow queue) and the BSDF
 //   sample (the path into the next live queue);
@@ -76,9 +79,33 @@
 #include "material_textures.glsl"
 #endif
 #include "path_shading.glsl"
-// The texel cache where it is read (the lookup pass) and written (the material passes).
+// The texel cache where it is read (the lookup pass) and written (the material passes); the
+// tile cache also where its queued tiles are binned.
 #if defined(MG_CACHE_TEXEL) && (defined(MG_WAVEFRONT_LOOKUP) || defined(MG_WAVEFRONT_MATERIAL))
 #include "texel_cache.glsl"
+#endif
+#if defined(MG_CACHE_TILE) &&                                                    \
+    (defined(MG_WAVEFRONT_LOOKUP) || defined(MG_WAVEFRONT_BIN_COUNT) ||          \
+     defined(MG_WAVEFRONT_BIN_OFFSETS) || defined(MG_WAVEFRONT_BIN_SCATTER) ||  \
+     defined(MG_WAVEFRONT_MATERIAL) || defined(MG_WAVEFRONT_QUEUE))
+#ifndef MG_TILE_FILL_DEFERRED
+#error the wavefront fills tiles through the deferred fill's queue (MG_TILE_FILL_DEFERRED)
+#endif
+#include "tile_cache.glsl"
+#define MG_WAVEFRONT_TILES 1
+#endif
+#if defined(MG_CACHE_TEXEL) || defined(MG_CACHE_TILE)
+#define MG_WAVEFRONT_CACHE 1
+#endif
+#ifdef MG_WAVEFRONT_TILES
+// The tiles the bounce's lookups queued (tileEnqueue counts requests past the capacity too,
+// and gives those up); the queue pass empties the queue for the next bounce.
+uint queuedTiles() {
+  return min(tileQueueHeader.count, kTileQueueCapacity);
+}
+const uint kTileTexelsOrZero = kTileTexels;
+#else
+const uint kTileTexelsOrZero = 0u;
 #endif
 
 layout(set = 0, binding = kBindingPathState, std430) buffer PathStateBlock {
@@ -89,7 +116,7 @@ layout(set = 0, binding = kBindingPathQueues, std430) buffer PathQueueBlock {
 };
 layout(set = 0, binding = kBindingWavefrontControl, std430) buffer WavefrontControlBlock {
   WavefrontControl control;
-  uvec4 materialBins[];  // two a bin (shared_types.h); none with the floor
+  uvec4 materialBins[];  // kBinRecords a bin (shared_types.h); none with the floor
 };
 layout(push_constant) uniform WavefrontPushBlock {
   WavefrontPush push;
@@ -129,7 +156,8 @@ uint fieldIndex(uint field, uint slot) {
 }
 
 // Queue q: 0 and 1 the live queues (used in turn, bounce by bounce), 2 the shadow queue, 3
-// (with material graphs) the live hits' slots sorted by material bin.
+// (with material graphs) the live hits' slots sorted by material bin, 4 (with the tile
+// cache) the queued tiles' slots sorted by bin (the tile queue's capacity, not slotCount()).
 uint queueIndex(uint queue, uint i) {
   return queue * slotCount() + i;
 }
@@ -208,6 +236,10 @@ SurfaceHit surfaceOfPath(uint slot, out vec3 origin, out vec3 direction, out Ray
 // MG_MATERIAL_BIN_OF maps scene material ids to bins); kNoBin for a miss, or for a material
 // id past the scene's, which the shade pass gives the default outputs (as the switch does).
 const uint kNoBin = 0xffffffffu;
+// A bin's records after WavefrontControl: its material pass's dispatch arguments (w: the
+// frame's hits), its hits (count, first place, scatter cursor, batch) and its queued tiles
+// (count, first place, scatter cursor, batch).
+const uint kBinRecords = 3u;
 const uint kBinOfMaterial[MG_MATERIAL_COUNT] = MG_MATERIAL_BIN_OF;
 
 uint binOfPath(uint slot) {
@@ -220,7 +252,7 @@ uint binOfPath(uint slot) {
 // The bin whose material pass must evaluate a live path's hit: with the texel cache what
 // the lookup pass left (kNoBin after a cache hit), otherwise the hit's own.
 uint binToEvaluate(uint slot) {
-#ifdef MG_CACHE_TEXEL
+#ifdef MG_WAVEFRONT_CACHE
   return floatBitsToUint(pathState[fieldIndex(kFieldMaterialRest, slot)].w);
 #else
   return binOfPath(slot);
@@ -228,7 +260,7 @@ uint binToEvaluate(uint slot) {
 }
 #endif
 
-#ifdef MG_CACHE_TEXEL
+#ifdef MG_WAVEFRONT_CACHE
 // Whether bounce `bounce`'s hits use the cache: with MG_CACHE_SECONDARY_ONLY the camera rays'
 // hits evaluate their graphs directly (§6.1, Fig. 6.6), as in the megakernel.
 bool cacheTakesBounce(uint bounce) {
@@ -332,6 +364,23 @@ void main() {
       RayCone cone;
       SurfaceHit s = surfaceOfPath(slot, origin, direction, cone);
       uvec4 info = cacheInfoOf(s.materialId);
+#ifdef MG_WAVEFRONT_TILES
+      // §5.4: the hit's tile; a missing one is queued (once a frame: the tile log) for its
+      // bin's material pass to compute, and this hit is evaluated there directly.
+      TileRequest tile;
+      if (info.x != 0u && frame.cache.x != 0u && tileRequestFor(info, s.inputs, tile)) {
+        g_cacheLookups += 1u;
+        float values[MG_CACHE_VALUES];
+        if (tileRead(tile, values)) {
+          g_cacheHits += 1u;
+          storeMaterialOutputs(slot, cacheUnpack(info.x, values, s.inputs));
+          bin = kNoBin;
+        } else {
+          g_cacheMisses += 1u;
+          tileEnqueue(s.materialId, tile);
+        }
+      }
+#else
       CacheKey key;
       if (info.x != 0u && frame.cache.x != 0u && cacheKeyFor(info, s.inputs, key)) {
         g_cacheLookups += 1u;
@@ -344,19 +393,29 @@ void main() {
           g_cacheMisses += 1u;
         }
       }
+#endif
     }
     pathState[fieldIndex(kFieldMaterialRest, slot)].w = uintBitsToFloat(bin);
   }
   cacheAddCounts();  // with subgroup arithmetic, every invocation of the subgroup
+#ifdef MG_WAVEFRONT_TILES
+  tileAddCounts();
+#endif
 }
 
 #elif defined(MG_WAVEFRONT_BIN_COUNT)
-// Counts the live hits of each material bin (a miss is shaded without a material).
+// Counts the live hits of each material bin (a miss is shaded without a material), and with
+// the tile cache the bounce's queued tiles of each (no more than its live paths: each came
+// from one's lookup).
 void main() {
   uint i = invocationIndex();
+#ifdef MG_WAVEFRONT_TILES
+  if (i < queuedTiles())
+    atomicAdd(materialBins[kBinRecords * kBinOfMaterial[tileQueue[i].materialId] + 2u].x, 1u);
+#endif
   if (i >= control.counts.x) return;
   uint bin = binToEvaluate(pathQueues[queueIndex(push.step.z, i)]);
-  if (bin != kNoBin) atomicAdd(materialBins[2u * bin + 1u].x, 1u);
+  if (bin != kNoBin) atomicAdd(materialBins[kBinRecords * bin + 1u].x, 1u);
 }
 
 #elif defined(MG_WAVEFRONT_BIN_OFFSETS)
@@ -364,36 +423,69 @@ void main() {
 // sorted queue) and each bin's material-pass arguments; the counters start again from 0 (the
 // host zeroes the records before a frame). The arguments' w sums the bin's hits over the
 // frame, for FrameStats. A few hundred bins at most: one invocation walks them.
+// With the tile cache each bin's queued tiles get their segment of the sorted tile list too,
+// and its material pass one invocation more per texel of them.
 void main() {
   if (invocationIndex() != 0u) return;
   uint offset = 0u;
+  uint tileOffset = 0u;
   for (uint bin = 0u; bin < uint(MG_MATERIAL_BIN_COUNT); ++bin) {
-    uint count = materialBins[2u * bin + 1u].x;
-    uint frameHits = materialBins[2u * bin].w + count;
-    materialBins[2u * bin] = uvec4(workgroupsFor(count), 1u, 1u, frameHits);
-    materialBins[2u * bin + 1u] = uvec4(0u, offset, offset, count);
+    uint count = materialBins[kBinRecords * bin + 1u].x;
+    uint tiles = materialBins[kBinRecords * bin + 2u].x;
+    uint frameHits = materialBins[kBinRecords * bin].w + count;
+    materialBins[kBinRecords * bin] =
+        uvec4(workgroupsFor(count + tiles * kTileTexelsOrZero), 1u, 1u, frameHits);
+    materialBins[kBinRecords * bin + 1u] = uvec4(0u, offset, offset, count);
+    materialBins[kBinRecords * bin + 2u] = uvec4(0u, tileOffset, tileOffset, tiles);
     offset += count;
+    tileOffset += tiles;
   }
 }
 
 #elif defined(MG_WAVEFRONT_BIN_SCATTER)
-// The live hits' slots into the material-sorted queue, each at its bin's cursor.
+// The live hits' slots into the material-sorted queue, each at its bin's cursor; with the tile
+// cache the queued tiles' slots into the sorted tile list likewise.
 void main() {
   uint i = invocationIndex();
+#ifdef MG_WAVEFRONT_TILES
+  if (i < queuedTiles()) {
+    uint bin = kBinOfMaterial[tileQueue[i].materialId];
+    pathQueues[queueIndex(4u, atomicAdd(materialBins[kBinRecords * bin + 2u].z, 1u))] = i;
+  }
+#endif
   if (i >= control.counts.x) return;
   uint slot = pathQueues[queueIndex(push.step.z, i)];
   uint bin = binToEvaluate(slot);
   if (bin == kNoBin) return;
-  pathQueues[queueIndex(3u, atomicAdd(materialBins[2u * bin + 1u].z, 1u))] = slot;
+  pathQueues[queueIndex(3u, atomicAdd(materialBins[kBinRecords * bin + 1u].z, 1u))] = slot;
 }
 
 #elif defined(MG_WAVEFRONT_MATERIAL)
 // One distinct graph over its bin's batch (bin push.step.w) of the material-sorted queue:
 // the material inputs built from the hit as the megakernel builds them, the graph's outputs
 // into the path state for the shade pass.
+// With the tile cache the invocations past the bin's hits compute its queued tiles, one
+// texel each (the deferred fill's tileFillTexel, with this graph): the last of a tile's
+// texels to be stored publishes it, so the next bounce's lookups find it.
 void main() {
-  uvec4 bin = materialBins[2u * push.step.w + 1u];
+  uvec4 bin = materialBins[kBinRecords * push.step.w + 1u];
   uint i = invocationIndex();
+#ifdef MG_WAVEFRONT_TILES
+  if (i >= bin.w) {
+    uvec4 tiles = materialBins[kBinRecords * push.step.w + 2u];
+    uint tile = (i - bin.w) / kTileTexels;
+    if (tile >= tiles.w) return;
+    uint texel = (i - bin.w) % kTileTexels;
+    uint queueSlot = pathQueues[queueIndex(4u, tiles.y + tile)];
+    TileFillItem item = tileQueue[queueSlot];
+    MaterialInputs inputs = tileFillInputs(item, texel);
+    inputs.textureBase = MG_TEXTURE_BASE;
+    MaterialOutputs m;
+    MG_EVALUATE_MATERIAL(inputs, m);
+    tileFillStore(queueSlot, item, texel, m);
+    return;
+  }
+#endif
   if (i >= bin.w) return;
   uint slot = pathQueues[queueIndex(3u, bin.y + i)];
   vec3 origin, direction;
@@ -506,6 +598,9 @@ void main() {
   control.shadowGroups = uvec4(workgroupsFor(shadows), 1u, 1u, 0u);
   control.shadowLaunch = uvec4(shadows, 1u, 1u, 0u);
   atomicAdd(counters.rays, next + shadows);
+#ifdef MG_WAVEFRONT_TILES
+  tileQueueHeader.count = 0u;  // this bounce's tiles are published; the next bounce queues anew
+#endif
 }
 
 #elif defined(MG_WAVEFRONT_SHADOW)

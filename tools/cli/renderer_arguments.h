@@ -33,8 +33,8 @@ inline constexpr const char* kRendererHelp =
     "  --shading S           megakernel (default: one kernel runs each path to its end) or\n"
     "                        wavefront (passes over queues of paths, their state in memory,\n"
     "                        materials evaluated in batches sorted by material; a\n"
-    "                        prototype: the texel cache but not the tile cache, no culling,\n"
-    "                        debug views or animated meshes)\n"
+    "                        prototype: both caches (tiles always by the deferred fill's\n"
+    "                        queue), no culling, debug views or animated meshes)\n"
     "  --wavefront-paths N   the wavefront's paths in flight (its path state's slots; 0, the\n"
     "                        default: every pixel, or what the device's storage-buffer range\n"
     "                        holds); a round over more pixels runs in chunks of N\n";
