@@ -103,6 +103,12 @@
 uint queuedTiles() {
   return min(tileQueueHeader.count, kTileQueueCapacity);
 }
+
+// The lookup pass's read of a tile (its texel, or the bilinear blend of four), by the name
+// of the texel cache's.
+bool cacheRead(TileRequest request, out float values[MG_CACHE_VALUES]) {
+  return tileRead(request, values);
+}
 const uint kTileTexelsOrZero = kTileTexels;
 #else
 const uint kTileTexelsOrZero = 0u;
@@ -364,36 +370,29 @@ void main() {
       RayCone cone;
       SurfaceHit s = surfaceOfPath(slot, origin, direction, cone);
       uvec4 info = cacheInfoOf(s.materialId);
+      // The texel's key, or (§5.4) the hit's tile, whose read filters its texels.
 #ifdef MG_WAVEFRONT_TILES
-      // §5.4: the hit's tile; a missing one is queued (once a frame: the tile log) for its
-      // bin's material pass to compute, and this hit is evaluated there directly.
-      TileRequest tile;
-      if (info.x != 0u && frame.cache.x != 0u && tileRequestFor(info, s.inputs, tile)) {
-        g_cacheLookups += 1u;
-        float values[MG_CACHE_VALUES];
-        if (tileRead(tile, values)) {
-          g_cacheHits += 1u;
-          storeMaterialOutputs(slot, cacheUnpack(info.x, values, s.inputs));
-          bin = kNoBin;
-        } else {
-          g_cacheMisses += 1u;
-          tileEnqueue(s.materialId, tile);
-        }
-      }
+      TileRequest request;
+      bool cached = info.x != 0u && frame.cache.x != 0u && tileRequestFor(info, s.inputs, request);
 #else
-      CacheKey key;
-      if (info.x != 0u && frame.cache.x != 0u && cacheKeyFor(info, s.inputs, key)) {
+      CacheKey request;
+      bool cached = info.x != 0u && frame.cache.x != 0u && cacheKeyFor(info, s.inputs, request);
+#endif
+      if (cached) {
         g_cacheLookups += 1u;
         float values[MG_CACHE_VALUES];
-        if (cacheRead(key, values)) {
+        if (cacheRead(request, values)) {
           g_cacheHits += 1u;
           storeMaterialOutputs(slot, cacheUnpack(info.x, values, s.inputs));
           bin = kNoBin;
         } else {
           g_cacheMisses += 1u;
+#ifdef MG_WAVEFRONT_TILES
+          // Queued once a frame (the tile log) for its bin's material pass to compute.
+          tileEnqueue(s.materialId, request);
+#endif
         }
       }
-#endif
     }
     pathState[fieldIndex(kFieldMaterialRest, slot)].w = uintBitsToFloat(bin);
   }
