@@ -159,6 +159,12 @@ void validateCacheOptions(const CacheOptions& cache) {
     if (cache.tileQueue < 1 || cache.tileQueue > (1u << 24))
       throw std::invalid_argument("--tile-queue must be 1..16777216 tiles, not " +
                                   std::to_string(cache.tileQueue));
+    if (cache.testRepacks && (cache.testRepackPercent < 1 || cache.testRepackPercent > 100))
+      throw std::invalid_argument("--test-give-up must be 0..100 %, not " +
+                                  std::to_string(cache.testRepackPercent));
+    if (cache.testRepacks && cache.tileFill == TileFill::Deferred)
+      throw std::invalid_argument(
+          "--test-give-up gives up the subgroup fill's tiles (--tile-fill subgroup)");
   }
   if (cache.clockShift && *cache.clockShift > 32)
     throw std::invalid_argument("--clock-shift must be 0..32, not " +
@@ -254,6 +260,8 @@ std::vector<std::string> cacheShaderDefines(const CacheOptions& cache, std::uint
     }
     if (cache.testRepacks)
       defines.push_back("MG_TILE_TEST_REPACKS=1");
+    if (cache.testRepacks && cache.testRepackPercent < 100)
+      defines.push_back("MG_TILE_TEST_REPACK_PERCENT=" + std::to_string(cache.testRepackPercent));
     if (cache.testPartialSubgroups)
       defines.push_back("MG_TILE_TEST_PARTIAL_SUBGROUPS=1");
     if (cache.tileStorage == TileStorage::Texture2D || cache.tileStorage == TileStorage::Texture3D)

@@ -113,6 +113,11 @@ struct CacheOptions {
   // came back from another subgroup (NVIDIA's raygen regroups lanes across callables), so
   // the repack check and its give-up path run on lavapipe's query backend.
   bool testRepacks = false;
+  // With testRepacks: the percentage of the subgroup fill's iterations the hook fires in
+  // (100: every one), chosen by a hash of the subgroup, its first tile and the frame. The
+  // H200 gives up about 60 % of the tiles it starts on the classroom (callable repacks); this
+  // lets lavapipe run the eviction policies under such a rate (CLI: --test-give-up).
+  std::uint32_t testRepackPercent = 100;
 };
 
 // Throws std::invalid_argument naming the option (CLI spelling) when out of range.

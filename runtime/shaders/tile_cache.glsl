@@ -268,11 +268,12 @@ const uint kTileQueueCapacity = uint(MG_TILE_QUEUE_CAPACITY);
 // gives the entry back. The requester evaluates its own hit either way.
 void tileEnqueue(uint materialId, TileRequest tile) {
   if (tileLogDuplicate(tile.key)) return;
-  int entry = cacheLock(tile.key);
+  uint evicted;
+  int entry = cacheLockEvicting(tile.key, evicted);
   if (entry < 0) return;
   uint slot = atomicAdd(tileQueueHeader.count, 1u);
   if (slot >= kTileQueueCapacity) {
-    cacheUnlockEmpty(uint(entry));
+    cacheRestore(uint(entry), evicted);  // nothing stored: the entry's tile, if any, back
     g_tileFallbacks += 1u;
     return;
   }
@@ -416,15 +417,17 @@ void tileCountTexels(uint entry, CacheKey key, uint amount) {
 // place `placeInPasses` among the locked tiles (its texels are numbers placeInPasses * W*H ..)
 // hands the entry back. Texels numbered below pass * activeCount were stored and counted in
 // the earlier, stable passes; the rest never will be.
-void tileGiveUp(uint entry, CacheKey key, uint placeInPasses, uint pass, uint activeCount) {
+void tileGiveUp(uint entry, CacheKey key, uint evicted, uint placeInPasses, uint pass,
+                uint activeCount) {
   uint first = placeInPasses * kTileTexels;
   uint done = pass * activeCount;
   uint stored = done > first ? min(done - first, kTileTexels) : 0u;
   // Complete in an earlier pass: its last lane published it, and it must stay published.
   if (stored == kTileTexels) return;
   if (stored == 0u) {
-    // Nothing stored or counted under this lock: nobody else will touch the entry.
-    cacheUnlockEmpty(entry);
+    // Nothing stored or counted under this lock: nobody else will touch the entry, which
+    // still holds the tile it held before (if any) and gets it back (cacheRestore).
+    cacheRestore(entry, evicted);
     g_tilesGivenUp += 1u;
     return;
   }
@@ -538,8 +541,23 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
     uvec4 slotInfo = subgroupShuffle(info, lockSource);
     int slotLevel = subgroupShuffle(tile.level, lockSource);
     vec2 slotTile = subgroupShuffle(tile.tile, lockSource);
+#ifdef MG_TILE_TEST_REPACKS
+#ifdef MG_TILE_TEST_REPACK_PERCENT
+    // Test hook (below) in MG_TILE_TEST_REPACK_PERCENT % of the iterations only: a hash of the
+    // subgroup (its first invocation), its first slot's tile and the frame, the same in every
+    // lane (the H200 gives up about 60 % of the tiles it starts on the classroom).
+    bool testRepackHere =
+        cachePcg(subgroupBroadcastFirst(g_invocationId) ^
+                 cachePcg(subgroupBroadcastFirst(lockKey.hash) ^ cachePcg(frame.cache.y))) %
+            100u <
+        uint(MG_TILE_TEST_REPACK_PERCENT);
+#else
+    const bool testRepackHere = true;
+#endif
+#endif
     int entry = -1;
-    if (rank < selected) entry = cacheLock(lockKey);
+    uint evicted = kCacheKeyEmpty;  // the key the locked entry held: a give-up restores it
+    if (rank < selected) entry = cacheLockEvicting(lockKey, evicted);
     // Only tiles with a locked entry are computed. A slot the policy declined (none, with
     // its probe range full) or another subgroup holds locked could not be stored: its
     // W x H evaluations would serve only this subgroup's requesters, who evaluate their own
@@ -610,7 +628,8 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
       // subgroup, at the same lane indices and with the same lanes active (a regrouping only
       // the identity check can tell), from pass g_testRepackPass on (the renderer: 0, so
       // every tile computation is given up before anything is stored).
-      if (gl_SubgroupInvocationID >= gl_SubgroupSize / 2u && pass >= g_testRepackPass)
+      if (testRepackHere && gl_SubgroupInvocationID >= gl_SubgroupSize / 2u &&
+          pass >= g_testRepackPass)
         firstBefore += 1u;
 #endif
       bool stable = subgroupAll(gl_SubgroupInvocationID == lane) &&
@@ -619,7 +638,8 @@ void tileComputeMissing(bool request, uint materialId, uvec4 info, TileRequest t
       if (!stable) {
         g_tileRepacks += 1u;
         if (request && !served) g_tileFallbacks += 1u;
-        if (entry >= 0) tileGiveUp(uint(entry), lockKey, lockedPlace, pass, activeCount);
+        if (entry >= 0)
+          tileGiveUp(uint(entry), lockKey, evicted, lockedPlace, pass, activeCount);
         served = false;
         return;
       }
