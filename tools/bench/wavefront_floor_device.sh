@@ -12,8 +12,11 @@
 # texel cache (--cache texel: what a user gets), the wavefront's lookup pass against the
 # megakernel's lookups, in a call of its own too: a cached frame depends on the frames
 # before it, so these render the first 100 cameras of the path one after another (--frames
-# sets how many) instead of every 10th.
-#   bash tools/bench/wavefront_floor_device.sh [--local] [--materials | --texel-cache]
+# sets how many) instead of every 10th. --tile-cache: the same with the default tile cache
+# (--cache tile; the megakernel's subgroup fill against the wavefront's material passes
+# computing the queued tiles).
+#   bash tools/bench/wavefront_floor_device.sh [--local] [--materials | --texel-cache |
+#        --tile-cache]
 #        [--size WxH] [--frames N]
 # e.g. run(carry=["bundle", ".gl"], command="bash tools/bench/wavefront_floor_device.sh").
 # Results in $OUT: wavefront_rows.csv (one bench line a run, with the wavefront's pass
@@ -26,6 +29,7 @@ while [ $# -gt 0 ]; do
   --local) local=1; shift ;;
   --materials) materials=1; shift ;;
   --texel-cache) materials=1; cache=(--cache texel); shift ;;
+  --tile-cache) materials=1; cache=(--cache tile); shift ;;
   --size) size=$2; shift 2 ;;
   --frames) frames=$2; shift 2 ;;
   *) echo "unknown argument $1" >&2; exit 2 ;;
