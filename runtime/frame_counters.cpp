@@ -13,6 +13,8 @@ std::vector<FrameCounter> frameCounters(const FrameStats& frame) {
       {"duplicate_tiles", double(frame.cacheDuplicateTiles)},
       {"tile_fallbacks", double(frame.cacheTileFallbacks)},
       {"tile_repacks", double(frame.cacheTileRepacks)},
+      {"locks_beside_a_lock", double(frame.cacheLocksBesideALock)},
+      {"locks_contended", double(frame.cacheLocksContended)},
       {"active_instances", double(frame.activeInstances)},
       {"omitted_instances", double(frame.omittedInstances)},
       {"active_hitboxes", double(frame.activeHitboxes)},

@@ -36,7 +36,8 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
          "cache_misses,cache_hit_rate,cache_read_check,cache_occupancy,cache_tiles_computed,"
          "cache_duplicate_tiles,cache_value_format,cache_clock,cache_snap_uv,"
          "cache_secondary_only,cache_clock_ticks,cache_tile,cache_tile_fallbacks,"
-         "cache_tile_repacks,culling,active_instances,omitted_instances,inactive_instances,"
+         "cache_tile_repacks,cache_locks_beside_a_lock,cache_locks_contended,culling,active_"
+         "instances,omitted_instances,inactive_instances,"
          "waiting_instances,hitboxes,active_hitboxes,instance_state_changes,tlas_records,"
          "frame_blas_bytes,frame_tlas_bytes,frame_scratch_bytes,blas_builds,blas_updates,"
          "blas_evictions,"
@@ -62,11 +63,12 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
         << f.cacheDuplicateTiles << ',' << s.cacheValueFormat << ',' << s.cacheClock << ','
         << int(s.cacheSnapUv) << ',' << int(s.cacheSecondaryOnly) << ',' << f.cacheClockTicks << ','
         << s.cacheTile << ',' << f.cacheTileFallbacks << ',' << f.cacheTileRepacks << ','
-        << s.culling << ',' << f.activeInstances << ',' << f.omittedInstances << ','
-        << f.inactiveInstances << ',' << f.waitingInstances << ',' << f.hitboxes << ','
-        << f.activeHitboxes << ',' << f.instanceStateChanges << ',' << f.tlasRecords << ','
-        << f.blasBytes << ',' << f.tlasBytes << ',' << f.asScratchBytes << ',' << f.blasBuilds
-        << ',' << f.blasUpdates << ',' << f.blasEvictions << ',' << f.blasBuildMilliseconds << ','
+        << f.cacheLocksBesideALock << ',' << f.cacheLocksContended << ',' << s.culling << ','
+        << f.activeInstances << ',' << f.omittedInstances << ',' << f.inactiveInstances << ','
+        << f.waitingInstances << ',' << f.hitboxes << ',' << f.activeHitboxes << ','
+        << f.instanceStateChanges << ',' << f.tlasRecords << ',' << f.blasBytes << ','
+        << f.tlasBytes << ',' << f.asScratchBytes << ',' << f.blasBuilds << ',' << f.blasUpdates
+        << ',' << f.blasEvictions << ',' << f.blasBuildMilliseconds << ','
         << f.tlasBuildMilliseconds << ',' << f.cullingHostMilliseconds << ',' << s.shading << ','
         << f.wavefrontGenerateMilliseconds << ',' << f.wavefrontTraceMilliseconds << ','
         << f.wavefrontShadeMilliseconds << ',' << f.wavefrontQueueMilliseconds << ','

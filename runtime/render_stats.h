@@ -33,6 +33,10 @@ struct FrameStats {
   std::uint64_t cacheDuplicateTiles = 0;
   std::uint64_t cacheTileFallbacks = 0;
   std::uint64_t cacheTileRepacks = 0;
+  // Inserts' locks (both caches): chosen beside a locked entry of the probe range, and lost
+  // to another invocation's lock (gpu::Counters).
+  std::uint64_t cacheLocksBesideALock = 0;
+  std::uint64_t cacheLocksContended = 0;
   // Tiles published (their key written after their last texel) since the cache was cleared:
   // persists across frames like the occupancy. Not in the CSV.
   std::uint64_t cacheTilesPublished = 0;

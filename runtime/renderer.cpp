@@ -573,6 +573,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     frameStats.cacheDuplicateTiles = counters.cacheDuplicateTiles;
     frameStats.cacheTileFallbacks = counters.cacheTileFallbacks;
     frameStats.cacheTileRepacks = counters.cacheTileRepacks;
+    frameStats.cacheLocksBesideALock = counters.cacheLocksBesideALock;
+    frameStats.cacheLocksContended = counters.cacheLocksContended;
     frameStats.cacheTilesPublished = counters.cacheTilesPublished;
     if (wavefrontTracer)
       frameStats.wavefrontBinHits = wavefrontTracer->binHits();

@@ -259,14 +259,22 @@ struct Counters {
   uint cacheDuplicateTiles;
   uint cacheTileFallbacks;
   uint cacheTileRepacks;
+  // Both caches' inserts (cacheLockEvicting): locks that chose their entry beside a locked one
+  // in the probe range (with the tile cache, often a tile still being computed: a lookup of
+  // that tile misses it and, under lru and lrw, locks a second entry for the same tile), and
+  // locks whose chosen entry another invocation had locked first (given up).
+  uint cacheLocksBesideALock;
+  uint cacheLocksContended;
   // Persistent across frames.
   uint cacheOccupancy;  // entries ever filled (an empty entry's first write); never falls
   // Tile cache: tiles published (the key written after the tile's last texel) since the
   // cache was cleared, by the subgroup fill's or the deferred fill's last texel.
   uint cacheTilesPublished;
   uint64 cacheClock;  // the 64-bit atomic counter clock of §5.3.3 (MG_CACHE_CLOCK_COUNTER)
+  uint pad0;          // to a multiple of 16 bytes
+  uint pad1;
 };
-MG_CONSTANT(uint, kCountersPerFrameUints, 8);
+MG_CONSTANT(uint, kCountersPerFrameUints, 10);
 
 // One vertex of the global vertex buffer; positions first so the BLAS reads them in place.
 struct Vertex {

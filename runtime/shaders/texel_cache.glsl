@@ -60,6 +60,9 @@ uint g_cacheHits = 0u;
 uint g_cacheMisses = 0u;
 // Whether any lookup of this invocation missed: the debug view of thesis Fig. 6.9.
 bool g_cacheMissed = false;
+// This invocation's locks beside a locked entry, and locks lost to another invocation's.
+uint g_locksBesideALock = 0u;
+uint g_locksContended = 0u;
 
 // Adds this invocation's lookups, hits and misses to gpu::Counters: with subgroup arithmetic
 // one atomic each per subgroup, so every invocation of the subgroup must call it.
@@ -74,6 +77,16 @@ void cacheAddCounts() {
     atomicAdd(counters.cacheLookups, cacheCounts.x);
     atomicAdd(counters.cacheHits, cacheCounts.y);
     atomicAdd(counters.cacheMisses, cacheCounts.z);
+  }
+#ifdef MG_SUBGROUP_RAY_COUNT
+  uvec2 lockCounts = subgroupAdd(uvec2(g_locksBesideALock, g_locksContended));
+  if (subgroupElect() && any(notEqual(lockCounts, uvec2(0u)))) {
+#else
+  uvec2 lockCounts = uvec2(g_locksBesideALock, g_locksContended);
+  if (any(notEqual(lockCounts, uvec2(0u)))) {
+#endif
+    atomicAdd(counters.cacheLocksBesideALock, lockCounts.x);
+    atomicAdd(counters.cacheLocksContended, lockCounts.y);
   }
 }
 
@@ -375,10 +388,15 @@ int cacheChooseSlot(CacheKey key) {
   uint now = cacheClock(0u);
   uint oldestAge = 0u;
 #endif
+  bool besideALock = false;  // counted (g_locksBesideALock) when a slot is chosen
   [[unroll]] for (uint d = 0u; d < uint(MG_CACHE_PROBE); ++d) {
     uint offset = cacheEntryOffset(key.base + d);
     uint stored = cacheData[offset];
-    if (stored == kCacheKeyEmpty) return int(d);
+    if (stored == kCacheKeyEmpty) {
+      if (besideALock) g_locksBesideALock += 1u;
+      return int(d);
+    }
+    if (stored == kCacheKeyLock) besideALock = true;
 #if MG_CACHE_EVICTION == 1 || MG_CACHE_EVICTION == 2
     if (stored != kCacheKeyLock) {
       // Age modulo 2^32: after the clock wraps, the newest stamps are small numbers but
@@ -394,6 +412,7 @@ int cacheChooseSlot(CacheKey key) {
 #if MG_CACHE_EVICTION == 3
   oldest = int(cachePcg(key.hash ^ cachePcg(frame.cache.y)) % uint(MG_CACHE_PROBE));
 #endif
+  if (besideALock && oldest >= 0) g_locksBesideALock += 1u;
   return oldest;
 }
 
@@ -411,7 +430,10 @@ int cacheLockEvicting(CacheKey key, out uint evicted) {
   uint entry = key.base + uint(slot);
   uint offset = cacheEntryOffset(entry);
   uint previous = atomicExchange(cacheData[offset], kCacheKeyLock);
-  if (previous == kCacheKeyLock) return -1;
+  if (previous == kCacheKeyLock) {
+    g_locksContended += 1u;
+    return -1;
+  }
   evicted = previous;
   if (previous == kCacheKeyEmpty) atomicAdd(counters.cacheOccupancy, 1u);
 #ifdef MG_CACHE_UPDATE_COUNTER

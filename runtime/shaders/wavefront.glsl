@@ -511,6 +511,7 @@ void main() {
     cachePack(info.x, m, values);
     cacheWrite(key, values);
   }
+  cacheAddCounts();  // the insert's lock counts (no subgroup arithmetic in this pass)
 #else
   MG_EVALUATE_MATERIAL(s.inputs, m);
 #endif

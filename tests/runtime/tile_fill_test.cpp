@@ -137,6 +137,31 @@ TEST(TileFill, AFullQueueLeavesTheRestToEvaluateTheirHits) {
   EXPECT_LT(flip, 0.06);
 }
 
+// An insert's lock beside a locked entry, and one lost to another invocation's lock, are
+// counted (gpu::Counters::cacheLocksBesideALock, cacheLocksContended). The deferred fill
+// keeps every queued tile's entry locked until the fill after the frame, so in a cache of
+// one probe range (9 entries, D = 8) a frame's later requests find locked entries beside
+// the one they choose, under every policy; random picks a locked entry too, and loses it.
+TEST(TileFill, LocksBesideAndLostToQueuedTilesAreCounted) {
+  Scene scene = wallScene(stripesGraph(), true);
+  for (CacheEviction eviction : {CacheEviction::Lru, CacheEviction::Random}) {
+    RendererOptions options = deferredOptions(Backend::RayQuery, 2, 2);
+    options.cache.entries = 9;
+    options.cache.eviction = eviction;
+    RenderResult r = Renderer(options).render(scene, cacheSettings(2, 2));
+    expectConsistentCounters(r.stats);
+    const FrameStats& f = r.stats.frames.front();
+    std::printf("9 entries, %s: %llu locks beside a lock, %llu lost, %llu tiles queued\n",
+                cacheEvictionName(eviction), (unsigned long long)f.cacheLocksBesideALock,
+                (unsigned long long)f.cacheLocksContended,
+                (unsigned long long)f.cacheTilesComputed);
+    EXPECT_GT(f.cacheLocksBesideALock, 0u) << cacheEvictionName(eviction);
+    EXPECT_LE(f.cacheTilesComputed, 9u);  // a locked entry is never chosen twice
+    if (eviction == CacheEviction::Random)
+      EXPECT_GT(f.cacheLocksContended, 0u);
+  }
+}
+
 // What the deferred fill does not combine with is refused with the reason; so is a fill
 // pass larger than the device launches (65536 slots of 64x64 texels: 2^28 invocations in
 // 65536 rows of 4096, one row more than a compute dispatch may have).
