@@ -229,6 +229,11 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
 #endif
   }
 
+  // With the shared primary ray every path's first hit is the same surface at the same
+  // footprint, so its material outputs are the same: the first path evaluates (or looks up)
+  // them, and the others reuse them (§5.1: the P paths of a pixel make one primary lookup
+  // instead of P). `path` and `bounce` are uniform, so the tile cache's subgroup stays whole.
+  MaterialOutputs primaryOutputs;
   vec3 sum = vec3(0.0);
   for (uint path = 0u; path < pathCount; ++path) {
     vec3 origin, direction;
@@ -269,7 +274,12 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
         }
       }
       MaterialOutputs m;
-      evaluateMaterial(alive, s.materialId, s.inputs, bounce, m);
+      if (sharedPrimary && bounce == 0u && path > 0u) {
+        m = primaryOutputs;
+      } else {
+        evaluateMaterial(alive, s.materialId, s.inputs, bounce, m);
+        if (sharedPrimary && bounce == 0u) primaryOutputs = m;
+      }
       if (!alive) continue;
 
       ShadingPoint p = shadingPointAt(s, m, direction);

@@ -121,6 +121,26 @@ TEST_P(TexelCacheInBothArchitectures, StaticCameraHitRateExceeds99PercentAfterAF
   EXPECT_GT(last.cacheHitRate(), 0.99);
 }
 
+// §5.1's shared primary ray: the P paths of a pixel share one camera ray, so the megakernel
+// evaluates or looks up its hit's material once, not P times: one lookup a pixel at L = 1,
+// where P = 4 paths without the shared ray make four.
+TEST(TexelCache, SharedPrimaryRayMakesOneLookupAPixel) {
+  Scene scene = wallScene(stripesGraph(), false);
+  RenderSettings s = settings(3, 1, 4);
+  s.sharedPrimaryRay = true;
+  RenderResult shared = Renderer(cacheOptions(CacheMode::Texel)).render(scene, s);
+  expectConsistentCounters(shared.stats);
+  RenderSettings jittered = settings(3, 1, 4);
+  RenderResult own = Renderer(cacheOptions(CacheMode::Texel)).render(scene, jittered);
+  const FrameStats& last = shared.stats.frames.back();
+  std::printf("shared primary ray, P = 4: %llu lookups a frame (own rays: %llu)\n",
+              (unsigned long long)last.cacheLookups,
+              (unsigned long long)own.stats.frames.back().cacheLookups);
+  EXPECT_EQ(last.cacheLookups, 24u * 24u);
+  EXPECT_EQ(own.stats.frames.back().cacheLookups, 4u * 24u * 24u);
+  EXPECT_GT(last.cacheHitRate(), 0.99);
+}
+
 // Cache on against off: the cached outputs are the graph's at another point of the same
 // texel (nearest filtering, §4.3), so images differ slightly; the texels are one ray-cone
 // footprint wide, so the stripes are quantized like a nearest-filtered texture of about one
