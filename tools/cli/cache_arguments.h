@@ -36,7 +36,9 @@ inline constexpr const char* kCacheHelp =
     "                        once, one texel per lane) or deferred (queued; a second pass\n"
     "                        after the frame computes it for the next frame, and the\n"
     "                        requester evaluates its own hit; faster when the cache holds\n"
-    "                        a frame's tiles, much slower when it does not)\n"
+    "                        a frame's tiles, much slower when it does not). With\n"
+    "                        --shading wavefront tiles are always queued and computed by\n"
+    "                        the material passes of the bounce that missed them\n"
     "  --tile-queue N        deferred fill: tiles queued per frame at most (default 65536)\n"
     "  --value-format F      fp32 (default) or fp16: entry values as 32-bit floats or two\n"
     "                        16-bit halves per word (§5.3.1; half the value memory)\n"
@@ -64,7 +66,7 @@ inline constexpr const char* kCacheHelp =
 struct CacheArguments {
   std::string cache = "none", entries = "", probe = "8", eviction = "lru", mipBias = "0",
               readCheck = "counter", valueFormat = "fp32", clock = "", clockShift = "",
-              tile = "4x4", filter = "nearest", tileStorage = "entry", tileFill = "subgroup",
+              tile = "4x4", filter = "nearest", tileStorage = "entry", tileFill = "",
               tileQueue = "65536", testGiveUp = "0";
   bool snapUv = false, secondaryOnly = false, floorMaterials = false, groupByMaterial = false;
 
@@ -107,7 +109,8 @@ struct CacheArguments {
     options.tileFilter = runtime::parseTileFilter(filter);
     options.tileStorage = runtime::parseTileStorage(tileStorage);
     options.groupByMaterial = groupByMaterial;
-    options.tileFill = runtime::parseTileFill(tileFill);
+    if (!tileFill.empty())  // unset: subgroup (the wavefront always queues: renderer.cpp)
+      options.tileFill = runtime::parseTileFill(tileFill);
     auto whole = [](const std::string& text, const char* name) {
       std::uint32_t value = 0;
       if (!parseNumber(text, value))

@@ -87,6 +87,10 @@ struct RendererArguments {
           "not '" +
           wavefrontPaths + "'");
     runtime::validateWavefrontOptions(options);
+    if (options.shading == runtime::Shading::Wavefront && cache.tileFill == "subgroup")
+      throw std::invalid_argument(
+          "--tile-fill subgroup is the megakernel's: --shading wavefront computes missing "
+          "tiles in its material passes, from the deferred fill's queue");
     return options;
   }
 };

@@ -382,6 +382,7 @@ TEST(Wavefront, TheCliRefusesBadCombinationsAsUsageErrors) {
   EXPECT_EQ(runCli(render + "--shading wavefront --floor-materials --debug-misses"), 2);
   EXPECT_EQ(runCli(render + "--shading sideways --floor-materials"), 2);
   EXPECT_EQ(runCli(render + "--floor-materials --wavefront-paths 64"), 2);  // megakernel
+  EXPECT_EQ(runCli(render + "--shading wavefront --cache tile --tile-fill subgroup"), 2);
   EXPECT_EQ(runCli(render + "--shading wavefront --floor-materials --wavefront-paths many"), 2);
   EXPECT_EQ(runCli("render builtin:city:scale=0.02 --size 8x8 --out " + out +
                    " --shading wavefront --floor-materials"),
