@@ -5,8 +5,27 @@
 # later call's run of the same scene and label replaces an earlier one (run 1's tile rows
 # predate the rank-based tile computation and are replaced that way).
 #   bash tools/results/make_memo_docs.sh [--no-png]
+# --resweep: the re-sweep of the fixed code instead (bundle 50db56c, H200 calls 24 onwards, one
+# binary on one machine), into docs/results/memoization_resweep_tables.md and
+# docs/results/memoization_resweep_plots/ (OUT=… and PLOTS=… redirect them).
+#   bash tools/results/make_memo_docs.sh --resweep [--no-png]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
+if [ "${1:-}" = --resweep ]; then
+  shift
+  args=()
+  for summary in $(printf "%s\n" docs/results/memoization_h200/call*_summary.csv | sort -V); do
+    call=${summary%_summary.csv}
+    number=${call##*call}
+    [ "$number" -ge 24 ] || continue
+    args+=(--summary "$summary" --frames "${call}_frames.tar.gz" --steps "${call}_steps.tsv")
+  done
+  python3 tools/results/make_tables "${args[@]}" \
+    --out "${OUT:-docs/results/memoization_resweep_tables.md}" \
+    --plots "${PLOTS:-docs/results/memoization_resweep_plots}" \
+    --title "Memoization tables (thesis §6): the re-sweep of the fixed code, H200 calls 24 onwards (bundle 50db56c)" "$@"
+  exit
+fi
 args=()
 for call in docs/results/memoization_h100/run1 docs/results/memoization_h100/run2 \
   docs/results/memoization_h200/call1 docs/results/memoization_h200/call2 \
