@@ -692,9 +692,7 @@ void evaluateMaterialTiled(bool hasHit, uint materialId, MaterialInputs inputs,
     return;
   }
 #endif
-  uvec4 info = hasHit && materialId < uint(mg_materialCacheInfo.length())
-                   ? mg_materialCacheInfo[materialId]
-                   : uvec4(0u);
+  uvec4 info = hasHit ? cacheInfoOf(materialId) : uvec4(0u);
   TileRequest tile;
   bool cached = info.x != 0u && frame.cache.x != 0u && tileRequestFor(info, inputs, tile);
   if (!cached) {

@@ -144,7 +144,7 @@ const uint kFieldMaterialBase = 9u;        // baseColor, metallic
 const uint kFieldMaterialNormal = 10u;     // normal, roughness
 const uint kFieldMaterialEmission = 11u;   // emission, specular
 const uint kFieldMaterialRest = 12u;       // specularTint, cyclesPrincipled, opacity, and
-                                           // with the texel cache the bin to evaluate (w)
+                                           // with a cache the bin to evaluate (w)
 
 // The path state's slots (its capacity: every pixel, or a chunk of them; push.chunk).
 uint slotCount() {
