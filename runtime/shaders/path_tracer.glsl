@@ -209,7 +209,7 @@ vec3 sampleDirectLight(ShadingPoint p, bool mis, inout Rng rng, inout uint rays)
 // of iterations in every invocation (a path that ended stays in the loop, inactive) so
 // that evaluateMaterial is reached by the whole subgroup together; `inside` is false for
 // the invocations of a compute work group that lie past the image's edge.
-vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
+vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
   uint pathCount = max(frame.path.x, 1u);
   uint rayCountPerPath = frame.path.y;
   bool sharedPrimary = (frame.path.z & kFlagSharedPrimaryRay) != 0u;
@@ -236,6 +236,11 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
   MaterialOutputs primaryOutputs;
   vec3 sum = vec3(0.0);
   for (uint path = 0u; path < pathCount; ++path) {
+    // The wavefront's keys (rng.glsl): bounce 0 jitters the camera ray, bounce b + 1 shades
+    // the b-th hit, so at one seed both architectures trace the same paths.
+    uint pixelIndex = pixel.y * frame.image.x + pixel.x;
+    uint sampleIndex = rngSampleIndex(frame.image.z, pathCount, path);
+    Rng rng = rngForPathVertex(pixelIndex, sampleIndex, 0u, frame.image.w);
     vec3 origin, direction;
     if (sharedPrimary) {
       origin = primaryOrigin;
@@ -286,6 +291,7 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
       // Emission found by a BSDF ray, MIS-weighted against emissive NEE at the last vertex.
       radiance += throughput * m.emission * emissionMisWeight(s, origin, direction, previousBsdfPdf);
       bool continues = bounce + 1u < rayCountPerPath;
+      rng = rngForPathVertex(pixelIndex, sampleIndex, bounce + 1u, frame.image.w);
       radiance += throughput * sampleDirectLight(p, continues, rng, rays);
       if (bounce + 1u == rayCountPerPath) continue;
       if (!continuePath(p, s, rng, throughput, previousBsdfPdf, cone, origin, direction))
@@ -304,13 +310,12 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout Rng rng, inout uint rays) {
 // Traces one pixel and folds it into the running mean of the accumulation buffer. Every
 // invocation comes here (see tracePixel); only those `inside` the image write.
 void renderPixel(uvec2 pixel, bool inside) {
-  Rng rng = rngForPixel(pixel, frame.image.z, frame.image.w);
   uint rays = 0u;
   uint index = pixel.y * frame.image.x + pixel.x;
 #ifdef MG_CACHE_TILE
   g_invocationId = index;
 #endif
-  vec3 radiance = tracePixel(pixel, inside, rng, rays);
+  vec3 radiance = tracePixel(pixel, inside, rays);
   if (inside) {
 #ifdef MG_DEBUG_CACHE_MISSES
     // Thesis Fig. 6.9: red where a path of this pixel missed the cache in this frame. The

@@ -1,5 +1,5 @@
-// Counter-based random numbers: PCG (O'Neill 2014) seeded from pixel, frame and seed, so a
-// pixel's sequence never depends on other pixels or on the order threads run in.
+// Counter-based random numbers from the PCG hash (O'Neill 2014), so a pixel's numbers never
+// depend on other pixels or on the order threads run in.
 
 // PCG-hash of one 32-bit word (the RXS-M-XS output of a PCG step).
 uint pcgHash(uint value) {
@@ -8,19 +8,26 @@ uint pcgHash(uint value) {
   return (word >> 22u) ^ word;
 }
 
-#ifdef MG_RNG_COUNTER_BASED
-// The wavefront passes' generator (wavefront.glsl): every number is a hash of (pixel,
-// sample, bounce, dimension), with no state carried from one pass to the next, so a path's
-// numbers do not depend on the order in which the queues process paths (Laine, Karras and
-// Aila, "Megakernels Considered Harmful", HPG 2013, keep per-path state in memory; here the
-// generator needs only the key).
+// Every number is a hash of (pixel, sample, bounce, dimension), with no state carried from
+// one bounce to the next. Both architectures draw from it with the same keys: the wavefront's
+// passes (wavefront.glsl) need a path's numbers not to depend on the order in which the
+// queues process paths (Laine, Karras and Aila, "Megakernels Considered Harmful", HPG 2013,
+// keep per-path state in memory; here the generator needs only the key), and the megakernel
+// (path_tracer.glsl) uses the same keys, so at one seed the two trace the same paths and
+// their pictures agree per pixel, not only in the mean.
 struct Rng {
   uint key;        // hash of pixel, sample (frame and path), bounce and seed
   uint dimension;  // the next number's index along this bounce
 };
 
+// The pixel's sample index over frames: frame * P + path (P paths a pixel a frame).
+uint rngSampleIndex(uint frameIndex, uint pathsPerFrame, uint path) {
+  return frameIndex * max(pathsPerFrame, 1u) + path;
+}
+
 // The generator of one bounce of one path; `sampleIndex` counts the pixel's samples over
-// frames (frame * P + path), `bounce` 0 is the camera ray's.
+// frames (rngSampleIndex), `bounce` 0 is the camera ray's (its pixel jitter) and bounce
+// b + 1 the shading of the path's b-th hit (light sample, then the BSDF sample).
 Rng rngForPathVertex(uint pixelIndex, uint sampleIndex, uint bounce, uint seed) {
   Rng rng;
   rng.key = pcgHash(pixelIndex ^ pcgHash(sampleIndex ^ pcgHash(bounce ^ pcgHash(seed))));
@@ -34,26 +41,6 @@ float rngNext(inout Rng rng) {
   rng.dimension += 1u;
   return float(word >> 8u) * (1.0 / 16777216.0);
 }
-#else
-struct Rng {
-  uint state;
-};
-
-// The generator of one pixel in one frame for one seed.
-Rng rngForPixel(uvec2 pixel, uint frame, uint seed) {
-  Rng rng;
-  rng.state = pcgHash(pixel.x ^ pcgHash(pixel.y ^ pcgHash(frame ^ pcgHash(seed))));
-  return rng;
-}
-
-// A uniform float in [0, 1): one PCG32 step, 24 random mantissa bits.
-float rngNext(inout Rng rng) {
-  rng.state = rng.state * 747796405u + 2891336453u;
-  uint word = ((rng.state >> ((rng.state >> 28u) + 4u)) ^ rng.state) * 277803737u;
-  word = (word >> 22u) ^ word;
-  return float(word >> 8u) * (1.0 / 16777216.0);
-}
-#endif
 
 vec2 rngNext2(inout Rng rng) {
   float a = rngNext(rng);

@@ -235,13 +235,16 @@ TEST(CulledRender, TheFirstLookHoldsWhatTheFirstCameraReaches) {
   EXPECT_GT(a.lookMilliseconds, 0.0);
   EXPECT_GT(a.gpuMilliseconds, a.lookMilliseconds);
   // The probe registers the first box a ray crosses, so an instance seen only past another's
-  // box waits a frame (a few pixels at 64x36 and one path: a mean difference of 0.09 % of the
-  // image's mean against 0.02 % without the first look; at 192x108, P = 4, L = 3 its mean
-  // LDR-FLIP against unculled is 0.0009 against 0.0061 without).
+  // box waits a frame: a few pixels at 64x36 and one path, a mean difference of 0.62-0.78 %
+  // of the image's mean over seeds 0-5 (0.01-0.03 % without the first look; the generator
+  // before the wavefront's keys gave 0.66-0.67 % at seeds 1 and 2 and 0.09 % at seed 0, the
+  // seed this test once used with a bound of 0.25 %). A building lost from view would cost
+  // several %. At 192x108, P = 4, L = 3 its mean LDR-FLIP against unculled is 0.0009
+  // against 0.0061 without.
   HdrImage black = unculled.image;
   std::fill(black.rgba.begin(), black.rgba.end(), 0.0f);
   EXPECT_LT(meanDifference(withFirstLook.image, unculled.image),
-            0.0025 * meanDifference(unculled.image, black));
+            0.01 * meanDifference(unculled.image, black));
   EXPECT_GT(a.omittedInstances, 0u) << "what the probe's rays did not reach waits as a box";
 }
 
