@@ -334,6 +334,10 @@ int runBench(std::span<const std::string_view> args) {
         }
       }
     }
+  } catch (const std::invalid_argument& e) {
+    // The renderer's refusals of option combinations (e.g. --wavefront-paths when
+    // --shading auto chose the megakernel): usage errors, as when the CLI catches them.
+    return usageError("bench", e.what());
   } catch (const std::exception& e) {
     std::cerr << "memograph bench: " << e.what() << "\n";
     return kExitFailure;
