@@ -255,7 +255,7 @@ int runBench(std::span<const std::string_view> args) {
         if (!staticCamera)
           std::cout << " of a " << plan.pathCameras << "-camera path, stride " << plan.stride;
         std::cout << "; " << result.stats.materialCount << " materials, "
-                  << result.stats.materialDispatch << "; pipeline "
+                  << result.stats.materialDispatch << ", " << result.stats.shading << "; pipeline "
                   << result.stats.pipelineCreateMilliseconds << " ms; BLAS " << as.blasBytes
                   << " B, TLAS " << as.tlasBytes << " B)\n";
         if (const auto& stack = result.stats.rayTracingStack; stack.driverDefault > 0)

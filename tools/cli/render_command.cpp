@@ -340,7 +340,7 @@ int runRender(std::span<const std::string_view> args) {
     }
     std::cerr << "rendered " << out << " on " << result.stats.device << " (" << result.stats.backend
               << ", " << result.stats.materialDispatch << " materials"
-              << (result.stats.shading == "wavefront" ? ", wavefront" : "") << "): median "
+              << ", " << result.stats.shading << "): median "
               << result.stats.medianGpuMilliseconds() << " ms per frame; shaders "
               << result.stats.shadersCompiled << " compiled in "
               << result.stats.shaderCompileMilliseconds << " ms, pipeline "
