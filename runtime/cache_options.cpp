@@ -217,7 +217,7 @@ static std::uint32_t entryValueWords(const CacheOptions& options, std::uint32_t 
 std::uint32_t cacheEntryWords(const CacheOptions& options, std::uint32_t valueCount) {
   // The subgroup tile fill's count of stored texels follows the header (texel_cache.glsl
   // kCacheTileCount); the deferred fill counts in its queue instead.
-  const bool tileCount = options.mode == CacheMode::Tile && options.tileFill == TileFill::Subgroup;
+  const bool tileCount = options.mode == CacheMode::Tile && options.tileFill != TileFill::Deferred;
   return (options.updateCounter ? gpu::kCacheEntryHeaderWithCounter : gpu::kCacheEntryHeader) +
          (tileCount ? gpu::kCacheEntryTileCountWords : 0) + entryValueWords(options, valueCount);
 }

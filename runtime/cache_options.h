@@ -102,7 +102,9 @@ struct CacheOptions {
   TileFilter tileFilter = TileFilter::Nearest;
   TileStorage tileStorage = TileStorage::Entry;
   bool groupByMaterial = false;
-  TileFill tileFill = TileFill::Subgroup;
+  // Unset: the subgroup fill in the megakernel; the wavefront always queues (renderer.cpp),
+  // and Shading::Auto takes an explicit Subgroup as a reason for the megakernel.
+  std::optional<TileFill> tileFill;
   // Deferred fill: tiles queued per frame at most; a request past it evaluates its hit
   // and queues nothing (counted as a fallback). 32 bytes each.
   std::uint32_t tileQueue = 1u << 16;

@@ -70,7 +70,7 @@ void checkTileOptions(const VulkanContext& context, const CacheOptions& options)
       std::to_string(options.tileWidth) + "x" + std::to_string(options.tileHeight);
   // §5.4.3: one lane per texel of a tile (the deferred fill has one invocation per texel
   // and no such limit).
-  if (options.tileFill == TileFill::Subgroup && texels > info.subgroupSize)
+  if (options.tileFill != TileFill::Deferred && texels > info.subgroupSize)
     throw std::invalid_argument("--tile " + size + " has " + std::to_string(texels) +
                                 " texels, more than the " + std::to_string(info.subgroupSize) +
                                 " lanes of a subgroup on " + info.name +
@@ -80,7 +80,7 @@ void checkTileOptions(const VulkanContext& context, const CacheOptions& options)
       VK_SUBGROUP_FEATURE_BALLOT_BIT | VK_SUBGROUP_FEATURE_SHUFFLE_BIT |
       VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
   const VkShaderStageFlagBits stage = traceStage(context);
-  if (options.tileFill == TileFill::Subgroup &&
+  if (options.tileFill != TileFill::Deferred &&
       ((info.subgroupOperations & kNeeded) != kNeeded || !(info.subgroupStages & stage)))
     throw std::invalid_argument(
         "--cache tile needs subgroup ballot, shuffle, vote and arithmetic in the " +

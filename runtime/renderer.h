@@ -38,10 +38,12 @@ constexpr std::size_t kManyMaterialGraphs = 8;
 // How the path tracer is organised (docs/architecture.md, "Material-coherent shading"):
 // one kernel that runs each path to its end, or passes over queues of paths with their state
 // in memory (Laine, Karras and Aila, "Megakernels Considered Harmful", HPG 2013). The
-// wavefront is a prototype (with the floor's constants or the scene's graphs).
-enum class Shading { Megakernel, Wavefront };
+// wavefront is a prototype (with the floor's constants or the scene's graphs). Auto: the
+// wavefront where it is measured faster and does what the render asks, else the megakernel
+// (resolveShading).
+enum class Shading { Auto, Megakernel, Wavefront };
 const char* shadingName(Shading shading);
-// "megakernel" or "wavefront"; throws std::invalid_argument naming the choices.
+// "auto", "megakernel" or "wavefront"; throws std::invalid_argument naming the choices.
 Shading parseShading(const std::string& text);
 
 struct RendererOptions {
@@ -69,11 +71,11 @@ struct RendererOptions {
   bool floorMaterials = false;
   // Wavefront: no culling, debug view or animated meshes, and a cache only with the scene's
   // graphs (checked by validateWavefrontOptions and render()); the tile cache always fills
-  // through the deferred fill's queue.
-  Shading shading = Shading::Megakernel;
+  // through the deferred fill's queue. Auto: resolved per render by resolveShading.
+  Shading shading = Shading::Auto;
   // The wavefront's paths in flight (its path state's capacity); a round over more pixels
   // runs in chunks of this many. 0: every pixel, or what the device's storage-buffer range
-  // holds. Non-zero needs Shading::Wavefront.
+  // holds. Non-zero needs the wavefront (Shading::Wavefront, or Auto resolving to it).
   std::uint32_t wavefrontPaths = 0;
   // Thesis Fig. 6.9: the image shows each frame alone, pixels where a path missed the
   // cache in red. Needs the texel cache.
@@ -88,8 +90,27 @@ struct RendererOptions {
 
 // Refuses (std::invalid_argument, naming the option) what the wavefront prototype does not
 // do (culling, debug views, a cache on the floor), and
-// wavefrontPaths without the wavefront.
+// wavefrontPaths with Shading::Megakernel (with Auto, render() checks it once resolved).
 void validateWavefrontOptions(const RendererOptions& options);
+
+// What the device and the render bring to Shading::Auto's choice.
+struct ShadingDevice {
+  VkPhysicalDeviceType type = VK_PHYSICAL_DEVICE_TYPE_OTHER;
+  // The wavefront can launch its traces: the query backend, or the pipeline backend with
+  // vkCmdTraceRaysIndirectKHR.
+  bool wavefrontTraces = true;
+};
+
+struct ShadingChoice {
+  Shading shading = Shading::Megakernel;  // Megakernel or Wavefront, never Auto
+  std::string whyMegakernel;              // Auto's reason when it chose the megakernel
+};
+// The architecture a render runs: options.shading unless Auto; Auto is the wavefront on a
+// GPU when it does everything asked, else the megakernel (never a refusal).
+// `neeEvaluatesEmission`: some emitter's emission NEE must take from its graph
+// (sceneNeeEvaluatesEmission).
+ShadingChoice resolveShading(const RendererOptions& options, const Scene& scene,
+                             const ShadingDevice& device, bool neeEvaluatesEmission);
 
 // Materials that share a graph (same file or same text) count once.
 std::size_t countDistinctMaterialGraphs(const Scene& scene);

@@ -124,6 +124,26 @@ std::vector<MaterialRef::EmissionKind> emissionKindsVerified(const Scene& scene,
   return kinds;
 }
 
+// The luminance of an instance's emission estimate (the light power NEE samples by).
+static float emissionLuminance(const Scene& scene, const Instance& instance) {
+  const glm::vec3 e = scene.materials[instance.material].emissionEstimate;
+  return 0.2126f * e.r + 0.7152f * e.g + 0.0722f * e.b;
+}
+
+bool sceneNeeEvaluatesEmission(const Scene& scene,
+                               const std::vector<MaterialRef::EmissionKind>& emissionKinds) {
+  if (!scene.emissiveLightSampling)
+    return false;
+  for (const Instance& instance : scene.instances) {
+    const bool graph = instance.material >= emissionKinds.size() ||
+                       emissionKinds[instance.material] == MaterialRef::EmissionKind::Graph;
+    if (graph && emissionLuminance(scene, instance) > 0.0f &&
+        scene.meshes[instance.mesh].indices.size() >= 3)
+      return true;
+  }
+  return false;
+}
+
 SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
                          const std::vector<MaterialRef::EmissionKind>& emissionKinds) {
   validateScene(scene);
@@ -201,14 +221,10 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
   std::vector<gpu::Light> triangles;
   std::vector<double> power;
   double totalPower = 0.0;
-  auto estimateLuminance = [&](const Instance& instance) {
-    const glm::vec3 e = scene.materials[instance.material].emissionEstimate;
-    return 0.2126f * e.r + 0.7152f * e.g + 0.0722f * e.b;
-  };
   if (scene.emissiveLightSampling) {
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
       const Instance& instance = scene.instances[i];
-      const float lum = estimateLuminance(instance);
+      const float lum = emissionLuminance(scene, instance);
       if (!(lum > 0.0f))
         continue;
       // The emission NEE takes as it is (w: 1 both sides, 2 front only), or w = 0: the
@@ -251,7 +267,7 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
                                          float(lights.size()), float(triangles.size()), 0.0f);
     }
     for (std::size_t i = 0; i < scene.instances.size(); ++i) {
-      const float lum = estimateLuminance(scene.instances[i]);
+      const float lum = emissionLuminance(scene, scene.instances[i]);
       if (lum > 0.0f)
         instances[i].objectInfo.y = float(pGroup * glm::pi<double>() * lum / totalPower);
     }

@@ -43,6 +43,12 @@ struct LinkedMaterials;
 std::vector<MaterialRef::EmissionKind> emissionKindsVerified(const Scene& scene,
                                                              const LinkedMaterials& linked);
 
+// Whether uploadScene could set SceneBuffers::neeEvaluatesEmission, known before the upload:
+// light sampling on and an emitting instance with triangles whose kind is Graph (an emitter
+// of only degenerate triangles counts too).
+bool sceneNeeEvaluatesEmission(const Scene& scene,
+                               const std::vector<MaterialRef::EmissionKind>& emissionKinds);
+
 // `emissionKinds`: per scene material, the emission NEE may take as known (see
 // MaterialRef::EmissionKind and emissionKindsVerified); empty: every material Graph.
 SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,

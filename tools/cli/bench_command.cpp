@@ -255,7 +255,7 @@ int runBench(std::span<const std::string_view> args) {
         if (!staticCamera)
           std::cout << " of a " << plan.pathCameras << "-camera path, stride " << plan.stride;
         std::cout << "; " << result.stats.materialCount << " materials, "
-                  << result.stats.materialDispatch << "; pipeline "
+                  << result.stats.materialDispatch << ", " << result.stats.shading << "; pipeline "
                   << result.stats.pipelineCreateMilliseconds << " ms; BLAS " << as.blasBytes
                   << " B, TLAS " << as.tlasBytes << " B)\n";
         if (const auto& stack = result.stats.rayTracingStack; stack.driverDefault > 0)
@@ -334,6 +334,10 @@ int runBench(std::span<const std::string_view> args) {
         }
       }
     }
+  } catch (const std::invalid_argument& e) {
+    // The renderer's refusals of option combinations (e.g. --wavefront-paths when
+    // --shading auto chose the megakernel): usage errors, as when the CLI catches them.
+    return usageError("bench", e.what());
   } catch (const std::exception& e) {
     std::cerr << "memograph bench: " << e.what() << "\n";
     return kExitFailure;

@@ -32,13 +32,15 @@ inline constexpr const char* kCacheHelp =
     "  --tile-storage S      where texels live (§5.4.1): entry (default), buffer,\n"
     "                        texture2d or texture3d\n"
     "  --group-by-material   compute missing tiles of one material together (§5.4.4)\n"
-    "  --tile-fill F         who computes a missing tile: subgroup (default; §5.4.3, at\n"
-    "                        once, one texel per lane) or deferred (queued; a second pass\n"
+    "  --tile-fill F         who computes a missing tile: subgroup (the megakernel's\n"
+    "                        default; §5.4.3, at once, one texel per lane) or deferred (queued; a second pass\n"
     "                        after the frame computes it for the next frame, and the\n"
     "                        requester evaluates its own hit; faster when the cache holds\n"
-    "                        a frame's tiles, much slower when it does not). With\n"
-    "                        --shading wavefront tiles are always queued and computed by\n"
-    "                        the material passes of the bounce that missed them\n"
+    "                        a frame's tiles, much slower when it does not). When the\n"
+    "                        wavefront runs (--shading wavefront, or auto on a GPU) tiles\n"
+    "                        are always queued and computed by the material passes of the\n"
+    "                        bounce that missed them; an explicit subgroup makes auto pick\n"
+    "                        the megakernel\n"
     "  --tile-queue N        deferred fill: tiles queued per frame at most (default 65536)\n"
     "  --value-format F      fp32 (default) or fp16: entry values as 32-bit floats or two\n"
     "                        16-bit halves per word (§5.3.1; half the value memory)\n"
@@ -109,7 +111,7 @@ struct CacheArguments {
     options.tileFilter = runtime::parseTileFilter(filter);
     options.tileStorage = runtime::parseTileStorage(tileStorage);
     options.groupByMaterial = groupByMaterial;
-    if (!tileFill.empty())  // unset: subgroup (the wavefront always queues: renderer.cpp)
+    if (!tileFill.empty())  // unset: subgroup, or the wavefront's queue (renderer.cpp)
       options.tileFill = runtime::parseTileFill(tileFill);
     auto whole = [](const std::string& text, const char* name) {
       std::uint32_t value = 0;

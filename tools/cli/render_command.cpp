@@ -340,7 +340,7 @@ int runRender(std::span<const std::string_view> args) {
     }
     std::cerr << "rendered " << out << " on " << result.stats.device << " (" << result.stats.backend
               << ", " << result.stats.materialDispatch << " materials"
-              << (result.stats.shading == "wavefront" ? ", wavefront" : "") << "): median "
+              << ", " << result.stats.shading << "): median "
               << result.stats.medianGpuMilliseconds() << " ms per frame; shaders "
               << result.stats.shadersCompiled << " compiled in "
               << result.stats.shaderCompileMilliseconds << " ms, pipeline "
@@ -367,6 +367,10 @@ int runRender(std::span<const std::string_view> args) {
                 << " B resident (peak BLAS " << result.stats.accelerationStructures.blasBytes
                 << " B)\n";
     }
+  } catch (const std::invalid_argument& e) {
+    // The renderer's refusals of option combinations (e.g. --wavefront-paths when
+    // --shading auto chose the megakernel): usage errors, as when the CLI catches them.
+    return usageError("render", e.what());
   } catch (const std::exception& e) {
     std::cerr << "memograph render: " << e.what() << "\n";
     return kExitFailure;

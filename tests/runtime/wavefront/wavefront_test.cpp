@@ -19,6 +19,7 @@
 
 #include "../render_test_support.h"
 #include "runtime/renderer.h"
+#include "runtime/scene_upload.h"
 #include "runtime/scenes/builtin_scenes.h"
 
 namespace memograph::runtime {
@@ -271,6 +272,121 @@ TEST(Wavefront, OptionsThePrototypeLacksAreRefused) {
   EXPECT_EQ(parseShading("wavefront"), Shading::Wavefront);
 }
 
+TEST(Wavefront, ParseShadingTakesAutoAndNamesAllThree) {
+  EXPECT_EQ(parseShading("auto"), Shading::Auto);
+  EXPECT_EQ(parseShading("megakernel"), Shading::Megakernel);
+  EXPECT_EQ(std::string(shadingName(Shading::Auto)), "auto");
+  EXPECT_EQ(RendererOptions{}.shading, Shading::Auto);
+  try {
+    parseShading("sideways");
+    ADD_FAILURE() << "parsed 'sideways'";
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();
+    for (const char* name : {"auto", "megakernel", "wavefront", "sideways"})
+      EXPECT_NE(message.find(name), std::string::npos) << message;
+  }
+}
+
+// Auto: the wavefront on a GPU when it does all that is asked (it was faster in every
+// configuration measured on an H200), else the megakernel, never a refusal.
+TEST(Wavefront, AutoShadingPicksTheWavefrontOnlyOnAGpuAndOnlyForWhatItDoes) {
+  const Scene scene = makeBuiltinScene("landscape", {});
+  const ShadingDevice gpu{VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, true};
+  const ShadingDevice cpu{VK_PHYSICAL_DEVICE_TYPE_CPU, true};
+  auto pick = [&](const RendererOptions& options,
+                  const ShadingDevice& device = {VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, true},
+                  bool neeEvaluatesEmission = false, const Scene* on = nullptr) {
+    const ShadingChoice choice =
+        resolveShading(options, on ? *on : scene, device, neeEvaluatesEmission);
+    EXPECT_NE(choice.shading, Shading::Auto);
+    EXPECT_EQ(choice.whyMegakernel.empty(),
+              options.shading != Shading::Auto || choice.shading == Shading::Wavefront);
+    return choice.shading;
+  };
+  const RendererOptions plain;
+  EXPECT_EQ(pick(plain, gpu), Shading::Wavefront);
+  EXPECT_EQ(pick(plain, {VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU, true}), Shading::Wavefront);
+  EXPECT_EQ(pick(plain, cpu), Shading::Megakernel);
+  // The pipeline backend without indirect trace launches.
+  EXPECT_EQ(pick(plain, {VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, false}), Shading::Megakernel);
+  // Both caches with the scene's graphs, and the floor without a cache, are the wavefront's.
+  for (CacheMode mode : {CacheMode::Texel, CacheMode::Tile}) {
+    RendererOptions cached;
+    cached.cache.mode = mode;
+    EXPECT_EQ(pick(cached), Shading::Wavefront) << cacheModeName(mode);
+    cached.floorMaterials = true;
+    EXPECT_EQ(pick(cached), Shading::Megakernel) << cacheModeName(mode);
+  }
+  RendererOptions floor;
+  floor.floorMaterials = true;
+  EXPECT_EQ(pick(floor), Shading::Wavefront);
+  RendererOptions culled;
+  culled.culling.mode = CullingMode::Frustum;
+  EXPECT_EQ(pick(culled), Shading::Megakernel);
+  RendererOptions misses;
+  misses.cache.mode = CacheMode::Texel;
+  misses.debugCacheMisses = true;
+  EXPECT_EQ(pick(misses), Shading::Megakernel);
+  RendererOptions cullingView = culled;
+  cullingView.culling.mode = CullingMode::None;
+  cullingView.debugCullingSize = 64;
+  EXPECT_EQ(pick(cullingView), Shading::Megakernel);
+  // An emitter whose emission NEE takes from its graph; the floor evaluates no graph.
+  EXPECT_EQ(pick(plain, gpu, true), Shading::Megakernel);
+  EXPECT_EQ(pick(floor, gpu, true), Shading::Wavefront);
+  // What the renderer passes for it: the landscape has no emitter; one whose emission is
+  // its graph's counts, unless NEE does not sample emitters.
+  EXPECT_FALSE(sceneNeeEvaluatesEmission(scene, {}));
+  Scene emitting = scene;
+  emitting.materials[0].emissionEstimate = glm::vec3(1.0f);
+  emitting.materials[0].emissionKind = MaterialRef::EmissionKind::Graph;
+  EXPECT_TRUE(sceneNeeEvaluatesEmission(emitting, {}));
+  emitting.emissiveLightSampling = false;
+  EXPECT_FALSE(sceneNeeEvaluatesEmission(emitting, {}));
+  // Animated meshes.
+  Scene animated = scene;
+  animated.animatedMeshes = {0};
+  animated.animatedPosition = [](std::size_t, glm::vec3 rest, float) { return rest; };
+  EXPECT_EQ(pick(plain, gpu, false, &animated), Shading::Megakernel);
+  // An explicit --tile-fill subgroup (unset, the wavefront queues; deferred is fine), and the
+  // subgroup fill's grouping and test hook.
+  RendererOptions tiled;
+  tiled.cache.mode = CacheMode::Tile;
+  tiled.cache.tileFill = TileFill::Deferred;
+  EXPECT_EQ(pick(tiled), Shading::Wavefront);
+  tiled.cache.tileFill = TileFill::Subgroup;
+  EXPECT_EQ(pick(tiled), Shading::Megakernel);
+  RendererOptions grouped;
+  grouped.cache.mode = CacheMode::Tile;
+  grouped.cache.groupByMaterial = true;
+  EXPECT_EQ(pick(grouped), Shading::Megakernel);
+  // An explicit choice stands, on any device and with any option.
+  RendererOptions megakernel;
+  megakernel.shading = Shading::Megakernel;
+  EXPECT_EQ(pick(megakernel, gpu), Shading::Megakernel);
+  RendererOptions wavefront = culled;
+  wavefront.shading = Shading::Wavefront;
+  EXPECT_EQ(pick(wavefront, cpu, true), Shading::Wavefront);
+}
+
+// On lavapipe (a CPU) auto runs the megakernel, and the stats say so; --wavefront-paths
+// needs the wavefront, which auto did not choose.
+TEST(Wavefront, AutoRunsTheMegakernelOnLavapipe) {
+  const Scene scene = makeBuiltinScene("landscape", {});
+  RendererOptions options = floorOptions(Backend::RayQuery, Shading::Auto);
+  ASSERT_EQ(RendererOptions{}.shading, testing::testOptions(Backend::RayQuery).shading);
+  EXPECT_EQ(Renderer(options).render(scene, settings(8, 8, 1, 2, 1)).stats.shading, "megakernel");
+  options.wavefrontPaths = 64;
+  try {
+    Renderer(options).render(scene, settings(8, 8, 1, 2, 1));
+    ADD_FAILURE() << "rendered; expected --wavefront-paths refused";
+  } catch (const std::invalid_argument& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("--wavefront-paths"), std::string::npos) << message;
+    EXPECT_NE(message.find("CPU"), std::string::npos) << message;
+  }
+}
+
 // With the scenes' graphs: the same passes, plus the binning passes and one material
 // pipeline per distinct graph; the same numbers on both backends (the material passes are
 // compute on both, and the traces find the same hits).
@@ -430,7 +546,8 @@ TEST(Wavefront, TheCliRefusesBadCombinationsAsUsageErrors) {
   EXPECT_EQ(runCli(render + "--shading wavefront --floor-materials --culling frustum"), 2);
   EXPECT_EQ(runCli(render + "--shading wavefront --floor-materials --debug-misses"), 2);
   EXPECT_EQ(runCli(render + "--shading sideways --floor-materials"), 2);
-  EXPECT_EQ(runCli(render + "--floor-materials --wavefront-paths 64"), 2);  // megakernel
+  EXPECT_EQ(runCli(render + "--floor-materials --wavefront-paths 64"), 2);  // auto: megakernel
+  EXPECT_EQ(runCli(render + "--shading megakernel --floor-materials --wavefront-paths 64"), 2);
   EXPECT_EQ(runCli(render + "--shading wavefront --cache tile --tile-fill subgroup"), 2);
   EXPECT_EQ(runCli(render + "--shading wavefront --floor-materials --wavefront-paths many"), 2);
   EXPECT_EQ(runCli("render builtin:city:scale=0.02 --size 8x8 --out " + out +
@@ -442,6 +559,12 @@ TEST(Wavefront, TheCliRefusesBadCombinationsAsUsageErrors) {
   EXPECT_FALSE(std::filesystem::exists(out));
   // Without --floor-materials it renders the scene's graphs.
   EXPECT_EQ(runCli(render + "--shading wavefront --paths 1 --bounces 2"), 0);
+  EXPECT_TRUE(std::filesystem::exists(out));
+  std::filesystem::remove(out);
+  // Auto (the default, spelled out) renders the animated city: the megakernel on lavapipe.
+  EXPECT_EQ(runCli("render builtin:city:scale=0.02 --size 8x8 --out " + out +
+                   " --shading auto --floor-materials"),
+            0);
   EXPECT_TRUE(std::filesystem::exists(out));
   std::filesystem::remove(out);
 }
