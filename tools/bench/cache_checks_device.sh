@@ -13,6 +13,10 @@ source bundle/device_env.sh
 OUT=${OUT:-/tmp/out}
 mkdir -p "$OUT"
 m=${MEMOGRAPH:-bundle/memograph}
+# These measure the megakernel (the thesis's path tracer): binaries whose --shading defaults
+# to auto (the wavefront on a GPU) are asked for it; older ones know no other.
+shadingFlags=()
+"$m" bench --help 2>&1 | grep -q -- '--shading S  *auto' && shadingFlags=(--shading megakernel)
 suffix=${LABEL_SUFFIX:-}
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader >"$OUT/env.txt" 2>&1
 selftest() {
@@ -27,7 +31,7 @@ row() {
   echo "== $label: $*" | tee -a "$OUT/bench_log.txt"
   timeout "$limit" $m bench builtin:classroom --sizes 1920x1080 --paths 6 --bounces 4 \
     --warmup 2 --frames 300 --camera-frames 300 --time-limit $((limit - 10)) \
-    --shader-cache /tmp/sc --label "$label" --csv "/tmp/$label.csv" "$@" 2>&1 |
+    --shader-cache /tmp/sc --label "$label" --csv "/tmp/$label.csv" "${shadingFlags[@]}" "$@" 2>&1 |
     tail -25 >>"$OUT/bench_log.txt"
   echo "rc=${PIPESTATUS[0]}" >>"$OUT/bench_log.txt"
   if [ -f "$OUT/bench_rows.csv" ]; then tail -n +2 "/tmp/$label.csv"; else cat "/tmp/$label.csv"; fi \

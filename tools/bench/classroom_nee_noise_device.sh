@@ -9,6 +9,10 @@ set -uo pipefail
 [ -f bundle/device_env.sh ] && source bundle/device_env.sh
 OUT=${OUT:-/tmp/out}
 m=${MEMOGRAPH:-bundle/memograph}
+# These measure the megakernel (the thesis's path tracer): binaries whose --shading defaults
+# to auto (the wavefront on a GPU) are asked for it; older ones know no other.
+shadingFlags=()
+"$m" bench --help 2>&1 | grep -q -- '--shading S  *auto' && shadingFlags=(--shading megakernel)
 size=${SIZE:-320x180}
 mkdir -p "$OUT"
 common=(builtin:classroom:nee=1 --size "$size" --bounces 4 --shader-cache /tmp/noise_shaders)
@@ -17,7 +21,7 @@ step() {
   shift 2
   echo "== $label: $*"
   local t0=$(date +%s)
-  timeout "$limit" "$m" render "${common[@]}" "$@" --out "$OUT/classroom_$label.pfm" \
+  timeout "$limit" "$m" render "${common[@]}" "${shadingFlags[@]}" "$@" --out "$OUT/classroom_$label.pfm" \
     --stats "$OUT/classroom_${label}_stats.csv" 2>&1 | tail -3
   echo "rc=${PIPESTATUS[0]} seconds=$(($(date +%s) - t0))"
 }

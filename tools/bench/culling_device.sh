@@ -31,6 +31,10 @@ set -uo pipefail
 OUT=${OUT:-/tmp/out}
 mkdir -p "$OUT"
 m=${MEMOGRAPH:-bundle/memograph}
+# These measure the megakernel (the thesis's path tracer): binaries whose --shading defaults
+# to auto (the wavefront on a GPU) are asked for it; older ones know no other.
+shadingFlags=()
+"$m" bench --help 2>&1 | grep -q -- '--shading S  *auto' && shadingFlags=(--shading megakernel)
 stride=${STRIDE:-1}
 scene=${SCENE:-builtin:city}
 size=${SIZE:-1920x1080}
@@ -65,7 +69,7 @@ bench_run() {
   shift
   echo "== bench $label" | tee -a "$OUT/log.txt"
   # shellcheck disable=SC2086 # EXTRA is a list of flags
-  timeout "$limit" "$m" bench "$scene" --sizes "$size" --paths "$paths" --bounces 4 \
+  timeout "$limit" "$m" bench "$scene" "${shadingFlags[@]}" --sizes "$size" --paths "$paths" --bounces 4 \
     --warmup 0 --frames $((360 / stride)) --camera-frames 360 --frame-stride "$stride" \
     --time-limit $((limit - 10)) --label "$label" --shader-cache "$work/sc" \
     --csv "$work/bench_$label.csv" --frames-csv "$work/$label." "$@" ${EXTRA:-} 2>&1 |
@@ -105,7 +109,7 @@ pictures() {
     for mode in none frustum lipac; do
       echo "== picture $k $mode" | tee -a "$OUT/log.txt"
       # shellcheck disable=SC2086
-      timeout 150 "$m" render "$scene" --size "$size" --paths "$paths" --bounces 4 --frames 12 \
+      timeout 150 "$m" render "$scene" "${shadingFlags[@]}" --size "$size" --paths "$paths" --bounces 4 --frames 12 \
         --camera-path "$work/path_$k.campath" --seed 1 --culling "$mode" \
         --shader-cache "$work/sc" --out "$work/${k}_$mode.pfm" --stats "$work/${k}_$mode.csv" \
         ${EXTRA:-} >>"$OUT/log.txt" 2>&1

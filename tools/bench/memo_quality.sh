@@ -36,13 +36,17 @@ fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-$work}
+# These measure the megakernel (the thesis's path tracer): binaries whose --shading defaults
+# to auto (the wavefront on a GPU) are asked for it; older ones know no other.
+shadingFlags=()
+"$m" bench --help 2>&1 | grep -q -- '--shading S  *auto' && shadingFlags=(--shading megakernel)
 
 # render SCENE NAME FLAGS...: renders into $work/SCENE_NAME.pfm; on failure prints the log and
 # returns 1.
 render() {
   local scene=$1 name=$2
   shift 2
-  "$m" render "builtin:$scene" "$@" --out "$work/${scene}_$name.pfm" >"$work/${scene}_$name.log" 2>&1 ||
+  "$m" render "builtin:$scene" "${shadingFlags[@]}" "$@" --out "$work/${scene}_$name.pfm" >"$work/${scene}_$name.log" 2>&1 ||
     { cat "$work/${scene}_$name.log" >&2; return 1; }
 }
 # compare SCENE NAME: mean FLIP of NAME against none, and the last frame's hit rate.

@@ -219,6 +219,10 @@ else
   source bundle/device_env.sh
 fi
 start=$(date +%s)
+# These measure the megakernel (the thesis's path tracer): binaries whose --shading defaults
+# to auto (the wavefront on a GPU) are asked for it; older ones know no other.
+shadingFlags=()
+"$m" bench --help 2>&1 | grep -q -- '--shading S  *auto' && shadingFlags=(--shading megakernel)
 mkdir -p "$OUT"
 work=$(mktemp -d /tmp/memo_sweep.XXXXXX)
 mkdir -p "$work/csv" "$work/frames" "$work/claims" "$work/shaders"
@@ -300,7 +304,7 @@ run_step() {
     --bounces "$bounces" --warmup "$warmup" --frames $((cameras / stride)) \
     "${pathFlags[@]}" "${strideFlags[@]}" "${limitFlags[@]}" --label "$label" \
     --csv "$work/csv/$(printf %03d "$i").csv" --frames-csv "$work/frames/" \
-    --shader-cache "$work/shaders" "${deviceFlags[@]}" $flags
+    --shader-cache "$work/shaders" "${deviceFlags[@]}" "${shadingFlags[@]}" $flags
   rc=$?
   case $rc in 0) status=ok ;; 124 | 137) status=timeout ;; 2) status=usage ;; *) status=failed ;; esac
   # The summary line's last column: stopped_early (by --time-limit).
