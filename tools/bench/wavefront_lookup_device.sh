@@ -5,7 +5,8 @@
 # 1. pictures: the classroom at 960x540, P = 6, L = 4, 4 frames at its static camera, seed 1,
 #    without a cache and with the default texel and tile caches, megakernel and wavefront
 #    (six .pfm files; compare them here with `memograph diff`);
-# 2. the wavefront without a cache (its binning passes), every 10th camera, 30 frames;
+# 2. the wavefront's floor and its frame without a cache (its binning passes), over the
+#    first 40 cameras of the path, the cached runs' frames;
 # 3. the wavefront with the texel cache over the first 40 cameras of the path, once with the
 #    defaults and once each with one setting of the lookup changed: the frame clock (no
 #    atomic clock tick per hit), the key read check (two fences a read instead of four), both,
@@ -59,7 +60,10 @@ bench() { # limit, label, then the flags
     if [ $first = 1 ]; then cat "$csv"; first=0; else tail -n +2 "$csv"; fi >>"$rows"
   fi
 }
-bench 30 no_cache --frames 30 --frame-stride 10
+# The floor and the uncached frame over the same 40 cameras as the cached runs, so that
+# "memoized ÷ floor" and the speed-up over no cache compare the same frames.
+bench 30 floor --frames 40 --camera-frames 300 --floor-materials
+bench 30 no_cache --frames 40 --camera-frames 300
 for variant in default "--clock frame" "--cache-read-check key" \
   "--clock frame --cache-read-check key" "--eviction none"; do
   label=$(echo "texel $variant" | tr -c 'a-z0-9\n' '_' | tr -s _)
