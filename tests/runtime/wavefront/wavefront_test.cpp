@@ -184,6 +184,37 @@ TEST(Wavefront, AtOneSeedTheMegakernelTracesTheSamePaths) {
   }
 }
 
+// The classroom's 88 graphs: the megakernel's callables against the wavefront's material
+// passes, whose binning reserves one place per distinct bin of a subgroup (addToBinRecord),
+// at one seed. A hit binned twice or lost would change its pixel; measured identical (LDR-FLIP
+// 0). About a minute on lavapipe, most of it the megakernel's 88 callables' pipeline.
+TEST(Wavefront, TheClassroomsGraphsGiveTheMegakernelsPictureAtOneSeed) {
+  const Scene scene = makeBuiltinScene("classroom", {});
+  RenderSettings s = settings(24, 14, 1, 2, 1);
+  s.seed = 7;
+  const RenderResult megakernel =
+      Renderer(graphOptions(Backend::RayTracingPipeline, Shading::Megakernel)).render(scene, s);
+  const RenderResult wavefront =
+      Renderer(graphOptions(Backend::RayTracingPipeline, Shading::Wavefront)).render(scene, s);
+  EXPECT_EQ(megakernel.stats.shading, "megakernel");
+  EXPECT_EQ(wavefront.stats.shading, "wavefront");
+  std::uint64_t binned = 0;
+  std::uint32_t binsHit = 0;
+  for (std::uint32_t count : wavefront.stats.frames.front().wavefrontBinHits) {
+    binned += count;
+    binsHit += count > 0 ? 1u : 0u;
+  }
+  EXPECT_GE(binsHit, 8u) << "the view should reach many of the classroom's graphs";
+  EXPECT_GT(binned, 0u);
+  const double difference = largestRelativeDifference(megakernel.image, wavefront.image);
+  std::printf(
+      "classroom graphs, pipeline: %u bins hit, %llu hits binned, largest relative "
+      "difference %.3g\n",
+      binsHit, static_cast<unsigned long long>(binned), difference);
+  EXPECT_LT(difference, 1e-4);
+  EXPECT_GT(meanRadiance(megakernel.image), 0.0);
+}
+
 // A round split into chunks (a path state of fewer slots than pixels, --wavefront-paths)
 // draws the same random numbers for the same pixels, so the image is the same bit for bit:
 // the floor in 3 chunks of 50 of its 144 pixels, the graphs in 21 chunks of 7.
