@@ -9,7 +9,10 @@
 //   MG_CACHE_VALUE_FP16      (optional) values as two halves per uint (§5.3.1),
 //   MG_CACHE_CLOCK_COUNTER   (optional) the 64-bit atomic counter clock of §5.3.3 instead of
 //                            the frame clock, with MG_CACHE_CLOCK_SHIFT (bits kept),
-//   MG_CACHE_SNAP_UV         (optional) a miss evaluates the graph at its texel centre (§6.1).
+//   MG_CACHE_SNAP_UV         (optional) a miss evaluates the graph at its texel centre (§6.1),
+//   MG_CACHE_STAMP_BY_SUBGROUP (optional; needs subgroup arithmetic and every invocation of
+//                            the subgroup calling cacheStampReads) lru's counter-clock stamps
+//                            of reads, one clock atomic per subgroup (cacheStampReads).
 // The entry count S, the frame clock and the mip bias come per frame in frame.cache. The
 // includer declares `counters` (gpu::Counters at kBindingRayCounter): the occupancy and the
 // counter clock live there.
@@ -345,6 +348,37 @@ uint cacheReadBegin(uint entry, CacheKey key) {
   return counterBefore;
 }
 
+#if defined(MG_CACHE_STAMP_BY_SUBGROUP) && MG_CACHE_EVICTION == 1 && \
+    defined(MG_CACHE_CLOCK_COUNTER)
+// Under lru with the counter clock every hit ticks the one global clock: an atomic on one
+// address per hit. The wavefront's lookup pass does nothing else, and there a frame's tens of
+// millions of hits queue on that address (on the H200 the pass took 44.5 ms of a 93.5 ms
+// classroom frame, about one hit a nanosecond). So a read's stamp waits for cacheStampReads,
+// which ticks the clock once for all of a subgroup's hits and gives each its own tick in
+// lane order: the same count of ticks, the same clock, one atomic per subgroup.
+#define MG_CACHE_DEFERRED_STAMP 1
+const uint kCacheNoStamp = 0xFFFFFFFFu;
+uint g_cacheStampOffset = kCacheNoStamp;  // the entry whose stamp waits, if any
+
+// Stamps the entries this subgroup's reads found. Every invocation of the subgroup calls it.
+void cacheStampReads() {
+  uint tick = g_cacheStampOffset != kCacheNoStamp ? 1u : 0u;
+  uint total = subgroupAdd(tick);
+  if (total == 0u) return;  // uniform
+  uint rank = subgroupExclusiveAdd(tick);
+  uvec2 first = uvec2(0u);
+  if (subgroupElect()) first = unpackUint2x32(atomicAdd(counters.cacheClock, uint64_t(total)));
+  first = uvec2(subgroupAdd(first.x), subgroupAdd(first.y));  // the elected one's, to all
+  if (tick != 0u) {
+    uint64_t ticks = packUint2x32(first) + uint64_t(rank);
+    cacheData[g_cacheStampOffset + 1u] = uint(ticks >> uint(MG_CACHE_CLOCK_SHIFT));
+    g_cacheStampOffset = kCacheNoStamp;
+  }
+}
+#else
+void cacheStampReads() {}
+#endif
+
 // After the values were loaded: true when they belong to the key (see cacheReadBegin).
 // Under lru a valid read refreshes the entry's clock (§4.5, §5.3.3).
 bool cacheReadValid(uint entry, CacheKey key, uint counterBefore) {
@@ -358,7 +392,11 @@ bool cacheReadValid(uint entry, CacheKey key, uint counterBefore) {
   if (cacheData[offset + 2u] != counterBefore) return false;  // rewritten, key restored
 #endif
 #if MG_CACHE_EVICTION == 1  // kCacheEvictionLru
-#ifdef MG_CACHE_CLOCK_COUNTER
+#if defined(MG_CACHE_DEFERRED_STAMP)
+  // A second read before cacheStampReads stamps the first at once.
+  if (g_cacheStampOffset != kCacheNoStamp) cacheData[g_cacheStampOffset + 1u] = cacheClock(1u);
+  g_cacheStampOffset = offset;
+#elif defined(MG_CACHE_CLOCK_COUNTER)
   cacheData[offset + 1u] = cacheClock(1u);  // §5.3.3: reads count only for lru
 #else
   if (cacheData[offset + 1u] != frame.cache.y) cacheData[offset + 1u] = frame.cache.y;

@@ -79,6 +79,9 @@
 #include "path_shading.glsl"
 // The texel cache where it is read (the lookup pass) and written (the material passes); the
 // tile cache also where its queued tiles are binned.
+#if defined(MG_WAVEFRONT_LOOKUP) && defined(MG_SUBGROUP_RAY_COUNT)
+#define MG_CACHE_STAMP_BY_SUBGROUP 1  // the lookup pass: every invocation reaches its end
+#endif
 #if defined(MG_CACHE_TEXEL) && (defined(MG_WAVEFRONT_LOOKUP) || defined(MG_WAVEFRONT_MATERIAL))
 #include "texel_cache.glsl"
 #endif
@@ -432,7 +435,8 @@ void main() {
     }
     pathState[fieldIndex(kFieldMaterialRest, slot)].w = uintBitsToFloat(bin);
   }
-  cacheAddCounts();  // with subgroup arithmetic, every invocation of the subgroup
+  cacheStampReads();  // with subgroup arithmetic, every invocation of the subgroup
+  cacheAddCounts();
 #ifdef MG_WAVEFRONT_TILES
   tileAddCounts();
 #endif

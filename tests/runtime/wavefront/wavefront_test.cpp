@@ -466,6 +466,35 @@ TEST(Wavefront, TexelCacheMeanMatchesTheMegakernelsWithTheCache) {
             0.015);
 }
 
+// LRU with the counter clock (§5.3.3) ticks the clock once for every hit and every write. The
+// wavefront's lookup pass stamps a subgroup's hits with one atomic (cacheStampReads): each
+// frame's ticks must still lie between its hits and its hits plus misses (a write for at
+// most every miss), in both architectures. Without the deferred stamps the wavefront's ticks
+// fall to its writes alone, below its hits.
+TEST(Wavefront, TheCounterClockTicksForEveryHitAndWriteInBothArchitectures) {
+  const Scene scene = makeBuiltinScene("landscape", {});
+  const RenderSettings s = settings(32, 18, 2, 3, 4);
+  for (Shading shading : {Shading::Megakernel, Shading::Wavefront}) {
+    RendererOptions options = texelCacheOptions(Backend::RayQuery, shading);
+    options.cache.eviction = CacheEviction::Lru;
+    options.cache.clock = CacheClock::Counter;
+    options.cache.clockShift = 0;
+    const RenderResult r = Renderer(options).render(scene, s);
+    EXPECT_EQ(r.stats.cacheClock, "counter");
+    for (std::size_t f = 1; f < r.stats.frames.size(); ++f) {
+      const FrameStats& frame = r.stats.frames[f];
+      const std::uint64_t ticks = frame.cacheClockTicks - r.stats.frames[f - 1].cacheClockTicks;
+      std::printf("%s frame %zu: %llu ticks, %llu hits, %llu misses\n", shadingName(shading), f,
+                  (unsigned long long)ticks, (unsigned long long)frame.cacheHits,
+                  (unsigned long long)frame.cacheMisses);
+      EXPECT_GT(frame.cacheHits, 0u);
+      EXPECT_GE(ticks, frame.cacheHits) << shadingName(shading) << " frame " << f;
+      EXPECT_LE(ticks, frame.cacheHits + frame.cacheMisses)
+          << shadingName(shading) << " frame " << f;
+    }
+  }
+}
+
 // The tile cache (§5.4) in the wavefront: the lookup pass reads the hit's tile and queues a
 // missing one; each bin's material pass computes its queued tiles after its hits, so the
 // next bounce finds them (the megakernel's deferred fill computes them after the frame).
