@@ -216,8 +216,11 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   shadingDevice.type = context.info().type;
   shadingDevice.wavefrontTraces =
       context.backend() == Backend::RayQuery || context.info().traceRaysIndirect;
-  const ShadingChoice shading = resolveShading(options_, scene, shadingDevice,
-                                               sceneNeeEvaluatesEmission(scene, emissionKinds));
+  // Some emitter's emission NEE must take from its graph: the megakernel's second material
+  // call site (MG_NEE_EVALUATES_EMISSION), which the wavefront does not have.
+  const bool neeEvaluatesEmission = sceneNeeEvaluatesEmission(scene, emissionKinds);
+  const ShadingChoice shading =
+      resolveShading(options_, scene, shadingDevice, neeEvaluatesEmission);
   const bool wavefront = shading.shading == Shading::Wavefront;
   if (options_.wavefrontPaths > 0 && !wavefront)
     throw std::invalid_argument(
@@ -388,7 +391,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   // have such emitters (path_tracer.glsl).
   if (buffers.emissiveTriangles)
     shaderDefines.push_back("MG_EMISSIVE_NEE=1");
-  if (buffers.neeEvaluatesEmission && !floor) {
+  if (neeEvaluatesEmission && !floor) {
     if (wavefront)
       throw std::invalid_argument(
           "--shading wavefront evaluates no emitter's graph for a light sample, and this "

@@ -250,7 +250,6 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
         gl.spot = glm::vec4(glm::uintBitsToFloat(std::uint32_t(i)),
                             glm::uintBitsToFloat(std::uint32_t(t / 3)), area, 0.0f);
         gl.spotSmooth = emission;
-        out.neeEvaluatesEmission |= kind == MaterialRef::EmissionKind::Graph;
         triangles.push_back(gl);
         power.push_back(double(area) * glm::pi<double>() * lum);
         totalPower += power.back();

@@ -30,9 +30,6 @@ struct SceneBuffers {
   // The light buffer ends with emissive triangles for NEE: the path tracer needs
   // MG_EMISSIVE_NEE (without it, no kernel carries their sampling and MIS).
   bool emissiveTriangles = false;
-  // Some emissive triangle's material must be evaluated at NEE's light samples (its
-  // emission is not a known constant): the path tracer needs MG_NEE_EVALUATES_EMISSION.
-  bool neeEvaluatesEmission = false;
 };
 
 struct LinkedMaterials;
@@ -43,9 +40,11 @@ struct LinkedMaterials;
 std::vector<MaterialRef::EmissionKind> emissionKindsVerified(const Scene& scene,
                                                              const LinkedMaterials& linked);
 
-// Whether uploadScene could set SceneBuffers::neeEvaluatesEmission, known before the upload:
-// light sampling on and an emitting instance with triangles whose kind is Graph (an emitter
-// of only degenerate triangles counts too).
+// Whether some emitter's material must be evaluated at NEE's light samples (its emission is
+// not a known constant), so the path tracer needs MG_NEE_EVALUATES_EMISSION: light sampling
+// on and an emitting instance with triangles whose kind is Graph. Known before the upload,
+// so that --shading auto can choose by it; an emitter of only degenerate triangles (none
+// sampled) counts too, which only compiles an unused call site.
 bool sceneNeeEvaluatesEmission(const Scene& scene,
                                const std::vector<MaterialRef::EmissionKind>& emissionKinds);
 

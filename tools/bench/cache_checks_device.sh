@@ -13,10 +13,7 @@ source bundle/device_env.sh
 OUT=${OUT:-/tmp/out}
 mkdir -p "$OUT"
 m=${MEMOGRAPH:-bundle/memograph}
-# These measure the megakernel (the thesis's path tracer): binaries whose --shading defaults
-# to auto (the wavefront on a GPU) are asked for it; older ones know no other.
-shadingFlags=()
-"$m" bench --help 2>&1 | grep -q -- '--shading S  *auto' && shadingFlags=(--shading megakernel)
+source tools/bench/megakernel_flags.sh  # shadingFlags
 suffix=${LABEL_SUFFIX:-}
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader >"$OUT/env.txt" 2>&1
 selftest() {

@@ -9,10 +9,7 @@ set -uo pipefail
 [ -f bundle/device_env.sh ] && source bundle/device_env.sh
 OUT=${OUT:-/tmp/out}
 m=${MEMOGRAPH:-bundle/memograph}
-# These measure the megakernel (the thesis's path tracer): binaries whose --shading defaults
-# to auto (the wavefront on a GPU) are asked for it; older ones know no other.
-shadingFlags=()
-"$m" bench --help 2>&1 | grep -q -- '--shading S  *auto' && shadingFlags=(--shading megakernel)
+source tools/bench/megakernel_flags.sh  # shadingFlags
 size=${SIZE:-320x180}
 mkdir -p "$OUT"
 common=(builtin:classroom:nee=1 --size "$size" --bounces 4 --shader-cache /tmp/noise_shaders)

@@ -31,10 +31,7 @@ set -uo pipefail
 OUT=${OUT:-/tmp/out}
 mkdir -p "$OUT"
 m=${MEMOGRAPH:-bundle/memograph}
-# These measure the megakernel (the thesis's path tracer): binaries whose --shading defaults
-# to auto (the wavefront on a GPU) are asked for it; older ones know no other.
-shadingFlags=()
-"$m" bench --help 2>&1 | grep -q -- '--shading S  *auto' && shadingFlags=(--shading megakernel)
+source tools/bench/megakernel_flags.sh  # shadingFlags
 stride=${STRIDE:-1}
 scene=${SCENE:-builtin:city}
 size=${SIZE:-1920x1080}

@@ -36,10 +36,7 @@ fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-$work}
-# These measure the megakernel (the thesis's path tracer): binaries whose --shading defaults
-# to auto (the wavefront on a GPU) are asked for it; older ones know no other.
-shadingFlags=()
-"$m" bench --help 2>&1 | grep -q -- '--shading S  *auto' && shadingFlags=(--shading megakernel)
+source tools/bench/megakernel_flags.sh  # shadingFlags
 
 # render SCENE NAME FLAGS...: renders into $work/SCENE_NAME.pfm; on failure prints the log and
 # returns 1.

@@ -219,10 +219,7 @@ else
   source bundle/device_env.sh
 fi
 start=$(date +%s)
-# These measure the megakernel (the thesis's path tracer): binaries whose --shading defaults
-# to auto (the wavefront on a GPU) are asked for it; older ones know no other.
-shadingFlags=()
-"$m" bench --help 2>&1 | grep -q -- '--shading S  *auto' && shadingFlags=(--shading megakernel)
+source tools/bench/megakernel_flags.sh  # shadingFlags
 mkdir -p "$OUT"
 work=$(mktemp -d /tmp/memo_sweep.XXXXXX)
 mkdir -p "$work/csv" "$work/frames" "$work/claims" "$work/shaders"

@@ -35,18 +35,8 @@ while [ $# -gt 0 ]; do
   *) echo "unknown argument $1" >&2; exit 2 ;;
   esac
 done
-[ $local = 1 ] || source bundle/device_env.sh
-OUT=${OUT:-/tmp/out}
-m=${MEMOGRAPH:-bundle/memograph}
-mkdir -p "$OUT"
-rows="$OUT/wavefront_rows.csv"
-log="$OUT/wavefront_log.txt"
-: >"$rows"
-: >"$log"
-if command -v nvidia-smi >/dev/null; then
-  nvidia-smi --query-gpu=name,driver_version --format=csv,noheader >>"$log" 2>&1
-fi
-first=1
+log_name=wavefront_log.txt rows_name=wavefront_rows.csv
+source tools/bench/wavefront_device_setup.sh
 # scene, limit in seconds (the classroom compiles 88 graphs before its first frame; with its
 # graphs the megakernel's frame is about 2.7 s on the H200).
 entries="landscape:100 classroom:140" floor=--floor-materials
@@ -67,8 +57,6 @@ for entry in $entries; do
       --shading "$shading" --time-limit $((limit - 15)) --label "$shading" \
       --shader-cache /tmp/wavefront_shaders --csv "$csv" 2>&1 | tail -6 | tee -a "$log"
     echo "rc=${PIPESTATUS[0]} seconds=$(($(date +%s) - t0))" | tee -a "$log"
-    if [ -s "$csv" ]; then
-      if [ $first = 1 ]; then cat "$csv"; first=0; else tail -n +2 "$csv"; fi >>"$rows"
-    fi
+    appendRow "$csv"
   done
 done

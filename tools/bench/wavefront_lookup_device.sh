@@ -23,16 +23,8 @@ while [ $# -gt 0 ]; do
   *) echo "unknown argument $1" >&2; exit 2 ;;
   esac
 done
-[ $local = 1 ] || source bundle/device_env.sh
-OUT=${OUT:-/tmp/out}
-m=${MEMOGRAPH:-bundle/memograph}
-mkdir -p "$OUT"
-log="$OUT/lookup_log.txt" rows="$OUT/lookup_rows.csv"
-: >"$log"
-: >"$rows"
-if command -v nvidia-smi >/dev/null; then
-  nvidia-smi --query-gpu=name,driver_version --format=csv,noheader >>"$log" 2>&1
-fi
+log_name=lookup_log.txt rows_name=lookup_rows.csv
+source tools/bench/wavefront_device_setup.sh
 step() { # limit, then the command
   local limit=$1 t0
   shift
@@ -48,7 +40,6 @@ for cache in none texel tile; do
       --shader-cache /tmp/lookup_shaders --out "$OUT/${cache}_${shading}.pfm"
   done
 done
-first=1
 bench() { # limit, label, then the flags
   local limit=$1 label=$2 csv=/tmp/lookup_$2.csv
   shift 2
@@ -56,9 +47,7 @@ bench() { # limit, label, then the flags
   step "$limit" "$m" bench builtin:classroom --backend pipeline --sizes "$size" --paths 6 \
     --bounces 4 --warmup 2 --shading wavefront --time-limit $((limit - 5)) --label "$label" \
     --shader-cache /tmp/lookup_shaders --csv "$csv" "$@"
-  if [ -s "$csv" ]; then
-    if [ $first = 1 ]; then cat "$csv"; first=0; else tail -n +2 "$csv"; fi >>"$rows"
-  fi
+  appendRow "$csv"
 }
 # The floor and the uncached frame over the same 40 cameras as the cached runs, so that
 # "memoized ÷ floor" and the speed-up over no cache compare the same frames.
