@@ -348,15 +348,23 @@ uint cacheReadBegin(uint entry, CacheKey key) {
   return counterBefore;
 }
 
+// A read's stamp of an entry's clock word at `offset` (lru, §5.3.3): stored only when it
+// changes. The counter clock keeps bits MG_CACHE_CLOCK_SHIFT.. of the count, so the hits of a
+// texel close together in time give it the same stamp, and a stored word equal to the new
+// one is the same LRU order. On the H200 the unconditional store cost 28 of the wavefront
+// lookup pass's 43 ms (classroom 1080p, P = 6, L = 4: 47.9 M hits a frame, each a store into
+// a 671 MB table; with the frame clock, which already stored only a change, 15 ms).
+void cacheStamp(uint offset, uint stamp) {
+  if (cacheData[offset + 1u] != stamp) cacheData[offset + 1u] = stamp;
+}
+
 #if defined(MG_CACHE_STAMP_BY_SUBGROUP) && MG_CACHE_EVICTION == 1 && \
     defined(MG_CACHE_CLOCK_COUNTER)
 // Under lru with the counter clock every hit ticks the one global clock: an atomic on one
-// address per hit. The wavefront's lookup pass does little besides, and on the H200 it took
-// 0.93 ns a hit on the classroom (47.9 M hits, 44.5 ms of a 93.5 ms frame) and 0.56 ns on the
-// landscape (12.8 M, 7.2 ms); whether the one address bounds it is for the GPU to tell
-// (--clock frame has no clock atomic). Here a read's stamp waits for cacheStampReads, which
-// ticks the clock once for all of a subgroup's hits and gives each its own tick in lane
-// order: the same count of ticks, the same clock, one atomic per subgroup.
+// address per hit. Here a read's stamp waits for cacheStampReads, which ticks the clock once
+// for all of a subgroup's hits and gives each its own tick in lane order: the same count of
+// ticks, the same clock, one atomic per subgroup. (On the H200 this alone left the lookup
+// pass at 43.3 ms against 44.5: the stamp's store, not the atomic, was the cost; cacheStamp.)
 #define MG_CACHE_DEFERRED_STAMP 1
 const uint kCacheNoStamp = 0xFFFFFFFFu;
 uint g_cacheStampOffset = kCacheNoStamp;  // the entry whose stamp waits, if any
@@ -372,7 +380,7 @@ void cacheStampReads() {
   first = uvec2(subgroupAdd(first.x), subgroupAdd(first.y));  // the elected one's, to all
   if (tick != 0u) {
     uint64_t ticks = packUint2x32(first) + uint64_t(rank);
-    cacheData[g_cacheStampOffset + 1u] = uint(ticks >> uint(MG_CACHE_CLOCK_SHIFT));
+    cacheStamp(g_cacheStampOffset, uint(ticks >> uint(MG_CACHE_CLOCK_SHIFT)));
     g_cacheStampOffset = kCacheNoStamp;
   }
 }
@@ -395,12 +403,12 @@ bool cacheReadValid(uint entry, CacheKey key, uint counterBefore) {
 #if MG_CACHE_EVICTION == 1  // kCacheEvictionLru
 #if defined(MG_CACHE_DEFERRED_STAMP)
   // A second read before cacheStampReads stamps the first at once.
-  if (g_cacheStampOffset != kCacheNoStamp) cacheData[g_cacheStampOffset + 1u] = cacheClock(1u);
+  if (g_cacheStampOffset != kCacheNoStamp) cacheStamp(g_cacheStampOffset, cacheClock(1u));
   g_cacheStampOffset = offset;
 #elif defined(MG_CACHE_CLOCK_COUNTER)
-  cacheData[offset + 1u] = cacheClock(1u);  // §5.3.3: reads count only for lru
+  cacheStamp(offset, cacheClock(1u));  // §5.3.3: reads count only for lru
 #else
-  if (cacheData[offset + 1u] != frame.cache.y) cacheData[offset + 1u] = frame.cache.y;
+  cacheStamp(offset, frame.cache.y);
 #endif
 #endif
   return true;

@@ -10,7 +10,8 @@
 # 3. the wavefront with the texel cache over the first 40 cameras of the path, once with the
 #    defaults and once each with one setting of the lookup changed: the frame clock (no
 #    atomic clock tick per hit), the key read check (two fences a read instead of four), both,
-#    and no eviction (no clock stamp written on a hit).
+#    and no eviction (no clock stamp written on a hit); then the default tile cache, and the
+#    texel cache at twice the default entries (the hit rate a larger cache reaches).
 #   bash tools/bench/wavefront_lookup_device.sh [--local] [--size WxH]
 # --local runs here on lavapipe (no carried loader), e.g. --local --size 64x36, to check it.
 # Results in $OUT: the .pfm files, lookup_rows.csv (one bench line a run) and lookup_log.txt.
@@ -60,4 +61,6 @@ for variant in default "--clock frame" "--cache-read-check key" \
   bench 30 "$label" --frames 40 --camera-frames 300 --cache texel \
     $([ "$variant" = default ] || echo $variant)
 done
+bench 30 tile_default --frames 40 --camera-frames 300 --cache tile
+bench 30 texel_entries_2_25 --frames 40 --camera-frames 300 --cache texel --cache-entries 33554432
 grep -E "^==|median|passes|cache texel|rc=" "$log" | cut -c1-300
