@@ -117,7 +117,7 @@ constexpr const char* kStressBody = R"(
     float values[MG_CACHE_VALUES];
 #ifdef STRESS_UNPROTECTED
     uint offset = cacheEntryOffset(key.base);
-    bool hit = cacheData[offset] == key.hash;
+    bool hit = cacheData[cacheKeyWord(key.base)] == key.hash;
     for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i)
       values[i] = uintBitsToFloat(cacheData[offset + kCacheHeader + i]);
     if (!hit) {
@@ -125,7 +125,7 @@ constexpr const char* kStressBody = R"(
         values[i] = float(k * 16u + i);
         cacheData[offset + kCacheHeader + i] = floatBitsToUint(values[i]);
       }
-      cacheData[offset] = key.hash;
+      cacheData[cacheKeyWord(key.base)] = key.hash;
     }
     if (hit) {
 #else
@@ -638,14 +638,16 @@ TileFillStressResult runTileFillStress(const VulkanContext& context,
   result.repacks = w[9];
   result.fallbacks = w[10];
   result.occupancy = run.counters.cacheOccupancy;
-  const std::uint32_t meta =
-      options.updateCounter ? gpu::kCacheEntryHeaderWithCounter : gpu::kCacheEntryHeader;
-  const std::size_t stride = run.cache.size() / program.entries;
+  // texel_cache.glsl's layout: the S keys, then each entry's record (clock[, update counter],
+  // the tile count, values).
+  const std::uint32_t countWord =
+      (options.updateCounter ? gpu::kCacheEntryHeaderWithCounter : gpu::kCacheEntryHeader) - 1;
+  const std::size_t recordWords = run.cache.size() / program.entries - 1;
   for (std::uint32_t e = 0; e < program.entries; ++e) {
-    const std::uint32_t key = run.cache[e * stride];
+    const std::uint32_t key = run.cache[e];
     result.entriesLocked += key == gpu::kCacheKeyLock;
     result.entriesFilled += key != gpu::kCacheKeyLock && key != gpu::kCacheKeyEmpty;
-    result.countsLeft += run.cache[e * stride + meta] != 0;
+    result.countsLeft += run.cache[program.entries + e * recordWords + countWord] != 0;
   }
   return result;
 }

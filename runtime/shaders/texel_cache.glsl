@@ -22,14 +22,23 @@
 #define MG_TEXEL_CACHE_GLSL
 #extension GL_EXT_control_flow_attributes : require
 
+// The entries' words (kCacheEntryHeader[WithCounter] + values each, gpu::cacheEntryWords):
+// the S keys first, one word an entry (cacheKeyWord), then each entry's record
+// (cacheEntryOffset): its clock, its update counter, the subgroup tile fill's count, then its
+// values from kCacheHeader. The keys lie apart so that the D keys a lookup compares
+// (cacheFind) are D adjacent words, one or two 32-byte sectors, where with each key at the
+// head of its record they were D records apart: at D = 8 and 10-word entries, 8 sectors a
+// lookup before the entry's own.
+const uint kCacheClockWord = 0u;
+const uint kCacheCounterWord = 1u;  // with MG_CACHE_UPDATE_COUNTER
 #ifdef MG_CACHE_UPDATE_COUNTER
-const uint kCacheMetaWords = kCacheEntryHeaderWithCounter;  // key, clock, update counter
+const uint kCacheMetaWords = kCacheEntryHeaderWithCounter - 1u;  // clock, update counter
 #else
-const uint kCacheMetaWords = kCacheEntryHeader;  // key, clock
+const uint kCacheMetaWords = kCacheEntryHeader - 1u;  // clock
 #endif
 #if defined(MG_CACHE_TILE) && !defined(MG_TILE_FILL_DEFERRED)
 // The subgroup tile fill's count of stored texels (tile_cache.glsl tileCountTexels), after
-// the metadata: the header is key, clock[, update counter], count.
+// the metadata: the record is clock[, update counter], count.
 const uint kCacheTileCount = kCacheMetaWords;
 const uint kCacheHeader = kCacheMetaWords + kCacheEntryTileCountWords;
 #else
@@ -43,12 +52,13 @@ const uint kCacheValueWords = (uint(MG_CACHE_VALUES) + 1u) / 2u;
 #else
 const uint kCacheValueWords = uint(MG_CACHE_VALUES);
 #endif
-// Words after the header: one texel's values (texel cache), a tile's texels (tile cache,
-// stored in the entry) or none (tiles stored elsewhere); the tile cache's host defines it.
+// A record's words: the header, then one texel's values (texel cache), a tile's texels (tile
+// cache, stored in the entry) or none (tiles stored elsewhere); the tile cache's host
+// defines the last.
 #ifdef MG_CACHE_ENTRY_WORDS
-const uint kCacheStride = kCacheHeader + uint(MG_CACHE_ENTRY_WORDS);
+const uint kCacheRecordWords = kCacheHeader + uint(MG_CACHE_ENTRY_WORDS);
 #else
-const uint kCacheStride = kCacheHeader + kCacheValueWords;
+const uint kCacheRecordWords = kCacheHeader + kCacheValueWords;
 #endif
 
 // Entries as one flat uint array so the key can be swapped atomically (§5.3.4). Coherent:
@@ -175,7 +185,10 @@ MaterialInputs texelInputs(MaterialInputs inputs, vec2 uv, float texelSize) {
   return inputs;
 }
 
-uint cacheEntryOffset(uint entry) { return entry * kCacheStride; }
+// Entry `entry`'s key word, and the first word of its record (after the S = frame.cache.x
+// keys).
+uint cacheKeyWord(uint entry) { return entry; }
+uint cacheEntryOffset(uint entry) { return frame.cache.x + entry * kCacheRecordWords; }
 
 // Largest finite half: fp16 stores clamp to it, so a bright emission becomes 65504 instead
 // of an infinity that would poison the path.
@@ -322,7 +335,7 @@ MaterialOutputs cacheUnpack(uint mask, float values[MG_CACHE_VALUES], MaterialIn
 int cacheFind(CacheKey key) {
   uint stored[MG_CACHE_PROBE];
   [[unroll]] for (uint d = 0u; d < uint(MG_CACHE_PROBE); ++d)
-    stored[d] = cacheData[cacheEntryOffset(key.base + d)];
+    stored[d] = cacheData[cacheKeyWord(key.base + d)];
   int found = -1;
   [[unroll]] for (uint d = 0u; d < uint(MG_CACHE_PROBE); ++d) {
     if (found < 0 && stored[d] == key.hash) found = int(key.base + d);
@@ -340,9 +353,9 @@ uint cacheReadBegin(uint entry, CacheKey key) {
 #ifdef MG_CACHE_UPDATE_COUNTER
   uint offset = cacheEntryOffset(entry);
   cacheFence();
-  counterBefore = cacheData[offset + 2u];
+  counterBefore = cacheData[offset + kCacheCounterWord];
   cacheFence();
-  if (cacheData[offset] != key.hash) return kCacheKeyLock;
+  if (cacheData[cacheKeyWord(entry)] != key.hash) return kCacheKeyLock;
 #endif
   cacheFence();  // key, then values
   return counterBefore;
@@ -355,7 +368,7 @@ uint cacheReadBegin(uint entry, CacheKey key) {
 // lookup pass's 43 ms (classroom 1080p, P = 6, L = 4: 47.9 M hits a frame, each a store into
 // a 671 MB table; with the frame clock, which already stored only a change, 15 ms).
 void cacheStamp(uint offset, uint stamp) {
-  if (cacheData[offset + 1u] != stamp) cacheData[offset + 1u] = stamp;
+  if (cacheData[offset + kCacheClockWord] != stamp) cacheData[offset + kCacheClockWord] = stamp;
 }
 
 #if defined(MG_CACHE_STAMP_BY_SUBGROUP) && MG_CACHE_EVICTION == 1 && \
@@ -396,9 +409,9 @@ bool cacheReadValid(uint entry, CacheKey key, uint counterBefore) {
   if (counterBefore == kCacheKeyLock) return false;
 #endif
   cacheFence();  // values, then the second key load
-  if (cacheData[offset] != key.hash) return false;  // overwritten while reading
+  if (cacheData[cacheKeyWord(entry)] != key.hash) return false;  // overwritten while reading
 #ifdef MG_CACHE_UPDATE_COUNTER
-  if (cacheData[offset + 2u] != counterBefore) return false;  // rewritten, key restored
+  if (cacheData[offset + kCacheCounterWord] != counterBefore) return false;  // key restored
 #endif
 #if MG_CACHE_EVICTION == 1  // kCacheEvictionLru
 #if defined(MG_CACHE_DEFERRED_STAMP)
@@ -437,8 +450,7 @@ int cacheChooseSlot(CacheKey key) {
 #endif
   bool besideALock = false;  // counted (g_locksBesideALock) when a slot is chosen
   [[unroll]] for (uint d = 0u; d < uint(MG_CACHE_PROBE); ++d) {
-    uint offset = cacheEntryOffset(key.base + d);
-    uint stored = cacheData[offset];
+    uint stored = cacheData[cacheKeyWord(key.base + d)];
     if (stored == kCacheKeyEmpty) {
       if (besideALock) g_locksBesideALock += 1u;
       return int(d);
@@ -448,7 +460,7 @@ int cacheChooseSlot(CacheKey key) {
     if (stored != kCacheKeyLock) {
       // Age modulo 2^32: after the clock wraps, the newest stamps are small numbers but
       // small ages (comparing the stamps themselves evicted the newest entries first).
-      uint age = now - cacheData[offset + 1u];
+      uint age = now - cacheData[cacheEntryOffset(key.base + d) + kCacheClockWord];
       if (oldest < 0 || age > oldestAge) {
         oldestAge = age;
         oldest = int(d);
@@ -476,7 +488,7 @@ int cacheLockEvicting(CacheKey key, out uint evicted) {
   if (slot < 0) return -1;
   uint entry = key.base + uint(slot);
   uint offset = cacheEntryOffset(entry);
-  uint previous = atomicExchange(cacheData[offset], kCacheKeyLock);
+  uint previous = atomicExchange(cacheData[cacheKeyWord(entry)], kCacheKeyLock);
   if (previous == kCacheKeyLock) {
     g_locksContended += 1u;
     return -1;
@@ -484,7 +496,7 @@ int cacheLockEvicting(CacheKey key, out uint evicted) {
   evicted = previous;
   if (previous == kCacheKeyEmpty) atomicAdd(counters.cacheOccupancy, 1u);
 #ifdef MG_CACHE_UPDATE_COUNTER
-  atomicAdd(cacheData[offset + 2u], 1u);  // before any value changes (§5.3.4)
+  atomicAdd(cacheData[offset + kCacheCounterWord], 1u);  // before any value changes (§5.3.4)
 #endif
   // The lock (and the counter) before any value store, in both read-check modes: without
   // this fence a reader could see the old key around new values (the key mode had none).
@@ -502,12 +514,12 @@ int cacheLock(CacheKey key) {
 void cacheUnlock(uint entry, CacheKey key) {
   uint offset = cacheEntryOffset(entry);
 #if MG_CACHE_EVICTION == 1 || MG_CACHE_EVICTION == 2
-  cacheData[offset + 1u] = cacheClock(1u);
+  cacheData[offset + kCacheClockWord] = cacheClock(1u);
 #else
-  cacheData[offset + 1u] = frame.cache.y;  // unread by none and random; no counter tick
+  cacheData[offset + kCacheClockWord] = frame.cache.y;  // unread by none and random
 #endif
   cacheFence();  // the values (buffer or image) and the clock, then the key
-  atomicExchange(cacheData[offset], key.hash);
+  atomicExchange(cacheData[cacheKeyWord(entry)], key.hash);
 }
 
 // Gives up a locked entry without a value: empty again, and one fewer occupied entry (a
@@ -516,7 +528,7 @@ void cacheUnlock(uint entry, CacheKey key) {
 // up hundreds of thousands of entries a frame (callable repacks); without this the
 // occupancy overstated S threefold.
 void cacheUnlockEmpty(uint entry) {
-  atomicExchange(cacheData[cacheEntryOffset(entry)], kCacheKeyEmpty);
+  atomicExchange(cacheData[cacheKeyWord(entry)], kCacheKeyEmpty);
   atomicAdd(counters.cacheOccupancy, 0xFFFFFFFFu);  // minus one
 }
 
@@ -535,7 +547,7 @@ void cacheRestore(uint entry, uint evicted) {
     return;
   }
   cacheFence();
-  atomicExchange(cacheData[cacheEntryOffset(entry)], evicted);
+  atomicExchange(cacheData[cacheKeyWord(entry)], evicted);
 }
 
 // The texel cache's insert: lock, values, unlock.

@@ -83,8 +83,8 @@ TEST(TexelCacheStress, LrwCounterClockEvictsTheOldestAcrossTheWrap) {
     key.hash = k;
     cacheWrite(key, values);
   }
-  for (uint e = 0u; e < 8u; ++e) results[e] = cacheData[cacheEntryOffset(e)];
-  for (uint e = 0u; e < 8u; ++e) results[8u + e] = cacheData[cacheEntryOffset(e) + 1u];
+  for (uint e = 0u; e < 8u; ++e) results[e] = cacheData[cacheKeyWord(e)];
+  for (uint e = 0u; e < 8u; ++e) results[8u + e] = cacheData[cacheEntryOffset(e) + kCacheClockWord];
 )";
   std::vector<std::string> defines = {
       "MG_CACHE_TEXEL=1",         "MG_CACHE_VALUES=1",
