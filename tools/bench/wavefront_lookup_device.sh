@@ -1,31 +1,38 @@
 #!/usr/bin/env bash
-# On the GPU machine, after tools/bundle_device.sh (carry bundle and .gl): where the
-# wavefront's texel-cache lookup pass spends its time, and whether both architectures give
-# the same picture at one seed. In one call, each step under its own time limit:
-# 1. pictures: the classroom at 960x540, P = 6, L = 4, 4 frames at its static camera, seed 1,
-#    without a cache and with the default texel and tile caches, megakernel and wavefront
-#    (six .pfm files; compare them here with `memograph diff`);
-# 2. the wavefront's floor and its frame without a cache (its binning passes), over the
-#    first 40 cameras of the path, the cached runs' frames;
-# 3. the wavefront with the texel cache over the first 40 cameras of the path, once with the
-#    defaults and once each with one setting of the lookup changed: the frame clock (no
-#    atomic clock tick per hit), the key read check (two fences a read instead of four), both,
-#    and no eviction (no clock stamp written on a hit); then the default tile cache, and the
-#    texel cache at twice the default entries (the hit rate a larger cache reaches).
-#   bash tools/bench/wavefront_lookup_device.sh [--local] [--size WxH]
-# --local runs here on lavapipe (no carried loader), e.g. --local --size 64x36, to check it.
-# Results in $OUT: the .pfm files, lookup_rows.csv (one bench line a run) and lookup_log.txt.
+# On the GPU machine, after tools/bundle_device.sh (carry bundle and .gl): the wavefront's
+# figures against the megakernel's (docs/results/wavefront_h200.md). In one call, each step
+# under its own time limit:
+# 1. pictures of the classroom at its static camera, 960x540, P = 6, L = 4, seed 1, compared
+#    on the device with `memograph diff` (pictures.txt):
+#    - 4 frames without a cache, and with the texel cache with --snap-uv (a texel's value
+#      then depends only on its key, not on which hit stored it first): megakernel against
+#      wavefront at one seed;
+#    - 64 frames (384 paths a pixel) with the default texel and tile caches, megakernel
+#      against wavefront (a cached value that some hit stored first differs by thread order,
+#      and a path that meets it turns elsewhere, so at one seed the two trace other noise),
+#      beside the uncached wavefront at seeds 1 and 2: the noise left at that count;
+# 2. benches at 1920x1080 over the first 40 cameras of each path, one after another (a cached
+#    frame depends on the frames before it), the floor and the uncached frame over the same
+#    cameras: the classroom in the wavefront (floor, no cache, texel cache, texel cache with
+#    the frame clock, tile cache) and in the megakernel (floor, texel, tile), the landscape in
+#    the wavefront (floor, no cache, texel, tile).
+#   bash tools/bench/wavefront_lookup_device.sh [--local] [--size WxH] [--frames N]
+# --local runs here on lavapipe (no carried loader), e.g. --local --size 64x36 --frames 2, to
+# check it. Results in $OUT: pictures.txt, lookup_rows.csv (one bench line a run) and
+# lookup_log.txt.
 set -uo pipefail
-local=0 size=1920x1080 picture=960x540
+local=0 size=1920x1080 picture=960x540 converged=64
 while [ $# -gt 0 ]; do
   case $1 in
   --local) local=1; shift ;;
   --size) size=$2; picture=$2; shift 2 ;;
+  --frames) converged=$2; shift 2 ;;
   *) echo "unknown argument $1" >&2; exit 2 ;;
   esac
 done
 log_name=lookup_log.txt rows_name=lookup_rows.csv
 source tools/bench/wavefront_device_setup.sh
+work=$(mktemp -d)
 step() { # limit, then the command
   local limit=$1 t0
   shift
@@ -34,33 +41,58 @@ step() { # limit, then the command
   timeout "$limit" "$@" >>"$log" 2>&1
   echo "rc=$? seconds=$(($(date +%s) - t0))" >>"$log"
 }
-for cache in none texel tile; do
-  for shading in megakernel wavefront; do
-    step 40 "$m" render builtin:classroom --backend pipeline --size "$picture" --paths 6 \
-      --bounces 4 --frames 4 --seed 1 --cache "$cache" --shading "$shading" \
-      --shader-cache /tmp/lookup_shaders --out "$OUT/${cache}_${shading}.pfm"
-  done
-done
-bench() { # limit, label, then the flags
-  local limit=$1 label=$2 csv=/tmp/lookup_$2.csv
+picture() { # name, frames, then the flags
+  local name=$1 frames=$2
   shift 2
+  step 40 "$m" render builtin:classroom --backend pipeline --size "$picture" --paths 6 \
+    --bounces 4 --frames "$frames" --shader-cache /tmp/lookup_shaders --out "$work/$name.pfm" "$@"
+}
+compare() { # title, two picture names
+  echo "== $1: $3 against $2" >>"$OUT/pictures.txt"
+  "$m" diff "$work/$2.pfm" "$work/$3.pfm" >>"$OUT/pictures.txt" 2>&1
+}
+for shading in megakernel wavefront; do
+  picture "none_$shading" 4 --seed 1 --shading "$shading"
+  picture "snap_$shading" 4 --seed 1 --shading "$shading" --cache texel --snap-uv
+done
+compare "4 frames, seed 1, no cache" none_megakernel none_wavefront
+compare "4 frames, seed 1, texel cache --snap-uv" snap_megakernel snap_wavefront
+for cache in texel tile; do
+  for shading in megakernel wavefront; do
+    picture "${cache}_${shading}_converged" "$converged" --seed 1 --shading "$shading" \
+      --cache "$cache"
+  done
+  compare "$converged frames, seed 1, $cache cache" "${cache}_megakernel_converged" \
+    "${cache}_wavefront_converged"
+done
+for seed in 1 2; do
+  picture "none_wavefront_seed$seed" "$converged" --seed "$seed" --shading wavefront
+done
+compare "$converged frames, no cache, wavefront: the noise" none_wavefront_seed1 \
+  none_wavefront_seed2
+compare "$converged frames, wavefront: texel cache against none" none_wavefront_seed1 \
+  texel_wavefront_converged
+bench() { # limit, scene, label, then the flags
+  local limit=$1 scene=$2 label=$3 csv=/tmp/lookup_$2_$3.csv
+  shift 3
   rm -f "$csv"
-  step "$limit" "$m" bench builtin:classroom --backend pipeline --sizes "$size" --paths 6 \
-    --bounces 4 --warmup 2 --shading wavefront --time-limit $((limit - 5)) --label "$label" \
-    --shader-cache /tmp/lookup_shaders --csv "$csv" "$@"
+  step "$limit" "$m" bench "builtin:$scene" --backend pipeline --sizes "$size" --paths 6 \
+    --bounces 4 --warmup 2 --time-limit $((limit - 5)) --label "$label" \
+    --shader-cache /tmp/lookup_shaders --csv "$csv" --frames 40 --camera-frames 300 "$@"
   appendRow "$csv"
 }
-# The floor and the uncached frame over the same 40 cameras as the cached runs, so that
-# "memoized ÷ floor" and the speed-up over no cache compare the same frames.
-bench 30 floor --frames 40 --camera-frames 300 --floor-materials
-bench 30 no_cache --frames 40 --camera-frames 300
-for variant in default "--clock frame" "--cache-read-check key" \
-  "--clock frame --cache-read-check key" "--eviction none"; do
-  label=$(echo "texel $variant" | tr -c 'a-z0-9\n' '_' | tr -s _)
-  # shellcheck disable=SC2086 # the variant is its flags
-  bench 30 "$label" --frames 40 --camera-frames 300 --cache texel \
-    $([ "$variant" = default ] || echo $variant)
-done
-bench 30 tile_default --frames 40 --camera-frames 300 --cache tile
-bench 30 texel_entries_2_25 --frames 40 --camera-frames 300 --cache texel --cache-entries 33554432
-grep -E "^==|median|passes|cache texel|rc=" "$log" | cut -c1-300
+bench 30 classroom floor --shading wavefront --floor-materials
+bench 30 classroom no_cache --shading wavefront
+bench 30 classroom texel --shading wavefront --cache texel
+bench 30 classroom texel_clock_frame --shading wavefront --cache texel --clock frame
+bench 35 classroom tile --shading wavefront --cache tile
+bench 30 classroom megakernel_floor --shading megakernel --floor-materials
+bench 35 classroom megakernel_texel --shading megakernel --cache texel
+bench 40 classroom megakernel_tile --shading megakernel --cache tile
+bench 25 landscape floor --shading wavefront --floor-materials
+bench 25 landscape no_cache --shading wavefront
+bench 25 landscape texel --shading wavefront --cache texel
+bench 25 landscape tile --shading wavefront --cache tile
+rm -rf "$work"
+grep -E "^==|median|passes|cache t|rc=" "$log" | cut -c1-300
+grep -E "^==|mean" "$OUT/pictures.txt"
