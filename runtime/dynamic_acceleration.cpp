@@ -100,6 +100,7 @@ bool DynamicAccelerationStructures::prepareLook(const Camera& camera, float aspe
   }
   culling_.look(camera, aspect);
   lookTraced_ = true;
+  lookCountsPending_ = true;
   prepareStructures(frame, seconds, stats, stateStart);
   stats.looks = 1;
   return true;
@@ -119,7 +120,8 @@ void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float asp
     for (const std::uint32_t h : hits)
       stats.feedbackCountsArrived += h;
   }
-  culling_.update(camera, aspect, hits, previousRays);
+  culling_.update(camera, aspect, hits, previousRays, lookCountsPending_);
+  lookCountsPending_ = false;
   prepareStructures(frame, seconds, stats, stateStart);
 }
 

@@ -95,7 +95,8 @@ class DynamicAccelerationStructures {
   std::uint32_t boxRecordCount_ = 0;
   GpuBuffer hitFeedback_;
   GpuBuffer hitReadback_;
-  bool lookTraced_ = false;  // the read-back holds a look's counters (frame 0 reads them)
+  bool lookTraced_ = false;         // the read-back holds a look's counters (frame 0 reads them)
+  bool lookCountsPending_ = false;  // the next prepareFrame reads a look's counters
 };
 
 }  // namespace memograph::runtime

@@ -596,8 +596,15 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
         dynamicAccel->prepareLook(camera, aspect, f, frame.cameraForward.w, look)) {
       // LiPaC's look (SceneCulling::look): one trace of this frame's camera, its image replaced
       // by the frame's, its builds, host and GPU time folded into the frame's figures, its
-      // counters read by the frame's culling update.
+      // counters read by the frame's culling update. The probe counts every ray: it is one
+      // trace that decides what the frame holds, and with 1 in feedbackStride blocks counted
+      // an instance seen in a few pixels could go unseen (the small city's first frame at
+      // 64x36 lost 1.1 % of its picture against 0.7 % with every ray counted).
+      frame.culling.x = 1u;
+      frameBuffer.write(&frame, sizeof frame);
       submitFrame(f);
+      frame.culling.x = options_.culling.feedbackStride;
+      frameBuffer.write(&frame, sizeof frame);
       gpu::Counters counters{};
       rayReadback.read(&counters, sizeof counters);
       previousRays = counters.rays;

@@ -289,7 +289,7 @@ void SceneCulling::look(const Camera& camera, float aspect) {
 }
 
 void SceneCulling::update(const Camera& camera, float aspect, std::span<const std::uint32_t> hits,
-                          std::uint64_t rays) {
+                          std::uint64_t rays, bool countsFromLook) {
   counts_.changes = 0;
   const Frustum frustum = cameraFrustum(camera, aspect);
   switch (options_.mode) {
@@ -299,7 +299,7 @@ void SceneCulling::update(const Camera& camera, float aspect, std::span<const st
       updateFrustum(frustum, camera);
       break;
     case CullingMode::Lipac:
-      updateLipac(frustum, camera, hits, rays);
+      updateLipac(frustum, camera, hits, rays, countsFromLook ? 1u : options_.feedbackStride);
       break;
   }
   first_ = false;
@@ -315,7 +315,8 @@ void SceneCulling::updateFrustum(const Frustum& frustum, const Camera& camera) {
 }
 
 void SceneCulling::updateLipac(const Frustum& frustum, const Camera& camera,
-                               std::span<const std::uint32_t> hits, std::uint64_t rays) {
+                               std::span<const std::uint32_t> hits, std::uint64_t rays,
+                               std::uint32_t countWeight) {
   const std::uint32_t n = instanceCount();
   if (!hits.empty() && hits.size() != counterCount())
     throw std::logic_error("SceneCulling::update: " + std::to_string(hits.size()) +
@@ -323,9 +324,10 @@ void SceneCulling::updateLipac(const Frustum& frustum, const Camera& camera,
   if (!hits.empty()) {
     // Hitboxes (§3.3.2, algorithm 5): an inactive one counts the rays through its box, an
     // active one the hits of its instances (their own, or their boxes' while omitted).
-    // A counted ray adds feedbackStride to its counter (sampled feedback): the minimums are
-    // in rays, so they scale with it; the per-million thresholds keep their expected value.
-    const double rayWeight = static_cast<double>(options_.feedbackStride);
+    // A counted ray adds feedbackStride to its counter (sampled feedback; 1 in a look's
+    // probe): the minimums are in rays, so they scale with it; the per-million thresholds
+    // keep their expected value.
+    const double rayWeight = static_cast<double>(countWeight);
     const double activate = std::max(kMinHitboxActivationHits * rayWeight,
                                      thresholdHits(options_.hitboxActivate, rays));
     const double deactivate = thresholdHits(options_.hitboxDeactivate, rays);

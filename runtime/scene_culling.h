@@ -40,7 +40,11 @@ struct CullingOptions {
   // An instance with its own BLAS (used by no other instance) in an active hitbox is first
   // omitted (a box counts its rays) and activated above σ_a; an active one goes back to
   // omitted after `lowFrames` frames below σ_o.
-  double instanceActivate = 4.0;
+  // The defaults of σ_a, blasKeepFrames and feedbackStride are the H200's best measured on
+  // the city's street path (docs/culling.md, "Measured on the H200": peak AS 0.305x the
+  // unculled scene's against 0.39x with 4, 8 and 1, frame 1.08x against 1.21x, the mirror's
+  // mean LDR-FLIP 0.0023).
+  double instanceActivate = 8.0;
   double instanceDeactivate = 0.4;
   std::uint32_t lowFrames = 8;
   // An instance that enters the frustum is activated at once when its bounding sphere's
@@ -56,7 +60,7 @@ struct CullingOptions {
   // A BLAS no instance in the TLAS has used for more than this many frames is evicted
   // whatever the budget (§3.3.1: "or when they have not been used for many frames"), so
   // the resident set follows what the frames keep; 0: only the budget evicts.
-  std::uint32_t blasKeepFrames = 8;
+  std::uint32_t blasKeepFrames = 2;
   // Animated meshes' BLASes: updated in place every frame, rebuilt every this many frames
   // (refits loosen the tree; §3.3.1). 1: rebuilt every frame.
   std::uint32_t blasRebuildEvery = 16;
@@ -64,7 +68,7 @@ struct CullingOptions {
   // frame), each count weighted by it: the counters keep their expected value (thresholds
   // are per million rays of the frame) while the counting-box probes, a second trace per
   // ray, cost 1/N. 1: every ray counts.
-  std::uint32_t feedbackStride = 1;
+  std::uint32_t feedbackStride = 4;
   // The TLAS's instance records assembled by a compute pass from the instance states
   // (GpuInstanceFill, seeds/001 §3.3.2) instead of written by the host. The same records in
   // the same order, so the same picture; the host fill stays the default until the GPU
@@ -110,9 +114,11 @@ class SceneCulling {
 
   // Before each frame's trace: the frame's camera and image aspect, and the counters of the
   // previous frame's trace (instanceCount() + hitboxCount() values; empty before the first
-  // frame, and for the modes without feedback) with the rays it traced.
+  // frame, and for the modes without feedback) with the rays it traced. A frame's trace
+  // counts 1 in feedbackStride blocks of pixels, each ray weighted feedbackStride; a look's
+  // probe (countsFromLook) counts every ray, weighted 1.
   void update(const Camera& camera, float aspect, std::span<const std::uint32_t> hits,
-              std::uint64_t rays);
+              std::uint64_t rays, bool countsFromLook = false);
 
   std::uint32_t instanceCount() const { return static_cast<std::uint32_t>(states_.size()); }
   std::uint32_t hitboxCount() const { return static_cast<std::uint32_t>(hitboxActive_.size()); }
@@ -144,7 +150,8 @@ class SceneCulling {
  private:
   void updateFrustum(const Frustum& frustum, const Camera& camera);
   void updateLipac(const Frustum& frustum, const Camera& camera,
-                   std::span<const std::uint32_t> hits, std::uint64_t rays);
+                   std::span<const std::uint32_t> hits, std::uint64_t rays,
+                   std::uint32_t countWeight);
   void setState(std::uint32_t instance, InstanceState state);
   // Its bounding sphere is at least appearMinFraction of the vertical field of view.
   bool appearsLarge(std::uint32_t instance, const Camera& camera) const;

@@ -23,12 +23,12 @@ inline constexpr const char* kCullingHelp =
     "  --hitbox-deactivate D lipac: an active hitbox deactivates after --low-frames frames\n"
     "                        below D hits per million rays (default 2)\n"
     "  --instance-activate A lipac: an instance with its own BLAS, omitted (a box counts its\n"
-    "                        rays), activates at A hits per million rays (default 4)\n"
+    "                        rays), activates at A hits per million rays (default 8)\n"
     "  --instance-deactivate D  lipac: and is omitted again below D (default 0.4)\n"
     "  --low-frames K        lipac: frames below a deactivation threshold before it acts\n"
     "                        (default 8; doubled for a hitbox each time it deactivates)\n"
     "  --feedback-stride N   lipac: 1 in N 8x8-pixel blocks counts its rays each frame,\n"
-    "                        weighted N (default 1: every ray; 1..64)\n"
+    "                        weighted N (default 4; 1: every ray; 1..64)\n"
     "  --looks on|off        lipac: before the first frame, and before one that brings\n"
     "                        --look-appearing instances with their own BLAS into view at\n"
     "                        once, trace its camera once with the hitboxes it faces active\n"
@@ -45,15 +45,15 @@ inline constexpr const char* kCullingHelp =
     "  --blas-build-budget T culled: build at most T triangles of BLASes a frame (at least\n"
     "                        one BLAS; default: no limit)\n"
     "  --blas-keep-frames K  evict a BLAS no instance in the TLAS has used for K frames\n"
-    "                        (default 8; 0: only --blas-budget evicts)\n"
+    "                        (default 2; 0: only --blas-budget evicts)\n"
     "  --blas-rebuild-every N  animated meshes (the city's flags): their BLASes are updated\n"
     "                        in place every frame and rebuilt every N frames (default 16)\n";
 
 struct CullingArguments {
   std::string mode = "none", radius = "30", hitboxSize = "50", hitboxActivate = "20",
-              hitboxDeactivate = "2", instanceActivate = "4", instanceDeactivate = "0.4",
+              hitboxDeactivate = "2", instanceActivate = "8", instanceDeactivate = "0.4",
               lowFrames = "8", blasBudget = "0", blasBuildBudget = "0", blasRebuildEvery = "16",
-              blasKeepFrames = "8", feedbackStride = "1", instanceFill = "host", looks = "on",
+              blasKeepFrames = "2", feedbackStride = "4", instanceFill = "host", looks = "on",
               lookAppearing = "8";
 
   void registerWith(ArgumentScanner& scanner) {

@@ -68,6 +68,7 @@ CullingOptions lipac() {
   o.instanceActivate = 4.0;
   o.instanceDeactivate = 0.4;
   o.lowFrames = 3;
+  o.feedbackStride = 1;  // the made-up counters are every ray's (a test below samples)
   return o;
 }
 
