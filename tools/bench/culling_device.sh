@@ -22,7 +22,8 @@
 # and here, from the returned files (unpack culling_run.tar.gz into RUN_FOLDER first):
 #   tools/results/make_culling_report RUN_FOLDER
 #   (docs/results/culling_h200.md and docs/results/culling_plots/).
-# EXTRA="--cache texel" adds flags to every run. Results under $OUT, each step under its own
+# EXTRA="--cache texel" adds flags to every run; MODES="none lipac" runs only those modes (the
+# pictures compare each with none, so keep none there); CAMERAS="120 153" pictures only those. Results under $OUT, each step under its own
 # time limit (LIMIT seconds a bench run, default 170). Here, to check the script on lavapipe
 # (figures meaningless): MEMOGRAPH=build/tools/memograph SCENE=builtin:city:scale=0.02
 # SIZE=64x36 PATHS=1 OUT=/tmp/culling bash tools/bench/culling_device.sh
@@ -47,6 +48,8 @@ case $scene in
   picture_cameras="120 135 60"
   ;;
 esac
+picture_cameras=${CAMERAS:-$picture_cameras}
+modes=${MODES:-none frustum lipac}
 work=$(mktemp -d)
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader >"$OUT/env.txt" 2>&1
 cat bundle/VERSION >>"$OUT/env.txt" 2>/dev/null
@@ -90,7 +93,7 @@ looks() {
 }
 
 bench() {
-  for mode in none frustum lipac; do
+  for mode in $modes; do
     bench_run "$mode" --culling "$mode"
     append_csv "$work/bench_$mode.csv" "$OUT/bench.csv"
     cp "$work/$mode."*_"$size".csv "$OUT/frames_$mode.csv" 2>/dev/null
@@ -103,7 +106,7 @@ pictures() {
   for k in $picture_cameras; do
     printf '%s\n' "${cameras[@]:k-8:8}" >"$work/path_$k.campath"
     for _ in 1 2 3 4; do echo "${cameras[k]}" >>"$work/path_$k.campath"; done
-    for mode in none frustum lipac; do
+    for mode in $modes; do
       echo "== picture $k $mode" | tee -a "$OUT/log.txt"
       # shellcheck disable=SC2086
       timeout 150 "$m" render "$scene" "${shadingFlags[@]}" --size "$size" --paths "$paths" --bounces 4 --frames 12 \
@@ -113,7 +116,8 @@ pictures() {
       echo "rc=$?" >>"$OUT/log.txt"
       tail -n 1 "$work/${k}_$mode.csv" | sed "s/^/$k,$mode,/" >>"$OUT/pictures_stats.csv" 2>/dev/null
     done
-    for mode in frustum lipac; do
+    for mode in $modes; do
+      [ "$mode" != none ] || continue
       echo "== camera $k (${role[$k]}): $mode against none" >>"$OUT/pictures.txt"
       "$m" diff "$work/${k}_none.pfm" "$work/${k}_$mode.pfm" >>"$OUT/pictures.txt" 2>&1
     done

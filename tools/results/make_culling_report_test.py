@@ -75,6 +75,30 @@ class MakeCullingReportTest(unittest.TestCase):
         two = next(line for line in text.splitlines() if line.startswith("| lipac_appearing_2 |"))
         self.assertEqual([c.strip() for c in two.strip("|").split("|")][4], "0.25×")
 
+    def test_rows_compare_the_frames_every_row_rendered(self):
+        # none ran 3 frames, lipac was stopped after 2: both are summed over the first 2, and
+        # a setting copied in by hand (frames_lipac_stride4.csv) is a row after the modes.
+        run = os.path.join(self.dir.name, "run")
+        os.makedirs(run)
+        write_frames(os.path.join(run, "frames_none.csv"),
+                     [(100.0, 1000, 0.0, 20000), (100.0, 1000, 0.0, 20000),
+                      (400.0, 1000, 0.0, 20000)])
+        write_frames(os.path.join(run, "frames_lipac.csv"),
+                     [(120.0, 300, 0.0, 3000), (120.0, 300, 0.0, 3000)])
+        write_frames(os.path.join(run, "frames_lipac_stride4.csv"),
+                     [(105.0, 300, 0.0, 3000), (105.0, 300, 0.0, 3000),
+                      (105.0, 900, 0.0, 3000)])
+        result, text = self.run_report(run)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("over the first 2 frames", text)
+        cells = {line.split("|")[1].strip(): [c.strip() for c in line.strip("|").split("|")]
+                 for line in text.splitlines() if line.startswith("| none |")
+                 or line.startswith("| lipac")}
+        self.assertEqual(list(cells), ["none", "lipac", "lipac_stride4"])
+        self.assertEqual(cells["none"][1], "3")  # frames it rendered
+        self.assertEqual(cells["lipac"][8:10], ["120.50", "1.20×"])  # not against 3 frames
+        self.assertEqual(cells["lipac_stride4"][3:5], ["300 MiB", "0.30×"])  # its 3rd is past
+
     def test_the_pictures_rows_name_each_cameras_role(self):
         run = os.path.join(self.dir.name, "run")
         os.makedirs(run)
