@@ -178,6 +178,8 @@ std::uint32_t defaultCacheEntries(CacheMode mode) {
 CacheClock cacheClockOf(const CacheOptions& options, bool bufferInt64Atomics) {
   if (options.clock)
     return *options.clock;
+  if (options.mode == CacheMode::Texel && options.eviction == CacheEviction::Lru)
+    return CacheClock::Frame;
   return bufferInt64Atomics ? CacheClock::Counter : CacheClock::Frame;
 }
 
