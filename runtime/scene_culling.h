@@ -42,7 +42,7 @@ struct CullingOptions {
   // omitted after `lowFrames` frames below σ_o.
   // The defaults of σ_a, blasKeepFrames and feedbackStride are the H200's best measured on
   // the city's street path (docs/culling.md, "Measured on the H200": peak AS 0.305x the
-  // unculled scene's against 0.39x with 4, 8 and 1, frame 1.08x against 1.21x, the mirror's
+  // unculled scene's against 0.39x with 4, 8 and 1, frame 1.09x against 1.21x, the mirror's
   // mean LDR-FLIP 0.0023).
   double instanceActivate = 8.0;
   double instanceDeactivate = 0.4;
