@@ -70,8 +70,8 @@ struct RendererOptions {
   // of a free material. Stats say materialDispatch "floor". Not with a cache.
   bool floorMaterials = false;
   // Wavefront: no culling, debug view or animated meshes, and a cache only with the scene's
-  // graphs (checked by validateWavefrontOptions and render()); the tile cache always fills
-  // through the deferred fill's queue. Auto: resolved per render by resolveShading.
+  // graphs (checked by validateWavefrontOptions and render()); the tile cache fills through
+  // the deferred fill's queue only. Auto: resolved per render by resolveShading.
   Shading shading = Shading::Auto;
   // The wavefront's paths in flight (its path state's capacity); a round over more pixels
   // runs in chunks of this many. 0: every pixel, or what the device's storage-buffer range
@@ -88,9 +88,11 @@ struct RendererOptions {
   std::uint32_t debugCullingSize = 0;
 };
 
-// Refuses (std::invalid_argument, naming the option) what the wavefront prototype does not
-// do (culling, debug views, a cache on the floor), and
-// wavefrontPaths with Shading::Megakernel (with Auto, render() checks it once resolved).
+// Refuses (std::invalid_argument, naming the option) what an explicit Shading::Wavefront
+// cannot do that the options alone tell (culling, debug views, a cache on the floor, the
+// subgroup tile fill; the scene's and device's gaps render() refuses), and wavefrontPaths with
+// Shading::Megakernel (with Auto, render() checks it once resolved). The same list decides
+// Auto (resolveShading).
 void validateWavefrontOptions(const RendererOptions& options);
 
 // What the device and the render bring to Shading::Auto's choice.

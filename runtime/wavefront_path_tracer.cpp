@@ -87,15 +87,11 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   VkDevice device = context.device();
   const LinkedMaterials* materials = setup.materials;
   const std::uint32_t pathSlots = setup.pathSlots;
-  if (lookup_ && !materials)
-    throw std::invalid_argument(
-        "--shading wavefront fills the cache in its material passes; the free-material floor "
-        "has none (use --shading megakernel to time the floor's lookups)");
-  if (!query_ && !context.info().traceRaysIndirect)
-    throw std::runtime_error(
-        "--shading wavefront on the pipeline backend launches its traces with "
-        "vkCmdTraceRaysIndirectKHR, which " +
-        context.info().name + " lacks (rayTracingPipelineTraceRaysIndirect); use --backend query");
+  // The renderer refuses both first, in the user's words (renderer.cpp, wavefrontGap).
+  if ((lookup_ && !materials) || (!query_ && !context.info().traceRaysIndirect))
+    throw std::logic_error(
+        "WavefrontPathTracer: a cache without material passes, or a pipeline "
+        "without indirect trace launches");
   // The path state (vec4 fields a slot, four more for material outputs), the queues (two
   // live, one shadow, with materials the material-sorted one; a uint a slot) and the control
   // block (with a record a material bin); each bound whole, so each must fit a storage

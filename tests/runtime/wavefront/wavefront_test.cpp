@@ -299,6 +299,12 @@ TEST(Wavefront, OptionsThePrototypeLacksAreRefused) {
   RendererOptions culled = floorOptions(Backend::RayQuery, Shading::Wavefront);
   culled.culling.mode = CullingMode::Frustum;
   refuses(culled, s, "culling");
+  // The wavefront computes tiles from the deferred fill's queue: an explicit subgroup fill is
+  // refused, not replaced (refused before the device's subgroup size is checked).
+  RendererOptions subgroupFill = graphOptions(Backend::RayQuery, Shading::Wavefront);
+  subgroupFill.cache.mode = CacheMode::Tile;
+  subgroupFill.cache.tileFill = TileFill::Subgroup;
+  refuses(subgroupFill, s, "--tile-fill subgroup");
   // An emitter whose emission NEE must take from its graph at the light point: the wavefront
   // has no material pass for light points.
   Scene emitting = scene;
