@@ -28,22 +28,30 @@ class MakeCullingReportTest(unittest.TestCase):
         self.dir = tempfile.TemporaryDirectory()
         self.addCleanup(self.dir.cleanup)
 
+    def make_run(self, modes):
+        """A run folder holding frames_<mode>.csv for each {mode: frames}."""
+        run = os.path.join(self.dir.name, "run")
+        os.makedirs(run)
+        for mode, frames in modes.items():
+            write_frames(os.path.join(run, f"frames_{mode}.csv"), frames)
+        return run
+
     def run_report(self, folder):
         out = os.path.join(self.dir.name, "report.md")
         result = subprocess.run([sys.executable, REPORT, folder, "--out", out, "--plots",
                                  os.path.join(self.dir.name, "plots"), "--no-png"],
                                 capture_output=True, text=True)
-        text = open(out).read() if os.path.exists(out) else ""
+        text = ""
+        if os.path.exists(out):
+            with open(out) as f:
+                text = f.read()
         return result, text
 
     def test_ratios_to_none_and_the_pictures(self):
-        run = os.path.join(self.dir.name, "run")
-        os.makedirs(run)
-        write_frames(os.path.join(run, "frames_none.csv"),
-                     [(100.0, 1000, 0.0, 20000), (100.0, 1000, 0.0, 20000),
-                      (110.0, 1000, 0.0, 20000)])
-        write_frames(os.path.join(run, "frames_lipac.csv"),
-                     [(90.0, 300, 4.0, 3000), (80.0, 200, 1.0, 2000), (80.0, 100, 1.0, 1000)])
+        run = self.make_run({
+            "none": [(100.0, 1000, 0.0, 20000), (100.0, 1000, 0.0, 20000),
+                     (110.0, 1000, 0.0, 20000)],
+            "lipac": [(90.0, 300, 4.0, 3000), (80.0, 200, 1.0, 2000), (80.0, 100, 1.0, 1000)]})
         with open(os.path.join(run, "pictures.txt"), "w") as f:
             f.write("== camera 120: lipac against none\nLDR-FLIP of a against b\n"
                     "  mean  0.004200\n  max  0.5\n== camera 120: frustum against none\n"
@@ -60,13 +68,10 @@ class MakeCullingReportTest(unittest.TestCase):
                          ["0.0310", "0.0042"])
 
     def test_the_looks_variants_are_rows_of_their_own(self):
-        run = os.path.join(self.dir.name, "run")
-        os.makedirs(run)
-        write_frames(os.path.join(run, "frames_none.csv"), [(100.0, 1000, 0.0, 20000)])
-        write_frames(os.path.join(run, "frames_lipac_appearing_16.csv"),
-                     [(90.0, 500, 1.0, 3000)])
-        write_frames(os.path.join(run, "frames_lipac_appearing_2.csv"), [(90.0, 250, 1.0, 3000)])
-        write_frames(os.path.join(run, "frames_lipac_looks_off.csv"), [(90.0, 900, 1.0, 3000)])
+        run = self.make_run({"none": [(100.0, 1000, 0.0, 20000)],
+                             "lipac_appearing_16": [(90.0, 500, 1.0, 3000)],
+                             "lipac_appearing_2": [(90.0, 250, 1.0, 3000)],
+                             "lipac_looks_off": [(90.0, 900, 1.0, 3000)]})
         result, text = self.run_report(run)
         self.assertEqual(result.returncode, 0, result.stderr)
         rows = [line.split("|")[1].strip() for line in text.splitlines()
@@ -76,18 +81,15 @@ class MakeCullingReportTest(unittest.TestCase):
         self.assertEqual([c.strip() for c in two.strip("|").split("|")][4], "0.25×")
 
     def test_rows_compare_the_frames_every_row_rendered(self):
-        # none ran 3 frames, lipac was stopped after 2: both are summed over the first 2, and
+        # none ran 4 frames, lipac was stopped after 2: both are summed over the first 2 (over
+        # all of none's, its median frame would be 250.5 ms and lipac 0.48x), and
         # a setting copied in by hand (frames_lipac_stride4.csv) is a row after the modes.
-        run = os.path.join(self.dir.name, "run")
-        os.makedirs(run)
-        write_frames(os.path.join(run, "frames_none.csv"),
-                     [(100.0, 1000, 0.0, 20000), (100.0, 1000, 0.0, 20000),
-                      (400.0, 1000, 0.0, 20000)])
-        write_frames(os.path.join(run, "frames_lipac.csv"),
-                     [(120.0, 300, 0.0, 3000), (120.0, 300, 0.0, 3000)])
-        write_frames(os.path.join(run, "frames_lipac_stride4.csv"),
-                     [(105.0, 300, 0.0, 3000), (105.0, 300, 0.0, 3000),
-                      (105.0, 900, 0.0, 3000)])
+        run = self.make_run({
+            "none": [(100.0, 1000, 0.0, 20000), (100.0, 1000, 0.0, 20000),
+                     (400.0, 1000, 0.0, 20000), (400.0, 1000, 0.0, 20000)],
+            "lipac": [(120.0, 300, 0.0, 3000), (120.0, 300, 0.0, 3000)],
+            "lipac_stride4": [(105.0, 300, 0.0, 3000), (105.0, 300, 0.0, 3000),
+                              (105.0, 900, 0.0, 3000)]})
         result, text = self.run_report(run)
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertIn("over the first 2 frames", text)
@@ -95,14 +97,12 @@ class MakeCullingReportTest(unittest.TestCase):
                  for line in text.splitlines() if line.startswith("| none |")
                  or line.startswith("| lipac")}
         self.assertEqual(list(cells), ["none", "lipac", "lipac_stride4"])
-        self.assertEqual(cells["none"][1], "3")  # frames it rendered
+        self.assertEqual(cells["none"][1], "4")  # frames it rendered
         self.assertEqual(cells["lipac"][8:10], ["120.50", "1.20×"])  # not against 3 frames
         self.assertEqual(cells["lipac_stride4"][3:5], ["300 MiB", "0.30×"])  # its 3rd is past
 
     def test_the_pictures_rows_name_each_cameras_role(self):
-        run = os.path.join(self.dir.name, "run")
-        os.makedirs(run)
-        write_frames(os.path.join(run, "frames_none.csv"), [(100.0, 1000, 0.0, 20000)])
+        run = self.make_run({"none": [(100.0, 1000, 0.0, 20000)]})
         with open(os.path.join(run, "pictures.txt"), "w") as f:
             for camera, role, flip in [("153", "mirror", 0.002), ("8", "flying in", 0.0003)]:
                 f.write(f"== camera {camera} ({role}): lipac against none\n  mean  {flip}\n")
