@@ -41,7 +41,7 @@ inline constexpr const char* kCacheHelp =
     "                        wavefront runs (--shading wavefront, or auto on a GPU) tiles\n"
     "                        are always queued and computed by the material passes of the\n"
     "                        bounce that missed them; an explicit subgroup makes auto pick\n"
-    "                        the megakernel\n"
+    "                        the megakernel, and --shading wavefront refuse it\n"
     "  --tile-queue N        deferred fill: tiles queued per frame at most (default 65536)\n"
     "  --value-format F      fp32 (default) or fp16: entry values as 32-bit floats or two\n"
     "                        16-bit halves per word (§5.3.1; half the value memory)\n"
