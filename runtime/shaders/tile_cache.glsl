@@ -79,7 +79,7 @@ void tileLoadTexel(uint entry, uint texel, out float values[MG_CACHE_VALUES]) {
 }
 #elif MG_TILE_STORAGE == 1
 // A separate buffer, entry-major, the same words as in the entry.
-layout(set = 0, binding = kBindingTileTexels, std430) coherent buffer TileTexelBlock {
+layout(set = 0, binding = kBindingTileTexels, std430) MG_CACHE_COHERENT buffer TileTexelBlock {
   uint tileTexels[];
 };
 uint tileTexelWord(uint entry, uint texel) { return (entry * kTileTexels + texel) * kCacheValueWords; }
@@ -97,7 +97,7 @@ void tileLoadTexel(uint entry, uint texel, out float values[MG_CACHE_VALUES]) {
 // stacked in z (3D). Tiles are laid out row by row, frame.cache.w tiles per row.
 const uint kValueGroups = (uint(MG_CACHE_VALUES) + 3u) / 4u;
 #if MG_TILE_STORAGE == 2
-layout(set = 0, binding = kBindingTileImage, MG_TILE_IMAGE_FORMAT) coherent uniform image2D tileImage;
+layout(set = 0, binding = kBindingTileImage, MG_TILE_IMAGE_FORMAT) MG_CACHE_COHERENT uniform image2D tileImage;
 ivec2 tileTexelAt(uint entry, uint texel, uint group) {
   uint tilesPerRow = frame.cache.w;
   uint x = (entry % tilesPerRow) * kTileW * kValueGroups + group * kTileW + texel % kTileW;
@@ -105,7 +105,7 @@ ivec2 tileTexelAt(uint entry, uint texel, uint group) {
   return ivec2(x, y);
 }
 #else
-layout(set = 0, binding = kBindingTileImage, MG_TILE_IMAGE_FORMAT) coherent uniform image3D tileImage;
+layout(set = 0, binding = kBindingTileImage, MG_TILE_IMAGE_FORMAT) MG_CACHE_COHERENT uniform image3D tileImage;
 ivec3 tileTexelAt(uint entry, uint texel, uint group) {
   uint tilesPerRow = frame.cache.w;
   uint x = (entry % tilesPerRow) * kTileW + texel % kTileW;

@@ -82,6 +82,10 @@
 #if defined(MG_WAVEFRONT_LOOKUP) && defined(MG_SUBGROUP_RAY_COUNT)
 #define MG_CACHE_STAMP_BY_SUBGROUP 1  // the lookup pass: every invocation reaches its end
 #endif
+#ifdef MG_WAVEFRONT_LOOKUP
+// The lookup pass reads; only the material passes insert, each pass behind a barrier.
+#define MG_CACHE_QUIESCENT_READS 1
+#endif
 #if defined(MG_CACHE_TEXEL) && (defined(MG_WAVEFRONT_LOOKUP) || defined(MG_WAVEFRONT_MATERIAL))
 #include "texel_cache.glsl"
 #endif

@@ -17,14 +17,19 @@
 #    the frame clock, tile cache) and in the megakernel (floor, texel, tile), the landscape in
 #    the wavefront (floor, no cache, texel, tile).
 #   bash tools/bench/wavefront_lookup_device.sh [--local] [--size WxH] [--frames N]
+#     [--against BINARY]
 # --local runs here on lavapipe (no carried loader), e.g. --local --size 64x36 --frames 2, to
-# check it. Results in $OUT: pictures.txt, lookup_rows.csv (one bench line a run) and
+# check it. --against BINARY measures a change of the lookup instead, in one call: the
+# 4-frame pictures of step 1, then the wavefront's cached benches of step 2 with BINARY (rows
+# labelled _before) and this binary, interleaved (before, after, before, after on the
+# classroom) so that a drift of the machine shows, with the floor and the uncached frame. Results in $OUT: pictures.txt, lookup_rows.csv (one bench line a run) and
 # lookup_log.txt.
 set -uo pipefail
-local=0 size=1920x1080 picture=960x540 converged=64
+local=0 size=1920x1080 picture=960x540 converged=64 against=
 while [ $# -gt 0 ]; do
   case $1 in
   --local) local=1; shift ;;
+  --against) against=$2; shift 2 ;;
   --size) size=$2; picture=$2; shift 2 ;;
   --frames) converged=$2; shift 2 ;;
   *) echo "unknown argument $1" >&2; exit 2 ;;
@@ -57,6 +62,43 @@ for shading in megakernel wavefront; do
 done
 compare "4 frames, seed 1, no cache" none_megakernel none_wavefront
 compare "4 frames, seed 1, texel cache --snap-uv" snap_megakernel snap_wavefront
+bench() { # limit, scene, label, then the flags
+  local limit=$1 scene=$2 label=$3 csv=/tmp/lookup_$2_$3.csv
+  shift 3
+  rm -f "$csv"
+  step "$limit" "$m" bench "builtin:$scene" --backend pipeline --sizes "$size" --paths 6 \
+    --bounces 4 --warmup 2 --time-limit $((limit - 5)) --label "$label" \
+    --shader-cache "/tmp/lookup_shaders$shaders" --csv "$csv" --frames 40 --camera-frames 300 "$@"
+  appendRow "$csv"
+}
+shaders=
+if [ -n "$against" ]; then
+  after=$m
+  # before/after: the binary `m` is, and its own shader cache.
+  side() { if [ "$1" = before ]; then m=$against shaders=_before; else m=$after shaders=; fi; }
+  bench 30 classroom floor --shading wavefront --floor-materials
+  bench 30 classroom no_cache --shading wavefront
+  for cache in texel tile; do
+    for round in 1 2; do
+      for which in before after; do
+        side "$which"
+        bench 35 classroom "${cache}_${which}_$round" --shading wavefront --cache "$cache"
+      done
+    done
+  done
+  side after
+  bench 25 landscape floor --shading wavefront --floor-materials
+  for cache in texel tile; do
+    for which in before after; do
+      side "$which"
+      bench 25 landscape "${cache}_$which" --shading wavefront --cache "$cache"
+    done
+  done
+  rm -rf "$work"
+  grep -E "^==|median|passes|cache t|rc=" "$log" | cut -c1-300
+  grep -E "^==|mean" "$OUT/pictures.txt"
+  exit 0
+fi
 for cache in texel tile; do
   for shading in megakernel wavefront; do
     picture "${cache}_${shading}_converged" "$converged" --seed 1 --shading "$shading" \
@@ -72,15 +114,6 @@ compare "$converged frames, no cache, wavefront: the noise" none_wavefront_seed1
   none_wavefront_seed2
 compare "$converged frames, wavefront: texel cache against none" none_wavefront_seed1 \
   texel_wavefront_converged
-bench() { # limit, scene, label, then the flags
-  local limit=$1 scene=$2 label=$3 csv=/tmp/lookup_$2_$3.csv
-  shift 3
-  rm -f "$csv"
-  step "$limit" "$m" bench "builtin:$scene" --backend pipeline --sizes "$size" --paths 6 \
-    --bounces 4 --warmup 2 --time-limit $((limit - 5)) --label "$label" \
-    --shader-cache /tmp/lookup_shaders --csv "$csv" --frames 40 --camera-frames 300 "$@"
-  appendRow "$csv"
-}
 bench 30 classroom floor --shading wavefront --floor-materials
 bench 30 classroom no_cache --shading wavefront
 bench 30 classroom texel --shading wavefront --cache texel
