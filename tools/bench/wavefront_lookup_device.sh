@@ -17,19 +17,22 @@
 #    the frame clock, tile cache) and in the megakernel (floor, texel, tile), the landscape in
 #    the wavefront (floor, no cache, texel, tile).
 #   bash tools/bench/wavefront_lookup_device.sh [--local] [--size WxH] [--frames N]
-#     [--against BINARY]
+#     [--against BINARY | --whole-path]
 # --local runs here on lavapipe (no carried loader), e.g. --local --size 64x36 --frames 2, to
 # check it. --against BINARY measures a change of the lookup instead, in one call: the
 # 4-frame pictures of step 1, then the wavefront's cached benches of step 2 with BINARY (rows
 # labelled _before) and this binary, interleaved (before, after, before, after on the
-# classroom) so that a drift of the machine shows, with the floor and the uncached frame. Results in $OUT: pictures.txt, lookup_rows.csv (one bench line a run) and
+# classroom) so that a drift of the machine shows, with the floor and the uncached frame.
+# --whole-path: only the wavefront's benches, over the whole 300-camera path of each scene
+# (floor, no cache, the default texel and tile caches; no pictures). Results in $OUT: pictures.txt, lookup_rows.csv (one bench line a run) and
 # lookup_log.txt.
 set -uo pipefail
-local=0 size=1920x1080 picture=960x540 converged=64 against=
+local=0 size=1920x1080 picture=960x540 converged=64 against= whole=0
 while [ $# -gt 0 ]; do
   case $1 in
   --local) local=1; shift ;;
   --against) against=$2; shift 2 ;;
+  --whole-path) whole=1; shift ;;
   --size) size=$2; picture=$2; shift 2 ;;
   --frames) converged=$2; shift 2 ;;
   *) echo "unknown argument $1" >&2; exit 2 ;;
@@ -56,22 +59,34 @@ compare() { # title, two picture names
   echo "== $1: $3 against $2" >>"$OUT/pictures.txt"
   "$m" diff "$work/$2.pfm" "$work/$3.pfm" >>"$OUT/pictures.txt" 2>&1
 }
-for shading in megakernel wavefront; do
-  picture "none_$shading" 4 --seed 1 --shading "$shading"
-  picture "snap_$shading" 4 --seed 1 --shading "$shading" --cache texel --snap-uv
-done
-compare "4 frames, seed 1, no cache" none_megakernel none_wavefront
-compare "4 frames, seed 1, texel cache --snap-uv" snap_megakernel snap_wavefront
 bench() { # limit, scene, label, then the flags
   local limit=$1 scene=$2 label=$3 csv=/tmp/lookup_$2_$3.csv
   shift 3
   rm -f "$csv"
   step "$limit" "$m" bench "builtin:$scene" --backend pipeline --sizes "$size" --paths 6 \
     --bounces 4 --warmup 2 --time-limit $((limit - 5)) --label "$label" \
-    --shader-cache "/tmp/lookup_shaders$shaders" --csv "$csv" --frames 40 --camera-frames 300 "$@"
+    --shader-cache "/tmp/lookup_shaders$shaders" --csv "$csv" --frames "$frames" \
+    --camera-frames 300 "$@"
   appendRow "$csv"
 }
-shaders=
+shaders= frames=40
+if [ "$whole" = 1 ]; then
+  frames=300
+  for scene in classroom landscape; do
+    bench 60 "$scene" floor --shading wavefront --floor-materials
+    bench 70 "$scene" no_cache --shading wavefront
+    bench 60 "$scene" texel --shading wavefront --cache texel
+    bench 60 "$scene" tile --shading wavefront --cache tile
+  done
+  grep -E "^==|median|passes|cache t|stopped|rc=" "$log" | cut -c1-300
+  exit 0
+fi
+for shading in megakernel wavefront; do
+  picture "none_$shading" 4 --seed 1 --shading "$shading"
+  picture "snap_$shading" 4 --seed 1 --shading "$shading" --cache texel --snap-uv
+done
+compare "4 frames, seed 1, no cache" none_megakernel none_wavefront
+compare "4 frames, seed 1, texel cache --snap-uv" snap_megakernel snap_wavefront
 if [ -n "$against" ]; then
   after=$m
   # before/after: the binary `m` is, and its own shader cache.

@@ -15,7 +15,7 @@ inline constexpr const char* kCacheHelp =
     "                        §5.3: one hash table of texels of cacheable materials) or tile\n"
     "                        (§5.4: entries are tiles, computed by a whole subgroup)\n"
     "  --cache-entries N     cache entries S: texels, or tiles with --cache tile\n"
-    "                        (default 16777216 texels or 1048576 tiles, the best rows\n"
+    "                        (default 16777216 texels or 2097152 tiles, the best rows\n"
     "                        measured on an H200; halved until the cache fits one storage\n"
     "                        buffer and a quarter of the device's memory: 128 MiB on\n"
     "                        lavapipe; output says so)\n"
