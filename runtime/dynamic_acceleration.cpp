@@ -99,7 +99,6 @@ bool DynamicAccelerationStructures::prepareLook(const Camera& camera, float aspe
     return false;
   }
   culling_.look(camera, aspect);
-  lookTraced_ = true;
   lookCountsPending_ = true;
   prepareStructures(frame, seconds, stats, stateStart);
   stats.looks = 1;
@@ -111,8 +110,9 @@ void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float asp
                                                  std::uint64_t previousRays, FrameStats& stats) {
   const auto stateStart = std::chrono::steady_clock::now();
   std::vector<std::uint32_t> hits;
-  // Frame 0 has counters to read only when a look traced its camera first.
-  if (hitFeedbackOn() && (frame > 0 || lookTraced_)) {
+  // Counters to read: a look's, traced just before, or the last frame's when it counted (so
+  // none before frame 0 without a look).
+  if (hitFeedbackOn() && (lookCountsPending_ || frameCounted_)) {
     hits.resize(culling_.counterCount() + 1);
     hitReadback_.read(hits.data(), hits.size() * sizeof(std::uint32_t));
     stats.feedbackCounts = hits.back();
@@ -123,6 +123,11 @@ void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float asp
   culling_.update(camera, aspect, hits, previousRays, lookCountsPending_);
   lookCountsPending_ = false;
   prepareStructures(frame, seconds, stats, stateStart);
+}
+
+bool DynamicAccelerationStructures::frameCounts(std::uint32_t frame) {
+  frameCounted_ = hitFeedbackOn() && frame % options_.feedbackEvery == 0;
+  return frameCounted_;
 }
 
 void DynamicAccelerationStructures::prepareStructures(

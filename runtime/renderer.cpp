@@ -411,11 +411,15 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     shaderDefines.push_back("MG_EMISSIVE_NEE=1");
   if (neeEvaluatesEmission && !floor)
     shaderDefines.push_back("MG_NEE_EVALUATES_EMISSION=1");  // never the wavefront (wavefrontGap)
-  // LiPaC's hit counters and the counting-box probe, only where LiPaC runs.
+  // LiPaC's hit counters and the counting-box probe, only where LiPaC runs; with
+  // --feedback-every K > 1 the frames that do not count trace with a second pipeline built
+  // without them (the same bindings, so the same descriptor set).
+  const std::vector<std::string> quietDefines = shaderDefines;
   if (hitFeedback)
     shaderDefines.push_back("MG_HIT_FEEDBACK=1");
   // One architecture or the other: the megakernel's pipeline, or the wavefront's passes.
   std::optional<TracePipeline> pipeline;
+  std::optional<TracePipeline> quietPipeline;
   std::optional<WavefrontPathTracer> wavefrontTracer;
   stats.shading = shadingName(shading.shading);
   if (wavefront) {
@@ -438,6 +442,11 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                      shaderDefines, materialCache.tileImageView() != VK_NULL_HANDLE,
                      materialCache.tileFillRows() > 0);
     stats.rayTracingStack = pipeline->stack();
+    if (hitFeedback && options_.culling.feedbackEvery > 1)
+      quietPipeline.emplace(context, compiler, textures.count(),
+                            materialCallables ? &*materialCallables : nullptr, pipelineThreads,
+                            quietDefines, materialCache.tileImageView() != VK_NULL_HANDLE,
+                            materialCache.tileFillRows() > 0);
   }
   stats.pipelineCreateMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pipelineStart)
@@ -517,8 +526,12 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
       glm::uvec4(materialCache.entryCount(), 0u, mipBiasBits, materialCache.tilesPerRow());
 
   // One frame's commands: clears, the TLAS build, the trace (and tile fill), the read-backs.
-  // `f` == 0 clears the cache and the counters that persist.
-  const auto submitFrame = [&](std::uint32_t f) {
+  // `f` == 0 clears the cache and the counters that persist. `counts`: the trace writes
+  // LiPaC's counters (the pipeline with the feedback; a look's always does).
+  const auto submitFrame = [&](std::uint32_t f, bool counts) {
+    const TracePipeline* tracer = pipeline && !counts && quietPipeline ? &*quietPipeline
+                                  : pipeline                           ? &*pipeline
+                                                                       : nullptr;
     context.submitAndWait([&](VkCommandBuffer commands) {
       // The cache is cleared once, before the first frame: every key kCacheKeyEmpty (0),
       // every clock 0, and with it the counters that persist (occupancy, counter clock);
@@ -548,7 +561,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                                 timestamps ? timestampPool.get() : VK_NULL_HANDLE,
                                 kFirstWavefrontTimestamp);
       else
-        pipeline->record(commands, set, settings.width, settings.height);
+        tracer->record(commands, set, settings.width, settings.height);
       if (materialCache.tileFillRows() > 0 && pipeline) {
         // The deferred tile fill computes the tiles the trace queued (its stores, queue and
         // locks ordered after the trace's); the frame's time includes it.
@@ -557,7 +570,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
         vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
                              VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0, nullptr, 0,
                              nullptr);
-        pipeline->recordTileFill(commands, set, materialCache.tileFillRows());
+        tracer->recordTileFill(commands, set, materialCache.tileFillRows());
       }
       if (timestamps)
         vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestampPool.get(), 1);
@@ -596,6 +609,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     frame.cameraForward.w = float(f) * settings.secondsPerFrame;
     setCamera(frame, camera, settings.width, settings.height);
     frame.image.z = f;
+    frame.culling.y = f / options_.culling.feedbackEvery;  // the counting frame's index
     frame.environmentSize.z = sampleIndex;
     frame.cache.y = f + 1u;  // the frame clock of §5.3.3 (0: never used)
     frameBuffer.write(&frame, sizeof frame);
@@ -616,7 +630,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
       // every ray counted: CulledRender.TheFirstLookHoldsWhatTheFirstCameraReaches).
       frame.culling.x = 1u;
       frameBuffer.write(&frame, sizeof frame);
-      submitFrame(f);
+      submitFrame(f, true);
       frame.culling.x = options_.culling.feedbackStride;
       frameBuffer.write(&frame, sizeof frame);
       gpu::Counters counters{};
@@ -641,8 +655,9 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
       frameStats.asScratchBytes = staticAccel->residentScratchBytes();
     }
 
+    const bool counts = dynamicAccel && dynamicAccel->frameCounts(f);
     auto start = std::chrono::steady_clock::now();
-    submitFrame(f);
+    submitFrame(f, counts);
     frameStats.wallMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     gpu::Counters counters{};

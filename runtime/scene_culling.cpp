@@ -111,6 +111,9 @@ void validateCullingOptions(const CullingOptions& o) {
   if (o.feedbackStride == 0 || o.feedbackStride > 64)
     throw std::invalid_argument("--feedback-stride must be in 1..64, not " +
                                 std::to_string(o.feedbackStride));
+  if (o.feedbackEvery == 0 || o.feedbackEvery > 64)
+    throw std::invalid_argument("--feedback-every must be in 1..64, not " +
+                                std::to_string(o.feedbackEvery));
   if (o.blasKeepFrames > kMaxLowFrames)
     throw std::invalid_argument("--blas-keep-frames must be in 0.." +
                                 std::to_string(kMaxLowFrames) + ", not " +

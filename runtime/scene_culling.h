@@ -41,9 +41,10 @@ struct CullingOptions {
   // omitted (a box counts its rays) and activated above σ_a; an active one goes back to
   // omitted after `lowFrames` frames below σ_o.
   // The defaults of σ_a, blasKeepFrames and feedbackStride are the H200's best measured on
-  // the city's street path (docs/culling.md, "Measured on the H200": peak AS 0.305x the
-  // unculled scene's against 0.39x with 4, 8 and 1, frame 1.09x against 1.21x, the mirror's
-  // mean LDR-FLIP 0.0023).
+  // the city's street path (docs/culling.md, "Measured on the H200": over its first 52
+  // frames peak AS 0.305x the unculled scene's against 0.39x with 4, 8 and 1, frame 1.09x
+  // against 1.21x, the mirror's mean LDR-FLIP 0.0023; over the whole path 0.33x and 1.11x;
+  // σ_a = 16 gave 0.31x and 1.12x at FLIP 0.0033).
   double instanceActivate = 8.0;
   double instanceDeactivate = 0.4;
   std::uint32_t lowFrames = 8;
@@ -69,6 +70,15 @@ struct CullingOptions {
   // are per million rays of the frame) while the counting-box probes, a second trace per
   // ray, cost 1/N. 1: every ray counts.
   std::uint32_t feedbackStride = 4;
+  // lipac: the trace counts every this many frames (frames 0, N, 2N, ...); the frames between
+  // trace with a pipeline compiled without the feedback (its probes and its code, which
+  // alone cost the H200's raygen about 3 %), and their updates only activate what appears in
+  // the frustum. `lowFrames` then counts counting frames: counted in frames (a low count
+  // adding N), 2 updates at N = 4 deactivated so readily that the small city's static camera
+  // kept cycling. A trade of memory for time: on the H200's whole street path N = 4 took
+  // LiPaC's median frame from 1.11x to 1.04x the unculled one and its peak AS from 0.33x to
+  // 0.50x (docs/culling.md, "The whole street path"). 1: every frame counts.
+  std::uint32_t feedbackEvery = 1;
   // The TLAS's instance records assembled by a compute pass from the instance states
   // (GpuInstanceFill, seeds/001 §3.3.2) instead of written by the host. The same records in
   // the same order, so the same picture; the host fill stays the default until the GPU

@@ -29,6 +29,9 @@ inline constexpr const char* kCullingHelp =
     "                        (default 8; doubled for a hitbox each time it deactivates)\n"
     "  --feedback-stride N   lipac: 1 in N 8x8-pixel blocks counts its rays each frame,\n"
     "                        weighted N (default 4; 1: every ray; 1..64)\n"
+    "  --feedback-every K    lipac: the trace counts every K-th frame; the frames between\n"
+    "                        trace without the feedback's code and probes (default 1: every\n"
+    "                        frame; 1..64)\n"
     "  --looks on|off        lipac: before the first frame, and before one that brings\n"
     "                        --look-appearing instances with their own BLAS into view at\n"
     "                        once, trace its camera once with the hitboxes it faces active\n"
@@ -53,8 +56,8 @@ struct CullingArguments {
   std::string mode = "none", radius = "30", hitboxSize = "50", hitboxActivate = "20",
               hitboxDeactivate = "2", instanceActivate = "8", instanceDeactivate = "0.4",
               lowFrames = "8", blasBudget = "0", blasBuildBudget = "0", blasRebuildEvery = "16",
-              blasKeepFrames = "2", feedbackStride = "4", instanceFill = "host", looks = "on",
-              lookAppearing = "8";
+              blasKeepFrames = "2", feedbackStride = "4", feedbackEvery = "1",
+              instanceFill = "host", looks = "on", lookAppearing = "8";
 
   void registerWith(ArgumentScanner& scanner) {
     scanner.option("--culling", &mode);
@@ -70,6 +73,7 @@ struct CullingArguments {
     scanner.option("--blas-rebuild-every", &blasRebuildEvery);
     scanner.option("--blas-keep-frames", &blasKeepFrames);
     scanner.option("--feedback-stride", &feedbackStride);
+    scanner.option("--feedback-every", &feedbackEvery);
     scanner.option("--instance-fill", &instanceFill);
     scanner.option("--looks", &looks);
     scanner.option("--look-appearing", &lookAppearing);
@@ -104,6 +108,7 @@ struct CullingArguments {
     o.blasRebuildEvery = whole(blasRebuildEvery, "--blas-rebuild-every");
     o.blasKeepFrames = whole(blasKeepFrames, "--blas-keep-frames");
     o.feedbackStride = whole(feedbackStride, "--feedback-stride");
+    o.feedbackEvery = whole(feedbackEvery, "--feedback-every");
     if (instanceFill != "host" && instanceFill != "gpu")
       throw std::invalid_argument("--instance-fill takes host or gpu, not '" + instanceFill + "'");
     o.gpuInstanceFill = instanceFill == "gpu";

@@ -144,16 +144,23 @@ TEST(CulledRender, EveryFeedbackCountTheTraceMadeArrives) {
 
 // On a static camera LiPaC settles, with every ray counted and with the default sampled
 // feedback (feedbackStride 4: at 64x36 only 10 of the 40 blocks of 8x8 pixels count a frame,
-// so an instance's count swings with the blocks sampled, far more than at 1080p's 32,400).
-class LipacSettles : public ::testing::TestWithParam<std::uint32_t> {};
+// so an instance's count swings with the blocks sampled, far more than at 1080p's 32,400),
+// and with that feedback on every 4th frame only (each count then stands for 4 frames).
+struct FeedbackSampling {
+  std::uint32_t stride, every;
+};
+class LipacSettles : public ::testing::TestWithParam<FeedbackSampling> {};
 
 TEST_P(LipacSettles, OnAStaticCameraAndRepeatsItsPicture) {
   const Scene scene = smallCity();
-  const RenderSettings s = settings(32, {mirrorCamera()});
+  // 32 counted frames: the feedback's frames, so that every setting gets as many updates.
+  const std::uint32_t frames = 32 * GetParam().every, half = frames / 2;
+  const RenderSettings s = settings(frames, {mirrorCamera()});
   RendererOptions o = options(CullingMode::Lipac, true);
-  o.culling.feedbackStride = GetParam();
+  o.culling.feedbackStride = GetParam().stride;
+  o.culling.feedbackEvery = GetParam().every;
   const RenderResult a = render(o, scene, s);
-  ASSERT_EQ(a.stats.frames.size(), 32u);
+  ASSERT_EQ(a.stats.frames.size(), frames);
   // Hitboxes hold still in the second half; instances at the margin of their thresholds
   // may still switch, but each waits twice as long every time it leaves, so nothing cycles.
   // (Measured on lavapipe at the street path's mirror camera, 89 m from the mirror, σ_a = 4
@@ -164,26 +171,30 @@ TEST_P(LipacSettles, OnAStaticCameraAndRepeatsItsPicture) {
   std::uint32_t early = 0, late = 0;
   const std::uint32_t settledHitboxes = a.stats.frames.back().activeHitboxes;
   for (const FrameStats& f : a.stats.frames) {
-    if (f.frame < 16) {
+    if (f.frame < half) {
       early += f.instanceStateChanges;
       continue;
     }
     late += f.instanceStateChanges;
     EXPECT_EQ(f.activeHitboxes, settledHitboxes) << "frame " << f.frame;
   }
-  std::printf("stride %u: %u changes in the first 16 frames, %u in the last 16\n", GetParam(),
-              early, late);
+  std::printf("stride %u, every %u frames: %u changes in the first %u frames, %u in the last %u\n",
+              GetParam().stride, GetParam().every, early, half, late, half);
   EXPECT_GT(early, 0u) << "the feedback activated nothing";
-  EXPECT_LE(late, GetParam() == 1 ? 4u : 8u)
-      << "states still change in the last 16 frames (" << early << " changes in the first 16)";
+  EXPECT_LE(late, GetParam().stride == 1 ? 4u : 8u)
+      << "states still change in the last " << half << " frames (" << early
+      << " changes in the first " << half << ")";
   const RenderResult b = render(o, scene, s);
   EXPECT_TRUE(sameImage(a.image, b.image)) << "same seed, same device: the same picture";
   EXPECT_EQ(a.instanceStates, b.instanceStates);
 }
 
-INSTANTIATE_TEST_SUITE_P(CulledRender, LipacSettles, ::testing::Values(1u, 4u),
-                         [](const ::testing::TestParamInfo<std::uint32_t>& info) {
-                           return "FeedbackStride" + std::to_string(info.param);
+INSTANTIATE_TEST_SUITE_P(CulledRender, LipacSettles,
+                         ::testing::Values(FeedbackSampling{1, 1}, FeedbackSampling{4, 1},
+                                           FeedbackSampling{4, 4}),
+                         [](const ::testing::TestParamInfo<FeedbackSampling>& info) {
+                           return "FeedbackStride" + std::to_string(info.param.stride) + "Every" +
+                                  std::to_string(info.param.every);
                          });
 
 // Instances behind the camera, past frustum culling's radius, in the line of the main street
@@ -284,6 +295,42 @@ TEST(CulledRender, SampledFeedbackStillKeepsWhatOnlyTheMirrorShows) {
   for (std::uint32_t i : behind)
     kept += lipac.instanceStates[i] == InstanceState::Active;
   EXPECT_GT(kept, 0u) << "of " << behind.size() << " instances behind the camera";
+}
+
+// --feedback-every 4: frames 0, 4, 8, ... trace with the feedback, the others with the
+// pipeline built without it, so only a frame after a counting one (or a look) reads counters,
+// and every count those traces made arrives. With a quarter of the frames counting (and 1 in
+// 4 pixel blocks of those), what only the mirror shows is still found, and the picture
+// repeats, on both backends.
+TEST(CulledRender, FeedbackEveryKthFrameCountsThoseFramesOnly) {
+  const Scene scene = smallCity();
+  const Camera camera = mirrorCamera();
+  const std::vector<std::uint32_t> behind =
+      behindInTheStreet(scene, camera, CullingOptions{}.radius);
+  for (Backend backend : {Backend::RayQuery, Backend::RayTracingPipeline}) {
+    SCOPED_TRACE(backendName(backend));
+    RendererOptions o = options(CullingMode::Lipac, true);
+    o.context.backend = backend;
+    o.culling.feedbackEvery = 4;
+    const RenderSettings s = settings(24, {camera});
+    const RenderResult r = render(o, scene, s);
+    ASSERT_EQ(r.stats.frames.size(), 24u);
+    for (std::size_t f = 1; f < r.stats.frames.size(); ++f) {
+      const FrameStats& frame = r.stats.frames[f];
+      if ((f - 1) % 4 == 0) {
+        EXPECT_GT(frame.feedbackCounts, 0u) << "frame " << f << " follows a counting frame";
+        EXPECT_EQ(frame.feedbackCountsArrived, frame.feedbackCounts) << "frame " << f;
+      } else {
+        EXPECT_EQ(frame.feedbackCounts, 0u) << "frame " << f << " follows a quiet frame";
+      }
+    }
+    std::uint32_t kept = 0;
+    for (std::uint32_t i : behind)
+      kept += r.instanceStates[i] == InstanceState::Active;
+    EXPECT_GT(kept, 0u) << "of " << behind.size() << " instances behind the camera";
+    const RenderResult again = render(o, scene, s);
+    EXPECT_TRUE(sameImage(r.image, again.image)) << "same seed, same device: the same picture";
+  }
 }
 
 // The GPU instance fill (--instance-fill gpu) writes the records the host fill writes, in the

@@ -197,6 +197,31 @@ TEST(Lipac, DeactivatesOnlyAfterLowFramesAndBacksOff) {
   EXPECT_FALSE(culling.hitboxActive(h));
 }
 
+// With --feedback-every K the updates of the frames between counting ones (no counters)
+// change nothing: a hitbox leaves after `lowFrames` low counting frames, however many quiet
+// ones come between.
+TEST(Lipac, QuietFramesLeaveTheLowFramesAsTheyAre) {
+  CullingOptions o = lipac();
+  o.lowFrames = 2;
+  o.feedbackEvery = 2;
+  SceneCulling culling(row(), o);
+  const std::uint32_t n = culling.instanceCount();
+  const std::uint32_t h = culling.hitboxOf(0);
+  std::vector<std::uint32_t> hits(culling.counterCount(), 0);
+  culling.update(farAway(), 1.0f, {}, 0);
+  hits[n + h] = 100;
+  culling.update(farAway(), 1.0f, hits, kRays);
+  ASSERT_TRUE(culling.hitboxActive(h));
+  hits.assign(hits.size(), 0);
+  culling.update(farAway(), 1.0f, hits, kRays);  // 1 low frame of 2
+  for (int quiet = 0; quiet < 5; ++quiet) {
+    culling.update(farAway(), 1.0f, {}, 0);  // no counts: no change
+    ASSERT_TRUE(culling.hitboxActive(h)) << quiet;
+  }
+  culling.update(farAway(), 1.0f, hits, kRays);  // 2 of 2
+  EXPECT_FALSE(culling.hitboxActive(h));
+}
+
 TEST(Lipac, ThresholdsScaleWithTheRaysTraced) {
   SceneCulling culling(row(), lipac());
   const std::uint32_t n = culling.instanceCount();
@@ -305,6 +330,12 @@ TEST(CullingOptions, BadValuesAreRefusedWithTheirFlag) {
   o.feedbackStride = 65;
   EXPECT_NE(message(o).find("--feedback-stride"), std::string::npos);
   o.feedbackStride = 64;
+  EXPECT_EQ(message(o), "");
+  o.feedbackEvery = 0;
+  EXPECT_NE(message(o).find("--feedback-every"), std::string::npos);
+  o.feedbackEvery = 65;
+  EXPECT_NE(message(o).find("--feedback-every"), std::string::npos);
+  o.feedbackEvery = 64;
   EXPECT_EQ(message(o), "");
   o = CullingOptions{};
   o.blasBudgetBytes = 1 << 20;
