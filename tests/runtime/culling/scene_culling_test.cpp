@@ -157,15 +157,22 @@ TEST(Lipac, SampledFeedbackKeepsTheMinimumInRays) {
   EXPECT_TRUE(culling.hitboxActive(far));
 }
 
-TEST(Lipac, DeactivatesOnlyAfterLowFramesAndBacksOff) {
-  SceneCulling culling(row(), lipac());
-  const std::uint32_t n = culling.instanceCount();
+// Activates instance 0's hitbox (its box counted 100 rays of a million) and returns it.
+std::uint32_t activateFirstHitbox(SceneCulling& culling) {
   const std::uint32_t h = culling.hitboxOf(0);
   std::vector<std::uint32_t> hits(culling.counterCount(), 0);
   culling.update(farAway(), 1.0f, {}, 0);
-  hits[n + h] = 100;
+  hits[culling.instanceCount() + h] = 100;
   culling.update(farAway(), 1.0f, hits, kRays);
-  ASSERT_TRUE(culling.hitboxActive(h));
+  EXPECT_TRUE(culling.hitboxActive(h));
+  return h;
+}
+
+TEST(Lipac, DeactivatesOnlyAfterLowFramesAndBacksOff) {
+  SceneCulling culling(row(), lipac());
+  const std::uint32_t n = culling.instanceCount();
+  const std::uint32_t h = activateFirstHitbox(culling);
+  std::vector<std::uint32_t> hits(culling.counterCount(), 0);
 
   // Between ϑ_d and ϑ_a: stays, however long.
   hits.assign(hits.size(), 0);
@@ -205,14 +212,8 @@ TEST(Lipac, QuietFramesLeaveTheLowFramesAsTheyAre) {
   o.lowFrames = 2;
   o.feedbackEvery = 2;
   SceneCulling culling(row(), o);
-  const std::uint32_t n = culling.instanceCount();
-  const std::uint32_t h = culling.hitboxOf(0);
-  std::vector<std::uint32_t> hits(culling.counterCount(), 0);
-  culling.update(farAway(), 1.0f, {}, 0);
-  hits[n + h] = 100;
-  culling.update(farAway(), 1.0f, hits, kRays);
-  ASSERT_TRUE(culling.hitboxActive(h));
-  hits.assign(hits.size(), 0);
+  const std::uint32_t h = activateFirstHitbox(culling);
+  const std::vector<std::uint32_t> hits(culling.counterCount(), 0);
   culling.update(farAway(), 1.0f, hits, kRays);  // 1 low frame of 2
   for (int quiet = 0; quiet < 5; ++quiet) {
     culling.update(farAway(), 1.0f, {}, 0);  // no counts: no change
