@@ -71,13 +71,13 @@ struct CullingOptions {
   // ray, cost 1/N. 1: every ray counts.
   std::uint32_t feedbackStride = 4;
   // lipac: the trace counts every this many frames (frames 0, N, 2N, ...); the frames between
-  // trace with a pipeline compiled without the feedback (its probes and its code, which
-  // alone cost the H200's raygen about 3 %), and their updates only activate what appears in
-  // the frustum. `lowFrames` then counts counting frames: counted in frames (a low count
-  // adding N), 2 updates at N = 4 deactivated so readily that the small city's static camera
-  // kept cycling. A trade of memory for time: on the H200's whole street path N = 4 took
-  // LiPaC's median frame from 1.11x to 1.04x the unculled one and its peak AS from 0.33x to
-  // 0.50x (docs/culling.md, "The whole street path"). 1: every frame counts.
+  // trace with a pipeline compiled without the feedback (its probes, and its code, which
+  // left the H200's trace 1.03x the unculled one at 1 block in 64), and their updates only
+  // activate what appears in the frustum. `lowFrames` then counts counting frames: counted
+  // in frames (a low count adding N), 2 updates at N = 4 deactivated so readily that the
+  // small city's static camera kept cycling. A trade of memory for time: on the H200's whole street
+  // path N = 4 took LiPaC's median frame from 1.11x to 1.04x the unculled one and its peak AS from
+  // 0.33x to 0.50x (docs/culling.md, "The whole street path"). 1: every frame counts.
   std::uint32_t feedbackEvery = 1;
   // The TLAS's instance records assembled by a compute pass from the instance states
   // (GpuInstanceFill, seeds/001 §3.3.2) instead of written by the host. The same records in
