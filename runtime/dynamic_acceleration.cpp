@@ -110,24 +110,23 @@ void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float asp
                                                  std::uint64_t previousRays, FrameStats& stats) {
   const auto stateStart = std::chrono::steady_clock::now();
   std::vector<std::uint32_t> hits;
-  // Counters to read: a look's, traced just before, or the last frame's when it counted (so
-  // none before frame 0 without a look).
-  if (hitFeedbackOn() && (lookCountsPending_ || frameCounted_)) {
+  // The counters of the last trace, a look's just before or the last frame's (none before
+  // frame 0 without a look). A quiet frame's (--feedback-every) are read too, for its tally,
+  // which its pipeline leaves 0, but they are no counts to act on.
+  if (hitFeedbackOn() && (frame > 0 || lookCountsPending_)) {
     hits.resize(culling_.counterCount() + 1);
     hitReadback_.read(hits.data(), hits.size() * sizeof(std::uint32_t));
     stats.feedbackCounts = hits.back();
     hits.pop_back();
     for (const std::uint32_t h : hits)
       stats.feedbackCountsArrived += h;
+    if (!lookCountsPending_ && !frameCounted_)
+      hits.clear();
   }
   culling_.update(camera, aspect, hits, previousRays, lookCountsPending_);
   lookCountsPending_ = false;
-  prepareStructures(frame, seconds, stats, stateStart);
-}
-
-bool DynamicAccelerationStructures::frameCounts(std::uint32_t frame) {
   frameCounted_ = hitFeedbackOn() && frame % options_.feedbackEvery == 0;
-  return frameCounted_;
+  prepareStructures(frame, seconds, stats, stateStart);
 }
 
 void DynamicAccelerationStructures::prepareStructures(

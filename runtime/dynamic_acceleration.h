@@ -43,10 +43,10 @@ class DynamicAccelerationStructures {
   // the trace's tally of the counts it made.
   const GpuBuffer& hitFeedback() const { return hitFeedback_; }
   bool hitFeedbackOn() const { return options_.mode == CullingMode::Lipac; }
-  // Whether frame `frame`'s trace counts (CullingOptions::feedbackEvery): the renderer then
-  // traces it with the feedback's pipeline, and the next prepareFrame reads its counters.
-  // Called once a frame, after prepareFrame and before the frame's trace.
-  bool frameCounts(std::uint32_t frame);
+  // Whether the frame prepareFrame prepared counts (CullingOptions::feedbackEvery): the
+  // renderer then traces it with the feedback's pipeline, and the next prepareFrame acts on
+  // its counters.
+  bool frameCounts() const { return frameCounted_; }
   const SceneCulling& culling() const { return culling_; }
 
   // Before frame `frame`'s submit: reads the last frame's counters (`previousRays`: the rays
@@ -100,7 +100,7 @@ class DynamicAccelerationStructures {
   GpuBuffer hitFeedback_;
   GpuBuffer hitReadback_;
   bool lookCountsPending_ = false;  // the next prepareFrame reads a look's counters
-  bool frameCounted_ = false;       // the last frame's trace counted (frameCounts)
+  bool frameCounted_ = false;       // the frame last prepared counts (frameCounts)
 };
 
 }  // namespace memograph::runtime

@@ -529,9 +529,9 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   // `f` == 0 clears the cache and the counters that persist. `counts`: the trace writes
   // LiPaC's counters (the pipeline with the feedback; a look's always does).
   const auto submitFrame = [&](std::uint32_t f, bool counts) {
-    const TracePipeline* tracer = pipeline && !counts && quietPipeline ? &*quietPipeline
-                                  : pipeline                           ? &*pipeline
-                                                                       : nullptr;
+    const TracePipeline* tracer = quietPipeline && !counts ? &*quietPipeline
+                                  : pipeline               ? &*pipeline
+                                                           : nullptr;
     context.submitAndWait([&](VkCommandBuffer commands) {
       // The cache is cleared once, before the first frame: every key kCacheKeyEmpty (0),
       // every clock 0, and with it the counters that persist (occupancy, counter clock);
@@ -655,7 +655,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
       frameStats.asScratchBytes = staticAccel->residentScratchBytes();
     }
 
-    const bool counts = dynamicAccel && dynamicAccel->frameCounts(f);
+    const bool counts = dynamicAccel && dynamicAccel->frameCounts();
     auto start = std::chrono::steady_clock::now();
     submitFrame(f, counts);
     frameStats.wallMilliseconds =
