@@ -145,7 +145,8 @@ TEST(CulledRender, EveryFeedbackCountTheTraceMadeArrives) {
 // On a static camera LiPaC settles, with every ray counted and with the default sampled
 // feedback (feedbackStride 4: at 64x36 only 10 of the 40 blocks of 8x8 pixels count a frame,
 // so an instance's count swings with the blocks sampled, far more than at 1080p's 32,400),
-// and with that feedback on every 4th frame only (each count then stands for 4 frames).
+// and with that feedback on every 4th frame only (--low-frames then counts counting frames;
+// measured: 317 changes in the first 64 frames, 6 in the last 64).
 struct FeedbackSampling {
   std::uint32_t stride, every;
 };
@@ -214,6 +215,14 @@ std::vector<std::uint32_t> behindInTheStreet(const Scene& scene, const Camera& c
   return out;
 }
 
+// How many of `instances` a render left active.
+std::uint32_t activeAmong(const RenderResult& r, const std::vector<std::uint32_t>& instances) {
+  std::uint32_t active = 0;
+  for (std::uint32_t i : instances)
+    active += r.instanceStates[i] == InstanceState::Active;
+  return active;
+}
+
 TEST(CulledRender, WhatOnlyTheMirrorShowsIsKeptByLipacAndLostByFrustumCulling) {
   const Scene scene = smallCity();
   const Camera camera = mirrorCamera();
@@ -224,13 +233,8 @@ TEST(CulledRender, WhatOnlyTheMirrorShowsIsKeptByLipacAndLostByFrustumCulling) {
   const std::vector<std::uint32_t> behind =
       behindInTheStreet(scene, camera, CullingOptions{}.radius);
   ASSERT_FALSE(behind.empty());
-  std::uint32_t keptByLipac = 0, keptByFrustum = 0;
-  for (std::uint32_t i : behind) {
-    keptByLipac += lipac.instanceStates[i] == InstanceState::Active;
-    keptByFrustum += frustum.instanceStates[i] == InstanceState::Active;
-  }
-  EXPECT_GT(keptByLipac, 0u) << "of " << behind.size() << " instances behind the camera";
-  EXPECT_EQ(keptByFrustum, 0u);
+  EXPECT_GT(activeAmong(lipac, behind), 0u) << "of " << behind.size() << " instances behind";
+  EXPECT_EQ(activeAmong(frustum, behind), 0u);
 }
 
 // Mean absolute difference over every channel of two images of one size.
@@ -289,17 +293,15 @@ TEST(CulledRender, SampledFeedbackStillKeepsWhatOnlyTheMirrorShows) {
   RendererOptions o = options(CullingMode::Lipac, false);
   o.culling.feedbackStride = 4;
   const RenderResult lipac = render(o, scene, settings(8, {camera}));
-  std::uint32_t kept = 0;
   const std::vector<std::uint32_t> behind =
       behindInTheStreet(scene, camera, CullingOptions{}.radius);
-  for (std::uint32_t i : behind)
-    kept += lipac.instanceStates[i] == InstanceState::Active;
-  EXPECT_GT(kept, 0u) << "of " << behind.size() << " instances behind the camera";
+  EXPECT_GT(activeAmong(lipac, behind), 0u) << "of " << behind.size() << " instances behind";
 }
 
 // --feedback-every 4: frames 0, 4, 8, ... trace with the feedback, the others with the
-// pipeline built without it, so only a frame after a counting one (or a look) reads counters,
-// and every count those traces made arrives. With a quarter of the frames counting (and 1 in
+// pipeline built without it: after a counting frame the counts its trace tallied all
+// arrived, after a quiet one its trace tallied none (it fails when the quiet frames trace
+// with the feedback's pipeline). With a quarter of the frames counting (and 1 in
 // 4 pixel blocks of those), what only the mirror shows is still found, and the picture
 // repeats, on both backends.
 TEST(CulledRender, FeedbackEveryKthFrameCountsThoseFramesOnly) {
@@ -322,12 +324,10 @@ TEST(CulledRender, FeedbackEveryKthFrameCountsThoseFramesOnly) {
         EXPECT_EQ(frame.feedbackCountsArrived, frame.feedbackCounts) << "frame " << f;
       } else {
         EXPECT_EQ(frame.feedbackCounts, 0u) << "frame " << f << " follows a quiet frame";
+        EXPECT_EQ(frame.feedbackCountsArrived, 0u) << "frame " << f;
       }
     }
-    std::uint32_t kept = 0;
-    for (std::uint32_t i : behind)
-      kept += r.instanceStates[i] == InstanceState::Active;
-    EXPECT_GT(kept, 0u) << "of " << behind.size() << " instances behind the camera";
+    EXPECT_GT(activeAmong(r, behind), 0u) << "of " << behind.size() << " instances behind";
     const RenderResult again = render(o, scene, s);
     EXPECT_TRUE(sameImage(r.image, again.image)) << "same seed, same device: the same picture";
   }
