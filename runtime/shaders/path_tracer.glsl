@@ -98,10 +98,11 @@ void countHitFeedback(vec3 origin, vec3 direction, HitInfo hit, uint weight) {
 
 // Sampled feedback (CullingOptions::feedbackStride = N): 1 in N blocks of 8×8 pixels counts
 // its rays, weighted N, a different block each counting frame (frame.culling.y: with
-// --feedback-every N the frames that count are 0, N, 2N, ..., whose own indices would pick
-// the same blocks every time, and the small city's static camera then never settled). Whole blocks, so that neighbouring
-// invocations, which mostly share a subgroup (the query backend's 8×8 work groups; the
-// pipeline's launch order is the driver's), skip the probe together.
+// --feedback-every K the frames that count are 0, K, 2K, ..., whose own indices picked the
+// same blocks every time at K = N, and the small city's static camera never settled). Whole
+// blocks, so that neighbouring invocations, which mostly share a subgroup (the query
+// backend's 8×8 work groups; the pipeline's launch order is the driver's), skip the probe
+// together.
 uint hitFeedbackWeight(uvec2 pixel) {
   uint stride = max(frame.culling.x, 1u);
   uvec2 block = pixel >> 3u;

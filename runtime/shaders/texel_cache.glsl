@@ -73,9 +73,10 @@ const uint kCacheRecordWords = kCacheHeader + kCacheValueWords;
 // in the chain of dependent loads from the queue to the values) nor coherent loads, which a
 // GPU may keep out of its L1: the lanes of a subgroup that hit one texel (neighbouring
 // pixels) can then share its lines there. On the H200 the pass went from 14.7 to 5.8 ms
-// (classroom, 1080p, P = 6, L = 4, frame clock; tile cache 20.6 to 8.9 ms). A key seen stale there (locked meanwhile) still names the values
-// beside it; a stale key or clock only steers tileEnqueue's choice of a slot, whose lock is
-// an atomic exchange that sees the true key. What the fill passes wrote, the barrier made
+// (classroom, 1080p, P = 6, L = 4, frame clock; tile cache 20.6 to 8.9 ms). A key seen
+// stale there (locked meanwhile) still names the values beside it; a stale key or clock only
+// steers tileEnqueue's choice of a slot, whose lock is an atomic exchange that sees the true
+// key. What the fill passes wrote, the barrier made
 // visible. Two stamps of one word race as before: each stores a valid clock.
 #ifdef MG_CACHE_QUIESCENT_READS
 #define MG_CACHE_COHERENT

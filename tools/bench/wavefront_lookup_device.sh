@@ -69,6 +69,13 @@ bench() { # limit, scene, label, then the flags
     --camera-frames 300 "$@"
   appendRow "$csv"
 }
+# The end of every mode: the summary of what it measured.
+finish() {
+  rm -rf "$work"
+  grep -E "^==|median|passes|cache t|stopped|rc=" "$log" | cut -c1-300
+  [ ! -f "$OUT/pictures.txt" ] || grep -E "^==|mean" "$OUT/pictures.txt"
+  exit 0
+}
 shaders= frames=40
 if [ "$whole" = 1 ]; then
   frames=300
@@ -78,8 +85,7 @@ if [ "$whole" = 1 ]; then
     bench 60 "$scene" texel --shading wavefront --cache texel
     bench 60 "$scene" tile --shading wavefront --cache tile
   done
-  grep -E "^==|median|passes|cache t|stopped|rc=" "$log" | cut -c1-300
-  exit 0
+  finish
 fi
 for shading in megakernel wavefront; do
   picture "none_$shading" 4 --seed 1 --shading "$shading"
@@ -109,10 +115,7 @@ if [ -n "$against" ]; then
       bench 25 landscape "${cache}_$which" --shading wavefront --cache "$cache"
     done
   done
-  rm -rf "$work"
-  grep -E "^==|median|passes|cache t|rc=" "$log" | cut -c1-300
-  grep -E "^==|mean" "$OUT/pictures.txt"
-  exit 0
+  finish
 fi
 for cache in texel tile; do
   for shading in megakernel wavefront; do
@@ -141,6 +144,4 @@ bench 25 landscape floor --shading wavefront --floor-materials
 bench 25 landscape no_cache --shading wavefront
 bench 25 landscape texel --shading wavefront --cache texel
 bench 25 landscape tile --shading wavefront --cache tile
-rm -rf "$work"
-grep -E "^==|median|passes|cache t|rc=" "$log" | cut -c1-300
-grep -E "^==|mean" "$OUT/pictures.txt"
+finish
