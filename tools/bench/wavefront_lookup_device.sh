@@ -97,24 +97,24 @@ if [ -n "$against" ]; then
   after=$m
   # before/after: the binary `m` is, and its own shader cache.
   side() { if [ "$1" = before ]; then m=$against shaders=_before; else m=$after shaders=; fi; }
-  bench 30 classroom floor --shading wavefront --floor-materials
-  bench 30 classroom no_cache --shading wavefront
-  for cache in texel tile; do
-    for round in 1 2; do
-      for which in before after; do
-        side "$which"
-        bench 35 classroom "${cache}_${which}_$round" --shading wavefront --cache "$cache"
+  before_after() { # limit, scene, rounds: each cache's benches, before then after, per round
+    local limit=$1 scene=$2 rounds=$3 cache round which suffix
+    for cache in texel tile; do
+      for round in $(seq "$rounds"); do
+        suffix=$([ "$rounds" = 1 ] || echo "_$round")
+        for which in before after; do
+          side "$which"
+          bench "$limit" "$scene" "${cache}_$which$suffix" --shading wavefront --cache "$cache"
+        done
       done
     done
-  done
-  side after
+    side after
+  }
+  bench 30 classroom floor --shading wavefront --floor-materials
+  bench 30 classroom no_cache --shading wavefront
+  before_after 35 classroom 2
   bench 25 landscape floor --shading wavefront --floor-materials
-  for cache in texel tile; do
-    for which in before after; do
-      side "$which"
-      bench 25 landscape "${cache}_$which" --shading wavefront --cache "$cache"
-    done
-  done
+  before_after 25 landscape 1
   finish
 fi
 for cache in texel tile; do
