@@ -101,11 +101,11 @@ TEST(TexelCacheOptions, EntrySizesAndDefinesFollowTheOptions) {
   EXPECT_EQ(parseCacheClock("counter"), CacheClock::Counter);
 }
 
-// The defaults a user of --cache texel / --cache tile gets: the best
-// configuration measured on the H200 (docs/gpu-results.md, Table 6.1): lru, the frame clock
-// for texels and the counter clock for tiles (where the device has 64-bit buffer atomics),
-// the update-counter read check,
-// 2^24 texels or 2^21 4x4 tiles fitted to the device, and per policy a clock shift.
+// The defaults a user of --cache texel / --cache tile gets: the best configuration measured
+// on the H200 (docs/gpu-results.md, Table 6.1; the tiles' count in the wavefront): lru, the
+// frame clock for texels and the counter clock for tiles (where the device has 64-bit buffer
+// atomics), the update-counter read check, 2^24 texels or 2^21 4x4 tiles fitted to the
+// device, and per policy a clock shift.
 TEST(TexelCacheOptions, DefaultsAreTheBestMeasuredConfiguration) {
   CacheOptions options;
   EXPECT_EQ(options.eviction, CacheEviction::Lru);
