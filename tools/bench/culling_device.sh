@@ -11,6 +11,10 @@
 #              each camera's role in its header). With SCENE=builtin:city:path=aerial, the
 #              aerial path's cameras (city_aerial.campath): 120 and 135 facing the mirror, 60
 #              flying in, as docs/results/culling_h200.md pictured them
+#   variants   LiPaC with other settings: VARIANTS="label:flags;label:flags" (for example
+#              "every4:--feedback-every 4 --low-frames 2"), each a bench run of the path as
+#              above (variants.csv: bench's summary line each, labelled lipac_<label>;
+#              frames_lipac_<label>.csv: per frame)
 #   looks      LiPaC's looks swept: --looks off, then --look-appearing in LOOKS (default
 #              "2 4 16"; 8 is the bench step's lipac row), each a bench run of the path as
 #              above (looks.csv: bench's summary line each, labelled lipac_looks_off,
@@ -92,6 +96,19 @@ looks() {
   done
 }
 
+variants() {
+  local entry label flags
+  IFS=';' read -ra entries <<<"${VARIANTS:-}"
+  for entry in "${entries[@]}"; do
+    label=lipac_${entry%%:*}
+    flags=${entry#*:}
+    # shellcheck disable=SC2086 # flags is a list
+    bench_run "$label" --culling lipac $flags
+    append_csv "$work/bench_$label.csv" "$OUT/variants.csv"
+    cp "$work/$label."*_"$size".csv "$OUT/frames_$label.csv" 2>/dev/null
+  done
+}
+
 bench() {
   for mode in $modes; do
     bench_run "$mode" --culling "$mode"
@@ -131,6 +148,7 @@ for step in "$@"; do
   bench) bench ;;
   pictures) pictures ;;
   looks) looks ;;
+  variants) variants ;;
   *) echo "culling_device.sh: unknown step '$step'" >&2; exit 2 ;;
   esac
 done
