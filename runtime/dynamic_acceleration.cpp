@@ -123,7 +123,8 @@ void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float asp
     if (!lookCountsPending_ && !frameCounted_)
       hits.clear();
   }
-  culling_.update(camera, aspect, hits, previousRays, lookCountsPending_);
+  culling_.update(camera, aspect, hits, previousRays,
+                  lookCountsPending_ ? 1u : options_.feedbackStride * feedbackPathWeight_);
   lookCountsPending_ = false;
   frameCounted_ = hitFeedbackOn() && frame % options_.feedbackEvery == 0;
   prepareStructures(frame, seconds, stats, stateStart);

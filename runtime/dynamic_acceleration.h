@@ -47,6 +47,9 @@ class DynamicAccelerationStructures {
   // renderer then traces it with the feedback's pipeline, and the next prepareFrame acts on
   // its counters.
   bool frameCounts() const { return frameCounted_; }
+  // What a counted path's ray weighs beside the blocks' stride (CullingOptions::feedbackPaths:
+  // P / N where N of a pixel's P paths count): the renderer sets it from its path count.
+  void setFeedbackPathWeight(std::uint32_t weight) { feedbackPathWeight_ = weight; }
   const SceneCulling& culling() const { return culling_; }
 
   // Before frame `frame`'s submit: reads the last frame's counters (`previousRays`: the rays
@@ -101,6 +104,7 @@ class DynamicAccelerationStructures {
   GpuBuffer hitReadback_;
   bool lookCountsPending_ = false;  // the next prepareFrame reads a look's counters
   bool frameCounted_ = false;       // the frame last prepared counts (frameCounts)
+  std::uint32_t feedbackPathWeight_ = 1;
 };
 
 }  // namespace memograph::runtime

@@ -46,6 +46,19 @@ void validateSettings(const RenderSettings& s) {
     throw std::invalid_argument("frames must be at least 1");
 }
 
+// What one counted path's ray weighs when `counted` of a pixel's `paths` paths count in a
+// LiPaC counting frame (CullingOptions::feedbackPaths): paths / counted, so `counted` must
+// divide `paths`; 1 where every path counts (0, or at least `paths`).
+std::uint32_t feedbackPathWeight(std::uint32_t counted, std::uint32_t paths) {
+  if (counted == 0 || counted >= paths)
+    return 1;
+  if (paths % counted != 0)
+    throw std::invalid_argument("--feedback-paths " + std::to_string(counted) +
+                                " must divide the paths per pixel (" + std::to_string(paths) +
+                                "): each counted path stands for paths / N; 0 counts every path");
+  return paths / counted;
+}
+
 bool sameCamera(const Camera& a, const Camera& b) {
   return a.position == b.position && a.target == b.target && a.up == b.up &&
          a.verticalFovDegrees == b.verticalFovDegrees;
@@ -211,6 +224,10 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   validateSettings(settings);
   validateScene(scene);
   validateCullingOptions(options_.culling);
+  const std::uint32_t pathWeight =
+      options_.culling.mode == CullingMode::Lipac
+          ? feedbackPathWeight(options_.culling.feedbackPaths, settings.pathsPerPixel)
+          : 1;
   validateWavefrontOptions(options_);
   if (options_.debugCullingSize > 0 && options_.culling.mode == CullingMode::None)
     throw std::invalid_argument(
@@ -519,7 +536,11 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                         (buffers.environmentWidth ? gpu::kFlagEnvironmentImage : 0u);
   frame.path = glm::uvec4(settings.pathsPerPixel, settings.raysPerPath, flags, buffers.lightCount);
   frame.environmentSize = glm::uvec4(buffers.environmentWidth, buffers.environmentHeight, 0, 0);
-  frame.culling = glm::uvec4(options_.culling.feedbackStride, 0, 0, 0);
+  // LiPaC's sampling: x the blocks' stride, z the paths that count (0: every one).
+  frame.culling = glm::uvec4(options_.culling.feedbackStride, 0,
+                             pathWeight > 1 ? options_.culling.feedbackPaths : 0u, 0);
+  if (dynamicAccel)
+    dynamicAccel->setFeedbackPathWeight(pathWeight);
   std::uint32_t mipBiasBits = 0;
   std::memcpy(&mipBiasBits, &cache.mipBias, sizeof mipBiasBits);
   frame.cache =
@@ -623,15 +644,20 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
         dynamicAccel->prepareLook(camera, aspect, f, frame.cameraForward.w, look)) {
       // LiPaC's look (SceneCulling::look): one trace of this frame's camera, its image replaced
       // by the frame's, its builds, host and GPU time folded into the frame's figures, its
-      // counters read by the frame's culling update. The probe counts every ray: it is one
-      // trace that decides what the frame holds, and with 1 in feedbackStride blocks counted
-      // an instance seen in a few pixels could go unseen (the small city's first frame at
-      // 64x36 differed from the unculled one by 1.14 % of the image's mean, against 0.78 % with
-      // every ray counted: CulledRender.TheFirstLookHoldsWhatTheFirstCameraReaches).
-      frame.culling.x = 1u;
+      // counters read by the frame's culling update. The probe traces one path a pixel and
+      // counts every ray of it: it is one trace that decides what the frame holds, and with 1
+      // in feedbackStride blocks counted an instance seen in a few pixels could go unseen (the
+      // small city's first frame at 64x36 differed from the unculled one by 1.14 % of the
+      // image's mean, against 0.78 % with every ray counted:
+      // CulledRender.TheFirstLookHoldsWhatTheFirstCameraReaches). One path, not P: its image
+      // is not kept, and at P = 6 a look of P paths doubled its frame's time on the H200.
+      const glm::uvec4 framePath = frame.path, frameCulling = frame.culling;
+      frame.path.x = 1u;
+      frame.culling = glm::uvec4(1u, frame.culling.y, 0u, 0u);
       frameBuffer.write(&frame, sizeof frame);
       submitFrame(f, true);
-      frame.culling.x = options_.culling.feedbackStride;
+      frame.path = framePath;
+      frame.culling = frameCulling;
       frameBuffer.write(&frame, sizeof frame);
       gpu::Counters counters{};
       rayReadback.read(&counters, sizeof counters);

@@ -16,7 +16,7 @@ constexpr std::uint32_t kMaxLowFrames = 1024;
 // Activation needs at least this many hits however few rays a frame traces, so that in a
 // small image (where the per-million thresholds stand for less than one hit) one stray
 // diffuse ray does not switch a hitbox or an instance on. Counted rays, not counts: with
-// sampled feedback each counted ray adds feedbackStride (update() scales the minimum).
+// sampled feedback each counted ray adds its weight (update() scales the minimum).
 constexpr double kMinHitboxActivationHits = 4.0;
 constexpr double kMinInstanceActivationHits = 2.0;
 
@@ -111,6 +111,9 @@ void validateCullingOptions(const CullingOptions& o) {
   if (o.feedbackStride == 0 || o.feedbackStride > 64)
     throw std::invalid_argument("--feedback-stride must be in 1..64, not " +
                                 std::to_string(o.feedbackStride));
+  if (o.feedbackPaths > 64)
+    throw std::invalid_argument("--feedback-paths must be in 0..64, not " +
+                                std::to_string(o.feedbackPaths));
   if (o.feedbackEvery == 0 || o.feedbackEvery > 64)
     throw std::invalid_argument("--feedback-every must be in 1..64, not " +
                                 std::to_string(o.feedbackEvery));
@@ -292,7 +295,7 @@ void SceneCulling::look(const Camera& camera, float aspect) {
 }
 
 void SceneCulling::update(const Camera& camera, float aspect, std::span<const std::uint32_t> hits,
-                          std::uint64_t rays, bool countsFromLook) {
+                          std::uint64_t rays, std::uint32_t countWeight) {
   counts_.changes = 0;
   const Frustum frustum = cameraFrustum(camera, aspect);
   switch (options_.mode) {
@@ -302,7 +305,7 @@ void SceneCulling::update(const Camera& camera, float aspect, std::span<const st
       updateFrustum(frustum, camera);
       break;
     case CullingMode::Lipac:
-      updateLipac(frustum, camera, hits, rays, countsFromLook ? 1u : options_.feedbackStride);
+      updateLipac(frustum, camera, hits, rays, std::max(countWeight, 1u));
       break;
   }
   first_ = false;
@@ -327,7 +330,7 @@ void SceneCulling::updateLipac(const Frustum& frustum, const Camera& camera,
   if (!hits.empty()) {
     // Hitboxes (§3.3.2, algorithm 5): an inactive one counts the rays through its box, an
     // active one the hits of its instances (their own, or their boxes' while omitted).
-    // A counted ray adds feedbackStride to its counter (sampled feedback; 1 in a look's
+    // A counted ray adds countWeight to its counter (sampled feedback; 1 in a look's
     // probe): the minimums are in rays, so they scale with it; the per-million thresholds
     // keep their expected value.
     const double rayWeight = static_cast<double>(countWeight);

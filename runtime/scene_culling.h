@@ -40,14 +40,14 @@ struct CullingOptions {
   // An instance with its own BLAS (used by no other instance) in an active hitbox is first
   // omitted (a box counts its rays) and activated above σ_a; an active one goes back to
   // omitted after `lowFrames` frames below σ_o.
-  // The defaults of σ_a, blasKeepFrames and feedbackStride are the H200's best measured on
-  // the city's street path (docs/culling.md, "Measured on the H200": over its first 52
-  // frames peak AS 0.305x the unculled scene's against 0.39x with 4, 8 and 1, frame 1.09x
-  // against 1.21x, the mirror's mean LDR-FLIP 0.0023; over the whole path 0.33x and 1.11x;
-  // σ_a = 16 gave 0.31x and 1.12x at FLIP 0.0033).
-  double instanceActivate = 8.0;
-  double instanceDeactivate = 0.4;
-  std::uint32_t lowFrames = 8;
+  // The defaults of σ_a, σ_o, lowFrames and the feedback's sampling (feedbackStride,
+  // feedbackPaths, feedbackEvery) are the H200's best measured on the city's street path
+  // (docs/culling.md, "Measured on the H200": every 5th camera of the whole path, peak AS
+  // 0.25x the unculled scene's, the whole path's time 1.005x, the frames that do not count
+  // 0.98x; counting every frame in 1 block of 4 at σ_a = 16: 0.30x and 1.13x).
+  double instanceActivate = 16.0;
+  double instanceDeactivate = 1.6;
+  std::uint32_t lowFrames = 2;
   // An instance that enters the frustum is activated at once when its bounding sphere's
   // angular radius is at least this fraction of the vertical field of view (§3.3.2: the
   // feedback's latency would show it a frame late); smaller ones wait for the feedback.
@@ -65,20 +65,23 @@ struct CullingOptions {
   // Animated meshes' BLASes: updated in place every frame, rebuilt every this many frames
   // (refits loosen the tree; §3.3.1). 1: rebuilt every frame.
   std::uint32_t blasRebuildEvery = 16;
-  // lipac: 1 in this many 8×8-pixel blocks counts its rays each frame (another block each
-  // frame), each count weighted by it: the counters keep their expected value (thresholds
-  // are per million rays of the frame) while the counting-box probes, a second trace per
-  // ray, cost 1/N. 1: every ray counts.
-  std::uint32_t feedbackStride = 4;
+  // lipac: 1 in this many 8×8-pixel blocks counts its rays in a counting frame (other
+  // blocks the next), each count weighted by it: the counters keep their expected value
+  // (thresholds are per million rays of the frame) while the counting-box probes, a second
+  // trace per ray, cost 1/N. 1: every block counts.
+  std::uint32_t feedbackStride = 1;
+  // lipac: N of each pixel's P paths count their rays in a counting frame (other paths the
+  // next), weighted P / N, so N divides P (the renderer checks); 0, or N >= P: every path.
+  // Unlike the blocks every pixel still counts, so an instance seen in a few pixels is seen
+  // every counting frame, while the probes cost N / P.
+  std::uint32_t feedbackPaths = 1;
   // lipac: the trace counts every this many frames (frames 0, N, 2N, ...); the frames between
-  // trace with a pipeline compiled without the feedback (its probes, and its code, which
-  // left the H200's trace 1.03x the unculled one at 1 block in 64), and their updates only
-  // activate what appears in the frustum. `lowFrames` then counts counting frames: counted
-  // in frames (a low count adding N), 2 updates at N = 4 deactivated so readily that the
-  // small city's static camera kept cycling. A trade of memory for time: on the H200's whole street
-  // path N = 4 took LiPaC's median frame from 1.11x to 1.04x the unculled one and its peak AS from
-  // 0.33x to 0.50x (docs/culling.md, "The whole street path"). 1: every frame counts.
-  std::uint32_t feedbackEvery = 1;
+  // trace with a pipeline compiled without the feedback (its probes, and its code), and their
+  // updates only activate what appears in the frustum. `lowFrames` counts counting frames
+  // (the default 2 at N = 4 waits 8 frames). On the H200 a frame without the feedback took
+  // 0.98x the unculled frame's time, one with it 1.09x with one path of 6 counted and 1.19x
+  // with every path (docs/culling.md). 1: every frame counts.
+  std::uint32_t feedbackEvery = 4;
   // The TLAS's instance records assembled by a compute pass from the instance states
   // (GpuInstanceFill, seeds/001 §3.3.2) instead of written by the host. The same records in
   // the same order, so the same picture; the host fill stays the default until the GPU
@@ -124,11 +127,12 @@ class SceneCulling {
 
   // Before each frame's trace: the frame's camera and image aspect, and the counters of the
   // previous frame's trace (instanceCount() + hitboxCount() values; empty before the first
-  // frame, and for the modes without feedback) with the rays it traced. A frame's trace
-  // counts 1 in feedbackStride blocks of pixels, each ray weighted feedbackStride; a look's
-  // probe (countsFromLook) counts every ray, weighted 1.
+  // frame, and for the modes without feedback) with the rays it traced. `countWeight`: what
+  // one counted ray added to its counter (a frame's trace counts 1 in feedbackStride blocks
+  // of pixels and N of P paths, each ray weighted feedbackStride * P / N; a look's probe
+  // counts every ray, weighted 1); the minimum activation hits are in rays.
   void update(const Camera& camera, float aspect, std::span<const std::uint32_t> hits,
-              std::uint64_t rays, bool countsFromLook = false);
+              std::uint64_t rays, std::uint32_t countWeight = 1);
 
   std::uint32_t instanceCount() const { return static_cast<std::uint32_t>(states_.size()); }
   std::uint32_t hitboxCount() const { return static_cast<std::uint32_t>(hitboxActive_.size()); }

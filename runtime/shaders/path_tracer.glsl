@@ -108,6 +108,18 @@ uint hitFeedbackWeight(uvec2 pixel) {
   uvec2 block = pixel >> 3u;
   return (block.x + 5u * block.y + frame.culling.y) % stride == 0u ? stride : 0u;
 }
+
+// Sampled paths (CullingOptions::feedbackPaths = N, frame.culling.z; 0: every path): N of
+// the pixel's P paths count their rays, weighted P / N besides the block's weight, other
+// paths each counting frame. The same paths in every pixel, so a subgroup, whose lanes run
+// path p together, skips the probes together; and every pixel counts, so what a few pixels
+// see is counted in every counting frame (which 1 block in N would not do).
+uint pathFeedbackWeight(uint path, uint pathCount, uint weight) {
+  uint counted = frame.culling.z;
+  if (counted == 0u || counted >= pathCount) return weight;
+  uint first = (frame.culling.y * counted) % pathCount;
+  return (path + pathCount - first) % pathCount < counted ? weight * (pathCount / counted) : 0u;
+}
 #endif
 
 #if defined(MG_MATERIAL_FLOOR)
@@ -258,6 +270,9 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
     vec3 radiance = vec3(0.0);
     float previousBsdfPdf = 0.0;  // the BSDF ray's pdf that found this hit (0: camera ray)
     bool alive = inside;
+#ifdef MG_HIT_FEEDBACK
+    uint pathWeight = pathFeedbackWeight(path, pathCount, feedbackWeight);
+#endif
     for (uint bounce = 0u; bounce < rayCountPerPath; ++bounce) {
       SurfaceHit s;
       s.materialId = 0u;
@@ -271,7 +286,7 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
                              bounce == 0u ? kRayMaskNoLightQuads : kRayMaskAll);
           rays += 1u;
 #ifdef MG_HIT_FEEDBACK
-          countHitFeedback(origin, direction, hit, feedbackWeight);
+          countHitFeedback(origin, direction, hit, pathWeight);
 #endif
         }
         if (hit.t < 0.0) {

@@ -239,8 +239,10 @@ struct FrameConstants {
   // (float bits), w tiles per row of the tile cache's storage image.
   uvec4 cache;
   // LiPaC (MG_HIT_FEEDBACK): x: 1 in x 8×8-pixel blocks counts its rays this frame, each
-  // count weighted x (CullingOptions::feedbackStride); y: which blocks, the counting frame's
-  // index (the frame over CullingOptions::feedbackEvery); zw unused.
+  // count weighted x (CullingOptions::feedbackStride); y: which blocks and paths, the
+  // counting frame's index (the frame over CullingOptions::feedbackEvery); z: z of each
+  // pixel's P paths count, each count weighted P / z besides (CullingOptions::feedbackPaths;
+  // 0: every path); w unused.
   uvec4 culling;
 };
 

@@ -23,15 +23,17 @@ inline constexpr const char* kCullingHelp =
     "  --hitbox-deactivate D lipac: an active hitbox deactivates after --low-frames frames\n"
     "                        below D hits per million rays (default 2)\n"
     "  --instance-activate A lipac: an instance with its own BLAS, omitted (a box counts its\n"
-    "                        rays), activates at A hits per million rays (default 8)\n"
-    "  --instance-deactivate D  lipac: and is omitted again below D (default 0.4)\n"
-    "  --low-frames K        lipac: frames below a deactivation threshold before it acts\n"
-    "                        (default 8; doubled for a hitbox each time it deactivates)\n"
-    "  --feedback-stride N   lipac: 1 in N 8x8-pixel blocks counts its rays each frame,\n"
-    "                        weighted N (default 4; 1: every ray; 1..64)\n"
+    "                        rays), activates at A hits per million rays (default 16)\n"
+    "  --instance-deactivate D  lipac: and is omitted again below D (default 1.6)\n"
+    "  --low-frames K        lipac: counting frames below a deactivation threshold before it\n"
+    "                        acts (default 2; doubled each time it deactivates)\n"
     "  --feedback-every K    lipac: the trace counts every K-th frame; the frames between\n"
-    "                        trace without the feedback's code and probes (default 1: every\n"
-    "                        frame; 1..64)\n"
+    "                        trace without the feedback's code and probes (default 4; 1:\n"
+    "                        every frame; 1..64)\n"
+    "  --feedback-paths N    lipac: N of each pixel's P paths count their rays in a counting\n"
+    "                        frame, weighted P / N (N divides P; default 1; 0: every path)\n"
+    "  --feedback-stride N   lipac: 1 in N 8x8-pixel blocks counts its rays in a counting\n"
+    "                        frame, weighted N (default 1: every block; 1..64)\n"
     "  --looks on|off        lipac: before the first frame, and before one that brings\n"
     "                        --look-appearing instances with their own BLAS into view at\n"
     "                        once, trace its camera once with the hitboxes it faces active\n"
@@ -54,9 +56,9 @@ inline constexpr const char* kCullingHelp =
 
 struct CullingArguments {
   std::string mode = "none", radius = "30", hitboxSize = "50", hitboxActivate = "20",
-              hitboxDeactivate = "2", instanceActivate = "8", instanceDeactivate = "0.4",
-              lowFrames = "8", blasBudget = "0", blasBuildBudget = "0", blasRebuildEvery = "16",
-              blasKeepFrames = "2", feedbackStride = "4", feedbackEvery = "1",
+              hitboxDeactivate = "2", instanceActivate = "16", instanceDeactivate = "1.6",
+              lowFrames = "2", blasBudget = "0", blasBuildBudget = "0", blasRebuildEvery = "16",
+              blasKeepFrames = "2", feedbackStride = "1", feedbackPaths = "1", feedbackEvery = "4",
               instanceFill = "host", looks = "on", lookAppearing = "8";
 
   void registerWith(ArgumentScanner& scanner) {
@@ -74,6 +76,7 @@ struct CullingArguments {
     scanner.option("--blas-keep-frames", &blasKeepFrames);
     scanner.option("--feedback-stride", &feedbackStride);
     scanner.option("--feedback-every", &feedbackEvery);
+    scanner.option("--feedback-paths", &feedbackPaths);
     scanner.option("--instance-fill", &instanceFill);
     scanner.option("--looks", &looks);
     scanner.option("--look-appearing", &lookAppearing);
@@ -109,6 +112,7 @@ struct CullingArguments {
     o.blasKeepFrames = whole(blasKeepFrames, "--blas-keep-frames");
     o.feedbackStride = whole(feedbackStride, "--feedback-stride");
     o.feedbackEvery = whole(feedbackEvery, "--feedback-every");
+    o.feedbackPaths = whole(feedbackPaths, "--feedback-paths");
     if (instanceFill != "host" && instanceFill != "gpu")
       throw std::invalid_argument("--instance-fill takes host or gpu, not '" + instanceFill + "'");
     o.gpuInstanceFill = instanceFill == "gpu";

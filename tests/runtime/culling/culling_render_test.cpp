@@ -117,52 +117,106 @@ TEST(CulledRender, TheFiguresAddUpInEveryMode) {
 // The trace adds an invocation's feedback counts up before it writes them (path_tracer.glsl,
 // a two-slot buffer); its own tally of the counts it made must equal what the counters hold,
 // on both backends and with sampled feedback, or counts were dropped on the way.
+// Every frame counts here (--feedback-every 1), with every block and path, 1 block in 4, and
+// 1 path in 3 (--feedback-paths 1: each counted ray weighted 3).
 TEST(CulledRender, EveryFeedbackCountTheTraceMadeArrives) {
   const Scene scene = smallCity();
   const Camera camera = mirrorCamera();
+  struct Sampling {
+    std::uint32_t stride, paths;
+  };
   for (Backend backend : {Backend::RayQuery, Backend::RayTracingPipeline}) {
-    for (std::uint32_t stride : {1u, 4u}) {
+    for (const Sampling sampling : {Sampling{1, 0}, Sampling{4, 0}, Sampling{1, 1}}) {
       SCOPED_TRACE(std::string(backendName(backend)) + ", feedback stride " +
-                   std::to_string(stride));
+                   std::to_string(sampling.stride) + ", paths " + std::to_string(sampling.paths));
       RendererOptions o = options(CullingMode::Lipac, true);
       o.context.backend = backend;
-      o.culling.feedbackStride = stride;
+      o.culling.feedbackEvery = 1;
+      o.culling.feedbackStride = sampling.stride;
+      o.culling.feedbackPaths = sampling.paths;
       RenderSettings s = settings(4, {camera});
       s.pathsPerPixel = 3;  // runs of rays that count the same instance: the camera rays
+      const std::uint32_t weight = sampling.stride * (sampling.paths ? 3 : 1);
       const RenderResult r = render(o, scene, s);
       ASSERT_EQ(r.stats.frames.size(), 4u);
       for (std::size_t f = 1; f < r.stats.frames.size(); ++f) {
         const FrameStats& frame = r.stats.frames[f];
         EXPECT_GT(frame.feedbackCounts, 0u) << "frame " << f;
-        // A ray counts one instance and at most one box, each weighted by the stride.
-        EXPECT_LE(frame.feedbackCounts, 2u * stride * r.stats.frames[f - 1].rays) << "frame " << f;
+        // A ray counts one instance and at most one box, each weighted by the sampling.
+        EXPECT_LE(frame.feedbackCounts, 2u * weight * r.stats.frames[f - 1].rays) << "frame " << f;
         EXPECT_EQ(frame.feedbackCountsArrived, frame.feedbackCounts) << "frame " << f;
       }
     }
   }
 }
 
-// On a static camera LiPaC settles, with every ray counted and with the default sampled
-// feedback (feedbackStride 4: at 64x36 only 10 of the 40 blocks of 8x8 pixels count a frame,
-// so an instance's count swings with the blocks sampled, far more than at 1080p's 32,400),
-// and with that feedback on every 4th frame only (--low-frames then counts counting frames;
-// measured: 317 changes in the first 64 frames, 6 in the last 64).
+// One path in P counting, weighted P, keeps the counters' expected value: over the frames of
+// a static camera the counts add up to about what every path's do (each frame counts other
+// paths), and a weight left out (P / N never applied) would give a third of them.
+TEST(CulledRender, SampledPathsKeepTheCountsExpectedValue) {
+  const Scene scene = smallCity();
+  auto totalCounts = [&](std::uint32_t paths) {
+    RendererOptions o = options(CullingMode::Lipac, true);
+    o.culling.feedbackEvery = 1;
+    o.culling.feedbackStride = 1;
+    o.culling.feedbackPaths = paths;
+    RenderSettings s = settings(7, {mirrorCamera()});
+    s.pathsPerPixel = 3;
+    const RenderResult r = render(o, scene, s);
+    double total = 0.0;
+    for (std::size_t f = 1; f < r.stats.frames.size(); ++f)
+      total += double(r.stats.frames[f].feedbackCountsArrived);
+    return total;
+  };
+  const double every = totalCounts(0), oneInThree = totalCounts(1);
+  std::printf("counts over 6 frames: %.0f with one path of 3 counting, %.0f with every path\n",
+              oneInThree, every);
+  ASSERT_GT(every, 0.0);
+  EXPECT_NEAR(oneInThree / every, 1.0, 0.1) << oneInThree << " against " << every;
+}
+
+TEST(CulledRender, FeedbackPathsThatDoNotDivideThePathsAreRefused) {
+  RendererOptions o = options(CullingMode::Lipac, true);
+  o.culling.feedbackPaths = 2;
+  RenderSettings s = settings(1, {mirrorCamera()});
+  s.pathsPerPixel = 3;
+  try {
+    render(o, smallCity(), s);
+    FAIL() << "--feedback-paths 2 of 3 paths was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--feedback-paths 2 must divide"), std::string::npos)
+        << e.what();
+  }
+}
+
+// On a static camera LiPaC settles: with the defaults (every 4th frame counts, one path of
+// each pixel's P, waiting 2 counting frames before leaving), with every ray of every frame
+// counted, with sampled blocks (feedbackStride 4: at 64x36 only 10 of the 40 blocks of 8x8
+// pixels count a frame, so an instance's count swings with the blocks sampled, far more than
+// at 1080p's 32,400), and with those on every 4th frame only (--low-frames counts counting
+// frames). The earlier settings wait 8 counting frames, as they did as the defaults, and run
+// 32 counting frames; the defaults wait 2, so their doubling waits (2, 4, 8, 16, 32) reach
+// further: they run 64 (measured on lavapipe: a hitbox still leaves for 2 counting frames at
+// the 27th of 32, at the 4th wait of 16). Each checks the last 16 counting frames.
 struct FeedbackSampling {
-  std::uint32_t stride, every;
+  std::uint32_t stride, every, lowFrames, paths, counted;  // paths: P, one of them counting
 };
 class LipacSettles : public ::testing::TestWithParam<FeedbackSampling> {};
 
 TEST_P(LipacSettles, OnAStaticCameraAndRepeatsItsPicture) {
   const Scene scene = smallCity();
-  // 32 counted frames: the feedback's frames, so that every setting gets as many updates.
-  const std::uint32_t frames = 32 * GetParam().every, half = frames / 2;
-  const RenderSettings s = settings(frames, {mirrorCamera()});
+  // Counted frames: the feedback's frames, so that every setting gets as many updates.
+  const std::uint32_t frames = GetParam().counted * GetParam().every,
+                      settling = frames - 16 * GetParam().every;
+  RenderSettings s = settings(frames, {mirrorCamera()});
+  s.pathsPerPixel = GetParam().paths;
   RendererOptions o = options(CullingMode::Lipac, true);
   o.culling.feedbackStride = GetParam().stride;
   o.culling.feedbackEvery = GetParam().every;
+  o.culling.lowFrames = GetParam().lowFrames;
   const RenderResult a = render(o, scene, s);
   ASSERT_EQ(a.stats.frames.size(), frames);
-  // Hitboxes hold still in the second half; instances at the margin of their thresholds
+  // Hitboxes hold still in the last 16 counting frames; instances at the margin of their thresholds
   // may still switch, but each waits twice as long every time it leaves, so nothing cycles.
   // (Measured on lavapipe at the street path's mirror camera, 89 m from the mirror, σ_a = 4
   // and every ray counted: 511 state changes in the first 16 frames, the hitboxes still from
@@ -172,31 +226,37 @@ TEST_P(LipacSettles, OnAStaticCameraAndRepeatsItsPicture) {
   std::uint32_t early = 0, late = 0;
   const std::uint32_t settledHitboxes = a.stats.frames.back().activeHitboxes;
   for (const FrameStats& f : a.stats.frames) {
-    if (f.frame < half) {
+    if (f.frame < settling) {
       early += f.instanceStateChanges;
       continue;
     }
     late += f.instanceStateChanges;
     EXPECT_EQ(f.activeHitboxes, settledHitboxes) << "frame " << f.frame;
   }
-  std::printf("stride %u, every %u frames: %u changes in the first %u frames, %u in the last %u\n",
-              GetParam().stride, GetParam().every, early, half, late, half);
+  std::printf(
+      "stride %u, every %u frames, low %u: %u changes in the first %u frames, %u in the "
+      "last %u\n",
+      GetParam().stride, GetParam().every, GetParam().lowFrames, early, settling, late,
+      frames - settling);
   EXPECT_GT(early, 0u) << "the feedback activated nothing";
   EXPECT_LE(late, GetParam().stride == 1 ? 4u : 8u)
-      << "states still change in the last " << half << " frames (" << early
-      << " changes in the first " << half << ")";
+      << "states still change in the last " << frames - settling << " frames (" << early
+      << " changes in the first " << settling << ")";
   const RenderResult b = render(o, scene, s);
   EXPECT_TRUE(sameImage(a.image, b.image)) << "same seed, same device: the same picture";
   EXPECT_EQ(a.instanceStates, b.instanceStates);
 }
 
-INSTANTIATE_TEST_SUITE_P(CulledRender, LipacSettles,
-                         ::testing::Values(FeedbackSampling{1, 1}, FeedbackSampling{4, 1},
-                                           FeedbackSampling{4, 4}),
-                         [](const ::testing::TestParamInfo<FeedbackSampling>& info) {
-                           return "FeedbackStride" + std::to_string(info.param.stride) + "Every" +
-                                  std::to_string(info.param.every);
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    CulledRender, LipacSettles,
+    ::testing::Values(FeedbackSampling{1, 4, 2, 2, 64}, FeedbackSampling{1, 1, 8, 1, 32},
+                      FeedbackSampling{4, 1, 8, 1, 32}, FeedbackSampling{4, 4, 8, 1, 32}),
+    [](const ::testing::TestParamInfo<FeedbackSampling>& info) {
+      const FeedbackSampling& p = info.param;
+      if (p.stride == 1 && p.every == 4 && p.lowFrames == 2)
+        return std::string("TheDefaultsOnePathOfTwo");
+      return "FeedbackStride" + std::to_string(p.stride) + "Every" + std::to_string(p.every);
+    });
 
 // Instances behind the camera, past frustum culling's radius, in the line of the main street
 // (what the mirror at its end shows).

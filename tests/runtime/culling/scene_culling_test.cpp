@@ -138,8 +138,9 @@ TEST(Lipac, HitboxesActivateAboveTheThresholdAndOwnMeshesGoThroughOmitted) {
   EXPECT_EQ(culling.states()[4], InstanceState::Active);
 }
 
-// With sampled feedback one counted ray adds feedbackStride: the minimum of 4 hits for a
-// hitbox stays 4 rays (16 counts at stride 4), so one stray ray cannot switch it on.
+// With sampled feedback one counted ray adds its weight (feedbackStride here): the minimum
+// of 4 hits for a hitbox stays 4 rays (16 counts at stride 4), so one stray ray cannot
+// switch it on.
 TEST(Lipac, SampledFeedbackKeepsTheMinimumInRays) {
   CullingOptions o = lipac();
   o.feedbackStride = 4;
@@ -150,10 +151,10 @@ TEST(Lipac, SampledFeedbackKeepsTheMinimumInRays) {
   std::vector<std::uint32_t> hits(culling.counterCount(), 0);
   const std::uint64_t fewRays = 1000;  // ϑ_a stands for 0.02 hits: the minimum decides
   hits[n + far] = 12;                  // three counted rays
-  culling.update(farAway(), 1.0f, hits, fewRays);
+  culling.update(farAway(), 1.0f, hits, fewRays, o.feedbackStride);
   EXPECT_FALSE(culling.hitboxActive(far));
   hits[n + far] = 16;  // four
-  culling.update(farAway(), 1.0f, hits, fewRays);
+  culling.update(farAway(), 1.0f, hits, fewRays, o.feedbackStride);
   EXPECT_TRUE(culling.hitboxActive(far));
 }
 
@@ -337,6 +338,10 @@ TEST(CullingOptions, BadValuesAreRefusedWithTheirFlag) {
   o.feedbackEvery = 65;
   EXPECT_NE(message(o).find("--feedback-every"), std::string::npos);
   o.feedbackEvery = 64;
+  EXPECT_EQ(message(o), "");
+  o.feedbackPaths = 65;  // (whether N divides the paths per pixel the renderer checks)
+  EXPECT_NE(message(o).find("--feedback-paths"), std::string::npos);
+  o.feedbackPaths = 0;
   EXPECT_EQ(message(o), "");
   o = CullingOptions{};
   o.blasBudgetBytes = 1 << 20;
