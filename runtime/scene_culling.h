@@ -44,7 +44,7 @@ struct CullingOptions {
   // feedbackPaths, feedbackEvery) are the H200's best measured on the city's street path
   // (docs/culling.md, "Measured on the H200": every 5th camera of the whole path, peak AS
   // 0.25x the unculled scene's, the whole path's time 1.005x, the frames that do not count
-  // 0.98x; counting every frame in 1 block of 4 at σ_a = 16: 0.30x and 1.13x).
+  // 0.98x; counting every frame in 1 block of 4 at σ_a = 16: 0.30x and the path's 1.13x).
   double instanceActivate = 16.0;
   double instanceDeactivate = 1.6;
   std::uint32_t lowFrames = 2;
