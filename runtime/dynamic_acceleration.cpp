@@ -31,13 +31,15 @@ glm::mat4 boxTransform(const Bounds& box) {
 
 DynamicAccelerationStructures::DynamicAccelerationStructures(
     const VulkanContext& context, const Scene& scene, SceneBuffers& buffers,
-    const CullingOptions& options, const std::filesystem::path& shaderCacheDirectory)
+    const CullingOptions& options, const std::filesystem::path& shaderCacheDirectory,
+    std::uint32_t feedbackPathWeight)
     : context_(context),
       options_(options),
       culling_(scene, options),
       blasCache_(context, buffers.vertices, sizeof(gpu::Vertex), buffers.indices, buffers.geometry,
                  options.blasBudgetBytes, options.blasBuildTriangles, options.blasKeepFrames),
-      animated_(context, scene, buffers, options.blasRebuildEvery) {
+      animated_(context, scene, buffers, options.blasRebuildEvery),
+      feedbackPathWeight_(feedbackPathWeight) {
   meshCount_ = static_cast<std::uint32_t>(scene.meshes.size());
   // Each instance's TLAS record, made once: a frame copies it and fills in the BLAS address.
   for (std::uint32_t i = 0; i < scene.instances.size(); ++i) {

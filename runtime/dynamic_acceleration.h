@@ -29,10 +29,13 @@ namespace memograph::runtime {
 class DynamicAccelerationStructures {
  public:
   // `scene` and `buffers` must outlive this object. `shaderCacheDirectory`: where the GPU
-  // instance fill's shader is cached (none when empty).
+  // instance fill's shader is cached (none when empty). `feedbackPathWeight`: what a counted
+  // path's ray weighs beside the blocks' stride (CullingOptions::feedbackPaths: P / N where N
+  // of a pixel's P paths count; the renderer knows P).
   DynamicAccelerationStructures(const VulkanContext& context, const Scene& scene,
                                 SceneBuffers& buffers, const CullingOptions& options,
-                                const std::filesystem::path& shaderCacheDirectory);
+                                const std::filesystem::path& shaderCacheDirectory,
+                                std::uint32_t feedbackPathWeight = 1);
 
   VkAccelerationStructureKHR tlas() const { return tlas_->handle(); }
   // LiPaC's counting boxes (binding kBindingCountingBoxes); VK_NULL_HANDLE without LiPaC.
@@ -47,9 +50,6 @@ class DynamicAccelerationStructures {
   // renderer then traces it with the feedback's pipeline, and the next prepareFrame acts on
   // its counters.
   bool frameCounts() const { return frameCounted_; }
-  // What a counted path's ray weighs beside the blocks' stride (CullingOptions::feedbackPaths:
-  // P / N where N of a pixel's P paths count): the renderer sets it from its path count.
-  void setFeedbackPathWeight(std::uint32_t weight) { feedbackPathWeight_ = weight; }
   const SceneCulling& culling() const { return culling_; }
 
   // Before frame `frame`'s submit: reads the last frame's counters (`previousRays`: the rays
@@ -104,7 +104,7 @@ class DynamicAccelerationStructures {
   GpuBuffer hitReadback_;
   bool lookCountsPending_ = false;  // the next prepareFrame reads a look's counters
   bool frameCounted_ = false;       // the frame last prepared counts (frameCounts)
-  std::uint32_t feedbackPathWeight_ = 1;
+  const std::uint32_t feedbackPathWeight_;
 };
 
 }  // namespace memograph::runtime

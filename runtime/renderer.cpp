@@ -359,7 +359,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     noHitFeedback = GpuBuffer(context, 16, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                               VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
   } else {
-    dynamicAccel.emplace(context, scene, buffers, cullingOptions, cacheDirectory);
+    dynamicAccel.emplace(context, scene, buffers, cullingOptions, cacheDirectory, pathWeight);
     stats.accelerationStructures.blasCount = static_cast<std::uint32_t>(buffers.geometry.size());
     stats.accelerationStructures.instanceCount = static_cast<std::uint32_t>(scene.instances.size());
   }
@@ -539,8 +539,6 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   // LiPaC's sampling: x the blocks' stride, z the paths that count (0: every one).
   frame.culling = glm::uvec4(options_.culling.feedbackStride, 0,
                              pathWeight > 1 ? options_.culling.feedbackPaths : 0u, 0);
-  if (dynamicAccel)
-    dynamicAccel->setFeedbackPathWeight(pathWeight);
   std::uint32_t mipBiasBits = 0;
   std::memcpy(&mipBiasBits, &cache.mipBias, sizeof mipBiasBits);
   frame.cache =
