@@ -32,14 +32,15 @@ struct CullingOptions {
   // lipac thresholds, in hits per million rays traced in the frame, so that one setting
   // holds at every image size and sample count (activation takes at least 4 hits for a
   // hitbox, 2 for an instance, however small the frame). Deactivation waits `lowFrames`
-  // frames, doubled for a hitbox or an instance each time it leaves. ϑ_a activates an inactive
-  // hitbox (its box's hits plus its instances'); an active one deactivates after `lowFrames` frames
-  // in a row below ϑ_d (§3.3.2: "around factor 10" apart, "low for several frames").
+  // counting frames (feedbackEvery), doubled for a hitbox or an instance each time it leaves.
+  // ϑ_a activates an inactive hitbox (its box's hits plus its instances'); an active one
+  // deactivates after `lowFrames` counting frames in a row below ϑ_d (§3.3.2: "around factor
+  // 10" apart, "low for several frames").
   double hitboxActivate = 20.0;
   double hitboxDeactivate = 2.0;
   // An instance with its own BLAS (used by no other instance) in an active hitbox is first
   // omitted (a box counts its rays) and activated above σ_a; an active one goes back to
-  // omitted after `lowFrames` frames below σ_o.
+  // omitted after `lowFrames` counting frames below σ_o.
   // The defaults of σ_a, σ_o, lowFrames and the feedback's sampling (feedbackStride,
   // feedbackPaths, feedbackEvery) are the H200's best measured on the city's street path
   // (docs/culling.md, "Measured on the H200": every 5th camera of the whole path, peak AS

@@ -199,8 +199,10 @@ TEST(CulledRender, FeedbackPathsThatDoNotDivideThePathsAreRefused) {
 // further: they run 64 (measured on lavapipe: a hitbox still leaves for 2 counting frames at
 // the 27th of 32, at the 4th wait of 16). Each checks the last 16 counting frames.
 struct FeedbackSampling {
-  std::uint32_t stride, every, lowFrames, paths, counted;  // paths: P, one of them counting
+  const char* name;
+  std::uint32_t stride, every, lowFrames, paths, counted;  // paths: P, feedbackPaths of them count
 };
+const CullingOptions kDefaults{};
 class LipacSettles : public ::testing::TestWithParam<FeedbackSampling> {};
 
 TEST_P(LipacSettles, OnAStaticCameraAndRepeatsItsPicture) {
@@ -249,13 +251,13 @@ TEST_P(LipacSettles, OnAStaticCameraAndRepeatsItsPicture) {
 
 INSTANTIATE_TEST_SUITE_P(
     CulledRender, LipacSettles,
-    ::testing::Values(FeedbackSampling{1, 4, 2, 2, 64}, FeedbackSampling{1, 1, 8, 1, 32},
-                      FeedbackSampling{4, 1, 8, 1, 32}, FeedbackSampling{4, 4, 8, 1, 32}),
+    ::testing::Values(FeedbackSampling{"TheDefaultsAtTwoPaths", kDefaults.feedbackStride,
+                                       kDefaults.feedbackEvery, kDefaults.lowFrames, 2, 64},
+                      FeedbackSampling{"FeedbackStride1Every1", 1, 1, 8, 1, 32},
+                      FeedbackSampling{"FeedbackStride4Every1", 4, 1, 8, 1, 32},
+                      FeedbackSampling{"FeedbackStride4Every4", 4, 4, 8, 1, 32}),
     [](const ::testing::TestParamInfo<FeedbackSampling>& info) {
-      const FeedbackSampling& p = info.param;
-      if (p.stride == 1 && p.every == 4 && p.lowFrames == 2)
-        return std::string("TheDefaultsOnePathOfTwo");
-      return "FeedbackStride" + std::to_string(p.stride) + "Every" + std::to_string(p.every);
+      return std::string(info.param.name);
     });
 
 // Instances behind the camera, past frustum culling's radius, in the line of the main street
@@ -361,9 +363,8 @@ TEST(CulledRender, SampledFeedbackStillKeepsWhatOnlyTheMirrorShows) {
 // --feedback-every 4: frames 0, 4, 8, ... trace with the feedback, the others with the
 // pipeline built without it: after a counting frame the counts its trace tallied all
 // arrived, after a quiet one its trace tallied none (it fails when the quiet frames trace
-// with the feedback's pipeline). With a quarter of the frames counting (and 1 in
-// 4 pixel blocks of those), what only the mirror shows is still found, and the picture
-// repeats, on both backends.
+// with the feedback's pipeline). With a quarter of the frames counting, what only the mirror
+// shows is still found, and the picture repeats, on both backends.
 TEST(CulledRender, FeedbackEveryKthFrameCountsThoseFramesOnly) {
   const Scene scene = smallCity();
   const Camera camera = mirrorCamera();
