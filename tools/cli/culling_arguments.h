@@ -4,6 +4,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "cli_common.h"
 #include "runtime/scene_culling.h"
@@ -54,12 +55,13 @@ inline constexpr const char* kCullingHelp =
     "  --blas-rebuild-every N  animated meshes (the city's flags): their BLASes are updated\n"
     "                        in place every frame and rebuilt every N frames (default 16)\n";
 
+// The numbers stay empty unless given: parse() then keeps CullingOptions' own defaults (the
+// measured ones, scene_culling.h), so that there is one place to change them.
 struct CullingArguments {
-  std::string mode = "none", radius = "30", hitboxSize = "50", hitboxActivate = "20",
-              hitboxDeactivate = "2", instanceActivate = "16", instanceDeactivate = "1.6",
-              lowFrames = "2", blasBudget = "0", blasBuildBudget = "0", blasRebuildEvery = "16",
-              blasKeepFrames = "2", feedbackStride = "1", feedbackPaths = "1", feedbackEvery = "4",
-              instanceFill = "host", looks = "on", lookAppearing = "8";
+  std::string mode = "none", radius, hitboxSize, hitboxActivate, hitboxDeactivate, instanceActivate,
+              instanceDeactivate, lowFrames, blasBudget, blasBuildBudget, blasRebuildEvery,
+              blasKeepFrames, feedbackStride, feedbackPaths, feedbackEvery, instanceFill = "host",
+              looks = "on", lookAppearing;
 
   void registerWith(ArgumentScanner& scanner) {
     scanner.option("--culling", &mode);
@@ -99,27 +101,38 @@ struct CullingArguments {
                                     "'");
       return value;
     };
-    o.radius = static_cast<float>(real(radius, "--culling-radius"));
-    o.hitboxSize = static_cast<float>(real(hitboxSize, "--hitbox-size"));
-    o.hitboxActivate = real(hitboxActivate, "--hitbox-activate");
-    o.hitboxDeactivate = real(hitboxDeactivate, "--hitbox-deactivate");
-    o.instanceActivate = real(instanceActivate, "--instance-activate");
-    o.instanceDeactivate = real(instanceDeactivate, "--instance-deactivate");
-    o.lowFrames = whole(lowFrames, "--low-frames");
-    o.blasBudgetBytes = std::uint64_t(whole(blasBudget, "--blas-budget")) << 20;
-    o.blasBuildTriangles = whole(blasBuildBudget, "--blas-build-budget");
-    o.blasRebuildEvery = whole(blasRebuildEvery, "--blas-rebuild-every");
-    o.blasKeepFrames = whole(blasKeepFrames, "--blas-keep-frames");
-    o.feedbackStride = whole(feedbackStride, "--feedback-stride");
-    o.feedbackEvery = whole(feedbackEvery, "--feedback-every");
-    o.feedbackPaths = whole(feedbackPaths, "--feedback-paths");
+    // Each number given replaces its default.
+    const auto setReal = [&](const std::string& text, const char* flag, auto& field) {
+      if (!text.empty())
+        field = static_cast<std::remove_reference_t<decltype(field)>>(real(text, flag));
+    };
+    const auto setWhole = [&](const std::string& text, const char* flag, std::uint32_t& field) {
+      if (!text.empty())
+        field = whole(text, flag);
+    };
+    setReal(radius, "--culling-radius", o.radius);
+    setReal(hitboxSize, "--hitbox-size", o.hitboxSize);
+    setReal(hitboxActivate, "--hitbox-activate", o.hitboxActivate);
+    setReal(hitboxDeactivate, "--hitbox-deactivate", o.hitboxDeactivate);
+    setReal(instanceActivate, "--instance-activate", o.instanceActivate);
+    setReal(instanceDeactivate, "--instance-deactivate", o.instanceDeactivate);
+    setWhole(lowFrames, "--low-frames", o.lowFrames);
+    if (!blasBudget.empty())
+      o.blasBudgetBytes = std::uint64_t(whole(blasBudget, "--blas-budget")) << 20;
+    if (!blasBuildBudget.empty())
+      o.blasBuildTriangles = whole(blasBuildBudget, "--blas-build-budget");
+    setWhole(blasRebuildEvery, "--blas-rebuild-every", o.blasRebuildEvery);
+    setWhole(blasKeepFrames, "--blas-keep-frames", o.blasKeepFrames);
+    setWhole(feedbackStride, "--feedback-stride", o.feedbackStride);
+    setWhole(feedbackEvery, "--feedback-every", o.feedbackEvery);
+    setWhole(feedbackPaths, "--feedback-paths", o.feedbackPaths);
     if (instanceFill != "host" && instanceFill != "gpu")
       throw std::invalid_argument("--instance-fill takes host or gpu, not '" + instanceFill + "'");
     o.gpuInstanceFill = instanceFill == "gpu";
     if (looks != "on" && looks != "off")
       throw std::invalid_argument("--looks takes on or off, not '" + looks + "'");
     o.looks = looks == "on";
-    o.lookAppearing = whole(lookAppearing, "--look-appearing");
+    setWhole(lookAppearing, "--look-appearing", o.lookAppearing);
     runtime::validateCullingOptions(o);
     return o;
   }
