@@ -55,10 +55,11 @@ struct FrameStats {
   std::uint32_t hitboxes = 0;
   std::uint32_t activeHitboxes = 0;
   std::uint32_t instanceStateChanges = 0;
-  // LiPaC's looks before this frame (0 or 1: SceneCulling::look) and the GPU time of the
-  // look's probe trace, which gpuMilliseconds includes.
+  // LiPaC's looks before this frame (0 or 1: SceneCulling::look), the GPU time of the look's
+  // probe trace, which gpuMilliseconds includes, and the rays it traced (not in `rays`).
   std::uint32_t looks = 0;
   double lookMilliseconds = 0.0;
+  std::uint64_t lookRays = 0;
   std::uint32_t tlasRecords = 0;
   std::uint64_t blasBytes = 0;
   std::uint64_t tlasBytes = 0;

@@ -649,10 +649,11 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
       // image's mean, against 0.78 % with every ray counted:
       // CulledRender.TheFirstLookHoldsWhatTheFirstCameraReaches). One path, not P: its image
       // is not kept, and on the H200 at P = 6 a frame with a look of P paths took 1.6-2.5x the
-      // unculled frame's time (with one path 1.10x).
+      // unculled frame's time (with one path 1.10x). For the same reason its paths trace no
+      // shadow rays (frame.culling.w).
       const glm::uvec4 framePath = frame.path, frameCulling = frame.culling;
       frame.path.x = 1u;
-      frame.culling = glm::uvec4(1u, frame.culling.y, 0u, 0u);
+      frame.culling = glm::uvec4(1u, frame.culling.y, 0u, 1u);
       frameBuffer.write(&frame, sizeof frame);
       submitFrame(f, true);
       frame.path = framePath;
@@ -660,7 +661,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
       frameBuffer.write(&frame, sizeof frame);
       gpu::Counters counters{};
       rayReadback.read(&counters, sizeof counters);
-      previousRays = counters.rays;
+      previousRays = look.lookRays = counters.rays;
       if (timestamps) {
         std::uint64_t ticks[5] = {0, 0, 0, 0, 0};
         readTimestamps(0, 5, ticks);
@@ -722,6 +723,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     if (look.looks) {
       frameStats.looks = 1;
       frameStats.lookMilliseconds = look.lookMilliseconds;
+      frameStats.lookRays = look.lookRays;
       frameStats.gpuMilliseconds += look.lookMilliseconds;
       frameStats.blasBuilds += look.blasBuilds;
       frameStats.blasUpdates += look.blasUpdates;

@@ -228,8 +228,14 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
   uint pathCount = max(frame.path.x, 1u);
   uint rayCountPerPath = frame.path.y;
   bool sharedPrimary = (frame.path.z & kFlagSharedPrimaryRay) != 0u;
+  // A look (SceneCulling::look, frame.culling.w) traces only for its counts: the frame that
+  // follows replaces its image, so its paths skip the direct light and its shadow rays, a
+  // third of the look's rays with the counting boxes' probes. The paths' directions still
+  // need the materials.
+  bool countsOnly = false;
 #ifdef MG_HIT_FEEDBACK
   uint feedbackWeight = hitFeedbackWeight(pixel);
+  countsOnly = frame.culling.w != 0u;
 #endif
 
   vec3 primaryOrigin, primaryDirection;
@@ -310,7 +316,7 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
       radiance += throughput * m.emission * emissionMisWeight(s, origin, direction, previousBsdfPdf);
       bool continues = bounce + 1u < rayCountPerPath;
       rng = rngForPathVertex(pixelIndex, sampleIndex, bounce + 1u, frame.image.w);
-      radiance += throughput * sampleDirectLight(p, continues, rng, rays);
+      if (!countsOnly) radiance += throughput * sampleDirectLight(p, continues, rng, rays);
       if (bounce + 1u == rayCountPerPath) continue;
       if (!continuePath(p, s, rng, throughput, previousBsdfPdf, cone, origin, direction))
         alive = false;

@@ -242,7 +242,8 @@ struct FrameConstants {
   // count weighted x (CullingOptions::feedbackStride); y: which blocks and paths, the
   // counting frame's index (the frame over CullingOptions::feedbackEvery); z: z of each
   // pixel's P paths count, each count weighted P / z besides (CullingOptions::feedbackPaths;
-  // 0: every path); w unused.
+  // 0: every path); w 1: a look, whose image the frame replaces, so it only counts (its
+  // paths trace no shadow rays), else 0.
   uvec4 culling;
 };
 

@@ -309,10 +309,10 @@ double meanDifference(const HdrImage& a, const HdrImage& b) {
 
 // LiPaC's first look: flying in from south of the city (the path's first camera), the first
 // frame holds what a probe trace of its camera reaches, not every instance large in its
-// frustum: fewer BLAS bytes here (30.2 against 42.0 MB at the defaults; 32.4 at σ_a = 4),
-// with the picture kept. The probe counts every ray whatever the feedback stride (with 1 in 4
-// blocks counted the picture missed this test's bound: 1.14 % of the image's mean, against
-// 0.78 % now).
+// frustum: fewer BLAS bytes here (29.9 against 42.0 MB at the defaults), with the picture
+// kept. The probe counts every ray whatever the feedback stride (with 1 in 4 blocks counted
+// the picture missed this test's bound: 1.14 % of the image's mean, against 0.78 % when every
+// ray counted).
 TEST(CulledRender, TheFirstLookHoldsWhatTheFirstCameraReaches) {
   const Scene scene = smallCity();
   const Camera approach = makeBuiltinCameraPath("city", 300, kScale).frames.front();
@@ -330,19 +330,27 @@ TEST(CulledRender, TheFirstLookHoldsWhatTheFirstCameraReaches) {
   EXPECT_EQ(b.looks, 0u);
   EXPECT_GT(a.lookMilliseconds, 0.0);
   EXPECT_GT(a.gpuMilliseconds, a.lookMilliseconds);
+  // Its image is not kept, so its paths trace no shadow rays: at most the path's rays a pixel
+  // (the frame, which lights its hits, traces more).
+  const std::uint64_t pathRays = std::uint64_t(s.width) * s.height * s.raysPerPath;
+  EXPECT_GE(a.lookRays, std::uint64_t(s.width) * s.height) << "a camera ray a pixel at least";
+  EXPECT_LE(a.lookRays, pathRays);
+  EXPECT_GT(a.rays, pathRays) << "the frame's shadow rays";
   // The probe registers the first box a ray crosses, so an instance seen only past another's
-  // box waits a frame: a few pixels at 64x36 and one path, a mean difference of 0.62-0.78 %
-  // of the image's mean over seeds 0-5 (0.01-0.03 % without the first look; the generator
-  // before the wavefront's keys gave 0.66-0.67 % at seeds 1 and 2 and 0.09 % at seed 0, the
-  // seed this test once used with a bound of 0.25 %). A building lost from view would cost
-  // several %. At 192x108, P = 4, L = 3 its mean LDR-FLIP against unculled is 0.0009
-  // against 0.0061 without.
+  // box waits a frame: a few pixels at 64x36 and one path, a mean difference of 0.11-0.95 %
+  // of the image's mean over seeds 0-5, 0.27 % at this test's seed 0 (0.62-0.78 % when the
+  // look still traced shadow rays, whose random numbers sent its paths elsewhere; 0.01-0.03 %
+  // without the first look). A building lost from view would cost several %. At 192x108,
+  // P = 4, L = 3 its mean LDR-FLIP against unculled was 0.0009 against 0.0061 without.
   HdrImage black = unculled.image;
   std::fill(black.rgba.begin(), black.rgba.end(), 0.0f);
   const double share =
       meanDifference(withFirstLook.image, unculled.image) / meanDifference(unculled.image, black);
-  std::printf("first look: %.3f %% of the image's mean from unculled; BLAS %.1f against %.1f MB\n",
-              100.0 * share, a.blasBytes / 1e6, b.blasBytes / 1e6);
+  std::printf(
+      "first look: %.3f %% of the image's mean from unculled; BLAS %.1f against %.1f MB; "
+      "%llu rays in the look, %llu in the frame\n",
+      100.0 * share, a.blasBytes / 1e6, b.blasBytes / 1e6, (unsigned long long)a.lookRays,
+      (unsigned long long)a.rays);
   EXPECT_LT(share, 0.01);
   EXPECT_GT(a.omittedInstances, 0u) << "what the probe's rays did not reach waits as a box";
 }
