@@ -229,9 +229,9 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
   uint rayCountPerPath = frame.path.y;
   bool sharedPrimary = (frame.path.z & kFlagSharedPrimaryRay) != 0u;
   // A look (SceneCulling::look, frame.culling.w) traces only for its counts: the frame that
-  // follows replaces its image, so its paths skip the direct light and its shadow rays, a
-  // third of the look's rays with the counting boxes' probes. The paths' directions still
-  // need the materials.
+  // follows replaces its image, so its paths skip the direct light: a shadow ray at most for
+  // each path ray, which with the path ray's probe through the counting boxes makes up to a
+  // third of what the look traced. The paths' directions still need the materials.
   bool countsOnly = false;
 #ifdef MG_HIT_FEEDBACK
   uint feedbackWeight = hitFeedbackWeight(pixel);
