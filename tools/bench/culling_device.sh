@@ -14,7 +14,8 @@
 #   variants   LiPaC with other settings: VARIANTS="label:flags;label:flags" (for example
 #              "every4:--feedback-every 4 --low-frames 2"), each a bench run of the path as
 #              above (variants.csv: bench's summary line each, labelled lipac_<label>;
-#              frames_lipac_<label>.csv: per frame)
+#              frames_lipac_<label>.csv: per frame); the pictures step pictures them too,
+#              after the modes, each against none
 #   looks      LiPaC's looks swept: --looks off, then --look-appearing in LOOKS (default
 #              "2 4 16"; 8 is the bench step's lipac row), each a bench run of the path as
 #              above (looks.csv: bench's summary line each, labelled lipac_looks_off,
@@ -118,25 +119,39 @@ bench() {
 }
 
 pictures() {
-  local cameras
+  local cameras label flags entry
   mapfile -t cameras < <(grep -v '^#' "$path" | grep .)
+  # What is pictured: each mode, then each of VARIANTS as lipac_<label> (none first, as the
+  # modes list it, since the others are compared with it).
+  local -a labels=() settings=()
+  for mode in $modes; do
+    labels+=("$mode")
+    settings+=("--culling $mode")
+  done
+  IFS=';' read -ra entries <<<"${VARIANTS:-}"
+  for entry in "${entries[@]}"; do
+    labels+=("lipac_${entry%%:*}")
+    settings+=("--culling lipac ${entry#*:}")
+  done
   for k in $picture_cameras; do
     printf '%s\n' "${cameras[@]:k-8:8}" >"$work/path_$k.campath"
     for _ in 1 2 3 4; do echo "${cameras[k]}" >>"$work/path_$k.campath"; done
-    for mode in $modes; do
-      echo "== picture $k $mode" | tee -a "$OUT/log.txt"
-      # shellcheck disable=SC2086
+    for i in "${!labels[@]}"; do
+      label=${labels[i]}
+      flags=${settings[i]}
+      echo "== picture $k $label" | tee -a "$OUT/log.txt"
+      # shellcheck disable=SC2086 # flags and EXTRA are lists of flags
       timeout 150 "$m" render "$scene" "${shadingFlags[@]}" --size "$size" --paths "$paths" --bounces 4 --frames 12 \
-        --camera-path "$work/path_$k.campath" --seed 1 --culling "$mode" \
-        --shader-cache "$work/sc" --out "$work/${k}_$mode.pfm" --stats "$work/${k}_$mode.csv" \
+        --camera-path "$work/path_$k.campath" --seed 1 $flags \
+        --shader-cache "$work/sc" --out "$work/${k}_$label.pfm" --stats "$work/${k}_$label.csv" \
         ${EXTRA:-} >>"$OUT/log.txt" 2>&1
       echo "rc=$?" >>"$OUT/log.txt"
-      tail -n 1 "$work/${k}_$mode.csv" | sed "s/^/$k,$mode,/" >>"$OUT/pictures_stats.csv" 2>/dev/null
+      tail -n 1 "$work/${k}_$label.csv" | sed "s/^/$k,$label,/" >>"$OUT/pictures_stats.csv" 2>/dev/null
     done
-    for mode in $modes; do
-      [ "$mode" != none ] || continue
-      echo "== camera $k (${role[$k]}): $mode against none" >>"$OUT/pictures.txt"
-      "$m" diff "$work/${k}_none.pfm" "$work/${k}_$mode.pfm" >>"$OUT/pictures.txt" 2>&1
+    for label in "${labels[@]}"; do
+      [ "$label" != none ] || continue
+      echo "== camera $k (${role[$k]}): $label against none" >>"$OUT/pictures.txt"
+      "$m" diff "$work/${k}_none.pfm" "$work/${k}_$label.pfm" >>"$OUT/pictures.txt" 2>&1
     done
   done
   head -1 "$work/${k}_none.csv" >"$OUT/pictures_stats_header.csv" 2>/dev/null

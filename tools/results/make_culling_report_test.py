@@ -116,6 +116,21 @@ class MakeCullingReportTest(unittest.TestCase):
                          ["mirror (camera 153)", "flying in (camera 8)"])
         self.assertEqual(rows[0].split("|")[3].strip(), "0.0020")
 
+    def test_pictured_variants_are_columns_of_their_own(self):
+        run = self.make_run({"none": [(100.0, 1000, 0.0, 20000)]})
+        with open(os.path.join(run, "pictures.txt"), "w") as f:
+            for mode, flip in [("lipac", 0.004), ("lipac_every8", 0.006), ("frustum", 0.15)]:
+                f.write(f"== camera 120 (mirror): {mode} against none\n  mean  {flip}\n")
+        result, text = self.run_report(run)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        lines = text.splitlines()
+        header = next(line for line in lines if line.startswith("| camera |"))
+        self.assertEqual([c.strip() for c in header.strip("|").split("|")],
+                         ["camera", "frustum", "lipac", "lipac_every8"])
+        row = next(line for line in lines if "(camera 120)" in line)
+        self.assertEqual([c.strip() for c in row.strip("|").split("|")][1:],
+                         ["0.1500", "0.0040", "0.0060"])
+
     def test_bad_input_exits_1(self):
         result, _ = self.run_report(os.path.join(self.dir.name, "missing"))
         self.assertEqual(result.returncode, 1)
