@@ -430,7 +430,10 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     shaderDefines.push_back("MG_NEE_EVALUATES_EMISSION=1");  // never the wavefront (wavefrontGap)
   // LiPaC's hit counters and the counting-box probe, only where LiPaC runs; with
   // --feedback-every K > 1 the frames that do not count trace with a second pipeline built
-  // without them (the same bindings, so the same descriptor set).
+  // without them (the same bindings, so the same descriptor set), and with
+  // --feedback-dispatch split a counting frame's paths that do not count do too.
+  const bool splitCounting = hitFeedback && options_.culling.splitFeedbackDispatch &&
+                             pathWeight > 1 && !options_.debugCacheMisses;
   const std::vector<std::string> quietDefines = shaderDefines;
   if (hitFeedback)
     shaderDefines.push_back("MG_HIT_FEEDBACK=1");
@@ -459,7 +462,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                      shaderDefines, materialCache.tileImageView() != VK_NULL_HANDLE,
                      materialCache.tileFillRows() > 0);
     stats.rayTracingStack = pipeline->stack();
-    if (hitFeedback && options_.culling.feedbackEvery > 1)
+    if (hitFeedback && (options_.culling.feedbackEvery > 1 || splitCounting))
       quietPipeline.emplace(context, compiler, textures.count(),
                             materialCallables ? &*materialCallables : nullptr, pipelineThreads,
                             quietDefines, materialCache.tileImageView() != VK_NULL_HANDLE,
@@ -546,8 +549,10 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
 
   // One frame's commands: clears, the TLAS build, the trace (and tile fill), the read-backs.
   // `f` == 0 clears the cache and the counters that persist. `counts`: the trace writes
-  // LiPaC's counters (the pipeline with the feedback; a look's always does).
-  const auto submitFrame = [&](std::uint32_t f, bool counts) {
+  // LiPaC's counters (the pipeline with the feedback; a look's always does). `split`: a
+  // counting frame whose paths that do not count are traced first by the pipeline without
+  // the feedback (frame.culling.w holds kCullingSplitPaths).
+  const auto submitFrame = [&](std::uint32_t f, bool counts, bool split) {
     const TracePipeline* tracer = quietPipeline && !counts ? &*quietPipeline
                                   : pipeline               ? &*pipeline
                                                            : nullptr;
@@ -579,8 +584,18 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
         wavefrontTracer->record(commands, set, settings.pathsPerPixel, settings.raysPerPath,
                                 timestamps ? timestampPool.get() : VK_NULL_HANDLE,
                                 kFirstWavefrontTimestamp);
-      else
+      else if (split) {
+        // The counted paths' dispatch adds its share to what the first wrote (renderPixel).
+        quietPipeline->record(commands, set, settings.width, settings.height);
+        barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+        barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+        vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                             VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0, nullptr, 0,
+                             nullptr);
         tracer->record(commands, set, settings.width, settings.height);
+      } else {
+        tracer->record(commands, set, settings.width, settings.height);
+      }
       if (materialCache.tileFillRows() > 0 && pipeline) {
         // The deferred tile fill computes the tiles the trace queued (its stores, queue and
         // locks ordered after the trace's); the frame's time includes it.
@@ -653,9 +668,9 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
       // shadow rays (frame.culling.w).
       const glm::uvec4 framePath = frame.path, frameCulling = frame.culling;
       frame.path.x = 1u;
-      frame.culling = glm::uvec4(1u, frame.culling.y, 0u, 1u);
+      frame.culling = glm::uvec4(1u, frame.culling.y, 0u, gpu::kCullingLook);
       frameBuffer.write(&frame, sizeof frame);
-      submitFrame(f, true);
+      submitFrame(f, true, false);
       frame.path = framePath;
       frame.culling = frameCulling;
       frameBuffer.write(&frame, sizeof frame);
@@ -682,8 +697,14 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     }
 
     const bool counts = dynamicAccel && dynamicAccel->frameCounts();
+    const bool split = counts && splitCounting;
+    if (split) {
+      frame.culling.w = gpu::kCullingSplitPaths;
+      frameBuffer.write(&frame, sizeof frame);
+      frame.culling.w = 0u;
+    }
     auto start = std::chrono::steady_clock::now();
-    submitFrame(f, counts);
+    submitFrame(f, counts, split);
     frameStats.wallMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     gpu::Counters counters{};

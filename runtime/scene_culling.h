@@ -83,6 +83,13 @@ struct CullingOptions {
   // 0.98x the unculled frame's time, one with it 1.09x with one path of 6 counted and 1.19x
   // with every path (docs/culling.md). 1: every frame counts.
   std::uint32_t feedbackEvery = 4;
+  // lipac, with feedbackPaths N < P: a counting frame traces in two dispatches, the P - N
+  // paths that do not count with the pipeline compiled without the feedback, then the N that
+  // do with it, so that only those run the feedback's code (its probes' trace call and
+  // counters, which make a pipeline slower whether a path counts or not). The same paths and
+  // counts; the picture differs only by float rounding (each dispatch adds its share of the
+  // mean). Off until the GPU machine has measured it.
+  bool splitFeedbackDispatch = false;
   // The TLAS's instance records assembled by a compute pass from the instance states
   // (GpuInstanceFill, seeds/001 §3.3.2) instead of written by the host. The same records in
   // the same order, so the same picture; the host fill stays the default until the GPU

@@ -38,6 +38,33 @@
 
 #include "scene_bindings.glsl"
 
+// The paths of a pixel that count this frame (CullingOptions::feedbackPaths): N of P, from
+// the counting frame's index on; every path where N is 0 or at least P. Outside
+// MG_HIT_FEEDBACK too: a split counting frame's dispatch without the feedback traces the
+// others.
+uint sampledPathCount(uint pathCount) {
+  uint counted = frame.culling.z;
+  return counted == 0u || counted >= pathCount ? pathCount : counted;
+}
+bool countedPath(uint path, uint pathCount) {
+  uint counted = sampledPathCount(pathCount);
+  uint first = (frame.culling.y * counted) % pathCount;
+  return (path + pathCount - first) % pathCount < counted;
+}
+
+// Whether this dispatch traces path `path`: every path, except in a split counting frame
+// (kCullingSplitPaths), where the feedback's pipeline traces the counted paths and the
+// pipeline without it the others; each adds its paths' share of the pixel's mean
+// (renderPixel). A uniform condition, so the loop stays whole.
+bool dispatchTracesPath(uint path, uint pathCount) {
+  if ((frame.culling.w & kCullingSplitPaths) == 0u) return true;
+#ifdef MG_HIT_FEEDBACK
+  return countedPath(path, pathCount);
+#else
+  return !countedPath(path, pathCount);
+#endif
+}
+
 #ifdef MG_HIT_FEEDBACK
 layout(set = 0, binding = kBindingHitFeedback, std430) buffer HitFeedbackBlock {
   uint hitCounts[];
@@ -115,10 +142,8 @@ uint hitFeedbackWeight(uvec2 pixel) {
 // path p together, skips the probes together; and every pixel counts, so what a few pixels
 // see is counted in every counting frame (which 1 block in N would not do).
 uint pathFeedbackWeight(uint path, uint pathCount, uint weight) {
-  uint counted = frame.culling.z;
-  if (counted == 0u || counted >= pathCount) return weight;
-  uint first = (frame.culling.y * counted) % pathCount;
-  return (path + pathCount - first) % pathCount < counted ? weight * (pathCount / counted) : 0u;
+  return countedPath(path, pathCount) ? weight * (pathCount / sampledPathCount(pathCount))
+                                      : 0u;
 }
 #endif
 
@@ -235,7 +260,7 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
   bool countsOnly = false;
 #ifdef MG_HIT_FEEDBACK
   uint feedbackWeight = hitFeedbackWeight(pixel);
-  countsOnly = frame.culling.w != 0u;
+  countsOnly = (frame.culling.w & kCullingLook) != 0u;
 #endif
 
   vec3 primaryOrigin, primaryDirection;
@@ -255,8 +280,10 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
   // them, and the others reuse them (§5.1: the P paths of a pixel make one primary lookup
   // instead of P). `path` and `bounce` are uniform, so the tile cache's subgroup stays whole.
   MaterialOutputs primaryOutputs;
+  bool primaryEvaluated = false;  // the first path this dispatch traces evaluates them
   vec3 sum = vec3(0.0);
   for (uint path = 0u; path < pathCount; ++path) {
+    if (!dispatchTracesPath(path, pathCount)) continue;
     // The wavefront's keys (rng.glsl): bounce 0 jitters the camera ray, bounce b + 1 shades
     // the b-th hit, so at one seed both architectures trace the same paths.
     uint pixelIndex = pixel.y * frame.image.x + pixel.x;
@@ -303,11 +330,14 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
         }
       }
       MaterialOutputs m;
-      if (sharedPrimary && bounce == 0u && path > 0u) {
+      if (sharedPrimary && bounce == 0u && primaryEvaluated) {
         m = primaryOutputs;
       } else {
         evaluateMaterial(alive, s.materialId, s.inputs, bounce, m);
-        if (sharedPrimary && bounce == 0u) primaryOutputs = m;
+        if (sharedPrimary && bounce == 0u) {
+          primaryOutputs = m;
+          primaryEvaluated = true;
+        }
       }
       if (!alive) continue;
 
@@ -347,8 +377,20 @@ void renderPixel(uvec2 pixel, bool inside) {
     accumulation[index] = vec4(g_cacheMissed ? vec3(1.0, 0.0, 0.0) : radiance, 1.0);
 #else
     uint sampleIndex = frame.environmentSize.z;
-    vec3 previous = sampleIndex == 0u ? vec3(0.0) : accumulation[index].rgb;
-    accumulation[index] = vec4(mix(previous, radiance, 1.0 / float(sampleIndex + 1u)), 1.0);
+    float weight = 1.0 / float(sampleIndex + 1u);
+    bool secondShare = false;
+#ifdef MG_HIT_FEEDBACK
+    // A split counting frame's second dispatch (the counted paths): the first folded the
+    // other paths' share of the mean in, mix(previous, share, weight); the mean is linear in
+    // the paths, so this share adds with the same weight.
+    secondShare = (frame.culling.w & kCullingSplitPaths) != 0u;
+#endif
+    if (secondShare) {
+      accumulation[index].rgb += radiance * weight;
+    } else {
+      vec3 previous = sampleIndex == 0u ? vec3(0.0) : accumulation[index].rgb;
+      accumulation[index] = vec4(mix(previous, radiance, weight), 1.0);
+    }
 #endif
   }
 #ifdef MG_SUBGROUP_RAY_COUNT

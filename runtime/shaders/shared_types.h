@@ -142,6 +142,9 @@ struct WavefrontPush {
 // FrameConstants::flags bits.
 MG_CONSTANT(uint, kFlagSharedPrimaryRay, 1);
 MG_CONSTANT(uint, kFlagEnvironmentImage, 2);
+// FrameConstants::culling.w bits (LiPaC).
+MG_CONSTANT(uint, kCullingLook, 1);        // a look: it only counts (no shadow rays)
+MG_CONSTANT(uint, kCullingSplitPaths, 2);  // a split counting frame (path_tracer.glsl)
 
 // Texel cache (thesis §4.2-4.5, §5.3). An entry is kCacheEntryHeader uints (the 32-bit
 // key hash H1 of eq. 5.9, then the eviction metadata) followed by the material's written
@@ -242,8 +245,10 @@ struct FrameConstants {
   // count weighted x (CullingOptions::feedbackStride); y: which blocks and paths, the
   // counting frame's index (the frame over CullingOptions::feedbackEvery); z: z of each
   // pixel's P paths count, each count weighted P / z besides (CullingOptions::feedbackPaths;
-  // 0: every path); w 1: a look, whose image the frame replaces, so it only counts (its
-  // paths trace no shadow rays), else 0.
+  // 0: every path); w kCulling* bits: kCullingLook, a look, whose image the frame replaces,
+  // so it only counts (its paths trace no shadow rays); kCullingSplitPaths, a counting frame
+  // traced in two dispatches, its counted paths by the feedback's pipeline, the others by
+  // the pipeline without it (CullingOptions::splitFeedbackDispatch).
   uvec4 culling;
 };
 

@@ -188,6 +188,8 @@ TEST_F(CliTest, CullingOptionsAreCheckedAndACulledRenderWritesItsTopView) {
       {" --culling lipac --look-appearing -3", "--look-appearing takes a whole number, not '-3'"},
       {" --blas-budget 64", "they need --culling frustum or --culling lipac"},
       {" --culling lipac --paths 6 --feedback-paths 4", "--feedback-paths 4 must divide"},
+      {" --culling lipac --feedback-dispatch both",
+       "--feedback-dispatch takes single or split, not 'both'"},
       {" --debug-culling " + top, "--debug-culling shows which instances culling keeps"},
   };
   for (const auto& [flags, message] : bad) {

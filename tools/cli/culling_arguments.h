@@ -35,6 +35,10 @@ inline constexpr const char* kCullingHelp =
     "                        frame, weighted P / N (N divides P; default 1; 0: every path)\n"
     "  --feedback-stride N   lipac: 1 in N 8x8-pixel blocks counts its rays in a counting\n"
     "                        frame, weighted N (default 1: every block; 1..64)\n"
+    "  --feedback-dispatch single|split  lipac: a counting frame traces in one dispatch\n"
+    "                        with the feedback's code (default single), or, with\n"
+    "                        --feedback-paths below P, in two: the paths that do not count\n"
+    "                        without that code, then those that do\n"
     "  --looks on|off        lipac: before the first frame, and before one that brings\n"
     "                        --look-appearing instances with their own BLAS into view at\n"
     "                        once, trace its camera once with the hitboxes it faces active\n"
@@ -61,7 +65,7 @@ struct CullingArguments {
   std::string mode = "none", radius, hitboxSize, hitboxActivate, hitboxDeactivate, instanceActivate,
               instanceDeactivate, lowFrames, blasBudget, blasBuildBudget, blasRebuildEvery,
               blasKeepFrames, feedbackStride, feedbackPaths, feedbackEvery, instanceFill = "host",
-              looks = "on", lookAppearing;
+              looks = "on", lookAppearing, feedbackDispatch = "single";
 
   void registerWith(ArgumentScanner& scanner) {
     scanner.option("--culling", &mode);
@@ -79,6 +83,7 @@ struct CullingArguments {
     scanner.option("--feedback-stride", &feedbackStride);
     scanner.option("--feedback-every", &feedbackEvery);
     scanner.option("--feedback-paths", &feedbackPaths);
+    scanner.option("--feedback-dispatch", &feedbackDispatch);
     scanner.option("--instance-fill", &instanceFill);
     scanner.option("--looks", &looks);
     scanner.option("--look-appearing", &lookAppearing);
@@ -126,6 +131,10 @@ struct CullingArguments {
     setWhole(feedbackStride, "--feedback-stride", o.feedbackStride);
     setWhole(feedbackEvery, "--feedback-every", o.feedbackEvery);
     setWhole(feedbackPaths, "--feedback-paths", o.feedbackPaths);
+    if (feedbackDispatch != "single" && feedbackDispatch != "split")
+      throw std::invalid_argument("--feedback-dispatch takes single or split, not '" +
+                                  feedbackDispatch + "'");
+    o.splitFeedbackDispatch = feedbackDispatch == "split";
     if (instanceFill != "host" && instanceFill != "gpu")
       throw std::invalid_argument("--instance-fill takes host or gpu, not '" + instanceFill + "'");
     o.gpuInstanceFill = instanceFill == "gpu";
