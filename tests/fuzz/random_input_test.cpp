@@ -17,26 +17,14 @@
 #include <vector>
 
 #include "compiler/compiler.h"
+#include "deterministic_random.h"
 #include "graph_generator.h"
 
 namespace memograph::compiler {
 namespace {
 
-// splitmix64, so the inputs are the same on every standard library.
-class Random {
- public:
-  explicit Random(std::uint64_t seed) : state_(seed) {}
-  std::uint64_t next() {
-    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  std::size_t below(std::size_t bound) { return bound == 0 ? 0 : next() % bound; }
-
- private:
-  std::uint64_t state_;
-};
+// The inputs are the same on every standard library.
+using Random = testing::DeterministicRandom;
 
 // Whether `d` points at a line of `file` and a column on it (or just past its end, where
 // "missing ';'" and "unexpected end of file" point).

@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "compiler/library_files.h"
+#include "deterministic_random.h"
 
 #include <algorithm>
 #include <array>
@@ -23,30 +24,8 @@ namespace {
 enum class ValueClass { Float, Float2, Float3, Color4 };
 constexpr std::size_t kClassCount = 4;
 
-// splitmix64: a fixed, documented generator, so graphs are identical on every standard
-// library (std::uniform_int_distribution is not).
-class Random {
- public:
-  explicit Random(std::uint64_t seed) : state_(seed) {}
-
-  std::uint64_t next() {
-    std::uint64_t z = (state_ += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  std::size_t below(std::size_t bound) { return static_cast<std::size_t>(next() % bound); }
-  bool chance(int percent) { return below(100) < static_cast<std::size_t>(percent); }
-
-  template <typename T>
-  void shuffle(std::vector<T>& items) {
-    for (std::size_t i = items.size(); i > 1; --i)
-      std::swap(items[i - 1], items[below(i)]);
-  }
-
- private:
-  std::uint64_t state_;
-};
+// Graphs are identical on every standard library.
+using Random = DeterministicRandom;
 
 struct Input {
   std::string socket;
