@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "tools/io/base64.h"
 #include "tools/io/scene_import.h"
 
 namespace memograph::io {
@@ -12,20 +13,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using compiler::Diagnostics;
-
-std::string base64(const std::vector<unsigned char>& bytes) {
-  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const unsigned n = (bytes[i] << 16) | ((i + 1 < bytes.size() ? bytes[i + 1] : 0) << 8) |
-                       (i + 2 < bytes.size() ? bytes[i + 2] : 0);
-    out += table[(n >> 18) & 63];
-    out += table[(n >> 12) & 63];
-    out += i + 1 < bytes.size() ? table[(n >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? table[n & 63] : '=';
-  }
-  return out;
-}
 
 template <typename T>
 void append(std::vector<unsigned char>& bytes, std::initializer_list<T> values) {
@@ -91,8 +78,8 @@ std::string quadJson(const std::string& bufferSource) {
 }
 
 std::string quadGltf() {
-  return quadJson(R"(, "uri": "data:application/octet-stream;base64,)" + base64(quadBuffer()) +
-                  "\"");
+  return quadJson(R"(, "uri": "data:application/octet-stream;base64,)" +
+                  base64Encode(quadBuffer()) + "\"");
 }
 
 // The same scene as a binary glTF: a 12-byte header, a JSON chunk and a BIN chunk, each

@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "runtime/atomic_file.h"
+#include "tools/io/base64.h"
 
 namespace memograph::io {
 namespace {
@@ -46,21 +47,6 @@ std::string quoted(const std::string& s) {
     }
   }
   out += '"';
-  return out;
-}
-
-std::string base64(const std::vector<unsigned char>& bytes) {
-  static const char* table = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  out.reserve((bytes.size() + 2) / 3 * 4);
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const unsigned n = (bytes[i] << 16) | ((i + 1 < bytes.size() ? bytes[i + 1] : 0) << 8) |
-                       (i + 2 < bytes.size() ? bytes[i + 2] : 0);
-    out += table[(n >> 18) & 63];
-    out += table[(n >> 12) & 63];
-    out += i + 1 < bytes.size() ? table[(n >> 6) & 63] : '=';
-    out += i + 2 < bytes.size() ? table[n & 63] : '=';
-  }
   return out;
 }
 
@@ -203,7 +189,7 @@ bool exportSceneGltf(const runtime::Scene& scene, const std::string& path,
   json += "  \"accessors\": [\n" + join(buffers.accessors, "    ") + "  ],\n";
   json += "  \"bufferViews\": [\n" + join(buffers.views, "    ") + "  ],\n";
   json += "  \"buffers\": [{\"byteLength\": " + std::to_string(buffers.bytes.size()) +
-          ", \"uri\": \"data:application/octet-stream;base64," + base64(buffers.bytes) +
+          ", \"uri\": \"data:application/octet-stream;base64," + base64Encode(buffers.bytes) +
           "\"}]\n}\n";
 
   std::string error;
