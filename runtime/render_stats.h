@@ -60,6 +60,9 @@ struct FrameStats {
   std::uint32_t looks = 0;
   double lookMilliseconds = 0.0;
   std::uint64_t lookRays = 0;
+  // 1 where this frame's trace counted (LiPaC's feedback pipeline: --feedback-every), so that
+  // the frames that count and those that do not can be timed apart.
+  std::uint32_t feedbackFrame = 0;
   std::uint32_t tlasRecords = 0;
   std::uint64_t blasBytes = 0;
   std::uint64_t tlasBytes = 0;

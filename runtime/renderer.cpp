@@ -697,6 +697,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     }
 
     const bool counts = dynamicAccel && dynamicAccel->frameCounts();
+    frameStats.feedbackFrame = counts ? 1u : 0u;
     const bool split = counts && splitCounting;
     if (split) {
       frame.culling.w = gpu::kCullingSplitPaths;

@@ -131,6 +131,30 @@ class MakeCullingReportTest(unittest.TestCase):
         self.assertEqual([c.strip() for c in row.strip("|").split("|")][1:],
                          ["0.1500", "0.0040", "0.0060"])
 
+    def test_frames_by_kind_against_none(self):
+        run = self.make_run({})
+        none = [(99.5, 1000, 0.0, 20000)] * 8  # frame time 100 with the TLAS build
+        write_frames(os.path.join(run, "frames_none.csv"), none)
+        # Frames 0 and 4 count, frame 6 has a look: quiet 0.95, counting 1.10, look 1.20.
+        path = os.path.join(run, "frames_lipac.csv")
+        with open(path, "w", newline="") as f:
+            writer = csv.writer(f)
+            writer.writerow(COLUMNS + ["looks", "feedback_frame"])
+            for i in range(8):
+                trace = 110.0 if i % 4 == 0 else 120.0 if i == 6 else 95.0
+                writer.writerow([i, trace - 0.5, 300 * 2**20, 0, 0.0, 0.5, 5000, 0, 0.1,
+                                 int(i == 6), int(i % 4 == 0)])
+        result, text = self.run_report(run)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        row = next(line for line in text.splitlines() if line.startswith("| lipac | 0.9"))
+        self.assertEqual([c.strip() for c in row.strip("|").split("|")],
+                         ["lipac", "0.950× (5)", "1.100× (2)", "1.200× (1)"])
+        # A run from before the column has no such table.
+        write_frames(path, [(100.0, 1000, 0.0, 20000)] * 8)
+        result, text = self.run_report(run)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertNotIn("| mode | quiet |", text)
+
     def test_bad_input_exits_1(self):
         result, _ = self.run_report(os.path.join(self.dir.name, "missing"))
         self.assertEqual(result.returncode, 1)

@@ -433,6 +433,8 @@ TEST(CulledRender, FeedbackEveryKthFrameCountsThoseFramesOnly) {
     const RenderSettings s = settings(24, {camera});
     const RenderResult r = render(o, scene, s);
     ASSERT_EQ(r.stats.frames.size(), 24u);
+    for (std::size_t f = 0; f < r.stats.frames.size(); ++f)
+      EXPECT_EQ(r.stats.frames[f].feedbackFrame, f % 4 == 0 ? 1u : 0u) << "frame " << f;
     for (std::size_t f = 1; f < r.stats.frames.size(); ++f) {
       const FrameStats& frame = r.stats.frames[f];
       if ((f - 1) % 4 == 0) {
