@@ -271,7 +271,7 @@ TEST_P(LipacSettles, OnAStaticCameraAndRepeatsItsPicture) {
   // and every ray counted: 511 state changes in the first 16 frames, the hitboxes still from
   // frame 11 on, 3 changes in the last 16. Run on to 64 frames, one hitbox leaves at frame 37
   // and is back at 38, 36 changes, and after that only single instances switch, 4 in 25
-  // frames. With σ_a = 8: 321 and 3 changes at stride 1, 395 and 5 at stride 4.)
+  // frames. With σ_a = 8: 321 and 3 changes at stride 1, 393 and 5 at stride 4.)
   std::uint32_t early = 0, late = 0;
   const std::uint32_t settledHitboxes = a.stats.frames.back().activeHitboxes;
   for (const FrameStats& f : a.stats.frames) {
