@@ -82,6 +82,11 @@ void validateCullingOptions(const CullingOptions& o) {
       throw std::invalid_argument(std::string(flag) + " must be a positive number, not " +
                                   number(value));
   };
+  auto within = [](std::uint32_t value, std::uint32_t low, std::uint32_t high, const char* flag) {
+    if (value < low || value > high)
+      throw std::invalid_argument(std::string(flag) + " must be in " + std::to_string(low) + ".." +
+                                  std::to_string(high) + ", not " + std::to_string(value));
+  };
   if (!(o.radius >= 0.0f) || !std::isfinite(o.radius))
     throw std::invalid_argument("--culling-radius must be 0 or more, not " + number(o.radius));
   positive(o.hitboxSize, "--hitbox-size");
@@ -97,30 +102,16 @@ void validateCullingOptions(const CullingOptions& o) {
     throw std::invalid_argument("--instance-deactivate (" + number(o.instanceDeactivate) +
                                 ") must be below --instance-activate (" +
                                 number(o.instanceActivate) + ")");
-  if (o.lowFrames == 0 || o.lowFrames > kMaxLowFrames)
-    throw std::invalid_argument("--low-frames must be in 1.." + std::to_string(kMaxLowFrames) +
-                                ", not " + std::to_string(o.lowFrames));
+  within(o.lowFrames, 1, kMaxLowFrames, "--low-frames");
   if (!(o.appearMinFraction >= 0.0f && o.appearMinFraction <= 1.0f))
     throw std::invalid_argument("the appearing instances' minimum size must be in [0, 1]");
-  if (o.blasRebuildEvery == 0 || o.blasRebuildEvery > kMaxLowFrames)
-    throw std::invalid_argument("--blas-rebuild-every must be in 1.." +
-                                std::to_string(kMaxLowFrames) + ", not " +
-                                std::to_string(o.blasRebuildEvery));
+  within(o.blasRebuildEvery, 1, kMaxLowFrames, "--blas-rebuild-every");
   if (o.lookAppearing == 0)
     throw std::invalid_argument("--look-appearing must be at least 1 (--looks off: no looks)");
-  if (o.feedbackStride == 0 || o.feedbackStride > 64)
-    throw std::invalid_argument("--feedback-stride must be in 1..64, not " +
-                                std::to_string(o.feedbackStride));
-  if (o.feedbackPaths > 64)
-    throw std::invalid_argument("--feedback-paths must be in 0..64, not " +
-                                std::to_string(o.feedbackPaths));
-  if (o.feedbackEvery == 0 || o.feedbackEvery > 64)
-    throw std::invalid_argument("--feedback-every must be in 1..64, not " +
-                                std::to_string(o.feedbackEvery));
-  if (o.blasKeepFrames > kMaxLowFrames)
-    throw std::invalid_argument("--blas-keep-frames must be in 0.." +
-                                std::to_string(kMaxLowFrames) + ", not " +
-                                std::to_string(o.blasKeepFrames));
+  within(o.feedbackStride, 1, 64, "--feedback-stride");
+  within(o.feedbackPaths, 0, 64, "--feedback-paths");
+  within(o.feedbackEvery, 1, 64, "--feedback-every");
+  within(o.blasKeepFrames, 0, kMaxLowFrames, "--blas-keep-frames");
   if (o.mode == CullingMode::None && (o.blasBudgetBytes || o.blasBuildTriangles))
     throw std::invalid_argument(
         "--blas-budget and --blas-build-budget manage the BLASes culling leaves out; they need "

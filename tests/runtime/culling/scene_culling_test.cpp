@@ -323,26 +323,33 @@ TEST(CullingOptions, BadValuesAreRefusedWithTheirFlag) {
   o = lipac();
   o.hitboxSize = 0.0f;
   EXPECT_NE(message(o).find("--hitbox-size"), std::string::npos);
-  o = lipac();
-  o.lowFrames = 0;
-  EXPECT_NE(message(o).find("--low-frames"), std::string::npos);
-  o = lipac();
-  o.feedbackStride = 0;
-  EXPECT_NE(message(o).find("--feedback-stride"), std::string::npos);
-  o.feedbackStride = 65;
-  EXPECT_NE(message(o).find("--feedback-stride"), std::string::npos);
-  o.feedbackStride = 64;
-  EXPECT_EQ(message(o), "");
-  o.feedbackEvery = 0;
-  EXPECT_NE(message(o).find("--feedback-every"), std::string::npos);
-  o.feedbackEvery = 65;
-  EXPECT_NE(message(o).find("--feedback-every"), std::string::npos);
-  o.feedbackEvery = 64;
-  EXPECT_EQ(message(o), "");
-  o.feedbackPaths = 65;  // (whether N divides the paths per pixel the renderer checks)
-  EXPECT_NE(message(o).find("--feedback-paths"), std::string::npos);
-  o.feedbackPaths = 0;
-  EXPECT_EQ(message(o), "");
+  // The whole-number options' ranges, each end and one past it (whether --feedback-paths
+  // divides the paths per pixel the renderer checks).
+  struct Range {
+    std::uint32_t CullingOptions::*field;
+    std::uint32_t low, high;
+    const char* flag;
+  };
+  for (const Range r : {Range{&CullingOptions::lowFrames, 1, 1024, "--low-frames"},
+                        Range{&CullingOptions::blasRebuildEvery, 1, 1024, "--blas-rebuild-every"},
+                        Range{&CullingOptions::blasKeepFrames, 0, 1024, "--blas-keep-frames"},
+                        Range{&CullingOptions::feedbackStride, 1, 64, "--feedback-stride"},
+                        Range{&CullingOptions::feedbackPaths, 0, 64, "--feedback-paths"},
+                        Range{&CullingOptions::feedbackEvery, 1, 64, "--feedback-every"}}) {
+    SCOPED_TRACE(r.flag);
+    o = lipac();
+    for (const std::uint32_t fine : {r.low, r.high}) {
+      o.*r.field = fine;
+      EXPECT_EQ(message(o), "");
+    }
+    o.*r.field = r.high + 1;
+    EXPECT_EQ(message(o), std::string(r.flag) + " must be in " + std::to_string(r.low) + ".." +
+                              std::to_string(r.high) + ", not " + std::to_string(r.high + 1));
+    if (r.low > 0) {
+      o.*r.field = r.low - 1;
+      EXPECT_NE(message(o).find(r.flag), std::string::npos);
+    }
+  }
   o = CullingOptions{};
   o.blasBudgetBytes = 1 << 20;
   EXPECT_NE(message(o).find("need"), std::string::npos);
