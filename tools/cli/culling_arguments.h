@@ -59,13 +59,13 @@ inline constexpr const char* kCullingHelp =
     "  --blas-rebuild-every N  animated meshes (the city's flags): their BLASes are updated\n"
     "                        in place every frame and rebuilt every N frames (default 16)\n";
 
-// The numbers stay empty unless given: parse() then keeps CullingOptions' own defaults (the
+// The options stay empty unless given: parse() then keeps CullingOptions' own defaults (the
 // measured ones, scene_culling.h), so that there is one place to change them.
 struct CullingArguments {
   std::string mode = "none", radius, hitboxSize, hitboxActivate, hitboxDeactivate, instanceActivate,
               instanceDeactivate, lowFrames, blasBudget, blasBuildBudget, blasRebuildEvery,
-              blasKeepFrames, feedbackStride, feedbackPaths, feedbackEvery, instanceFill = "host",
-              looks = "on", lookAppearing, feedbackDispatch = "single";
+              blasKeepFrames, feedbackStride, feedbackPaths, feedbackEvery, instanceFill, looks,
+              lookAppearing, feedbackDispatch;
 
   void registerWith(ArgumentScanner& scanner) {
     scanner.option("--culling", &mode);
@@ -115,6 +115,16 @@ struct CullingArguments {
       if (!text.empty())
         field = whole(text, flag);
     };
+    // A choice of two words, `first` or `second`: `field` becomes whether it is `yes`.
+    const auto setChoice = [](const std::string& text, const char* flag, const char* first,
+                              const char* second, const char* yes, bool& field) {
+      if (text.empty())
+        return;
+      if (text != first && text != second)
+        throw std::invalid_argument(std::string(flag) + " takes " + first + " or " + second +
+                                    ", not '" + text + "'");
+      field = text == yes;
+    };
     setReal(radius, "--culling-radius", o.radius);
     setReal(hitboxSize, "--hitbox-size", o.hitboxSize);
     setReal(hitboxActivate, "--hitbox-activate", o.hitboxActivate);
@@ -131,16 +141,10 @@ struct CullingArguments {
     setWhole(feedbackStride, "--feedback-stride", o.feedbackStride);
     setWhole(feedbackEvery, "--feedback-every", o.feedbackEvery);
     setWhole(feedbackPaths, "--feedback-paths", o.feedbackPaths);
-    if (feedbackDispatch != "single" && feedbackDispatch != "split")
-      throw std::invalid_argument("--feedback-dispatch takes single or split, not '" +
-                                  feedbackDispatch + "'");
-    o.splitFeedbackDispatch = feedbackDispatch == "split";
-    if (instanceFill != "host" && instanceFill != "gpu")
-      throw std::invalid_argument("--instance-fill takes host or gpu, not '" + instanceFill + "'");
-    o.gpuInstanceFill = instanceFill == "gpu";
-    if (looks != "on" && looks != "off")
-      throw std::invalid_argument("--looks takes on or off, not '" + looks + "'");
-    o.looks = looks == "on";
+    setChoice(feedbackDispatch, "--feedback-dispatch", "single", "split", "split",
+              o.splitFeedbackDispatch);
+    setChoice(instanceFill, "--instance-fill", "host", "gpu", "gpu", o.gpuInstanceFill);
+    setChoice(looks, "--looks", "on", "off", "on", o.looks);
     setWhole(lookAppearing, "--look-appearing", o.lookAppearing);
     runtime::validateCullingOptions(o);
     return o;
