@@ -90,6 +90,12 @@ def cases(gen):
          r"--sizes"),
         ("usage: bench sizes 0x5", ["bench", "builtin:landscape", "--sizes", "0x5"], 2,
          r"--sizes"),
+        # An empty value is not "not given": the culling numbers' defaults live in the library.
+        ("usage: render low frames empty", ["render", "builtin:landscape", "--culling", "lipac",
+                                            "--low-frames", "", "--out", "out/x.png"], 2,
+         r"'--low-frames' needs a value"),
+        ("usage: render looks empty", ["render", "builtin:landscape", "--looks=", "--out",
+                                       "out/x.png"], 2, r"'--looks' needs a value"),
         ("usage: bench scene file", ["bench", "scene.gltf", "--csv", "out/keep.txt"], 2,
          r"built-in"),
         ("usage: bench csv kept", ["bench", "--paths", "x", "--csv", "out/keep.txt"], 2,

@@ -83,13 +83,16 @@ int ArgumentScanner::scan(std::vector<std::string>& positional) {
       *found->flag = true;
       continue;
     }
-    if (equals != std::string_view::npos) {
-      *found->value = std::string(arg.substr(equals + 1));
-    } else if (i + 1 < args_.size()) {
-      *found->value = std::string(args_[++i]);
-    } else {
+    std::string_view value;
+    if (equals != std::string_view::npos)
+      value = arg.substr(equals + 1);
+    else if (i + 1 < args_.size())
+      value = args_[++i];
+    // An empty value is no value: options whose default lives in the library (the culling
+    // numbers) read "empty" as "not given", so `--low-frames ""` must not pass as it.
+    if (value.empty())
       return usageError(command_, "option '" + std::string(name) + "' needs a value");
-    }
+    *found->value = std::string(value);
   }
   return kExitOk;
 }

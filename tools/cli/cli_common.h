@@ -37,7 +37,8 @@ bool parseImageSize(std::string_view text, std::uint32_t& width, std::uint32_t& 
                     std::string& error);
 
 // Walks `args`: options with a value (`--target glsl` or `--target=glsl`), flags, and
-// positional arguments. Unknown options are usage errors.
+// positional arguments. Unknown options, and options without a value or with an empty one,
+// are usage errors.
 class ArgumentScanner {
  public:
   ArgumentScanner(std::string_view command, std::span<const std::string_view> args)
