@@ -86,7 +86,8 @@ struct CullingOptions {
   // lipac, with feedbackPaths N < P: a counting frame traces in two dispatches, the P - N
   // paths that do not count with the pipeline compiled without the feedback, then the N that
   // do with it, so that only those run the feedback's code (its probes' trace call and
-  // counters, which make a pipeline slower whether a path counts or not). The same paths and
+  // counters, which seem to slow a pipeline whether a path counts or not: docs/culling.md,
+  // "Split counting frames"). The same paths and
   // counts; the picture differs only by float rounding (each dispatch adds its share of the
   // mean). Off until the GPU machine has measured it.
   bool splitFeedbackDispatch = false;

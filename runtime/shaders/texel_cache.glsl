@@ -76,8 +76,8 @@ const uint kCacheRecordWords = kCacheHeader + kCacheValueWords;
 // (classroom, 1080p, P = 6, L = 4, frame clock; tile cache 20.6 to 8.9 ms). A key seen
 // stale there (locked meanwhile) still names the values beside it; a stale key or clock only
 // steers tileEnqueue's choice of a slot, whose lock is an atomic exchange that sees the true
-// key. What the fill passes wrote, the barrier made
-// visible. Two stamps of one word race as before: each stores a valid clock.
+// key. What the fill passes wrote, the barrier made visible. Two stamps of one word race as
+// before: each stores a valid clock.
 #ifdef MG_CACHE_QUIESCENT_READS
 #define MG_CACHE_COHERENT
 #else
