@@ -87,9 +87,9 @@ struct CullingOptions {
   // paths that do not count with the pipeline compiled without the feedback, then the N that
   // do with it, so that only those run the feedback's code (its probes' trace call and
   // counters, which seem to slow a pipeline whether a path counts or not: docs/culling.md,
-  // "Split counting frames"). The same paths and
-  // counts; the picture differs only by float rounding (each dispatch adds its share of the
-  // mean). Off until the GPU machine has measured it.
+  // "Split counting frames"). The same paths and counts; the picture differs only by float
+  // rounding (each dispatch adds its share of the mean). Off until the GPU machine has
+  // measured it.
   bool splitFeedbackDispatch = false;
   // The TLAS's instance records assembled by a compute pass from the instance states
   // (GpuInstanceFill, seeds/001 §3.3.2) instead of written by the host. The same records in
