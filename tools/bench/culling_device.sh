@@ -68,10 +68,11 @@ append_csv() {
   if [ -s "$2" ]; then tail -n +2 "$1" >>"$2"; else cat "$1" >"$2"; fi
 }
 
-# One bench run of the path: `label`, then its flags.
+# One bench run of the path: `label`, the summary CSV its line goes to, then its flags; its
+# frames go to frames_<label>.csv.
 bench_run() {
-  local label=$1
-  shift
+  local label=$1 summary=$2
+  shift 2
   echo "== bench $label" | tee -a "$OUT/log.txt"
   # shellcheck disable=SC2086 # EXTRA is a list of flags
   timeout "$limit" "$m" bench "$scene" "${shadingFlags[@]}" --sizes "$size" --paths "$paths" --bounces 4 \
@@ -80,58 +81,55 @@ bench_run() {
     --csv "$work/bench_$label.csv" --frames-csv "$work/$label." "$@" ${EXTRA:-} 2>&1 |
     tail -8 >>"$OUT/log.txt"
   echo "rc=${PIPESTATUS[0]}" >>"$OUT/log.txt"
+  append_csv "$work/bench_$label.csv" "$OUT/$summary"
+  cp "$work/$label."*_"$size".csv "$OUT/frames_$label.csv" 2>/dev/null
 }
 
+# VARIANTS="label:flags;label:flags" as lipac_<label> and its flags, for the variants and
+# pictures steps.
+variant_labels=() variant_flags=()
+IFS=';' read -ra variant_entries <<<"${VARIANTS:-}"
+for entry in "${variant_entries[@]}"; do
+  variant_labels+=("lipac_${entry%%:*}")
+  variant_flags+=("${entry#*:}")
+done
+
 looks() {
-  local label
   for setting in off ${LOOKS:-2 4 16}; do
     if [ "$setting" = off ]; then
-      label=lipac_looks_off
-      bench_run "$label" --culling lipac --looks off
+      bench_run lipac_looks_off looks.csv --culling lipac --looks off
     else
-      label=lipac_appearing_$setting
-      bench_run "$label" --culling lipac --look-appearing "$setting"
+      bench_run "lipac_appearing_$setting" looks.csv --culling lipac --look-appearing "$setting"
     fi
-    append_csv "$work/bench_$label.csv" "$OUT/looks.csv"
-    cp "$work/$label."*_"$size".csv "$OUT/frames_$label.csv" 2>/dev/null
   done
 }
 
 variants() {
-  local entry label flags
-  IFS=';' read -ra entries <<<"${VARIANTS:-}"
-  for entry in "${entries[@]}"; do
-    label=lipac_${entry%%:*}
-    flags=${entry#*:}
-    # shellcheck disable=SC2086 # flags is a list
-    bench_run "$label" --culling lipac $flags
-    append_csv "$work/bench_$label.csv" "$OUT/variants.csv"
-    cp "$work/$label."*_"$size".csv "$OUT/frames_$label.csv" 2>/dev/null
+  for i in "${!variant_labels[@]}"; do
+    # shellcheck disable=SC2086 # the flags are a list
+    bench_run "${variant_labels[i]}" variants.csv --culling lipac ${variant_flags[i]}
   done
 }
 
 bench() {
   for mode in $modes; do
-    bench_run "$mode" --culling "$mode"
-    append_csv "$work/bench_$mode.csv" "$OUT/bench.csv"
-    cp "$work/$mode."*_"$size".csv "$OUT/frames_$mode.csv" 2>/dev/null
+    bench_run "$mode" bench.csv --culling "$mode"
   done
 }
 
 pictures() {
-  local cameras label flags entry
+  local cameras label flags
   mapfile -t cameras < <(grep -v '^#' "$path" | grep .)
-  # What is pictured: each mode, then each of VARIANTS as lipac_<label> (none first, as the
-  # modes list it, since the others are compared with it).
+  # What is pictured: each mode, then each variant (none first, as the modes list it, since
+  # the others are compared with it).
   local -a labels=() settings=()
   for mode in $modes; do
     labels+=("$mode")
     settings+=("--culling $mode")
   done
-  IFS=';' read -ra entries <<<"${VARIANTS:-}"
-  for entry in "${entries[@]}"; do
-    labels+=("lipac_${entry%%:*}")
-    settings+=("--culling lipac ${entry#*:}")
+  for i in "${!variant_labels[@]}"; do
+    labels+=("${variant_labels[i]}")
+    settings+=("--culling lipac ${variant_flags[i]}")
   done
   for k in $picture_cameras; do
     printf '%s\n' "${cameras[@]:k-8:8}" >"$work/path_$k.campath"
