@@ -215,8 +215,18 @@ std::size_t countDistinctMaterialGraphs(const Scene& scene) {
   return graphs.size();
 }
 
+// Only the pipeline backend has a closest-hit shader to bump LiPaC's counters in
+// (--hit-counters closest-hit): --backend auto picks it then.
+static ContextOptions contextOptionsFor(const RendererOptions& options) {
+  ContextOptions context = options.context;
+  if (options.culling.mode == CullingMode::Lipac && options.culling.countersInClosestHit)
+    context.autoPrefersPipeline = true;
+  return context;
+}
+
 Renderer::Renderer(RendererOptions options)
-    : options_(std::move(options)), context_(std::make_unique<VulkanContext>(options_.context)) {}
+    : options_(std::move(options)),
+      context_(std::make_unique<VulkanContext>(contextOptionsFor(options_))) {}
 
 Renderer::~Renderer() = default;
 
@@ -234,6 +244,11 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
         "--debug-culling shows which instances culling keeps; it needs --culling frustum or "
         "--culling lipac");
   const VulkanContext& context = *context_;
+  if (options_.culling.mode == CullingMode::Lipac && options_.culling.countersInClosestHit &&
+      context.backend() == Backend::RayQuery)
+    throw std::invalid_argument(
+        "--hit-counters closest-hit needs the ray-tracing pipeline backend (--backend "
+        "pipeline): a ray query has no closest-hit shader");
 
   // Materials: graphs → GLSL, and the textures they name. Linked first: whether NEE must
   // evaluate an emitter's graph decides what Shading::Auto can run.
@@ -437,6 +452,9 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   const std::vector<std::string> quietDefines = shaderDefines;
   if (hitFeedback)
     shaderDefines.push_back("MG_HIT_FEEDBACK=1");
+  // --hit-counters closest-hit: the feedback's pipeline bumps the counters in its closest-hit
+  // shader (the pipeline backend; the constructor refuses it on the query backend).
+  const bool closestHitCounts = hitFeedback && options_.culling.countersInClosestHit;
   // One architecture or the other: the megakernel's pipeline, or the wavefront's passes.
   std::optional<TracePipeline> pipeline;
   std::optional<TracePipeline> quietPipeline;
@@ -457,16 +475,21 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     // The wavefront has no callables: its material pipelines' compiles count in their place.
     callableStats = wavefrontTracer->materialShaderStats();
   } else {
-    pipeline.emplace(context, compiler, textures.count(),
-                     materialCallables ? &*materialCallables : nullptr, pipelineThreads,
-                     shaderDefines, materialCache.tileImageView() != VK_NULL_HANDLE,
-                     materialCache.tileFillRows() > 0);
+    TracePipelineSetup setup;
+    setup.callables = materialCallables ? &*materialCallables : nullptr;
+    setup.pipelineThreads = pipelineThreads;
+    setup.defines = shaderDefines;
+    setup.tileImage = materialCache.tileImageView() != VK_NULL_HANDLE;
+    setup.tileFillPass = materialCache.tileFillRows() > 0;
+    setup.closestHitCounts = closestHitCounts;
+    setup.closestHitBindings = closestHitCounts;
+    pipeline.emplace(context, compiler, textures.count(), setup);
     stats.rayTracingStack = pipeline->stack();
-    if (hitFeedback && (options_.culling.feedbackEvery > 1 || splitCounting))
-      quietPipeline.emplace(context, compiler, textures.count(),
-                            materialCallables ? &*materialCallables : nullptr, pipelineThreads,
-                            quietDefines, materialCache.tileImageView() != VK_NULL_HANDLE,
-                            materialCache.tileFillRows() > 0);
+    if (hitFeedback && (options_.culling.feedbackEvery > 1 || splitCounting)) {
+      setup.defines = quietDefines;
+      setup.closestHitCounts = false;
+      quietPipeline.emplace(context, compiler, textures.count(), setup);
+    }
   }
   stats.pipelineCreateMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pipelineStart)

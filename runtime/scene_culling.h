@@ -91,6 +91,13 @@ struct CullingOptions {
   // rounding (each dispatch adds its share of the mean). Off until the GPU machine has
   // measured it.
   bool splitFeedbackDispatch = false;
+  // lipac, pipeline backend: the path rays' hit counters (and their probes' boxes') are bumped
+  // by the closest-hit shader, as §3.3.2's are, one atomic a counted ray, instead of after the
+  // trace in the raygen through a two-slot buffer that writes a run of rays counting one
+  // counter with one atomic (the query backend's only way: a ray query has no closest-hit
+  // shader). The same counts, so the same states and picture; the raygen stays the default
+  // until the GPU machine has measured which is faster.
+  bool countersInClosestHit = false;
   // The TLAS's instance records assembled by a compute pass from the instance states
   // (GpuInstanceFill, seeds/001 §3.3.2) instead of written by the host. The same records in
   // the same order, so the same picture; the host fill stays the default until the GPU

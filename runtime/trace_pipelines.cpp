@@ -61,13 +61,14 @@ VkPipeline createWithDeferredOperation(const VulkanContext& context,
 
 void appendReportingShaders(VkDevice device, ShaderCompiler& compiler,
                             std::vector<VulkanHandle<VkShaderModule>>& modules,
-                            std::vector<VkShaderStageFlagBits>& stages) {
-  modules.push_back(
-      createShaderModule(device, compiler.compile({"trace_miss.rmiss", ShaderStage::Miss, {}})));
+                            std::vector<VkShaderStageFlagBits>& stages,
+                            const std::vector<std::string>& defines) {
+  modules.push_back(createShaderModule(
+      device, compiler.compile({"trace_miss.rmiss", ShaderStage::Miss, defines})));
   modules.push_back(
       createShaderModule(device, compiler.compile({"trace_shadow.rmiss", ShaderStage::Miss, {}})));
   modules.push_back(createShaderModule(
-      device, compiler.compile({"trace_hit.rchit", ShaderStage::ClosestHit, {}})));
+      device, compiler.compile({"trace_hit.rchit", ShaderStage::ClosestHit, defines})));
   stages.insert(stages.end(), {VK_SHADER_STAGE_MISS_BIT_KHR, VK_SHADER_STAGE_MISS_BIT_KHR,
                                VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR});
 }
@@ -206,23 +207,26 @@ VulkanHandle<VkDescriptorSetLayout> createTraceSetLayout(VkDevice device, VkShad
 }
 
 TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compiler,
-                             std::uint32_t textureCount, const MaterialCallables* callables,
-                             std::uint32_t pipelineThreads,
-                             const std::vector<std::string>& extraDefines, bool tileImage,
-                             bool tileFillPass)
-    : context_(context), backend_(context.backend()), tileFillPass_(tileFillPass) {
+                             std::uint32_t textureCount, const TracePipelineSetup& setup)
+    : context_(context), backend_(context.backend()), tileFillPass_(setup.tileFillPass) {
   VkDevice device = context.device();
   bool query = backend_ == Backend::RayQuery;
+  const MaterialCallables* callables = setup.callables;
+  const bool tileFillPass = setup.tileFillPass;
   if (query && callables)
     throw std::invalid_argument(
         "callable material shaders need the ray-tracing pipeline backend (--backend pipeline); "
         "the query backend dispatches materials with a switch");
+  // The renderer refuses --hit-counters closest-hit on the query backend before it gets here.
+  if (query && (setup.closestHitCounts || setup.closestHitBindings))
+    throw std::logic_error("a closest-hit shader on the query backend, which has none");
   // Callables read the textures (mg_SampleTexture) through the same set as the raygen.
   VkShaderStageFlags stages =
       query ? VK_SHADER_STAGE_COMPUTE_BIT
-            : VK_SHADER_STAGE_RAYGEN_BIT_KHR | (callables ? VK_SHADER_STAGE_CALLABLE_BIT_KHR : 0);
+            : VK_SHADER_STAGE_RAYGEN_BIT_KHR | (callables ? VK_SHADER_STAGE_CALLABLE_BIT_KHR : 0) |
+                  (setup.closestHitBindings ? VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR : 0);
 
-  setLayout_ = createTraceSetLayout(device, stages, textureCount, tileImage);
+  setLayout_ = createTraceSetLayout(device, stages, textureCount, setup.tileImage);
   VkDescriptorSetLayout setLayout = setLayout_.get();
 
   layout_ = createPipelineLayout(device, setLayout);
@@ -239,7 +243,12 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
     defines.push_back("MG_MATERIAL_CALLABLES=1");
     defines.push_back("MG_MATERIAL_COUNT=" + std::to_string(materialRecords));
   }
-  defines.insert(defines.end(), extraDefines.begin(), extraDefines.end());
+  defines.insert(defines.end(), setup.defines.begin(), setup.defines.end());
+  std::vector<std::string> hitDefines;
+  if (setup.closestHitCounts) {
+    defines.push_back("MG_CLOSEST_HIT_COUNTS=1");
+    hitDefines.push_back("MG_CLOSEST_HIT_COUNTS=1");
+  }
   // The deferred tile fill's pass: the same source and defines, entered at the fill.
   std::vector<std::string> fillDefines = defines;
   fillDefines.push_back("MG_TILE_FILL_PASS=1");
@@ -267,7 +276,7 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   modules.push_back(createShaderModule(
       device, compiler.compile({"path_tracer.glsl", ShaderStage::RayGen, defines})));
   std::vector<VkShaderStageFlagBits> stageBits = {VK_SHADER_STAGE_RAYGEN_BIT_KHR};
-  appendReportingShaders(device, compiler, modules, stageBits);
+  appendReportingShaders(device, compiler, modules, stageBits, hitDefines);
   if (tileFillPass) {
     modules.push_back(createShaderModule(
         device, compiler.compile({"path_tracer.glsl", ShaderStage::RayGen, fillDefines})));
@@ -281,8 +290,8 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   for (const auto& module : modules)
     moduleHandles.push_back(module.get());
   // The stack size is set per launch (below), not left to the spec's default.
-  pipeline_ =
-      createRayTracingPipeline(context, moduleHandles, stageBits, layout, pipelineThreads, true);
+  pipeline_ = createRayTracingPipeline(context, moduleHandles, stageBits, layout,
+                                       setup.pipelineThreads, true);
   VkPipeline pipeline = pipeline_.get();
 
   // The pipeline stack. The spec's default assumes callables may be called from hit and

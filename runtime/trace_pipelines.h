@@ -28,10 +28,13 @@ VulkanHandle<VkDescriptorSetLayout> createTraceSetLayout(VkDevice device, VkShad
 
 // Appends the report-only shaders (thesis §5.2) of every ray-tracing pipeline here, in this
 // order: the closest-hit rays' miss (trace_miss.rmiss), the shadow rays' miss
-// (trace_shadow.rmiss) and the closest hit (trace_hit.rchit), with their stages.
+// (trace_shadow.rmiss) and the closest hit (trace_hit.rchit), with their stages. `defines`
+// go to the closest-hit rays' miss and hit, which must agree with the raygen on the payload
+// (MG_CLOSEST_HIT_COUNTS: the closest hit bumps LiPaC's counters).
 void appendReportingShaders(VkDevice device, ShaderCompiler& compiler,
                             std::vector<VulkanHandle<VkShaderModule>>& modules,
-                            std::vector<VkShaderStageFlagBits>& stages);
+                            std::vector<VkShaderStageFlagBits>& stages,
+                            const std::vector<std::string>& defines = {});
 
 // A ray-tracing pipeline of one group per shader, in `stages` order: a closest-hit shader
 // makes a triangle hit group, any other shader a general group (raygen, miss, callable).
@@ -61,20 +64,37 @@ ShaderBindingTable createShaderBindingTable(const VulkanContext& context, VkPipe
                                             std::uint32_t groupCount,
                                             const std::vector<ShaderBindingRegion>& regions);
 
+// What a TracePipeline is built with besides the device, the compiler and the textures.
+struct TracePipelineSetup {
+  // Null for the switch dispatch (materials.glsl holds every material); else the pipeline
+  // backend's callable material shaders (the raygen is then compiled with
+  // MG_MATERIAL_CALLABLES).
+  const MaterialCallables* callables = nullptr;
+  // Host threads that may join the driver's ray-tracing pipeline compile
+  // (VK_KHR_deferred_host_operations); 1 creates it on the calling thread alone.
+  std::uint32_t pipelineThreads = 1;
+  // Defines of the path tracer (raygen or compute) only, e.g. the texel cache's.
+  std::vector<std::string> defines;
+  bool tileImage = false;
+  // Also build the deferred tile fill's pass (the same source with MG_TILE_FILL_PASS: a
+  // second raygen of this pipeline, or a second compute pipeline).
+  bool tileFillPass = false;
+  // The pipeline backend's closest-hit shader bumps LiPaC's hit counters
+  // (--hit-counters closest-hit): it is compiled with MG_CLOSEST_HIT_COUNTS, as are the
+  // raygen and the miss that share its payload.
+  bool closestHitCounts = false;
+  // The closest-hit shader sees the descriptor set. Pipelines that share one descriptor set
+  // must agree on it, so the pipeline without the feedback asks for it too where the
+  // feedback's pipeline counts in the closest hit.
+  bool closestHitBindings = false;
+};
+
 class TracePipeline {
  public:
-  // `callables`: null for the switch dispatch (materials.glsl holds every material); else
-  // the pipeline backend's callable material shaders (the raygen is then compiled with
-  // MG_MATERIAL_CALLABLES). Throws std::invalid_argument for callables on the query backend.
-  // `pipelineThreads`: host threads that may join the driver's ray-tracing pipeline
-  // compile (VK_KHR_deferred_host_operations); 1 creates it on the calling thread alone.
-  // `extraDefines` go to the path tracer (raygen or compute) only, e.g. the texel cache's.
-  // `tileFillPass`: also build the deferred tile fill's pass (the same source with
-  // MG_TILE_FILL_PASS: a second raygen of this pipeline, or a second compute pipeline).
+  // Throws std::invalid_argument for callables on the query backend (std::logic_error for a
+  // closest-hit setting there: the renderer refuses --hit-counters closest-hit first).
   TracePipeline(const VulkanContext& context, ShaderCompiler& compiler, std::uint32_t textureCount,
-                const MaterialCallables* callables = nullptr, std::uint32_t pipelineThreads = 1,
-                const std::vector<std::string>& extraDefines = {}, bool tileImage = false,
-                bool tileFillPass = false);
+                const TracePipelineSetup& setup = {});
 
   VkDescriptorSetLayout descriptorSetLayout() const { return setLayout_.get(); }
   // Binds and launches one thread per pixel.

@@ -66,9 +66,7 @@ bool dispatchTracesPath(uint path, uint pathCount) {
 }
 
 #ifdef MG_HIT_FEEDBACK
-layout(set = 0, binding = kBindingHitFeedback, std430) buffer HitFeedbackBlock {
-  uint hitCounts[];
-};
+#include "hit_counters.glsl"
 
 // LiPaC's hit feedback (seeds/001 §3.3.2): a path ray counts the instance it hit, and a
 // probe along the same segment through the counting boxes' own TLAS counts a box it crosses
@@ -146,6 +144,28 @@ uint pathFeedbackWeight(uint path, uint pathCount, uint weight) {
                                       : 0u;
 }
 #endif
+
+// A path ray, counted with `weight` (0, and always without MG_HIT_FEEDBACK: not counted). By
+// default the raygen or compute shader counts after the trace (countHitFeedback). With
+// MG_CLOSEST_HIT_COUNTS (--hit-counters closest-hit, the pipeline backend) the closest-hit
+// shader bumps the counters of the hit and of the probe's box, as §3.3.2's does, one atomic a
+// ray without the two-slot buffer; the raygen only tallies what was counted. The same counts
+// either way.
+HitInfo traceCounted(vec3 origin, vec3 direction, uint mask, uint weight) {
+#if defined(MG_HIT_FEEDBACK) && defined(MG_CLOSEST_HIT_COUNTS)
+  HitInfo hit = traceClosestCounted(origin, direction, kRayTMax, mask, weight);
+  if (weight == 0u) return hit;
+  if (hit.t >= 0.0) g_feedbackTally += weight;
+  uint box = traceCountingBoxCounted(origin, direction, hit.t >= 0.0 ? hit.t : kRayTMax, weight);
+  if (box != 0xFFFFFFFFu) g_feedbackTally += weight;
+#else
+  HitInfo hit = traceClosest(origin, direction, kRayTMax, mask);
+#ifdef MG_HIT_FEEDBACK
+  countHitFeedback(origin, direction, hit, weight);
+#endif
+#endif
+  return hit;
+}
 
 #if defined(MG_MATERIAL_FLOOR)
 #include "material_floor.glsl"
@@ -258,8 +278,9 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
   // each path ray, which with the path ray's probe through the counting boxes makes up to a
   // third of what the look traced. The paths' directions still need the materials.
   bool countsOnly = false;
+  uint feedbackWeight = 0u;  // what this pixel's rays count (0: nothing)
 #ifdef MG_HIT_FEEDBACK
-  uint feedbackWeight = hitFeedbackWeight(pixel);
+  feedbackWeight = hitFeedbackWeight(pixel);
   countsOnly = (frame.culling.w & kCullingLook) != 0u;
 #endif
 
@@ -268,11 +289,9 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
   primaryHit.t = -1.0;
   if (sharedPrimary && inside) {
     primaryRay(pixel, vec2(0.5), primaryOrigin, primaryDirection);
-    primaryHit = traceClosest(primaryOrigin, primaryDirection, kRayTMax, kRayMaskNoLightQuads);
+    primaryHit = traceCounted(primaryOrigin, primaryDirection, kRayMaskNoLightQuads,
+                              feedbackWeight);
     rays += 1u;
-#ifdef MG_HIT_FEEDBACK
-    countHitFeedback(primaryOrigin, primaryDirection, primaryHit, feedbackWeight);
-#endif
   }
 
   // With the shared primary ray every path's first hit is the same surface at the same
@@ -303,8 +322,9 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
     vec3 radiance = vec3(0.0);
     float previousBsdfPdf = 0.0;  // the BSDF ray's pdf that found this hit (0: camera ray)
     bool alive = inside;
+    uint pathWeight = 0u;
 #ifdef MG_HIT_FEEDBACK
-    uint pathWeight = pathFeedbackWeight(path, pathCount, feedbackWeight);
+    pathWeight = pathFeedbackWeight(path, pathCount, feedbackWeight);
 #endif
     for (uint bounce = 0u; bounce < rayCountPerPath; ++bounce) {
       SurfaceHit s;
@@ -315,12 +335,9 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
           hit = primaryHit;
         } else {
           // Camera rays skip lights' quads (Cycles 3.4 shows no area lamp to the camera).
-          hit = traceClosest(origin, direction, kRayTMax,
-                             bounce == 0u ? kRayMaskNoLightQuads : kRayMaskAll);
+          hit = traceCounted(origin, direction, bounce == 0u ? kRayMaskNoLightQuads : kRayMaskAll,
+                             pathWeight);
           rays += 1u;
-#ifdef MG_HIT_FEEDBACK
-          countHitFeedback(origin, direction, hit, pathWeight);
-#endif
         }
         if (hit.t < 0.0) {
           radiance += throughput * environmentRadiance(direction);

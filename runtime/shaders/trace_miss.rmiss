@@ -4,8 +4,8 @@
 #extension GL_GOOGLE_include_directive : require
 #include "trace_hit.glsl"
 
-layout(location = 0) rayPayloadInEXT HitInfo hitPayload;
+layout(location = 0) rayPayloadInEXT HitPayload hitPayload;
 
 void main() {
-  hitPayload.t = -1.0;
+  hitPayload.hit.t = -1.0;
 }

@@ -169,7 +169,7 @@ TEST_F(CliTest, TheSmallCityRendersWithTheDefaultBackend) {
   EXPECT_TRUE(fs::exists(out));
 }
 
-// Bad culling options are usage errors (exit 2) naming the flag, before any GPU work; a
+// Bad culling options are usage errors (exit 2) naming the flag, before any rendering; a
 // culled render of the small city writes its image, its statistics and its top view.
 TEST_F(CliTest, CullingOptionsAreCheckedAndACulledRenderWritesItsTopView) {
   if (runCli("bench --help").exitCode != 0)
@@ -190,6 +190,10 @@ TEST_F(CliTest, CullingOptionsAreCheckedAndACulledRenderWritesItsTopView) {
       {" --culling lipac --paths 6 --feedback-paths 4", "--feedback-paths 4 must divide"},
       {" --culling lipac --feedback-dispatch both",
        "--feedback-dispatch takes single or split, not 'both'"},
+      {" --culling lipac --hit-counters raygen",
+       "--hit-counters takes after-trace or closest-hit, not 'raygen'"},
+      {" --culling lipac --backend query --hit-counters closest-hit",
+       "--hit-counters closest-hit needs the ray-tracing pipeline backend"},
       {" --debug-culling " + top, "--debug-culling shows which instances culling keeps"},
   };
   for (const auto& [flags, message] : bad) {

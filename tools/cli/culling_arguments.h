@@ -39,6 +39,11 @@ inline constexpr const char* kCullingHelp =
     "                        with the feedback's code (default single), or, with\n"
     "                        --feedback-paths below P, in two: the paths that do not count\n"
     "                        without that code, then those that do\n"
+    "  --hit-counters after-trace|closest-hit  lipac: the path rays' hit counters bumped\n"
+    "                        after each trace, a run of rays that count the same instance\n"
+    "                        written at once (default after-trace), or by the closest-hit\n"
+    "                        shader, one atomic a ray (the pipeline backend only; --backend\n"
+    "                        auto picks it). The same counts either way\n"
     "  --looks on|off        lipac: before the first frame, and before one that brings\n"
     "                        --look-appearing instances with their own BLAS into view at\n"
     "                        once, trace its camera once with the hitboxes it faces active\n"
@@ -65,7 +70,7 @@ struct CullingArguments {
   std::string mode = "none", radius, hitboxSize, hitboxActivate, hitboxDeactivate, instanceActivate,
               instanceDeactivate, lowFrames, blasBudget, blasBuildBudget, blasRebuildEvery,
               blasKeepFrames, feedbackStride, feedbackPaths, feedbackEvery, instanceFill, looks,
-              lookAppearing, feedbackDispatch;
+              lookAppearing, feedbackDispatch, hitCounters;
 
   void registerWith(ArgumentScanner& scanner) {
     scanner.option("--culling", &mode);
@@ -84,6 +89,7 @@ struct CullingArguments {
     scanner.option("--feedback-every", &feedbackEvery);
     scanner.option("--feedback-paths", &feedbackPaths);
     scanner.option("--feedback-dispatch", &feedbackDispatch);
+    scanner.option("--hit-counters", &hitCounters);
     scanner.option("--instance-fill", &instanceFill);
     scanner.option("--looks", &looks);
     scanner.option("--look-appearing", &lookAppearing);
@@ -143,6 +149,8 @@ struct CullingArguments {
     setWhole(feedbackPaths, "--feedback-paths", o.feedbackPaths);
     setChoice(feedbackDispatch, "--feedback-dispatch", "single", "split", "split",
               o.splitFeedbackDispatch);
+    setChoice(hitCounters, "--hit-counters", "after-trace", "closest-hit", "closest-hit",
+              o.countersInClosestHit);
     setChoice(instanceFill, "--instance-fill", "host", "gpu", "gpu", o.gpuInstanceFill);
     setChoice(looks, "--looks", "on", "off", "on", o.looks);
     setWhole(lookAppearing, "--look-appearing", o.lookAppearing);

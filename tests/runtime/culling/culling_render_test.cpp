@@ -150,6 +150,70 @@ TEST(CulledRender, EveryFeedbackCountTheTraceMadeArrives) {
   }
 }
 
+// --hit-counters closest-hit bumps the counters in the pipeline's closest-hit shader, one
+// atomic a counted ray (the path ray's hit, the probe's box), instead of after the trace
+// through the raygen's two-slot buffer. Counts are sums of whole numbers, whatever order the
+// atomics land in, so every frame's counts, and so the states and the picture, are the
+// ones the raygen gives, and every count the raygen tallied arrives. Every path counting
+// every frame; and one path in three every second frame, its counting frames split in two
+// dispatches (the pipeline without the feedback shares the descriptor set, which the closest
+// hit now sees). The first frame's counts are its look's.
+TEST(CulledRender, ClosestHitCountersCountWhatTheRaygenCounts) {
+  const Scene scene = smallCity();
+  struct Sampling {
+    std::uint32_t every, paths;
+    bool split;
+  };
+  for (const Sampling sampling : {Sampling{1, 0, false}, Sampling{2, 1, true}}) {
+    SCOPED_TRACE("feedback every " + std::to_string(sampling.every) + ", paths " +
+                 std::to_string(sampling.paths) + (sampling.split ? ", split" : ""));
+    RendererOptions o = options(CullingMode::Lipac, true);
+    o.context.backend = Backend::RayTracingPipeline;
+    o.culling.feedbackEvery = sampling.every;
+    o.culling.feedbackPaths = sampling.paths;
+    o.culling.splitFeedbackDispatch = sampling.split;
+    RenderSettings s = settings(5, {mirrorCamera()});
+    s.pathsPerPixel = 3;
+    const RenderResult raygen = render(o, scene, s);
+    o.culling.countersInClosestHit = true;
+    const RenderResult closestHit = render(o, scene, s);
+    ASSERT_EQ(closestHit.stats.frames.size(), raygen.stats.frames.size());
+    std::uint64_t counted = 0;
+    for (std::size_t f = 0; f < raygen.stats.frames.size(); ++f) {
+      const FrameStats& a = raygen.stats.frames[f];
+      const FrameStats& b = closestHit.stats.frames[f];
+      EXPECT_EQ(b.feedbackCounts, a.feedbackCounts) << "frame " << f;
+      EXPECT_EQ(b.feedbackCountsArrived, b.feedbackCounts) << "frame " << f;
+      EXPECT_EQ(b.rays, a.rays) << "frame " << f;
+      counted += b.feedbackCountsArrived;
+    }
+    std::printf("closest-hit counters: %llu counts over %zu frames, the raygen's too\n",
+                static_cast<unsigned long long>(counted), raygen.stats.frames.size());
+    EXPECT_GT(counted, 0u);
+    EXPECT_EQ(closestHit.instanceStates, raygen.instanceStates);
+    EXPECT_TRUE(sameImage(closestHit.image, raygen.image));
+  }
+}
+
+// A ray query has no closest-hit shader: --hit-counters closest-hit is refused on the query
+// backend with a message that names the one that has it, and --backend auto picks that one.
+TEST(CulledRender, ClosestHitCountersNeedThePipelineBackend) {
+  RendererOptions o = options(CullingMode::Lipac, true);
+  o.culling.countersInClosestHit = true;
+  const RenderSettings s = settings(1, {mirrorCamera()});
+  try {
+    render(o, smallCity(), s);
+    FAIL() << "--hit-counters closest-hit was accepted on the query backend";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("--hit-counters closest-hit needs the ray-tracing "
+                                         "pipeline backend (--backend pipeline)"),
+              std::string::npos)
+        << e.what();
+  }
+  o.context.backend = Backend::Auto;
+  EXPECT_EQ(render(o, smallCity(), s).stats.backend, "pipeline");
+}
+
 // One path in P counting, weighted P, keeps the counters' expected value: over the frames of
 // a static camera the counts add up to about what every path's do (each frame counts other
 // paths), and a weight left out (P / N never applied) would give a third of them.
