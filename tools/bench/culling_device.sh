@@ -21,17 +21,27 @@
 #              above (looks.csv: bench's summary line each, labelled lipac_looks_off,
 #              lipac_appearing_N; frames_lipac_<label>.csv: per frame, with the looks and
 #              their GPU time); peak AS bytes against the whole scene's decide the default
+#   checks     LiPaC's settings that must not change what it counts and holds, proven on the
+#              GPU, where a missing barrier or a lost atomic shows: the street path's cameras
+#              137-152 at CHECK_SIZE (default 480x270), P = PATHS, --feedback-every 2, seed 1,
+#              with the defaults, then --instance-fill gpu, --hit-counters closest-hit and
+#              --feedback-dispatch split. Each against the defaults (checks.txt): every frame's
+#              rays, instance and hitbox counts, state changes, TLAS records, BLAS builds and
+#              looks the same, and the picture bit-identical (split: within float rounding,
+#              its mean LDR-FLIP under 1e-4); a line `PASS label` or `FAIL label: why` each
 # After tools/bundle_device.sh, on the GPU machine (tools/ and examples/ travel as tracked
 # files; carry bundle and .gl):
-#   bash tools/bench/culling_device.sh [bench] [pictures]
+#   bash tools/bench/culling_device.sh [bench] [pictures] [variants] [looks] [checks]
 # and here, from the returned files (unpack culling_run.tar.gz into RUN_FOLDER first):
 #   tools/results/make_culling_report RUN_FOLDER
 #   (docs/results/culling_h200.md and docs/results/culling_plots/).
 # EXTRA="--cache texel" adds flags to every run; MODES="none lipac" runs only those modes (the
 # pictures compare each with none, so keep none there); CAMERAS="120 153" pictures only those. Results under $OUT, each step under its own
 # time limit (LIMIT seconds a bench run, default 170). Here, to check the script on lavapipe
-# (figures meaningless): MEMOGRAPH=build/tools/memograph SCENE=builtin:city:scale=0.02
-# SIZE=64x36 PATHS=1 OUT=/tmp/culling bash tools/bench/culling_device.sh
+# (figures meaningless), with the small city's own path:
+#   build/tests/scenes/scenes_write_camera_paths /tmp/paths 360 0.02
+#   MEMOGRAPH=build/tools/memograph SCENE=builtin:city:scale=0.02 CAMPATH=/tmp/paths/city.campath
+#   SIZE=64x36 CHECK_SIZE=64x36 PATHS=2 OUT=/tmp/culling bash tools/bench/culling_device.sh
 set -uo pipefail
 [ -n "${MEMOGRAPH:-}" ] || source bundle/device_env.sh # the GPU machine's Vulkan set-up
 OUT=${OUT:-/tmp/out}
@@ -53,6 +63,8 @@ case $scene in
   picture_cameras="120 135 60"
   ;;
 esac
+# A smaller city has its own path: CAMPATH names its file (scenes_write_camera_paths).
+path=${CAMPATH:-$path}
 picture_cameras=${CAMERAS:-$picture_cameras}
 modes=${MODES:-none frustum lipac}
 work=$(mktemp -d)
@@ -93,6 +105,68 @@ for entry in "${variant_entries[@]}"; do
   variant_labels+=("lipac_${entry%%:*}")
   variant_flags+=("${entry#*:}")
 done
+
+# The columns of a render's --stats CSV ($1) that say what a frame counted and held, one line
+# a frame (quoted fields, such as lavapipe's device name with its comma, blanked first).
+state_columns() {
+  local -a names
+  local fields="" i
+  IFS=, read -ra names < <(head -1 "$1")
+  for i in "${!names[@]}"; do
+    case ${names[i]} in
+    rays | active_instances | omitted_instances | inactive_instances | waiting_instances | \
+      hitboxes | active_hitboxes | instance_state_changes | tlas_records | blas_builds | \
+      blas_evictions | looks | look_rays | feedback_frame) fields+="$((i + 1))," ;;
+    esac
+  done
+  sed 's/"[^"]*"/q/g' "$1" | cut -d, -f"${fields%,}"
+}
+
+checks() {
+  local cameras label verdict flip d
+  mapfile -t cameras < <(grep -v '^#' "$path" | grep .)
+  printf '%s\n' "${cameras[@]:137:16}" >"$work/checks.campath"
+  local -a labels=(defaults gpufill chit split)
+  local -a settings=("" "--instance-fill gpu" "--hit-counters closest-hit"
+    "--feedback-dispatch split")
+  for i in "${!labels[@]}"; do
+    label=${labels[i]}
+    echo "== check $label" | tee -a "$OUT/log.txt"
+    # shellcheck disable=SC2086 # settings and EXTRA are lists of flags
+    timeout 150 "$m" render "$scene" "${shadingFlags[@]}" --size "${CHECK_SIZE:-480x270}" \
+      --paths "$paths" --bounces 4 --frames 16 --camera-path "$work/checks.campath" --seed 1 \
+      --culling lipac --feedback-every 2 ${settings[i]} --shader-cache "$work/sc" \
+      --out "$work/check_$label.pfm" --stats "$work/check_$label.csv" ${EXTRA:-} \
+      >>"$OUT/log.txt" 2>&1
+    echo "rc=$?" >>"$OUT/log.txt"
+  done
+  for label in "${labels[@]:1}"; do
+    verdict=""
+    if [ ! -s "$work/check_$label.csv" ] || [ ! -s "$work/check_$label.pfm" ]; then
+      verdict="no render (log.txt)"
+    elif ! diff <(state_columns "$work/check_defaults.csv") \
+      <(state_columns "$work/check_$label.csv") >"$OUT/checks_$label.diff"; then
+      # CSV lines (1: the header, 2: frame 0): the first pair that differs; the whole diff in
+      # checks_<label>.diff.
+      d="$OUT/checks_$label.diff"
+      verdict="the frames' counts and states differ at CSV lines $(head -1 "$d"): first"
+      verdict+=" $(grep -m1 '^<' "$d") against $(grep -m1 '^>' "$d") (columns"
+      verdict+=" $(state_columns "$work/check_defaults.csv" | head -1); checks_$label.diff)"
+    elif ! cmp -s "$work/check_defaults.pfm" "$work/check_$label.pfm"; then
+      flip=$("$m" diff "$work/check_defaults.pfm" "$work/check_$label.pfm" 2>&1 |
+        awk '$1 == "mean" {print $2}')
+      if [ "$label" != split ]; then
+        verdict="the picture differs (mean LDR-FLIP ${flip:-?})"
+      elif ! awk -v f="${flip:-1}" 'BEGIN {exit !(f < 1e-4)}'; then
+        verdict="the picture differs by more than rounding (mean LDR-FLIP ${flip:-?})"
+      fi
+    fi
+    [ -s "$OUT/checks_$label.diff" ] || rm -f "$OUT/checks_$label.diff"
+    if [ -z "$verdict" ]; then echo "PASS $label"; else echo "FAIL $label: $verdict"; fi \
+      >>"$OUT/checks.txt"
+  done
+  cat "$OUT/checks.txt"
+}
 
 looks() {
   for setting in off ${LOOKS:-2 4 16}; do
@@ -162,6 +236,7 @@ for step in "$@"; do
   pictures) pictures ;;
   looks) looks ;;
   variants) variants ;;
+  checks) checks ;;
   *) echo "culling_device.sh: unknown step '$step'" >&2; exit 2 ;;
   esac
 done
@@ -169,9 +244,9 @@ rm -rf "$work"
 echo done >>"$OUT/log.txt"
 # The device tool returns at most 8 files and a full run writes 9: on the GPU machine they
 # come back as one archive (unpack it into the run folder for make_culling_report) beside
-# the two logs to read at once.
+# the logs to read at once (log.txt, pictures.txt, checks.txt).
 if [ -z "${MEMOGRAPH:-}" ]; then
   tar czf /tmp/culling_run.tar.gz -C "$OUT" .
-  find "$OUT" -maxdepth 1 -type f ! -name log.txt ! -name pictures.txt -delete
+  find "$OUT" -maxdepth 1 -type f ! -name log.txt ! -name pictures.txt ! -name checks.txt -delete
   mv /tmp/culling_run.tar.gz "$OUT/"
 fi
