@@ -216,6 +216,33 @@ TEST_F(CliTest, CullingOptionsAreCheckedAndACulledRenderWritesItsTopView) {
   EXPECT_NE(header.find(",culling,active_instances,"), std::string::npos) << header;
 }
 
+// Options the chosen modes leave unused are accepted (a script may pass one set of flags to
+// every mode it measures), and each is named on stderr, so that a forgotten --culling lipac
+// or --cache tile does not pass unnoticed; the options a mode uses are not named.
+TEST_F(CliTest, OptionsTheModesLeaveUnusedAreNamed) {
+  if (runCli("bench --help").exitCode != 0)
+    GTEST_SKIP() << "this memograph has no renderer";
+  const std::string render = "render builtin:landscape --size 8x8 --floor-materials --out " +
+                             (directory_ / "landscape.pfm").string();
+  const auto unused = runCli(render +
+                             " --eviction lru --tile 4x4 --hitbox-size 20 --culling-radius 5 "
+                             "--hit-counters closest-hit");
+  ASSERT_EQ(unused.exitCode, 0) << unused.output;
+  for (const char* line : {"render: --hitbox-size is ignored: it needs --culling lipac",
+                           "render: --hit-counters is ignored: it needs --culling lipac",
+                           "render: --culling-radius is ignored: it needs --culling frustum",
+                           "render: --eviction is ignored: it needs --cache texel or --cache tile",
+                           "render: --tile is ignored: it needs --cache tile"})
+    EXPECT_NE(unused.output.find(line), std::string::npos) << line << "\n" << unused.output;
+  const auto used = runCli(
+      render + " --cache texel --eviction lru --tile 4x4 --culling frustum --culling-radius 5");
+  ASSERT_EQ(used.exitCode, 0) << used.output;
+  EXPECT_NE(used.output.find("--tile is ignored: it needs --cache tile"), std::string::npos)
+      << used.output;
+  EXPECT_EQ(used.output.find("--eviction is ignored"), std::string::npos) << used.output;
+  EXPECT_EQ(used.output.find("--culling-radius is ignored"), std::string::npos) << used.output;
+}
+
 // Bad cache option values are usage errors (exit 2), refused before any GPU work, and the
 // message names the value and the choices.
 TEST_F(CliTest, RenderAndBenchRefuseBadCacheOptionValues) {

@@ -76,6 +76,7 @@ int ArgumentScanner::scan(std::vector<std::string>& positional) {
     if (found == options_.end()) {
       return usageError(command_, "unknown option '" + std::string(name) + "'");
     }
+    given_.push_back(found->name);
     if (found->flag) {
       if (equals != std::string_view::npos) {
         return usageError(command_, "option '" + std::string(name) + "' takes no value");
@@ -95,6 +96,10 @@ int ArgumentScanner::scan(std::vector<std::string>& positional) {
     *found->value = std::string(value);
   }
   return kExitOk;
+}
+
+bool ArgumentScanner::given(std::string_view name) const {
+  return std::find(given_.begin(), given_.end(), name) != given_.end();
 }
 
 std::optional<std::string> readFile(const std::string& path, std::string& error) {

@@ -50,6 +50,8 @@ class ArgumentScanner {
 
   // Returns kExitOk and fills `positional`, or the exit code of a usage error (printed).
   int scan(std::vector<std::string>& positional);
+  // Whether the scanned arguments gave option or flag `name`.
+  bool given(std::string_view name) const;
 
  private:
   struct Option {
@@ -60,6 +62,7 @@ class ArgumentScanner {
   std::string_view command_;
   std::span<const std::string_view> args_;
   std::vector<Option> options_;
+  std::vector<std::string_view> given_;  // registered names, as scan() met them
 };
 
 // A text input (graph): a regular file of at most files::kMaxTextFileBytes, or nullopt

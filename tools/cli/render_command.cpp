@@ -15,6 +15,7 @@
 #include "runtime/atomic_file.h"
 
 #ifdef MEMOGRAPH_HAVE_RUNTIME
+#include "ignored_options.h"
 #include "renderer_arguments.h"
 #include "runtime/renderer.h"
 #endif
@@ -168,6 +169,8 @@ int runRender(std::span<const std::string_view> args) {
   } catch (const std::invalid_argument& e) {
     return usageError("render", e.what());
   }
+  for (const std::string& line : ignoredOptions(scanner, options))
+    std::cerr << "memograph render: " << line << "\n";
   options.context.validation = validation;
   if (debugMisses && options.cache.mode == runtime::CacheMode::None)
     return usageError("render", "--debug-misses shows cache misses; it needs --cache texel");
