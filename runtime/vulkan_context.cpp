@@ -73,8 +73,10 @@ const char* typeName(VkPhysicalDeviceType type) {
 }
 
 std::string describe(std::size_t index, const Candidate& c) {
-  std::string text = "[" + std::to_string(index) + "] " + c.properties.deviceName + " (" +
-                     typeName(c.properties.deviceType) + "): ";
+  // Appended: GCC 12 warns falsely (-Wrestrict) on "[" + std::to_string(index).
+  std::string text = "[";
+  text += std::to_string(index) + "] " + c.properties.deviceName + " (" +
+          typeName(c.properties.deviceType) + "): ";
   if (c.missing.empty()) {
     text += std::string(c.rayQuery ? "ray query" : "") +
             (c.rayQuery && c.rayTracingPipeline ? ", " : "") +

@@ -154,8 +154,8 @@ TEST_F(CliTest, TheSmallCityRendersWithTheDefaultBackend) {
   const auto bad = runCli("render builtin:city:scale=2 --out " + out);
   EXPECT_EQ(bad.exitCode, 2) << bad.output;  // a usage error
   EXPECT_NE(bad.output.find("scale is a number in (0, 1]"), std::string::npos) << bad.output;
-  for (const std::string command : {"render builtin:city:scale=0.02,path=bogus --out " + out,
-                                    std::string("bench builtin:city:path=bogus --sizes 16x9")}) {
+  for (const std::string& command : {"render builtin:city:scale=0.02,path=bogus --out " + out,
+                                     std::string("bench builtin:city:path=bogus --sizes 16x9")}) {
     const auto badPath = runCli(command);
     EXPECT_EQ(badPath.exitCode, 2) << command << ": " << badPath.output;
     EXPECT_NE(badPath.output.find("path is street"), std::string::npos) << badPath.output;

@@ -364,9 +364,10 @@ TEST(TileCache, AGivenUpTileGivesTheEvictedTileBack) {
       repacks += f.cacheTileRepacks;
       occupancies += (i ? ", " : "") + std::to_string(f.cacheOccupancy);
       // Never emptier than the frame before (frame 0 still fills the cache).
-      if (i > 0)
+      if (i > 0) {
         EXPECT_GE(f.cacheOccupancy, result.stats.frames[i - 1].cacheOccupancy)
             << cacheEvictionName(eviction) << " frame " << f.frame;
+      }
     }
     const FrameStats& last = result.stats.frames.back();
     // Full in the end: every reachable entry (I = H0 mod (S - D) never reaches the last one)

@@ -157,8 +157,9 @@ TEST(TileFill, LocksBesideAndLostToQueuedTilesAreCounted) {
                 (unsigned long long)f.cacheTilesComputed);
     EXPECT_GT(f.cacheLocksBesideALock, 0u) << cacheEvictionName(eviction);
     EXPECT_LE(f.cacheTilesComputed, 9u);  // a locked entry is never chosen twice
-    if (eviction == CacheEviction::Random)
+    if (eviction == CacheEviction::Random) {
       EXPECT_GT(f.cacheLocksContended, 0u);
+    }
   }
 }
 

@@ -201,7 +201,9 @@ class StagingFolder {
     fs::remove_all(path_, ignored);
   }
   bool create(const fs::path& target, std::string& error) {
-    std::string pattern = (target.parent_path() / ("." + target.filename().string())).string();
+    std::string hidden = ".";  // appended: GCC 12 warns falsely (-Wrestrict) on "." + string
+    hidden += target.filename().string();
+    std::string pattern = (target.parent_path() / hidden).string();
     pattern += ".import-XXXXXX";
     if (!::mkdtemp(pattern.data())) {
       error =

@@ -102,8 +102,9 @@ TEST(CulledRender, TheFiguresAddUpInEveryMode) {
       // In the street facing the mirror most of the city is out of view. LiPaC's first look
       // activates the shared props of the hitboxes in view (one BLAS for many), so what it
       // saves shows in the BLAS bytes, not in the count.
-      if (mode == CullingMode::Frustum)
+      if (mode == CullingMode::Frustum) {
         EXPECT_LT(first.activeInstances, n / 2);
+      }
       EXPECT_LT(first.blasBytes, unculledBlasBytes / 2);
       EXPECT_GT(first.blasBuilds, 0u);
       EXPECT_EQ(r.instanceStates.size(), n);
