@@ -158,16 +158,17 @@ TEST(CulledRender, EveryFeedbackCountTheTraceMadeArrives) {
 // ones the raygen gives, and every count the raygen tallied arrives. Every path counting
 // every frame; and one path in three every second frame, its counting frames split in two
 // dispatches (the pipeline without the feedback shares the descriptor set, which the closest
-// hit now sees). The first frame's counts are its look's.
+// hit now sees) and the shared primary ray. The first frame's counts are its look's.
 TEST(CulledRender, ClosestHitCountersCountWhatTheRaygenCounts) {
   const Scene scene = smallCity();
   struct Sampling {
     std::uint32_t every, paths;
-    bool split;
+    bool split;  // and the shared primary ray, which the counting dispatch counts
   };
   for (const Sampling sampling : {Sampling{1, 0, false}, Sampling{2, 1, true}}) {
     SCOPED_TRACE("feedback every " + std::to_string(sampling.every) + ", paths " +
-                 std::to_string(sampling.paths) + (sampling.split ? ", split" : ""));
+                 std::to_string(sampling.paths) +
+                 (sampling.split ? ", split, shared primary ray" : ""));
     RendererOptions o = options(CullingMode::Lipac, true);
     o.context.backend = Backend::RayTracingPipeline;
     o.culling.feedbackEvery = sampling.every;
@@ -175,6 +176,7 @@ TEST(CulledRender, ClosestHitCountersCountWhatTheRaygenCounts) {
     o.culling.splitFeedbackDispatch = sampling.split;
     RenderSettings s = settings(5, {mirrorCamera()});
     s.pathsPerPixel = 3;
+    s.sharedPrimaryRay = sampling.split;
     const RenderResult raygen = render(o, scene, s);
     o.culling.countersInClosestHit = true;
     const RenderResult closestHit = render(o, scene, s);
