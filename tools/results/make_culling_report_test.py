@@ -47,6 +47,18 @@ class MakeCullingReportTest(unittest.TestCase):
                 text = f.read()
         return result, text
 
+    def test_the_checks_results(self):
+        run = self.make_run({"none": [(100.0, 1000, 0.0, 20000)],
+                             "lipac": [(90.0, 300, 4.0, 3000)]})
+        with open(os.path.join(run, "checks.txt"), "w") as f:
+            f.write("PASS gpufill\nFAIL chit: the picture differs (mean LDR-FLIP 0.002|x)\n"
+                    "noise\n")
+        result, text = self.run_report(run)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("| gpufill | pass |", text)
+        self.assertIn("| chit | FAIL: the picture differs (mean LDR-FLIP 0.002\\|x) |", text)
+        self.assertNotIn("noise", text)
+
     def test_ratios_to_none_and_the_pictures(self):
         run = self.make_run({
             "none": [(100.0, 1000, 0.0, 20000), (100.0, 1000, 0.0, 20000),
