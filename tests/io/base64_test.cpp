@@ -1,4 +1,5 @@
-// base64Encode against the test vectors of RFC 4648 §10, and bytes above 0x7f.
+// base64Encode (OpenImageIO's encoder behind it) against the test vectors of RFC 4648 §10, and
+// bytes above 0x7f: the glTF data URIs need standard base64 with padding.
 #include <gtest/gtest.h>
 
 #include <string>

@@ -1,5 +1,6 @@
-// Base64 (RFC 4648, with '=' padding) for glTF's embedded buffers (data URIs). Assimp has an
-// encoder, but its shared library does not export it.
+// Base64 (RFC 4648, with '=' padding) for glTF's embedded buffers (data URIs): OpenImageIO's
+// encoder (Strutil::base64_encode; assimp has one too, but its shared library does not
+// export it), taking bytes, so that callers need not see OpenImageIO.
 #pragma once
 
 #include <string>
