@@ -16,7 +16,6 @@
 #ifdef MEMOGRAPH_HAVE_RUNTIME
 #include "bench_frames.h"
 #include "bench_summary.h"
-#include "ignored_options.h"
 #include "renderer_arguments.h"
 #include "runtime/renderer.h"
 #endif
@@ -152,7 +151,7 @@ int runBench(std::span<const std::string_view> args) {
   } catch (const std::invalid_argument& e) {
     return usageError("bench", e.what());
   }
-  for (const std::string& line : ignoredOptions(scanner, options))
+  for (const std::string& line : RendererArguments::ignoredOptions(scanner, options))
     std::cerr << "memograph bench: " << line << "\n";
   // A cache carries state from frame to frame, so skipping frames would measure another
   // run, not a sample of this one.

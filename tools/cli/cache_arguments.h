@@ -1,9 +1,11 @@
 // The texel cache's command-line options (thesis §5.3), shared by `render` and `bench`.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "cli_common.h"
 #include "runtime/renderer.h"
@@ -76,26 +78,58 @@ struct CacheArguments {
               tileQueue = "65536", testGiveUp = "0";
   bool snapUv = false, secondaryOnly = false, floorMaterials = false, groupByMaterial = false;
 
+  // Each option (a value, or a flag), and the caches that use it (without them it is unused).
+  enum class Uses { Any, Cache, Tile };
+  struct Option {
+    const char* name;
+    std::string CacheArguments::*value;
+    bool CacheArguments::*flag;
+    Uses uses;
+  };
+  static constexpr std::array<Option, 19> options() {
+    using A = CacheArguments;
+    return {{{"--cache", &A::cache, nullptr, Uses::Any},
+             {"--cache-entries", &A::entries, nullptr, Uses::Cache},
+             {"--probe", &A::probe, nullptr, Uses::Cache},
+             {"--eviction", &A::eviction, nullptr, Uses::Cache},
+             {"--mip-bias", &A::mipBias, nullptr, Uses::Cache},
+             {"--cache-read-check", &A::readCheck, nullptr, Uses::Cache},
+             {"--tile", &A::tile, nullptr, Uses::Tile},
+             {"--filter", &A::filter, nullptr, Uses::Tile},
+             {"--tile-storage", &A::tileStorage, nullptr, Uses::Tile},
+             {"--group-by-material", nullptr, &A::groupByMaterial, Uses::Tile},
+             {"--tile-fill", &A::tileFill, nullptr, Uses::Tile},
+             {"--tile-queue", &A::tileQueue, nullptr, Uses::Tile},
+             {"--value-format", &A::valueFormat, nullptr, Uses::Cache},
+             {"--clock", &A::clock, nullptr, Uses::Cache},
+             {"--clock-shift", &A::clockShift, nullptr, Uses::Cache},
+             {"--snap-uv", nullptr, &A::snapUv, Uses::Cache},
+             {"--cache-secondary-only", nullptr, &A::secondaryOnly, Uses::Cache},
+             {"--floor-materials", nullptr, &A::floorMaterials, Uses::Any},
+             {"--test-give-up", &A::testGiveUp, nullptr, Uses::Tile}}};
+  }
+
   void registerWith(ArgumentScanner& scanner) {
-    scanner.option("--cache", &cache);
-    scanner.option("--cache-entries", &entries);
-    scanner.option("--probe", &probe);
-    scanner.option("--eviction", &eviction);
-    scanner.option("--mip-bias", &mipBias);
-    scanner.option("--cache-read-check", &readCheck);
-    scanner.option("--tile", &tile);
-    scanner.option("--filter", &filter);
-    scanner.option("--tile-storage", &tileStorage);
-    scanner.flag("--group-by-material", &groupByMaterial);
-    scanner.option("--tile-fill", &tileFill);
-    scanner.option("--tile-queue", &tileQueue);
-    scanner.option("--value-format", &valueFormat);
-    scanner.option("--clock", &clock);
-    scanner.option("--clock-shift", &clockShift);
-    scanner.flag("--snap-uv", &snapUv);
-    scanner.flag("--cache-secondary-only", &secondaryOnly);
-    scanner.flag("--floor-materials", &floorMaterials);
-    scanner.option("--test-give-up", &testGiveUp);
+    for (const Option& o : options()) {
+      if (o.flag)
+        scanner.flag(o.name, &(this->*o.flag));
+      else
+        scanner.option(o.name, &(this->*o.value));
+    }
+  }
+
+  // A note (ignoredOptionNote) for each option given that `mode` leaves unused.
+  static std::vector<std::string> ignored(const ArgumentScanner& scanner, runtime::CacheMode mode) {
+    std::vector<std::string> notes;
+    for (const Option& o : options()) {
+      if (!scanner.given(o.name))
+        continue;
+      if (o.uses == Uses::Cache && mode == runtime::CacheMode::None)
+        notes.push_back(ignoredOptionNote(o.name, "--cache texel or --cache tile"));
+      if (o.uses == Uses::Tile && mode != runtime::CacheMode::Tile)
+        notes.push_back(ignoredOptionNote(o.name, "--cache tile"));
+    }
+    return notes;
   }
 
   // Throws std::invalid_argument with a message for the user.

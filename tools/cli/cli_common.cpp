@@ -103,6 +103,11 @@ bool ArgumentScanner::given(std::string_view name) const {
   return std::find(given_.begin(), given_.end(), name) != given_.end();
 }
 
+std::string ignoredOptionNote(std::string_view option, std::string_view needs) {
+  std::string note(option);
+  return note.append(" is ignored: it needs ").append(needs);
+}
+
 std::optional<std::string> readFile(const std::string& path, std::string& error) {
   // Regular files up to the text limit only: a FIFO, /dev/zero or a huge file is refused
   // before reading (docs/limits.md).

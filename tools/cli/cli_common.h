@@ -65,6 +65,11 @@ class ArgumentScanner {
   std::vector<std::string_view> given_;  // registered names, as scan() met them
 };
 
+// The note `render` and `bench` print for an option the chosen modes leave unused (it is
+// accepted: a script may pass one set of flags to every mode it measures):
+// "--x is ignored: it needs <needs>".
+std::string ignoredOptionNote(std::string_view option, std::string_view needs);
+
 // A text input (graph): a regular file of at most files::kMaxTextFileBytes, or nullopt
 // with `error` saying why (without the path: callers' diagnostics name it).
 std::optional<std::string> readFile(const std::string& path, std::string& error);

@@ -2,9 +2,11 @@
 // `render` and `bench`.
 #pragma once
 
+#include <array>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <vector>
 
 #include "cli_common.h"
 #include "runtime/scene_culling.h"
@@ -72,27 +74,55 @@ struct CullingArguments {
               blasKeepFrames, feedbackStride, feedbackPaths, feedbackEvery, instanceFill, looks,
               lookAppearing, feedbackDispatch, hitCounters;
 
+  // Each option, and the mode that uses it (the others leave it unused).
+  enum class Uses { Any, Frustum, Lipac };
+  struct Option {
+    const char* name;
+    std::string CullingArguments::*value;
+    Uses uses;
+  };
+  static constexpr std::array<Option, 20> options() {
+    using A = CullingArguments;
+    return {{{"--culling", &A::mode, Uses::Any},
+             {"--culling-radius", &A::radius, Uses::Frustum},
+             {"--hitbox-size", &A::hitboxSize, Uses::Lipac},
+             {"--hitbox-activate", &A::hitboxActivate, Uses::Lipac},
+             {"--hitbox-deactivate", &A::hitboxDeactivate, Uses::Lipac},
+             {"--instance-activate", &A::instanceActivate, Uses::Lipac},
+             {"--instance-deactivate", &A::instanceDeactivate, Uses::Lipac},
+             {"--low-frames", &A::lowFrames, Uses::Lipac},
+             {"--blas-budget", &A::blasBudget, Uses::Any},
+             {"--blas-build-budget", &A::blasBuildBudget, Uses::Any},
+             {"--blas-rebuild-every", &A::blasRebuildEvery, Uses::Any},
+             {"--blas-keep-frames", &A::blasKeepFrames, Uses::Any},
+             {"--feedback-stride", &A::feedbackStride, Uses::Lipac},
+             {"--feedback-every", &A::feedbackEvery, Uses::Lipac},
+             {"--feedback-paths", &A::feedbackPaths, Uses::Lipac},
+             {"--feedback-dispatch", &A::feedbackDispatch, Uses::Lipac},
+             {"--hit-counters", &A::hitCounters, Uses::Lipac},
+             {"--instance-fill", &A::instanceFill, Uses::Any},
+             {"--looks", &A::looks, Uses::Lipac},
+             {"--look-appearing", &A::lookAppearing, Uses::Lipac}}};
+  }
+
   void registerWith(ArgumentScanner& scanner) {
-    scanner.option("--culling", &mode);
-    scanner.option("--culling-radius", &radius);
-    scanner.option("--hitbox-size", &hitboxSize);
-    scanner.option("--hitbox-activate", &hitboxActivate);
-    scanner.option("--hitbox-deactivate", &hitboxDeactivate);
-    scanner.option("--instance-activate", &instanceActivate);
-    scanner.option("--instance-deactivate", &instanceDeactivate);
-    scanner.option("--low-frames", &lowFrames);
-    scanner.option("--blas-budget", &blasBudget);
-    scanner.option("--blas-build-budget", &blasBuildBudget);
-    scanner.option("--blas-rebuild-every", &blasRebuildEvery);
-    scanner.option("--blas-keep-frames", &blasKeepFrames);
-    scanner.option("--feedback-stride", &feedbackStride);
-    scanner.option("--feedback-every", &feedbackEvery);
-    scanner.option("--feedback-paths", &feedbackPaths);
-    scanner.option("--feedback-dispatch", &feedbackDispatch);
-    scanner.option("--hit-counters", &hitCounters);
-    scanner.option("--instance-fill", &instanceFill);
-    scanner.option("--looks", &looks);
-    scanner.option("--look-appearing", &lookAppearing);
+    for (const Option& o : options())
+      scanner.option(o.name, &(this->*o.value));
+  }
+
+  // A note (ignoredOptionNote) for each option given that `mode` leaves unused.
+  static std::vector<std::string> ignored(const ArgumentScanner& scanner,
+                                          runtime::CullingMode mode) {
+    std::vector<std::string> notes;
+    for (const Option& o : options()) {
+      if (!scanner.given(o.name))
+        continue;
+      if (o.uses == Uses::Frustum && mode != runtime::CullingMode::Frustum)
+        notes.push_back(ignoredOptionNote(o.name, "--culling frustum"));
+      if (o.uses == Uses::Lipac && mode != runtime::CullingMode::Lipac)
+        notes.push_back(ignoredOptionNote(o.name, "--culling lipac"));
+    }
+    return notes;
   }
 
   // Throws std::invalid_argument with a message for the user.

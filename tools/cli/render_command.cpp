@@ -15,7 +15,6 @@
 #include "runtime/atomic_file.h"
 
 #ifdef MEMOGRAPH_HAVE_RUNTIME
-#include "ignored_options.h"
 #include "renderer_arguments.h"
 #include "runtime/renderer.h"
 #endif
@@ -169,7 +168,7 @@ int runRender(std::span<const std::string_view> args) {
   } catch (const std::invalid_argument& e) {
     return usageError("render", e.what());
   }
-  for (const std::string& line : ignoredOptions(scanner, options))
+  for (const std::string& line : RendererArguments::ignoredOptions(scanner, options))
     std::cerr << "memograph render: " << line << "\n";
   options.context.validation = validation;
   if (debugMisses && options.cache.mode == runtime::CacheMode::None)

@@ -7,6 +7,8 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "cache_arguments.h"
 #include "cli_common.h"
@@ -65,6 +67,17 @@ struct RendererArguments {
     scanner.flag("--no-emissive-nee", &noEmissiveNee);
     scanner.option("--shading", &shading);
     scanner.option("--wavefront-paths", &wavefrontPaths);
+  }
+
+  // A note for each option given that `options` leave unused (LiPaC's without --culling
+  // lipac, the caches' without --cache, ...): the command prints them and goes on, so that a
+  // forgotten mode does not silently measure something else.
+  static std::vector<std::string> ignoredOptions(const ArgumentScanner& scanner,
+                                                 const runtime::RendererOptions& options) {
+    std::vector<std::string> notes = CullingArguments::ignored(scanner, options.culling.mode);
+    for (std::string& note : CacheArguments::ignored(scanner, options.cache.mode))
+      notes.push_back(std::move(note));
+    return notes;
   }
 
   // The renderer's options (the command adds its own, e.g. validation). Throws
