@@ -79,12 +79,15 @@ bool dispatchTracesPath(uint path, uint pathCount) {
 // pixel mostly hit one instance, and the bounces of its paths keep returning to a few (the
 // ground, the facade in front), so a run of equal slots costs one atomic instead of one a
 // ray, and the counters most rays hit (the ground's) see far fewer same-address atomics.
-// The sums are the same, so the states and the picture are too.
-uvec2 g_feedbackSlots = uvec2(0xFFFFFFFFu);
-uvec2 g_feedbackCounts = uvec2(0u);
+// The sums are the same, so the states and the picture are too. Where the closest-hit shader
+// counts (MG_CLOSEST_HIT_COUNTS, traceCounted) none of this is compiled, only the tally.
+//
 // The counts this invocation made, added after the frame's counters (the buffer's last uint)
 // so that the host can check they all arrived.
 uint g_feedbackTally = 0u;
+#ifndef MG_CLOSEST_HIT_COUNTS
+uvec2 g_feedbackSlots = uvec2(0xFFFFFFFFu);
+uvec2 g_feedbackCounts = uvec2(0u);
 
 // Adds a slot's count to its counter; the caller then reuses the slot or is done with it.
 void writeFeedbackSlot(uint i) {
@@ -120,6 +123,7 @@ void countHitFeedback(vec3 origin, vec3 direction, HitInfo hit, uint weight) {
   uint box = traceCountingBox(origin, direction, hit.t >= 0.0 ? hit.t : kRayTMax);
   if (box != 0xFFFFFFFFu) bufferHitFeedback(box, weight);
 }
+#endif
 
 // Sampled feedback (CullingOptions::feedbackStride = N): 1 in N blocks of 8×8 pixels counts
 // its rays, weighted N, a different block each counting frame (frame.culling.y: with
@@ -372,7 +376,7 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
     // dropped: one such sample would poison the pixel for every later frame.
     if (!any(isnan(radiance)) && !any(isinf(radiance))) sum += radiance;
   }
-#ifdef MG_HIT_FEEDBACK
+#if defined(MG_HIT_FEEDBACK) && !defined(MG_CLOSEST_HIT_COUNTS)
   flushHitFeedback();
 #endif
   return sum / float(pathCount);
