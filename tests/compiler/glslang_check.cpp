@@ -47,6 +47,27 @@ ShaderCheck compile(const std::string& source, glslang::EShSource language) {
   return result;
 }
 
+// Both targets' main functions: the texture stub the generated code calls, and the inputs
+// (with derivatives where they carry them) from the invocation's id, in the generated code's
+// portable types.
+constexpr const char* kSampleTexture = R"(
+float4 mg_SampleTexture(int textureIndex, float2 uv, float2 ddx, float2 ddy) {
+  return float4(uv, ddx.x + ddy.y, float(textureIndex));
+}
+)";
+const std::string kFillInputs = R"(  MaterialInputs inputs;
+  inputs.uv = mg_make_float2_D(float2(id.xy), float2(1.0, 0.0), float2(0.0, 1.0));
+  inputs.position = mg_make_float3_D(float3(id), float3(1.0, 0.0, 0.0), float3(0.0, 1.0, 0.0));
+  inputs.normal = float3(0.0, 0.0, 1.0);
+  inputs.tangent = float3(1.0, 0.0, 0.0);
+  inputs.bitangentSign = float3(1.0, 0.0, 0.0);
+  inputs.vertexColor = float4(1.0, 1.0, 1.0, 1.0);
+  inputs.view = float3(0.0, 0.0, 1.0);
+  inputs.time = 0.5;
+  inputs.textureBase = 0;
+  MaterialOutputs outputs;
+)";
+
 // Writes every output so nothing is optimised away before the checks run.
 std::string callAll(const std::vector<std::string>& names) {
   std::string body;
@@ -66,26 +87,13 @@ ShaderCheck compileGlslMaterials(const std::vector<std::string>& includes,
   std::string source = "#version 460\n";
   for (const auto& include : includes)
     source += include;
-  source += R"(
-float4 mg_SampleTexture(int textureIndex, float2 uv, float2 ddx, float2 ddy) {
-  return float4(uv, ddx.x + ddy.y, float(textureIndex));
-}
-layout(local_size_x = 8) in;
+  source += kSampleTexture;
+  source += R"(layout(local_size_x = 8) in;
 layout(std430, set = 0, binding = 0) buffer Result { float4 result[]; };
 void main() {
-  MaterialInputs inputs;
-  inputs.uv = mg_make_float2_D(float2(gl_GlobalInvocationID.xy), float2(1.0, 0.0), float2(0.0, 1.0));
-  inputs.position = mg_make_float3_D(float3(gl_GlobalInvocationID), float3(1.0, 0.0, 0.0), float3(0.0, 1.0, 0.0));
-  inputs.normal = float3(0.0, 0.0, 1.0);
-  inputs.tangent = float3(1.0, 0.0, 0.0);
-  inputs.bitangentSign = float3(1.0, 0.0, 0.0);
-  inputs.vertexColor = float4(1.0, 1.0, 1.0, 1.0);
-  inputs.view = float3(0.0, 0.0, 1.0);
-  inputs.time = 0.5;
-  inputs.textureBase = 0;
-  MaterialOutputs outputs;
+  uvec3 id = gl_GlobalInvocationID;
 )";
-  source += callAll(names) + "}\n";
+  source += kFillInputs + callAll(names) + "}\n";
   return compile(source, glslang::EShSourceGlsl);
 }
 
@@ -94,26 +102,12 @@ ShaderCheck compileHlslMaterials(const std::vector<std::string>& includes,
   std::string source;
   for (const auto& include : includes)
     source += include;
-  source += R"(
-float4 mg_SampleTexture(int textureIndex, float2 uv, float2 ddx, float2 ddy) {
-  return float4(uv, ddx.x + ddy.y, float(textureIndex));
-}
-RWStructuredBuffer<float4> result : register(u0);
+  source += kSampleTexture;
+  source += R"(RWStructuredBuffer<float4> result : register(u0);
 [numthreads(8, 1, 1)]
 void main(uint3 id : SV_DispatchThreadID) {
-  MaterialInputs inputs;
-  inputs.uv = mg_make_float2_D(float2(id.xy), float2(1.0, 0.0), float2(0.0, 1.0));
-  inputs.position = mg_make_float3_D(float3(id), float3(1.0, 0.0, 0.0), float3(0.0, 1.0, 0.0));
-  inputs.normal = float3(0.0, 0.0, 1.0);
-  inputs.tangent = float3(1.0, 0.0, 0.0);
-  inputs.bitangentSign = float3(1.0, 0.0, 0.0);
-  inputs.vertexColor = float4(1.0, 1.0, 1.0, 1.0);
-  inputs.view = float3(0.0, 0.0, 1.0);
-  inputs.time = 0.5;
-  inputs.textureBase = 0;
-  MaterialOutputs outputs;
 )";
-  source += callAll(names) + "}\n";
+  source += kFillInputs + callAll(names) + "}\n";
   return compile(source, glslang::EShSourceHlsl);
 }
 
