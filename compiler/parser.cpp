@@ -195,6 +195,14 @@ class Parser {
     return true;
   }
 
+  // Takes `token`, the next token and a number, as a tuple's or a table's component (whether
+  // it is written as an integer does not matter there).
+  bool takeComponent(const Token& token, double& value) {
+    take();
+    bool isInteger = false;
+    return number(token, value, isInteger);
+  }
+
   bool literal(Literal& out) {
     const Token& token = peek();
     out.location = token.location;
@@ -229,10 +237,8 @@ class Parser {
                              std::string(tokenKindName(component.kind)));
         return false;
       }
-      take();
       double value = 0;
-      bool isInteger = false;
-      if (!number(component, value, isInteger))
+      if (!takeComponent(component, value))
         return false;
       out.components.push_back(value);
       if (peek().kind == TokenKind::Comma) {
@@ -271,10 +277,8 @@ class Parser {
                              std::string(tokenKindName(component.kind)));
         return false;
       }
-      take();
       double value = 0;
-      bool isInteger = false;
-      if (!number(component, value, isInteger))
+      if (!takeComponent(component, value))
         return false;
       // Bounded before the size check so a runaway table costs no more than a full one.
       if (out.components.size() == static_cast<std::size_t>(kTableNumbers)) {
