@@ -80,14 +80,44 @@ TEST_F(CliTest, UsageErrorsExitWithTwo) {
 }
 
 TEST_F(CliTest, EveryCommandHasHelp) {
-  for (const char* command : {"compile", "check", "nodes"}) {
-    const auto run = runCli(std::string(command) + " --help");
-    EXPECT_EQ(run.exitCode, 0) << command;
-    EXPECT_NE(run.output.find("usage: memograph " + std::string(command)), std::string::npos);
+  for (const char* command : {"compile", "check", "nodes", "bake", "render", "bench", "diff",
+                              "selftest", "import-blender"}) {
+    for (const char* flag : {" --help", " -h"}) {
+      const auto run = runCli(std::string(command) + flag);
+      EXPECT_EQ(run.exitCode, 0) << command << flag << run.output;
+      EXPECT_NE(run.output.find("usage: memograph " + std::string(command)), std::string::npos)
+          << command << flag;
+    }
   }
+  // A usage error wins over the help, wherever each stands.
+  EXPECT_EQ(runCli("compile --help --frob").exitCode, 2);
+  EXPECT_EQ(runCli("render --frob -h").exitCode, 2);
   const auto top = runCli("--help");
   EXPECT_EQ(top.exitCode, 0);
   EXPECT_NE(top.output.find("compile"), std::string::npos);
+}
+
+// import-blender's --materials takes the names up to the next option (ArgumentScanner::list).
+TEST_F(CliTest, ImportBlenderMaterialsTakeTheNamesUpToTheNextOption) {
+  const std::string blend = (directory_ / "nope.blend").string();
+  // Both names are the option's, so the one positional is the .blend (which is missing: 1).
+  const auto two = runCli("import-blender " + blend + " --out " + directory_.string() +
+                          " --materials Wood Metal --verbose");
+  EXPECT_EQ(two.exitCode, 1) << two.output;
+  EXPECT_NE(two.output.find("nope.blend: no such file"), std::string::npos) << two.output;
+  // With '=' it takes one name, so the next word is a second positional.
+  const auto equals = runCli("import-blender " + blend + " --out " + directory_.string() +
+                             " --materials=Wood Metal");
+  EXPECT_EQ(equals.exitCode, 2) << equals.output;
+  EXPECT_NE(equals.output.find("give exactly one .blend file"), std::string::npos);
+  for (const char* empty : {" --materials", " --materials --verbose", " --materials="}) {
+    const auto run = runCli("import-blender " + blend + " --out " + directory_.string() + empty);
+    EXPECT_EQ(run.exitCode, 2) << empty;
+    EXPECT_NE(run.output.find("option '--materials' needs a value"), std::string::npos)
+        << empty << run.output;
+  }
+  EXPECT_EQ(runCli("import-blender " + blend + " --frob").exitCode, 2);
+  EXPECT_EQ(runCli("import-blender " + blend + " --out").exitCode, 2);
 }
 
 TEST_F(CliTest, MissingAndUnreadableFilesAreClearErrors) {

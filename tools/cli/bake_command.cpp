@@ -271,7 +271,7 @@ runtime::TextureImage loadTexture(const std::string& path) {
 
 int runBake(std::span<const std::string_view> args) {
   std::string size, outDir, format, bounds, nodesDir, device = "-1";
-  bool help = false, quiet = false;
+  bool quiet = false;
   ArgumentScanner scanner("bake", args);
   scanner.option("--size", &size);
   scanner.option("--out", &outDir);
@@ -281,14 +281,10 @@ int runBake(std::span<const std::string_view> args) {
   scanner.option("--nodes", &nodesDir);
   scanner.option("--device", &device);
   scanner.flag("--quiet", &quiet);
-  scanner.flag("--help", &help);
+  scanner.help(kHelp);
   std::vector<std::string> inputs;
-  if (const int code = scanner.scan(inputs); code != kExitOk)
-    return code;
-  if (help) {
-    std::cout << kHelp;
-    return kExitOk;
-  }
+  if (const auto exitCode = scanner.scan(inputs))
+    return *exitCode;
   if (inputs.empty())
     return usageError("bake", "no graph files or folders given");
   if (outDir.empty())

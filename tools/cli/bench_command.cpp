@@ -70,7 +70,7 @@ int runBench(std::span<const std::string_view>) {
 int runBench(std::span<const std::string_view> args) {
   std::string sizes = "1920x1080", paths = "6", bounces = "4", frames = "20", warmup = "3", csvPath,
               framesCsv, cameraFrames, frameStride = "1", runLabel, timeLimit;
-  bool help = false, staticCamera = false;
+  bool staticCamera = false;
   ArgumentScanner scanner("bench", args);
   RendererArguments rendererArguments;
   rendererArguments.registerWith(scanner);
@@ -87,14 +87,10 @@ int runBench(std::span<const std::string_view> args) {
   scanner.option("--label", &runLabel);
   scanner.option("--time-limit", &timeLimit);
   scanner.flag("--static-camera", &staticCamera);
-  scanner.flag("--help", &help);
+  scanner.help({kHelp, kRendererHelp, kCacheHelp, kCullingHelp});
   std::vector<std::string> scenes;
-  if (const int code = scanner.scan(scenes); code != kExitOk)
-    return code;
-  if (help) {
-    std::cout << kHelp << kRendererHelp << kCacheHelp << kCullingHelp;
-    return kExitOk;
-  }
+  if (const auto exitCode = scanner.scan(scenes))
+    return *exitCode;
   if (scenes.empty())
     scenes = {"builtin:classroom", "builtin:landscape"};
 

@@ -28,17 +28,12 @@ std::string joinOrNone(const std::vector<std::string>& items) {
 
 int runCheck(std::span<const std::string_view> args) {
   std::string nodesDir;
-  bool help = false;
   ArgumentScanner scanner("check", args);
   scanner.option("--nodes", &nodesDir);
-  scanner.flag("--help", &help);
+  scanner.help(kHelp);
   std::vector<std::string> files;
-  if (const int code = scanner.scan(files); code != kExitOk)
-    return code;
-  if (help) {
-    std::cout << kHelp;
-    return kExitOk;
-  }
+  if (const auto exitCode = scanner.scan(files))
+    return *exitCode;
   if (files.size() != 1)
     return usageError("check", "expected exactly one graph file");
 

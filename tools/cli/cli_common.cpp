@@ -58,8 +58,8 @@ bool parseImageSize(std::string_view text, std::uint32_t& width, std::uint32_t& 
   return true;
 }
 
-int ArgumentScanner::scan(std::vector<std::string>& positional) {
-  bool onlyPositional = false;
+std::optional<int> ArgumentScanner::scan(std::vector<std::string>& positional) {
+  bool onlyPositional = false, helpAsked = false;
   for (std::size_t i = 0; i < args_.size(); ++i) {
     const std::string_view arg = args_[i];
     if (onlyPositional || arg.size() < 2 || arg[0] != '-') {
@@ -68,6 +68,10 @@ int ArgumentScanner::scan(std::vector<std::string>& positional) {
     }
     if (arg == "--") {
       onlyPositional = true;
+      continue;
+    }
+    if (help_ && (arg == "--help" || arg == "-h")) {
+      helpAsked = true;
       continue;
     }
     const auto equals = arg.find('=');
@@ -92,11 +96,23 @@ int ArgumentScanner::scan(std::vector<std::string>& positional) {
       value = args_[++i];
     // An empty value is no value: options whose default lives in the library (the culling
     // numbers) read "empty" as "not given", so `--low-frames ""` must not pass as it.
-    if (value.empty())
+    if (value.empty() || (found->list && equals == std::string_view::npos && value[0] == '-'))
       return usageError(command_, "option '" + std::string(name) + "' needs a value");
-    *found->value = std::string(value);
+    if (!found->list) {
+      *found->value = std::string(value);
+      continue;
+    }
+    found->list->emplace_back(value);
+    if (equals != std::string_view::npos)
+      continue;
+    while (i + 1 < args_.size() && !args_[i + 1].empty() && args_[i + 1][0] != '-')
+      found->list->emplace_back(args_[++i]);
   }
-  return kExitOk;
+  if (helpAsked) {
+    std::cout << *help_;
+    return kExitOk;
+  }
+  return std::nullopt;
 }
 
 bool ArgumentScanner::given(std::string_view name) const {

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <initializer_list>
 #include <optional>
 #include <span>
 #include <string>
@@ -36,20 +37,38 @@ constexpr std::uint32_t kMaxImageSide = 16384;
 bool parseImageSize(std::string_view text, std::uint32_t& width, std::uint32_t& height,
                     std::string& error);
 
-// Walks `args`: options with a value (`--target glsl` or `--target=glsl`), flags, and
-// positional arguments. Unknown options, and options without a value or with an empty one,
-// are usage errors.
+// Walks `args`: options with a value (`--target glsl` or `--target=glsl`), options with a
+// list of values, flags, and positional arguments. Unknown options, and options without a
+// value or with an empty one, are usage errors.
 class ArgumentScanner {
  public:
   ArgumentScanner(std::string_view command, std::span<const std::string_view> args)
       : command_(command), args_(args) {}
 
   // Registers an option taking a value; `out` receives it.
-  void option(std::string_view name, std::string* out) { options_.push_back({name, out, nullptr}); }
-  void flag(std::string_view name, bool* out) { options_.push_back({name, nullptr, out}); }
+  void option(std::string_view name, std::string* out) {
+    options_.push_back({name, out, nullptr, nullptr});
+  }
+  void flag(std::string_view name, bool* out) { options_.push_back({name, nullptr, out, nullptr}); }
+  // Registers an option taking one or more values: those after it up to the next argument
+  // that starts with '-' (`--materials A B`), or the one after '=' (`--materials=A`); each
+  // use appends to `out`.
+  void list(std::string_view name, std::vector<std::string>* out) {
+    options_.push_back({name, nullptr, nullptr, out});
+  }
+  // Registers --help and -h: scan() then prints `text` (or the parts, one after the other)
+  // and stops the command (kExitOk).
+  void help(std::string_view text) { help({text}); }
+  void help(std::initializer_list<std::string_view> parts) {
+    help_.emplace();
+    for (const std::string_view part : parts)
+      help_->append(part);
+  }
 
-  // Returns kExitOk and fills `positional`, or the exit code of a usage error (printed).
-  int scan(std::vector<std::string>& positional);
+  // Fills `positional` and returns nullopt for the command to go on, or the exit code it
+  // returns now: a usage error's (printed), or kExitOk when the help was asked for (printed;
+  // a usage error wins over it).
+  std::optional<int> scan(std::vector<std::string>& positional);
   // Whether the scanned arguments gave option or flag `name`.
   bool given(std::string_view name) const;
 
@@ -58,10 +77,12 @@ class ArgumentScanner {
     std::string_view name;
     std::string* value;
     bool* flag;
+    std::vector<std::string>* list;
   };
   std::string_view command_;
   std::span<const std::string_view> args_;
   std::vector<Option> options_;
+  std::optional<std::string> help_;
   std::vector<std::string_view> given_;  // registered names, as scan() met them
 };
 

@@ -29,21 +29,17 @@ constexpr std::string_view kHelp =
 
 int runCompile(std::span<const std::string_view> args) {
   std::string target = "both", outputDir = ".", nodesDir;
-  bool help = false, quiet = false;
+  bool quiet = false;
   ArgumentScanner scanner("compile", args);
   scanner.option("--target", &target);
   scanner.option("-o", &outputDir);
   scanner.option("--output", &outputDir);
   scanner.option("--nodes", &nodesDir);
   scanner.flag("--quiet", &quiet);
-  scanner.flag("--help", &help);
+  scanner.help(kHelp);
   std::vector<std::string> files;
-  if (const int code = scanner.scan(files); code != kExitOk)
-    return code;
-  if (help) {
-    std::cout << kHelp;
-    return kExitOk;
-  }
+  if (const auto exitCode = scanner.scan(files))
+    return *exitCode;
   if (target != "glsl" && target != "hlsl" && target != "both") {
     return usageError("compile", "--target must be glsl, hlsl or both, not '" + target + "'");
   }

@@ -107,7 +107,6 @@ float srgbToLinear(float c) {
 
 int runDiff(std::span<const std::string_view> args) {
   std::string out, ppdText, distanceText, widthText, resolutionText, encoding = "auto";
-  bool help = false;
   ArgumentScanner scanner("diff", args);
   scanner.option("--out", &out);
   scanner.option("-o", &out);
@@ -116,14 +115,10 @@ int runDiff(std::span<const std::string_view> args) {
   scanner.option("--monitor-width", &widthText);
   scanner.option("--monitor-resolution", &resolutionText);
   scanner.option("--encoding", &encoding);
-  scanner.flag("--help", &help);
+  scanner.help(kHelp);
   std::vector<std::string> positional;
-  if (const int code = scanner.scan(positional); code != kExitOk)
-    return code;
-  if (help) {
-    std::cout << kHelp;
-    return kExitOk;
-  }
+  if (const auto exitCode = scanner.scan(positional))
+    return *exitCode;
   if (positional.size() != 2)
     return usageError("diff", "expected two images, REFERENCE and TEST");
 

@@ -277,42 +277,15 @@ int runImportBlender(std::span<const std::string_view> args) {
   std::vector<std::string> positional, materials;
   bool verbose = false;
   bool withScene = false;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    std::string_view a = args[i];
-    auto value = [&](std::string& out) -> bool {
-      if (auto eq = a.find('='); eq != std::string_view::npos) {
-        out = std::string(a.substr(eq + 1));
-        return true;
-      }
-      if (i + 1 >= args.size())
-        return false;
-      out = std::string(args[++i]);
-      return true;
-    };
-    if (a == "--help" || a == "-h") {
-      std::cout << kHelp;
-      return kExitOk;
-    } else if (a == "--out" || a.starts_with("--out=")) {
-      if (!value(outDir))
-        return usageError("import-blender", "--out needs a folder");
-    } else if (a == "--blender" || a.starts_with("--blender=")) {
-      if (!value(blender))
-        return usageError("import-blender", "--blender needs a path");
-    } else if (a == "--materials") {
-      while (i + 1 < args.size() && !args[i + 1].starts_with("--"))
-        materials.emplace_back(args[++i]);
-      if (materials.empty())
-        return usageError("import-blender", "--materials needs at least one name");
-    } else if (a == "--verbose") {
-      verbose = true;
-    } else if (a == "--scene") {
-      withScene = true;
-    } else if (a.starts_with("-")) {
-      return usageError("import-blender", "unknown option '" + std::string(a) + "'");
-    } else {
-      positional.emplace_back(a);
-    }
-  }
+  ArgumentScanner scanner("import-blender", args);
+  scanner.option("--out", &outDir);
+  scanner.option("--blender", &blender);
+  scanner.list("--materials", &materials);
+  scanner.flag("--verbose", &verbose);
+  scanner.flag("--scene", &withScene);
+  scanner.help(kHelp);
+  if (const auto exitCode = scanner.scan(positional))
+    return *exitCode;
   if (positional.size() != 1)
     return usageError("import-blender",
                       positional.empty() ? "no .blend file given" : "give exactly one .blend file");

@@ -37,18 +37,14 @@ std::string literalText(const compiler::Literal& value) {
 
 int runNodes(std::span<const std::string_view> args) {
   std::string nodesDir;
-  bool help = false, brief = false;
+  bool brief = false;
   ArgumentScanner scanner("nodes", args);
   scanner.option("--nodes", &nodesDir);
   scanner.flag("--brief", &brief);
-  scanner.flag("--help", &help);
+  scanner.help(kHelp);
   std::vector<std::string> names;
-  if (const int code = scanner.scan(names); code != kExitOk)
-    return code;
-  if (help) {
-    std::cout << kHelp;
-    return kExitOk;
-  }
+  if (const auto exitCode = scanner.scan(names))
+    return *exitCode;
   compiler::Diagnostics diagnostics;
   const auto library = loadNodeLibrary(nodesDir, diagnostics);
   printDiagnostics(diagnostics);

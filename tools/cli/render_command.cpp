@@ -74,7 +74,7 @@ int runRender(std::span<const std::string_view>) {
 int runRender(std::span<const std::string_view> args) {
   std::string out, size = "640x360", paths = "1", bounces = "4", frames = "1", cameraPath,
                    seed = "0", materials, stats;
-  bool help = false, listDevices = false, noShaderCache = false, validation = false;
+  bool listDevices = false, noShaderCache = false, validation = false;
   ArgumentScanner scanner("render", args);
   RendererArguments rendererArguments;
   rendererArguments.registerWith(scanner);
@@ -97,14 +97,10 @@ int runRender(std::span<const std::string_view> args) {
   std::string debugCulling;
   scanner.option("--debug-culling", &debugCulling);
   scanner.flag("--list-devices", &listDevices);
-  scanner.flag("--help", &help);
+  scanner.help({kHelp, kRendererHelp, kCacheHelp, kCullingHelp});
   std::vector<std::string> positional;
-  if (const int code = scanner.scan(positional); code != kExitOk)
-    return code;
-  if (help) {
-    std::cout << kHelp << kRendererHelp << kCacheHelp << kCullingHelp;
-    return kExitOk;
-  }
+  if (const auto exitCode = scanner.scan(positional))
+    return *exitCode;
   if (listDevices) {
     for (const auto& line : runtime::describeDevices())
       std::cout << line << "\n";

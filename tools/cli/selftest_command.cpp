@@ -17,27 +17,23 @@ namespace memograph::cli {
 
 int runSelftest(std::span<const std::string_view> args) {
   std::string iterationsText = "256", invocationsText = "4096", roundsText = "1";
-  bool help = false;
   ArgumentScanner scanner("selftest", args);
   scanner.option("--iterations", &iterationsText);
   scanner.option("--invocations", &invocationsText);
   scanner.option("--rounds", &roundsText);
-  scanner.flag("--help", &help);
+  scanner.help(
+      "usage: memograph selftest [--invocations N] [--iterations N] [--rounds N]\n\n"
+      "The material cache's concurrency stress test on this GPU: N invocations\n"
+      "(default 4096, a multiple of 64) of N lookups each (default 256) on 32\n"
+      "entries, in the key, counter, image-key, image-counter and unprotected\n"
+      "modes, --rounds times each. Prints the torn reads per mode; exits 1 when a\n"
+      "protected mode tore. Then the tile cache's subgroup fill, the same way, in\n"
+      "every tile storage, with several tiles an iteration, several passes a tile\n"
+      "and given-up tiles: exits 1 when a tile read tore or a tile was not\n"
+      "published exactly once with all its texels (or given back empty).\n");
   std::vector<std::string> positional;
-  if (const int code = scanner.scan(positional); code != kExitOk)
-    return code;
-  if (help) {
-    std::cout << "usage: memograph selftest [--invocations N] [--iterations N] [--rounds N]\n\n"
-                 "The material cache's concurrency stress test on this GPU: N invocations\n"
-                 "(default 4096, a multiple of 64) of N lookups each (default 256) on 32\n"
-                 "entries, in the key, counter, image-key, image-counter and unprotected\n"
-                 "modes, --rounds times each. Prints the torn reads per mode; exits 1 when a\n"
-                 "protected mode tore. Then the tile cache's subgroup fill, the same way, in\n"
-                 "every tile storage, with several tiles an iteration, several passes a tile\n"
-                 "and given-up tiles: exits 1 when a tile read tore or a tile was not\n"
-                 "published exactly once with all its texels (or given back empty).\n";
-    return kExitOk;
-  }
+  if (const auto exitCode = scanner.scan(positional))
+    return *exitCode;
   if (!positional.empty())
     return usageError("selftest", "takes no positional arguments");
   std::uint32_t iterations = 0, invocations = 0, rounds = 0;
