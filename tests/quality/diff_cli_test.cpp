@@ -1,16 +1,15 @@
 // `memograph diff`: the printed statistics, the error map, and the exit codes (0 compared,
 // 1 unreadable image or size mismatch, 2 usage error).
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
-#include <array>
-#include <cstdio>
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <string>
 
+#include "cli_run.h"
 #include "runtime/image.h"
 #include "tools/io/image_io.h"
 
@@ -19,24 +18,8 @@ namespace fs = std::filesystem;
 namespace memograph {
 namespace {
 
-struct CliRun {
-  int exitCode = -1;
-  std::string output;
-};
-
-CliRun runCli(const std::string& arguments) {
-  const std::string command = std::string(MEMOGRAPH_CLI) + " " + arguments + " 2>&1";
-  CliRun run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe)
-    return run;
-  std::array<char, 4096> buffer;
-  while (const std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
-    run.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return run;
-}
+using testing::CliRun;
+using testing::runCli;
 
 // The value printed after `label` at the start of a line ("mean  0.012345").
 double statistic(const std::string& output, const std::string& label) {
