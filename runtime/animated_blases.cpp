@@ -1,49 +1,82 @@
 #include "runtime/animated_blases.h"
 
 #include <algorithm>
+#include <bit>
 #include <stdexcept>
+
+#include "runtime/compute_pipeline.h"
 
 namespace memograph::runtime {
 
 namespace {
 
+constexpr VkBufferUsageFlags kShaderRead =
+    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
+
 constexpr VkBuildAccelerationStructureFlagsKHR kAnimatedFlags =
     VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_UPDATE_BIT_KHR |
     VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR;
 
-// The upload's record of a vertex (scene_upload.cpp): position and normal with u and v in w.
-gpu::Vertex vertexRecord(const Mesh& mesh, std::size_t v, glm::vec3 position, glm::vec3 normal) {
-  const glm::vec2 uv = mesh.uvs.empty() ? glm::vec2(0.0f) : mesh.uvs[v];
-  gpu::Vertex out;
-  out.position = glm::vec4(position, uv.x);
-  out.normal = glm::vec4(normal, uv.y);
-  out.tangent = mesh.tangents.empty() ? glm::vec4(0.0f) : mesh.tangents[v];
-  out.color = mesh.colors.empty() ? glm::vec4(1.0f) : mesh.colors[v];
-  return out;
-}
-
-// Area-weighted normals of the triangles around each vertex; `sign` turns them to the side
-// the mesh's own normals face (its winding may be either).
-void triangleNormals(const Mesh& mesh, const std::vector<glm::vec3>& positions, float sign,
-                     std::vector<glm::vec3>& normals) {
-  normals.assign(positions.size(), glm::vec3(0.0f));
+// Whether the area-weighted normals of the mesh's triangles at rest face the side its own
+// normals face (+1) or the other (-1, a winding the other way round): the vertex pass turns
+// the moved triangles' normals by it.
+float restNormalSign(const Mesh& mesh) {
+  std::vector<glm::vec3> normals(mesh.positions.size(), glm::vec3(0.0f));
   for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
     const std::uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
-    const glm::vec3 n = glm::cross(positions[b] - positions[a], positions[c] - positions[a]);
+    const glm::vec3 n =
+        glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
     normals[a] += n;
     normals[b] += n;
     normals[c] += n;
   }
+  float agreement = 0.0f;
   for (std::size_t v = 0; v < normals.size(); ++v) {
     const float length = glm::length(normals[v]);
-    normals[v] = length > 1e-20f ? sign * normals[v] / length : mesh.normals[v];
+    if (length > 1e-20f)
+      agreement += glm::dot(normals[v] / length, mesh.normals[v]);
+  }
+  return agreement < 0.0f ? -1.0f : 1.0f;
+}
+
+// Appends the mesh's rest vertices to `rest` and the triangles around each (their corners
+// as indices into `rest`, in the mesh's index order) to `corners`.
+void appendRestVertices(const Mesh& mesh, std::vector<gpu::VertexMotionRest>& rest,
+                        std::vector<glm::uvec4>& corners) {
+  const auto first = static_cast<std::uint32_t>(rest.size());
+  std::vector<std::uint32_t> around(mesh.positions.size(), 0);
+  for (const std::uint32_t index : mesh.indices)
+    ++around[index];
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    gpu::VertexMotionRest r{};
+    r.position = glm::vec4(mesh.positions[v], 0.0f);
+    r.normal = glm::vec4(mesh.normals[v], 0.0f);
+    r.triangles.y = around[v];
+    rest.push_back(r);
+  }
+  // Each vertex's slice of the corner list, then its triangles in index order.
+  auto firstCorner = static_cast<std::uint32_t>(corners.size());
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    rest[first + v].triangles.x = firstCorner;
+    firstCorner += around[v];
+  }
+  corners.resize(firstCorner);
+  std::vector<std::uint32_t> filled(mesh.positions.size(), 0);
+  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const glm::uvec4 triangle(first + mesh.indices[t], first + mesh.indices[t + 1],
+                              first + mesh.indices[t + 2], 0u);
+    for (std::size_t c = 0; c < 3; ++c) {
+      const std::uint32_t v = mesh.indices[t + c];
+      corners[rest[first + v].triangles.x + filled[v]++] = triangle;
+    }
   }
 }
 
 }  // namespace
 
 AnimatedBlases::AnimatedBlases(const VulkanContext& context, const Scene& scene,
-                               SceneBuffers& buffers, std::uint32_t rebuildEvery)
+                               SceneBuffers& buffers, std::uint32_t rebuildEvery,
+                               const std::filesystem::path& shaderCacheDirectory)
     : context_(context),
       scene_(scene),
       buffers_(buffers),
@@ -52,21 +85,19 @@ AnimatedBlases::AnimatedBlases(const VulkanContext& context, const Scene& scene,
   const DeviceFunctions& f = context.functions();
   const VkDeviceSize scratchAlignment =
       context.info().minAccelerationStructureScratchOffsetAlignment;
-  VkDeviceSize scratchTotal = 0, stagingBytes = 0;
+  VkDeviceSize scratchTotal = 0;
+  std::vector<gpu::VertexMotionRest> rest;
+  std::vector<glm::uvec4> corners;
   for (std::size_t k = 0; k < scene.animatedMeshes.size(); ++k) {
     const std::uint32_t mesh = scene.animatedMeshes[k];
     Animated a;
     a.mesh = mesh;
     a.k = k;
     a.geometry = buffers.geometry.at(mesh);
-    // Which side the winding's normals face against the mesh's own, at rest.
-    std::vector<glm::vec3> restNormals;
     const Mesh& sceneMesh = scene.meshes[mesh];
-    triangleNormals(sceneMesh, sceneMesh.positions, 1.0f, restNormals);
-    float agreement = 0.0f;
-    for (std::size_t v = 0; v < restNormals.size(); ++v)
-      agreement += glm::dot(restNormals[v], sceneMesh.normals[v]);
-    a.normalSign = agreement < 0.0f ? -1.0f : 1.0f;
+    a.normalSign = restNormalSign(sceneMesh);
+    a.firstRest = static_cast<std::uint32_t>(rest.size());
+    appendRestVertices(sceneMesh, rest, corners);
     VkAccelerationStructureGeometryKHR geometry =
         meshGeometry(buffers.vertices, sizeof(gpu::Vertex), buffers.indices, a.geometry);
     VkAccelerationStructureBuildGeometryInfoKHR build =
@@ -84,7 +115,6 @@ AnimatedBlases::AnimatedBlases(const VulkanContext& context, const Scene& scene,
     a.scratchOffset = scratchTotal;
     scratchTotal = alignUp(scratchTotal + std::max(sizes.buildScratchSize, sizes.updateScratchSize),
                            scratchAlignment);
-    stagingBytes += VkDeviceSize(a.geometry.vertexCount) * sizeof(gpu::Vertex);
     slotOfMesh_[mesh] = static_cast<std::int32_t>(meshes_.size());
     meshes_.push_back(std::move(a));
   }
@@ -94,7 +124,11 @@ AnimatedBlases::AnimatedBlases(const VulkanContext& context, const Scene& scene,
       GpuBuffer(context, scratchTotal + scratchAlignment,
                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
                 VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  staging_ = hostBuffer(context, stagingBytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+  rest_ = uploadBuffer<gpu::VertexMotionRest>(context, rest, kShaderRead);
+  corners_ = uploadBuffer<glm::uvec4>(context, corners, kShaderRead);
+  jobs_ = hostBuffer(context, meshes_.size() * sizeof(gpu::VertexMotionJob), kShaderRead);
+  pass_ = createPushConstantPass(context, "vertex_motion.comp", sizeof(gpu::VertexMotionPush),
+                                 shaderCacheDirectory, "vertex motion");
   // The first build, at rest (the uploaded vertices): every BLAS, one batch.
   for (std::size_t slot = 0; slot < meshes_.size(); ++slot) {
     planned_.push_back(slot);
@@ -116,32 +150,25 @@ VkDeviceAddress AnimatedBlases::address(std::uint32_t mesh) const {
 AnimatedFrameWork AnimatedBlases::prepare(float seconds, std::uint32_t frame,
                                           const std::vector<std::uint8_t>& needed) {
   AnimatedFrameWork work;
-  copies_.clear();
   planned_.clear();
   plannedUpdate_.clear();
-  if (!scene_.animatedPosition)
+  movedMeshes_ = 0;
+  movedMaxVertices_ = 0;
+  seconds_ = seconds;
+  if (scene_.animatedMotions.empty())
     return work;  // drawn at rest
-  auto* staging = static_cast<gpu::Vertex*>(staging_.mapped());
-  VkDeviceSize stagingOffset = 0;
-  std::vector<glm::vec3> positions, normals;
+  auto* jobs = static_cast<gpu::VertexMotionJob*>(jobs_.mapped());
   for (std::size_t slot = 0; slot < meshes_.size(); ++slot) {
     Animated& a = meshes_[slot];
     if (!needed.empty() && !needed[a.mesh]) {
       a.current = false;  // left behind: rebuilt when it is needed again
       continue;
     }
-    const Mesh& mesh = scene_.meshes[a.mesh];
-    positions.resize(mesh.positions.size());
-    for (std::size_t v = 0; v < positions.size(); ++v)
-      positions[v] = scene_.animatedPosition(a.k, mesh.positions[v], seconds);
-    triangleNormals(mesh, positions, a.normalSign, normals);
-    gpu::Vertex* out = staging + stagingOffset / sizeof(gpu::Vertex);
-    for (std::size_t v = 0; v < positions.size(); ++v)
-      out[v] = vertexRecord(mesh, v, positions[v], normals[v]);
-    const VkDeviceSize bytes = VkDeviceSize(positions.size()) * sizeof(gpu::Vertex);
-    copies_.push_back(
-        {stagingOffset, VkDeviceSize(a.geometry.firstVertex) * sizeof(gpu::Vertex), bytes});
-    stagingOffset += bytes;
+    gpu::VertexMotionJob& job = jobs[movedMeshes_++];
+    job.motion = scene_.animatedMotions[a.k];
+    job.range = glm::uvec4(a.geometry.firstVertex, a.geometry.vertexCount, a.firstRest,
+                           std::bit_cast<std::uint32_t>(a.normalSign));
+    movedMaxVertices_ = std::max(movedMaxVertices_, a.geometry.vertexCount);
     // builtAfter: the frame after the last build (0: the first build, before frame 0).
     const bool rebuild = !a.current || frame + 1 - a.builtAfter >= rebuildEvery_;
     if (rebuild)
@@ -158,13 +185,24 @@ void AnimatedBlases::record(VkCommandBuffer commands) const {
   if (planned_.empty())
     return;
   VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-  if (!copies_.empty()) {
-    vkCmdCopyBuffer(commands, staging_.buffer(), buffers_.vertices.buffer(),
-                    static_cast<std::uint32_t>(copies_.size()), copies_.data());
-    // The moved vertices, before the BLAS builds read them and the trace shades them.
-    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  if (movedMeshes_ > 0) {
+    gpu::VertexMotionPush push{};
+    push.sources = glm::uvec4(addressWords(jobs_.address()), addressWords(rest_.address()));
+    push.targets =
+        glm::uvec4(addressWords(corners_.address()), addressWords(buffers_.vertices.address()));
+    push.time = glm::vec4(seconds_, 0.0f, 0.0f, 0.0f);
+    vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pass_.pipeline.get());
+    vkCmdPushConstants(commands, pass_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push,
+                       &push);
+    vkCmdDispatch(
+        commands,
+        (movedMaxVertices_ + gpu::kVertexMotionWorkgroup - 1) / gpu::kVertexMotionWorkgroup,
+        movedMeshes_, 1);
+    // The moved vertices, before the BLAS builds read them (as shader reads in their own
+    // stage) and the trace shades them.
+    barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
     barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
-    vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT,
+    vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                          VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0, nullptr, 0,
                          nullptr);
   }

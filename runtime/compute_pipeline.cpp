@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "runtime/shader_compiler.h"
+#include "runtime/shader_sources.h"
 #include "runtime/vulkan_error.h"
 
 namespace memograph::runtime {
@@ -45,6 +47,20 @@ VulkanHandle<VkPipeline> createComputePipeline(VkDevice device, VkShaderModule m
           ("vkCreateComputePipelines (" + std::string(what) + ")").c_str());
   return VulkanHandle<VkPipeline>(
       pipeline, [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); });
+}
+
+PushConstantPass createPushConstantPass(const VulkanContext& context, const std::string& file,
+                                        std::uint32_t pushBytes,
+                                        const std::filesystem::path& shaderCacheDirectory,
+                                        const char* what) {
+  VkDevice device = context.device();
+  ShaderCompiler compiler(embeddedShaderFiles(), shaderCacheDirectory);
+  auto module = createShaderModule(device, compiler.compile({file, ShaderStage::Compute, {}}));
+  PushConstantPass pass;
+  pass.layout =
+      createPipelineLayout(device, VK_NULL_HANDLE, VK_SHADER_STAGE_COMPUTE_BIT, pushBytes);
+  pass.pipeline = createComputePipeline(device, module.get(), pass.layout.get(), what);
+  return pass;
 }
 
 }  // namespace memograph::runtime

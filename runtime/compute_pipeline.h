@@ -1,12 +1,17 @@
 // Shader modules from SPIR-V and compute pipelines from a module: the path tracer's query
-// backend (trace_pipelines), the bake (material_baker) and the cache self-test use them.
+// backend (trace_pipelines), the bake (material_baker) and the cache self-test use them;
+// and the small passes whose only input is their push constants (the GPU instance fill, the
+// vertex pass).
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
+#include <string>
 #include <vector>
 
 #include <vulkan/vulkan.h>
 
+#include "runtime/vulkan_context.h"
 #include "runtime/vulkan_handle.h"
 
 namespace memograph::runtime {
@@ -24,5 +29,18 @@ VulkanHandle<VkPipelineLayout> createPipelineLayout(VkDevice device, VkDescripto
 // A compute pipeline of `module`'s "main" under `layout`; `what` names it in errors.
 VulkanHandle<VkPipeline> createComputePipeline(VkDevice device, VkShaderModule module,
                                                VkPipelineLayout layout, const char* what);
+
+// A compute pass that reads and writes only through buffer device addresses in its push
+// constants (`pushBytes` of them), so it needs no descriptor set: the embedded shader `file`
+// compiled (its SPIR-V cached in `shaderCacheDirectory`, none when empty), its layout and its
+// pipeline; `what` names it in errors.
+struct PushConstantPass {
+  VulkanHandle<VkPipelineLayout> layout;
+  VulkanHandle<VkPipeline> pipeline;
+};
+PushConstantPass createPushConstantPass(const VulkanContext& context, const std::string& file,
+                                        std::uint32_t pushBytes,
+                                        const std::filesystem::path& shaderCacheDirectory,
+                                        const char* what);
 
 }  // namespace memograph::runtime

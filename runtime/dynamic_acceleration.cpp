@@ -38,7 +38,7 @@ DynamicAccelerationStructures::DynamicAccelerationStructures(
       culling_(scene, options),
       blasCache_(context, buffers.vertices, sizeof(gpu::Vertex), buffers.indices, buffers.geometry,
                  options.blasBudgetBytes, options.blasBuildTriangles, options.blasKeepFrames),
-      animated_(context, scene, buffers, options.blasRebuildEvery),
+      animated_(context, scene, buffers, options.blasRebuildEvery, shaderCacheDirectory),
       feedbackPathWeight_(feedbackPathWeight) {
   meshCount_ = static_cast<std::uint32_t>(scene.meshes.size());
   // Each instance's TLAS record, made once: a frame copies it and fills in the BLAS address.

@@ -9,6 +9,7 @@
 #include <string>
 
 #include <vulkan/vulkan.h>
+#include <glm/glm.hpp>
 
 #include "runtime/vulkan_context.h"
 #include "runtime/vulkan_handle.h"
@@ -19,6 +20,12 @@ namespace memograph::runtime {
 // shader-binding-table records).
 inline VkDeviceSize alignUp(VkDeviceSize value, VkDeviceSize alignment) {
   return (value + alignment - 1) / alignment * alignment;
+}
+
+// A device address as the (low, high) uint pair that push constants carry it in, for
+// GL_EXT_buffer_reference_uvec2 (shaders cast the pair to a buffer reference).
+inline glm::uvec2 addressWords(VkDeviceAddress address) {
+  return {static_cast<std::uint32_t>(address), static_cast<std::uint32_t>(address >> 32)};
 }
 
 class GpuBuffer {

@@ -6,8 +6,6 @@
 #include <string>
 
 #include "runtime/compute_pipeline.h"
-#include "runtime/shader_compiler.h"
-#include "runtime/shader_sources.h"
 #include "runtime/shaders/shared_types.h"
 
 namespace memograph::runtime {
@@ -16,10 +14,6 @@ namespace {
 
 constexpr VkBufferUsageFlags kShaderRead =
     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT;
-
-glm::uvec2 split(VkDeviceAddress address) {
-  return {static_cast<std::uint32_t>(address), static_cast<std::uint32_t>(address >> 32)};
-}
 
 }  // namespace
 
@@ -47,13 +41,8 @@ GpuInstanceFill::GpuInstanceFill(const VulkanContext& context,
   meshAddresses_ = hostBuffer(
       context, std::max<std::size_t>(meshCount_, 1) * sizeof(VkDeviceAddress), kShaderRead);
 
-  VkDevice device = context.device();
-  ShaderCompiler compiler(embeddedShaderFiles(), shaderCacheDirectory);
-  auto module = createShaderModule(
-      device, compiler.compile({"instance_fill.comp", ShaderStage::Compute, {}}));
-  layout_ = createPipelineLayout(device, VK_NULL_HANDLE, VK_SHADER_STAGE_COMPUTE_BIT,
-                                 sizeof(gpu::InstanceFillPush));
-  pipeline_ = createComputePipeline(device, module.get(), layout_.get(), "instance fill");
+  pass_ = createPushConstantPass(context, "instance_fill.comp", sizeof(gpu::InstanceFillPush),
+                                 shaderCacheDirectory, "instance fill");
 }
 
 void GpuInstanceFill::upload(std::span<const std::uint8_t> states,
@@ -70,16 +59,18 @@ void GpuInstanceFill::upload(std::span<const std::uint8_t> states,
 void GpuInstanceFill::record(VkCommandBuffer commands, VkDeviceAddress records,
                              VkDeviceAddress boxRecords) const {
   gpu::InstanceFillPush push{};
-  push.counts = glm::uvec4(instanceCount_, hitboxCount_, split(boxRecords));
-  const glm::uvec2 active = split(activeRecords_.address()), boxes = split(boxRecords_.address());
-  const glm::uvec2 meshes = split(meshOfInstance_.address());
-  const glm::uvec2 addresses = split(meshAddresses_.address());
-  const glm::uvec2 states = split(states_.address()), out = split(records);
+  push.counts = glm::uvec4(instanceCount_, hitboxCount_, addressWords(boxRecords));
+  const glm::uvec2 active = addressWords(activeRecords_.address()),
+                   boxes = addressWords(boxRecords_.address());
+  const glm::uvec2 meshes = addressWords(meshOfInstance_.address());
+  const glm::uvec2 addresses = addressWords(meshAddresses_.address());
+  const glm::uvec2 states = addressWords(states_.address()), out = addressWords(records);
   push.templates = glm::uvec4(active, boxes);
   push.sources = glm::uvec4(meshes, addresses);
   push.frame = glm::uvec4(states, out);
-  vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
-  vkCmdPushConstants(commands, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push, &push);
+  vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pass_.pipeline.get());
+  vkCmdPushConstants(commands, pass_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push,
+                     &push);
   vkCmdDispatch(commands, 1, 1, 1);
   // The build reads instance records as shader reads in its own stage.
   VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};

@@ -13,6 +13,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "runtime/compute_pipeline.h"
 #include "runtime/gpu_buffer.h"
 #include "runtime/vulkan_context.h"
 #include "runtime/vulkan_handle.h"
@@ -51,8 +52,7 @@ class GpuInstanceFill {
   GpuBuffer meshOfInstance_;
   GpuBuffer states_;         // host-visible, per frame
   GpuBuffer meshAddresses_;  // host-visible, per frame
-  VulkanHandle<VkPipelineLayout> layout_;
-  VulkanHandle<VkPipeline> pipeline_;
+  PushConstantPass pass_;
 };
 
 }  // namespace memograph::runtime

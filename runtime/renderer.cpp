@@ -164,7 +164,7 @@ static std::string wavefrontGap(const RendererOptions& options, const Scene& sce
   if (!device.wavefrontTraces)
     return "on the pipeline backend it launches its traces with vkCmdTraceRaysIndirectKHR, "
            "which the device lacks (use --backend query)";
-  if (!scene.animatedMeshes.empty() && scene.animatedPosition)
+  if (!scene.animatedMeshes.empty() && !scene.animatedMotions.empty())
     return "it renders static scenes only, and this one has animated meshes";
   if (neeEvaluatesEmission && !options.floorMaterials)
     return "it evaluates no emitter's graph for a light sample, and this scene's emission is "
@@ -366,7 +366,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   GpuBuffer noHitFeedback;
   // Animated meshes move every frame: their BLASes are updated and the TLAS rebuilt, as in
   // a culled render.
-  const bool animated = !scene.animatedMeshes.empty() && bool(scene.animatedPosition);
+  const bool animated = !scene.animatedMeshes.empty() && !scene.animatedMotions.empty();
   if (cullingOptions.mode == CullingMode::None && !animated) {
     staticAccel.emplace(context, buffers.vertices, sizeof(gpu::Vertex), buffers.indices,
                         buffers.geometry, buffers.placements);

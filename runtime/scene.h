@@ -3,11 +3,12 @@
 #pragma once
 
 #include <cstdint>
-#include <functional>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "runtime/shaders/shared_types.h"
 
 namespace memograph::runtime {
 
@@ -116,12 +117,13 @@ struct Scene {
   Camera camera;
   Environment environment;
   bool emissiveLightSampling = true;  // NEE of emissive triangles (materials with an estimate)
-  // Meshes whose vertices move every frame (the city's flags), and where the k-th one's rest
-  // vertex (object space) lies at a time in seconds; the renderer recomputes their normals
-  // from the moved triangles and updates their BLASes in place (docs/culling.md). Without
-  // the function they are drawn at rest.
+  // Meshes whose vertices move every frame (the city's flags), and how the k-th one's rest
+  // vertices (object space) move (gpu::VertexMotion, vertex_motion.h): the renderer's vertex
+  // pass moves them on the GPU, recomputes their normals from the moved triangles and
+  // updates their BLASes in place (docs/culling.md). Without motions (the list empty) they
+  // are drawn at rest; with them, one per animated mesh (validateScene checks).
   std::vector<std::uint32_t> animatedMeshes;
-  std::function<glm::vec3(std::size_t k, glm::vec3 rest, float seconds)> animatedPosition;
+  std::vector<gpu::VertexMotion> animatedMotions;
 };
 
 }  // namespace memograph::runtime

@@ -15,7 +15,8 @@ namespace {
 constexpr VkBufferUsageFlags kStorage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
 constexpr VkBufferUsageFlags kGeometry =
     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
-    VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR;
+    VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
+    VK_BUFFER_USAGE_TRANSFER_SRC_BIT;  // read back by tests
 
 std::string meshLabel(const Mesh& mesh, std::size_t index) {
   return "mesh " + std::to_string(index) + (mesh.name.empty() ? "" : " ('" + mesh.name + "')");
@@ -28,6 +29,10 @@ void validateScene(const Scene& scene) {
     throw std::invalid_argument("the scene has no meshes");
   if (scene.instances.empty())
     throw std::invalid_argument("the scene has no instances");
+  if (!scene.animatedMotions.empty() && scene.animatedMotions.size() != scene.animatedMeshes.size())
+    throw std::invalid_argument(std::to_string(scene.animatedMotions.size()) +
+                                " vertex motions for " +
+                                std::to_string(scene.animatedMeshes.size()) + " animated meshes");
   std::vector<bool> animated(scene.meshes.size(), false);
   for (std::size_t k = 0; k < scene.animatedMeshes.size(); ++k) {
     const std::uint32_t mesh = scene.animatedMeshes[k];

@@ -98,8 +98,9 @@ CityCounts cityCounts(double scale);
 float cityHalfSize(double scale);
 // The ground height (metres) at world (x, z).
 float cityTerrainHeight(float x, float z);
-// A flag's cloth at `seconds`: the offset of a vertex from its rest position (mesh space;
-// rest.x is the distance from the pole). Scene::animatedMeshes lists the flags in order.
-glm::vec3 cityFlagDisplacement(glm::vec3 rest, float seconds, int flag);
+// How flag `flag`'s cloth moves (Scene::animatedMotions, which lists the flags in order): a
+// wave along the cloth (mesh space: rest.x is the distance from the pole) with the flag's
+// own phase (gpu::vertexMotionOffset).
+gpu::VertexMotion cityFlagMotion(int flag);
 
 }  // namespace memograph::runtime

@@ -87,11 +87,14 @@ Mesh buildingMesh(int index, float width, float depth, int floors, float groundL
 }
 
 // A flag's cloth at rest: a (cells+1) x (rows+1) grid in the x-y plane, hanging from x = 0.
+// A flag's cloth: its length along +x from the pole, which its wave grows over.
+constexpr float kFlagWidth = 2.4f;
+
 Mesh flagMesh(int index) {
   Mesh mesh;
   mesh.name = "flag_" + std::to_string(index);
   constexpr int kColumns = 8, kRows = 5;
-  constexpr float kWidth = 2.4f, kHeight = 1.5f;
+  constexpr float kWidth = kFlagWidth, kHeight = 1.5f;
   for (int r = 0; r <= kRows; ++r) {
     for (int c = 0; c <= kColumns; ++c) {
       const float u = static_cast<float>(c) / kColumns, v = static_cast<float>(r) / kRows;
@@ -308,7 +311,7 @@ Scene makeCityScene(const BuiltinSceneOptions& options) {
   }
 
   // Flags on poles around the squares: every cloth its own mesh (it moves every frame, see
-  // cityFlagDisplacement), every pole a shared prop.
+  // cityFlagMotion), every pole a shared prop.
   Mesh pole;
   pole.name = "flag_pole";
   appendCylinder(pole, {0, 0, 0}, 0.06f, 8.0f, 8);
@@ -323,6 +326,7 @@ Scene makeCityScene(const BuiltinSceneOptions& options) {
     const auto flag = b.addMesh(flagMesh(i));
     b.instance(flag, cloth, placed({x + 0.06f, y + 6.3f, z}, 0.0f, 1.0f));
     scene.animatedMeshes.push_back(flag);
+    scene.animatedMotions.push_back(cityFlagMotion(i));
   }
 
   // The mirror: a polished wall across the far end of the main street (x = 0 runs along
@@ -342,21 +346,15 @@ Scene makeCityScene(const BuiltinSceneOptions& options) {
   scene.lights.push_back(sun);
   scene.environment.constantRadiance = glm::vec3(0.45f, 0.6f, 0.85f);
   scene.emissiveLightSampling = options.emissiveNee.value_or(true);
-  scene.animatedPosition = [](std::size_t flag, glm::vec3 rest, float seconds) {
-    return rest + cityFlagDisplacement(rest, seconds, static_cast<int>(flag));
-  };
   const CameraPath path = makeBuiltinCameraPath("city", 1, options.cityScale, options.cityPath);
   scene.camera = path.frames.front();
   return std::move(scene);
 }
 
-glm::vec3 cityFlagDisplacement(glm::vec3 rest, float seconds, int flag) {
-  // A travelling wave along the cloth, growing away from the pole (x = 0), plus a slow
-  // sway; each flag has its own phase.
-  const float phase = 6.2831853f * hash2(flag, 40, 95u);
-  const float reach = rest.x / 2.4f;
-  const float wave = std::sin(3.5f * rest.x - 5.0f * seconds + phase);
-  return {0.0f, -0.08f * reach * reach, reach * (0.35f * wave + 0.15f * std::sin(seconds + phase))};
+gpu::VertexMotion cityFlagMotion(int flag) {
+  gpu::VertexMotion motion{};
+  motion.wave = glm::vec4(kFlagWidth, 6.2831853f * hash2(flag, 40, 95u), 0.0f, 0.0f);
+  return motion;
 }
 
 }  // namespace memograph::runtime

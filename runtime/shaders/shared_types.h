@@ -83,6 +83,38 @@ struct InstanceFillPush {
   uvec4 frame;      // xy: states (bytes: instances', then 1 per boxed hitbox), zw: records out
 };
 
+// Animated meshes (Scene::animatedMeshes; seeds/001 §3.3.1: "compute shaders are dispatched
+// in each frame to update the vertices for BLAS building"): how a mesh's rest vertices move
+// (vertex_motion.h), and what the vertex pass (vertex_motion.comp) reads. One dispatch moves
+// every mesh the frame needs, a work group row per mesh, before one barrier and the batched
+// BLAS updates and rebuilds.
+struct VertexMotion {
+  vec4 drift;  // xyz: a constant velocity in object space, units a second
+  vec4 wave;   // x: a cloth's length along +x from its pole (0: no wave), y: the wave's phase
+};
+// A mesh the pass moves this frame.
+struct VertexMotionJob {
+  VertexMotion motion;
+  // x: its first vertex in the scene's vertex buffer, y: its vertex count, z: its first rest
+  // vertex, w: the sign (as float bits) that turns its triangles' normals to its own side.
+  uvec4 range;
+};
+// A rest vertex: position, the mesh's own normal (kept where the moved triangles around it
+// are degenerate), and (x first, y count) its triangles among the corner triples.
+struct VertexMotionRest {
+  vec4 position;
+  vec4 normal;
+  uvec4 triangles;
+};
+// Its push constants: buffer device addresses as (low, high) uint pairs.
+struct VertexMotionPush {
+  uvec4 sources;  // xy: the jobs, zw: the rest vertices
+  uvec4 targets;  // xy: the corner triples (uvec4: rest-vertex indices of a triangle), zw: the
+                  // scene's vertices (gpu::Vertex), written in place
+  vec4 time;      // x: seconds
+};
+MG_CONSTANT(uint, kVertexMotionWorkgroup, 64);
+
 // Compute work-group edge of the ray-query backend.
 MG_CONSTANT(uint, kWorkgroupSize, 8);
 // The deferred tile fill's launch: rows of kFillRowInvocations (one per texel of a queue
@@ -322,6 +354,7 @@ struct Light {
 
 #ifdef __cplusplus
 static_assert(sizeof(TileQueueHeader) == 16 && sizeof(TileFillItem) == 32);
+static_assert(sizeof(VertexMotionJob) == 48 && sizeof(VertexMotionRest) == 48);
 static_assert(sizeof(WavefrontControl) == 80 && sizeof(WavefrontPush) == 32);
 static_assert(sizeof(Counters) % 16 == 0 &&
               offsetof(Counters, cacheOccupancy) == kCountersPerFrameUints * sizeof(uint));

@@ -11,6 +11,7 @@
 #include "runtime/scenes/builtin_scenes.h"
 #include "runtime/scenes/camera_path.h"
 #include "runtime/scenes/scene_validation.h"
+#include "runtime/shaders/vertex_motion.h"
 
 namespace memograph::runtime {
 namespace {
@@ -196,12 +197,19 @@ TEST(CityScene, TheAerialPathStaysSelectable) {
 
 TEST(CityScene, FlagsMoveAndStayAtThePole) {
   const glm::vec3 atPole{0.0f, 0.7f, 0.0f}, atTip{2.4f, 0.7f, 0.0f};
-  EXPECT_EQ(cityFlagDisplacement(atPole, 1.3f, 0), glm::vec3(0.0f));
-  const glm::vec3 a = cityFlagDisplacement(atTip, 0.0f, 0);
-  const glm::vec3 b = cityFlagDisplacement(atTip, 0.5f, 0);
+  const auto offset = [](glm::vec3 rest, float seconds, int flag) {
+    return gpu::vertexMotionOffset(cityFlagMotion(flag), rest, seconds);
+  };
+  EXPECT_EQ(offset(atPole, 1.3f, 0), glm::vec3(0.0f));
+  const glm::vec3 a = offset(atTip, 0.0f, 0);
+  const glm::vec3 b = offset(atTip, 0.5f, 0);
   EXPECT_GT(glm::distance(a, b), 0.05f);
   EXPECT_LT(glm::length(a), 1.0f);
-  EXPECT_NE(cityFlagDisplacement(atTip, 0.5f, 0), cityFlagDisplacement(atTip, 0.5f, 1));
+  EXPECT_NE(offset(atTip, 0.5f, 0), offset(atTip, 0.5f, 1));
+  // One motion per flag, in the flags' order.
+  const Scene scene = makeBuiltinScene("city", cityOptions(0.02));
+  ASSERT_EQ(scene.animatedMotions.size(), scene.animatedMeshes.size());
+  EXPECT_EQ(scene.animatedMotions[1].wave, cityFlagMotion(1).wave);
 }
 
 TEST(CityScene, ScaleIsASpecKey) {

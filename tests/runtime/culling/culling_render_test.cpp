@@ -629,9 +629,9 @@ Scene slidingQuad(float speed) {
   scene.materials.push_back(material);
   scene.instances.push_back({0, 0, glm::mat4(1.0f)});
   scene.animatedMeshes = {0};
-  scene.animatedPosition = [speed](std::size_t, glm::vec3 rest, float seconds) {
-    return rest + glm::vec3(speed * seconds, 0.0f, 0.0f);
-  };
+  gpu::VertexMotion slide{};
+  slide.drift = glm::vec4(speed, 0.0f, 0.0f, 0.0f);
+  scene.animatedMotions = {slide};
   scene.environment.constantRadiance = glm::vec3(1.0f);
   scene.camera.position = {0.0f, 3.0f, 0.01f};
   scene.camera.target = {0.0f, 0.0f, 0.0f};

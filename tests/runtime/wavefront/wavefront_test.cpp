@@ -394,7 +394,7 @@ TEST(Wavefront, AutoShadingPicksTheWavefrontOnlyOnAGpuAndOnlyForWhatItDoes) {
   // Animated meshes.
   Scene animated = scene;
   animated.animatedMeshes = {0};
-  animated.animatedPosition = [](std::size_t, glm::vec3 rest, float) { return rest; };
+  animated.animatedMotions = {gpu::VertexMotion{}};
   EXPECT_EQ(pick(plain, gpu, false, &animated), Shading::Megakernel);
   // An explicit --tile-fill subgroup (unset, the wavefront queues; deferred is fine), and the
   // subgroup fill's grouping and test hook.
