@@ -18,6 +18,8 @@ constexpr VkBufferUsageFlags kGeometry =
     VK_BUFFER_USAGE_ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_BIT_KHR |
     VK_BUFFER_USAGE_TRANSFER_SRC_BIT;  // read back by tests
 
+constexpr std::uint64_t kMaxWorkGroups = 65535;
+
 std::string meshLabel(const Mesh& mesh, std::size_t index) {
   return "mesh " + std::to_string(index) + (mesh.name.empty() ? "" : " ('" + mesh.name + "')");
 }
@@ -42,6 +44,18 @@ void validateScene(const Scene& scene) {
                                   std::to_string(scene.meshes.size()) + " meshes");
     if (animated[mesh])
       throw std::invalid_argument("mesh " + std::to_string(mesh) + " is listed twice as animated");
+    // The vertex pass (vertex_motion.comp) dispatches a work group row per animated mesh and
+    // a work group per kVertexMotionWorkgroup vertices, each within the group count every
+    // device has (maxComputeWorkGroupCount is at least 65535).
+    if (k >= kMaxWorkGroups)
+      throw std::invalid_argument("the scene has " + std::to_string(scene.animatedMeshes.size()) +
+                                  " animated meshes; at most " + std::to_string(kMaxWorkGroups) +
+                                  " move");
+    if (scene.meshes[mesh].positions.size() > kMaxWorkGroups * gpu::kVertexMotionWorkgroup)
+      throw std::invalid_argument(
+          "animated mesh " + std::to_string(k) + " (" + meshLabel(scene.meshes[mesh], mesh) +
+          ") has " + std::to_string(scene.meshes[mesh].positions.size()) + " vertices; at most " +
+          std::to_string(kMaxWorkGroups * gpu::kVertexMotionWorkgroup) + " move");
     animated[mesh] = true;
   }
   for (std::size_t i = 0; i < scene.meshes.size(); ++i) {

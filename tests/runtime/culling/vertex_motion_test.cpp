@@ -162,6 +162,14 @@ TEST(VertexMotion, AMotionPerAnimatedMeshOrNone) {
   }
   scene.animatedMotions.push_back({});
   EXPECT_NO_THROW(validateScene(scene));
+  // More vertices than the pass's work groups reach (65535 of 64): refused by name.
+  scene.meshes[1].positions.resize(65535u * 64u + 1u);
+  try {
+    validateScene(scene);
+    ADD_FAILURE() << "a mesh past the vertex pass's reach was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "animated mesh 1 (mesh 1) has 4194241 vertices; at most 4194240 move");
+  }
 }
 
 }  // namespace
