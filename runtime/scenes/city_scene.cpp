@@ -86,10 +86,10 @@ Mesh buildingMesh(int index, float width, float depth, int floors, float groundL
   return mesh;
 }
 
-// A flag's cloth at rest: a (cells+1) x (rows+1) grid in the x-y plane, hanging from x = 0.
 // A flag's cloth: its length along +x from the pole, which its wave grows over.
 constexpr float kFlagWidth = 2.4f;
 
+// A flag's cloth at rest: a (cells+1) x (rows+1) grid in the x-y plane, hanging from x = 0.
 Mesh flagMesh(int index) {
   Mesh mesh;
   mesh.name = "flag_" + std::to_string(index);
