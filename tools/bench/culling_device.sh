@@ -25,10 +25,12 @@
 #              GPU, where a missing barrier or a lost atomic shows: the street path's cameras
 #              137-152 at CHECK_SIZE (default 480x270), P = PATHS, --feedback-every 2, seed 1,
 #              with the defaults, then --instance-fill gpu, --hit-counters closest-hit and
-#              --feedback-dispatch split. Each against the defaults (checks.txt): every frame's
-#              rays, instance and hitbox counts, state changes, TLAS records, BLAS builds and
-#              looks the same, and the picture bit-identical (split: within float rounding,
-#              its mean LDR-FLIP under 1e-4); a line `PASS label` or `FAIL label: why` each
+#              --feedback-dispatch split, and the defaults again. Each against the defaults
+#              (checks.txt): every frame's rays, instance and hitbox counts, state changes,
+#              TLAS records, BLAS builds and looks the same, and the picture bit-identical
+#              (split: within float rounding, its mean LDR-FLIP under 1e-4); then --culling
+#              none twice, the second against the first (every flag moved by the vertex pass
+#              and its BLAS updated every frame); a line `PASS label` or `FAIL label: why` each
 # After tools/bundle_device.sh, on the GPU machine (tools/ and examples/ travel as tracked
 # files; carry bundle and .gl):
 #   bash tools/bench/culling_device.sh [bench] [pictures] [variants] [looks] [checks]
@@ -123,12 +125,16 @@ state_columns() {
 }
 
 checks() {
-  local cameras label verdict flip d
+  local cameras label reference verdict flip d i
   mapfile -t cameras < <(grep -v '^#' "$path" | grep .)
   printf '%s\n' "${cameras[@]:137:16}" >"$work/checks.campath"
-  local -a labels=(defaults gpufill chit split)
+  # Each label's run against its reference's: the settings against the defaults, and each
+  # mode run twice (again, none_again), so that a race (the vertex pass before the flags' BLAS
+  # updates, the counters, the instance fill) shows as two runs that differ.
+  local -a labels=(defaults gpufill chit split again none none_again)
   local -a settings=("" "--instance-fill gpu" "--hit-counters closest-hit"
-    "--feedback-dispatch split")
+    "--feedback-dispatch split" "" "--culling none" "--culling none")
+  local -a references=("" defaults defaults defaults defaults "" none)
   for i in "${!labels[@]}"; do
     label=${labels[i]}
     echo "== check $label" | tee -a "$OUT/log.txt"
@@ -140,20 +146,24 @@ checks() {
       >>"$OUT/log.txt" 2>&1
     echo "rc=$?" >>"$OUT/log.txt"
   done
-  for label in "${labels[@]:1}"; do
+  for i in "${!labels[@]}"; do
+    label=${labels[i]}
+    reference=${references[i]}
+    [ -n "$reference" ] || continue
     verdict=""
-    if [ ! -s "$work/check_$label.csv" ] || [ ! -s "$work/check_$label.pfm" ]; then
+    if [ ! -s "$work/check_$label.csv" ] || [ ! -s "$work/check_$label.pfm" ] ||
+      [ ! -s "$work/check_$reference.csv" ] || [ ! -s "$work/check_$reference.pfm" ]; then
       verdict="no render (log.txt)"
-    elif ! diff <(state_columns "$work/check_defaults.csv") \
+    elif ! diff <(state_columns "$work/check_$reference.csv") \
       <(state_columns "$work/check_$label.csv") >"$OUT/checks_$label.diff"; then
       # CSV lines (1: the header, 2: frame 0): the first pair that differs; the whole diff in
       # checks_<label>.diff.
       d="$OUT/checks_$label.diff"
       verdict="the frames' counts and states differ at CSV lines $(head -1 "$d"): first"
       verdict+=" $(grep -m1 '^<' "$d") against $(grep -m1 '^>' "$d") (columns"
-      verdict+=" $(state_columns "$work/check_defaults.csv" | head -1); checks_$label.diff)"
-    elif ! cmp -s "$work/check_defaults.pfm" "$work/check_$label.pfm"; then
-      flip=$("$m" diff "$work/check_defaults.pfm" "$work/check_$label.pfm" 2>&1 |
+      verdict+=" $(state_columns "$work/check_$reference.csv" | head -1); checks_$label.diff)"
+    elif ! cmp -s "$work/check_$reference.pfm" "$work/check_$label.pfm"; then
+      flip=$("$m" diff "$work/check_$reference.pfm" "$work/check_$label.pfm" 2>&1 |
         awk '$1 == "mean" {print $2}')
       if [ "$label" != split ]; then
         verdict="the picture differs (mean LDR-FLIP ${flip:-?})"
