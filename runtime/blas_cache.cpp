@@ -1,6 +1,7 @@
 #include "runtime/blas_cache.h"
 
 #include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -9,7 +10,8 @@ namespace memograph::runtime {
 BlasCache::BlasCache(const VulkanContext& context, const GpuBuffer& vertices,
                      std::uint32_t vertexStride, const GpuBuffer& indices,
                      std::vector<MeshGeometry> meshes, std::uint64_t budgetBytes,
-                     std::uint64_t buildTriangles, std::uint32_t keepFrames)
+                     std::uint64_t buildTriangles, double buildMilliseconds,
+                     std::uint32_t keepFrames)
     : context_(context),
       vertices_(vertices),
       vertexStride_(vertexStride),
@@ -17,6 +19,7 @@ BlasCache::BlasCache(const VulkanContext& context, const GpuBuffer& vertices,
       meshes_(std::move(meshes)),
       budgetBytes_(budgetBytes),
       buildTriangles_(buildTriangles),
+      buildMilliseconds_(buildMilliseconds),
       keepFrames_(keepFrames),
       blases_(meshes_.size()),
       lastUsed_(meshes_.size(), 0) {}
@@ -31,33 +34,57 @@ BlasFrameWork BlasCache::prepare(std::span<const std::uint32_t> needed, std::uin
     wanted[mesh] = 1;
   }
 
-  // Builds, lowest mesh index first, within the triangle budget.
-  std::vector<std::uint32_t> toBuild;
-  std::vector<MeshGeometry> geometry;
-  for (std::uint32_t mesh = 0; mesh < meshes_.size(); ++mesh) {
-    if (!wanted[mesh] || blases_[mesh])
-      continue;
-    const std::uint64_t triangles = meshes_[mesh].triangleCount;
-    if (buildTriangles_ && !toBuild.empty() && work.trianglesBuilt + triangles > buildTriangles_) {
-      ++work.waiting;
-      continue;
+  // Builds, lowest mesh index first, each that fits in what is left of the triangle and
+  // time budgets (at least one a frame, so a mesh larger than the budget still comes), in
+  // one batch; except while the time budget has no measured build rate: then the first
+  // mesh is built alone, and its timestamps size a second batch.
+  std::vector<std::uint32_t> pending;
+  for (std::uint32_t mesh = 0; mesh < meshes_.size(); ++mesh)
+    if (wanted[mesh] && !blases_[mesh])
+      pending.push_back(mesh);
+  bool calibrating = buildMilliseconds_ > 0.0 && measuredTriangles_ == 0.0;
+  while (!pending.empty()) {
+    double left = buildTriangles_ ? double(buildTriangles_) - double(work.trianglesBuilt)
+                                  : std::numeric_limits<double>::infinity();
+    // The time left at the builds' measured rate (none measured without timestamps).
+    if (buildMilliseconds_ > 0.0 && measuredMilliseconds_ > 0.0)
+      left = std::min(left, (buildMilliseconds_ - work.gpuMilliseconds) * measuredTriangles_ /
+                                measuredMilliseconds_);
+    std::vector<std::uint32_t> batch, later;
+    std::vector<MeshGeometry> geometry;
+    std::uint64_t batchTriangles = 0;
+    for (const std::uint32_t mesh : pending) {
+      const std::uint64_t triangles = meshes_[mesh].triangleCount;
+      const bool first = work.builds == 0 && batch.empty();
+      if (first || (!calibrating && double(batchTriangles + triangles) <= left)) {
+        batch.push_back(mesh);
+        geometry.push_back(meshes_[mesh]);
+        batchTriangles += triangles;
+      } else {
+        later.push_back(mesh);
+      }
     }
-    toBuild.push_back(mesh);
-    geometry.push_back(meshes_[mesh]);
-    work.trianglesBuilt += triangles;
-  }
-  if (!toBuild.empty()) {
+    pending = std::move(later);
+    if (batch.empty())
+      break;
     CompactedBlases built =
         buildCompactedBlases(context_, vertices_, vertexStride_, indices_, geometry);
-    for (std::size_t k = 0; k < toBuild.size(); ++k) {
-      blases_[toBuild[k]] = std::move(built.blases[k]);
-      residentBytes_ += blases_[toBuild[k]]->size();
+    for (std::size_t k = 0; k < batch.size(); ++k) {
+      blases_[batch[k]] = std::move(built.blases[k]);
+      residentBytes_ += blases_[batch[k]]->size();
       ++residentCount_;
     }
-    work.builds = static_cast<std::uint32_t>(toBuild.size());
-    work.scratchBytes = built.scratchBytes;
-    work.gpuMilliseconds = built.gpuMilliseconds;
+    work.builds += static_cast<std::uint32_t>(batch.size());
+    work.trianglesBuilt += batchTriangles;
+    work.scratchBytes = std::max(work.scratchBytes, built.scratchBytes);
+    work.gpuMilliseconds += built.gpuMilliseconds;
+    measuredTriangles_ += double(batchTriangles);
+    measuredMilliseconds_ += built.gpuMilliseconds;
+    if (!calibrating)
+      break;
+    calibrating = false;
   }
+  work.waiting = static_cast<std::uint32_t>(pending.size());
   for (std::uint32_t mesh = 0; mesh < meshes_.size(); ++mesh)
     if (wanted[mesh] && blases_[mesh])
       lastUsed_[mesh] = frame + 1;

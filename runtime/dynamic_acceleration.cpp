@@ -37,7 +37,8 @@ DynamicAccelerationStructures::DynamicAccelerationStructures(
       options_(options),
       culling_(scene, options),
       blasCache_(context, buffers.vertices, sizeof(gpu::Vertex), buffers.indices, buffers.geometry,
-                 options.blasBudgetBytes, options.blasBuildTriangles, options.blasKeepFrames),
+                 options.blasBudgetBytes, options.blasBuildTriangles, options.blasBuildMilliseconds,
+                 options.blasKeepFrames),
       animated_(context, scene, buffers, options.blasRebuildEvery, shaderCacheDirectory),
       feedbackPathWeight_(feedbackPathWeight) {
   meshCount_ = static_cast<std::uint32_t>(scene.meshes.size());

@@ -112,10 +112,13 @@ void validateCullingOptions(const CullingOptions& o) {
   within(o.feedbackPaths, 0, 64, "--feedback-paths");
   within(o.feedbackEvery, 1, 64, "--feedback-every");
   within(o.blasKeepFrames, 0, kMaxLowFrames, "--blas-keep-frames");
-  if (o.mode == CullingMode::None && (o.blasBudgetBytes || o.blasBuildTriangles))
+  if (!(o.blasBuildMilliseconds >= 0.0 && o.blasBuildMilliseconds <= 1e6))
+    throw std::invalid_argument("--blas-build-ms must be in [0, 1e6] milliseconds");
+  if (o.mode == CullingMode::None &&
+      (o.blasBudgetBytes || o.blasBuildTriangles || o.blasBuildMilliseconds > 0.0))
     throw std::invalid_argument(
-        "--blas-budget and --blas-build-budget manage the BLASes culling leaves out; they need "
-        "--culling frustum or --culling lipac");
+        "--blas-budget, --blas-build-budget and --blas-build-ms manage the BLASes culling "
+        "leaves out; they need --culling frustum or --culling lipac");
 }
 
 std::vector<Bounds> instanceBounds(const Scene& scene) {

@@ -55,10 +55,14 @@ struct CullingOptions {
   float appearMinFraction = 0.01f;
   // BLAS residency (§3.3.1): bytes of resident BLASes past which those no instance in the
   // TLAS uses are evicted, least recently used first (0: no limit), and the triangles built
-  // per frame at most (0: no limit; at least one BLAS is built per frame). A triangle
-  // budget, not a time budget, so that pictures do not depend on the machine's speed.
+  // per frame at most (0: no limit; at least one BLAS is built per frame): the same inputs
+  // build the same BLASes, so give the same pictures, on any machine.
   std::uint64_t blasBudgetBytes = 0;
   std::uint64_t blasBuildTriangles = 0;
+  // And the GPU milliseconds of a frame's BLAS builds at most (0: no limit; §3.3.1's time
+  // budget), at the build rate the timestamps of the builds so far measured; the set built
+  // then depends on the machine's speed, where the triangle budget's does not.
+  double blasBuildMilliseconds = 0.0;
   // A BLAS no instance in the TLAS has used for more than this many frames is evicted
   // whatever the budget (§3.3.1: "or when they have not been used for many frames"), so
   // the resident set follows what the frames keep; 0: only the budget evicts.

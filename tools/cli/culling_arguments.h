@@ -61,6 +61,10 @@ inline constexpr const char* kCullingHelp =
     "                        recently used first, past MB mebibytes (default: no limit)\n"
     "  --blas-build-budget T culled: build at most T triangles of BLASes a frame (at least\n"
     "                        one BLAS; default: no limit)\n"
+    "  --blas-build-ms MS    culled: build at most MS GPU milliseconds of BLASes a frame, at\n"
+    "                        the rate the builds so far took (at least one BLAS; the first\n"
+    "                        frame times its first alone; default: no limit); what is\n"
+    "                        built when then depends on the GPU's speed\n"
     "  --blas-keep-frames K  evict a BLAS no instance in the TLAS has used for K frames\n"
     "                        (default 2; 0: only --blas-budget evicts)\n"
     "  --blas-rebuild-every N  animated meshes (the city's flags): their BLASes are updated\n"
@@ -70,9 +74,9 @@ inline constexpr const char* kCullingHelp =
 // measured ones, scene_culling.h), so that there is one place to change them.
 struct CullingArguments {
   std::string mode = "none", radius, hitboxSize, hitboxActivate, hitboxDeactivate, instanceActivate,
-              instanceDeactivate, lowFrames, blasBudget, blasBuildBudget, blasRebuildEvery,
-              blasKeepFrames, feedbackStride, feedbackPaths, feedbackEvery, instanceFill, looks,
-              lookAppearing, feedbackDispatch, hitCounters;
+              instanceDeactivate, lowFrames, blasBudget, blasBuildBudget, blasBuildMilliseconds,
+              blasRebuildEvery, blasKeepFrames, feedbackStride, feedbackPaths, feedbackEvery,
+              instanceFill, looks, lookAppearing, feedbackDispatch, hitCounters;
 
   // Each option, and the mode that uses it (the others leave it unused).
   enum class Uses { Any, Frustum, Lipac };
@@ -81,7 +85,7 @@ struct CullingArguments {
     std::string CullingArguments::*value;
     Uses uses;
   };
-  static constexpr std::array<Option, 20> options() {
+  static constexpr std::array<Option, 21> options() {
     using A = CullingArguments;
     return {{{"--culling", &A::mode, Uses::Any},
              {"--culling-radius", &A::radius, Uses::Frustum},
@@ -93,6 +97,7 @@ struct CullingArguments {
              {"--low-frames", &A::lowFrames, Uses::Lipac},
              {"--blas-budget", &A::blasBudget, Uses::Any},
              {"--blas-build-budget", &A::blasBuildBudget, Uses::Any},
+             {"--blas-build-ms", &A::blasBuildMilliseconds, Uses::Any},
              {"--blas-rebuild-every", &A::blasRebuildEvery, Uses::Any},
              {"--blas-keep-frames", &A::blasKeepFrames, Uses::Any},
              {"--feedback-stride", &A::feedbackStride, Uses::Lipac},
@@ -172,6 +177,7 @@ struct CullingArguments {
       o.blasBudgetBytes = std::uint64_t(whole(blasBudget, "--blas-budget")) << 20;
     if (!blasBuildBudget.empty())
       o.blasBuildTriangles = whole(blasBuildBudget, "--blas-build-budget");
+    setReal(blasBuildMilliseconds, "--blas-build-ms", o.blasBuildMilliseconds);
     setWhole(blasRebuildEvery, "--blas-rebuild-every", o.blasRebuildEvery);
     setWhole(blasKeepFrames, "--blas-keep-frames", o.blasKeepFrames);
     setWhole(feedbackStride, "--feedback-stride", o.feedbackStride);

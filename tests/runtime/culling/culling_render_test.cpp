@@ -611,6 +611,38 @@ TEST(CulledRender, TheBuildBudgetSpreadsBuildsOverFrames) {
   EXPECT_EQ(r.stats.frames.back().activeInstances, all.stats.frames.front().activeInstances);
 }
 
+// --blas-build-ms: a budget below any build's time builds one BLAS a frame (the first frame's
+// first alone, to time it), one too large for any builds all at once, as without a budget;
+// either way the frame holds the same instances once every BLAS has come. The extremes
+// are used so that what is built when does not depend on this machine's speed.
+TEST(CulledRender, TheBuildTimeBudgetSpreadsBuildsOverFrames) {
+  const Scene scene = smallCity();
+  RendererOptions o = options(CullingMode::Frustum, true);
+  // No flag's BLAS is rebuilt within the frames (those builds count too).
+  o.culling.blasRebuildEvery = 1024;
+  const RenderResult unlimited = render(o, scene, settings(1, {mirrorCamera()}));
+  const std::uint32_t needed = unlimited.stats.frames.front().blasBuilds;
+  ASSERT_GT(needed, 3u);
+
+  o.culling.blasBuildMilliseconds = 1e6;
+  const RenderResult ample = render(o, scene, settings(1, {mirrorCamera()}));
+  EXPECT_EQ(ample.stats.frames.front().blasBuilds, needed) << "the first alone, then the rest";
+  EXPECT_EQ(ample.stats.frames.front().waitingInstances, 0u);
+
+  o.culling.blasBuildMilliseconds = 1e-9;
+  const RenderResult tight = render(o, scene, settings(needed + 1, {mirrorCamera()}));
+  std::uint32_t built = 0;
+  for (const FrameStats& f : tight.stats.frames) {
+    EXPECT_LE(f.blasBuilds, 1u) << "frame " << f.frame;
+    built += f.blasBuilds;
+  }
+  EXPECT_GT(tight.stats.frames.front().waitingInstances, 0u);
+  EXPECT_EQ(built, needed);
+  EXPECT_EQ(tight.stats.frames.back().waitingInstances, 0u) << "every needed BLAS came";
+  EXPECT_EQ(tight.stats.frames.back().activeInstances,
+            unlimited.stats.frames.front().activeInstances);
+}
+
 }  // namespace
 }  // namespace memograph::runtime
 

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <limits>
+
 #include <gtest/gtest.h>
 
 #include "runtime/scene_culling.h"
@@ -350,8 +352,25 @@ TEST(CullingOptions, BadValuesAreRefusedWithTheirFlag) {
       EXPECT_NE(message(o).find(r.flag), std::string::npos);
     }
   }
+  // The build time budget: milliseconds in [0, 1e6] (0: none).
+  for (const double fine : {0.0, 0.25, 1e6}) {
+    o = lipac();
+    o.blasBuildMilliseconds = fine;
+    EXPECT_EQ(message(o), "") << fine;
+  }
+  for (const double bad : {-0.5, 1e6 * 1.01, std::numeric_limits<double>::quiet_NaN(),
+                           std::numeric_limits<double>::infinity()}) {
+    o = lipac();
+    o.blasBuildMilliseconds = bad;
+    EXPECT_EQ(message(o), "--blas-build-ms must be in [0, 1e6] milliseconds") << bad;
+  }
+  // The BLAS budgets manage what culling leaves out: without culling they are refused.
   o = CullingOptions{};
   o.blasBudgetBytes = 1 << 20;
+  EXPECT_NE(message(o).find("need"), std::string::npos);
+  o = CullingOptions{};
+  o.blasBuildMilliseconds = 2.0;
+  EXPECT_NE(message(o).find("--blas-build-ms"), std::string::npos);
   EXPECT_NE(message(o).find("need"), std::string::npos);
   EXPECT_THROW(parseCullingMode("all"), std::invalid_argument);
   EXPECT_EQ(parseCullingMode("lipac"), CullingMode::Lipac);
