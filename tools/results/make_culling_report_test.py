@@ -167,6 +167,27 @@ class MakeCullingReportTest(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertNotIn("| mode | quiet |", text)
 
+    def test_rays_against_none_flag_frames_that_lost_geometry(self):
+        run = self.make_run({})
+        write_frames(os.path.join(run, "frames_none.csv"), [(100.0, 1000, 0.0, 20000)] * 4)
+        none_rays = [1000, 1000, 2000, 1000]
+        culled_rays = [1000, 990, 1000, 940]  # 1.0, 0.99, 0.5 (short), 0.94 (short)
+        for mode, rays in [("none", none_rays), ("lipac", culled_rays)]:
+            with open(os.path.join(run, f"frames_{mode}.csv"), "w", newline="") as f:
+                writer = csv.writer(f)
+                writer.writerow(COLUMNS + ["rays"])
+                for i, r in enumerate(rays):
+                    writer.writerow([i, 99.5, 300 * 2**20, 0, 0.0, 0.5, 5000, 0, 0.1, r])
+        result, text = self.run_report(run)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        row = next(line for line in text.splitlines() if line.startswith("| lipac | 0.500"))
+        self.assertEqual([c.strip() for c in row.strip("|").split("|")],
+                         ["lipac", "0.500×", "0.965×", "2 of 4"])
+        # A run without the column has no such table.
+        write_frames(os.path.join(run, "frames_lipac.csv"), [(100.0, 1000, 0.0, 20000)] * 4)
+        result, text = self.run_report(run)
+        self.assertNotIn("| mode | lowest |", text)
+
     def test_bad_input_exits_1(self):
         result, _ = self.run_report(os.path.join(self.dir.name, "missing"))
         self.assertEqual(result.returncode, 1)
