@@ -88,16 +88,19 @@ AnimatedBlases::AnimatedBlases(const VulkanContext& context, const Scene& scene,
   VkDeviceSize scratchTotal = 0;
   std::vector<gpu::VertexMotionRest> rest;
   std::vector<glm::uvec4> corners;
+  // Without motions the meshes are drawn at rest: no vertex pass, nothing of it to make.
+  const bool moves = !scene.animatedMotions.empty();
   for (std::size_t k = 0; k < scene.animatedMeshes.size(); ++k) {
     const std::uint32_t mesh = scene.animatedMeshes[k];
     Animated a;
     a.mesh = mesh;
     a.k = k;
     a.geometry = buffers.geometry.at(mesh);
-    const Mesh& sceneMesh = scene.meshes[mesh];
-    a.normalSign = restNormalSign(sceneMesh);
-    a.firstRest = static_cast<std::uint32_t>(rest.size());
-    appendRestVertices(sceneMesh, rest, corners);
+    if (moves) {
+      a.normalSign = restNormalSign(scene.meshes[mesh]);
+      a.firstRest = static_cast<std::uint32_t>(rest.size());
+      appendRestVertices(scene.meshes[mesh], rest, corners);
+    }
     VkAccelerationStructureGeometryKHR geometry =
         meshGeometry(buffers.vertices, sizeof(gpu::Vertex), buffers.indices, a.geometry);
     VkAccelerationStructureBuildGeometryInfoKHR build =
@@ -124,11 +127,13 @@ AnimatedBlases::AnimatedBlases(const VulkanContext& context, const Scene& scene,
       GpuBuffer(context, scratchTotal + scratchAlignment,
                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
                 VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  rest_ = uploadBuffer<gpu::VertexMotionRest>(context, rest, kShaderRead);
-  corners_ = uploadBuffer<glm::uvec4>(context, corners, kShaderRead);
-  jobs_ = hostBuffer(context, meshes_.size() * sizeof(gpu::VertexMotionJob), kShaderRead);
-  pass_ = createPushConstantPass(context, "vertex_motion.comp", sizeof(gpu::VertexMotionPush),
-                                 shaderCacheDirectory, "vertex motion");
+  if (moves) {
+    rest_ = uploadBuffer<gpu::VertexMotionRest>(context, rest, kShaderRead);
+    corners_ = uploadBuffer<glm::uvec4>(context, corners, kShaderRead);
+    jobs_ = hostBuffer(context, meshes_.size() * sizeof(gpu::VertexMotionJob), kShaderRead);
+    pass_ = createPushConstantPass(context, "vertex_motion.comp", sizeof(gpu::VertexMotionPush),
+                                   shaderCacheDirectory, "vertex motion");
+  }
   // The first build, at rest (the uploaded vertices): every BLAS, one batch.
   for (std::size_t slot = 0; slot < meshes_.size(); ++slot) {
     planned_.push_back(slot);

@@ -19,7 +19,6 @@
 #include "runtime/scene_upload.h"
 #include "runtime/shaders/shared_types.h"
 #include "runtime/vulkan_context.h"
-#include "runtime/vulkan_handle.h"
 
 namespace memograph::runtime {
 

@@ -35,6 +35,13 @@ void validateScene(const Scene& scene) {
     throw std::invalid_argument(std::to_string(scene.animatedMotions.size()) +
                                 " vertex motions for " +
                                 std::to_string(scene.animatedMeshes.size()) + " animated meshes");
+  // The vertex pass (vertex_motion.comp) dispatches a work group row per animated mesh and
+  // a work group per kVertexMotionWorkgroup vertices, each within the group count every
+  // device has (maxComputeWorkGroupCount is at least 65535).
+  if (scene.animatedMeshes.size() > kMaxWorkGroups)
+    throw std::invalid_argument("the scene has " + std::to_string(scene.animatedMeshes.size()) +
+                                " animated meshes; at most " + std::to_string(kMaxWorkGroups) +
+                                " move");
   std::vector<bool> animated(scene.meshes.size(), false);
   for (std::size_t k = 0; k < scene.animatedMeshes.size(); ++k) {
     const std::uint32_t mesh = scene.animatedMeshes[k];
@@ -44,13 +51,6 @@ void validateScene(const Scene& scene) {
                                   std::to_string(scene.meshes.size()) + " meshes");
     if (animated[mesh])
       throw std::invalid_argument("mesh " + std::to_string(mesh) + " is listed twice as animated");
-    // The vertex pass (vertex_motion.comp) dispatches a work group row per animated mesh and
-    // a work group per kVertexMotionWorkgroup vertices, each within the group count every
-    // device has (maxComputeWorkGroupCount is at least 65535).
-    if (k >= kMaxWorkGroups)
-      throw std::invalid_argument("the scene has " + std::to_string(scene.animatedMeshes.size()) +
-                                  " animated meshes; at most " + std::to_string(kMaxWorkGroups) +
-                                  " move");
     if (scene.meshes[mesh].positions.size() > kMaxWorkGroups * gpu::kVertexMotionWorkgroup)
       throw std::invalid_argument(
           "animated mesh " + std::to_string(k) + " (" + meshLabel(scene.meshes[mesh], mesh) +

@@ -143,6 +143,18 @@ TEST(VertexMotion, ThePassMovesTheNeededMeshesAsTheHostDoes) {
   const MeshGeometry& still = buffers.geometry[0];
   for (std::uint32_t v = 0; v < still.vertexCount; ++v)
     EXPECT_EQ(after[still.firstVertex + v].position, before[still.firstVertex + v].position);
+
+  // Without motions the meshes are drawn at rest: no pass is made, nothing moves.
+  Scene atRest = scene;
+  atRest.animatedMotions.clear();
+  SceneBuffers restBuffers = uploadScene(context, atRest);
+  AnimatedBlases drawnAtRest(context, atRest, restBuffers, 16, {});
+  const AnimatedFrameWork none = drawnAtRest.prepare(seconds, 0, {});
+  EXPECT_EQ(none.updates + none.rebuilds, 0u);
+  context.submitAndWait([&](VkCommandBuffer commands) { drawnAtRest.record(commands); });
+  const std::vector<gpu::Vertex> unmoved = readVertices(context, restBuffers);
+  for (std::size_t v = 0; v < unmoved.size(); ++v)
+    ASSERT_EQ(unmoved[v].position, before[v].position) << "vertex " << v;
   EXPECT_TRUE(context.validationErrors().empty());
 }
 
