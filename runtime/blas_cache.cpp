@@ -46,7 +46,8 @@ BlasFrameWork BlasCache::prepare(std::span<const std::uint32_t> needed, std::uin
   while (!pending.empty()) {
     double left = buildTriangles_ ? double(buildTriangles_) - double(work.trianglesBuilt)
                                   : std::numeric_limits<double>::infinity();
-    // The time left at the builds' measured rate (none measured without timestamps).
+    // The time left at the builds' measured rate (the renderer refuses the time budget on a
+    // device without timestamps; a build too short to tick leaves the rate unmeasured).
     if (buildMilliseconds_ > 0.0 && measuredMilliseconds_ > 0.0)
       left = std::min(left, (buildMilliseconds_ - work.gpuMilliseconds) * measuredTriangles_ /
                                 measuredMilliseconds_);

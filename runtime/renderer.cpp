@@ -249,6 +249,10 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
     throw std::invalid_argument(
         "--hit-counters closest-hit needs the ray-tracing pipeline backend (--backend "
         "pipeline): a ray query has no closest-hit shader");
+  if (options_.culling.blasBuildMilliseconds > 0.0 && !context.info().timestamps)
+    throw std::invalid_argument(
+        "--blas-build-ms times the BLAS builds with GPU timestamps, which this device does not "
+        "have; --blas-build-budget limits the triangles built instead");
 
   // Materials: graphs → GLSL, and the textures they name. Linked first: whether NEE must
   // evaluate an emitter's graph decides what Shading::Auto can run.
