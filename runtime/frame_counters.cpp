@@ -26,6 +26,7 @@ std::vector<FrameCounter> frameCounters(const FrameStats& frame) {
       {"blas_build_gpu_ms", frame.blasBuildMilliseconds},
       {"tlas_build_gpu_ms", frame.tlasBuildMilliseconds},
       {"culling_host_ms", frame.cullingHostMilliseconds},
+      {"trace_dispatches", double(frame.traceDispatches)},
   };
 }
 

@@ -45,7 +45,7 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
          "wavefront_generate_gpu_ms,wavefront_trace_gpu_ms,wavefront_shade_gpu_ms,"
          "wavefront_queue_gpu_ms,wavefront_shadow_gpu_ms,wavefront_finish_gpu_ms,"
          "wavefront_bin_gpu_ms,wavefront_material_gpu_ms,wavefront_lookup_gpu_ms,looks,look_gpu_"
-         "ms,look_rays,feedback_frame\n";
+         "ms,look_rays,feedback_frame,trace_dispatches\n";
   const auto& a = s.accelerationStructures;
   for (const auto& f : s.frames) {
     double mraysPerSecond = f.gpuMilliseconds > 0 ? f.rays / (f.gpuMilliseconds * 1e3) : 0.0;
@@ -75,7 +75,7 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
         << f.wavefrontShadowMilliseconds << ',' << f.wavefrontFinishMilliseconds << ','
         << f.wavefrontBinMilliseconds << ',' << f.wavefrontMaterialMilliseconds << ','
         << f.wavefrontLookupMilliseconds << ',' << f.looks << ',' << f.lookMilliseconds << ','
-        << f.lookRays << ',' << f.feedbackFrame << '\n';
+        << f.lookRays << ',' << f.feedbackFrame << ',' << f.traceDispatches << '\n';
   }
 }
 

@@ -63,6 +63,8 @@ struct FrameStats {
   // 1 where this frame's trace counted (LiPaC's feedback pipeline: --feedback-every), so that
   // the frames that count and those that do not can be timed apart.
   std::uint32_t feedbackFrame = 0;
+  // The megakernel's trace dispatches this frame (planPathDispatches; 0: the wavefront's).
+  std::uint32_t traceDispatches = 0;
   std::uint32_t tlasRecords = 0;
   std::uint64_t blasBytes = 0;
   std::uint64_t tlasBytes = 0;

@@ -18,6 +18,7 @@
 #include "runtime/material_cache.h"
 #include "runtime/material_callables.h"
 #include "runtime/material_linker.h"
+#include "runtime/path_dispatches.h"
 #include "runtime/scene_upload.h"
 #include "runtime/shader_compiler.h"
 #include "runtime/shader_sources.h"
@@ -450,9 +451,11 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   // LiPaC's hit counters and the counting-box probe, only where LiPaC runs; with
   // --feedback-every K > 1 the frames that do not count trace with a second pipeline built
   // without them (the same bindings, so the same descriptor set), and with
-  // --feedback-dispatch split a counting frame's paths that do not count do too.
+  // --feedback-dispatch split a counting frame's paths that do not count do too. The debug
+  // view of cache misses writes each frame in one dispatch: a later one would overwrite it.
   const bool splitCounting = hitFeedback && options_.culling.splitFeedbackDispatch &&
                              pathWeight > 1 && !options_.debugCacheMisses;
+  const std::uint32_t pathsPerDispatch = options_.debugCacheMisses ? 0u : options_.pathsPerDispatch;
   const std::vector<std::string> quietDefines = shaderDefines;
   if (hitFeedback)
     shaderDefines.push_back("MG_HIT_FEEDBACK=1");
@@ -575,14 +578,11 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
       glm::uvec4(materialCache.entryCount(), 0u, mipBiasBits, materialCache.tilesPerRow());
 
   // One frame's commands: clears, the TLAS build, the trace (and tile fill), the read-backs.
-  // `f` == 0 clears the cache and the counters that persist. `counts`: the trace writes
-  // LiPaC's counters (the pipeline with the feedback; a look's always does). `split`: a
-  // counting frame whose paths that do not count are traced first by the pipeline without
-  // the feedback (frame.culling.w holds kCullingSplitPaths).
-  const auto submitFrame = [&](std::uint32_t f, bool counts, bool split) {
-    const TracePipeline* tracer = quietPipeline && !counts ? &*quietPipeline
-                                  : pipeline               ? &*pipeline
-                                                           : nullptr;
+  // `f` == 0 clears the cache and the counters that persist. `dispatches`: the trace's
+  // dispatches in order (planPathDispatches), each with the pipeline with LiPaC's feedback
+  // or, where there is one, without it.
+  const auto submitFrame = [&](std::uint32_t f, const std::vector<PathDispatch>& dispatches) {
+    const TracePipeline* tracer = pipeline ? &*pipeline : nullptr;
     context.submitAndWait([&](VkCommandBuffer commands) {
       // The cache is cleared once, before the first frame: every key kCacheKeyEmpty (0),
       // every clock 0, and with it the counters that persist (occupancy, counter clock);
@@ -611,17 +611,19 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
         wavefrontTracer->record(commands, set, settings.pathsPerPixel, settings.raysPerPath,
                                 timestamps ? timestampPool.get() : VK_NULL_HANDLE,
                                 kFirstWavefrontTimestamp);
-      else if (split) {
-        // The counted paths' dispatch adds its share to what the first wrote (renderPixel).
-        quietPipeline->record(commands, set, settings.width, settings.height);
-        barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-        barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
-        vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
-                             VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0, nullptr, 0,
-                             nullptr);
-        tracer->record(commands, set, settings.width, settings.height);
-      } else {
-        tracer->record(commands, set, settings.width, settings.height);
+      else {
+        for (const PathDispatch& d : dispatches) {
+          // A later dispatch adds its share to what the earlier ones wrote (renderPixel).
+          if (d.adds) {
+            barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+            barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+            vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                                 VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0, nullptr, 0,
+                                 nullptr);
+          }
+          const TracePipeline& traced = quietPipeline && !d.feedback ? *quietPipeline : *tracer;
+          traced.record(commands, set, settings.width, settings.height, d.push());
+        }
       }
       if (materialCache.tileFillRows() > 0 && pipeline) {
         // The deferred tile fill computes the tiles the trace queued (its stores, queue and
@@ -697,7 +699,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
       frame.path.x = 1u;
       frame.culling = glm::uvec4(1u, frame.culling.y, 0u, gpu::kCullingLook);
       frameBuffer.write(&frame, sizeof frame);
-      submitFrame(f, true, false);
+      submitFrame(f, planPathDispatches(1, pathsPerDispatch, true, false, {0, 1}));
       frame.path = framePath;
       frame.culling = frameCulling;
       frameBuffer.write(&frame, sizeof frame);
@@ -725,14 +727,12 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
 
     const bool counts = dynamicAccel && dynamicAccel->frameCounts();
     frameStats.feedbackFrame = counts ? 1u : 0u;
-    const bool split = counts && splitCounting;
-    if (split) {
-      frame.culling.w = gpu::kCullingSplitPaths;
-      frameBuffer.write(&frame, sizeof frame);
-      frame.culling.w = 0u;
-    }
+    const std::vector<PathDispatch> dispatches =
+        planPathDispatches(settings.pathsPerPixel, pathsPerDispatch, counts, splitCounting,
+                           countedPaths(settings.pathsPerPixel, frame.culling.z, frame.culling.y));
+    frameStats.traceDispatches = wavefrontTracer ? 0u : std::uint32_t(dispatches.size());
     auto start = std::chrono::steady_clock::now();
-    submitFrame(f, counts, split);
+    submitFrame(f, dispatches);
     frameStats.wallMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     gpu::Counters counters{};

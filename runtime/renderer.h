@@ -77,6 +77,10 @@ struct RendererOptions {
   // runs in chunks of this many. 0: every pixel, or what the device's storage-buffer range
   // holds. Non-zero needs the wavefront (Shading::Wavefront, or Auto resolving to it).
   std::uint32_t wavefrontPaths = 0;
+  // The megakernel: a frame's P paths per pixel are traced in dispatches of at most this many
+  // paths each (runtime/path_dispatches.h); 0: all P in one. The wavefront ignores it: its
+  // rounds trace one path of every pixel each already.
+  std::uint32_t pathsPerDispatch = 0;
   // Thesis Fig. 6.9: the image shows each frame alone, pixels where a path missed the
   // cache in red. Needs the texel cache.
   bool debugCacheMisses = false;

@@ -229,7 +229,10 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   setLayout_ = createTraceSetLayout(device, stages, textureCount, setup.tileImage);
   VkDescriptorSetLayout setLayout = setLayout_.get();
 
-  layout_ = createPipelineLayout(device, setLayout);
+  // The raygen (or the query backend's compute shader) reads which paths a dispatch traces.
+  layout_ = createPipelineLayout(
+      device, setLayout, query ? VK_SHADER_STAGE_COMPUTE_BIT : VK_SHADER_STAGE_RAYGEN_BIT_KHR,
+      sizeof(gpu::TraceDispatchPush));
   VkPipelineLayout layout = layout_.get();
 
   std::vector<std::string> defines = {"MG_TEXTURE_COUNT=" + std::to_string(textureCount),
@@ -337,16 +340,20 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
 }
 
 void TracePipeline::record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t width,
-                           std::uint32_t height) const {
+                           std::uint32_t height, const gpu::TraceDispatchPush& paths) const {
   if (backend_ == Backend::RayQuery) {
     vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
     vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set, 0,
                             nullptr);
+    vkCmdPushConstants(commands, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof paths,
+                       &paths);
     vkCmdDispatch(commands, (width + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize,
                   (height + gpu::kWorkgroupSize - 1) / gpu::kWorkgroupSize, 1);
     return;
   }
   bindRayTracing(commands, set);
+  vkCmdPushConstants(commands, layout_.get(), VK_SHADER_STAGE_RAYGEN_BIT_KHR, 0, sizeof paths,
+                     &paths);
   context_.functions().cmdTraceRays(commands, &raygenRegion_, &missRegion_, &hitRegion_,
                                     &callableRegion_, width, height, 1);
 }

@@ -15,6 +15,7 @@
 #include "runtime/material_callables.h"
 #include "runtime/render_stats.h"
 #include "runtime/shader_compiler.h"
+#include "runtime/shaders/shared_types.h"
 #include "runtime/vulkan_context.h"
 #include "runtime/vulkan_handle.h"
 
@@ -97,9 +98,10 @@ class TracePipeline {
                 const TracePipelineSetup& setup = {});
 
   VkDescriptorSetLayout descriptorSetLayout() const { return setLayout_.get(); }
-  // Binds and launches one thread per pixel.
+  // Binds and launches one thread per pixel, tracing the paths `paths` names
+  // (PathDispatch::push, runtime/path_dispatches.h).
   void record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t width,
-              std::uint32_t height) const;
+              std::uint32_t height, const gpu::TraceDispatchPush& paths) const;
   // Binds and launches the deferred tile fill's pass: `rows` rows of
   // gpu::kFillRowInvocations (MaterialCache::tileFillRows); nothing without the pass. The
   // caller orders it after the trace.

@@ -52,17 +52,14 @@ bool countedPath(uint path, uint pathCount) {
   return (path + pathCount - first) % pathCount < counted;
 }
 
-// Whether this dispatch traces path `path`: every path, except in a split counting frame
-// (kCullingSplitPaths), where the feedback's pipeline traces the counted paths and the
-// pipeline without it the others; each adds its paths' share of the pixel's mean
-// (renderPixel). A uniform condition, so the loop stays whole.
+// Which of a pixel's paths this dispatch traces, and whether it adds to an earlier
+// dispatch's share of the mean (TraceDispatchPush, runtime/path_dispatches.h).
+layout(push_constant) uniform TraceDispatchBlock {
+  TraceDispatchPush dispatchPaths;
+};
+// A uniform condition, so the loop stays whole.
 bool dispatchTracesPath(uint path, uint pathCount) {
-  if ((frame.culling.w & kCullingSplitPaths) == 0u) return true;
-#ifdef MG_HIT_FEEDBACK
-  return countedPath(path, pathCount);
-#else
-  return !countedPath(path, pathCount);
-#endif
+  return (path + pathCount - dispatchPaths.paths.x % pathCount) % pathCount < dispatchPaths.paths.y;
 }
 
 #ifdef MG_HIT_FEEDBACK
@@ -399,13 +396,10 @@ void renderPixel(uvec2 pixel, bool inside) {
 #else
     uint sampleIndex = frame.environmentSize.z;
     float weight = 1.0 / float(sampleIndex + 1u);
-    bool secondShare = false;
-#ifdef MG_HIT_FEEDBACK
-    // A split counting frame's second dispatch (the counted paths): the first folded the
-    // other paths' share of the mean in, mix(previous, share, weight); the mean is linear in
-    // the paths, so this share adds with the same weight.
-    secondShare = (frame.culling.w & kCullingSplitPaths) != 0u;
-#endif
+    // A later dispatch of the frame (its paths): an earlier one folded its paths' share of
+    // the mean in, mix(previous, share, weight); the mean is linear in the paths, so this
+    // share adds with the same weight.
+    bool secondShare = dispatchPaths.paths.z != 0u;
     if (secondShare) {
       accumulation[index].rgb += radiance * weight;
     } else {

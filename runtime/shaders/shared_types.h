@@ -175,8 +175,7 @@ struct WavefrontPush {
 MG_CONSTANT(uint, kFlagSharedPrimaryRay, 1);
 MG_CONSTANT(uint, kFlagEnvironmentImage, 2);
 // FrameConstants::culling.w bits (LiPaC).
-MG_CONSTANT(uint, kCullingLook, 1);        // a look: it only counts (no shadow rays)
-MG_CONSTANT(uint, kCullingSplitPaths, 2);  // a split counting frame (path_tracer.glsl)
+MG_CONSTANT(uint, kCullingLook, 1);  // a look: it only counts (no shadow rays)
 
 // Texel cache (thesis §4.2-4.5, §5.3). An entry is kCacheEntryHeader uints (the 32-bit
 // key hash H1 of eq. 5.9, then the eviction metadata) followed by the material's written
@@ -278,10 +277,18 @@ struct FrameConstants {
   // counting frame's index (the frame over CullingOptions::feedbackEvery); z: z of each
   // pixel's P paths count, each count weighted P / z besides (CullingOptions::feedbackPaths;
   // 0: every path); w kCulling* bits: kCullingLook, a look, whose image the frame replaces,
-  // so it only counts (its paths trace no shadow rays); kCullingSplitPaths, a counting frame
-  // traced in two dispatches, its counted paths by the feedback's pipeline, the others by
-  // the pipeline without it (CullingOptions::splitFeedbackDispatch).
+  // so it only counts (its paths trace no shadow rays).
   uvec4 culling;
+};
+
+// The megakernel's push constants: which of a pixel's P paths this trace dispatch traces
+// (runtime/path_dispatches.h). A frame's paths may be traced by several dispatches, each
+// adding its paths' share of the pixel's mean.
+struct TraceDispatchPush {
+  // x the first path, y how many (cyclically from x, modulo P), z 1 where an earlier
+  // dispatch of the frame folded its share into the running mean already (this one adds to
+  // it), w unused.
+  uvec4 paths;
 };
 
 // Counters the shader adds to (binding kBindingRayCounter), in vec4-sized groups. The first

@@ -260,6 +260,12 @@ TEST_F(CliTest, OptionsTheModesLeaveUnusedAreNamed) {
   const auto unused = runCli(render +
                              " --eviction lru --tile 4x4 --hitbox-size 20 --culling-radius 5 "
                              "--hit-counters closest-hit");
+  // The wavefront traces one path of every pixel a round: --dispatch-paths is the megakernel's.
+  const auto wavefront = runCli(render + " --shading wavefront --dispatch-paths 1");
+  ASSERT_EQ(wavefront.exitCode, 0) << wavefront.output;
+  EXPECT_NE(wavefront.output.find("render: --dispatch-paths is ignored: it needs the megakernel"),
+            std::string::npos)
+      << wavefront.output;
   ASSERT_EQ(unused.exitCode, 0) << unused.output;
   for (const char* line : {"render: --hitbox-size is ignored: it needs --culling lipac",
                            "render: --hit-counters is ignored: it needs --culling lipac",
@@ -296,6 +302,12 @@ TEST_F(CliTest, RenderAndBenchRefuseBadCacheOptionValues) {
     EXPECT_EQ(device.exitCode, 2) << device.output;
     EXPECT_NE(device.output.find("--device takes a device index"), std::string::npos)
         << device.output;
+    const auto dispatch = runCli(command + " --dispatch-paths two");
+    EXPECT_EQ(dispatch.exitCode, 2) << dispatch.output;
+    EXPECT_NE(dispatch.output.find("--dispatch-paths takes a number of paths per trace "
+                                   "dispatch (0: all in one), not 'two'"),
+              std::string::npos)
+        << dispatch.output;
   }
   EXPECT_EQ(runCli("render builtin:landscape --debug-misses" + out).exitCode, 2);
   EXPECT_FALSE(fs::exists(directory_ / "x.pfm"));

@@ -1,7 +1,9 @@
 // One path-tracer source, two backends: the ray-query compute shader and the ray-tracing
 // pipeline must give the same image for the same seed; and a seed fixes the image exactly.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -138,6 +140,53 @@ TEST(Determinism, SameSeedGivesIdenticalBytesAndOtherSeedsDiffer) {
       std::memcmp(a.image.rgba.data(), c.image.rgba.data(), a.image.rgba.size() * sizeof(float)),
       0);
   EXPECT_TRUE(renderer.context().validationErrors().empty());
+}
+
+// --dispatch-paths: a frame's paths traced in several dispatches, each adding its share of
+// the pixels' mean, trace the same paths as one dispatch of all of them: the same rays (the
+// shared primary ray once more for each later dispatch) and the picture up to float rounding.
+// Both backends; three paths in runs of one and of two (the second run shorter).
+TEST(PathDispatches, SplitDispatchesTraceWhatOneDispatchTraces) {
+  const Scene scene = testScene();
+  for (const Backend backend : {Backend::RayQuery, Backend::RayTracingPipeline}) {
+    for (const bool sharedPrimary : {false, true}) {
+      RenderSettings settings = smallSettings(5);
+      settings.pathsPerPixel = 3;
+      settings.sharedPrimaryRay = sharedPrimary;
+      RendererOptions options = testing::testOptions(backend);
+      options.pathsPerDispatch = 0;
+      Renderer one(options);
+      const RenderResult whole = one.render(scene, settings);
+      for (const std::uint32_t runLength : {1u, 2u}) {
+        SCOPED_TRACE(std::string(backend == Backend::RayQuery ? "query" : "pipeline") +
+                     ", runs of " + std::to_string(runLength) +
+                     (sharedPrimary ? ", shared primary ray" : ""));
+        options.pathsPerDispatch = runLength;
+        Renderer renderer(options);
+        const RenderResult split = renderer.render(scene, settings);
+        EXPECT_TRUE(renderer.context().validationErrors().empty());
+        const std::uint32_t dispatches = (3 + runLength - 1) / runLength;
+        ASSERT_EQ(split.stats.frames.size(), whole.stats.frames.size());
+        for (std::size_t f = 0; f < whole.stats.frames.size(); ++f) {
+          EXPECT_EQ(whole.stats.frames[f].traceDispatches, 1u);
+          EXPECT_EQ(split.stats.frames[f].traceDispatches, dispatches);
+          const std::uint64_t again =
+              sharedPrimary ? std::uint64_t(dispatches - 1) * settings.width * settings.height : 0u;
+          EXPECT_EQ(split.stats.frames[f].rays, whole.stats.frames[f].rays + again)
+              << "frame " << f;
+        }
+        // Rounding only: a share lost or folded in twice moves pixels by a third or more.
+        const ImageDifference d = compareImages(split.image, whole.image);
+        double mean = 0.0;
+        for (float v : whole.image.rgba)
+          mean += std::abs(double(v)) / double(whole.image.rgba.size());
+        std::printf("runs of %u: largest difference %.3g against a mean of %.3g\n", runLength,
+                    d.maxAbs, mean);
+        ASSERT_GT(mean, 0.0);
+        EXPECT_LT(d.maxAbs, 1e-4 * mean);
+      }
+    }
+  }
 }
 
 TEST(Stats, ReportsRaysTimesAndAccelerationStructureMemory) {

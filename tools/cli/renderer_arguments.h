@@ -44,13 +44,16 @@ inline constexpr const char* kRendererHelp =
     "  --wavefront-paths N   the wavefront's paths in flight (its path state's slots; 0, the\n"
     "                        default: every pixel, or what the device's storage-buffer range\n"
     "                        holds); a round over more pixels runs in chunks of N. Needs\n"
-    "                        the wavefront: --shading wavefront, or auto choosing it\n";
+    "                        the wavefront: --shading wavefront, or auto choosing it\n"
+    "  --dispatch-paths N    the megakernel traces a frame's P paths per pixel in trace\n"
+    "                        dispatches of at most N paths each, each adding its share of\n"
+    "                        the pixel's mean (0, the default: all P in one dispatch)\n";
 
 struct RendererArguments {
   CacheArguments cache;
   CullingArguments culling;
   std::string backend = "auto", materialDispatch = "auto", device = "-1", nodes, shaderCache,
-              shading = "auto", wavefrontPaths = "0";
+              shading = "auto", wavefrontPaths = "0", dispatchPaths;
   bool sharedPrimary = false;
   // A scene option, not a renderer one: the command applies it to each scene it loads.
   bool noEmissiveNee = false;
@@ -67,6 +70,7 @@ struct RendererArguments {
     scanner.flag("--no-emissive-nee", &noEmissiveNee);
     scanner.option("--shading", &shading);
     scanner.option("--wavefront-paths", &wavefrontPaths);
+    scanner.option("--dispatch-paths", &dispatchPaths);
   }
 
   // A note for each option given that `options` leave unused (LiPaC's without --culling
@@ -77,6 +81,8 @@ struct RendererArguments {
     std::vector<std::string> notes = CullingArguments::ignored(scanner, options.culling.mode);
     for (std::string& note : CacheArguments::ignored(scanner, options.cache.mode))
       notes.push_back(std::move(note));
+    if (scanner.given("--dispatch-paths") && options.shading == runtime::Shading::Wavefront)
+      notes.push_back(ignoredOptionNote("--dispatch-paths", "the megakernel"));
     return notes;
   }
 
@@ -104,6 +110,10 @@ struct RendererArguments {
           "--wavefront-paths takes a number of paths (0: the default), "
           "not '" +
           wavefrontPaths + "'");
+    if (!dispatchPaths.empty() && !parseNumber(dispatchPaths, options.pathsPerDispatch))
+      throw std::invalid_argument(
+          "--dispatch-paths takes a number of paths per trace dispatch (0: all in one), not '" +
+          dispatchPaths + "'");
     runtime::validateWavefrontOptions(options);
     if (options.shading == runtime::Shading::Wavefront && cache.tileFill == "subgroup")
       throw std::invalid_argument(

@@ -247,45 +247,54 @@ TEST(CulledRender, SampledPathsKeepTheCountsExpectedValue) {
 // its share of the pixels' mean: the same paths, so the same counts, states and rays, and the
 // picture of one dispatch up to float rounding. Both backends (the pipeline's raygen and the
 // query's compute shader), and with the shared primary ray, which each dispatch traces and
-// whose material outputs the first path of each dispatch evaluates.
+// whose material outputs the first path of each dispatch evaluates. With --dispatch-paths 1
+// too: every path its own dispatch, the counted one with the feedback.
 TEST(CulledRender, SplitCountingFramesTraceWhatOneDispatchTraces) {
   const Scene scene = smallCity();
   for (const Backend backend : {Backend::RayQuery, Backend::RayTracingPipeline}) {
     for (const bool sharedPrimary : {false, true}) {
-      SCOPED_TRACE(std::string(backend == Backend::RayQuery ? "query" : "pipeline") +
-                   (sharedPrimary ? ", shared primary ray" : ""));
       RenderSettings s = settings(6, {mirrorCamera()});
       s.pathsPerPixel = 4;
       s.sharedPrimaryRay = sharedPrimary;
       RendererOptions o = options(CullingMode::Lipac, true);
       o.context.backend = backend;
       o.culling.feedbackEvery = 2;
+      o.culling.splitFeedbackDispatch = false;
+      o.pathsPerDispatch = 0;
       const RenderResult single = render(o, scene, s);
       o.culling.splitFeedbackDispatch = true;
-      const RenderResult split = render(o, scene, s);
-      EXPECT_EQ(split.instanceStates, single.instanceStates);
-      ASSERT_EQ(split.stats.frames.size(), single.stats.frames.size());
-      for (std::size_t f = 0; f < single.stats.frames.size(); ++f) {
-        // The shared primary ray is traced by each dispatch of a counting frame.
-        ASSERT_EQ(split.stats.frames[f].feedbackFrame, single.stats.frames[f].feedbackFrame);
-        const std::uint64_t again =
-            sharedPrimary && single.stats.frames[f].feedbackFrame ? s.width * s.height : 0u;
-        EXPECT_EQ(split.stats.frames[f].rays, single.stats.frames[f].rays + again) << "frame " << f;
-        EXPECT_EQ(split.stats.frames[f].feedbackCountsArrived,
-                  single.stats.frames[f].feedbackCountsArrived)
-            << "frame " << f;
+      for (const std::uint32_t pathsPerDispatch : {0u, 1u}) {
+        SCOPED_TRACE(std::string(backend == Backend::RayQuery ? "query" : "pipeline") +
+                     (sharedPrimary ? ", shared primary ray" : "") + ", dispatch paths " +
+                     std::to_string(pathsPerDispatch));
+        o.pathsPerDispatch = pathsPerDispatch;
+        const RenderResult split = render(o, scene, s);
+        EXPECT_EQ(split.instanceStates, single.instanceStates);
+        ASSERT_EQ(split.stats.frames.size(), single.stats.frames.size());
+        for (std::size_t f = 0; f < single.stats.frames.size(); ++f) {
+          const FrameStats& a = single.stats.frames[f];
+          const FrameStats& b = split.stats.frames[f];
+          ASSERT_EQ(b.feedbackFrame, a.feedbackFrame);
+          EXPECT_EQ(a.traceDispatches, 1u);
+          EXPECT_EQ(b.traceDispatches, pathsPerDispatch == 1 ? 4u : 1u + a.feedbackFrame);
+          // The shared primary ray is traced by each dispatch.
+          const std::uint64_t again =
+              sharedPrimary ? std::uint64_t(b.traceDispatches - 1) * s.width * s.height : 0u;
+          EXPECT_EQ(b.rays, a.rays + again) << "frame " << f;
+          EXPECT_EQ(b.feedbackCountsArrived, a.feedbackCountsArrived) << "frame " << f;
+        }
+        ASSERT_EQ(split.image.rgba.size(), single.image.rgba.size());
+        double largest = 0.0, mean = 0.0;
+        for (std::size_t i = 0; i < single.image.rgba.size(); ++i) {
+          largest = std::max(largest, double(std::abs(split.image.rgba[i] - single.image.rgba[i])));
+          mean += std::abs(double(single.image.rgba[i])) / double(single.image.rgba.size());
+        }
+        std::printf("split dispatch: largest difference %.3g against a mean of %.3g\n", largest,
+                    mean);
+        // Rounding only: a path's share lost or counted twice would move pixels by a quarter.
+        ASSERT_GT(mean, 0.0);
+        EXPECT_LT(largest, 1e-4 * mean);
       }
-      ASSERT_EQ(split.image.rgba.size(), single.image.rgba.size());
-      double largest = 0.0, mean = 0.0;
-      for (std::size_t i = 0; i < single.image.rgba.size(); ++i) {
-        largest = std::max(largest, double(std::abs(split.image.rgba[i] - single.image.rgba[i])));
-        mean += std::abs(double(single.image.rgba[i])) / double(single.image.rgba.size());
-      }
-      std::printf("split dispatch: largest difference %.3g against a mean of %.3g\n", largest,
-                  mean);
-      // Rounding only: a path's share lost or counted twice would move pixels by a quarter.
-      ASSERT_GT(mean, 0.0);
-      EXPECT_LT(largest, 1e-4 * mean);
     }
   }
 }
