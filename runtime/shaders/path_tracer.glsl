@@ -59,7 +59,8 @@ layout(push_constant) uniform TraceDispatchBlock {
 };
 // A uniform condition, so the loop stays whole.
 bool dispatchTracesPath(uint path, uint pathCount) {
-  return (path + pathCount - dispatchPaths.paths.x % pathCount) % pathCount < dispatchPaths.paths.y;
+  uint first = dispatchPaths.paths.x % pathCount;
+  return (path + pathCount - first) % pathCount < dispatchPaths.paths.y;
 }
 
 #ifdef MG_HIT_FEEDBACK

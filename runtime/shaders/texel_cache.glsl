@@ -515,11 +515,22 @@ int cacheLockEvicting(CacheKey key, out uint evicted) {
   if (slot < 0) return -1;
   uint entry = key.base + uint(slot);
   uint offset = cacheEntryOffset(entry);
+#if MG_CACHE_EVICTION == 0  // kCacheEvictionNone
+  // Only an entry still empty: between cacheChooseSlot's read and the lock another
+  // invocation may have locked it and published its key, which an exchange would evict (a
+  // tile computed into an entry that counted no new occupant, seen on lavapipe).
+  uint previous = atomicCompSwap(cacheData[cacheKeyWord(entry)], kCacheKeyEmpty, kCacheKeyLock);
+  if (previous != kCacheKeyEmpty) {
+    g_locksContended += 1u;
+    return -1;
+  }
+#else
   uint previous = atomicExchange(cacheData[cacheKeyWord(entry)], kCacheKeyLock);
   if (previous == kCacheKeyLock) {
     g_locksContended += 1u;
     return -1;
   }
+#endif
   evicted = previous;
   if (previous == kCacheKeyEmpty) atomicAdd(counters.cacheOccupancy, 1u);
 #ifdef MG_CACHE_UPDATE_COUNTER
