@@ -188,6 +188,18 @@ class MakeCullingReportTest(unittest.TestCase):
         result, text = self.run_report(run)
         self.assertNotIn("| mode | lowest |", text)
 
+    def test_plots_go_beside_a_report_written_under_another_name(self):
+        run = self.make_run({"none": [(100.0, 1000, 0.0, 20000)] * 2,
+                             "lipac": [(99.0, 300, 0.0, 5000)] * 2})
+        out = os.path.join(self.dir.name, "results", "split.md")
+        result = subprocess.run([sys.executable, REPORT, run, "--out", out, "--no-png"],
+                                capture_output=True, text=True, cwd=self.dir.name)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertTrue(os.path.exists(os.path.join(self.dir.name, "results", "split_plots",
+                                                    "culling.gp")))
+        # Not the default report's folder (relative to the working directory).
+        self.assertFalse(os.path.exists(os.path.join(self.dir.name, "docs")))
+
     def test_bad_input_exits_1(self):
         result, _ = self.run_report(os.path.join(self.dir.name, "missing"))
         self.assertEqual(result.returncode, 1)
