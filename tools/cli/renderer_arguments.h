@@ -48,7 +48,8 @@ inline constexpr const char* kRendererHelp =
     "  --dispatch-paths N    the megakernel traces a frame's P paths per pixel in trace\n"
     "                        dispatches of at most N paths each, each adding its share of\n"
     "                        the pixel's mean (default 5: at P = 6 a frame in two took\n"
-    "                        0.935x the time of one on an H100; 0: all P in one)\n";
+    "                        0.935x the time of one on an H100; 0: all P in one). With\n"
+    "                        --shared-primary each dispatch traces the primary ray again\n";
 
 struct RendererArguments {
   CacheArguments cache;
