@@ -14,10 +14,10 @@ gpu::TraceDispatchPush PathDispatch::push() const {
 
 CountedPaths countedPaths(std::uint32_t pathsPerPixel, std::uint32_t feedbackPaths,
                           std::uint32_t countingIndex) {
-  const std::uint32_t count =
-      feedbackPaths == 0 || feedbackPaths >= pathsPerPixel ? pathsPerPixel : feedbackPaths;
   if (pathsPerPixel == 0)
     return {};
+  const std::uint32_t count =
+      feedbackPaths == 0 || feedbackPaths >= pathsPerPixel ? pathsPerPixel : feedbackPaths;
   // path_tracer.glsl's countedPath: (frame.culling.y * counted) % P, in 32-bit arithmetic.
   return {std::uint32_t(countingIndex * count) % pathsPerPixel, count};
 }
