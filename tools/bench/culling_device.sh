@@ -29,9 +29,9 @@
 #              (checks.txt): every frame's rays, instance and hitbox counts, state changes,
 #              TLAS records, BLAS builds and looks the same, and the picture bit-identical
 #              (single: within float rounding, its rays within 1e-5 and its mean LDR-FLIP
-#              under 1e-4); then --culling
-#              none twice, the second against the first (every flag moved by the vertex pass
-#              and its BLAS updated every frame); a line `PASS label` or `FAIL label: why` each
+#              under 1e-4); then --culling none twice, the second against the first (every
+#              flag moved by the vertex pass and its BLAS updated every frame); a line
+#              `PASS label` or `FAIL label: why` each
 # After tools/bundle_device.sh, on the GPU machine (tools/ and examples/ travel as tracked
 # files; carry bundle and .gl):
 #   bash tools/bench/culling_device.sh [bench] [pictures] [variants] [looks] [checks]
