@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include <gtest/gtest.h>
+
 namespace memograph::runtime::testing {
 
 RendererOptions testOptions(Backend backend) {
@@ -67,6 +69,19 @@ std::string constantGraph(const std::string& name, glm::vec3 c, float roughness)
        << "BaseColorOutput Color=(" << c.x << ", " << c.y << ", " << c.z << ");\n"
        << "RoughnessOutput Roughness=" << roughness << ";\n";
   return text.str();
+}
+
+RoundingDifference roundingDifference(const HdrImage& image, const HdrImage& reference) {
+  RoundingDifference d;
+  EXPECT_EQ(image.rgba.size(), reference.rgba.size());
+  if (image.rgba.size() != reference.rgba.size() || reference.rgba.empty())
+    return d;
+  for (std::size_t i = 0; i < reference.rgba.size(); ++i) {
+    d.largest = std::max(d.largest, std::abs(double(image.rgba[i]) - double(reference.rgba[i])));
+    d.referenceMean += std::abs(double(reference.rgba[i]));
+  }
+  d.referenceMean /= double(reference.rgba.size());
+  return d;
 }
 
 double meanChannel(const HdrImage& image, int c, int x0, int y0, int x1, int y1) {

@@ -28,6 +28,15 @@ std::string constantGraph(const std::string& name, glm::vec3 baseColor, float ro
 // Mean of channel `c` over the pixels in [x0,x1) x [y0,y1).
 double meanChannel(const HdrImage& image, int c, int x0, int y0, int x1, int y1);
 
+// Two renders of the same paths whose sums differ only in float rounding (a frame traced in
+// several dispatches, each adding its share of the mean): the largest difference of any
+// channel, and the reference's mean absolute value to judge it against. Sizes must match.
+struct RoundingDifference {
+  double largest = 0.0;
+  double referenceMean = 0.0;
+};
+RoundingDifference roundingDifference(const HdrImage& image, const HdrImage& reference);
+
 // A `size`-texel square texture with `levels` mip levels, each its own red value
 // (level / (levels - 1)) under a green checker of `period`-texel squares, so the red channel
 // of a sample reads back the (blended) mip level it used.

@@ -283,17 +283,13 @@ TEST(CulledRender, SplitCountingFramesTraceWhatOneDispatchTraces) {
           EXPECT_EQ(b.rays, a.rays + again) << "frame " << f;
           EXPECT_EQ(b.feedbackCountsArrived, a.feedbackCountsArrived) << "frame " << f;
         }
-        ASSERT_EQ(split.image.rgba.size(), single.image.rgba.size());
-        double largest = 0.0, mean = 0.0;
-        for (std::size_t i = 0; i < single.image.rgba.size(); ++i) {
-          largest = std::max(largest, double(std::abs(split.image.rgba[i] - single.image.rgba[i])));
-          mean += std::abs(double(single.image.rgba[i])) / double(single.image.rgba.size());
-        }
-        std::printf("split dispatch: largest difference %.3g against a mean of %.3g\n", largest,
-                    mean);
+        const testing::RoundingDifference d =
+            testing::roundingDifference(split.image, single.image);
+        std::printf("split dispatch: largest difference %.3g against a mean of %.3g\n", d.largest,
+                    d.referenceMean);
         // Rounding only: a path's share lost or counted twice would move pixels by a quarter.
-        ASSERT_GT(mean, 0.0);
-        EXPECT_LT(largest, 1e-4 * mean);
+        ASSERT_GT(d.referenceMean, 0.0);
+        EXPECT_LT(d.largest, 1e-4 * d.referenceMean);
       }
     }
   }
