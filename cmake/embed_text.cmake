@@ -1,5 +1,5 @@
 # Helpers for the scripts that embed text files in C++ sources (nodes/embed.cmake,
-# runtime/embed_shaders.cmake), run with `cmake -P`.
+# runtime/shaders/embed_shaders.cmake), run with `cmake -P`.
 
 # Sets OUT to TEXT as a C++ string literal: raw string chunks with DELIMITER, each below
 # compilers' literal length limits (MSVC's is 16 KB), or "" for an empty text.

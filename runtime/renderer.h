@@ -10,13 +10,13 @@
 #include <string>
 #include <vector>
 
-#include "runtime/cache_options.h"
-#include "runtime/image.h"
-#include "runtime/material_linker.h"
-#include "runtime/render_stats.h"
-#include "runtime/scene.h"
-#include "runtime/scene_culling.h"
-#include "runtime/vulkan_context.h"
+#include "runtime/accel/scene_culling.h"
+#include "runtime/host/image.h"
+#include "runtime/materials/material_linker.h"
+#include "runtime/memo/cache_options.h"
+#include "runtime/scene/scene.h"
+#include "runtime/trace/render_stats.h"
+#include "runtime/vk/vulkan_context.h"
 
 namespace memograph::runtime {
 
@@ -78,9 +78,9 @@ struct RendererOptions {
   // holds. Non-zero needs the wavefront (Shading::Wavefront, or Auto resolving to it).
   std::uint32_t wavefrontPaths = 0;
   // The megakernel: a frame's P paths per pixel are traced in dispatches of at most this many
-  // paths each (runtime/path_dispatches.h); 0: all P in one. The default is the fastest split
-  // measured: at P = 6 (5 paths, then 1) the unculled city's frame took 0.935x the time of
-  // one dispatch on an H100 (docs/runtime.md, "Paths per dispatch"); P <= 5 stays one
+  // paths each (runtime/trace/megakernel/path_dispatches.h); 0: all P in one. The default is the
+  // fastest split measured: at P = 6 (5 paths, then 1) the unculled city's frame took 0.935x the
+  // time of one dispatch on an H100 (docs/runtime.md, "Paths per dispatch"); P <= 5 stays one
   // dispatch. The wavefront ignores it: its rounds trace one path of every pixel each
   // already.
   std::uint32_t pathsPerDispatch = 5;

@@ -282,8 +282,8 @@ struct FrameConstants {
 };
 
 // The megakernel's push constants: which of a pixel's P paths this trace dispatch traces
-// (runtime/path_dispatches.h). A frame's paths may be traced by several dispatches, each
-// adding its paths' share of the pixel's mean.
+// (runtime/trace/megakernel/path_dispatches.h). A frame's paths may be traced by several
+// dispatches, each adding its paths' share of the pixel's mean.
 struct TraceDispatchPush {
   // x the first path, y how many (cyclically from x, modulo P), z 1 where an earlier
   // dispatch of the frame folded its share into the running mean already (this one adds to

@@ -1,5 +1,5 @@
 // Unit tests of the hardening pieces: the one output-writing path
-// (runtime/atomic_file.h), the bounded input reader (compiler/input_file.h) and the glTF
+// (runtime/host/atomic_file.h), the bounded input reader (compiler/input_file.h) and the glTF
 // pre-check (tools/io/gltf_precheck.h). The CLI-level tests are run_corpus.py and
 // concurrency_test.py beside this file.
 #include <sys/stat.h>
@@ -12,8 +12,8 @@
 #include <gtest/gtest.h>
 
 #include "compiler/input_file.h"
-#include "runtime/atomic_file.h"
-#include "runtime/image.h"
+#include "runtime/host/atomic_file.h"
+#include "runtime/host/image.h"
 #include "tools/io/gltf_precheck.h"
 
 namespace memograph {

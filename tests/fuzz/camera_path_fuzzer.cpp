@@ -1,4 +1,4 @@
-// libFuzzer entry point: any bytes as a camera-path file (runtime/scenes/camera_path.h).
+// libFuzzer entry point: any bytes as a camera-path file (runtime/scene/builtin/camera_path.h).
 // Crashes, hangs, leaks and sanitizer reports are findings; so is a rejected file without
 // an error, or an accepted one with a frame the renderer cannot use. docs/fuzzing.md.
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "runtime/scenes/camera_path.h"
+#include "runtime/scene/builtin/camera_path.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace memograph;

@@ -7,7 +7,7 @@
 #include <string>
 #include <string_view>
 
-#include "runtime/image.h"
+#include "runtime/host/image.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::string error;

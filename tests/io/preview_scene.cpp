@@ -10,8 +10,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "runtime/scenes/builtin_scenes.h"
-#include "runtime/scenes/camera_path.h"
+#include "runtime/scene/builtin/builtin_scenes.h"
+#include "runtime/scene/builtin/camera_path.h"
 #include "tools/io/image_io.h"
 #include "tools/io/scene_import.h"
 

@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <fstream>
 
-#include "runtime/scenes/builtin_scenes.h"
+#include "runtime/scene/builtin/builtin_scenes.h"
 #include "tools/io/scene_export.h"
 #include "tools/io/scene_import.h"
 

@@ -6,8 +6,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "runtime/scenes/mesh_builder.h"
-#include "runtime/scenes/scene_builder.h"
+#include "runtime/scene/builtin/mesh_builder.h"
+#include "runtime/scene/builtin/scene_builder.h"
 #include "tools/io/scene_export.h"
 
 int main(int argc, char** argv) {

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "cli_run.h"
-#include "runtime/image.h"
+#include "runtime/host/image.h"
 #include "tools/io/image_io.h"
 
 namespace fs = std::filesystem;

@@ -1,6 +1,6 @@
-// LDR-FLIP (runtime/quality/flip.h): exact zero on identical images, monotone growth with a
+// LDR-FLIP (tools/quality/flip.h): exact zero on identical images, monotone growth with a
 // growing perturbation, and the simple cases the paper describes.
-#include "runtime/quality/flip.h"
+#include "tools/quality/flip.h"
 
 #include <gtest/gtest.h>
 

@@ -9,7 +9,7 @@
 #include <glm/glm.hpp>
 
 #include "runtime/renderer.h"
-#include "runtime/scene.h"
+#include "runtime/scene/scene.h"
 
 namespace memograph::runtime::testing {
 

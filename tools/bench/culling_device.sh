@@ -42,7 +42,7 @@
 # pictures compare each with none, so keep none there); CAMERAS="120 153" pictures only those. Results under $OUT, each step under its own
 # time limit (LIMIT seconds a bench run, default 170). Here, to check the script on lavapipe
 # (figures meaningless), with the small city's own path:
-#   build/tests/scenes/scenes_write_camera_paths /tmp/paths 360 0.02
+#   build/tests/runtime/scene/builtin/scenes_write_camera_paths /tmp/paths 360 0.02
 #   MEMOGRAPH=build/tools/memograph SCENE=builtin:city:scale=0.02 CAMPATH=/tmp/paths/city.campath
 #   SIZE=64x36 CHECK_SIZE=64x36 PATHS=2 OUT=/tmp/culling bash tools/bench/culling_device.sh
 set -uo pipefail

@@ -11,13 +11,13 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "compiler/compiler.h"
-#include "runtime/atomic_file.h"
-#include "runtime/image.h"
+#include "runtime/host/atomic_file.h"
+#include "runtime/host/image.h"
 
 #ifdef MEMOGRAPH_HAVE_RUNTIME
-#include "runtime/material_baker.h"
+#include "runtime/materials/material_baker.h"
 #include "runtime/renderer.h"
-#include "runtime/shader_compiler.h"
+#include "runtime/vk/shader_compiler.h"
 #endif
 #ifdef MEMOGRAPH_HAVE_IO
 #include "tools/io/image_io.h"

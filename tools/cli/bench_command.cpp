@@ -11,7 +11,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
-#include "runtime/atomic_file.h"
+#include "runtime/host/atomic_file.h"
 
 #ifdef MEMOGRAPH_HAVE_RUNTIME
 #include "bench_frames.h"
@@ -20,8 +20,8 @@
 #include "runtime/renderer.h"
 #endif
 #ifdef MEMOGRAPH_HAVE_SCENES
-#include "runtime/scenes/builtin_scenes.h"
-#include "runtime/scenes/camera_path.h"
+#include "runtime/scene/builtin/builtin_scenes.h"
+#include "runtime/scene/builtin/camera_path.h"
 #endif
 
 namespace memograph::cli {

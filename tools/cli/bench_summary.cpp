@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <sstream>
 
-#include "runtime/frame_counters.h"
+#include "runtime/trace/frame_counters.h"
 
 namespace memograph::cli {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "runtime/render_stats.h"
+#include "runtime/trace/render_stats.h"
 
 namespace memograph::cli {
 

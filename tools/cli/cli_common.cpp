@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "compiler/input_file.h"
-#include "runtime/atomic_file.h"
+#include "runtime/host/atomic_file.h"
 
 namespace memograph::cli {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "cli_common.h"
-#include "runtime/scene_culling.h"
+#include "runtime/accel/scene_culling.h"
 
 namespace memograph::cli {
 

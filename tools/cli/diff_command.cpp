@@ -1,5 +1,5 @@
 // memograph diff REFERENCE TEST [--out MAP] [--ppd N | --monitor-*]: the LDR-FLIP difference
-// (runtime/quality/flip.h; Andersson et al. 2020) of two images: prints the mean, the
+// (tools/quality/flip.h; Andersson et al. 2020) of two images: prints the mean, the
 // maximum and a few percentiles, and writes the per-pixel error map (magma colour map).
 #include <algorithm>
 #include <cctype>
@@ -13,8 +13,8 @@
 
 #include "cli_common.h"
 #include "commands.h"
-#include "runtime/quality/flip.h"
 #include "tools/io/pfm.h"
+#include "tools/quality/flip.h"
 
 #ifdef MEMOGRAPH_HAVE_IO
 #include "tools/io/image_io.h"

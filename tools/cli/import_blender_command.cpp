@@ -24,7 +24,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
-#include "runtime/atomic_file.h"
+#include "runtime/host/atomic_file.h"
 
 extern char** environ;
 

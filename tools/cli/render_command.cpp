@@ -12,15 +12,15 @@
 
 #include "cli_common.h"
 #include "commands.h"
-#include "runtime/atomic_file.h"
+#include "runtime/host/atomic_file.h"
 
 #ifdef MEMOGRAPH_HAVE_RUNTIME
 #include "renderer_arguments.h"
 #include "runtime/renderer.h"
 #endif
 #ifdef MEMOGRAPH_HAVE_SCENES
-#include "runtime/scenes/builtin_scenes.h"
-#include "runtime/scenes/camera_path.h"
+#include "runtime/scene/builtin/builtin_scenes.h"
+#include "runtime/scene/builtin/camera_path.h"
 #endif
 #ifdef MEMOGRAPH_HAVE_IO
 #include "tools/io/image_io.h"

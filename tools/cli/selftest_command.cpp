@@ -10,8 +10,8 @@
 
 #include "cli_common.h"
 #include "commands.h"
-#include "runtime/cache_selftest.h"
-#include "runtime/vulkan_context.h"
+#include "runtime/vk/vulkan_context.h"
+#include "tools/selftest/cache_selftest.h"
 
 namespace memograph::cli {
 

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "compiler/diagnostics.h"
-#include "runtime/atomic_file.h"
-#include "runtime/image.h"
+#include "runtime/host/atomic_file.h"
+#include "runtime/host/image.h"
 
 namespace memograph::io {
 

@@ -1,5 +1,5 @@
 // PFM files with diagnostics, for the io library and the CLI: the core's reader and writer
-// (runtime/image.h, the project's one PFM implementation) with their errors as diagnostics
+// (runtime/host/image.h, the project's one PFM implementation) with their errors as diagnostics
 // naming the file.
 #pragma once
 
@@ -7,7 +7,7 @@
 #include <string>
 
 #include "compiler/diagnostics.h"
-#include "runtime/image.h"
+#include "runtime/host/image.h"
 
 namespace memograph::io {
 

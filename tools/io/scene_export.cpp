@@ -9,7 +9,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "runtime/atomic_file.h"
+#include "runtime/host/atomic_file.h"
 #include "tools/io/base64.h"
 
 namespace memograph::io {

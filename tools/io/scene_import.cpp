@@ -15,9 +15,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "compiler/input_file.h"
-#include "runtime/scenes/material_recipes.h"
-#include "runtime/scenes/mesh_builder.h"
-#include "runtime/scenes/scene_validation.h"
+#include "runtime/scene/builtin/material_recipes.h"
+#include "runtime/scene/builtin/mesh_builder.h"
+#include "runtime/scene/builtin/scene_validation.h"
 #include "tools/io/gltf_precheck.h"
 
 namespace memograph::io {

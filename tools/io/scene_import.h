@@ -8,7 +8,7 @@
 #include <string>
 
 #include "compiler/diagnostics.h"
-#include "runtime/scene.h"
+#include "runtime/scene/scene.h"
 
 namespace memograph::io {
 

@@ -7,7 +7,7 @@ and the material writes them once at the end. Everything but Principled BSDF is 
 approximation and says so in a warning naming the material, the node and what was used.
 
 A Blender 3.x Principled BSDF (v1) also sets cycles_principled = 1: memograph's BRDF then
-weights and shapes its diffuse and specular as Cycles 3.4 does (runtime/shaders/brdf.glsl,
+weights and shapes its diffuse and specular as Cycles 3.4 does (runtime/shaders/common/brdf.glsl,
 docs/blender.md "Principled BSDF"); every other shader, and 4.x's v2, keeps memograph's
 own energy-conserving weighting (0).
 """

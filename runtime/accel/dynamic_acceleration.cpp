@@ -1,0 +1,276 @@
+#include "runtime/accel/dynamic_acceleration.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cstring>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "runtime/shaders/shared_types.h"
+
+namespace memograph::runtime {
+
+namespace {
+
+// The unit cube's 8 corners and 12 triangles.
+constexpr std::array<float, 24> kCubeCorners = {0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0,
+                                                0, 0, 1, 1, 0, 1, 0, 1, 1, 1, 1, 1};
+constexpr std::array<std::uint32_t, 36> kCubeTriangles = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6,
+                                                          0, 1, 4, 1, 5, 4, 2, 6, 3, 3, 6, 7,
+                                                          0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+
+// The unit cube stretched over a box; a flat box gets a millimetre of thickness so that
+// rays still cross it.
+glm::mat4 boxTransform(const Bounds& box) {
+  glm::vec3 extent = glm::max(box.hi - box.lo, glm::vec3(1e-3f));
+  return glm::scale(glm::translate(glm::mat4(1.0f), box.lo), extent);
+}
+
+}  // namespace
+
+DynamicAccelerationStructures::DynamicAccelerationStructures(
+    const VulkanContext& context, const Scene& scene, SceneBuffers& buffers,
+    const CullingOptions& options, const std::filesystem::path& shaderCacheDirectory,
+    std::uint32_t feedbackPathWeight)
+    : context_(context),
+      options_(options),
+      culling_(scene, options),
+      blasCache_(context, buffers.vertices, sizeof(gpu::Vertex), buffers.indices, buffers.geometry,
+                 options.blasBudgetBytes, options.blasBuildTriangles, options.blasBuildMilliseconds,
+                 options.blasKeepFrames),
+      animated_(context, scene, buffers, options.blasRebuildEvery, shaderCacheDirectory),
+      feedbackPathWeight_(feedbackPathWeight) {
+  meshCount_ = static_cast<std::uint32_t>(scene.meshes.size());
+  // Each instance's TLAS record, made once: a frame copies it and fills in the BLAS address.
+  for (std::uint32_t i = 0; i < scene.instances.size(); ++i) {
+    const Instance& instance = scene.instances[i];
+    instanceMeshes_.push_back(instance.mesh);
+    instanceRecords_.push_back(
+        instanceRecord(instance.objectToWorld, i,
+                       instance.castsShadow ? gpu::kMaskSurface : gpu::kMaskLightQuad, 0));
+  }
+  if (hitFeedbackOn()) {
+    boxVertices_ =
+        uploadBuffer(context, kCubeCorners.data(), sizeof kCubeCorners, kAccelerationBuildInput);
+    boxIndices_ = uploadBuffer(context, kCubeTriangles.data(), sizeof kCubeTriangles,
+                               kAccelerationBuildInput);
+    const MeshGeometry cube{0, 8, 0, 12};
+    box_ = buildCompactedBlases(context, boxVertices_, 3 * sizeof(float), boxIndices_,
+                                std::span<const MeshGeometry>(&cube, 1));
+    // The counting boxes' records, made once too: each instance's, then each hitbox's.
+    const VkDeviceAddress box = box_.blases.front().address();
+    for (std::uint32_t i = 0; i < culling_.instanceCount(); ++i)
+      boxRecords_.push_back(
+          instanceRecord(boxTransform(culling_.bounds()[i]), i, gpu::kMaskCountingBox, box));
+    for (std::uint32_t h = 0; h < culling_.hitboxCount(); ++h)
+      boxRecords_.push_back(instanceRecord(boxTransform(culling_.hitboxBounds(h)),
+                                           culling_.instanceCount() + h, gpu::kMaskCountingBox,
+                                           box));
+  }
+  tlas_ = std::make_unique<TopLevelStructure>(context, culling_.instanceCount(),
+                                              options.gpuInstanceFill);
+  if (options.gpuInstanceFill)
+    instanceFill_ =
+        std::make_unique<GpuInstanceFill>(context, instanceRecords_, instanceMeshes_, boxRecords_,
+                                          culling_.hitboxCount(), meshCount_, shaderCacheDirectory);
+  if (hitFeedbackOn())
+    boxTlas_ = std::make_unique<TopLevelStructure>(context, culling_.counterCount(),
+                                                   options.gpuInstanceFill);
+  // The counters live on the device (the trace's atomics) and are copied to a host buffer
+  // after each frame. One more uint after them: the trace's own tally of the counts it made
+  // (path_tracer.glsl: the buffer's last uint), to check that the counts it buffers all
+  // arrive (FrameStats::feedbackCountsArrived); so the size is exact with feedback, and 16
+  // bytes without, only for the binding to be valid.
+  const VkDeviceSize counterBytes =
+      hitFeedbackOn() ? VkDeviceSize(culling_.counterCount() + 1) * sizeof(std::uint32_t) : 16;
+  hitFeedback_ = GpuBuffer(context, counterBytes,
+                           VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                               VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                           VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  hitReadback_ = hostBuffer(context, counterBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+}
+
+bool DynamicAccelerationStructures::prepareLook(const Camera& camera, float aspect,
+                                                std::uint32_t frame, float seconds,
+                                                FrameStats& stats) {
+  using Clock = std::chrono::steady_clock;
+  const auto stateStart = Clock::now();
+  if (!culling_.wantsLook(camera, aspect)) {
+    stats.cullingHostMilliseconds =
+        std::chrono::duration<double, std::milli>(Clock::now() - stateStart).count();
+    return false;
+  }
+  culling_.look(camera, aspect);
+  lookCountsPending_ = true;
+  prepareStructures(frame, seconds, stats, stateStart);
+  stats.looks = 1;
+  return true;
+}
+
+void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float aspect,
+                                                 std::uint32_t frame, float seconds,
+                                                 std::uint64_t previousRays, FrameStats& stats) {
+  const auto stateStart = std::chrono::steady_clock::now();
+  std::vector<std::uint32_t> hits;
+  // The counters of the last trace, a look's just before or the last frame's (none before
+  // frame 0 without a look). A quiet frame's (--feedback-every) are read too, for its tally,
+  // which its pipeline leaves 0, but they are no counts to act on.
+  if (hitFeedbackOn() && (frame > 0 || lookCountsPending_)) {
+    hits.resize(culling_.counterCount() + 1);
+    hitReadback_.read(hits.data(), hits.size() * sizeof(std::uint32_t));
+    stats.feedbackCounts = hits.back();
+    hits.pop_back();
+    for (const std::uint32_t h : hits)
+      stats.feedbackCountsArrived += h;
+    if (!lookCountsPending_ && !frameCounted_)
+      hits.clear();
+  }
+  culling_.update(camera, aspect, hits, previousRays,
+                  lookCountsPending_ ? 1u : options_.feedbackStride * feedbackPathWeight_);
+  lookCountsPending_ = false;
+  frameCounted_ = hitFeedbackOn() && frame % options_.feedbackEvery == 0;
+  prepareStructures(frame, seconds, stats, stateStart);
+}
+
+void DynamicAccelerationStructures::prepareStructures(
+    std::uint32_t frame, float seconds, FrameStats& stats,
+    std::chrono::steady_clock::time_point stateStart) {
+  using Clock = std::chrono::steady_clock;
+  // The meshes the active instances use: animated ones are moved and updated (all of them
+  // without culling), the others come from the BLAS cache.
+  const std::vector<InstanceState>& states = culling_.states();
+  std::vector<std::uint32_t> needed;
+  std::vector<std::uint8_t> animatedNeeded(meshCount_, 0);
+  for (std::size_t i = 0; i < states.size(); ++i) {
+    if (states[i] != InstanceState::Active)
+      continue;
+    if (animated_.address(instanceMeshes_[i]))
+      animatedNeeded[instanceMeshes_[i]] = 1;
+    else
+      needed.push_back(instanceMeshes_[i]);
+  }
+  double hostMilliseconds =
+      std::chrono::duration<double, std::milli>(Clock::now() - stateStart).count();
+  const BlasFrameWork work = blasCache_.prepare(needed, frame);
+  const AnimatedFrameWork moved = animated_.prepare(
+      seconds, frame,
+      options_.mode == CullingMode::None ? std::vector<std::uint8_t>{} : animatedNeeded);
+
+  const auto recordStart = Clock::now();
+  // Each mesh's BLAS this frame (0: not resident; its instances wait for the build).
+  std::vector<VkDeviceAddress> meshAddresses(meshCount_, 0);
+  for (std::uint32_t m = 0; m < meshCount_; ++m) {
+    meshAddresses[m] = animated_.address(m);
+    if (!meshAddresses[m])
+      meshAddresses[m] = blasCache_.address(m);
+  }
+  // Under LiPaC an inactive hitbox with instances stands in the boxes' TLAS.
+  const auto boxed = [&](std::uint32_t h) {
+    return hitFeedbackOn() && culling_.hitboxUsed(h) && !culling_.hitboxActive(h);
+  };
+  // The TLAS records: active instances whose BLAS is resident; the counting boxes' TLAS:
+  // omitted instances, then boxed hitboxes. With the GPU fill the host only counts them:
+  // the compute pass writes the same records from the same states and addresses.
+  VkAccelerationStructureInstanceKHR* records = tlas_->records();
+  VkAccelerationStructureInstanceKHR* boxes = boxTlas_ ? boxTlas_->records() : nullptr;
+  std::uint32_t n = 0, boxCount = 0;
+  std::uint32_t waitingInstances = 0;
+  for (std::uint32_t i = 0; i < states.size(); ++i) {
+    if (states[i] == InstanceState::Active) {
+      const VkDeviceAddress blas = meshAddresses[instanceMeshes_[i]];
+      if (!blas) {
+        ++waitingInstances;
+        continue;
+      }
+      if (records) {
+        records[n] = instanceRecords_[i];
+        records[n].accelerationStructureReference = blas;
+      }
+      ++n;
+    } else if (states[i] == InstanceState::Omitted && hitFeedbackOn()) {
+      if (boxes)
+        boxes[boxCount] = boxRecords_[i];
+      ++boxCount;
+    }
+  }
+  for (std::uint32_t h = 0; h < culling_.hitboxCount(); ++h) {
+    if (!boxed(h))
+      continue;
+    if (boxes)
+      boxes[boxCount] = boxRecords_[culling_.instanceCount() + h];
+    ++boxCount;
+  }
+  boxRecordCount_ = boxCount;
+  if (instanceFill_) {
+    // instance_fill.comp compares the state bytes with these values.
+    static_assert(sizeof(InstanceState) == 1 &&
+                  std::uint32_t(InstanceState::Omitted) == gpu::kInstanceStateOmitted &&
+                  std::uint32_t(InstanceState::Active) == gpu::kInstanceStateActive);
+    std::vector<std::uint8_t> fillStates(culling_.counterCount(), 0);
+    std::memcpy(fillStates.data(), states.data(), states.size());
+    for (std::uint32_t h = 0; h < culling_.hitboxCount(); ++h)
+      fillStates[culling_.instanceCount() + h] = boxed(h) ? 1 : 0;
+    instanceFill_->upload(fillStates, meshAddresses);
+  }
+  hostMilliseconds += std::chrono::duration<double, std::milli>(Clock::now() - recordStart).count();
+  stats.cullingHostMilliseconds = hostMilliseconds;
+  records_ = n;
+
+  const CullingCounts& counts = culling_.counts();
+  stats.activeInstances = counts.active - waitingInstances;
+  stats.waitingInstances = waitingInstances;
+  stats.omittedInstances = counts.omitted;
+  stats.inactiveInstances = counts.inactive;
+  stats.hitboxes = counts.hitboxes;
+  stats.activeHitboxes = counts.activeHitboxes;
+  stats.instanceStateChanges = counts.changes;
+  stats.tlasRecords = n + boxCount;
+  stats.blasBytes = blasCache_.residentBytes() + box_.bytes + animated_.bytes();
+  stats.tlasBytes = tlas_->bytes() + (boxTlas_ ? boxTlas_->bytes() : 0);
+  stats.asScratchBytes = tlas_->scratchBytes() + (boxTlas_ ? boxTlas_->scratchBytes() : 0) +
+                         work.scratchBytes + animated_.scratchBytes();
+  stats.blasBuilds = work.builds + moved.rebuilds;
+  stats.blasUpdates = moved.updates;
+  stats.blasEvictions = work.evictions;
+  stats.blasBuildMilliseconds = work.gpuMilliseconds;
+}
+
+void DynamicAccelerationStructures::recordClears(VkCommandBuffer commands) const {
+  if (hitFeedbackOn())
+    vkCmdFillBuffer(commands, hitFeedback_.buffer(), 0, VK_WHOLE_SIZE, 0);
+}
+
+void DynamicAccelerationStructures::recordTlasBuild(VkCommandBuffer commands,
+                                                    VkQueryPool timestamps,
+                                                    std::uint32_t first) const {
+  if (timestamps)
+    vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps, first);
+  animated_.record(commands);
+  if (timestamps)
+    vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+                        timestamps, first + 1);
+  if (instanceFill_)
+    instanceFill_->record(commands, tlas_->recordsAddress(),
+                          boxTlas_ ? boxTlas_->recordsAddress() : 0);
+  tlas_->recordBuild(commands, records_);
+  if (boxTlas_)
+    boxTlas_->recordBuild(commands, boxRecordCount_);
+  if (timestamps)
+    vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
+                        timestamps, first + 2);
+}
+
+void DynamicAccelerationStructures::recordAfterTrace(VkCommandBuffer commands) const {
+  if (!hitFeedbackOn())
+    return;
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       0, 1, &barrier, 0, nullptr, 0, nullptr);
+  VkBufferCopy copy{0, 0, hitFeedback_.size()};
+  vkCmdCopyBuffer(commands, hitFeedback_.buffer(), hitReadback_.buffer(), 1, &copy);
+}
+
+}  // namespace memograph::runtime

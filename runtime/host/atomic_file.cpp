@@ -1,0 +1,384 @@
+#include "runtime/host/atomic_file.h"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <mutex>
+#include <set>
+
+namespace memograph::files {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// mkstemp creates files 0600; outputs get what open(2) would have given them.
+mode_t creationMode() {
+  static mode_t mode = [] {
+    const mode_t mask = ::umask(022);
+    ::umask(mask);
+    return static_cast<mode_t>(0666 & ~mask);
+  }();
+  return mode;
+}
+
+fs::path folderOf(const fs::path& target) {
+  return target.has_parent_path() ? target.parent_path() : fs::path(".");
+}
+
+// Holds exclusive flock(2)s on folders (in sorted order, so two sets never deadlock);
+// released when destroyed.
+class FolderLocks {
+ public:
+  ~FolderLocks() {
+    for (int fd : fds_)
+      ::close(fd);  // closing releases the lock
+  }
+  bool lock(const std::set<std::string>& folders, std::string& error) {
+    for (const auto& folder : folders) {
+      const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+      if (fd < 0) {
+        error = errnoMessage(folder + ": cannot open the folder", errno);
+        return false;
+      }
+      fds_.push_back(fd);
+      int result;
+      do {
+        result = ::flock(fd, LOCK_EX);
+      } while (result != 0 && errno == EINTR);
+      // Some file systems have no flock: the set is still all-or-nothing for this process.
+      if (result != 0 && errno != ENOLCK && errno != EOPNOTSUPP) {
+        error = errnoMessage(folder + ": cannot lock the folder", errno);
+        return false;
+      }
+    }
+    return true;
+  }
+
+ private:
+  std::vector<int> fds_;
+};
+
+}  // namespace
+
+std::string errnoMessage(std::string_view what, int errnoValue) {
+  std::string message(what);
+  message += ": ";
+  message += errnoValue != 0 ? std::strerror(errnoValue) : "unknown error";
+  return message;
+}
+
+StagedFile::StagedFile(StagedFile&& other) noexcept
+    : target_(std::move(other.target_)),
+      temporary_(std::move(other.temporary_)),
+      fd_(other.fd_),
+      committed_(other.committed_) {
+  other.fd_ = -1;
+  other.temporary_.clear();
+}
+
+StagedFile& StagedFile::operator=(StagedFile&& other) noexcept {
+  if (this != &other) {
+    discard();
+    target_ = std::move(other.target_);
+    temporary_ = std::move(other.temporary_);
+    fd_ = other.fd_;
+    committed_ = other.committed_;
+    other.fd_ = -1;
+    other.temporary_.clear();
+  }
+  return *this;
+}
+
+StagedFile::~StagedFile() {
+  discard();
+}
+
+void StagedFile::discard() {
+  if (fd_ >= 0) {
+    ::close(fd_);
+    fd_ = -1;
+  }
+  if (!committed_ && !temporary_.empty())
+    ::unlink(temporary_.c_str());
+  temporary_.clear();
+}
+
+bool StagedFile::create(const fs::path& target, std::string& error) {
+  discard();
+  committed_ = false;
+  target_ = target;
+  // ".<name>.XXXXXX<ext>": hidden, unique (mkstemps), and with the target's extension.
+  const std::string extension = target.extension().string();
+  std::string name = folderOf(target).string();  // appended, not operator+: GCC 12 bug 105329
+  name += "/.";
+  name += target.stem().string();
+  name += ".XXXXXX";
+  name += extension;
+  std::vector<char> buffer(name.begin(), name.end());
+  buffer.push_back('\0');
+  const int fd = ::mkostemps(buffer.data(), static_cast<int>(extension.size()), O_CLOEXEC);
+  if (fd < 0) {
+    error = errnoMessage("cannot create a temporary file in " + folderOf(target).string(), errno);
+    return false;
+  }
+  fd_ = fd;
+  temporary_ = buffer.data();
+  if (::fchmod(fd_, creationMode()) != 0) {
+    error = errnoMessage("cannot set the file's permissions", errno);
+    discard();
+    return false;
+  }
+  return true;
+}
+
+bool StagedFile::write(std::string_view bytes, std::string& error) {
+  if (fd_ < 0) {
+    error = "internal: write before create";
+    return false;
+  }
+  return writeAll(bytes, error) && sync(error);
+}
+
+bool StagedFile::writeAll(std::string_view bytes, std::string& error) {
+  const char* data = bytes.data();
+  std::size_t left = bytes.size();
+  while (left > 0) {
+    const ssize_t written = ::write(fd_, data, left);
+    if (written < 0) {
+      if (errno == EINTR)
+        continue;
+      error = errnoMessage("cannot write", errno);
+      return false;
+    }
+    data += written;
+    left -= static_cast<std::size_t>(written);
+  }
+  return true;
+}
+
+bool StagedFile::sync(std::string& error) {
+  int fd = fd_;
+  bool own = false;
+  if (fd < 0) {
+    fd = ::open(temporary_.c_str(), O_RDONLY | O_CLOEXEC);
+    own = true;
+    if (fd < 0) {
+      error = errnoMessage("the written file is missing", errno);
+      return false;
+    }
+  }
+  const int result = ::fsync(fd);
+  const int saved = errno;
+  if (own)
+    ::close(fd);
+  if (result != 0 && saved != EINVAL) {  // EINVAL: a file system without fsync
+    error = errnoMessage("cannot write", saved);
+    return false;
+  }
+  return true;
+}
+
+bool StagedFile::adopt(const fs::path& written, std::string& error) {
+  if (temporary_.empty()) {
+    error = "internal: adopt before create";
+    return false;
+  }
+  if (fd_ >= 0) {
+    ::close(fd_);
+    fd_ = -1;
+  }
+  if (::rename(written.c_str(), temporary_.c_str()) == 0)
+    return sync(error);
+  if (errno != EXDEV) {
+    error = errnoMessage("cannot move " + written.string(), errno);
+    return false;
+  }
+  // Another file system: copied into the temporary (still unique, still ours).
+  const int in = ::open(written.c_str(), O_RDONLY | O_CLOEXEC);
+  if (in < 0) {
+    error = errnoMessage("cannot read " + written.string(), errno);
+    return false;
+  }
+  fd_ = ::open(temporary_.c_str(), O_WRONLY | O_TRUNC | O_CLOEXEC);
+  if (fd_ < 0) {
+    error = errnoMessage("cannot reopen the temporary file", errno);
+    ::close(in);
+    return false;
+  }
+  std::vector<char> buffer(1 << 16);
+  for (;;) {
+    const ssize_t n = ::read(in, buffer.data(), buffer.size());
+    if (n < 0 && errno == EINTR)
+      continue;
+    if (n < 0) {
+      error = errnoMessage("cannot read " + written.string(), errno);
+      ::close(in);
+      return false;
+    }
+    if (n == 0)
+      break;
+    std::string cause;
+    if (!writeAll(std::string_view(buffer.data(), std::size_t(n)), cause)) {
+      error = cause;
+      ::close(in);
+      return false;
+    }
+  }
+  ::close(in);
+  return sync(error);
+}
+
+bool StagedFile::commit(std::string& error) {
+  if (temporary_.empty()) {
+    error = "internal: commit without a staged file";
+    return false;
+  }
+  if (fd_ >= 0) {
+    ::close(fd_);
+    fd_ = -1;
+  }
+  if (::rename(temporary_.c_str(), target_.c_str()) != 0) {
+    error = errnoMessage("cannot replace the file", errno);
+    return false;
+  }
+  committed_ = true;
+  temporary_.clear();
+  return true;
+}
+
+bool writeFileAtomically(const fs::path& path, std::string_view bytes, std::string& error) {
+  StagedFile file;
+  return file.create(path, error) && file.write(bytes, error) && file.commit(error);
+}
+
+bool writeFileAtomicallyWith(
+    const fs::path& path,
+    const std::function<bool(const fs::path& temporary, std::string& error)>& writeTo,
+    std::string& error) {
+  StagedFile file;
+  return file.create(path, error) && writeTo(file.temporaryPath(), error) && file.sync(error) &&
+         file.commit(error);
+}
+
+bool writeFileSet(const std::vector<std::pair<std::string, std::string>>& files,
+                  std::string& error) {
+  // Stage everything first: a full disk or a bad folder fails here, with nothing replaced.
+  std::vector<StagedFile> staged(files.size());
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    std::string cause;
+    if (!staged[i].create(files[i].first, cause) || !staged[i].write(files[i].second, cause)) {
+      error = files[i].first + ": " + cause;
+      return false;
+    }
+  }
+  return commitFileSet(staged, error);
+}
+
+bool commitFileSet(std::vector<StagedFile>& staged, std::string& error) {
+  std::set<std::string> folders;
+  for (const auto& file : staged)
+    folders.insert(folderOf(file.target()).string());
+  FolderLocks locks;
+  if (!locks.lock(folders, error))
+    return false;
+
+  // Each replaced file's previous version is kept aside as a hard link next to it (the
+  // temporary's unique name + ".old"), so the target never disappears and can be restored.
+  struct Done {
+    std::string target;
+    std::string backup;  // empty: the file is new
+  };
+  std::vector<Done> done;
+  auto rollBack = [&] {
+    for (auto it = done.rbegin(); it != done.rend(); ++it) {
+      if (it->backup.empty())
+        ::unlink(it->target.c_str());
+      else
+        ::rename(it->backup.c_str(), it->target.c_str());
+    }
+  };
+  for (std::size_t i = 0; i < staged.size(); ++i) {
+    const std::string target = staged[i].target().string();
+    std::string backup = staged[i].temporaryPath().string() + ".old";
+    bool movedAside = false;
+    struct stat existing {};
+    if (::lstat(target.c_str(), &existing) != 0) {
+      backup.clear();  // a new file: rolling back removes it
+    } else if (S_ISDIR(existing.st_mode)) {
+      // Never moved aside or replaced: a folder where a file should go is an error.
+      error = target + ": cannot replace the file: it is a folder";
+      rollBack();
+      return false;
+    } else if (::link(target.c_str(), backup.c_str()) != 0) {
+      // Without hard links (EPERM on some file systems) the old version is moved aside
+      // instead: still restorable, at the cost of a moment without the target.
+      if (::rename(target.c_str(), backup.c_str()) != 0) {
+        error = errnoMessage(target + ": cannot keep the previous version", errno);
+        rollBack();
+        return false;
+      }
+      movedAside = true;
+    }
+    std::string cause;
+    if (!staged[i].commit(cause)) {
+      error = target + ": " + cause;
+      if (movedAside)
+        ::rename(backup.c_str(), target.c_str());  // put the old version back
+      else if (!backup.empty())
+        ::unlink(backup.c_str());  // a second link: the target itself is untouched
+      rollBack();
+      return false;
+    }
+    done.push_back({target, std::move(backup)});
+  }
+  for (const auto& d : done) {
+    if (!d.backup.empty())
+      ::unlink(d.backup.c_str());
+  }
+  return true;
+}
+
+bool checkOutputPath(const fs::path& path, std::string& error) {
+  if (path.empty()) {
+    error = "the output path is empty";
+    return false;
+  }
+  struct stat info {};
+  if (::stat(path.c_str(), &info) == 0) {
+    if (S_ISDIR(info.st_mode)) {
+      error = "is a folder; name a file to write";
+      return false;
+    }
+  } else if (errno != ENOENT) {
+    error = errnoMessage("cannot use as an output", errno);
+    return false;
+  }
+  // Quoted by appending, not operator+: GCC 12 bug 105329 warns on the latter.
+  const fs::path folder = folderOf(path);
+  std::string quoted = "'";
+  quoted += folder.string();
+  quoted += "'";
+  if (::stat(folder.c_str(), &info) != 0) {
+    const int cause = errno;
+    error = cause == ENOENT ? "the folder " + quoted + " does not exist"
+                            : errnoMessage("cannot write into folder " + quoted, cause);
+    return false;
+  }
+  if (!S_ISDIR(info.st_mode)) {
+    error = quoted + " is not a folder";
+    return false;
+  }
+  if (::access(folder.c_str(), W_OK | X_OK) != 0) {
+    error = errnoMessage("cannot write into folder " + quoted, errno);
+    return false;
+  }
+  return true;
+}
+
+}  // namespace memograph::files

@@ -1,0 +1,247 @@
+#include "runtime/materials/material_linker.h"
+
+#include <algorithm>
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "runtime/shaders/shared_types.h"
+
+// Until the compiler lands on main, the runtime builds without it and says so at run time.
+#if __has_include("compiler/compiler.h")
+#define MG_HAVE_COMPILER 1
+#include "compiler/compiler.h"
+#include "compiler/diagnostics.h"
+#include "compiler/material_interface.h"
+#include "compiler/node_library.h"
+#include "memograph/node_library_loader.h"
+#endif
+
+namespace memograph::runtime {
+
+const char* materialDispatchName(MaterialDispatch dispatch) {
+  switch (dispatch) {
+    case MaterialDispatch::Auto:
+      return "auto";
+    case MaterialDispatch::Switch:
+      return "switch";
+    case MaterialDispatch::Callable:
+      return "callable";
+  }
+  return "auto";
+}
+
+MaterialDispatch parseMaterialDispatch(const std::string& text) {
+  if (text == "auto")
+    return MaterialDispatch::Auto;
+  if (text == "switch")
+    return MaterialDispatch::Switch;
+  if (text == "callable")
+    return MaterialDispatch::Callable;
+  throw std::invalid_argument("unknown material dispatch '" + text +
+                              "' (choose auto, switch or callable)");
+}
+
+std::uint32_t pcgHash(std::uint32_t v) {
+  std::uint32_t state = v * 747796405u + 2891336453u;
+  std::uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+
+std::uint32_t cacheOutputMask(const std::vector<std::string>& outputsWritten,
+                              std::uint32_t* valueCount) {
+  struct Output {
+    const char* name;
+    std::uint32_t bit;
+    std::uint32_t floats;
+  };
+  static const Output kOutputs[] = {{"baseColor", gpu::kCacheOutputBaseColor, 3},
+                                    {"metallic", gpu::kCacheOutputMetallic, 1},
+                                    {"roughness", gpu::kCacheOutputRoughness, 1},
+                                    {"normal", gpu::kCacheOutputNormal, 3},
+                                    {"emission", gpu::kCacheOutputEmission, 3},
+                                    {"opacity", gpu::kCacheOutputOpacity, 1},
+                                    {"specular", gpu::kCacheOutputSpecular, 1},
+                                    {"specularTint", gpu::kCacheOutputSpecularTint, 1},
+                                    {"cyclesPrincipled", gpu::kCacheOutputCyclesPrincipled, 1}};
+  std::uint32_t mask = 0, floats = 0;
+  for (const std::string& name : outputsWritten) {
+    bool known = false;
+    for (const Output& output : kOutputs) {
+      if (name == output.name) {
+        if (!(mask & output.bit))
+          floats += output.floats;
+        mask |= output.bit;
+        known = true;
+      }
+    }
+    if (!known)
+      throw std::runtime_error("material output '" + name + "' is unknown to the texel cache");
+  }
+  if (valueCount)
+    *valueCount = floats;
+  return mask;
+}
+
+#ifndef MG_HAVE_COMPILER
+LinkedMaterials linkMaterials(const std::vector<MaterialRef>&, const MaterialLinkOptions&) {
+  throw std::runtime_error(
+      "this build has no material compiler (compiler/compiler.h was missing at build time)");
+}
+#else
+
+namespace {
+
+std::string readText(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    return {};
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+}  // namespace
+
+LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
+                              const MaterialLinkOptions& options) {
+  auto start = std::chrono::steady_clock::now();
+  if (materials.empty())
+    throw std::runtime_error("the scene has no materials; every instance needs one");
+
+  compiler::Diagnostics libraryDiagnostics;
+  auto library = nodes::loadNodeLibrary(options.nodeLibraryDirectory.string(), libraryDiagnostics);
+  if (!library) {
+    throw std::runtime_error("the node library has errors:\n" +
+                             compiler::formatDiagnostics(libraryDiagnostics));
+  }
+
+  LinkedMaterials linked;
+  std::string includes;
+  // Graphs compiled once per distinct source text; their function name is the graph's.
+  std::map<std::string, LinkedMaterial> bySource;
+  std::map<std::string, std::string> sourceByName;
+  compiler::CompileOptions compileOptions;
+  compileOptions.emitGlsl = true;
+  compileOptions.emitHlsl = false;
+  for (const MaterialRef& material : materials) {
+    compiler::SourceFile graph;
+    std::filesystem::path baseDirectory;
+    if (!material.graphText.empty()) {
+      graph.path = material.graphPath.empty() ? "<" + material.name + ">" : material.graphPath;
+      graph.text = material.graphText;
+    } else if (!material.graphPath.empty()) {
+      graph.path = material.graphPath;
+      if (!std::filesystem::is_regular_file(material.graphPath))
+        throw std::runtime_error("material '" + material.name + "': graph file '" +
+                                 material.graphPath + "' not found");
+      graph.text = readText(material.graphPath);
+      baseDirectory = std::filesystem::path(material.graphPath).parent_path();
+    } else {
+      throw std::runtime_error("material '" + material.name +
+                               "' has neither a graph file nor graph text");
+    }
+
+    auto known = bySource.find(graph.text);
+    if (known != bySource.end()) {
+      linked.materials.push_back(known->second);
+      continue;
+    }
+    compiler::Diagnostics diagnostics;
+    auto compiled = compiler::compileMaterial(graph, *library, compileOptions, diagnostics);
+    if (!compiled) {
+      throw std::runtime_error("material '" + material.name + "' does not compile:\n" +
+                               compiler::formatDiagnostics(diagnostics));
+    }
+    const std::string& name = compiled->metadata.name;
+    if (auto other = sourceByName.find(name); other != sourceByName.end()) {
+      throw std::runtime_error("two different material graphs are both named '" + name +
+                               "'; rename one (EvaluateMaterial_" + name + " must be unique)");
+    }
+    sourceByName[name] = graph.text;
+    LinkedMaterial entry;
+    entry.name = name;
+    entry.textureBase = static_cast<int>(linked.texturePaths.size());
+    entry.cacheable = compiled->metadata.cacheable;
+    entry.inputsUsed = compiled->metadata.inputsUsed;
+    if (std::any_of(entry.inputsUsed.begin(), entry.inputsUsed.end(),
+                    [](const std::string& input) { return compiler::isObjectSpaceInput(input); }))
+      linked.objectInputs = true;
+    for (const std::string& output : compiled->metadata.outputsWritten)
+      if (output == "specularTint" || output == "cyclesPrincipled")
+        linked.cyclesPrincipled = true;
+    entry.textureCount = compiled->metadata.textures.size();
+    if (entry.cacheable) {
+      entry.cacheOutputMask =
+          cacheOutputMask(compiled->metadata.outputsWritten, &entry.cacheValueCount);
+      linked.cacheValueCount = std::max(linked.cacheValueCount, entry.cacheValueCount);
+    }
+    entry.distinctIndex = static_cast<std::uint32_t>(linked.distinct.size());
+    for (const auto& texture : compiled->metadata.textures) {
+      std::filesystem::path path(texture);
+      if (path.is_relative() && !baseDirectory.empty())
+        path = baseDirectory / path;
+      linked.texturePaths.push_back(path.string());
+    }
+    std::string include =
+        "// ---- material " + name + " (" + graph.path + ")\n" + compiled->glsl + "\n";
+    includes += include;
+    linked.distinct.push_back({name, std::move(include), entry.textureBase});
+    bySource.emplace(graph.text, entry);
+    linked.materials.push_back(entry);
+  }
+
+  std::string& out = linked.source;
+  out = "// Generated by memograph's material linker. Do not edit.\n";
+  out += "#ifndef MG_MATERIALS_GLSL\n#define MG_MATERIALS_GLSL\n";
+  // The prelude (MaterialInputs, float3_D, ...) arrives, guarded, with each include.
+  out += includes;
+  out +=
+      "// Evaluates the graph of scene material `materialId` (thesis §5.2: branch by material).\n";
+  out +=
+      "void evaluateMaterialSwitch(uint materialId, MaterialInputs inputs, "
+      "out MaterialOutputs outputs) {\n";
+  out += "  switch (materialId) {\n";
+  for (std::size_t i = 0; i < linked.materials.size(); ++i) {
+    const LinkedMaterial& m = linked.materials[i];
+    out += "    case " + std::to_string(i) + "u:\n";
+    out += "      inputs.textureBase = " + std::to_string(m.textureBase) + ";\n";
+    out += "      EvaluateMaterial_" + m.name + "(inputs, outputs);\n";
+    out += "      break;\n";
+  }
+  out += "    default:\n      outputs = mg_defaultMaterialOutputs(inputs);\n      break;\n";
+  out += "  }\n}\n#endif\n";
+
+  // The callable dispatch's raygen sees no material, only the types they exchange. The
+  // guard is the emitter's, so a material include after it does not repeat the prelude.
+  linked.preludeSource = "// Generated by memograph's material linker. Do not edit.\n";
+  linked.preludeSource += "#ifndef MG_PRELUDE_GLSL\n#define MG_PRELUDE_GLSL\n";
+  linked.preludeSource += library->prelude(compiler::Target::Glsl);
+  linked.preludeSource += "#endif  // MG_PRELUDE_GLSL\n";
+
+  // Texel cache (thesis §5.3.2): per scene material its output mask (0: never cached) and
+  // ID0, ID1 of eq. 5.8-5.9, two independent hashes of its distinct graph (materials
+  // sharing a graph and its textures share entries).
+  std::string cacheInfo = "// Texel cache: x output mask (0: not cacheable), y ID0, z ID1.\n";
+  cacheInfo += "const uvec4 mg_materialCacheInfo[" + std::to_string(linked.materials.size()) +
+               "] = uvec4[](\n";
+  for (std::size_t i = 0; i < linked.materials.size(); ++i) {
+    const LinkedMaterial& m = linked.materials[i];
+    std::uint32_t id0 = pcgHash(m.distinctIndex * 2u + 0x3c6ef372u);
+    std::uint32_t id1 = pcgHash(pcgHash(m.distinctIndex * 2u + 1u) ^ 0xa54ff53au);
+    cacheInfo += "    uvec4(" + std::to_string(m.cacheOutputMask) + "u, " + std::to_string(id0) +
+                 "u, " + std::to_string(id1) + "u, 0u)" +
+                 (i + 1 < linked.materials.size() ? ",\n" : ");\n");
+  }
+  out.insert(out.rfind("#endif"), cacheInfo);
+  linked.preludeSource.insert(linked.preludeSource.rfind("#endif"), cacheInfo);
+  linked.compileMilliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return linked;
+}
+
+#endif  // MG_HAVE_COMPILER
+
+}  // namespace memograph::runtime

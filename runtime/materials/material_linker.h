@@ -1,0 +1,88 @@
+// Links a scene's material graphs into the path tracer: compiles each graph with the
+// compiler library (thesis §5.1) and generates the GLSL the two material dispatches need:
+// for the switch, "materials.glsl" with every compiled include followed by
+// evaluateMaterialSwitch(), a switch on the scene's material id that calls each
+// EvaluateMaterial_<Name> with its first texture slot; for callable shaders, only the
+// prelude (MaterialInputs, MaterialOutputs) for the raygen shader, and each material's own
+// include for its callable.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "runtime/scene/scene.h"
+
+namespace memograph::runtime {
+
+struct LinkedMaterial {
+  std::string name;     // the EvaluateMaterial_<name> it calls
+  int textureBase = 0;  // first slot of its textures in LinkedMaterials::texturePaths
+  bool cacheable = false;
+  // Texel cache (thesis §5.3.1): which outputs an entry stores (gpu::kCacheOutput* bits of
+  // the graph's written outputs; 0 when not cacheable) and how many floats that is.
+  std::uint32_t cacheOutputMask = 0;
+  std::uint32_t cacheValueCount = 0;
+  // Index into LinkedMaterials::distinct: scene materials sharing a graph share one
+  // compiled include (and one callable shader).
+  std::uint32_t distinctIndex = 0;
+  // The MaterialInputs members the graph reads and how many textures it samples (compiler
+  // metadata): none of either means every output is a constant.
+  std::vector<std::string> inputsUsed;
+  std::size_t textureCount = 0;
+};
+
+// One distinct compiled graph: what a callable shader of its own needs.
+struct DistinctMaterial {
+  std::string name;     // EvaluateMaterial_<name>
+  std::string include;  // the compiler's GLSL include (prelude, node functions, function)
+  int textureBase = 0;
+};
+
+struct LinkedMaterials {
+  std::string source;                     // materials.glsl for the switch dispatch
+  std::string preludeSource;              // materials.glsl for the callable dispatch
+  std::vector<LinkedMaterial> materials;  // parallel to Scene::materials
+  std::vector<DistinctMaterial> distinct;
+  std::vector<std::string> texturePaths;  // resolved paths, in descriptor-array order
+  // Floats per texel-cache entry: the largest cacheValueCount (0: nothing is cacheable).
+  std::uint32_t cacheValueCount = 0;
+  // Some material writes specularTint or cyclesPrincipled: the path tracer needs
+  // MG_CYCLES_PRINCIPLED (brdf.glsl), which other scenes do without.
+  bool cyclesPrincipled = false;
+  // Some material reads an object-space input (generated, objectPosition, geometricNormal,
+  // objectLocation, objectRandom, backfacing); without one the shaders define
+  // MG_OMIT_OBJECT_INPUTS and MaterialInputs carries none of them.
+  bool objectInputs = false;
+  double compileMilliseconds = 0.0;
+};
+
+// How the path tracer reaches a scene material's graph: a switch in the one path-tracer
+// shader (both backends), or a callable shader per material (ray-tracing pipeline only).
+// Auto: callable on the pipeline backend, switch on the query backend.
+enum class MaterialDispatch { Auto, Switch, Callable };
+
+const char* materialDispatchName(MaterialDispatch dispatch);
+// Parses "auto", "switch" or "callable"; throws std::invalid_argument naming the choices.
+MaterialDispatch parseMaterialDispatch(const std::string& text);
+
+// The PCG hash of the shaders' mg_pcg (O'Neill 2014; Jarzynski and Olano 2020), on the host.
+std::uint32_t pcgHash(std::uint32_t v);
+
+// Members of MaterialOutputs named by the compiler's outputsWritten → gpu::kCacheOutput* bits
+// and their float count. Throws std::runtime_error on a name it does not know.
+std::uint32_t cacheOutputMask(const std::vector<std::string>& outputsWritten,
+                              std::uint32_t* valueCount = nullptr);
+
+struct MaterialLinkOptions {
+  // A node-library folder that replaces the embedded one (for --nodes DIR); empty: embedded.
+  std::filesystem::path nodeLibraryDirectory;
+};
+
+// Throws std::runtime_error with the compiler's diagnostics (file:line:col) when a graph is
+// missing or does not compile.
+LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
+                              const MaterialLinkOptions& options = {});
+
+}  // namespace memograph::runtime

@@ -1,0 +1,36 @@
+// One shader per distinct material graph, compiled on several threads: the entry source (a
+// material callable, or a wavefront material pass) around that graph's include
+// ("material.glsl"), each with its own SPIR-V disk-cache entry. Every distinct graph of a
+// scene becomes a small shader of its own, so no compile ever sees all of a scene's graphs.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "runtime/materials/material_linker.h"
+#include "runtime/vk/shader_compiler.h"
+
+namespace memograph::runtime {
+
+struct MaterialShaderRequest {
+  std::string source;  // the entry file among `base`'s files
+  ShaderStage stage = ShaderStage::Compute;
+  // Defines every material's shader shares; each also gets MG_TEXTURE_BASE (its first
+  // texture slot) and MG_EVALUATE_MATERIAL (its EvaluateMaterial_<Name>).
+  std::vector<std::string> defines;
+  std::uint32_t threads = 0;    // 0: one per hardware thread
+  std::string what = "shader";  // names the shader in a compile error: "<what> of material 'X'"
+};
+
+// Compiles `request.source` once per LinkedMaterials::distinct (in that order) with a compiler
+// that sees `base`'s files plus the material's include as "material.glsl", so its cache key
+// changes only when this material, the shared sources or the defines change. Adds the hits,
+// compiles and summed compile time (CPU time over all threads) to `stats`. Throws the first
+// compile error, naming the material.
+std::vector<std::vector<std::uint32_t>> compileMaterialShaders(const ShaderCompiler& base,
+                                                               const LinkedMaterials& materials,
+                                                               const MaterialShaderRequest& request,
+                                                               ShaderCacheStats& stats);
+
+}  // namespace memograph::runtime

@@ -1,0 +1,380 @@
+#include "runtime/trace/wavefront/wavefront_path_tracer.h"
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <stdexcept>
+
+#include "runtime/host/parallel_for.h"
+#include "runtime/materials/material_shaders.h"
+#include "runtime/shaders/shared_types.h"
+#include "runtime/trace/megakernel/trace_pipelines.h"
+#include "runtime/vk/compute_pipeline.h"
+#include "runtime/vk/vulkan_error.h"
+
+namespace memograph::runtime {
+
+namespace {
+
+// The define that selects each pass of wavefront.glsl, indexed by gpu::kWavefront*.
+constexpr std::array<const char*, gpu::kWavefrontPassCount> kPassDefines = {
+    "MG_WAVEFRONT_GENERATE=1",  "MG_WAVEFRONT_TRACE=1",       "MG_WAVEFRONT_SHADE=1",
+    "MG_WAVEFRONT_QUEUE=1",     "MG_WAVEFRONT_SHADOW=1",      "MG_WAVEFRONT_FINISH=1",
+    "MG_WAVEFRONT_BIN_COUNT=1", "MG_WAVEFRONT_BIN_OFFSETS=1", "MG_WAVEFRONT_BIN_SCATTER=1",
+    "MG_WAVEFRONT_MATERIAL=1",  "MG_WAVEFRONT_LOOKUP=1"};
+constexpr std::array<const char*, gpu::kWavefrontPassCount> kPassNames = {
+    "wavefront generate",    "wavefront trace",    "wavefront shade",     "wavefront queue",
+    "wavefront shadow",      "wavefront finish",   "wavefront bin count", "wavefront bin offsets",
+    "wavefront bin scatter", "wavefront material", "wavefront lookup"};
+
+// Where each pass's GPU time goes in FrameStats, indexed by gpu::kWavefront*: the three
+// binning passes together, the material passes of a bounce together.
+constexpr std::array<double FrameStats::*, gpu::kWavefrontPassCount> kPassTimes = {
+    &FrameStats::wavefrontGenerateMilliseconds, &FrameStats::wavefrontTraceMilliseconds,
+    &FrameStats::wavefrontShadeMilliseconds,    &FrameStats::wavefrontQueueMilliseconds,
+    &FrameStats::wavefrontShadowMilliseconds,   &FrameStats::wavefrontFinishMilliseconds,
+    &FrameStats::wavefrontBinMilliseconds,      &FrameStats::wavefrontBinMilliseconds,
+    &FrameStats::wavefrontBinMilliseconds,      &FrameStats::wavefrontMaterialMilliseconds,
+    &FrameStats::wavefrontLookupMilliseconds};
+
+// The bytes of a bin's record after gpu::WavefrontControl: its material pass's dispatch
+// arguments, its hits' counts and its queued tiles' counts (shared_types.h).
+constexpr std::uint64_t kBinRecordBytes = 3 * 16;
+
+std::uint32_t workgroupsFor(std::uint64_t invocations) {
+  return static_cast<std::uint32_t>((invocations + gpu::kWavefrontWorkgroupSize - 1) /
+                                    gpu::kWavefrontWorkgroupSize);
+}
+
+// The passes of a frame in recording order (the timestamp after each says when it ended);
+// kWavefrontMaterial stands for every bin's material pass of the bounce; `lookup`: the texel
+// cache's lookup before the binning. Every chunk of pixels runs all P rounds before the next.
+std::vector<std::uint32_t> framePasses(std::uint32_t chunks, std::uint32_t paths,
+                                       std::uint32_t bounces, bool materials, bool lookup) {
+  std::vector<std::uint32_t> passes;
+  for (std::uint32_t round = 0; round < chunks * paths; ++round) {
+    passes.push_back(gpu::kWavefrontGenerate);
+    for (std::uint32_t bounce = 0; bounce < bounces; ++bounce) {
+      passes.push_back(gpu::kWavefrontTrace);
+      if (materials) {
+        if (lookup)
+          passes.push_back(gpu::kWavefrontLookup);
+        passes.push_back(gpu::kWavefrontBinCount);
+        passes.push_back(gpu::kWavefrontBinOffsets);
+        passes.push_back(gpu::kWavefrontBinScatter);
+        passes.push_back(gpu::kWavefrontMaterial);
+      }
+      passes.push_back(gpu::kWavefrontShade);
+      passes.push_back(gpu::kWavefrontQueue);
+      passes.push_back(gpu::kWavefrontShadow);
+    }
+    passes.push_back(gpu::kWavefrontFinish);
+  }
+  return passes;
+}
+
+}  // namespace
+
+WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCompiler& compiler,
+                                         std::uint32_t textureCount,
+                                         const std::vector<std::string>& extraDefines,
+                                         std::uint32_t width, std::uint32_t height,
+                                         const WavefrontSetup& setup)
+    : context_(context),
+      query_(context.backend() == Backend::RayQuery),
+      lookup_(setup.cacheLookups),
+      pixels_(width * height) {
+  VkDevice device = context.device();
+  const LinkedMaterials* materials = setup.materials;
+  const std::uint32_t pathSlots = setup.pathSlots;
+  // The renderer refuses both first, in the user's words (renderer.cpp, wavefrontGap).
+  if ((lookup_ && !materials) || (!query_ && !context.info().traceRaysIndirect))
+    throw std::logic_error(
+        "WavefrontPathTracer: a cache without material passes, or a pipeline "
+        "without indirect trace launches");
+  // The path state (vec4 fields a slot, four more for material outputs), the queues (two
+  // live, one shadow, with materials the material-sorted one; a uint a slot) and the control
+  // block (with a record a material bin); each bound whole, so each must fit a storage
+  // binding. Bins are distinct graphs: materials sharing a graph share its pipeline.
+  const std::uint32_t bins = materials ? static_cast<std::uint32_t>(materials->distinct.size()) : 0;
+  const std::uint32_t fields =
+      materials ? gpu::kPathStateFieldsWithMaterials : gpu::kPathStateFields;
+  // Paths in flight: as asked, else every pixel, or as many as one storage binding of path
+  // state, a row of work groups and the largest allocation hold (lavapipe's 128 MiB range:
+  // about 645,000 with graphs, so a 1080p round there runs in 4 chunks).
+  const DeviceInfo& info = context.info();
+  std::uint64_t fitted =
+      std::uint64_t(info.limits.maxComputeWorkGroupCount[0]) * gpu::kWavefrontWorkgroupSize;
+  for (std::uint64_t limit : {std::uint64_t(info.limits.maxStorageBufferRange),
+                              std::uint64_t(info.maxMemoryAllocationSize)})
+    if (limit > 0)
+      fitted = std::min(fitted, limit / (std::uint64_t(fields) * 16));
+  slots_ = pathSlots > 0 ? std::min(pathSlots, pixels_)
+                         : static_cast<std::uint32_t>(std::min<std::uint64_t>(pixels_, fitted));
+  if (slots_ == 0)
+    throw std::invalid_argument("--shading wavefront: the device holds no path state");
+  chunks_ = (pixels_ + slots_ - 1) / slots_;
+  if (workgroupsFor(slots_) > info.limits.maxComputeWorkGroupCount[0])
+    throw std::invalid_argument("--wavefront-paths " + std::to_string(slots_) +
+                                " needs more compute work groups in a row than " + info.name +
+                                " has; ask for fewer");
+  const std::uint64_t stateBytes = std::uint64_t(slots_) * fields * 16;
+  checkBufferSize(context, stateBytes,
+                  "--wavefront-paths " + std::to_string(slots_) + ": the path state (" +
+                      std::to_string(fields) + " x 16 bytes a path)",
+                  true);
+  pathState_ = GpuBuffer(context, stateBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                         VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  // With the tile cache the queued tiles' sorted list follows the four queues.
+  const std::uint64_t queueWords =
+      std::uint64_t(slots_) * (materials ? 4 : 3) + (materials ? setup.tileQueueCapacity : 0);
+  checkBufferSize(context, queueWords * sizeof(std::uint32_t), "--shading wavefront's queues",
+                  true);
+  pathQueues_ = GpuBuffer(context, queueWords * sizeof(std::uint32_t),
+                          VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  control_ = GpuBuffer(context, sizeof(gpu::WavefrontControl) + bins * kBinRecordBytes,
+                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                           VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT |
+                           VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                       VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+
+  if (bins > 0)
+    binReadback_ = hostBuffer(context, bins * kBinRecordBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  VkShaderStageFlags stages = query_ ? VK_SHADER_STAGE_COMPUTE_BIT
+                                     : VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_RAYGEN_BIT_KHR;
+  setLayout_ = createTraceSetLayout(device, stages, textureCount, setup.tileImage, true);
+  layout_ = createPipelineLayout(device, setLayout_.get(), stages, sizeof(gpu::WavefrontPush));
+
+  std::vector<std::string> defines = {"MG_TEXTURE_COUNT=" + std::to_string(textureCount),
+                                      query_ ? "MG_BACKEND_QUERY=1" : "MG_BACKEND_PIPELINE=1"};
+  defines.insert(defines.end(), extraDefines.begin(), extraDefines.end());
+  if (materials) {
+    // Scene material id -> bin (its distinct graph), for the binning passes' lookup.
+    std::string binOf = "uint[](";
+    for (std::size_t i = 0; i < materials->materials.size(); ++i)
+      binOf += (i ? ", " : "") + std::to_string(materials->materials[i].distinctIndex) + "u";
+    defines.push_back("MG_MATERIAL_COUNT=" + std::to_string(materials->materials.size()));
+    defines.push_back("MG_MATERIAL_BIN_COUNT=" + std::to_string(bins));
+    defines.push_back("MG_MATERIAL_BIN_OF=" + binOf + ")");
+  }
+  const bool computeSubgroups =
+      (context.info().subgroupArithmeticStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0;
+  computePasses_.resize(gpu::kWavefrontPassCount);
+  for (std::uint32_t pass = 0; pass < gpu::kWavefrontPassCount; ++pass) {
+    const bool traces = pass == gpu::kWavefrontTrace || pass == gpu::kWavefrontShadow;
+    const bool binning = pass == gpu::kWavefrontBinCount || pass == gpu::kWavefrontBinOffsets ||
+                         pass == gpu::kWavefrontBinScatter;
+    if ((traces && !query_) || (binning && !materials) || pass == gpu::kWavefrontMaterial ||
+        (pass == gpu::kWavefrontLookup && !lookup_))
+      continue;
+    std::vector<std::string> passDefines = defines;
+    passDefines.push_back(kPassDefines[pass]);
+    if (computeSubgroups)
+      passDefines.push_back("MG_SUBGROUP_RAY_COUNT=1");
+    auto module = createShaderModule(
+        device, compiler.compile({"wavefront.glsl", ShaderStage::Compute, passDefines}));
+    computePasses_[pass] =
+        createComputePipeline(device, module.get(), layout_.get(), kPassNames[pass]);
+  }
+  // One small pipeline per distinct graph, compiled with only that graph's include (as a
+  // material callable is), so no compile ever sees all of a scene's graphs: the query
+  // backend's megakernel inlines every one (the classroom's 88 do not compile on lavapipe).
+  // The GLSL compiles and the driver's pipeline compiles both run on several threads. The
+  // driver's share is the large one: on lavapipe the classroom's pipelines took 33.9 s on one
+  // thread and 17.5 s on this 2-core machine's two, glslang 4.4 s for every shader, cold.
+  if (materials) {
+    MaterialShaderRequest request;
+    request.source = "wavefront.glsl";
+    request.stage = ShaderStage::Compute;
+    request.defines = defines;
+    request.defines.push_back(kPassDefines[gpu::kWavefrontMaterial]);
+    request.threads = setup.compileThreads;
+    request.what = "wavefront material pass";
+    const auto spirv = compileMaterialShaders(compiler, *materials, request, materialShaderStats_);
+    materialPasses_.resize(spirv.size());
+    parallelFor(spirv.size(), setup.compileThreads, [&](std::size_t bin, std::uint32_t) {
+      auto module = createShaderModule(device, spirv[bin]);
+      materialPasses_[bin] =
+          createComputePipeline(device, module.get(), layout_.get(),
+                                ("wavefront material " + materials->distinct[bin].name).c_str());
+    });
+  }
+  if (query_)
+    return;
+
+  // Ray-tracing pipeline and its table: [trace raygen][shadow raygen][miss, shadow miss][hit],
+  // the hit and miss shaders the megakernel's (they only report the hit); the default stack.
+  auto raygenDefines = [&](std::uint32_t pass) {
+    std::vector<std::string> d = defines;
+    d.push_back(kPassDefines[pass]);
+    return d;
+  };
+  std::vector<VulkanHandle<VkShaderModule>> modules;
+  modules.push_back(
+      createShaderModule(device, compiler.compile({"wavefront.glsl", ShaderStage::RayGen,
+                                                   raygenDefines(gpu::kWavefrontTrace)})));
+  modules.push_back(
+      createShaderModule(device, compiler.compile({"wavefront.glsl", ShaderStage::RayGen,
+                                                   raygenDefines(gpu::kWavefrontShadow)})));
+  std::vector<VkShaderStageFlagBits> stageBits = {VK_SHADER_STAGE_RAYGEN_BIT_KHR,
+                                                  VK_SHADER_STAGE_RAYGEN_BIT_KHR};
+  appendReportingShaders(device, compiler, modules, stageBits);
+  std::vector<VkShaderModule> moduleHandles;
+  for (const auto& module : modules)
+    moduleHandles.push_back(module.get());
+  rayTracing_ =
+      createRayTracingPipeline(context, moduleHandles, stageBits, layout_.get(), 1, false);
+  ShaderBindingTable table = createShaderBindingTable(context, rayTracing_.get(), 5,
+                                                      {{{0}, true}, {{1}, true}, {{2, 3}}, {{4}}});
+  shaderBindingTable_ = std::move(table.buffer);
+  traceRaygenRegion_ = table.regions[0];
+  shadowRaygenRegion_ = table.regions[1];
+  missRegion_ = table.regions[2];
+  hitRegion_ = table.regions[3];
+}
+
+std::uint32_t WavefrontPathTracer::timestampCount(std::uint32_t paths,
+                                                  std::uint32_t bounces) const {
+  return 1 + static_cast<std::uint32_t>(
+                 framePasses(chunks_, paths, bounces, !materialPasses_.empty(), lookup_).size());
+}
+
+void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pass,
+                                     std::uint32_t chunk, std::uint32_t round,
+                                     std::uint32_t bounce) const {
+  // Live queues alternate: bounce b traces queue b % 2 and appends to the other.
+  gpu::WavefrontPush push{};
+  push.step = glm::uvec4(round, bounce, bounce % 2, 0);
+  const std::uint32_t firstPixel = chunk * slots_;
+  const std::uint32_t chunkPixels = std::min(slots_, pixels_ - firstPixel);
+  push.chunk = glm::uvec4(slots_, firstPixel, chunkPixels, 0);
+  VkShaderStageFlags stages = query_ ? VK_SHADER_STAGE_COMPUTE_BIT
+                                     : VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_RAYGEN_BIT_KHR;
+  vkCmdPushConstants(commands, layout_.get(), stages, 0, sizeof push, &push);
+  const bool traces = pass == gpu::kWavefrontTrace || pass == gpu::kWavefrontShadow;
+  if (traces && !query_) {
+    // The launch size is the queue's count, written by the pass before (generate or queue).
+    const VkDeviceAddress launch =
+        control_.address() + (pass == gpu::kWavefrontTrace
+                                  ? offsetof(gpu::WavefrontControl, liveLaunch)
+                                  : offsetof(gpu::WavefrontControl, shadowLaunch));
+    const VkStridedDeviceAddressRegionKHR callables{};
+    vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, rayTracing_.get());
+    context_.functions().cmdTraceRaysIndirect(
+        commands, pass == gpu::kWavefrontTrace ? &traceRaygenRegion_ : &shadowRaygenRegion_,
+        &missRegion_, &hitRegion_, &callables, launch);
+    return;
+  }
+  if (pass == gpu::kWavefrontMaterial) {
+    // Every bin's graph over its batch, each sized by the offsets pass; the bins' slots are
+    // disjoint, so no barrier between them.
+    for (std::uint32_t bin = 0; bin < materialPasses_.size(); ++bin) {
+      push.step.w = bin;
+      vkCmdPushConstants(commands, layout_.get(), stages, 0, sizeof push, &push);
+      vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, materialPasses_[bin].get());
+      vkCmdDispatchIndirect(commands, control_.buffer(),
+                            sizeof(gpu::WavefrontControl) + bin * kBinRecordBytes);
+    }
+    return;
+  }
+  vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, computePasses_[pass].get());
+  switch (pass) {
+    case gpu::kWavefrontGenerate:
+    case gpu::kWavefrontFinish:
+      vkCmdDispatch(commands, workgroupsFor(chunkPixels), 1, 1);
+      break;
+    case gpu::kWavefrontQueue:
+    case gpu::kWavefrontBinOffsets:
+      vkCmdDispatch(commands, 1, 1, 1);
+      break;
+    case gpu::kWavefrontShadow:
+      vkCmdDispatchIndirect(commands, control_.buffer(),
+                            offsetof(gpu::WavefrontControl, shadowGroups));
+      break;
+    default:  // trace, shade, bin count and scatter: over the live queue
+      vkCmdDispatchIndirect(commands, control_.buffer(),
+                            offsetof(gpu::WavefrontControl, liveGroups));
+      break;
+  }
+}
+
+void WavefrontPathTracer::record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t paths,
+                                 std::uint32_t bounces, VkQueryPool timestamps,
+                                 std::uint32_t firstQuery) const {
+  vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set, 0,
+                          nullptr);
+  if (!query_)
+    vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, layout_.get(), 0, 1,
+                            &set, 0, nullptr);
+  const bool materials = !materialPasses_.empty();
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  if (materials) {
+    // The bins' counters and frame sums start from 0.
+    vkCmdFillBuffer(commands, control_.buffer(), 0, VK_WHOLE_SIZE, 0);
+    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                         VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0, nullptr, 0,
+                         nullptr);
+  }
+  std::uint32_t query = firstQuery;
+  if (timestamps)
+    vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps, query++);
+  // Every pass reads what the one before wrote, the indirect ones their arguments too.
+  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  barrier.dstAccessMask =
+      VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
+  std::uint32_t chunk = 0, round = 0, bounce = 0;
+  for (std::uint32_t pass : framePasses(chunks_, paths, bounces, materials, lookup_)) {
+    recordPass(commands, pass, chunk, round, bounce);
+    if (timestamps)
+      vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, query++);
+    vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                         VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0, nullptr, 0,
+                         nullptr);
+    if (pass == gpu::kWavefrontShadow)
+      ++bounce;
+    if (pass == gpu::kWavefrontFinish) {
+      bounce = 0;
+      if (++round == paths) {
+        round = 0;
+        ++chunk;
+      }
+    }
+  }
+  if (materials) {
+    // The last pass's barrier made its writes visible to shaders; the copy is a transfer.
+    barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+    VkBufferCopy copy{sizeof(gpu::WavefrontControl), 0, materialPasses_.size() * kBinRecordBytes};
+    vkCmdCopyBuffer(commands, control_.buffer(), binReadback_.buffer(), 1, &copy);
+  }
+}
+
+std::vector<std::uint32_t> WavefrontPathTracer::binHits() const {
+  std::vector<std::uint32_t> hits;
+  if (materialPasses_.empty())
+    return hits;
+  constexpr std::size_t kRecords = kBinRecordBytes / sizeof(glm::uvec4);
+  std::vector<glm::uvec4> records(materialPasses_.size() * kRecords);
+  binReadback_.read(records.data(), records.size() * sizeof(glm::uvec4));
+  for (std::size_t bin = 0; bin < materialPasses_.size(); ++bin)
+    hits.push_back(records[kRecords * bin].w);
+  return hits;
+}
+
+void WavefrontPathTracer::addPassTimes(const std::vector<std::uint64_t>& ticks, std::uint32_t paths,
+                                       std::uint32_t bounces, double millisecondsPerTick,
+                                       FrameStats& frame) const {
+  const auto passes = framePasses(chunks_, paths, bounces, !materialPasses_.empty(), lookup_);
+  if (ticks.size() < passes.size() + 1)
+    return;
+  for (std::size_t i = 0; i < passes.size(); ++i) {
+    const double ms = double(ticks[i + 1] - ticks[i]) * millisecondsPerTick;
+    frame.*kPassTimes[passes[i]] += ms;
+  }
+}
+
+}  // namespace memograph::runtime

@@ -1,0 +1,119 @@
+// The wavefront path tracer on the host (--shading wavefront): the passes of
+// shaders/wavefront.glsl, their buffers (path state, queues, indirect arguments) and the
+// command sequence of a frame, with a timestamp after every pass. Memory-resident path state
+// against the megakernel (Laine, Karras and Aila, "Megakernels Considered Harmful", HPG
+// 2013): with the free-material floor's constants, or with the scene's material graphs,
+// each evaluated by a small compute pipeline of its own over the hits sorted by material.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "runtime/materials/material_linker.h"
+#include "runtime/trace/render_stats.h"
+#include "runtime/vk/gpu_buffer.h"
+#include "runtime/vk/shader_compiler.h"
+#include "runtime/vk/vulkan_context.h"
+#include "runtime/vk/vulkan_handle.h"
+
+namespace memograph::runtime {
+
+// What the wavefront renders beyond the megakernel's defines.
+struct WavefrontSetup {
+  // Null: the floor (MG_MATERIAL_FLOOR in the defines); otherwise the scene's linked graphs,
+  // one material pipeline per distinct graph.
+  const LinkedMaterials* materials = nullptr;
+  // A cache's defines (MG_CACHE_TEXEL, or MG_CACHE_TILE with MG_TILE_FILL_DEFERRED), with
+  // materials: a lookup pass before the binning; the material passes insert the texel
+  // cache's misses, or compute the tiles the lookups queued (tileQueueCapacity of them at
+  // most a bounce: the sorted tile list's length).
+  bool cacheLookups = false;
+  std::uint32_t tileQueueCapacity = 0;
+  bool tileImage = false;  // the tile cache stores its texels in an image (a binding more)
+  // The path state's capacity, paths in flight (0: every pixel, or as many as the device's
+  // storage-buffer range and work-group count allow); a round over more pixels runs in
+  // chunks of at most that many, one after another.
+  std::uint32_t pathSlots = 0;
+  std::uint32_t compileThreads = 0;  // the material shaders' GLSL compiles; 0: one per core
+};
+
+class WavefrontPathTracer {
+ public:
+  // Compiles the passes for the context's backend: every pass a compute pipeline on the query
+  // backend; on the pipeline backend trace and shadow are the raygens of one ray-tracing
+  // pipeline, launched with vkCmdTraceRaysIndirectKHR (refused, std::runtime_error, where the
+  // device lacks it). `extraDefines` as the megakernel's (floor, cache, NEE, object inputs).
+  // The material pipelines compile from `compiler`'s files plus each graph's include, on
+  // `setup.compileThreads` threads. Throws std::invalid_argument when a given capacity does
+  // not fit the device, or for a texel cache without materials.
+  WavefrontPathTracer(const VulkanContext& context, ShaderCompiler& compiler,
+                      std::uint32_t textureCount, const std::vector<std::string>& extraDefines,
+                      std::uint32_t width, std::uint32_t height, const WavefrontSetup& setup);
+
+  VkDescriptorSetLayout descriptorSetLayout() const { return setLayout_.get(); }
+  // Paths in flight (the path state's slots) and the chunks a round of the image takes.
+  std::uint32_t pathSlots() const { return slots_; }
+  std::uint32_t chunks() const { return chunks_; }
+  const GpuBuffer& pathState() const { return pathState_; }
+  const GpuBuffer& pathQueues() const { return pathQueues_; }
+  const GpuBuffer& control() const { return control_; }
+
+  // Timestamps record() writes into its pool from `firstQuery` on: one before the first pass,
+  // one after each pass.
+  std::uint32_t timestampCount(std::uint32_t paths, std::uint32_t bounces) const;
+
+  // Material bins (distinct graphs, each a material pipeline); 0 with the floor.
+  std::uint32_t materialBinCount() const {
+    return static_cast<std::uint32_t>(materialPasses_.size());
+  }
+  // Hits each bin's material pass evaluated in the last frame record() recorded (read after
+  // it completed); empty with the floor.
+  std::vector<std::uint32_t> binHits() const;
+  // The material pipelines' GLSL compiles (they have compilers of their own).
+  const ShaderCacheStats& materialShaderStats() const { return materialShaderStats_; }
+
+  // Records one frame: per chunk of pixels, P rounds of one path a pixel, each generate, L x
+  // (trace, [[lookup,]
+  // bin count, bin offsets, bin scatter, material passes,] shade, queue, shadow), finish, with a
+  // barrier between passes. `timestamps` VK_NULL_HANDLE: none.
+  void record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t paths,
+              std::uint32_t bounces, VkQueryPool timestamps, std::uint32_t firstQuery) const;
+
+  // Adds the passes' GPU times to `frame` (its wavefront*Milliseconds) from the timestamps
+  // record() wrote, read back as `ticks` (timestampCount of them).
+  void addPassTimes(const std::vector<std::uint64_t>& ticks, std::uint32_t paths,
+                    std::uint32_t bounces, double millisecondsPerTick, FrameStats& frame) const;
+
+ private:
+  const VulkanContext& context_;
+  bool query_ = true;
+  bool lookup_ = false;  // the texel cache's lookup pass
+  std::uint32_t pixels_ = 0;
+  std::uint32_t slots_ = 0;   // paths in flight: a pixel's each, up to the capacity
+  std::uint32_t chunks_ = 1;  // chunks of at most slots_ pixels a round takes
+  VulkanHandle<VkDescriptorSetLayout> setLayout_;
+  VulkanHandle<VkPipelineLayout> layout_;
+  // Indexed by gpu::kWavefront*; trace and shadow empty on the pipeline backend.
+  std::vector<VulkanHandle<VkPipeline>> computePasses_;
+  // One a distinct material graph (material bin), indexed by bin; empty with the floor.
+  std::vector<VulkanHandle<VkPipeline>> materialPasses_;
+  ShaderCacheStats materialShaderStats_;
+  VulkanHandle<VkPipeline> rayTracing_;  // pipeline backend: the trace and shadow raygens
+  GpuBuffer shaderBindingTable_;
+  VkStridedDeviceAddressRegionKHR traceRaygenRegion_{};
+  VkStridedDeviceAddressRegionKHR shadowRaygenRegion_{};
+  VkStridedDeviceAddressRegionKHR missRegion_{};
+  VkStridedDeviceAddressRegionKHR hitRegion_{};
+  GpuBuffer pathState_;
+  GpuBuffer pathQueues_;
+  GpuBuffer control_;
+  GpuBuffer binReadback_;  // host-visible copy of the bins' records after a frame
+
+  void recordPass(VkCommandBuffer commands, std::uint32_t pass, std::uint32_t chunk,
+                  std::uint32_t round, std::uint32_t bounce) const;
+};
+
+}  // namespace memograph::runtime

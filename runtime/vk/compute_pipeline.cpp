@@ -1,0 +1,66 @@
+#include "runtime/vk/compute_pipeline.h"
+
+#include <string>
+
+#include "runtime/vk/shader_compiler.h"
+#include "runtime/vk/shader_sources.h"
+#include "runtime/vk/vulkan_error.h"
+
+namespace memograph::runtime {
+
+VulkanHandle<VkShaderModule> createShaderModule(VkDevice device,
+                                                const std::vector<std::uint32_t>& spirv) {
+  VkShaderModuleCreateInfo info{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+  info.codeSize = spirv.size() * sizeof(std::uint32_t);
+  info.pCode = spirv.data();
+  VkShaderModule module = VK_NULL_HANDLE;
+  checkVk(vkCreateShaderModule(device, &info, nullptr, &module), "vkCreateShaderModule");
+  return VulkanHandle<VkShaderModule>(
+      module, [device](VkShaderModule m) { vkDestroyShaderModule(device, m, nullptr); });
+}
+
+VulkanHandle<VkPipelineLayout> createPipelineLayout(VkDevice device, VkDescriptorSetLayout set,
+                                                    VkShaderStageFlags pushStages,
+                                                    std::uint32_t pushBytes) {
+  const VkPushConstantRange push{pushStages, 0, pushBytes};
+  VkPipelineLayoutCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+  info.setLayoutCount = set != VK_NULL_HANDLE ? 1 : 0;
+  info.pSetLayouts = &set;
+  info.pushConstantRangeCount = pushStages != 0 ? 1 : 0;
+  info.pPushConstantRanges = &push;
+  VkPipelineLayout layout = VK_NULL_HANDLE;
+  checkVk(vkCreatePipelineLayout(device, &info, nullptr, &layout), "vkCreatePipelineLayout");
+  return VulkanHandle<VkPipelineLayout>(
+      layout, [device](VkPipelineLayout l) { vkDestroyPipelineLayout(device, l, nullptr); });
+}
+
+VulkanHandle<VkPipeline> createComputePipeline(VkDevice device, VkShaderModule module,
+                                               VkPipelineLayout layout, const char* what) {
+  VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+  info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+  info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+  info.stage.module = module;
+  info.stage.pName = "main";
+  info.layout = layout;
+  VkPipeline pipeline = VK_NULL_HANDLE;
+  checkVk(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
+          ("vkCreateComputePipelines (" + std::string(what) + ")").c_str());
+  return VulkanHandle<VkPipeline>(
+      pipeline, [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); });
+}
+
+PushConstantPass createPushConstantPass(const VulkanContext& context, const std::string& file,
+                                        std::uint32_t pushBytes,
+                                        const std::filesystem::path& shaderCacheDirectory,
+                                        const char* what) {
+  VkDevice device = context.device();
+  ShaderCompiler compiler(embeddedShaderFiles(), shaderCacheDirectory);
+  auto module = createShaderModule(device, compiler.compile({file, ShaderStage::Compute, {}}));
+  PushConstantPass pass;
+  pass.layout =
+      createPipelineLayout(device, VK_NULL_HANDLE, VK_SHADER_STAGE_COMPUTE_BIT, pushBytes);
+  pass.pipeline = createComputePipeline(device, module.get(), pass.layout.get(), what);
+  return pass;
+}
+
+}  // namespace memograph::runtime

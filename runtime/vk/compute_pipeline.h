@@ -1,0 +1,46 @@
+// Shader modules from SPIR-V and compute pipelines from a module: the path tracer's query
+// backend (trace_pipelines), the bake (material_baker) and the cache self-test use them;
+// and the small passes whose only input is their push constants (the GPU instance fill, the
+// vertex pass).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <vulkan/vulkan.h>
+
+#include "runtime/vk/vulkan_context.h"
+#include "runtime/vk/vulkan_handle.h"
+
+namespace memograph::runtime {
+
+// Throws std::runtime_error on a Vulkan error.
+VulkanHandle<VkShaderModule> createShaderModule(VkDevice device,
+                                                const std::vector<std::uint32_t>& spirv);
+
+// A pipeline layout of at most one descriptor set layout (VK_NULL_HANDLE: none) and at most
+// one push-constant range (`pushStages` 0: none). Throws std::runtime_error.
+VulkanHandle<VkPipelineLayout> createPipelineLayout(VkDevice device, VkDescriptorSetLayout set,
+                                                    VkShaderStageFlags pushStages = 0,
+                                                    std::uint32_t pushBytes = 0);
+
+// A compute pipeline of `module`'s "main" under `layout`; `what` names it in errors.
+VulkanHandle<VkPipeline> createComputePipeline(VkDevice device, VkShaderModule module,
+                                               VkPipelineLayout layout, const char* what);
+
+// A compute pass that reads and writes only through buffer device addresses in its push
+// constants (`pushBytes` of them), so it needs no descriptor set: the embedded shader `file`
+// compiled (its SPIR-V cached in `shaderCacheDirectory`, none when empty), its layout and its
+// pipeline; `what` names it in errors.
+struct PushConstantPass {
+  VulkanHandle<VkPipelineLayout> layout;
+  VulkanHandle<VkPipeline> pipeline;
+};
+PushConstantPass createPushConstantPass(const VulkanContext& context, const std::string& file,
+                                        std::uint32_t pushBytes,
+                                        const std::filesystem::path& shaderCacheDirectory,
+                                        const char* what);
+
+}  // namespace memograph::runtime
