@@ -10,7 +10,7 @@
 #              is those 4), seed 1; LDR-FLIP of frustum and lipac against none (pictures.txt,
 #              each camera's role in its header). With SCENE=builtin:city:path=aerial, the
 #              aerial path's cameras (city_aerial.campath): 120 and 135 facing the mirror, 60
-#              flying in, as docs/results/culling_h200.md pictured them
+#              flying in, as the culling results picture them
 #   variants   LiPaC with other settings: VARIANTS="label:flags;label:flags" (for example
 #              "every4:--feedback-every 4 --low-frames 2"), each a bench run of the path as
 #              above (variants.csv: bench's summary line each, labelled lipac_<label>;
@@ -37,7 +37,7 @@
 #   bash tools/bench/culling_device.sh [bench] [pictures] [variants] [looks] [checks]
 # and here, from the returned files (unpack culling_run.tar.gz into RUN_FOLDER first):
 #   tools/results/make_culling_report RUN_FOLDER
-#   (docs/results/culling_h200.md and docs/results/culling_plots/).
+#   (tools/results/make_culling_report writes the report and its plots).
 # EXTRA="--cache texel" adds flags to every run; MODES="none lipac" runs only those modes (the
 # pictures compare each with none, so keep none there); CAMERAS="120 153" pictures only those. Results under $OUT, each step under its own
 # time limit (LIMIT seconds a bench run, default 170). Here, to check the script on lavapipe

@@ -3,12 +3,11 @@
 # with a static camera and compared with LDR-FLIP (`memograph diff`) against the same render
 # without a cache and the same seed. A second uncached render with another seed gives the
 # scale: what another noise pattern alone changes at this sample count.
-#   bash tools/bench/memo_quality.sh     here on lavapipe (after tools/build.sh; 8 min
-#                                        measured), small images; writes
-#                                        docs/results/memoization_quality_lavapipe.md
+#   bash tools/bench/memo_quality.sh     here on lavapipe (after tools/build.sh; about 8 min),
+#                                        small images; writes
+#                                        out/memoization_quality_lavapipe.md
 #   bash bundle/memo_quality.sh --gpu    on the GPU machine (tools/bundle_memo_sweep.sh;
-#                                        146 s measured on an H200; copied here as
-#                                        docs/results/memoization_quality_gpu.md):
+#                                        about 150 s; docs/results.md holds its figures):
 #                                        1920x1080, P = 6, L = 4 on the pipeline backend
 #                                        with callables (what the tables time), the tile
 #                                        cache with 4x4 tiles, subgroup and deferred fill;
@@ -31,7 +30,7 @@ if [ $gpu = 1 ]; then
 else
   cd "$(dirname "$0")/../.."
   m=${MEMOGRAPH:-build/tools/memograph}
-  out=${OUT_MD:-docs/results/memoization_quality_lavapipe.md}
+  out=${OUT_MD:-out/memoization_quality_lavapipe.md}
 fi
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -77,6 +76,7 @@ variants() {
 # The table is written row by row, so a run cut short by the device call's limit still
 # returns the rows it finished.
 write_header() {
+  mkdir -p "$(dirname "$out")"
   device=$("$m" render --list-devices 2>/dev/null | head -1 | sed 's/^\[0\] //')
   {
     echo "# Memoization: picture quality of the cache variants ($([ $gpu = 1 ] && echo GPU || echo lavapipe))"

@@ -5,7 +5,7 @@
 #   bash bundle/memo_sweep.sh [--tables defaults,6.1,6.1r,6.1s,6.1b,diag,6.2,6.3] [--match REGEX]
 #                             [--skip-done STEPS.tsv]... [--budget S] [--order table|pipeline] [--list]
 #   (--skip-done: leave out the rows an earlier call's steps.tsv lists as ok, e.g. the calls
-#   kept under docs/results/memoization_h200/, which travel with the working tree;
+#   of an interrupted sweep, carried with the working tree;
 #   --order pipeline: run rows that differ only in --cache-entries one after the other, so the
 #   driver compiles their pipeline once (35 s on the classroom) instead of once a row;
 #   --list: print the rows selected and stop; MEMOGRAPH=bundle/ab/<rev>/memograph, after
@@ -19,7 +19,7 @@
 #   steps.tsv      each step: status (ok, partial: stopped by its time limit with the
 #                  frames so far, timeout, skipped, failed), seconds, limit, table, scene, label, flags
 #   log.txt        everything printed;   env.txt  GPU, driver, bundle commit
-# tools/results/make_tables turns them into docs/results/memoization_tables.md and plots.
+# tools/results/make_tables turns them into tables and plots (out/memoization_tables.md).
 #
 # Order is priority: a step whose time limit no longer fits in what is left of --budget is
 # skipped (and listed as such), so a call always ends in time with the most important

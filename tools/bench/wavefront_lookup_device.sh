@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # On the GPU machine, after tools/bundle_device.sh (carry bundle and .gl): the wavefront's
-# figures against the megakernel's (docs/results/wavefront_h200.md). In one call, each step
+# figures against the megakernel's (docs/results.md, "Wavefront against megakernel"). In one call, each step
 # under its own time limit:
 # 1. pictures of the classroom at its static camera, 960x540, P = 6, L = 4, seed 1, compared
 #    on the device with `memograph diff` (pictures.txt):
