@@ -25,7 +25,7 @@ OUT=${OUT:-/tmp/out}
 mkdir -p "$OUT"
 flags=("$@")
 [ ${#flags[@]} -gt 0 ] || flags=(--cache texel --cache-entries 16777216 --eviction lru
-  --clock counter --cache-read-check key)
+  --clock counter)
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader >"$OUT/ab_env.txt" 2>&1 || true
 # A second run in the same call appends to ab_rows.csv under the header already there.
 first=1
