@@ -2,8 +2,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -213,20 +216,20 @@ TEST_F(CliTest, CullingOptionsAreCheckedAndACulledRenderWritesItsTopView) {
       {" --culling lipac --hitbox-deactivate 30", "--hitbox-deactivate (30) must be below"},
       {" --culling lipac --hitbox-size -1", "--hitbox-size must be a positive number"},
       {" --culling frustum --low-frames x", "--low-frames takes a whole number, not 'x'"},
-      {" --culling lipac --instance-fill cpu", "--instance-fill takes host or gpu, not 'cpu'"},
-      {" --culling lipac --looks maybe", "--looks takes on or off, not 'maybe'"},
+      {" --culling lipac --feedback-every x", "--feedback-every takes a whole number, not 'x'"},
+      {" --culling lipac --culling-radius far", "--culling-radius takes a number, not 'far'"},
       {" --culling lipac --look-appearing -3", "--look-appearing takes a whole number, not '-3'"},
       {" --blas-budget 64", "they need --culling frustum or --culling lipac"},
       {" --blas-build-ms 2", "they need --culling frustum or --culling lipac"},
       {" --culling frustum --blas-build-ms -1", "--blas-build-ms must be in [0, 1e6]"},
       {" --culling frustum --blas-build-ms soon", "--blas-build-ms takes a number, not 'soon'"},
       {" --culling lipac --paths 6 --feedback-paths 4", "--feedback-paths 4 must divide"},
-      {" --culling lipac --feedback-dispatch both",
-       "--feedback-dispatch takes single or split, not 'both'"},
-      {" --culling lipac --hit-counters raygen",
-       "--hit-counters takes after-trace or closest-hit, not 'raygen'"},
-      {" --culling lipac --backend query --hit-counters closest-hit",
-       "--hit-counters closest-hit needs the ray-tracing pipeline backend"},
+      // LiPaC's split feedback dispatch, counters after the trace, host instance fill and
+      // looks are its behaviour, not options.
+      {" --culling lipac --feedback-dispatch single", "unknown option '--feedback-dispatch'"},
+      {" --culling lipac --hit-counters closest-hit", "unknown option '--hit-counters'"},
+      {" --culling lipac --instance-fill gpu", "unknown option '--instance-fill'"},
+      {" --culling lipac --looks off", "unknown option '--looks'"},
       {" --debug-culling " + top, "--debug-culling shows which instances culling keeps"},
   };
   for (const auto& [flags, message] : bad) {
@@ -259,7 +262,7 @@ TEST_F(CliTest, OptionsTheModesLeaveUnusedAreNamed) {
                              (directory_ / "landscape.pfm").string();
   const auto unused = runCli(render +
                              " --eviction lru --tile 4x4 --hitbox-size 20 --culling-radius 5 "
-                             "--hit-counters closest-hit");
+                             "--feedback-every 2");
   // The wavefront traces one path of every pixel a round: --dispatch-paths is the megakernel's.
   const auto wavefront = runCli(render + " --shading wavefront --dispatch-paths 1");
   ASSERT_EQ(wavefront.exitCode, 0) << wavefront.output;
@@ -268,7 +271,7 @@ TEST_F(CliTest, OptionsTheModesLeaveUnusedAreNamed) {
       << wavefront.output;
   ASSERT_EQ(unused.exitCode, 0) << unused.output;
   for (const char* line : {"render: --hitbox-size is ignored: it needs --culling lipac",
-                           "render: --hit-counters is ignored: it needs --culling lipac",
+                           "render: --feedback-every is ignored: it needs --culling lipac",
                            "render: --culling-radius is ignored: it needs --culling frustum",
                            "render: --eviction is ignored: it needs --cache texel or --cache tile",
                            "render: --tile is ignored: it needs --cache tile"})
@@ -289,13 +292,19 @@ TEST_F(CliTest, RenderAndBenchRefuseBadCacheOptionValues) {
   for (const std::string& command : {"render builtin:landscape" + out, std::string("bench")}) {
     const auto format = runCli(command + " --value-format fp8");
     EXPECT_EQ(format.exitCode, 2) << format.output;
-    EXPECT_NE(format.output.find("'fp8' (choose fp32 or fp16)"), std::string::npos)
+    EXPECT_NE(format.output.find("--value-format takes fp32 or fp16, not 'fp8'"), std::string::npos)
         << format.output;
     const auto clock = runCli(command + " --clock x");
     EXPECT_EQ(clock.exitCode, 2) << clock.output;
-    EXPECT_NE(clock.output.find("'x' (choose frame or counter)"), std::string::npos)
+    EXPECT_NE(clock.output.find("--clock takes counter or frame, not 'x'"), std::string::npos)
         << clock.output;
-    EXPECT_EQ(runCli(command + " --clock-shift 40").exitCode, 2);
+    // The clock's shift and the read check are the cache's, not the command line's.
+    for (const std::string removed : {"--clock-shift", "--cache-read-check"}) {
+      const auto run = runCli(command + " --cache texel " + removed + " 1");
+      EXPECT_EQ(run.exitCode, 2) << run.output;
+      EXPECT_NE(run.output.find("unknown option '" + removed + "'"), std::string::npos)
+          << run.output;
+    }
     const auto probe = runCli(command + " --floor-materials --cache texel --probe 17");
     EXPECT_EQ(probe.exitCode, 2) << probe.output;
     const auto device = runCli(command + " --device x");  // shared renderer options
@@ -349,12 +358,88 @@ TEST_F(CliTest, RenderGoesOnWhenTheShaderCacheCannotBeWritten) {
   EXPECT_EQ(names, (std::vector<std::string>{"cache", "triangle.gltf", "x.png"}));
 }
 
-TEST_F(CliTest, RenderHelpListsTheCacheOptions) {
-  const auto run = runCli("render --help");
-  EXPECT_EQ(run.exitCode, 0);
-  for (const char* option : {"--value-format", "--clock", "--snap-uv", "--cache-secondary-only",
-                             "--floor-materials", "--debug-misses"})
-    EXPECT_NE(run.output.find(option), std::string::npos) << option;
+// --help lists the common options in sections, each in at most two lines of at most 100
+// columns, in at most 100 lines; --help-all adds the advanced ones.
+TEST_F(CliTest, RenderAndBenchHelpListTheCommonOptionsAndHelpAllTheRest) {
+  if (runCli("bench --help").output.find("this build") != std::string::npos)
+    GTEST_SKIP() << "this memograph has no renderer";
+  for (const std::string command : {"render", "bench"}) {
+    const auto help = runCli(command + " --help");
+    const auto all = runCli(command + " --help-all");
+    ASSERT_EQ(help.exitCode, 0) << help.output;
+    ASSERT_EQ(all.exitCode, 0) << all.output;
+    EXPECT_LE(std::count(help.output.begin(), help.output.end(), '\n'), 100) << help.output;
+    for (const char* option : {"--cache", "--snap-uv", "--floor-materials", "--culling",
+                               "--shading", "Material memoization", "--help-all"})
+      EXPECT_NE(help.output.find(option), std::string::npos) << command << " " << option;
+    for (const char* option :
+         {"--value-format", "--eviction", "--clock", "--tile-storage", "--cache-secondary-only",
+          "--look-appearing", "--blas-budget", "--dispatch-paths", "--wavefront-paths"}) {
+      EXPECT_EQ(help.output.find(option), std::string::npos) << command << " " << option;
+      EXPECT_NE(all.output.find(option), std::string::npos) << command << " " << option;
+    }
+    std::istringstream lines(all.output);
+    std::string option;
+    int optionLines = 0;
+    for (std::string line; std::getline(lines, line);) {
+      EXPECT_LE(line.size(), 100u) << line;
+      if (line.rfind("  -", 0) == 0) {
+        option = line;
+        optionLines = 1;
+      } else if (line.rfind("    ", 0) == 0) {
+        EXPECT_LE(++optionLines, 2) << option;
+      }
+    }
+  }
+  EXPECT_NE(runCli("render --help").output.find("--debug-misses"), std::string::npos);
+}
+
+// docs/guide/cli.md is the CLI reference: it names every option `render --help-all` and
+// `bench --help-all` list.
+TEST_F(CliTest, TheCliReferenceNamesEveryRenderAndBenchOption) {
+  if (runCli("bench --help").output.find("this build") != std::string::npos)
+    GTEST_SKIP() << "this memograph has no renderer";
+  std::ifstream file(std::string(MEMOGRAPH_EXAMPLES_DIR) + "/../docs/guide/cli.md");
+  ASSERT_TRUE(file) << "docs/guide/cli.md";
+  const std::string reference((std::istreambuf_iterator<char>(file)), {});
+  int options = 0;
+  for (const std::string command : {"render", "bench"}) {
+    std::istringstream lines(runCli(command + " --help-all").output);
+    for (std::string line; std::getline(lines, line);) {
+      if (line.rfind("  --", 0) != 0)
+        continue;
+      const std::string name = line.substr(2, line.find_first_of(" ,", 2) - 2);
+      ++options;
+      EXPECT_NE(reference.find("`" + name), std::string::npos)
+          << "docs/guide/cli.md lacks " << command << " " << name;
+    }
+  }
+  EXPECT_GT(options, 60);
+}
+
+// The tile cache's give-up test hook is an environment variable, not an option; a bad value
+// is a usage error naming it.
+TEST_F(CliTest, TheTileGiveUpTestHookIsAnEnvironmentVariable) {
+  if (runCli("bench --help").output.find("this build") != std::string::npos)
+    GTEST_SKIP() << "this memograph has no renderer";
+  const std::string render =
+      "render builtin:landscape --cache tile --out " + (directory_ / "x.pfm").string();
+  const auto option = runCli(render + " --test-give-up 60");
+  EXPECT_EQ(option.exitCode, 2) << option.output;
+  EXPECT_NE(option.output.find("unknown option '--test-give-up'"), std::string::npos)
+      << option.output;
+  for (const char* bad : {"101", "x", "-5"}) {
+    ::setenv("MEMOGRAPH_TEST_TILE_GIVE_UP", bad, 1);
+    const auto run = runCli(render);
+    ::unsetenv("MEMOGRAPH_TEST_TILE_GIVE_UP");
+    EXPECT_EQ(run.exitCode, 2) << run.output;
+    EXPECT_NE(run.output.find("MEMOGRAPH_TEST_TILE_GIVE_UP takes a whole number of percent, "
+                              "0..100, not '" +
+                              std::string(bad) + "'"),
+              std::string::npos)
+        << run.output;
+  }
+  EXPECT_FALSE(fs::exists(directory_ / "x.pfm"));
 }
 
 TEST_F(CliTest, RandomBytesNeverCrashTheCompiler) {

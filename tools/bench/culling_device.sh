@@ -16,21 +16,17 @@
 #              above (variants.csv: bench's summary line each, labelled lipac_<label>;
 #              frames_lipac_<label>.csv: per frame); the pictures step pictures them too,
 #              after the modes, each against none
-#   looks      LiPaC's looks swept: --looks off, then --look-appearing in LOOKS (default
-#              "2 4 16"; 8 is the bench step's lipac row), each a bench run of the path as
-#              above (looks.csv: bench's summary line each, labelled lipac_looks_off,
-#              lipac_appearing_N; frames_lipac_<label>.csv: per frame, with the looks and
-#              their GPU time); peak AS bytes against the whole scene's decide the default
-#   checks     LiPaC's settings that must not change what it counts and holds, proven on the
-#              GPU, where a missing barrier or a lost atomic shows: the street path's cameras
-#              137-152 at CHECK_SIZE (default 480x270), P = PATHS, --feedback-every 2, seed 1,
-#              with the defaults, then --instance-fill gpu, --hit-counters closest-hit and
-#              --feedback-dispatch single, and the defaults again. Each against the defaults
-#              (checks.txt): every frame's rays, instance and hitbox counts, state changes,
-#              TLAS records, BLAS builds and looks the same, and the picture bit-identical
-#              (single: within float rounding, its rays within 1e-5 and its mean LDR-FLIP
-#              under 1e-4); then --culling none twice, the second against the first (every
-#              flag moved by the vertex pass and its BLAS updated every frame); a line
+#   looks      LiPaC's looks swept: --look-appearing in LOOKS (default "2 4 16"; 8 is the
+#              bench step's lipac row), each a bench run of the path as above (looks.csv:
+#              bench's summary line each, labelled lipac_appearing_N;
+#              frames_lipac_<label>.csv: per frame, with the looks and their GPU time)
+#   checks     LiPaC run twice must count and hold the same, proven on the GPU, where a
+#              missing barrier or a lost atomic shows: the street path's cameras 137-152 at
+#              CHECK_SIZE (default 480x270), P = PATHS, --feedback-every 2, seed 1, the second
+#              run against the first (checks.txt): every frame's rays, instance and hitbox
+#              counts, state changes, TLAS records, BLAS builds and looks the same, and the
+#              picture bit-identical; then --culling none twice, the second against the first
+#              (every flag moved by the vertex pass and its BLAS updated every frame); a line
 #              `PASS label` or `FAIL label: why` each
 # After tools/bundle_device.sh, on the GPU machine (tools/ and examples/ travel as tracked
 # files; carry bundle and .gl):
@@ -110,20 +106,14 @@ for entry in "${variant_entries[@]}"; do
 done
 
 # The columns of a render's --stats CSV ($1) that say what a frame counted and held, one line
-# a frame (quoted fields, such as lavapipe's device name with its comma, blanked first); with
-# $2 = norays all but the rays column, with $2 = rays that column alone.
+# a frame (quoted fields, such as lavapipe's device name with its comma, blanked first).
 state_columns() {
   local -a names
   local fields="" i
   IFS=, read -ra names < <(head -1 "$1")
   for i in "${!names[@]}"; do
-    if [ "${names[i]}" = rays ]; then
-      [ "${2:-}" = norays ] || fields+="$((i + 1)),"
-      continue
-    fi
-    [ "${2:-}" = rays ] && continue
     case ${names[i]} in
-    active_instances | omitted_instances | inactive_instances | waiting_instances | \
+    rays | active_instances | omitted_instances | inactive_instances | waiting_instances | \
       hitboxes | active_hitboxes | instance_state_changes | tlas_records | blas_builds | \
       blas_evictions | looks | look_rays | feedback_frame) fields+="$((i + 1))," ;;
     esac
@@ -132,16 +122,15 @@ state_columns() {
 }
 
 checks() {
-  local cameras label reference verdict flip d i rays
+  local cameras label reference verdict flip d i
   mapfile -t cameras < <(grep -v '^#' "$path" | grep .)
   printf '%s\n' "${cameras[@]:137:16}" >"$work/checks.campath"
-  # Each label's run against its reference's: the settings against the defaults, and each
-  # mode run twice (again, none_again), so that a race (the vertex pass before the flags' BLAS
-  # updates, the counters, the instance fill) shows as two runs that differ.
-  local -a labels=(defaults gpufill chit single again none none_again)
-  local -a settings=("" "--instance-fill gpu" "--hit-counters closest-hit"
-    "--feedback-dispatch single" "" "--culling none" "--culling none")
-  local -a references=("" defaults defaults defaults defaults "" none)
+  # Each label's run against its reference's: each mode run twice (again, none_again), so
+  # that a race (the vertex pass before the flags' BLAS updates, the counters) shows as two
+  # runs that differ.
+  local -a labels=(defaults again none none_again)
+  local -a settings=("" "" "--culling none" "--culling none")
+  local -a references=("" defaults "" none)
   for i in "${!labels[@]}"; do
     label=${labels[i]}
     echo "== check $label" | tee -a "$OUT/log.txt"
@@ -158,34 +147,21 @@ checks() {
     reference=${references[i]}
     [ -n "$reference" ] || continue
     verdict=""
-    # single against the defaults (split): the counted and the other paths traced by other
-    # pipelines, whose float rounding moves a few rays of millions (on an H100 1-4 of 3.3
-    # million in 7 of 8 counting frames): their rays within 1e-5, the rest exactly.
-    rays=""
-    [ "$label" = single ] && rays=norays
     if [ ! -s "$work/check_$label.csv" ] || [ ! -s "$work/check_$label.pfm" ] ||
       [ ! -s "$work/check_$reference.csv" ] || [ ! -s "$work/check_$reference.pfm" ]; then
       verdict="no render (log.txt)"
-    elif ! diff <(state_columns "$work/check_$reference.csv" "$rays") \
-      <(state_columns "$work/check_$label.csv" "$rays") >"$OUT/checks_$label.diff"; then
+    elif ! diff <(state_columns "$work/check_$reference.csv") \
+      <(state_columns "$work/check_$label.csv") >"$OUT/checks_$label.diff"; then
       # CSV lines (1: the header, 2: frame 0): the first pair that differs; the whole diff in
       # checks_<label>.diff.
       d="$OUT/checks_$label.diff"
       verdict="the frames' counts and states differ at CSV lines $(head -1 "$d"): first"
       verdict+=" $(grep -m1 '^<' "$d") against $(grep -m1 '^>' "$d") (columns"
       verdict+=" $(state_columns "$work/check_$reference.csv" | head -1); checks_$label.diff)"
-    elif [ "$rays" = norays ] && ! paste -d, <(state_columns "$work/check_$reference.csv" rays) \
-      <(state_columns "$work/check_$label.csv" rays) |
-      awk -F, 'NR > 1 { d = $1 - $2; if (d < 0) d = -d; if (d > 1e-5 * $1) exit 1 }'; then
-      verdict="a frame's rays differ by more than 1e-5 of them (rounding of two pipelines)"
     elif ! cmp -s "$work/check_$reference.pfm" "$work/check_$label.pfm"; then
       flip=$("$m" diff "$work/check_$reference.pfm" "$work/check_$label.pfm" 2>&1 |
         awk '$1 == "mean" {print $2}')
-      if [ "$label" != single ]; then
-        verdict="the picture differs (mean LDR-FLIP ${flip:-?})"
-      elif ! awk -v f="${flip:-1}" 'BEGIN {exit !(f < 1e-4)}'; then
-        verdict="the picture differs by more than rounding (mean LDR-FLIP ${flip:-?})"
-      fi
+      verdict="the picture differs (mean LDR-FLIP ${flip:-?})"
     fi
     [ -s "$OUT/checks_$label.diff" ] || rm -f "$OUT/checks_$label.diff"
     if [ -z "$verdict" ]; then echo "PASS $label"; else echo "FAIL $label: $verdict"; fi \
@@ -195,12 +171,8 @@ checks() {
 }
 
 looks() {
-  for setting in off ${LOOKS:-2 4 16}; do
-    if [ "$setting" = off ]; then
-      bench_run lipac_looks_off looks.csv --culling lipac --looks off
-    else
-      bench_run "lipac_appearing_$setting" looks.csv --culling lipac --look-appearing "$setting"
-    fi
+  for setting in ${LOOKS:-2 4 16}; do
+    bench_run "lipac_appearing_$setting" looks.csv --culling lipac --look-appearing "$setting"
   done
 }
 

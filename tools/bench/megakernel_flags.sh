@@ -3,4 +3,4 @@
 # cache checks, culling): shadingFlags is (--shading megakernel) for a binary whose --shading
 # defaults to auto (the wavefront on a GPU), and empty for an older one, which knows no other.
 shadingFlags=()
-"$m" bench --help 2>&1 | grep -q -- '--shading S  *auto' && shadingFlags=(--shading megakernel)
+"$m" bench --help 2>&1 | grep -qE -- '--shading (S +auto|auto\|)' && shadingFlags=(--shading megakernel)

@@ -2,7 +2,7 @@
 # The memoization benchmark sweep: the runs behind the project's Tables 6.1-6.3 (thesis §6)
 # at 1920x1080, P = 6, L = 4 over a 300-camera path, in ONE device call of at most 600 s.
 # tools/bundle_memo_sweep.sh copies it to bundle/memo_sweep.sh; on the GPU machine:
-#   bash bundle/memo_sweep.sh [--tables defaults,6.1,6.1r,6.1s,6.1b,diag,6.2,6.3] [--match REGEX]
+#   bash bundle/memo_sweep.sh [--tables defaults,6.1,6.1s,6.1b,diag,6.2,6.3] [--match REGEX]
 #                             [--skip-done STEPS.tsv]... [--budget S] [--order table|pipeline] [--list]
 #   (--skip-done: leave out the rows an earlier call's steps.tsv lists as ok, e.g. the calls
 #   of an interrupted sweep, carried with the working tree;
@@ -31,7 +31,7 @@ usage() {
   sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'
 }
 
-dry=0 list=0 tables="defaults,6.1,6.1r,6.1s,6.1b,diag,6.2,6.3" match="" budget="" order=table
+dry=0 list=0 tables="defaults,6.1,6.1s,6.1b,diag,6.2,6.3" match="" budget="" order=table
 done_steps=()
 while [ $# -gt 0 ]; do
   case $1 in
@@ -77,124 +77,120 @@ read -r -d '' VARIANTS <<'TABLE'
   120   defaults classroom texel_default       300     1      --cache texel
   120   defaults classroom tile_default        300     1      --cache tile
   150   6.1   classroom  none                  300     10     --cache none
-  120   6.1   classroom  texel_s24_lru-counter 300     1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key
-  120   6.1   classroom  tile_s24_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key
-  130   6.1   classroom  tilebil_s24_lru-counter 300   1      --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key
+  120   6.1   classroom  texel_s24_lru-counter 300     1      --cache texel --cache-entries 16777216 --eviction lru --clock counter
+  120   6.1   classroom  tile_s24_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter
+  130   6.1   classroom  tilebil_s24_lru-counter 300   1      --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter
   40    6.1   classroom  floor                 300     10     --cache none --floor-materials
-# 6.1r: §5.3.4's read checks on Table 6.1's classroom variants: key (read the key again, the
-# thesis's) against the update counter (closes the A-B-A race); the default is picked from these.
-  120   6.1r  classroom  texel_s24_lru-counter_rc 300  1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check counter
-  120   6.1r  classroom  tile_s24_lru-counter_rc 300   1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check counter
   60    6.1   landscape  none                  300     10     --cache none
-  60    6.1   landscape  texel_s24_lru-counter 300     1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key
-  60    6.1   landscape  tile_s24_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key
-  60    6.1   landscape  tilebil_s24_lru-counter 300   1      --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key
+  60    6.1   landscape  texel_s24_lru-counter 300     1      --cache texel --cache-entries 16777216 --eviction lru --clock counter
+  60    6.1   landscape  tile_s24_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter
+  60    6.1   landscape  tilebil_s24_lru-counter 300   1      --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter
   20    6.1   landscape  floor                 300     10     --cache none --floor-materials
-  200   6.1s  classroom  texel_s24_lru-counter_sec 300 1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
-  230   6.1s  classroom  tile_s24_lru-counter_sec 300  1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
-  240   6.1s  classroom  tilebil_s24_lru-counter_sec 300 1    --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
-  110   6.1s  landscape  texel_s24_lru-counter_sec 300 1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
-  120   6.1s  landscape  tile_s24_lru-counter_sec 300  1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
-  120   6.1s  landscape  tilebil_s24_lru-counter_sec 300 1    --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only --cache-read-check key
+  200   6.1s  classroom  texel_s24_lru-counter_sec 300 1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-secondary-only
+  230   6.1s  classroom  tile_s24_lru-counter_sec 300  1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only
+  240   6.1s  classroom  tilebil_s24_lru-counter_sec 300 1    --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only
+  110   6.1s  landscape  texel_s24_lru-counter_sec 300 1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-secondary-only
+  120   6.1s  landscape  tile_s24_lru-counter_sec 300  1      --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only
+  120   6.1s  landscape  tilebil_s24_lru-counter_sec 300 1    --cache tile --tile 4x4 --filter bilinear --cache-entries 1048576 --eviction lru --clock counter --cache-secondary-only
 # diag: where the memoized frame's time over the floor goes. Frame time against misses per
 # frame (make_tables' fit) leaves ~50 ms on the classroom at zero misses; these rows vary
 # one suspect each: value bytes per lookup (fp16 halves them), the callable dispatch (a
 # raygen with call sites keeps more state live; switch evaluates misses inline), the probe
 # loop (D = 1) and the working set (a mip bias of -1: texels twice as wide). The switch rows
 # get 400 s: the driver's compile of the 88 inlined materials ran past 180 s in call 1.
-  120   diag  classroom  texel_s24_lru-counter_fp16 300 1     --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --value-format fp16
-  400   diag  classroom  texel_s24_lru-counter_switch 300 1   --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --material-dispatch switch
-  400   diag  classroom  tile_s24_lru-counter_switch 300 1    --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --material-dispatch switch
-  120   diag  classroom  texel_s24_lru-counter_p1 300  1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --probe 1
-  120   diag  classroom  texel_s24_lru-counter_bias-1 300 1   --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --mip-bias -1
+  120   diag  classroom  texel_s24_lru-counter_fp16 300 1     --cache texel --cache-entries 16777216 --eviction lru --clock counter --value-format fp16
+  400   diag  classroom  texel_s24_lru-counter_switch 300 1   --cache texel --cache-entries 16777216 --eviction lru --clock counter --material-dispatch switch
+  400   diag  classroom  tile_s24_lru-counter_switch 300 1    --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --material-dispatch switch
+  120   diag  classroom  texel_s24_lru-counter_p1 300  1      --cache texel --cache-entries 16777216 --eviction lru --clock counter --probe 1
+  120   diag  classroom  texel_s24_lru-counter_bias-1 300 1   --cache texel --cache-entries 16777216 --eviction lru --clock counter --mip-bias -1
 # The cache's own cost: the floor's constant materials with the cache on (every lookup as
 # in a real run, every miss free), against the floor without it.
-  40    diag  classroom  floor_texel_s24_lru-counter 300 1    --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --floor-materials
-  40    diag  classroom  floor_tile_s24_lru-counter 300 1     --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --floor-materials
+  40    diag  classroom  floor_texel_s24_lru-counter 300 1    --cache texel --cache-entries 16777216 --eviction lru --clock counter --floor-materials
+  40    diag  classroom  floor_tile_s24_lru-counter 300 1     --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --floor-materials
 # The real materials with (almost) no misses: a static camera after warm-up. Against the
 # floor with the cache (above) this separates what the callables cost by being there from
 # what the misses cost, which the path's runs only give through a fit.
-  120   diag  classroom  texel_s24_lru-counter_static 300 1   --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --static-camera
-  40    diag  classroom  floor_texel_s24_lru-counter_static 300 1 --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --floor-materials --static-camera
+  120   diag  classroom  texel_s24_lru-counter_static 300 1   --cache texel --cache-entries 16777216 --eviction lru --clock counter --static-camera
+  40    diag  classroom  floor_texel_s24_lru-counter_static 300 1 --cache texel --cache-entries 16777216 --eviction lru --clock counter --floor-materials --static-camera
 # Thesis §5.1: one primary ray shared by the P paths of a pixel (`--shared-primary`), which
 # makes a primary hit one lookup (or evaluation) instead of P: secondary-only caching then
 # evaluates P times fewer primary graphs.
   110   diag  classroom  none_shared           300     10     --cache none --shared-primary
-  120   diag  classroom  texel_s24_lru-counter_shared 300 1   --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --shared-primary
-  120   diag  classroom  texel_s24_lru-counter_sec_shared 300 1 --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-read-check key --cache-secondary-only --shared-primary
+  120   diag  classroom  texel_s24_lru-counter_shared 300 1   --cache texel --cache-entries 16777216 --eviction lru --clock counter --shared-primary
+  120   diag  classroom  texel_s24_lru-counter_sec_shared 300 1 --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-secondary-only --shared-primary
 # Tile repacks on NVIDIA (docs/runtime.md): §5.4.4's grouping pairs tiles of one material
 # in an iteration, so a pass's lanes call one callable; whether the driver then regroups
 # lanes less shows in the repack and fallback counters.
-  120   diag  classroom  tile_s24_lru-counter_group 300 1     --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --group-by-material
-  40    diag  classroom  floor_tile_s24_lru-counter_group 300 1 --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --group-by-material --floor-materials
+  120   diag  classroom  tile_s24_lru-counter_group 300 1     --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --group-by-material
+  40    diag  classroom  floor_tile_s24_lru-counter_group 300 1 --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --group-by-material --floor-materials
 # The deferred tile fill (--tile-fill deferred): a missed tile is queued and computed by a
 # second pass after the frame, one invocation per texel, so no lane has to come back from a
 # callable in place (the repacks above). Against the subgroup rows: the large cache, the
 # small one (2^17 tiles, where it loses: a frame's tiles no longer fit), the landscape, and
 # the floor (its own cost).
-  120   diag  classroom  tile_s24_lru-counter_deferred 300 1  --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --tile-fill deferred
-  40    diag  classroom  floor_tile_s24_lru-counter_deferred 300 1 --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --tile-fill deferred --floor-materials
-  60    diag  landscape  tile_s24_lru-counter_deferred 300 1  --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key --tile-fill deferred
-  150   diag  classroom  tile_s21_lru-counter_deferred 300 1  --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock counter --cache-read-check key --tile-fill deferred
-  150   diag  classroom  tile_s21_random_deferred 300 1       --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction random --cache-read-check key --tile-fill deferred
+  120   diag  classroom  tile_s24_lru-counter_deferred 300 1  --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --tile-fill deferred
+  40    diag  classroom  floor_tile_s24_lru-counter_deferred 300 1 --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --tile-fill deferred --floor-materials
+  60    diag  landscape  tile_s24_lru-counter_deferred 300 1  --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --tile-fill deferred
+  150   diag  classroom  tile_s21_lru-counter_deferred 300 1  --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock counter --tile-fill deferred
+  150   diag  classroom  tile_s21_random_deferred 300 1       --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction random --tile-fill deferred
 # The hit-rate target (99.9 %): at 2^26 texels almost nothing is evicted (6.1b: 99.880 % tile,
 # 99.758 % texel) and the remaining misses are texels the path shows for the first time;
 # texels twice as wide (mip bias -1, twice the picture error) halve those.
-  100   diag  classroom  tile_s26_lru-frame_bias-1 300 1      --cache tile --tile 4x4 --filter nearest --cache-entries 4194304 --eviction lru --clock frame --cache-read-check key --mip-bias -1
-  100   diag  classroom  texel_s26_lru-frame_bias-1 300 1     --cache texel --cache-entries 67108864 --eviction lru --clock frame --cache-read-check key --mip-bias -1
+  100   diag  classroom  tile_s26_lru-frame_bias-1 300 1      --cache tile --tile 4x4 --filter nearest --cache-entries 4194304 --eviction lru --clock frame --mip-bias -1
+  100   diag  classroom  texel_s26_lru-frame_bias-1 300 1     --cache texel --cache-entries 67108864 --eviction lru --clock frame --mip-bias -1
 # 6.1b: Table 6.1's variants with a 4x larger cache (2^26 texels = 2^22 4x4 tiles): the
 # classroom's working set overflows 2^24 texels (occupancy reaches S within the path).
-  100   6.1b  classroom  texel_s26_lru-frame   300     1      --cache texel --cache-entries 67108864 --eviction lru --clock frame --cache-read-check key
-  100   6.1b  classroom  tile_s26_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 4194304 --eviction lru --clock frame --cache-read-check key
-  100   6.1b  classroom  tilebil_s26_lru-frame 300     1      --cache tile --tile 4x4 --filter bilinear --cache-entries 4194304 --eviction lru --clock frame --cache-read-check key
-  50    6.1b  landscape  tile_s26_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 4194304 --eviction lru --clock frame --cache-read-check key
+  100   6.1b  classroom  texel_s26_lru-frame   300     1      --cache texel --cache-entries 67108864 --eviction lru --clock frame
+  100   6.1b  classroom  tile_s26_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 4194304 --eviction lru --clock frame
+  100   6.1b  classroom  tilebil_s26_lru-frame 300     1      --cache tile --tile 4x4 --filter bilinear --cache-entries 4194304 --eviction lru --clock frame
+  50    6.1b  landscape  tile_s26_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 4194304 --eviction lru --clock frame
 # Table 6.2: eviction strategies on the classroom, large (2^23 texels) then small (2^21).
-  160   6.2   classroom  texel_s23_none        300     1      --cache texel --cache-entries 8388608 --eviction none --cache-read-check key
-  120   6.2   classroom  texel_s23_random      300     1      --cache texel --cache-entries 8388608 --eviction random --cache-read-check key
-  120   6.2   classroom  texel_s23_lrw-frame   300     1      --cache texel --cache-entries 8388608 --eviction lrw --clock frame --cache-read-check key
-  120   6.2   classroom  texel_s23_lru-frame   300     1      --cache texel --cache-entries 8388608 --eviction lru --clock frame --cache-read-check key
-  120   6.2   classroom  texel_s23_lrw-counter 300     1      --cache texel --cache-entries 8388608 --eviction lrw --clock counter --cache-read-check key
-  120   6.2   classroom  texel_s23_lru-counter 300     1      --cache texel --cache-entries 8388608 --eviction lru --clock counter --cache-read-check key
-  180   6.2   classroom  tile_s23_none         300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction none --cache-read-check key
-  120   6.2   classroom  tile_s23_random       300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction random --cache-read-check key
-  120   6.2   classroom  tile_s23_lrw-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lrw --clock frame --cache-read-check key
-  120   6.2   classroom  tile_s23_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lru --clock frame --cache-read-check key
-  120   6.2   classroom  tile_s23_lrw-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lrw --clock counter --cache-read-check key
-  120   6.2   classroom  tile_s23_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lru --clock counter --cache-read-check key
-  200   6.2   classroom  texel_s21_none        300     1      --cache texel --cache-entries 2097152 --eviction none --cache-read-check key
-  190   6.2   classroom  texel_s21_random      300     1      --cache texel --cache-entries 2097152 --eviction random --cache-read-check key
-  150   6.2   classroom  texel_s21_lrw-frame   300     1      --cache texel --cache-entries 2097152 --eviction lrw --clock frame --cache-read-check key
-  150   6.2   classroom  texel_s21_lru-frame   300     1      --cache texel --cache-entries 2097152 --eviction lru --clock frame --cache-read-check key
-  190   6.2   classroom  texel_s21_lrw-counter 300     1      --cache texel --cache-entries 2097152 --eviction lrw --clock counter --cache-read-check key
-  150   6.2   classroom  texel_s21_lru-counter 300     1      --cache texel --cache-entries 2097152 --eviction lru --clock counter --cache-read-check key
-  240   6.2   classroom  tile_s21_none         300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction none --cache-read-check key
-  260   6.2   classroom  tile_s21_random       300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction random --cache-read-check key
-  310   6.2   classroom  tile_s21_lrw-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lrw --clock frame --cache-read-check key
-  230   6.2   classroom  tile_s21_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock frame --cache-read-check key
-  320   6.2   classroom  tile_s21_lrw-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lrw --clock counter --cache-read-check key
-  200   6.2   classroom  tile_s21_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock counter --cache-read-check key
+  160   6.2   classroom  texel_s23_none        300     1      --cache texel --cache-entries 8388608 --eviction none
+  120   6.2   classroom  texel_s23_random      300     1      --cache texel --cache-entries 8388608 --eviction random
+  120   6.2   classroom  texel_s23_lrw-frame   300     1      --cache texel --cache-entries 8388608 --eviction lrw --clock frame
+  120   6.2   classroom  texel_s23_lru-frame   300     1      --cache texel --cache-entries 8388608 --eviction lru --clock frame
+  120   6.2   classroom  texel_s23_lrw-counter 300     1      --cache texel --cache-entries 8388608 --eviction lrw --clock counter
+  120   6.2   classroom  texel_s23_lru-counter 300     1      --cache texel --cache-entries 8388608 --eviction lru --clock counter
+  180   6.2   classroom  tile_s23_none         300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction none
+  120   6.2   classroom  tile_s23_random       300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction random
+  120   6.2   classroom  tile_s23_lrw-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lrw --clock frame
+  120   6.2   classroom  tile_s23_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lru --clock frame
+  120   6.2   classroom  tile_s23_lrw-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lrw --clock counter
+  120   6.2   classroom  tile_s23_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lru --clock counter
+  200   6.2   classroom  texel_s21_none        300     1      --cache texel --cache-entries 2097152 --eviction none
+  190   6.2   classroom  texel_s21_random      300     1      --cache texel --cache-entries 2097152 --eviction random
+  150   6.2   classroom  texel_s21_lrw-frame   300     1      --cache texel --cache-entries 2097152 --eviction lrw --clock frame
+  150   6.2   classroom  texel_s21_lru-frame   300     1      --cache texel --cache-entries 2097152 --eviction lru --clock frame
+  190   6.2   classroom  texel_s21_lrw-counter 300     1      --cache texel --cache-entries 2097152 --eviction lrw --clock counter
+  150   6.2   classroom  texel_s21_lru-counter 300     1      --cache texel --cache-entries 2097152 --eviction lru --clock counter
+  240   6.2   classroom  tile_s21_none         300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction none
+  260   6.2   classroom  tile_s21_random       300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction random
+  310   6.2   classroom  tile_s21_lrw-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lrw --clock frame
+  230   6.2   classroom  tile_s21_lru-frame    300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock frame
+  320   6.2   classroom  tile_s21_lrw-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lrw --clock counter
+  200   6.2   classroom  tile_s21_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock counter
 # Table 6.3: cache sizes, LRU with the counter clock (2^21 and 2^23 on the classroom are
 # Table 6.2's lru-counter runs, so they are not repeated here).
-  150   6.3   classroom  texel_s18_lru-counter 300     1      --cache texel --cache-entries 262144 --eviction lru --clock counter --cache-read-check key
-  150   6.3   classroom  texel_s19_lru-counter 300     1      --cache texel --cache-entries 524288 --eviction lru --clock counter --cache-read-check key
-  150   6.3   classroom  texel_s20_lru-counter 300     1      --cache texel --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key
-  150   6.3   classroom  texel_s22_lru-counter 300     1      --cache texel --cache-entries 4194304 --eviction lru --clock counter --cache-read-check key
-  240   6.3   classroom  tile_s18_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 16384 --eviction lru --clock counter --cache-read-check key
-  150   6.3   classroom  tile_s19_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 32768 --eviction lru --clock counter --cache-read-check key
-  220   6.3   classroom  tile_s20_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 65536 --eviction lru --clock counter --cache-read-check key
-  150   6.3   classroom  tile_s22_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 262144 --eviction lru --clock counter --cache-read-check key
-  60    6.3   landscape  texel_s18_lru-counter 300     1      --cache texel --cache-entries 262144 --eviction lru --clock counter --cache-read-check key
-  60    6.3   landscape  texel_s19_lru-counter 300     1      --cache texel --cache-entries 524288 --eviction lru --clock counter --cache-read-check key
-  90    6.3   landscape  texel_s20_lru-counter 300     1      --cache texel --cache-entries 1048576 --eviction lru --clock counter --cache-read-check key
-  60    6.3   landscape  texel_s21_lru-counter 300     1      --cache texel --cache-entries 2097152 --eviction lru --clock counter --cache-read-check key
-  60    6.3   landscape  texel_s22_lru-counter 300     1      --cache texel --cache-entries 4194304 --eviction lru --clock counter --cache-read-check key
-  60    6.3   landscape  texel_s23_lru-counter 300     1      --cache texel --cache-entries 8388608 --eviction lru --clock counter --cache-read-check key
-  90    6.3   landscape  tile_s18_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 16384 --eviction lru --clock counter --cache-read-check key
-  90    6.3   landscape  tile_s19_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 32768 --eviction lru --clock counter --cache-read-check key
-  90    6.3   landscape  tile_s20_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 65536 --eviction lru --clock counter --cache-read-check key
-  90    6.3   landscape  tile_s21_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock counter --cache-read-check key
-  90    6.3   landscape  tile_s22_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 262144 --eviction lru --clock counter --cache-read-check key
-  90    6.3   landscape  tile_s23_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lru --clock counter --cache-read-check key
+  150   6.3   classroom  texel_s18_lru-counter 300     1      --cache texel --cache-entries 262144 --eviction lru --clock counter
+  150   6.3   classroom  texel_s19_lru-counter 300     1      --cache texel --cache-entries 524288 --eviction lru --clock counter
+  150   6.3   classroom  texel_s20_lru-counter 300     1      --cache texel --cache-entries 1048576 --eviction lru --clock counter
+  150   6.3   classroom  texel_s22_lru-counter 300     1      --cache texel --cache-entries 4194304 --eviction lru --clock counter
+  240   6.3   classroom  tile_s18_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 16384 --eviction lru --clock counter
+  150   6.3   classroom  tile_s19_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 32768 --eviction lru --clock counter
+  220   6.3   classroom  tile_s20_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 65536 --eviction lru --clock counter
+  150   6.3   classroom  tile_s22_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 262144 --eviction lru --clock counter
+  60    6.3   landscape  texel_s18_lru-counter 300     1      --cache texel --cache-entries 262144 --eviction lru --clock counter
+  60    6.3   landscape  texel_s19_lru-counter 300     1      --cache texel --cache-entries 524288 --eviction lru --clock counter
+  90    6.3   landscape  texel_s20_lru-counter 300     1      --cache texel --cache-entries 1048576 --eviction lru --clock counter
+  60    6.3   landscape  texel_s21_lru-counter 300     1      --cache texel --cache-entries 2097152 --eviction lru --clock counter
+  60    6.3   landscape  texel_s22_lru-counter 300     1      --cache texel --cache-entries 4194304 --eviction lru --clock counter
+  60    6.3   landscape  texel_s23_lru-counter 300     1      --cache texel --cache-entries 8388608 --eviction lru --clock counter
+  90    6.3   landscape  tile_s18_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 16384 --eviction lru --clock counter
+  90    6.3   landscape  tile_s19_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 32768 --eviction lru --clock counter
+  90    6.3   landscape  tile_s20_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 65536 --eviction lru --clock counter
+  90    6.3   landscape  tile_s21_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 131072 --eviction lru --clock counter
+  90    6.3   landscape  tile_s22_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 262144 --eviction lru --clock counter
+  90    6.3   landscape  tile_s23_lru-counter  300     1      --cache tile --tile 4x4 --filter nearest --cache-entries 524288 --eviction lru --clock counter
 TABLE
 
 # Settings of a real run and of the dry run. The dry run keeps every variant and flag but

@@ -265,173 +265,216 @@ runtime::TextureImage loadTexture(const std::string& path) {
 #endif
 }
 
+// One bake call: its settings, and what it keeps from one material to the next (the
+// baker, made at the first material that needs it, and the names baked so far).
+struct BakeRun {
+  runtime::BakeSettings settings;
+  std::string outDir, format;
+  int deviceIndex = -1;
+  bool quiet = false;
+  const compiler::NodeLibrary* library = nullptr;
+  std::unique_ptr<runtime::MaterialBaker> baker;
+  std::string deviceError;
+  std::set<std::string> names;
+};
+
+runtime::MaterialBaker& bakerFor(BakeRun& run) {
+  if (!run.baker && run.deviceError.empty()) {
+    try {
+      runtime::ContextOptions context;
+      context.deviceIndex = run.deviceIndex;
+      run.baker =
+          std::make_unique<runtime::MaterialBaker>(context, runtime::defaultShaderCacheDirectory());
+    } catch (const std::exception& e) {
+      run.deviceError = std::string("no Vulkan device: ") + e.what();
+    }
+  }
+  if (!run.baker)
+    throw std::runtime_error(run.deviceError);
+  return *run.baker;
+}
+
+// Bakes the material compiled from `path` and writes its images; `written` receives their
+// paths. False with `diagnostics` (or the returned `message`) saying why.
+bool bakeCompiled(BakeRun& run, const std::string& path, const compiler::CompiledMaterial& material,
+                  std::vector<std::string>& written, compiler::Diagnostics& diagnostics,
+                  std::string& message) {
+  try {
+    runtime::MaterialBaker& baker = bakerFor(run);
+    runtime::BakeMaterial bakeMaterial;
+    bakeMaterial.name = material.metadata.name;
+    bakeMaterial.glsl = material.glsl;
+    const fs::path base = fs::path(path).parent_path();
+    for (const auto& texture : material.metadata.textures) {
+      fs::path texturePath(texture);
+      if (texturePath.is_relative() && !base.empty())
+        texturePath = base / texturePath;
+      bakeMaterial.textures.push_back(loadTexture(texturePath.string()));
+    }
+    const runtime::BakeOutputs baked = baker.bake(bakeMaterial, run.settings);
+    const auto images = outputImages(baked, material.metadata.outputsWritten);
+    return writeMaterialImages(run.outDir, material.metadata.name, run.format, run.settings.width,
+                               run.settings.height, images, written, diagnostics);
+  } catch (const std::exception& e) {
+    message = std::string("memograph bake: ") + path + ": " + e.what();
+    return false;
+  }
+}
+
+// Compiles, bakes and writes one graph, reporting it as `prefix` ("[i/n] "). False when it
+// failed (reported).
+bool bakeOne(BakeRun& run, const std::string& path, const std::string& prefix) {
+  compiler::Diagnostics diagnostics;
+  std::string label = fs::path(path).stem().string();
+  auto fail = [&](const std::string& message) {
+    std::cerr << prefix << label << " ... failed\n";
+    printDiagnostics(diagnostics);
+    if (!message.empty())
+      std::cerr << message << "\n";
+    return false;
+  };
+  std::string error;
+  const auto text = readFile(path, error);
+  if (!text) {
+    diagnostics.error(path, error);
+    return fail("");
+  }
+  compiler::CompileOptions options;
+  options.emitGlsl = true;
+  options.emitHlsl = false;
+  const compiler::SourceFile source{path, *text};
+  const auto material = compiler::compileMaterial(source, *run.library, options, diagnostics);
+  if (!material)
+    return fail("");
+  const std::string& name = material->metadata.name;
+  label = name;
+  if (!run.names.insert(name).second) {
+    diagnostics.error(path, "material '" + name +
+                                "' was already baked from another graph in this call; "
+                                "rename one (file name or `material Name;`)");
+    return fail("");
+  }
+  std::vector<std::string> written;
+  if (std::string message; !bakeCompiled(run, path, *material, written, diagnostics, message))
+    return fail(message);
+  printDiagnostics(diagnostics);  // warnings
+  if (!run.quiet) {
+    std::cerr << prefix << name << " ... ok";
+    if (written.empty())
+      std::cerr << " (writes no output)";
+    std::cerr << "\n";
+    for (const auto& file : written)
+      std::cout << "wrote " << file << "\n";
+  }
+  return true;
+}
+
 #endif  // MEMOGRAPH_HAVE_RUNTIME
+
+struct BakeArguments {
+  std::string size, outDir, format, bounds, nodesDir, device = "-1";
+  bool quiet = false;
+  std::vector<std::string> inputs;
+};
+
+// The arguments, with what is required and the format checked.
+std::optional<int> scanBakeArguments(std::span<const std::string_view> args, BakeArguments& a) {
+  ArgumentScanner scanner("bake", args);
+  scanner.option("--size", &a.size);
+  scanner.option("--out", &a.outDir);
+  scanner.option("-o", &a.outDir);
+  scanner.option("--format", &a.format);
+  scanner.option("--bounds", &a.bounds);
+  scanner.option("--nodes", &a.nodesDir);
+  scanner.option("--device", &a.device);
+  scanner.flag("--quiet", &a.quiet);
+  scanner.help(kHelp);
+  if (const auto exitCode = scanner.scan(a.inputs))
+    return exitCode;
+  if (a.inputs.empty())
+    return usageError("bake", "no graph files or folders given");
+  if (a.outDir.empty())
+    return usageError("bake", "--out DIR is required");
+  if (a.size.empty())
+    return usageError("bake", "--size WxH is required");
+#ifdef MEMOGRAPH_HAVE_IO
+  if (a.format.empty())
+    a.format = "exr";
+  if (a.format != "exr" && a.format != "png" && a.format != "pfm")
+    return usageError("bake", "--format must be exr, png or pfm, not '" + a.format + "'");
+#else
+  if (a.format.empty())
+    a.format = "pfm";
+  if (a.format != "pfm")
+    return usageError(
+        "bake", "this build writes only --format pfm (no OpenImageIO), not '" + a.format + "'");
+#endif
+  return std::nullopt;
+}
+
+#ifdef MEMOGRAPH_HAVE_RUNTIME
+// The size, bounds and device as the bake's settings.
+std::optional<int> readBakeSettings(const BakeArguments& a, BakeRun& run) {
+  if (std::string error; !parseImageSize(a.size, run.settings.width, run.settings.height, error))
+    return usageError("bake", "--size: " + error);
+  if (!a.bounds.empty() && !parseBounds(a.bounds, run.settings.boundsMin, run.settings.boundsMax))
+    return usageError("bake",
+                      "--bounds takes six numbers xmin,ymin,zmin,xmax,ymax,zmax with each min "
+                      "<= max, not '" +
+                          a.bounds + "'");
+  std::uint32_t deviceIndex = 0;
+  if (a.device != "-1" && !parseNumber(a.device, deviceIndex))
+    return usageError("bake", "--device takes a device index, not '" + a.device + "'");
+  run.deviceIndex = a.device == "-1" ? -1 : int(deviceIndex);
+  run.outDir = a.outDir;
+  run.format = a.format;
+  run.quiet = a.quiet;
+  return std::nullopt;
+}
+#endif
 
 }  // namespace
 
 int runBake(std::span<const std::string_view> args) {
-  std::string size, outDir, format, bounds, nodesDir, device = "-1";
-  bool quiet = false;
-  ArgumentScanner scanner("bake", args);
-  scanner.option("--size", &size);
-  scanner.option("--out", &outDir);
-  scanner.option("-o", &outDir);
-  scanner.option("--format", &format);
-  scanner.option("--bounds", &bounds);
-  scanner.option("--nodes", &nodesDir);
-  scanner.option("--device", &device);
-  scanner.flag("--quiet", &quiet);
-  scanner.help(kHelp);
-  std::vector<std::string> inputs;
-  if (const auto exitCode = scanner.scan(inputs))
+  BakeArguments a;
+  if (const auto exitCode = scanBakeArguments(args, a))
     return *exitCode;
-  if (inputs.empty())
-    return usageError("bake", "no graph files or folders given");
-  if (outDir.empty())
-    return usageError("bake", "--out DIR is required");
-  if (size.empty())
-    return usageError("bake", "--size WxH is required");
-#ifdef MEMOGRAPH_HAVE_IO
-  if (format.empty())
-    format = "exr";
-  if (format != "exr" && format != "png" && format != "pfm")
-    return usageError("bake", "--format must be exr, png or pfm, not '" + format + "'");
-#else
-  if (format.empty())
-    format = "pfm";
-  if (format != "pfm")
-    return usageError("bake",
-                      "this build writes only --format pfm (no OpenImageIO), not '" + format + "'");
-#endif
 #ifndef MEMOGRAPH_HAVE_RUNTIME
   std::cerr << "memograph bake: this build has no Vulkan runtime\n";
   return kExitFailure;
 #else
-  runtime::BakeSettings settings;
-  if (std::string error; !parseImageSize(size, settings.width, settings.height, error))
-    return usageError("bake", "--size: " + error);
-  if (!bounds.empty() && !parseBounds(bounds, settings.boundsMin, settings.boundsMax))
-    return usageError("bake",
-                      "--bounds takes six numbers xmin,ymin,zmin,xmax,ymax,zmax with each min "
-                      "<= max, not '" +
-                          bounds + "'");
-  std::uint32_t deviceIndex = 0;
-  if (device != "-1" && !parseNumber(device, deviceIndex))
-    return usageError("bake", "--device takes a device index, not '" + device + "'");
-
+  BakeRun run;
+  if (const auto exitCode = readBakeSettings(a, run))
+    return *exitCode;
   compiler::Diagnostics setup;
-  const auto library = loadNodeLibrary(nodesDir, setup);
+  const auto library = loadNodeLibrary(a.nodesDir, setup);
   if (!library) {
     printDiagnostics(setup);
     return kExitFailure;
   }
-  const std::vector<std::string> files = expandInputs(inputs, setup);
+  run.library = &*library;
+  const std::vector<std::string> files = expandInputs(a.inputs, setup);
   printDiagnostics(setup);
-  bool anyFailed = setup.hasErrors();
-
   std::error_code ec;
-  fs::create_directories(outDir, ec);
-  if (ec || !fs::is_directory(outDir)) {
-    std::cerr << "memograph bake: " << outDir << ": cannot create the folder"
+  fs::create_directories(a.outDir, ec);
+  if (ec || !fs::is_directory(a.outDir)) {
+    std::cerr << "memograph bake: " << a.outDir << ": cannot create the folder"
               << (ec ? " (" + ec.message() + ")" : std::string()) << "\n";
     return kExitFailure;
   }
-
-  compiler::CompileOptions options;
-  options.emitGlsl = true;
-  options.emitHlsl = false;
-  std::unique_ptr<runtime::MaterialBaker> baker;
-  std::string deviceError;
-  std::set<std::string> names;
   const std::size_t total = files.size();
   std::size_t failed = 0;
   for (std::size_t index = 0; index < total; ++index) {
-    const std::string& path = files[index];
     const std::string prefix = "[" + std::to_string(index + 1) + "/" + std::to_string(total) + "] ";
-    compiler::Diagnostics diagnostics;
-    std::string label = fs::path(path).stem().string();
-    auto fail = [&](const std::string& message) {
+    if (!bakeOne(run, files[index], prefix))
       ++failed;
-      std::cerr << prefix << label << " ... failed\n";
-      printDiagnostics(diagnostics);
-      if (!message.empty())
-        std::cerr << message << "\n";
-    };
-    std::string error;
-    const auto text = readFile(path, error);
-    if (!text) {
-      diagnostics.error(path, error);
-      fail("");
-      continue;
-    }
-    const compiler::SourceFile source{path, *text};
-    const auto material = compiler::compileMaterial(source, *library, options, diagnostics);
-    if (!material) {
-      fail("");
-      continue;
-    }
-    const std::string& name = material->metadata.name;
-    label = name;
-    if (!names.insert(name).second) {
-      diagnostics.error(path, "material '" + name +
-                                  "' was already baked from another graph in this call; "
-                                  "rename one (file name or `material Name;`)");
-      fail("");
-      continue;
-    }
-    std::vector<std::string> written;
-    try {
-      if (!baker && deviceError.empty()) {
-        try {
-          runtime::ContextOptions context;
-          context.deviceIndex = device == "-1" ? -1 : int(deviceIndex);
-          baker = std::make_unique<runtime::MaterialBaker>(context,
-                                                           runtime::defaultShaderCacheDirectory());
-        } catch (const std::exception& e) {
-          deviceError = std::string("no Vulkan device: ") + e.what();
-        }
-      }
-      if (!baker)
-        throw std::runtime_error(deviceError);
-      runtime::BakeMaterial bakeMaterial;
-      bakeMaterial.name = name;
-      bakeMaterial.glsl = material->glsl;
-      const fs::path base = fs::path(path).parent_path();
-      for (const auto& texture : material->metadata.textures) {
-        fs::path texturePath(texture);
-        if (texturePath.is_relative() && !base.empty())
-          texturePath = base / texturePath;
-        bakeMaterial.textures.push_back(loadTexture(texturePath.string()));
-      }
-      const runtime::BakeOutputs baked = baker->bake(bakeMaterial, settings);
-      const auto images = outputImages(baked, material->metadata.outputsWritten);
-      if (!writeMaterialImages(outDir, name, format, settings.width, settings.height, images,
-                               written, diagnostics)) {
-        fail("");
-        continue;
-      }
-    } catch (const std::exception& e) {
-      fail(std::string("memograph bake: ") + path + ": " + e.what());
-      continue;
-    }
-    printDiagnostics(diagnostics);  // warnings
-    if (!quiet) {
-      std::cerr << prefix << name << " ... ok";
-      if (written.empty())
-        std::cerr << " (writes no output)";
-      std::cerr << "\n";
-      for (const auto& file : written)
-        std::cout << "wrote " << file << "\n";
-    }
   }
   if (failed > 0) {
     std::cerr << "memograph bake: " << failed << " of " << total << " material"
               << (total == 1 ? "" : "s") << " failed"
               << (failed == total ? "; nothing written" : "; the others were written") << "\n";
   }
-  if (failed > 0 || anyFailed)
-    return kExitFailure;
-  return kExitOk;
+  return failed > 0 || setup.hasErrors() ? kExitFailure : kExitOk;
 #endif
 }
 

@@ -270,63 +270,38 @@ bool commitIntoFolder(const fs::path& staging, const fs::path& target, CreatedFo
   return files::commitFileSet(staged, error);
 }
 
-}  // namespace
-
-int runImportBlender(std::span<const std::string_view> args) {
-  std::string outDir, blender;
-  std::vector<std::string> positional, materials;
-  bool verbose = false;
-  bool withScene = false;
-  ArgumentScanner scanner("import-blender", args);
-  scanner.option("--out", &outDir);
-  scanner.option("--blender", &blender);
-  scanner.list("--materials", &materials);
-  scanner.flag("--verbose", &verbose);
-  scanner.flag("--scene", &withScene);
-  scanner.help(kHelp);
-  if (const auto exitCode = scanner.scan(positional))
-    return *exitCode;
-  if (positional.size() != 1)
-    return usageError("import-blender",
-                      positional.empty() ? "no .blend file given" : "give exactly one .blend file");
-  if (outDir.empty())
-    return usageError("import-blender", "--out DIR is required");
-
-  const fs::path blend = positional[0];
-  if (auto problem = checkBlendFile(blend); !problem.empty()) {
-    std::cerr << "memograph import-blender: " << blend.string() << ": " << problem << "\n";
-    return kExitFailure;
-  }
-  std::optional<fs::path> blenderPath;
+// The Blender executable: --blender's, or `blender` on PATH; nullopt after saying why not.
+std::optional<fs::path> findBlender(const std::string& blender) {
   if (!blender.empty()) {
-    blenderPath = findOnPath(blender);
-    if (!blenderPath) {
-      std::cerr << "memograph import-blender: --blender " << blender
-                << ": not an executable file\n";
-      return kExitFailure;
-    }
-  } else {
-    blenderPath = findOnPath("blender");
-    if (!blenderPath) {
-      std::cerr << "memograph import-blender: Blender was not found on PATH. Install it "
-                   "(Debian: `apt install blender`; tools/setup.sh does) or pass --blender "
-                   "PATH.\n";
-      return kExitFailure;
-    }
+    auto path = findOnPath(blender);
+    if (!path)
+      std::cerr << kCommand << "--blender " << blender << ": not an executable file\n";
+    return path;
   }
+  auto path = findOnPath("blender");
+  if (!path)
+    std::cerr << kCommand
+              << "Blender was not found on PATH. Install it (Debian: `apt install blender`; "
+                 "tools/setup.sh does) or pass --blender PATH.\n";
+  return path;
+}
+
+// The exporter script; nullopt after listing where it was looked for.
+std::optional<fs::path> findExporter() {
   std::vector<std::string> tried;
   auto script = findExporterScript(tried);
   if (!script) {
-    std::cerr << "memograph import-blender: the exporter script export_memograph.py was not "
-                 "found; looked at:\n";
+    std::cerr << kCommand << "the exporter script export_memograph.py was not found; looked at:\n";
     for (const auto& t : tried)
       std::cerr << "  " << t << "\n";
     std::cerr << "set MEMOGRAPH_BLENDER_EXPORTER to its path\n";
-    return kExitFailure;
   }
+  return script;
+}
 
-  // The output folder, absolute and without a trailing separator (its name names the
-  // staging folder). A file there, or a dangling link, is an error before Blender starts.
+// The output folder, absolute and without a trailing separator (its name names the
+// staging folder). A file there, or a dangling link, is an error before Blender starts.
+std::optional<fs::path> outputFolder(const std::string& outDir) {
   std::error_code ec;
   fs::path absOut = fs::absolute(outDir, ec).lexically_normal();
   if (absOut.has_relative_path() && absOut.filename().empty())
@@ -334,45 +309,33 @@ int runImportBlender(std::span<const std::string_view> args) {
   const fs::file_status outStatus = fs::status(absOut, ec);
   if (fs::exists(outStatus) && !fs::is_directory(outStatus)) {
     std::cerr << kCommand << "--out " << outDir << ": is a file, not a folder\n";
-    return kExitFailure;
+    return std::nullopt;
   }
   if (!fs::exists(outStatus) && fs::is_symlink(fs::symlink_status(absOut, ec))) {
     std::cerr << kCommand << "--out " << outDir << ": is a dangling symbolic link\n";
-    return kExitFailure;
+    return std::nullopt;
   }
-  CreatedFolders created;
-  StagingFolder staging;
-  std::string error;
-  if (!created.create(absOut.parent_path(), error) || !staging.create(absOut, error)) {
-    std::cerr << kCommand << error << "\n";
-    return kExitFailure;
-  }
-  const std::string stagingName = staging.path().string();
-  std::vector<std::string> argv = {blenderPath->string(),
-                                   "-b",
-                                   "--factory-startup",
-                                   fs::absolute(blend, ec).string(),
-                                   "--python-exit-code",
-                                   "1",
-                                   "--python",
-                                   script->string(),
-                                   "--",
-                                   "--out",
-                                   stagingName};
-  if (withScene)
-    argv.emplace_back("--scene");
-  if (!materials.empty()) {
-    argv.emplace_back("--materials");
-    argv.insert(argv.end(), materials.begin(), materials.end());
-  }
+  return absOut;
+}
+
+struct ImportArguments {
+  std::string outDir, blender;
+  std::vector<std::string> positional, materials;
+  bool verbose = false, withScene = false;
+};
+
+// Runs Blender (`argv`) with its stdout shown line by line (stderr, where the exporter's
+// warnings go, is shared): the lines that matter, or all with --verbose, the staging
+// folder's name shown as the output folder's. kExitOk when the export succeeded.
+int runBlender(std::vector<std::string> argv, const std::string& stagingName,
+               const fs::path& absOut, bool verbose) {
   std::vector<char*> cargv;
   for (auto& s : argv)
     cargv.push_back(s.data());
   cargv.push_back(nullptr);
-
   int pipeFds[2];
   if (::pipe(pipeFds) != 0) {
-    std::cerr << "memograph import-blender: pipe: " << std::strerror(errno) << "\n";
+    std::cerr << kCommand << "pipe: " << std::strerror(errno) << "\n";
     return kExitFailure;
   }
   posix_spawn_file_actions_t actions;
@@ -386,12 +349,9 @@ int runImportBlender(std::span<const std::string_view> args) {
   ::close(pipeFds[1]);
   if (spawned != 0) {
     ::close(pipeFds[0]);
-    std::cerr << "memograph import-blender: cannot run " << argv[0] << ": "
-              << std::strerror(spawned) << "\n";
+    std::cerr << kCommand << "cannot run " << argv[0] << ": " << std::strerror(spawned) << "\n";
     return kExitFailure;
   }
-  // Blender's stdout, line by line (stderr, where the exporter's warnings go, is shared),
-  // with the staging folder's name shown as the output folder's.
   std::string pending;
   std::array<char, 4096> buffer{};
   auto show = [&](std::string line) {
@@ -421,20 +381,25 @@ int runImportBlender(std::span<const std::string_view> args) {
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
   }
   if (WIFSIGNALED(status)) {
-    std::cerr << "memograph import-blender: Blender ended with signal " << WTERMSIG(status) << " ("
+    std::cerr << kCommand << "Blender ended with signal " << WTERMSIG(status) << " ("
               << strsignal(WTERMSIG(status)) << "); " << absOut.string() << " is unchanged\n";
     return kExitFailure;
   }
   const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 1;
   if (code != 0) {
-    std::cerr << "memograph import-blender: the export failed (Blender exit status " << code
-              << "); " << absOut.string() << " is unchanged\n";
+    std::cerr << kCommand << "the export failed (Blender exit status " << code << "); "
+              << absOut.string() << " is unchanged\n";
     return kExitFailure;
   }
-  // A new output folder: the staging folder is renamed into place (atomic). One that exists
-  // (or appeared meanwhile) takes the exported files as one set.
+  return kExitOk;
+}
+
+// A new output folder: the staging folder is renamed into place (atomic). One that exists
+// (or appeared meanwhile) takes the exported files as one set.
+int commitExport(StagingFolder& staging, const fs::path& absOut, CreatedFolders& created) {
+  std::error_code ec;
   if (!fs::exists(absOut, ec)) {
-    if (::rename(stagingName.c_str(), absOut.c_str()) == 0) {
+    if (::rename(staging.path().c_str(), absOut.c_str()) == 0) {
       staging.release();
       created.keep();
       return kExitOk;
@@ -447,12 +412,83 @@ int runImportBlender(std::span<const std::string_view> args) {
       return kExitFailure;
     }
   }
+  std::string error;
   if (!commitIntoFolder(staging.path(), absOut, created, error)) {
     std::cerr << kCommand << error << "; " << absOut.string() << " is unchanged\n";
     return kExitFailure;
   }
   created.keep();
   return kExitOk;
+}
+
+std::optional<int> scanImportArguments(std::span<const std::string_view> args, ImportArguments& a) {
+  ArgumentScanner scanner("import-blender", args);
+  scanner.option("--out", &a.outDir);
+  scanner.option("--blender", &a.blender);
+  scanner.list("--materials", &a.materials);
+  scanner.flag("--verbose", &a.verbose);
+  scanner.flag("--scene", &a.withScene);
+  scanner.help(kHelp);
+  if (const auto exitCode = scanner.scan(a.positional))
+    return exitCode;
+  if (a.positional.size() != 1)
+    return usageError("import-blender", a.positional.empty() ? "no .blend file given"
+                                                             : "give exactly one .blend file");
+  if (a.outDir.empty())
+    return usageError("import-blender", "--out DIR is required");
+  return std::nullopt;
+}
+
+}  // namespace
+
+int runImportBlender(std::span<const std::string_view> args) {
+  ImportArguments a;
+  if (const auto exitCode = scanImportArguments(args, a))
+    return *exitCode;
+  const fs::path blend = a.positional[0];
+  if (auto problem = checkBlendFile(blend); !problem.empty()) {
+    std::cerr << kCommand << blend.string() << ": " << problem << "\n";
+    return kExitFailure;
+  }
+  const std::optional<fs::path> blenderPath = findBlender(a.blender);
+  if (!blenderPath)
+    return kExitFailure;
+  const std::optional<fs::path> script = findExporter();
+  if (!script)
+    return kExitFailure;
+  const std::optional<fs::path> absOut = outputFolder(a.outDir);
+  if (!absOut)
+    return kExitFailure;
+  CreatedFolders created;
+  StagingFolder staging;
+  std::string error;
+  if (!created.create(absOut->parent_path(), error) || !staging.create(*absOut, error)) {
+    std::cerr << kCommand << error << "\n";
+    return kExitFailure;
+  }
+  const std::string stagingName = staging.path().string();
+  std::error_code ec;
+  std::vector<std::string> argv = {blenderPath->string(),
+                                   "-b",
+                                   "--factory-startup",
+                                   fs::absolute(blend, ec).string(),
+                                   "--python-exit-code",
+                                   "1",
+                                   "--python",
+                                   script->string(),
+                                   "--",
+                                   "--out",
+                                   stagingName};
+  if (a.withScene)
+    argv.emplace_back("--scene");
+  if (!a.materials.empty()) {
+    argv.emplace_back("--materials");
+    argv.insert(argv.end(), a.materials.begin(), a.materials.end());
+  }
+  if (const int code = runBlender(std::move(argv), stagingName, *absOut, a.verbose);
+      code != kExitOk)
+    return code;
+  return commitExport(staging, *absOut, created);
 }
 
 }  // namespace memograph::cli
