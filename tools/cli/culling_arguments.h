@@ -159,16 +159,6 @@ struct CullingArguments {
       if (!text.empty())
         field = whole(text, flag);
     };
-    // A choice of two words, `first` or `second`: `field` becomes whether it is `yes`.
-    const auto setChoice = [](const std::string& text, const char* flag, const char* first,
-                              const char* second, const char* yes, bool& field) {
-      if (text.empty())
-        return;
-      if (text != first && text != second)
-        throw std::invalid_argument(std::string(flag) + " takes " + first + " or " + second +
-                                    ", not '" + text + "'");
-      field = text == yes;
-    };
     setReal(radius, "--culling-radius", o.radius);
     setReal(hitboxSize, "--hitbox-size", o.hitboxSize);
     setReal(hitboxActivate, "--hitbox-activate", o.hitboxActivate);
@@ -186,12 +176,6 @@ struct CullingArguments {
     setWhole(feedbackStride, "--feedback-stride", o.feedbackStride);
     setWhole(feedbackEvery, "--feedback-every", o.feedbackEvery);
     setWhole(feedbackPaths, "--feedback-paths", o.feedbackPaths);
-    setChoice(feedbackDispatch, "--feedback-dispatch", "single", "split", "split",
-              o.splitFeedbackDispatch);
-    setChoice(hitCounters, "--hit-counters", "after-trace", "closest-hit", "closest-hit",
-              o.countersInClosestHit);
-    setChoice(instanceFill, "--instance-fill", "host", "gpu", "gpu", o.gpuInstanceFill);
-    setChoice(looks, "--looks", "on", "off", "on", o.looks);
     setWhole(lookAppearing, "--look-appearing", o.lookAppearing);
     runtime::validateCullingOptions(o);
     return o;
