@@ -28,8 +28,6 @@ Shading parseShading(const std::string& text) {
   throw std::invalid_argument("--shading takes auto, megakernel or wavefront, not '" + text + "'");
 }
 
-// What the wavefront prototype cannot do that the options ask, in words that follow "it"
-// ("--shading wavefront is a prototype: it ...", or auto's reason); empty when it can.
 std::string wavefrontOptionGap(const RendererOptions& options) {
   const CacheOptions& cache = options.cache;
   if (cache.mode != CacheMode::None && options.floorMaterials)
@@ -48,7 +46,6 @@ std::string wavefrontOptionGap(const RendererOptions& options) {
   return {};
 }
 
-// The same for the scene and the device, after the options' gaps.
 std::string wavefrontGap(const RendererOptions& options, const Scene& scene,
                          const ShadingDevice& device, bool neeEvaluatesEmission) {
   std::string gap = wavefrontOptionGap(options);

@@ -87,7 +87,7 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   VkDevice device = context.device();
   const LinkedMaterials* materials = setup.materials;
   const std::uint32_t pathSlots = setup.pathSlots;
-  // The renderer refuses both first, in the user's words (renderer.cpp, wavefrontGap).
+  // The renderer refuses both first, in the user's words (trace/shading.cpp, wavefrontGap).
   if ((lookup_ && !materials) || (!query_ && !context.info().traceRaysIndirect))
     throw std::logic_error(
         "WavefrontPathTracer: a cache without material passes, or a pipeline "
