@@ -416,9 +416,8 @@ double meanDifference(const HdrImage& a, const HdrImage& b) {
 
 // LiPaC's first look: flying in from south of the city (the path's first camera), the first
 // frame holds what a probe trace of its camera reaches, not every instance in its frustum:
-// fewer BLAS bytes here than frustum culling's (which holds every instance in the frustum,
-// more than the 42.0 MB of LiPaC activating those that appear large, against 29.9 MB with
-// the look at the defaults), with the picture kept. The probe counts every ray whatever the
+// fewer BLAS bytes here than frustum culling's (29.9 against 42.0 MB at the defaults), with
+// the picture kept. The probe counts every ray whatever the
 // feedback stride (with 1 in 4 blocks counted the picture missed this test's bound: 1.14 % of the
 // image's mean, against 0.78 % when every ray counted).
 TEST(CulledRender, TheFirstLookHoldsWhatTheFirstCameraReaches) {
