@@ -534,8 +534,9 @@ TEST(CulledRender, TheHostFillWritesTheRecordsTheStatesKeep) {
       EXPECT_EQ(frame.tlasRecords, frame.activeInstances + frame.omittedInstances + frame.hitboxes -
                                        frame.activeHitboxes)
           << cullingModeName(mode) << " frame " << f;
-      if (mode == CullingMode::None)
+      if (mode == CullingMode::None) {
         EXPECT_EQ(frame.activeInstances + frame.waitingInstances, n) << "frame " << f;
+      }
     }
   }
 }
