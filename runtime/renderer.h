@@ -16,6 +16,7 @@
 #include "runtime/memo/cache_options.h"
 #include "runtime/scene/scene.h"
 #include "runtime/trace/render_stats.h"
+#include "runtime/trace/shading.h"
 #include "runtime/vk/vulkan_context.h"
 
 namespace memograph::runtime {
@@ -34,17 +35,6 @@ TextureImage loadTextureCore(const std::string& path);
 // in one query shader ran lavapipe's compiler past 16 minutes and 13 GB before it was
 // stopped, where their 14 callables took 26 s.
 constexpr std::size_t kManyMaterialGraphs = 8;
-
-// How the path tracer is organised (docs/architecture.md, "Material-coherent shading"):
-// one kernel that runs each path to its end, or passes over queues of paths with their state
-// in memory (Laine, Karras and Aila, "Megakernels Considered Harmful", HPG 2013). The
-// wavefront is a prototype (with the floor's constants or the scene's graphs). Auto: the
-// wavefront where it is measured faster and does what the render asks, else the megakernel
-// (resolveShading).
-enum class Shading { Auto, Megakernel, Wavefront };
-const char* shadingName(Shading shading);
-// "auto", "megakernel" or "wavefront"; throws std::invalid_argument naming the choices.
-Shading parseShading(const std::string& text);
 
 struct RendererOptions {
   ContextOptions context;
@@ -94,32 +84,6 @@ struct RendererOptions {
   // (RenderResult::cullingView; 0: none).
   std::uint32_t debugCullingSize = 0;
 };
-
-// Refuses (std::invalid_argument, naming the option) what an explicit Shading::Wavefront
-// cannot do that the options alone tell (culling, debug views, a cache on the floor, the
-// subgroup tile fill; the scene's and device's gaps render() refuses), and wavefrontPaths with
-// Shading::Megakernel (with Auto, render() checks it once resolved). The same list decides
-// Auto (resolveShading).
-void validateWavefrontOptions(const RendererOptions& options);
-
-// What the device and the render bring to Shading::Auto's choice.
-struct ShadingDevice {
-  VkPhysicalDeviceType type = VK_PHYSICAL_DEVICE_TYPE_OTHER;
-  // The wavefront can launch its traces: the query backend, or the pipeline backend with
-  // vkCmdTraceRaysIndirectKHR.
-  bool wavefrontTraces = true;
-};
-
-struct ShadingChoice {
-  Shading shading = Shading::Megakernel;  // Megakernel or Wavefront, never Auto
-  std::string whyMegakernel;              // Auto's reason when it chose the megakernel
-};
-// The architecture a render runs: options.shading unless Auto; Auto is the wavefront on a
-// GPU when it does everything asked, else the megakernel (never a refusal).
-// `neeEvaluatesEmission`: some emitter's emission NEE must take from its graph
-// (sceneNeeEvaluatesEmission).
-ShadingChoice resolveShading(const RendererOptions& options, const Scene& scene,
-                             const ShadingDevice& device, bool neeEvaluatesEmission);
 
 // Materials that share a graph (same file or same text) count once.
 std::size_t countDistinctMaterialGraphs(const Scene& scene);

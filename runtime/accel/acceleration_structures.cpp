@@ -244,15 +244,10 @@ VkAccelerationStructureGeometryKHR tlasGeometry(VkDeviceAddress records) {
 
 }  // namespace
 
-TopLevelStructure::TopLevelStructure(const VulkanContext& context, std::uint32_t capacity,
-                                     bool deviceWritten)
+TopLevelStructure::TopLevelStructure(const VulkanContext& context, std::uint32_t capacity)
     : context_(&context), capacity_(std::max(capacity, 1u)) {
   const VkDeviceSize recordBytes = sizeof(VkAccelerationStructureInstanceKHR) * capacity_;
-  instances_ = deviceWritten
-                   ? GpuBuffer(context, recordBytes,
-                               kAccelerationBuildInput | VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
-                               VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT)
-                   : hostBuffer(context, recordBytes, kAccelerationBuildInput);
+  instances_ = hostBuffer(context, recordBytes, kAccelerationBuildInput);
   VkAccelerationStructureGeometryKHR geometry = tlasGeometry(instances_.address());
   VkAccelerationStructureBuildGeometryInfoKHR build = tlasBuildInfo(&geometry);
   VkAccelerationStructureBuildSizesInfoKHR sizes{

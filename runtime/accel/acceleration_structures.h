@@ -102,14 +102,11 @@ VkAccelerationStructureInstanceKHR instanceRecord(const glm::mat4& objectToWorld
 // A TLAS rebuilt from instance records the host writes into mapped memory, sized once for
 // `capacity` records so that its handle (and the descriptor set that names it) never
 // changes. The build reads the records on the device: write them only while no build of
-// this structure is in flight. `deviceWritten`: a shader writes the records instead
-// (GpuInstanceFill, at recordsAddress()), into device-local memory; records() is null.
+// this structure is in flight.
 class TopLevelStructure {
  public:
-  TopLevelStructure(const VulkanContext& context, std::uint32_t capacity,
-                    bool deviceWritten = false);
+  TopLevelStructure(const VulkanContext& context, std::uint32_t capacity);
   VkAccelerationStructureInstanceKHR* records() const;
-  VkDeviceAddress recordsAddress() const { return instances_.address(); }
   std::uint32_t capacity() const { return capacity_; }
   // Records the build of the first `count` records and a barrier that makes it visible to
   // the ray-tracing and compute shaders after it.

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
-#include <cstring>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -68,15 +67,9 @@ DynamicAccelerationStructures::DynamicAccelerationStructures(
                                            culling_.instanceCount() + h, gpu::kMaskCountingBox,
                                            box));
   }
-  tlas_ = std::make_unique<TopLevelStructure>(context, culling_.instanceCount(),
-                                              options.gpuInstanceFill);
-  if (options.gpuInstanceFill)
-    instanceFill_ =
-        std::make_unique<GpuInstanceFill>(context, instanceRecords_, instanceMeshes_, boxRecords_,
-                                          culling_.hitboxCount(), meshCount_, shaderCacheDirectory);
+  tlas_ = std::make_unique<TopLevelStructure>(context, culling_.instanceCount());
   if (hitFeedbackOn())
-    boxTlas_ = std::make_unique<TopLevelStructure>(context, culling_.counterCount(),
-                                                   options.gpuInstanceFill);
+    boxTlas_ = std::make_unique<TopLevelStructure>(context, culling_.counterCount());
   // The counters live on the device (the trace's atomics) and are copied to a host buffer
   // after each frame. One more uint after them: the trace's own tally of the counts it made
   // (path_tracer.glsl: the buffer's last uint), to check that the counts it buffers all
@@ -170,8 +163,7 @@ void DynamicAccelerationStructures::prepareStructures(
     return hitFeedbackOn() && culling_.hitboxUsed(h) && !culling_.hitboxActive(h);
   };
   // The TLAS records: active instances whose BLAS is resident; the counting boxes' TLAS:
-  // omitted instances, then boxed hitboxes. With the GPU fill the host only counts them:
-  // the compute pass writes the same records from the same states and addresses.
+  // omitted instances, then boxed hitboxes, written by the host into the mapped records.
   VkAccelerationStructureInstanceKHR* records = tlas_->records();
   VkAccelerationStructureInstanceKHR* boxes = boxTlas_ ? boxTlas_->records() : nullptr;
   std::uint32_t n = 0, boxCount = 0;
@@ -183,10 +175,8 @@ void DynamicAccelerationStructures::prepareStructures(
         ++waitingInstances;
         continue;
       }
-      if (records) {
-        records[n] = instanceRecords_[i];
-        records[n].accelerationStructureReference = blas;
-      }
+      records[n] = instanceRecords_[i];
+      records[n].accelerationStructureReference = blas;
       ++n;
     } else if (states[i] == InstanceState::Omitted && hitFeedbackOn()) {
       if (boxes)
@@ -202,17 +192,6 @@ void DynamicAccelerationStructures::prepareStructures(
     ++boxCount;
   }
   boxRecordCount_ = boxCount;
-  if (instanceFill_) {
-    // instance_fill.comp compares the state bytes with these values.
-    static_assert(sizeof(InstanceState) == 1 &&
-                  std::uint32_t(InstanceState::Omitted) == gpu::kInstanceStateOmitted &&
-                  std::uint32_t(InstanceState::Active) == gpu::kInstanceStateActive);
-    std::vector<std::uint8_t> fillStates(culling_.counterCount(), 0);
-    std::memcpy(fillStates.data(), states.data(), states.size());
-    for (std::uint32_t h = 0; h < culling_.hitboxCount(); ++h)
-      fillStates[culling_.instanceCount() + h] = boxed(h) ? 1 : 0;
-    instanceFill_->upload(fillStates, meshAddresses);
-  }
   hostMilliseconds += std::chrono::duration<double, std::milli>(Clock::now() - recordStart).count();
   stats.cullingHostMilliseconds = hostMilliseconds;
   records_ = n;
@@ -250,9 +229,6 @@ void DynamicAccelerationStructures::recordTlasBuild(VkCommandBuffer commands,
   if (timestamps)
     vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,
                         timestamps, first + 1);
-  if (instanceFill_)
-    instanceFill_->record(commands, tlas_->recordsAddress(),
-                          boxTlas_ ? boxTlas_->recordsAddress() : 0);
   tlas_->recordBuild(commands, records_);
   if (boxTlas_)
     boxTlas_->recordBuild(commands, boxRecordCount_);

@@ -16,7 +16,6 @@
 #include "runtime/accel/acceleration_structures.h"
 #include "runtime/accel/animated_blases.h"
 #include "runtime/accel/blas_cache.h"
-#include "runtime/accel/instance_fill.h"
 #include "runtime/accel/scene_culling.h"
 #include "runtime/scene/scene.h"
 #include "runtime/scene/scene_upload.h"
@@ -28,8 +27,8 @@ namespace memograph::runtime {
 
 class DynamicAccelerationStructures {
  public:
-  // `scene` and `buffers` must outlive this object. `shaderCacheDirectory`: where the GPU
-  // instance fill's shader is cached (none when empty). `feedbackPathWeight`: what a counted
+  // `scene` and `buffers` must outlive this object. `shaderCacheDirectory`: where the animated
+  // meshes' vertex pass is cached (none when empty). `feedbackPathWeight`: what a counted
   // path's ray weighs beside the blocks' stride (CullingOptions::feedbackPaths: P / N where N
   // of a pixel's P paths count; the renderer knows P).
   DynamicAccelerationStructures(const VulkanContext& context, const Scene& scene,
@@ -85,8 +84,8 @@ class DynamicAccelerationStructures {
   std::uint32_t meshCount_ = 0;
   std::vector<std::uint32_t> instanceMeshes_;
   // TLAS records made once: each instance's (BLAS address 0, filled in per frame) and, under
-  // LiPaC, each instance's counting box then each hitbox's. The host fill copies them; the
-  // GPU fill uploads them.
+  // LiPaC, each instance's counting box then each hitbox's, copied into the TLAS's records
+  // every frame.
   std::vector<VkAccelerationStructureInstanceKHR> instanceRecords_;
   std::vector<VkAccelerationStructureInstanceKHR> boxRecords_;
   BlasCache blasCache_;
@@ -97,8 +96,7 @@ class DynamicAccelerationStructures {
   CompactedBlases box_;
   std::unique_ptr<TopLevelStructure> tlas_;
   std::uint32_t records_ = 0;
-  std::unique_ptr<TopLevelStructure> boxTlas_;     // LiPaC only
-  std::unique_ptr<GpuInstanceFill> instanceFill_;  // CullingOptions::gpuInstanceFill only
+  std::unique_ptr<TopLevelStructure> boxTlas_;  // LiPaC only
   std::uint32_t boxRecordCount_ = 0;
   GpuBuffer hitFeedback_;
   GpuBuffer hitReadback_;

@@ -107,7 +107,7 @@ void validateCullingOptions(const CullingOptions& o) {
     throw std::invalid_argument("the appearing instances' minimum size must be in [0, 1]");
   within(o.blasRebuildEvery, 1, kMaxLowFrames, "--blas-rebuild-every");
   if (o.lookAppearing == 0)
-    throw std::invalid_argument("--look-appearing must be at least 1 (--looks off: no looks)");
+    throw std::invalid_argument("--look-appearing must be at least 1");
   within(o.feedbackStride, 1, 64, "--feedback-stride");
   within(o.feedbackPaths, 0, 64, "--feedback-paths");
   within(o.feedbackEvery, 1, 64, "--feedback-every");
@@ -242,7 +242,7 @@ bool SceneCulling::appearsLarge(std::uint32_t instance, const Camera& camera) co
 }
 
 bool SceneCulling::wantsLook(const Camera& camera, float aspect) const {
-  if (options_.mode != CullingMode::Lipac || !options_.looks || hitboxActive_.empty())
+  if (options_.mode != CullingMode::Lipac || hitboxActive_.empty())
     return false;
   if (first_)
     return true;

@@ -78,7 +78,13 @@ struct CullingOptions {
   // lipac: N of each pixel's P paths count their rays in a counting frame (other paths the
   // next), weighted P / N, so N divides P (the renderer checks); 0, or N >= P: every path.
   // Unlike the blocks every pixel still counts, so an instance seen in a few pixels is seen
-  // every counting frame, while the probes cost N / P.
+  // every counting frame, while the probes cost N / P. With N < P a counting frame traces the
+  // P - N paths that do not count with the pipeline compiled without the feedback, then the N
+  // that do with it, in dispatches of their own (planPathDispatches), so that only those run
+  // the feedback's code (its probes' trace call and counters, which slow a pipeline whether a
+  // path counts or not): on the H200 its counting frames took 0.940x the unculled frame's
+  // time against 1.119x in one dispatch, on an H100 0.939x against 1.128x (docs/culling.md,
+  // "Split counting frames").
   std::uint32_t feedbackPaths = 1;
   // lipac: the trace counts every this many frames (frames 0, N, 2N, ...); the frames between
   // trace with a pipeline compiled without the feedback (its probes, and its code), and their
@@ -89,32 +95,11 @@ struct CullingOptions {
   // by frames whose stale states lacked what their paths hit (rays down to 0.58x none's at
   // stride 5). 1: every frame counts.
   std::uint32_t feedbackEvery = 4;
-  // lipac, with feedbackPaths N < P: a counting frame traces the P - N paths that do not count
-  // with the pipeline compiled without the feedback, then the N that do with it, in
-  // dispatches of their own (planPathDispatches), so that only those run the feedback's code
-  // (its probes' trace call and counters, which slow a pipeline whether a path counts or
-  // not). The same paths and counts; the picture differs only by float rounding. On the
-  // H200 its counting frames took 0.940x the unculled frame's time against 1.119x in one
-  // dispatch, on an H100 0.939x against 1.128x (docs/culling.md, "Split counting frames").
-  bool splitFeedbackDispatch = true;
-  // lipac, pipeline backend: the path rays' hit counters (and their probes' boxes') are bumped
-  // by the closest-hit shader, as §3.3.2's are, one atomic a counted ray, instead of after the
-  // trace in the raygen through a two-slot buffer that writes a run of rays counting one
-  // counter with one atomic (the query backend's only way: a ray query has no closest-hit
-  // shader). The same counts, so the same states and picture; the raygen stays the default
-  // until the GPU machine has measured which is faster.
-  bool countersInClosestHit = false;
-  // The TLAS's instance records assembled by a compute pass from the instance states
-  // (GpuInstanceFill, seeds/001 §3.3.2) instead of written by the host. The same records in
-  // the same order, so the same picture; the host fill stays the default until the GPU
-  // machine has measured which is faster.
-  bool gpuInstanceFill = false;
   // lipac: looks (SceneCulling::look): before the first frame, and before a frame whose
   // frustum brings at least `lookAppearing` instances with their own BLAS into view at once, a
-  // probe trace of its camera decides which of them it needs. Off: those frames activate every
+  // probe trace of its camera decides which of them it needs, rather than activating every
   // instance that appears large in the frustum, hidden ones too (the whole city from a path
   // that flies in or turns towards it).
-  bool looks = true;
   std::uint32_t lookAppearing = 8;
 };
 

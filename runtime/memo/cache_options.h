@@ -113,7 +113,7 @@ struct CacheOptions {
   TileFilter tileFilter = TileFilter::Nearest;
   TileStorage tileStorage = TileStorage::Entry;
   bool groupByMaterial = false;
-  // Unset: the subgroup fill in the megakernel; the wavefront always queues (renderer.cpp),
+  // Unset: the subgroup fill in the megakernel; the wavefront always queues (render_setup.cpp),
   // and Shading::Auto takes an explicit Subgroup as a reason for the megakernel.
   std::optional<TileFill> tileFill;
   // Deferred fill: tiles queued per frame at most; a request past it evaluates its hit

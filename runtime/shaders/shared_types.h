@@ -68,21 +68,6 @@ MG_CONSTANT(uint, kMaskCountingBox, 0xFF);      // the boxes' own TLAS: every bo
 MG_CONSTANT(uint, kRayMaskNoLightQuads, 0x7E);  // camera and shadow rays
 MG_CONSTANT(uint, kRayMaskAll, 0x7F);           // BSDF rays
 
-// The GPU instance fill (seeds/001 §3.3.2: the TLAS's instance buffer is assembled on the
-// GPU every frame; instance_fill.comp): one work group of this many invocations walks the
-// candidates in order, so the records come out in the host fill's order.
-MG_CONSTANT(uint, kInstanceFillWorkgroup, 256);
-// The state bytes it reads: runtime::InstanceState's values (static_assert where uploaded).
-MG_CONSTANT(uint, kInstanceStateOmitted, 1);
-MG_CONSTANT(uint, kInstanceStateActive, 2);
-// Its push constants: buffer device addresses as (low, high) uint pairs.
-struct InstanceFillPush {
-  uvec4 counts;     // x instances, y hitboxes, zw: the counting boxes' records out
-  uvec4 templates;  // xy: active record per instance, zw: box record per instance and hitbox
-  uvec4 sources;    // xy: mesh per instance (uint), zw: mesh BLAS addresses (uint pairs)
-  uvec4 frame;      // xy: states (bytes: instances', then 1 per boxed hitbox), zw: records out
-};
-
 // Animated meshes (Scene::animatedMeshes; seeds/001 §3.3.1: "compute shaders are dispatched
 // in each frame to update the vertices for BLAS building"): how a mesh's rest vertices move
 // (vertex_motion.h), and what the vertex pass (vertex_motion.comp) reads. One dispatch moves

@@ -213,42 +213,37 @@ std::vector<std::string> describeDevices() {
   return lines;
 }
 
-VulkanContext::VulkanContext(const ContextOptions& options)
-    : validationLog_(std::make_unique<ValidationLog>()) {
-  if (options.validation && !instanceLayerPresent(kValidationLayer)) {
-    throw std::runtime_error(
-        "Validation was asked for but VK_LAYER_KHRONOS_validation is not installed (Debian: "
-        "vulkan-validationlayers).");
-  }
-  instance_ = VulkanHandle<VkInstance>(createInstance(options.validation, options.validation),
-                                       [](VkInstance i) { vkDestroyInstance(i, nullptr); });
-  if (options.validation) {
-    auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance_.get(), "vkCreateDebugUtilsMessengerEXT"));
-    auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
-        vkGetInstanceProcAddr(instance_.get(), "vkDestroyDebugUtilsMessengerEXT"));
-    VkDebugUtilsMessengerCreateInfoEXT info{
-        VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-    info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT |
-                           VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
-    info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
-                       VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
-                       VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
-    info.pfnUserCallback = onValidationMessage;
-    info.pUserData = validationLog_.get();  // declared first, so it outlives the messenger
-    VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
-    VkResult result = create(instance_.get(), &info, nullptr, &messenger);
-    checkVk(result, "vkCreateDebugUtilsMessengerEXT");
-    VkInstance instance = instance_.get();
-    messenger_ = VulkanHandle<VkDebugUtilsMessengerEXT>(
-        messenger,
-        [instance, destroy](VkDebugUtilsMessengerEXT m) { destroy(instance, m, nullptr); });
-  }
+namespace {
 
+// The debug messenger that collects validation errors into `log`.
+VulkanHandle<VkDebugUtilsMessengerEXT> createMessenger(VkInstance instance, ValidationLog* log) {
+  auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+      vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+  auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+      vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
+  VkDebugUtilsMessengerCreateInfoEXT info{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+  info.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT |
+                         VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT;
+  info.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                     VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                     VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+  info.pfnUserCallback = onValidationMessage;
+  info.pUserData = log;  // the context's first member, so it outlives the messenger
+  VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+  VkResult result = create(instance, &info, nullptr, &messenger);
+  checkVk(result, "vkCreateDebugUtilsMessengerEXT");
+  return VulkanHandle<VkDebugUtilsMessengerEXT>(
+      messenger,
+      [instance, destroy](VkDebugUtilsMessengerEXT m) { destroy(instance, m, nullptr); });
+}
+
+// The device --device names, else the best-ranked one that ray traces with the backend asked
+// for; throws listing the devices when there is none.
+Candidate chooseDevice(VkInstance instance, const ContextOptions& options) {
   std::uint32_t count = 0;
-  vkEnumeratePhysicalDevices(instance_.get(), &count, nullptr);
+  vkEnumeratePhysicalDevices(instance, &count, nullptr);
   std::vector<VkPhysicalDevice> devices(count);
-  vkEnumeratePhysicalDevices(instance_.get(), &count, devices.data());
+  vkEnumeratePhysicalDevices(instance, &count, devices.data());
   if (devices.empty()) {
     throw std::runtime_error(
         "No Vulkan device found. Install a driver (on Debian: mesa-vulkan-drivers from "
@@ -299,34 +294,33 @@ VulkanContext::VulkanContext(const ContextOptions& options)
           "(tools/setup.sh installs it).");
     }
   }
-  physicalDevice_ = chosen->device;
+  return *chosen;
+}
 
-  backend_ = options.backend;
-  if (backend_ == Backend::Auto) {
+// The backend Auto resolves to on `chosen`; throws where the one asked for is missing.
+Backend chooseBackend(const ContextOptions& options, const Candidate& chosen) {
+  Backend backend = options.backend;
+  if (backend == Backend::Auto) {
     const bool pipeline =
-        !chosen->rayQuery || (options.autoPrefersPipeline && chosen->rayTracingPipeline);
-    backend_ = pipeline ? Backend::RayTracingPipeline : Backend::RayQuery;
+        !chosen.rayQuery || (options.autoPrefersPipeline && chosen.rayTracingPipeline);
+    backend = pipeline ? Backend::RayTracingPipeline : Backend::RayQuery;
   }
-  if (backend_ == Backend::RayQuery && !chosen->rayQuery) {
+  if (backend == Backend::RayQuery && !chosen.rayQuery) {
     throw std::runtime_error(std::string("The query backend needs VK_KHR_ray_query, which ") +
-                             chosen->properties.deviceName +
+                             chosen.properties.deviceName +
                              " does not expose; use --backend pipeline (or auto).");
   }
-  if (backend_ == Backend::RayTracingPipeline && !chosen->rayTracingPipeline) {
+  if (backend == Backend::RayTracingPipeline && !chosen.rayTracingPipeline) {
     throw std::runtime_error(std::string("The pipeline backend needs VK_KHR_ray_tracing_pipeline, "
                                          "which ") +
-                             chosen->properties.deviceName +
+                             chosen.properties.deviceName +
                              " does not expose; use --backend query (or auto).");
   }
+  return backend;
+}
 
-  info_.name = chosen->properties.deviceName;
-  info_.type = chosen->properties.deviceType;
-  info_.apiVersion = chosen->properties.apiVersion;
-  info_.rayQuery = chosen->rayQuery;
-  info_.rayTracingPipeline = chosen->rayTracingPipeline;
-  info_.timestampPeriodNs = chosen->properties.limits.timestampPeriod;
-
-  // Features: check what the renderer needs before asking for it, to name what is missing.
+// The features the renderer needs, checked (throws naming what is missing) and read.
+struct SupportedFeatures {
   VkPhysicalDeviceRayQueryFeaturesKHR rayQueryFeatures{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
   VkPhysicalDeviceRayTracingPipelineFeaturesKHR pipelineFeatures{
@@ -336,11 +330,16 @@ VulkanContext::VulkanContext(const ContextOptions& options)
   VkPhysicalDeviceVulkan12Features features12{
       VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
   VkPhysicalDeviceFeatures2 features2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+};
+
+void readFeatures(VkPhysicalDevice physicalDevice, Backend backend, const std::string& name,
+                  SupportedFeatures& supported) {
+  auto& [rayQueryFeatures, pipelineFeatures, asFeatures, features12, features2] = supported;
   features2.pNext = &features12;
   features12.pNext = &asFeatures;
-  asFeatures.pNext = backend_ == Backend::RayQuery ? static_cast<void*>(&rayQueryFeatures)
-                                                   : static_cast<void*>(&pipelineFeatures);
-  vkGetPhysicalDeviceFeatures2(physicalDevice_, &features2);
+  asFeatures.pNext = backend == Backend::RayQuery ? static_cast<void*>(&rayQueryFeatures)
+                                                  : static_cast<void*>(&pipelineFeatures);
+  vkGetPhysicalDeviceFeatures2(physicalDevice, &features2);
   std::vector<std::string> missingFeatures;
   if (!features12.bufferDeviceAddress)
     missingFeatures.push_back("bufferDeviceAddress");
@@ -348,66 +347,175 @@ VulkanContext::VulkanContext(const ContextOptions& options)
     missingFeatures.push_back("shaderSampledImageArrayNonUniformIndexing");
   if (!asFeatures.accelerationStructure)
     missingFeatures.push_back("accelerationStructure");
-  if (backend_ == Backend::RayQuery && !rayQueryFeatures.rayQuery)
+  if (backend == Backend::RayQuery && !rayQueryFeatures.rayQuery)
     missingFeatures.push_back("rayQuery");
-  if (backend_ == Backend::RayTracingPipeline && !pipelineFeatures.rayTracingPipeline)
+  if (backend == Backend::RayTracingPipeline && !pipelineFeatures.rayTracingPipeline)
     missingFeatures.push_back("rayTracingPipeline");
   if (!missingFeatures.empty()) {
     std::string names;
     for (const auto& f : missingFeatures)
       names += " " + f;
-    throw std::runtime_error(info_.name + " lacks Vulkan features the renderer needs:" + names);
+    throw std::runtime_error(name + " lacks Vulkan features the renderer needs:" + names);
   }
+}
 
-  // Enable exactly what is used.
+// Exactly the features used, chained from `enable2`; the optional ones recorded in `info`.
+struct EnabledFeatures {
   VkPhysicalDeviceVulkan12Features enable12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+  VkPhysicalDeviceAccelerationStructureFeaturesKHR enableAs{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+  VkPhysicalDeviceRayQueryFeaturesKHR enableQuery{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+  VkPhysicalDeviceRayTracingPipelineFeaturesKHR enablePipeline{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
+  VkPhysicalDeviceFeatures2 enable2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+};
+
+void enableFeatures(const SupportedFeatures& supported, Backend backend, DeviceInfo& info,
+                    EnabledFeatures& e) {
+  const auto& [rayQueryFeatures, pipelineFeatures, asFeatures, features12, features2] = supported;
+  auto& [enable12, enableAs, enableQuery, enablePipeline, enable2] = e;
   enable12.bufferDeviceAddress = VK_TRUE;
   enable12.shaderSampledImageArrayNonUniformIndexing = VK_TRUE;
   enable12.hostQueryReset = features12.hostQueryReset;
   // Optional: only the counter clock uses them, and the renderer names them if missing.
-  info_.bufferInt64Atomics = features2.features.shaderInt64 && features12.shaderBufferInt64Atomics;
-  enable12.shaderBufferInt64Atomics = info_.bufferInt64Atomics;
-  VkPhysicalDeviceAccelerationStructureFeaturesKHR enableAs{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+  info.bufferInt64Atomics = features2.features.shaderInt64 && features12.shaderBufferInt64Atomics;
+  enable12.shaderBufferInt64Atomics = info.bufferInt64Atomics;
   enableAs.accelerationStructure = VK_TRUE;
-  VkPhysicalDeviceRayQueryFeaturesKHR enableQuery{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
   enableQuery.rayQuery = VK_TRUE;
-  VkPhysicalDeviceRayTracingPipelineFeaturesKHR enablePipeline{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_FEATURES_KHR};
   enablePipeline.rayTracingPipeline = VK_TRUE;
   // Optional: only the wavefront path tracer's indirect launches use it.
-  info_.traceRaysIndirect = backend_ == Backend::RayTracingPipeline &&
-                            pipelineFeatures.rayTracingPipelineTraceRaysIndirect;
-  enablePipeline.rayTracingPipelineTraceRaysIndirect = info_.traceRaysIndirect;
-  VkPhysicalDeviceFeatures2 enable2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-  enable2.features.shaderInt64 = info_.bufferInt64Atomics;
+  info.traceRaysIndirect = backend == Backend::RayTracingPipeline &&
+                           pipelineFeatures.rayTracingPipelineTraceRaysIndirect;
+  enablePipeline.rayTracingPipelineTraceRaysIndirect = info.traceRaysIndirect;
+  enable2.features.shaderInt64 = info.bufferInt64Atomics;
   enable2.pNext = &enable12;
   enable12.pNext = &enableAs;
-  enableAs.pNext = backend_ == Backend::RayQuery ? static_cast<void*>(&enableQuery)
-                                                 : static_cast<void*>(&enablePipeline);
+  enableAs.pNext = backend == Backend::RayQuery ? static_cast<void*>(&enableQuery)
+                                                : static_cast<void*>(&enablePipeline);
+}
+
+// A queue family with compute (ray tracing runs on compute queues too); records whether it
+// has timestamps.
+std::uint32_t chooseQueueFamily(VkPhysicalDevice physicalDevice, DeviceInfo& info) {
+  std::uint32_t familyCount = 0;
+  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice, &familyCount, nullptr);
+  std::vector<VkQueueFamilyProperties> families(familyCount);
+  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice, &familyCount, families.data());
+  bool found = false;
+  std::uint32_t queueFamily = 0;
+  for (std::uint32_t i = 0; i < familyCount; ++i) {
+    if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) {
+      queueFamily = i;
+      found = true;
+      info.timestamps = families[i].timestampValidBits > 0;
+      break;
+    }
+  }
+  if (!found)
+    throw std::runtime_error(info.name + " has no compute queue");
+  return queueFamily;
+}
+
+void loadDeviceFunctions(VkDevice device, Backend backend, bool traceRaysIndirect,
+                         DeviceFunctions& functions) {
+  loadDevice(device, "vkCreateAccelerationStructureKHR", functions.createAccelerationStructure);
+  loadDevice(device, "vkDestroyAccelerationStructureKHR", functions.destroyAccelerationStructure);
+  loadDevice(device, "vkGetAccelerationStructureBuildSizesKHR",
+             functions.getAccelerationStructureBuildSizes);
+  loadDevice(device, "vkCmdBuildAccelerationStructuresKHR",
+             functions.cmdBuildAccelerationStructures);
+  loadDevice(device, "vkCmdCopyAccelerationStructureKHR", functions.cmdCopyAccelerationStructure);
+  loadDevice(device, "vkCmdWriteAccelerationStructuresPropertiesKHR",
+             functions.cmdWriteAccelerationStructuresProperties);
+  loadDevice(device, "vkGetAccelerationStructureDeviceAddressKHR",
+             functions.getAccelerationStructureDeviceAddress);
+  if (backend == Backend::RayTracingPipeline) {
+    loadDevice(device, "vkCreateRayTracingPipelinesKHR", functions.createRayTracingPipelines);
+    loadDevice(device, "vkGetRayTracingShaderGroupHandlesKHR",
+               functions.getRayTracingShaderGroupHandles);
+    loadDevice(device, "vkCmdTraceRaysKHR", functions.cmdTraceRays);
+    if (traceRaysIndirect)
+      loadDevice(device, "vkCmdTraceRaysIndirectKHR", functions.cmdTraceRaysIndirect);
+    loadDevice(device, "vkGetRayTracingShaderGroupStackSizeKHR",
+               functions.getRayTracingShaderGroupStackSize);
+    loadDevice(device, "vkCmdSetRayTracingPipelineStackSizeKHR",
+               functions.cmdSetRayTracingPipelineStackSize);
+    loadDevice(device, "vkCreateDeferredOperationKHR", functions.createDeferredOperation);
+    loadDevice(device, "vkDestroyDeferredOperationKHR", functions.destroyDeferredOperation);
+    loadDevice(device, "vkGetDeferredOperationMaxConcurrencyKHR",
+               functions.getDeferredOperationMaxConcurrency);
+    loadDevice(device, "vkGetDeferredOperationResultKHR", functions.getDeferredOperationResult);
+    loadDevice(device, "vkDeferredOperationJoinKHR", functions.deferredOperationJoin);
+  }
+}
+
+// The limits and properties the renderer sizes its work by.
+void readProperties(VkPhysicalDevice physicalDevice, DeviceInfo& info) {
+  VkPhysicalDeviceAccelerationStructurePropertiesKHR asProperties{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
+  info.rayTracingProperties.sType =
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_PROPERTIES_KHR;
+  asProperties.pNext = &info.rayTracingProperties;
+  VkPhysicalDeviceSubgroupProperties subgroupProperties{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+  info.rayTracingProperties.pNext = &subgroupProperties;
+  VkPhysicalDeviceMaintenance3Properties maintenance3{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
+  subgroupProperties.pNext = &maintenance3;
+  VkPhysicalDeviceProperties2 properties2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  properties2.pNext = &asProperties;
+  vkGetPhysicalDeviceProperties2(physicalDevice, &properties2);
+  info.rayTracingProperties.pNext = nullptr;
+  info.subgroupSize = subgroupProperties.subgroupSize;
+  info.subgroupOperations = subgroupProperties.supportedOperations;
+  info.subgroupStages = subgroupProperties.supportedStages;
+  info.limits = properties2.properties.limits;
+  info.maxMemoryAllocationSize = maintenance3.maxMemoryAllocationSize;
+  constexpr VkSubgroupFeatureFlags kNeeded =
+      VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
+  if ((subgroupProperties.supportedOperations & kNeeded) == kNeeded)
+    info.subgroupArithmeticStages = subgroupProperties.supportedStages;
+  info.minAccelerationStructureScratchOffsetAlignment =
+      std::max(1u, asProperties.minAccelerationStructureScratchOffsetAlignment);
+}
+
+}  // namespace
+
+VulkanContext::VulkanContext(const ContextOptions& options)
+    : validationLog_(std::make_unique<ValidationLog>()) {
+  if (options.validation && !instanceLayerPresent(kValidationLayer)) {
+    throw std::runtime_error(
+        "Validation was asked for but VK_LAYER_KHRONOS_validation is not installed (Debian: "
+        "vulkan-validationlayers).");
+  }
+  instance_ = VulkanHandle<VkInstance>(createInstance(options.validation, options.validation),
+                                       [](VkInstance i) { vkDestroyInstance(i, nullptr); });
+  if (options.validation)
+    messenger_ = createMessenger(instance_.get(), validationLog_.get());
+
+  const Candidate chosen = chooseDevice(instance_.get(), options);
+  physicalDevice_ = chosen.device;
+  backend_ = chooseBackend(options, chosen);
+  info_.name = chosen.properties.deviceName;
+  info_.type = chosen.properties.deviceType;
+  info_.apiVersion = chosen.properties.apiVersion;
+  info_.rayQuery = chosen.rayQuery;
+  info_.rayTracingPipeline = chosen.rayTracingPipeline;
+  info_.timestampPeriodNs = chosen.properties.limits.timestampPeriod;
+
+  // Features: check what the renderer needs before asking for it, to name what is missing.
+  SupportedFeatures supported;
+  readFeatures(physicalDevice_, backend_, info_.name, supported);
+  EnabledFeatures enabled;
+  enableFeatures(supported, backend_, info_, enabled);
 
   std::vector<const char*> extensions = {VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME,
                                          VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
   extensions.push_back(backend_ == Backend::RayQuery ? VK_KHR_RAY_QUERY_EXTENSION_NAME
                                                      : VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME);
 
-  // A queue family with compute (ray tracing runs on compute queues too) and timestamps.
-  std::uint32_t familyCount = 0;
-  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, nullptr);
-  std::vector<VkQueueFamilyProperties> families(familyCount);
-  vkGetPhysicalDeviceQueueFamilyProperties(physicalDevice_, &familyCount, families.data());
-  bool found = false;
-  for (std::uint32_t i = 0; i < familyCount; ++i) {
-    if (families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) {
-      queueFamily_ = i;
-      found = true;
-      info_.timestamps = families[i].timestampValidBits > 0;
-      break;
-    }
-  }
-  if (!found)
-    throw std::runtime_error(info_.name + " has no compute queue");
+  queueFamily_ = chooseQueueFamily(physicalDevice_, info_);
 
   float priority = 1.0f;
   VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
@@ -415,7 +523,7 @@ VulkanContext::VulkanContext(const ContextOptions& options)
   queueInfo.queueCount = 1;
   queueInfo.pQueuePriorities = &priority;
   VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
-  deviceInfo.pNext = &enable2;
+  deviceInfo.pNext = &enabled.enable2;
   deviceInfo.queueCreateInfoCount = 1;
   deviceInfo.pQueueCreateInfos = &queueInfo;
   deviceInfo.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
@@ -436,62 +544,8 @@ VulkanContext::VulkanContext(const ContextOptions& options)
   commandPool_ = VulkanHandle<VkCommandPool>(
       pool, [device](VkCommandPool p) { vkDestroyCommandPool(device, p, nullptr); });
 
-  loadDevice(device, "vkCreateAccelerationStructureKHR", functions_.createAccelerationStructure);
-  loadDevice(device, "vkDestroyAccelerationStructureKHR", functions_.destroyAccelerationStructure);
-  loadDevice(device, "vkGetAccelerationStructureBuildSizesKHR",
-             functions_.getAccelerationStructureBuildSizes);
-  loadDevice(device, "vkCmdBuildAccelerationStructuresKHR",
-             functions_.cmdBuildAccelerationStructures);
-  loadDevice(device, "vkCmdCopyAccelerationStructureKHR", functions_.cmdCopyAccelerationStructure);
-  loadDevice(device, "vkCmdWriteAccelerationStructuresPropertiesKHR",
-             functions_.cmdWriteAccelerationStructuresProperties);
-  loadDevice(device, "vkGetAccelerationStructureDeviceAddressKHR",
-             functions_.getAccelerationStructureDeviceAddress);
-  if (backend_ == Backend::RayTracingPipeline) {
-    loadDevice(device, "vkCreateRayTracingPipelinesKHR", functions_.createRayTracingPipelines);
-    loadDevice(device, "vkGetRayTracingShaderGroupHandlesKHR",
-               functions_.getRayTracingShaderGroupHandles);
-    loadDevice(device, "vkCmdTraceRaysKHR", functions_.cmdTraceRays);
-    if (info_.traceRaysIndirect)
-      loadDevice(device, "vkCmdTraceRaysIndirectKHR", functions_.cmdTraceRaysIndirect);
-    loadDevice(device, "vkGetRayTracingShaderGroupStackSizeKHR",
-               functions_.getRayTracingShaderGroupStackSize);
-    loadDevice(device, "vkCmdSetRayTracingPipelineStackSizeKHR",
-               functions_.cmdSetRayTracingPipelineStackSize);
-    loadDevice(device, "vkCreateDeferredOperationKHR", functions_.createDeferredOperation);
-    loadDevice(device, "vkDestroyDeferredOperationKHR", functions_.destroyDeferredOperation);
-    loadDevice(device, "vkGetDeferredOperationMaxConcurrencyKHR",
-               functions_.getDeferredOperationMaxConcurrency);
-    loadDevice(device, "vkGetDeferredOperationResultKHR", functions_.getDeferredOperationResult);
-    loadDevice(device, "vkDeferredOperationJoinKHR", functions_.deferredOperationJoin);
-  }
-
-  VkPhysicalDeviceAccelerationStructurePropertiesKHR asProperties{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
-  info_.rayTracingProperties.sType =
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_TRACING_PIPELINE_PROPERTIES_KHR;
-  asProperties.pNext = &info_.rayTracingProperties;
-  VkPhysicalDeviceSubgroupProperties subgroupProperties{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
-  info_.rayTracingProperties.pNext = &subgroupProperties;
-  VkPhysicalDeviceMaintenance3Properties maintenance3{
-      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MAINTENANCE_3_PROPERTIES};
-  subgroupProperties.pNext = &maintenance3;
-  VkPhysicalDeviceProperties2 properties2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
-  properties2.pNext = &asProperties;
-  vkGetPhysicalDeviceProperties2(physicalDevice_, &properties2);
-  info_.rayTracingProperties.pNext = nullptr;
-  info_.subgroupSize = subgroupProperties.subgroupSize;
-  info_.subgroupOperations = subgroupProperties.supportedOperations;
-  info_.subgroupStages = subgroupProperties.supportedStages;
-  info_.limits = properties2.properties.limits;
-  info_.maxMemoryAllocationSize = maintenance3.maxMemoryAllocationSize;
-  constexpr VkSubgroupFeatureFlags kNeeded =
-      VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
-  if ((subgroupProperties.supportedOperations & kNeeded) == kNeeded)
-    info_.subgroupArithmeticStages = subgroupProperties.supportedStages;
-  info_.minAccelerationStructureScratchOffsetAlignment =
-      std::max(1u, asProperties.minAccelerationStructureScratchOffsetAlignment);
+  loadDeviceFunctions(device, backend_, info_.traceRaysIndirect, functions_);
+  readProperties(physicalDevice_, info_);
   vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
 }
 

@@ -148,49 +148,61 @@ float cityHalfSize(double scale) {
   return cityLayout(scale).halfSize;
 }
 
-Scene makeCityScene(const BuiltinSceneOptions& options) {
-  const CityCounts counts = cityCounts(options.cityScale);
-  const CityLayout layout = cityLayout(options.cityScale);
-  SceneBuilder b;
-  const MaterialCost cost = options.materialCost;
-  const MaterialCost light{std::max(1, cost.octaves / 2), 0};
+namespace {
 
-  // Materials: facades in several plasters, road and pavement tiles, the ground, props'
-  // paint, bark and leaves, flag cloth, and the mirror.
-  std::uint32_t facades[6];
+// The city's materials: facades in several plasters, road and pavement tiles, the ground,
+// props' paint, bark and leaves, flag cloth, and the mirror.
+struct CityMaterials {
+  std::uint32_t facades[6] = {};
+  std::uint32_t ground = 0, pavement = 0, metal = 0, carPaint = 0, bark = 0, leaves = 0, cloth = 0,
+                mirror = 0;
+};
+
+CityMaterials addCityMaterials(SceneBuilder& b, const MaterialCost& cost) {
+  const MaterialCost light{std::max(1, cost.octaves / 2), 0};
+  CityMaterials m;
   const glm::vec3 facadeColours[6] = {{0.82f, 0.78f, 0.70f}, {0.70f, 0.55f, 0.45f},
                                       {0.60f, 0.62f, 0.66f}, {0.85f, 0.84f, 0.80f},
                                       {0.55f, 0.45f, 0.38f}, {0.75f, 0.70f, 0.55f}};
   for (int i = 0; i < 6; ++i) {
     const std::string name = "City_Facade_" + std::to_string(i);
-    facades[i] =
+    m.facades[i] =
         b.material(name, plasterGraph(name, {facadeColours[i], 0.8f},
                                       RecipeSeed{300u + static_cast<std::uint32_t>(i)}, cost));
   }
-  const auto ground =
-      b.material("City_Ground", terrainGraph("City_Ground", TerrainParams{}, light));
+  m.ground = b.material("City_Ground", terrainGraph("City_Ground", TerrainParams{}, light));
   TileParams pavementTiles;
   pavementTiles.tileA = {0.45f, 0.45f, 0.46f};
   pavementTiles.tileB = {0.38f, 0.38f, 0.40f};
   pavementTiles.grout = {0.25f, 0.25f, 0.26f};
   pavementTiles.tileSize = 0.6f;
-  const auto pavement = b.material(
-      "City_Pavement", tileGraph("City_Pavement", pavementTiles, RecipeSeed{310}, light));
-  const auto metal =
-      b.material("City_Metal", paintedMetalGraph("City_Metal", {}, RecipeSeed{311}, light));
-  const auto carPaint =
+  m.pavement = b.material("City_Pavement",
+                          tileGraph("City_Pavement", pavementTiles, RecipeSeed{310}, light));
+  m.metal = b.material("City_Metal", paintedMetalGraph("City_Metal", {}, RecipeSeed{311}, light));
+  m.carPaint =
       b.material("City_CarPaint", plasticGraph("City_CarPaint", {}, RecipeSeed{312}, light));
-  const auto bark = b.material("City_Bark", barkGraph("City_Bark", {}, RecipeSeed{313}, light));
-  const auto leaves =
-      b.material("City_Foliage", foliageGraph("City_Foliage", {}, RecipeSeed{314}, light));
-  const auto cloth = b.material("City_Flag", fabricGraph("City_Flag", {}, RecipeSeed{315}, light));
-  const auto mirror = b.material("City_Mirror", mirrorGraph("City_Mirror"));
+  m.bark = b.material("City_Bark", barkGraph("City_Bark", {}, RecipeSeed{313}, light));
+  m.leaves = b.material("City_Foliage", foliageGraph("City_Foliage", {}, RecipeSeed{314}, light));
+  m.cloth = b.material("City_Flag", fabricGraph("City_Flag", {}, RecipeSeed{315}, light));
+  m.mirror = b.material("City_Mirror", mirrorGraph("City_Mirror"));
 
+  return m;
+}
+
+// A lot a building may stand on; lots are filled in `order`.
+struct Lot {
+  glm::vec2 centre;
+  float order;
+};
+
+// The ground, then a pavement slab per block; returns the blocks' lots in filling order.
+std::vector<Lot> addGroundAndLots(SceneBuilder& b, const CityLayout& layout,
+                                  const CityMaterials& m) {
   const float half = layout.halfSize;
   const int cells = std::clamp(layout.blocksPerSide * 16, 32, 512);
   b.instance(b.addMesh(makeHeightfield("city_ground", -half - 100.0f, -half - 100.0f, half + 100.0f,
                                        half + 100.0f, cells, cityTerrainHeight, UvScale{8.0f})),
-             ground, glm::mat4(1.0f));
+             m.ground, glm::mat4(1.0f));
 
   // Lots: each block (kCityBlockSize, a street of kCityStreetWidth around it) holds a 4 x 4
   // grid of lots; buildings fill lots in a hashed order, so a smaller scale thins the city
@@ -198,10 +210,6 @@ Scene makeCityScene(const BuiltinSceneOptions& options) {
   const int lotsPerBlock = 4;
   const float blockInner = kCityBlockSize - kCityStreetWidth;
   const float lotSize = blockInner / static_cast<float>(lotsPerBlock);
-  struct Lot {
-    glm::vec2 centre;
-    float order;
-  };
   std::vector<Lot> lots;
   for (int bx = 0; bx < layout.blocksPerSide; ++bx) {
     for (int bz = 0; bz < layout.blocksPerSide; ++bz) {
@@ -213,7 +221,7 @@ Scene makeCityScene(const BuiltinSceneOptions& options) {
       slab.name = "pavement_" + std::to_string(bx) + "_" + std::to_string(bz);
       appendBox(slab, {-0.5f * blockInner - 2.0f, -1.5f, -0.5f * blockInner - 2.0f},
                 {0.5f * blockInner + 2.0f, 0.15f, 0.5f * blockInner + 2.0f}, UvScale{1.0f});
-      b.instance(b.addMesh(std::move(slab)), pavement,
+      b.instance(b.addMesh(std::move(slab)), m.pavement,
                  placed({cx, cityTerrainHeight(cx, cz), cz}, 0.0f, 1.0f));
       for (int lx = 0; lx < lotsPerBlock; ++lx)
         for (int lz = 0; lz < lotsPerBlock; ++lz)
@@ -225,6 +233,13 @@ Scene makeCityScene(const BuiltinSceneOptions& options) {
   std::stable_sort(lots.begin(), lots.end(),
                    [](const Lot& a, const Lot& c) { return a.order < c.order; });
 
+  return lots;
+}
+
+void addBuildings(SceneBuilder& b, const CityLayout& layout, const CityCounts& counts,
+                  const std::vector<Lot>& lots, const CityMaterials& m) {
+  const float half = layout.halfSize;
+  const float lotSize = (kCityBlockSize - kCityStreetWidth) / 4.0f;  // 4 x 4 lots a block
   // Buildings: taller towards the centre; every one its own mesh. Lots are reused (with a
   // smaller footprint on top: a tower on a podium's lot) when there are more buildings than
   // lots, which only the largest scales reach.
@@ -247,10 +262,14 @@ Scene makeCityScene(const BuiltinSceneOptions& options) {
       high = std::max(high, h);
     }
     const auto mesh = b.addMesh(buildingMesh(i, width, depth, floors, low, high, 71u));
-    b.instance(mesh, facades[static_cast<int>(hash2(i, 13, 61u) * 6.0f) % 6],
+    b.instance(mesh, m.facades[static_cast<int>(hash2(i, 13, 61u) * 6.0f) % 6],
                placed({lot.centre.x, y, lot.centre.y}, 0.0f, 1.0f));
   }
+}
 
+void addProps(SceneBuilder& b, const CityLayout& layout, const CityCounts& counts,
+              const CityMaterials& mat) {
+  const float half = layout.halfSize;
   // Shared props along the streets: one mesh each, instanced many times.
   Mesh lamp;
   lamp.name = "street_lamp";
@@ -295,21 +314,26 @@ Scene makeCityScene(const BuiltinSceneOptions& options) {
     const glm::mat4 m = placed({x, cityTerrainHeight(x, z), z}, yaw, 1.0f);
     const float kind = hash2(i, 25, 91u);
     if (kind < 0.3f) {
-      b.instance(lampMesh, metal, m);
+      b.instance(lampMesh, mat.metal, m);
       ++i;
     } else if (kind < 0.55f) {
-      b.instance(carMesh, carPaint, m);
+      b.instance(carMesh, mat.carPaint, m);
       ++i;
     } else if (kind < 0.7f) {
-      b.instance(benchMesh, metal, m);
+      b.instance(benchMesh, mat.metal, m);
       ++i;
     } else {
-      b.instance(trunkMesh, bark, m);
-      b.instance(crownMesh, leaves, m);
+      b.instance(trunkMesh, mat.bark, m);
+      b.instance(crownMesh, mat.leaves, m);
       i += 2;
     }
   }
+}
 
+void addFlags(SceneBuilder& b, const CityLayout& layout, const CityCounts& counts,
+              const CityMaterials& m) {
+  const float half = layout.halfSize;
+  const int lines = layout.blocksPerSide + 1;
   // Flags on poles around the squares: every cloth its own mesh (it moves every frame, see
   // cityFlagMotion), every pole a shared prop.
   Mesh pole;
@@ -322,13 +346,27 @@ Scene makeCityScene(const BuiltinSceneOptions& options) {
     const float x = -half + static_cast<float>(line) * kCityBlockSize + 0.5f * kCityStreetWidth;
     const float z = (hash2(i, 31, 93u) * 2.0f - 1.0f) * half;
     const float y = cityTerrainHeight(x, z);
-    b.instance(poleMesh, metal, placed({x, y, z}, 0.0f, 1.0f));
+    b.instance(poleMesh, m.metal, placed({x, y, z}, 0.0f, 1.0f));
     const auto flag = b.addMesh(flagMesh(i));
-    b.instance(flag, cloth, placed({x + 0.06f, y + 6.3f, z}, 0.0f, 1.0f));
+    b.instance(flag, m.cloth, placed({x + 0.06f, y + 6.3f, z}, 0.0f, 1.0f));
     scene.animatedMeshes.push_back(flag);
     scene.animatedMotions.push_back(cityFlagMotion(i));
   }
+}
 
+}  // namespace
+
+Scene makeCityScene(const BuiltinSceneOptions& options) {
+  const CityCounts counts = cityCounts(options.cityScale);
+  const CityLayout layout = cityLayout(options.cityScale);
+  SceneBuilder b;
+  const CityMaterials m = addCityMaterials(b, options.materialCost);
+  const std::vector<Lot> lots = addGroundAndLots(b, layout, m);
+  addBuildings(b, layout, counts, lots, m);
+  addProps(b, layout, counts, m);
+  addFlags(b, layout, counts, m);
+
+  const float half = layout.halfSize;
   // The mirror: a polished wall across the far end of the main street (x = 0 runs along
   // z), facing back up the street, so the camera sees in it what is behind it.
   const float mirrorZ = half - 0.5f * kCityStreetWidth;
@@ -336,9 +374,10 @@ Scene makeCityScene(const BuiltinSceneOptions& options) {
   wall.name = "mirror_wall";
   appendBox(wall, {-0.3f * kCityStreetWidth, -1.0f, -0.3f}, {0.3f * kCityStreetWidth, 14.0f, 0.0f},
             UvScale{1.0f});
-  b.instance(b.addMesh(std::move(wall)), mirror,
+  b.instance(b.addMesh(std::move(wall)), m.mirror,
              placed({0.0f, cityTerrainHeight(0.0f, mirrorZ), mirrorZ}, 0.0f, 1.0f));
 
+  Scene& scene = b.scene();
   Light sun;
   sun.type = LightType::Directional;
   sun.direction = glm::normalize(glm::vec3(-0.35f, -0.8f, 0.45f));

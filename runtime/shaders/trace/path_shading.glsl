@@ -147,7 +147,7 @@ SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
 
   // Object space (Blender's Object and Generated coordinates, Object Info): the hit and its
   // footprint axes through the inverse transform, then the mesh's texture space. Compiled
-  // out for scenes whose materials read none of it (MG_OMIT_OBJECT_INPUTS, renderer.cpp).
+  // out for scenes whose materials read none of it (MG_OMIT_OBJECT_INPUTS, render_pipelines.cpp).
 #ifndef MG_OMIT_OBJECT_INPUTS
   mat4 toObject = instance.worldToObject;
   s.inputs.objectPosition.v = (toObject * vec4(position, 1.0)).xyz;

@@ -9,14 +9,8 @@ struct HitInfo {
   float t;
 };
 
-// The pipeline backend's payload of closest-hit rays: the hit, and, where the closest-hit
-// shader bumps LiPaC's hit counters (MG_CLOSEST_HIT_COUNTS), what it adds to the counter of
-// what the ray hits (0: the ray does not count). The raygen, the miss and the hit shaders
-// are compiled with the same defines, so they agree on it.
+// The pipeline backend's payload of closest-hit rays: the hit.
 struct HitPayload {
   HitInfo hit;
-#ifdef MG_CLOSEST_HIT_COUNTS
-  uint feedbackWeight;
-#endif
 };
 #endif

@@ -1,7 +1,6 @@
 // Trace backend 2: a ray-tracing pipeline whose raygen shader runs the whole path loop;
 // the closest-hit and miss shaders (trace_hit.rchit, trace_miss.rmiss, trace_shadow.rmiss)
-// only report the hit, as thesis §5.2 suggests (and, with --hit-counters closest-hit, the
-// closest-hit shader bumps LiPaC's counters too).
+// only report the hit, as thesis §5.2 suggests.
 #extension GL_EXT_ray_tracing : require
 #include "trace_hit.glsl"
 
@@ -13,24 +12,10 @@ layout(location = 1) rayPayloadEXT uint shadowPayload;
 const uint kMissClosest = 0u;
 const uint kMissShadow = 1u;
 
-// What the closest-hit shader adds to the counter of what the next ray hits, where it bumps
-// LiPaC's counters (MG_CLOSEST_HIT_COUNTS); 0 counts nothing. Without them, nothing to set.
-void setClosestHitWeight(uint weight) {
-#ifdef MG_CLOSEST_HIT_COUNTS
-  hitPayload.feedbackWeight = weight;
-#endif
-}
-
-// The closest hit, its counter bumped by `weight` in the closest-hit shader where it counts.
-HitInfo traceClosestCounted(vec3 origin, vec3 direction, float tMax, uint mask, uint weight) {
-  setClosestHitWeight(weight);
+HitInfo traceClosest(vec3 origin, vec3 direction, float tMax, uint mask) {
   traceRayEXT(tlas, gl_RayFlagsOpaqueEXT, mask, 0, 1, kMissClosest, origin, 0.0, direction,
               tMax, 0);
   return hitPayload.hit;
-}
-
-HitInfo traceClosest(vec3 origin, vec3 direction, float tMax, uint mask) {
-  return traceClosestCounted(origin, direction, tMax, mask, 0u);
 }
 
 bool traceShadow(vec3 origin, vec3 direction, float tMax) {
@@ -48,15 +33,9 @@ layout(set = 0, binding = kBindingCountingBoxes) uniform accelerationStructureEX
 // A counting box the ray segment crosses, the first the traversal finds (not necessarily the
 // nearest: the thesis's any-hit counts the first candidate too): its custom index (a
 // hit-feedback counter slot), or ~0u when the segment crosses none.
-// `weight`: as traceClosestCounted's, the box's counter bumped in the closest-hit shader.
-uint traceCountingBoxCounted(vec3 origin, vec3 direction, float tMax, uint weight) {
-  setClosestHitWeight(weight);
+uint traceCountingBox(vec3 origin, vec3 direction, float tMax) {
   traceRayEXT(countingBoxes, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT,
               kMaskCountingBox, 0, 1, kMissClosest, origin, 0.0, direction, tMax, 0);
   return hitPayload.hit.t >= 0.0 ? hitPayload.hit.instanceIndex : 0xFFFFFFFFu;
-}
-
-uint traceCountingBox(vec3 origin, vec3 direction, float tMax) {
-  return traceCountingBoxCounted(origin, direction, tMax, 0u);
 }
 #endif

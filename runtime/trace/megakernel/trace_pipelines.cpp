@@ -61,14 +61,13 @@ VkPipeline createWithDeferredOperation(const VulkanContext& context,
 
 void appendReportingShaders(VkDevice device, ShaderCompiler& compiler,
                             std::vector<VulkanHandle<VkShaderModule>>& modules,
-                            std::vector<VkShaderStageFlagBits>& stages,
-                            const std::vector<std::string>& defines) {
-  modules.push_back(createShaderModule(
-      device, compiler.compile({"trace_miss.rmiss", ShaderStage::Miss, defines})));
+                            std::vector<VkShaderStageFlagBits>& stages) {
+  modules.push_back(
+      createShaderModule(device, compiler.compile({"trace_miss.rmiss", ShaderStage::Miss, {}})));
   modules.push_back(
       createShaderModule(device, compiler.compile({"trace_shadow.rmiss", ShaderStage::Miss, {}})));
   modules.push_back(createShaderModule(
-      device, compiler.compile({"trace_hit.rchit", ShaderStage::ClosestHit, defines})));
+      device, compiler.compile({"trace_hit.rchit", ShaderStage::ClosestHit, {}})));
   stages.insert(stages.end(), {VK_SHADER_STAGE_MISS_BIT_KHR, VK_SHADER_STAGE_MISS_BIT_KHR,
                                VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR});
 }
@@ -217,14 +216,10 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
     throw std::invalid_argument(
         "callable material shaders need the ray-tracing pipeline backend (--backend pipeline); "
         "the query backend dispatches materials with a switch");
-  // The renderer refuses --hit-counters closest-hit on the query backend before it gets here.
-  if (query && (setup.closestHitCounts || setup.closestHitBindings))
-    throw std::logic_error("a closest-hit shader on the query backend, which has none");
   // Callables read the textures (mg_SampleTexture) through the same set as the raygen.
   VkShaderStageFlags stages =
       query ? VK_SHADER_STAGE_COMPUTE_BIT
-            : VK_SHADER_STAGE_RAYGEN_BIT_KHR | (callables ? VK_SHADER_STAGE_CALLABLE_BIT_KHR : 0) |
-                  (setup.closestHitBindings ? VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR : 0);
+            : VK_SHADER_STAGE_RAYGEN_BIT_KHR | (callables ? VK_SHADER_STAGE_CALLABLE_BIT_KHR : 0);
 
   setLayout_ = createTraceSetLayout(device, stages, textureCount, setup.tileImage);
   VkDescriptorSetLayout setLayout = setLayout_.get();
@@ -247,11 +242,6 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
     defines.push_back("MG_MATERIAL_COUNT=" + std::to_string(materialRecords));
   }
   defines.insert(defines.end(), setup.defines.begin(), setup.defines.end());
-  std::vector<std::string> hitDefines;
-  if (setup.closestHitCounts) {
-    defines.push_back("MG_CLOSEST_HIT_COUNTS=1");
-    hitDefines.push_back("MG_CLOSEST_HIT_COUNTS=1");
-  }
   // The deferred tile fill's pass: the same source and defines, entered at the fill.
   std::vector<std::string> fillDefines = defines;
   fillDefines.push_back("MG_TILE_FILL_PASS=1");
@@ -279,7 +269,7 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   modules.push_back(createShaderModule(
       device, compiler.compile({"path_tracer.glsl", ShaderStage::RayGen, defines})));
   std::vector<VkShaderStageFlagBits> stageBits = {VK_SHADER_STAGE_RAYGEN_BIT_KHR};
-  appendReportingShaders(device, compiler, modules, stageBits, hitDefines);
+  appendReportingShaders(device, compiler, modules, stageBits);
   if (tileFillPass) {
     modules.push_back(createShaderModule(
         device, compiler.compile({"path_tracer.glsl", ShaderStage::RayGen, fillDefines})));

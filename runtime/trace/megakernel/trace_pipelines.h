@@ -29,13 +29,10 @@ VulkanHandle<VkDescriptorSetLayout> createTraceSetLayout(VkDevice device, VkShad
 
 // Appends the report-only shaders (thesis §5.2) of every ray-tracing pipeline here, in this
 // order: the closest-hit rays' miss (trace_miss.rmiss), the shadow rays' miss
-// (trace_shadow.rmiss) and the closest hit (trace_hit.rchit), with their stages. `defines`
-// go to the closest-hit rays' miss and hit, which must agree with the raygen on the payload
-// (MG_CLOSEST_HIT_COUNTS: the closest hit bumps LiPaC's counters).
+// (trace_shadow.rmiss) and the closest hit (trace_hit.rchit), with their stages.
 void appendReportingShaders(VkDevice device, ShaderCompiler& compiler,
                             std::vector<VulkanHandle<VkShaderModule>>& modules,
-                            std::vector<VkShaderStageFlagBits>& stages,
-                            const std::vector<std::string>& defines = {});
+                            std::vector<VkShaderStageFlagBits>& stages);
 
 // A ray-tracing pipeline of one group per shader, in `stages` order: a closest-hit shader
 // makes a triangle hit group, any other shader a general group (raygen, miss, callable).
@@ -80,20 +77,11 @@ struct TracePipelineSetup {
   // Also build the deferred tile fill's pass (the same source with MG_TILE_FILL_PASS: a
   // second raygen of this pipeline, or a second compute pipeline).
   bool tileFillPass = false;
-  // The pipeline backend's closest-hit shader bumps LiPaC's hit counters
-  // (--hit-counters closest-hit): it is compiled with MG_CLOSEST_HIT_COUNTS, as are the
-  // raygen and the miss that share its payload.
-  bool closestHitCounts = false;
-  // The closest-hit shader sees the descriptor set. Pipelines that share one descriptor set
-  // must agree on it, so the pipeline without the feedback asks for it too where the
-  // feedback's pipeline counts in the closest hit.
-  bool closestHitBindings = false;
 };
 
 class TracePipeline {
  public:
-  // Throws std::invalid_argument for callables on the query backend (std::logic_error for a
-  // closest-hit setting there: the renderer refuses --hit-counters closest-hit first).
+  // Throws std::invalid_argument for callables on the query backend.
   TracePipeline(const VulkanContext& context, ShaderCompiler& compiler, std::uint32_t textureCount,
                 const TracePipelineSetup& setup = {});
 

@@ -87,7 +87,7 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   VkDevice device = context.device();
   const LinkedMaterials* materials = setup.materials;
   const std::uint32_t pathSlots = setup.pathSlots;
-  // The renderer refuses both first, in the user's words (renderer.cpp, wavefrontGap).
+  // The renderer refuses both first, in the user's words (trace/shading.cpp, wavefrontGap).
   if ((lookup_ && !materials) || (!query_ && !context.info().traceRaysIndirect))
     throw std::logic_error(
         "WavefrontPathTracer: a cache without material passes, or a pipeline "
@@ -176,34 +176,45 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
     computePasses_[pass] =
         createComputePipeline(device, module.get(), layout_.get(), kPassNames[pass]);
   }
-  // One small pipeline per distinct graph, compiled with only that graph's include (as a
-  // material callable is), so no compile ever sees all of a scene's graphs: the query
-  // backend's megakernel inlines every one (the classroom's 88 do not compile on lavapipe).
-  // The GLSL compiles and the driver's pipeline compiles both run on several threads. The
-  // driver's share is the large one: on lavapipe the classroom's pipelines took 33.9 s on one
-  // thread and 17.5 s on this 2-core machine's two, glslang 4.4 s for every shader, cold.
-  if (materials) {
-    MaterialShaderRequest request;
-    request.source = "wavefront.glsl";
-    request.stage = ShaderStage::Compute;
-    request.defines = defines;
-    request.defines.push_back(kPassDefines[gpu::kWavefrontMaterial]);
-    request.threads = setup.compileThreads;
-    request.what = "wavefront material pass";
-    const auto spirv = compileMaterialShaders(compiler, *materials, request, materialShaderStats_);
-    materialPasses_.resize(spirv.size());
-    parallelFor(spirv.size(), setup.compileThreads, [&](std::size_t bin, std::uint32_t) {
-      auto module = createShaderModule(device, spirv[bin]);
-      materialPasses_[bin] =
-          createComputePipeline(device, module.get(), layout_.get(),
-                                ("wavefront material " + materials->distinct[bin].name).c_str());
-    });
-  }
-  if (query_)
-    return;
+  if (materials)
+    createMaterialPasses(compiler, *materials, defines, setup.compileThreads);
+  if (!query_)
+    createRayTracingPasses(compiler, defines);
+}
 
-  // Ray-tracing pipeline and its table: [trace raygen][shadow raygen][miss, shadow miss][hit],
-  // the hit and miss shaders the megakernel's (they only report the hit); the default stack.
+// One small pipeline per distinct graph, compiled with only that graph's include (as a
+// material callable is), so no compile ever sees all of a scene's graphs: the query
+// backend's megakernel inlines every one (the classroom's 88 do not compile on lavapipe).
+// The GLSL compiles and the driver's pipeline compiles both run on several threads. The
+// driver's share is the large one: on lavapipe the classroom's pipelines took 33.9 s on one
+// thread and 17.5 s on this 2-core machine's two, glslang 4.4 s for every shader, cold.
+void WavefrontPathTracer::createMaterialPasses(ShaderCompiler& compiler,
+                                               const LinkedMaterials& materials,
+                                               const std::vector<std::string>& defines,
+                                               std::uint32_t compileThreads) {
+  VkDevice device = context_.device();
+  MaterialShaderRequest request;
+  request.source = "wavefront.glsl";
+  request.stage = ShaderStage::Compute;
+  request.defines = defines;
+  request.defines.push_back(kPassDefines[gpu::kWavefrontMaterial]);
+  request.threads = compileThreads;
+  request.what = "wavefront material pass";
+  const auto spirv = compileMaterialShaders(compiler, materials, request, materialShaderStats_);
+  materialPasses_.resize(spirv.size());
+  parallelFor(spirv.size(), compileThreads, [&](std::size_t bin, std::uint32_t) {
+    auto module = createShaderModule(device, spirv[bin]);
+    materialPasses_[bin] =
+        createComputePipeline(device, module.get(), layout_.get(),
+                              ("wavefront material " + materials.distinct[bin].name).c_str());
+  });
+}
+
+// Ray-tracing pipeline and its table: [trace raygen][shadow raygen][miss, shadow miss][hit],
+// the hit and miss shaders the megakernel's (they only report the hit); the default stack.
+void WavefrontPathTracer::createRayTracingPasses(ShaderCompiler& compiler,
+                                                 const std::vector<std::string>& defines) {
+  VkDevice device = context_.device();
   auto raygenDefines = [&](std::uint32_t pass) {
     std::vector<std::string> d = defines;
     d.push_back(kPassDefines[pass]);
@@ -223,8 +234,8 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   for (const auto& module : modules)
     moduleHandles.push_back(module.get());
   rayTracing_ =
-      createRayTracingPipeline(context, moduleHandles, stageBits, layout_.get(), 1, false);
-  ShaderBindingTable table = createShaderBindingTable(context, rayTracing_.get(), 5,
+      createRayTracingPipeline(context_, moduleHandles, stageBits, layout_.get(), 1, false);
+  ShaderBindingTable table = createShaderBindingTable(context_, rayTracing_.get(), 5,
                                                       {{{0}, true}, {{1}, true}, {{2, 3}}, {{4}}});
   shaderBindingTable_ = std::move(table.buffer);
   traceRaygenRegion_ = table.regions[0];
@@ -375,6 +386,20 @@ void WavefrontPathTracer::addPassTimes(const std::vector<std::uint64_t>& ticks, 
     const double ms = double(ticks[i + 1] - ticks[i]) * millisecondsPerTick;
     frame.*kPassTimes[passes[i]] += ms;
   }
+}
+
+void WavefrontPathTracer::addResources(TraceResources& resources) const {
+  resources.pathState = &pathState_;
+  resources.pathQueues = &pathQueues_;
+  resources.wavefrontControl = &control_;
+}
+
+void WavefrontPathTracer::addFrameStats(const FrameTrace& trace,
+                                        const std::vector<std::uint64_t>* passTicks,
+                                        double millisecondsPerTick, FrameStats& stats) const {
+  stats.wavefrontBinHits = binHits();
+  if (passTicks)
+    addPassTimes(*passTicks, trace.paths, trace.rays, millisecondsPerTick, stats);
 }
 
 }  // namespace memograph::runtime

@@ -13,6 +13,7 @@
 #include <vulkan/vulkan.h>
 
 #include "runtime/materials/material_linker.h"
+#include "runtime/trace/frame_tracer.h"
 #include "runtime/trace/render_stats.h"
 #include "runtime/vk/gpu_buffer.h"
 #include "runtime/vk/shader_compiler.h"
@@ -40,7 +41,7 @@ struct WavefrontSetup {
   std::uint32_t compileThreads = 0;  // the material shaders' GLSL compiles; 0: one per core
 };
 
-class WavefrontPathTracer {
+class WavefrontPathTracer final : public FrameTracer {
  public:
   // Compiles the passes for the context's backend: every pass a compute pipeline on the query
   // backend; on the pipeline backend trace and shadow are the raygens of one ray-tracing
@@ -53,7 +54,7 @@ class WavefrontPathTracer {
                       std::uint32_t textureCount, const std::vector<std::string>& extraDefines,
                       std::uint32_t width, std::uint32_t height, const WavefrontSetup& setup);
 
-  VkDescriptorSetLayout descriptorSetLayout() const { return setLayout_.get(); }
+  VkDescriptorSetLayout descriptorSetLayout() const override { return setLayout_.get(); }
   // Paths in flight (the path state's slots) and the chunks a round of the image takes.
   std::uint32_t pathSlots() const { return slots_; }
   std::uint32_t chunks() const { return chunks_; }
@@ -63,7 +64,7 @@ class WavefrontPathTracer {
 
   // Timestamps record() writes into its pool from `firstQuery` on: one before the first pass,
   // one after each pass.
-  std::uint32_t timestampCount(std::uint32_t paths, std::uint32_t bounces) const;
+  std::uint32_t timestampCount(std::uint32_t paths, std::uint32_t bounces) const override;
 
   // Material bins (distinct graphs, each a material pipeline); 0 with the floor.
   std::uint32_t materialBinCount() const {
@@ -86,6 +87,17 @@ class WavefrontPathTracer {
   // record() wrote, read back as `ticks` (timestampCount of them).
   void addPassTimes(const std::vector<std::uint64_t>& ticks, std::uint32_t paths,
                     std::uint32_t bounces, double millisecondsPerTick, FrameStats& frame) const;
+
+  // FrameTracer: the path state, queues and control in the set; no megakernel dispatches;
+  // record() for the frame's P and L; the bins' hits and the passes' times.
+  void addResources(TraceResources& resources) const override;
+  std::uint32_t dispatchCount(const FrameTrace&) const override { return 0; }
+  void recordTrace(VkCommandBuffer commands, VkDescriptorSet set, const FrameTrace& trace,
+                   VkQueryPool timestamps, std::uint32_t firstTimestamp) const override {
+    record(commands, set, trace.paths, trace.rays, timestamps, firstTimestamp);
+  }
+  void addFrameStats(const FrameTrace& trace, const std::vector<std::uint64_t>* passTicks,
+                     double millisecondsPerTick, FrameStats& stats) const override;
 
  private:
   const VulkanContext& context_;
@@ -112,6 +124,11 @@ class WavefrontPathTracer {
   GpuBuffer control_;
   GpuBuffer binReadback_;  // host-visible copy of the bins' records after a frame
 
+  // One compute pipeline per distinct graph (the material bins), from its include alone.
+  void createMaterialPasses(ShaderCompiler& compiler, const LinkedMaterials& materials,
+                            const std::vector<std::string>& defines, std::uint32_t compileThreads);
+  // The pipeline backend's trace and shadow raygens: one ray-tracing pipeline and its table.
+  void createRayTracingPasses(ShaderCompiler& compiler, const std::vector<std::string>& defines);
   void recordPass(VkCommandBuffer commands, std::uint32_t pass, std::uint32_t chunk,
                   std::uint32_t round, std::uint32_t bounce) const;
 };

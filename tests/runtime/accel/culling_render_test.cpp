@@ -151,15 +151,12 @@ TEST(CulledRender, EveryFeedbackCountTheTraceMadeArrives) {
   }
 }
 
-// --hit-counters closest-hit bumps the counters in the pipeline's closest-hit shader, one
-// atomic a counted ray (the path ray's hit, the probe's box), instead of after the trace
-// through the raygen's two-slot buffer. Counts are sums of whole numbers, whatever order the
-// atomics land in, so every frame's counts, and so the states and the picture, are the
-// ones the raygen gives, and every count the raygen tallied arrives. Every path counting
-// every frame; and one path in three every second frame, its counting frames split in two
-// dispatches (the pipeline without the feedback shares the descriptor set, which the closest
-// hit now sees) and the shared primary ray. The first frame's counts are its look's.
-TEST(CulledRender, ClosestHitCountersCountWhatTheRaygenCounts) {
+// On the pipeline backend a counting frame whose paths do not all count (one path in three)
+// traces the others with the pipeline built without the feedback, then the counted one with
+// it: two dispatches, which share the descriptor set and the shared primary ray; a frame with
+// every path counting, or a quiet frame, is one. Either way every count the raygen tallied
+// after its trace arrives in the counters. The first frame's counts are its look's.
+TEST(CulledRender, ThePipelineBackendsCountingDispatchesCountWhatTheyTally) {
   const Scene scene = smallCity();
   struct Sampling {
     std::uint32_t every, paths;
@@ -173,48 +170,39 @@ TEST(CulledRender, ClosestHitCountersCountWhatTheRaygenCounts) {
     o.context.backend = Backend::RayTracingPipeline;
     o.culling.feedbackEvery = sampling.every;
     o.culling.feedbackPaths = sampling.paths;
-    o.culling.splitFeedbackDispatch = sampling.split;
     RenderSettings s = settings(5, {mirrorCamera()});
     s.pathsPerPixel = 3;
     s.sharedPrimaryRay = sampling.split;
-    const RenderResult raygen = render(o, scene, s);
-    o.culling.countersInClosestHit = true;
-    const RenderResult closestHit = render(o, scene, s);
-    ASSERT_EQ(closestHit.stats.frames.size(), raygen.stats.frames.size());
+    const RenderResult r = render(o, scene, s);
+    ASSERT_EQ(r.stats.frames.size(), 5u);
     std::uint64_t counted = 0;
-    for (std::size_t f = 0; f < raygen.stats.frames.size(); ++f) {
-      const FrameStats& a = raygen.stats.frames[f];
-      const FrameStats& b = closestHit.stats.frames[f];
-      EXPECT_EQ(b.feedbackCounts, a.feedbackCounts) << "frame " << f;
-      EXPECT_EQ(b.feedbackCountsArrived, b.feedbackCounts) << "frame " << f;
-      EXPECT_EQ(b.rays, a.rays) << "frame " << f;
-      counted += b.feedbackCountsArrived;
+    std::uint32_t countingFrames = 0;
+    for (std::size_t f = 0; f < r.stats.frames.size(); ++f) {
+      const FrameStats& frame = r.stats.frames[f];
+      EXPECT_EQ(frame.feedbackCountsArrived, frame.feedbackCounts) << "frame " << f;
+      EXPECT_EQ(frame.traceDispatches, sampling.split ? 1u + frame.feedbackFrame : 1u)
+          << "frame " << f;
+      counted += frame.feedbackCountsArrived;
+      countingFrames += frame.feedbackFrame;
     }
-    std::printf("closest-hit counters: %llu counts over %zu frames, the raygen's too\n",
-                static_cast<unsigned long long>(counted), raygen.stats.frames.size());
+    std::printf("pipeline backend: %llu counts over %zu frames, %u of them counting\n",
+                static_cast<unsigned long long>(counted), r.stats.frames.size(), countingFrames);
     EXPECT_GT(counted, 0u);
-    EXPECT_EQ(closestHit.instanceStates, raygen.instanceStates);
-    EXPECT_TRUE(sameImage(closestHit.image, raygen.image));
+    EXPECT_EQ(countingFrames, sampling.every == 1 ? 5u : 3u);
   }
 }
 
-// A ray query has no closest-hit shader: --hit-counters closest-hit is refused on the query
-// backend with a message that names the one that has it, and --backend auto picks that one.
-TEST(CulledRender, ClosestHitCountersNeedThePipelineBackend) {
+// LiPaC counts after the trace, which a ray query can do as well as a raygen: --backend auto
+// keeps the query backend under LiPaC, and its counts arrive there.
+TEST(CulledRender, LipacOnTheAutoBackendCountsWithRayQueries) {
   RendererOptions o = options(CullingMode::Lipac, true);
-  o.culling.countersInClosestHit = true;
-  const RenderSettings s = settings(1, {mirrorCamera()});
-  try {
-    render(o, smallCity(), s);
-    FAIL() << "--hit-counters closest-hit was accepted on the query backend";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("--hit-counters closest-hit needs the ray-tracing "
-                                         "pipeline backend (--backend pipeline)"),
-              std::string::npos)
-        << e.what();
-  }
   o.context.backend = Backend::Auto;
-  EXPECT_EQ(render(o, smallCity(), s).stats.backend, "pipeline");
+  o.culling.feedbackEvery = 1;
+  const RenderResult r = render(o, smallCity(), settings(2, {mirrorCamera()}));
+  EXPECT_EQ(r.stats.backend, "query");
+  ASSERT_EQ(r.stats.frames.size(), 2u);
+  EXPECT_GT(r.stats.frames[1].feedbackCounts, 0u);
+  EXPECT_EQ(r.stats.frames[1].feedbackCountsArrived, r.stats.frames[1].feedbackCounts);
 }
 
 // One path in P counting, weighted P, keeps the counters' expected value: over the frames of
@@ -242,55 +230,54 @@ TEST(CulledRender, SampledPathsKeepTheCountsExpectedValue) {
   EXPECT_NEAR(oneInThree / every, 1.0, 0.1) << oneInThree << " against " << every;
 }
 
-// --feedback-dispatch split traces a counting frame's paths that do not count with the
-// pipeline built without the feedback, then the counted ones with it, each dispatch adding
-// its share of the pixels' mean: the same paths, so the same counts, states and rays, and the
-// picture of one dispatch up to float rounding. Both backends (the pipeline's raygen and the
-// query's compute shader), and with the shared primary ray, which each dispatch traces and
-// whose material outputs the first path of each dispatch evaluates. With --dispatch-paths 1
-// too: every path its own dispatch, the counted one with the feedback.
-TEST(CulledRender, SplitCountingFramesTraceWhatOneDispatchTraces) {
+// A counting frame with one path of P counting traces the P - 1 that do not with the
+// pipeline built without the feedback, then the counted one with it, each dispatch adding its
+// share of the pixels' mean; with --dispatch-paths 1 every path is a dispatch of its own, the
+// counted one with the feedback. The same paths either way, so the same counts, states and
+// rays (the shared primary ray once more a dispatch), and the picture up to float rounding.
+// Both backends (the pipeline's raygen and the query's compute shader), and with the shared
+// primary ray, whose material outputs the first path of each dispatch evaluates.
+TEST(CulledRender, SplitCountingFramesTraceWhatEveryPathAloneTraces) {
   const Scene scene = smallCity();
   for (const Backend backend : {Backend::RayQuery, Backend::RayTracingPipeline}) {
     for (const bool sharedPrimary : {false, true}) {
+      SCOPED_TRACE(std::string(backend == Backend::RayQuery ? "query" : "pipeline") +
+                   (sharedPrimary ? ", shared primary ray" : ""));
       RenderSettings s = settings(6, {mirrorCamera()});
       s.pathsPerPixel = 4;
       s.sharedPrimaryRay = sharedPrimary;
       RendererOptions o = options(CullingMode::Lipac, true);
       o.context.backend = backend;
       o.culling.feedbackEvery = 2;
-      o.culling.splitFeedbackDispatch = false;
       o.pathsPerDispatch = 0;
-      const RenderResult single = render(o, scene, s);
-      o.culling.splitFeedbackDispatch = true;
-      for (const std::uint32_t pathsPerDispatch : {0u, 1u}) {
-        SCOPED_TRACE(std::string(backend == Backend::RayQuery ? "query" : "pipeline") +
-                     (sharedPrimary ? ", shared primary ray" : "") + ", dispatch paths " +
-                     std::to_string(pathsPerDispatch));
-        o.pathsPerDispatch = pathsPerDispatch;
-        const RenderResult split = render(o, scene, s);
-        EXPECT_EQ(split.instanceStates, single.instanceStates);
-        ASSERT_EQ(split.stats.frames.size(), single.stats.frames.size());
-        for (std::size_t f = 0; f < single.stats.frames.size(); ++f) {
-          const FrameStats& a = single.stats.frames[f];
-          const FrameStats& b = split.stats.frames[f];
-          ASSERT_EQ(b.feedbackFrame, a.feedbackFrame);
-          EXPECT_EQ(a.traceDispatches, 1u);
-          EXPECT_EQ(b.traceDispatches, pathsPerDispatch == 1 ? 4u : 1u + a.feedbackFrame);
-          // The shared primary ray is traced by each dispatch.
-          const std::uint64_t again =
-              sharedPrimary ? std::uint64_t(b.traceDispatches - 1) * s.width * s.height : 0u;
-          EXPECT_EQ(b.rays, a.rays + again) << "frame " << f;
-          EXPECT_EQ(b.feedbackCountsArrived, a.feedbackCountsArrived) << "frame " << f;
-        }
-        const testing::RoundingDifference d =
-            testing::roundingDifference(split.image, single.image);
-        std::printf("split dispatch: largest difference %.3g against a mean of %.3g\n", d.largest,
-                    d.referenceMean);
-        // Rounding only: a path's share lost or counted twice would move pixels by a quarter.
-        ASSERT_GT(d.referenceMean, 0.0);
-        EXPECT_LT(d.largest, 1e-4 * d.referenceMean);
+      const RenderResult split = render(o, scene, s);
+      o.pathsPerDispatch = 1;
+      const RenderResult alone = render(o, scene, s);
+      EXPECT_EQ(alone.instanceStates, split.instanceStates);
+      ASSERT_EQ(alone.stats.frames.size(), split.stats.frames.size());
+      std::uint32_t countingFrames = 0;
+      for (std::size_t f = 0; f < split.stats.frames.size(); ++f) {
+        const FrameStats& a = split.stats.frames[f];
+        const FrameStats& b = alone.stats.frames[f];
+        ASSERT_EQ(b.feedbackFrame, a.feedbackFrame);
+        countingFrames += a.feedbackFrame;
+        EXPECT_EQ(a.traceDispatches, 1u + a.feedbackFrame) << "frame " << f;
+        EXPECT_EQ(b.traceDispatches, 4u) << "frame " << f;
+        // The shared primary ray is traced by each dispatch.
+        const std::uint64_t again =
+            sharedPrimary
+                ? std::uint64_t(b.traceDispatches - a.traceDispatches) * s.width * s.height
+                : 0u;
+        EXPECT_EQ(b.rays, a.rays + again) << "frame " << f;
+        EXPECT_EQ(b.feedbackCountsArrived, a.feedbackCountsArrived) << "frame " << f;
       }
+      EXPECT_EQ(countingFrames, 3u);
+      const testing::RoundingDifference d = testing::roundingDifference(alone.image, split.image);
+      std::printf("split dispatch: largest difference %.3g against a mean of %.3g\n", d.largest,
+                  d.referenceMean);
+      // Rounding only: a path's share lost or counted twice would move pixels by a quarter.
+      ASSERT_GT(d.referenceMean, 0.0);
+      EXPECT_LT(d.largest, 1e-4 * d.referenceMean);
     }
   }
 }
@@ -428,19 +415,18 @@ double meanDifference(const HdrImage& a, const HdrImage& b) {
 }
 
 // LiPaC's first look: flying in from south of the city (the path's first camera), the first
-// frame holds what a probe trace of its camera reaches, not every instance large in its
-// frustum: fewer BLAS bytes here (29.9 against 42.0 MB at the defaults), with the picture
-// kept. The probe counts every ray whatever the feedback stride (with 1 in 4 blocks counted
-// the picture missed this test's bound: 1.14 % of the image's mean, against 0.78 % when every
-// ray counted).
+// frame holds what a probe trace of its camera reaches, not every instance in its frustum:
+// fewer BLAS bytes here than frustum culling's (29.9 against 42.0 MB at the defaults), with
+// the picture kept. The probe counts every ray whatever the
+// feedback stride (with 1 in 4 blocks counted the picture missed this test's bound: 1.14 % of the
+// image's mean, against 0.78 % when every ray counted).
 TEST(CulledRender, TheFirstLookHoldsWhatTheFirstCameraReaches) {
   const Scene scene = smallCity();
   const Camera approach = makeBuiltinCameraPath("city", 300, kScale).frames.front();
   const RenderSettings s = settings(1, {approach});
   RendererOptions o = options(CullingMode::Lipac, true);
   const RenderResult withFirstLook = render(o, scene, s);
-  o.culling.looks = false;
-  const RenderResult without = render(o, scene, s);
+  const RenderResult without = render(options(CullingMode::Frustum, true), scene, s);
   const RenderResult unculled = render(options(CullingMode::None, true), scene, s);
   const FrameStats& a = withFirstLook.stats.frames.front();
   const FrameStats& b = without.stats.frames.front();
@@ -524,27 +510,34 @@ TEST(CulledRender, FeedbackEveryKthFrameCountsThoseFramesOnly) {
   }
 }
 
-// The GPU instance fill (--instance-fill gpu) writes the records the host fill writes, in the
-// same order: the same picture bit for bit, the same states and TLAS counts, under LiPaC
-// (instances, omitted instances' and hitboxes' boxes) and without culling (the city's
-// animated flags keep the TLAS dynamic), on cameras far apart so that states change.
-TEST(CulledRender, TheGpuInstanceFillGivesTheHostFillsPicture) {
+// The host writes each frame's TLAS records from the instance states: under LiPaC the active
+// instances and the boxes of omitted instances and inactive hitboxes; without culling (the
+// city's animated flags keep the TLAS dynamic) every instance whose BLAS is built, on cameras far
+// apart so that states change. The records follow the states alone: a second render gives the same
+// picture bit for bit, the same states and the same record counts.
+TEST(CulledRender, TheHostFillWritesTheRecordsTheStatesKeep) {
   const Scene scene = smallCity();
+  const auto n = static_cast<std::uint32_t>(scene.instances.size());
   const CameraPath path = makeBuiltinCameraPath("city", 300, kScale);
   const std::vector<Camera> cameras = {path.frames[0], path.frames[120], mirrorCamera(),
                                        mirrorCamera(), mirrorCamera()};
   for (CullingMode mode : {CullingMode::Lipac, CullingMode::None}) {
-    RendererOptions host = options(mode, true);
-    RendererOptions gpu = host;
-    gpu.culling.gpuInstanceFill = true;
-    const RenderResult a = render(host, scene, settings(5, cameras));
-    const RenderResult b = render(gpu, scene, settings(5, cameras));
+    const RenderResult a = render(options(mode, true), scene, settings(5, cameras));
+    const RenderResult b = render(options(mode, true), scene, settings(5, cameras));
     EXPECT_TRUE(sameImage(a.image, b.image)) << cullingModeName(mode);
     EXPECT_EQ(a.instanceStates, b.instanceStates) << cullingModeName(mode);
     ASSERT_EQ(a.stats.frames.size(), b.stats.frames.size());
-    for (std::size_t f = 0; f < a.stats.frames.size(); ++f)
-      EXPECT_EQ(a.stats.frames[f].tlasRecords, b.stats.frames[f].tlasRecords)
+    for (std::size_t f = 0; f < a.stats.frames.size(); ++f) {
+      const FrameStats& frame = a.stats.frames[f];
+      EXPECT_EQ(frame.tlasRecords, b.stats.frames[f].tlasRecords)
           << cullingModeName(mode) << " frame " << f;
+      EXPECT_EQ(frame.tlasRecords, frame.activeInstances + frame.omittedInstances + frame.hitboxes -
+                                       frame.activeHitboxes)
+          << cullingModeName(mode) << " frame " << f;
+      if (mode == CullingMode::None) {
+        EXPECT_EQ(frame.activeInstances + frame.waitingInstances, n) << "frame " << f;
+      }
+    }
   }
 }
 

@@ -278,9 +278,9 @@ TEST(Lipac, ALookActivatesOnlyWhatTheProbeReached) {
   reached.update(farAway(), 1.0f, hits, kRays);
   EXPECT_EQ(reached.states()[4], InstanceState::Active);
 
-  CullingOptions off = lipac();
-  off.looks = false;
-  EXPECT_FALSE(SceneCulling(row(), off).wantsLook(farAway(), 1.0f));
+  CullingOptions frustum = lipac();
+  frustum.mode = CullingMode::Frustum;
+  EXPECT_FALSE(SceneCulling(row(), frustum).wantsLook(farAway(), 1.0f)) << "no probe to look";
 }
 
 // A look later on: turning to face an instance with its own BLAS, near and large, asks for

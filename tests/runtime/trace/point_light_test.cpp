@@ -48,7 +48,7 @@ TEST_P(PointLight, LambertPlaneMatchesAnalyticIrradiance) {
   settings.sharedPrimaryRay = true;  // rays through pixel centres, as the reference below
   RenderResult result = renderer.render(scene, settings);
 
-  // The camera basis of renderer.cpp, for the ray through each pixel centre.
+  // setCamera's camera basis (trace/frame_loop.cpp), for the ray through each pixel centre.
   glm::dvec3 eye(scene.camera.position), forward = glm::normalize(-eye);
   glm::dvec3 right = glm::normalize(glm::cross(forward, glm::dvec3(0, 1, 0)));
   glm::dvec3 up = glm::cross(right, forward);

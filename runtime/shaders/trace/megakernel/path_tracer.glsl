@@ -77,13 +77,11 @@ bool dispatchTracesPath(uint path, uint pathCount) {
 // pixel mostly hit one instance, and the bounces of its paths keep returning to a few (the
 // ground, the facade in front), so a run of equal slots costs one atomic instead of one a
 // ray, and the counters most rays hit (the ground's) see far fewer same-address atomics.
-// The sums are the same, so the states and the picture are too. Where the closest-hit shader
-// counts (MG_CLOSEST_HIT_COUNTS, traceCounted) none of this is compiled, only the tally.
+// The sums are the same, so the states and the picture are too.
 //
 // The counts this invocation made, added after the frame's counters (the buffer's last uint)
 // so that the host can check they all arrived.
 uint g_feedbackTally = 0u;
-#ifndef MG_CLOSEST_HIT_COUNTS
 uvec2 g_feedbackSlots = uvec2(0xFFFFFFFFu);
 uvec2 g_feedbackCounts = uvec2(0u);
 
@@ -121,7 +119,6 @@ void countHitFeedback(vec3 origin, vec3 direction, HitInfo hit, uint weight) {
   uint box = traceCountingBox(origin, direction, hit.t >= 0.0 ? hit.t : kRayTMax);
   if (box != 0xFFFFFFFFu) bufferHitFeedback(box, weight);
 }
-#endif
 
 // Sampled feedback (CullingOptions::feedbackStride = N): 1 in N blocks of 8×8 pixels counts
 // its rays, weighted N, a different block each counting frame (frame.culling.y: with
@@ -147,24 +144,12 @@ uint pathFeedbackWeight(uint path, uint pathCount, uint weight) {
 }
 #endif
 
-// A path ray, counted with `weight` (0, and always without MG_HIT_FEEDBACK: not counted). By
-// default the raygen or compute shader counts after the trace (countHitFeedback). With
-// MG_CLOSEST_HIT_COUNTS (--hit-counters closest-hit, the pipeline backend) the closest-hit
-// shader bumps the counters of the hit and of the probe's box, as §3.3.2's does, one atomic a
-// ray without the two-slot buffer; the raygen only tallies what was counted. The same counts
-// either way.
+// A path ray, counted with `weight` (0, and always without MG_HIT_FEEDBACK: not counted):
+// the raygen or compute shader counts after the trace (countHitFeedback).
 HitInfo traceCounted(vec3 origin, vec3 direction, uint mask, uint weight) {
-#if defined(MG_HIT_FEEDBACK) && defined(MG_CLOSEST_HIT_COUNTS)
-  HitInfo hit = traceClosestCounted(origin, direction, kRayTMax, mask, weight);
-  if (weight == 0u) return hit;
-  if (hit.t >= 0.0) g_feedbackTally += weight;
-  uint box = traceCountingBoxCounted(origin, direction, hit.t >= 0.0 ? hit.t : kRayTMax, weight);
-  if (box != 0xFFFFFFFFu) g_feedbackTally += weight;
-#else
   HitInfo hit = traceClosest(origin, direction, kRayTMax, mask);
 #ifdef MG_HIT_FEEDBACK
   countHitFeedback(origin, direction, hit, weight);
-#endif
 #endif
   return hit;
 }
@@ -374,7 +359,7 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
     // dropped: one such sample would poison the pixel for every later frame.
     if (!any(isnan(radiance)) && !any(isinf(radiance))) sum += radiance;
   }
-#if defined(MG_HIT_FEEDBACK) && !defined(MG_CLOSEST_HIT_COUNTS)
+#ifdef MG_HIT_FEEDBACK
   flushHitFeedback();
 #endif
   return sum / float(pathCount);

@@ -1,0 +1,18 @@
+#include "runtime/materials/scene_materials.h"
+
+#include "runtime/scene/scene_upload.h"
+
+namespace memograph::runtime {
+
+SceneMaterials linkSceneMaterials(const Scene& scene,
+                                  const std::filesystem::path& nodeLibraryDirectory) {
+  MaterialLinkOptions linkOptions;
+  linkOptions.nodeLibraryDirectory = nodeLibraryDirectory;
+  SceneMaterials materials;
+  materials.linked = linkMaterials(scene.materials, linkOptions);
+  materials.emissionKinds = emissionKindsVerified(scene, materials.linked);
+  materials.neeEvaluatesEmission = sceneNeeEvaluatesEmission(scene, materials.emissionKinds);
+  return materials;
+}
+
+}  // namespace memograph::runtime

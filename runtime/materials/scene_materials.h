@@ -1,0 +1,26 @@
+// The link stage of Renderer::render: the scene's material graphs compiled to GLSL, and what
+// their emission tells next-event estimation (thesis §5.2), before the architecture is chosen.
+#pragma once
+
+#include <filesystem>
+#include <vector>
+
+#include "runtime/materials/material_linker.h"
+#include "runtime/scene/scene.h"
+
+namespace memograph::runtime {
+
+struct SceneMaterials {
+  LinkedMaterials linked;
+  // Per scene material, the emission NEE may take as known (emissionKindsVerified).
+  std::vector<MaterialRef::EmissionKind> emissionKinds;
+  // Some emitter's emission NEE must take from its graph: the megakernel's second material
+  // call site (MG_NEE_EVALUATES_EMISSION), which the wavefront does not have.
+  bool neeEvaluatesEmission = false;
+};
+
+// `nodeLibraryDirectory` empty: the embedded node library.
+SceneMaterials linkSceneMaterials(const Scene& scene,
+                                  const std::filesystem::path& nodeLibraryDirectory);
+
+}  // namespace memograph::runtime

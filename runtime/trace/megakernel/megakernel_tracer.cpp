@@ -1,0 +1,63 @@
+#include "runtime/trace/megakernel/megakernel_tracer.h"
+
+namespace memograph::runtime {
+
+namespace {
+
+TracePipelineSetup quietSetup(TracePipelineSetup setup, const std::vector<std::string>& defines) {
+  setup.defines = defines;
+  return setup;
+}
+
+// Orders a dispatch's shader writes before the next pass's reads and writes.
+void shaderBarrier(VkCommandBuffer commands) {
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                       VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
+}
+
+}  // namespace
+
+MegakernelTracer::MegakernelTracer(const VulkanContext& context, ShaderCompiler& compiler,
+                                   std::uint32_t textureCount, const MegakernelSetup& setup)
+    : pipeline_(context, compiler, textureCount, setup.pipeline),
+      splitCounting_(setup.splitCounting),
+      pathsPerDispatch_(setup.pathsPerDispatch),
+      width_(setup.width),
+      height_(setup.height),
+      tileFillRows_(setup.tileFillRows) {
+  if (setup.quietDefines)
+    quietPipeline_.emplace(context, compiler, textureCount,
+                           quietSetup(setup.pipeline, *setup.quietDefines));
+}
+
+std::vector<PathDispatch> MegakernelTracer::plan(const FrameTrace& trace) const {
+  // A look's paths all count, in one run: it is one probe trace.
+  return planPathDispatches(trace.paths, pathsPerDispatch_, trace.counts,
+                            splitCounting_ && !trace.look, trace.counted);
+}
+
+std::uint32_t MegakernelTracer::dispatchCount(const FrameTrace& trace) const {
+  return static_cast<std::uint32_t>(plan(trace).size());
+}
+
+void MegakernelTracer::recordTrace(VkCommandBuffer commands, VkDescriptorSet set,
+                                   const FrameTrace& trace, VkQueryPool, std::uint32_t) const {
+  for (const PathDispatch& d : plan(trace)) {
+    // A later dispatch adds its share to what the earlier ones wrote (renderPixel).
+    if (d.adds)
+      shaderBarrier(commands);
+    const TracePipeline& traced = quietPipeline_ && !d.feedback ? *quietPipeline_ : pipeline_;
+    traced.record(commands, set, width_, height_, d.push());
+  }
+  if (tileFillRows_ > 0) {
+    // The deferred tile fill computes the tiles the trace queued (its stores, queue and
+    // locks ordered after the trace's); the frame's time includes it.
+    shaderBarrier(commands);
+    pipeline_.recordTileFill(commands, set, tileFillRows_);
+  }
+}
+
+}  // namespace memograph::runtime

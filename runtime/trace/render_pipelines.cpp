@@ -1,0 +1,178 @@
+#include "runtime/trace/render_pipelines.h"
+
+#include <algorithm>
+#include <chrono>
+#include <optional>
+#include <thread>
+
+#include "runtime/materials/material_callables.h"
+#include "runtime/shaders/shared_types.h"
+#include "runtime/trace/megakernel/megakernel_tracer.h"
+#include "runtime/trace/wavefront/wavefront_path_tracer.h"
+#include "runtime/vk/shader_compiler.h"
+#include "runtime/vk/shader_sources.h"
+
+namespace memograph::runtime {
+
+namespace {
+
+// What the stages below share.
+struct ShaderBuild {
+  const VulkanContext& context;
+  const RendererOptions& options;
+  const RenderSettings& settings;
+  const RenderPlan& plan;
+  const PipelineInputs& inputs;
+  bool floor = false;  // the floor run compiles no graph: the prelude and no callables
+  // MaterialInputs without the object-space members when no graph reads them: the callable
+  // payload and the raygen's stack shrink (on the H200 the classroom's texel row: 144.7 ms
+  // and a 896 B stack with them, 128.5 ms and 576 B without).
+  bool omitObjectInputs = false;
+};
+
+// The pipeline backend's callable material shaders, one per distinct material.
+MaterialCallables compileCallables(const ShaderBuild& b,
+                                   const std::map<std::string, std::string>& files,
+                                   ShaderCacheStats& callableStats) {
+  MaterialCallableCompileOptions callableOptions;
+  if (b.omitObjectInputs)
+    callableOptions.defines.push_back("MG_OMIT_OBJECT_INPUTS=1");
+  callableOptions.files = files;
+  callableOptions.cacheDirectory = b.inputs.shaderCacheDirectory;
+  callableOptions.textureCount = b.inputs.scene->textures->count();
+  callableOptions.threads = b.options.shaderCompileThreads;
+  return compileMaterialCallables(b.inputs.materials->linked, callableOptions, callableStats);
+}
+
+// The path tracer's defines besides the backend's: the cache's, then the scene's.
+std::vector<std::string> pathTracerDefines(const ShaderBuild& b, const MaterialCache& cache) {
+  std::vector<std::string> defines = cache.defines();
+  if (b.floor)
+    defines.push_back("MG_MATERIAL_FLOOR=1");
+  if (b.omitObjectInputs)
+    defines.push_back("MG_OMIT_OBJECT_INPUTS=1");
+  if (b.options.debugCacheMisses)
+    defines.push_back("MG_DEBUG_CACHE_MISSES=1");
+  // Cycles' Principled weighting, only for scenes whose materials write it (brdf.glsl).
+  if (b.inputs.materials->linked.cyclesPrincipled && !b.floor)
+    defines.push_back("MG_CYCLES_PRINCIPLED=1");
+  // Emissive-triangle NEE and its MIS, only for scenes with emissive triangles; with free
+  // materials too, so the floor traces the same rays. NEE evaluates emitters whose emission
+  // is not a known constant: a second material call site, compiled only for scenes that
+  // have such emitters (path_tracer.glsl).
+  if (b.inputs.scene->buffers.emissiveTriangles)
+    defines.push_back("MG_EMISSIVE_NEE=1");
+  if (b.inputs.materials->neeEvaluatesEmission && !b.floor)
+    defines.push_back("MG_NEE_EVALUATES_EMISSION=1");  // never the wavefront (wavefrontGap)
+  return defines;
+}
+
+std::unique_ptr<FrameTracer> buildWavefront(const ShaderBuild& b, ShaderCompiler& compiler,
+                                            const MaterialCache& cache,
+                                            const std::vector<std::string>& defines,
+                                            ShaderCacheStats& callableStats, RenderStats& stats) {
+  WavefrontSetup setup;
+  setup.materials = b.floor ? nullptr : &b.inputs.materials->linked;
+  setup.cacheLookups = b.plan.cache.mode != CacheMode::None;
+  setup.tileQueueCapacity = b.plan.cache.mode == CacheMode::Tile ? b.plan.cache.tileQueue : 0;
+  setup.tileImage = cache.tileImageView() != VK_NULL_HANDLE;
+  setup.pathSlots = b.options.wavefrontPaths;
+  setup.compileThreads = b.options.shaderCompileThreads;
+  auto tracer =
+      std::make_unique<WavefrontPathTracer>(b.context, compiler, b.inputs.scene->textures->count(),
+                                            defines, b.settings.width, b.settings.height, setup);
+  stats.wavefrontPathSlots = tracer->pathSlots();
+  stats.wavefrontChunks = tracer->chunks();
+  // The wavefront has no callables: its material pipelines' compiles count in their place.
+  callableStats = tracer->materialShaderStats();
+  return tracer;
+}
+
+// LiPaC's hit counters and the counting-box probe, only where LiPaC runs; with
+// --feedback-every K > 1 the frames that do not count trace with a second pipeline built
+// without them, and a counting frame's paths that do not count (feedbackPaths N < P) do too.
+// The debug view of cache misses writes each frame in one dispatch: a later one would
+// overwrite it.
+std::unique_ptr<FrameTracer> buildMegakernel(const ShaderBuild& b, ShaderCompiler& compiler,
+                                             const MaterialCache& cache,
+                                             const std::vector<std::string>& defines,
+                                             const MaterialCallables* callables,
+                                             RenderStats& stats) {
+  const bool hitFeedback = b.inputs.hitFeedback;
+  MegakernelSetup setup;
+  setup.splitCounting = hitFeedback && b.plan.feedbackPathWeight > 1 && !b.options.debugCacheMisses;
+  setup.pathsPerDispatch = b.options.debugCacheMisses ? 0u : b.options.pathsPerDispatch;
+  setup.width = b.settings.width;
+  setup.height = b.settings.height;
+  setup.tileFillRows = cache.tileFillRows();
+  setup.pipeline.callables = callables;
+  // lavapipe (Mesa 25.0) gained nothing from a deferred operation (the classroom's pipeline
+  // took as long, on one core) and crashes under the validation layer when handed one: keep
+  // deferred pipeline creation to GPU drivers, where it can spread the compile.
+  const std::uint32_t threads = b.options.shaderCompileThreads
+                                    ? b.options.shaderCompileThreads
+                                    : std::max(1u, std::thread::hardware_concurrency());
+  setup.pipeline.pipelineThreads =
+      b.context.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1 : threads;
+  setup.pipeline.defines = defines;
+  if (hitFeedback)
+    setup.pipeline.defines.push_back("MG_HIT_FEEDBACK=1");
+  setup.pipeline.tileImage = cache.tileImageView() != VK_NULL_HANDLE;
+  setup.pipeline.tileFillPass = cache.tileFillRows() > 0;
+  if (hitFeedback && (b.options.culling.feedbackEvery > 1 || setup.splitCounting))
+    setup.quietDefines = defines;
+  auto tracer = std::make_unique<MegakernelTracer>(b.context, compiler,
+                                                   b.inputs.scene->textures->count(), setup);
+  stats.rayTracingStack = tracer->stack();
+  return tracer;
+}
+
+}  // namespace
+
+RenderPipelines buildPipelines(const VulkanContext& context, const RendererOptions& options,
+                               const RenderSettings& settings, const RenderPlan& plan,
+                               const PipelineInputs& inputs, RenderStats& stats) {
+  ShaderBuild b{context, options, settings, plan, inputs};
+  b.floor = options.floorMaterials;
+  b.omitObjectInputs = b.floor || !inputs.materials->linked.objectInputs;
+  const LinkedMaterials& materials = inputs.materials->linked;
+  // Shaders: the embedded sources plus the generated materials.glsl; with callables, also
+  // one callable shader per distinct material. The wavefront evaluates graphs in material
+  // passes of its own, on either backend.
+  std::map<std::string, std::string> files = embeddedShaderFiles();
+  const bool callables = plan.dispatch == MaterialDispatch::Callable && !b.floor && !plan.wavefront;
+  ShaderCacheStats callableStats;
+  std::optional<MaterialCallables> materialCallables;
+  if (callables)
+    materialCallables = compileCallables(b, files, callableStats);
+  files["materials.glsl"] =
+      callables || b.floor || plan.wavefront ? materials.preludeSource : materials.source;
+  ShaderCompiler compiler(std::move(files), inputs.shaderCacheDirectory);
+  const auto pipelineStart = std::chrono::steady_clock::now();
+  static_assert(static_cast<std::uint32_t>(CacheEviction::Lru) == gpu::kCacheEvictionLru &&
+                static_cast<std::uint32_t>(CacheEviction::Lrw) == gpu::kCacheEvictionLrw &&
+                static_cast<std::uint32_t>(CacheEviction::Random) == gpu::kCacheEvictionRandom);
+  // The cache (thesis §5.3.1, §5.4.1): entries of a key hash, metadata and the largest
+  // cacheable material's written outputs (per texel of a tile with the tile cache), as fp32
+  // or packed fp16.
+  RenderPipelines pipelines;
+  pipelines.cache = std::make_unique<MaterialCache>(context, plan.cache, materials.cacheValueCount);
+  pipelines.cache->describe(stats);
+  const std::vector<std::string> defines = pathTracerDefines(b, *pipelines.cache);
+  pipelines.tracer =
+      plan.wavefront ? buildWavefront(b, compiler, *pipelines.cache, defines, callableStats, stats)
+                     : buildMegakernel(b, compiler, *pipelines.cache, defines,
+                                       materialCallables ? &*materialCallables : nullptr, stats);
+  stats.pipelineCreateMilliseconds =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - pipelineStart)
+          .count() -
+      compiler.stats().compileMilliseconds -
+      (plan.wavefront ? callableStats.compileMilliseconds : 0.0);
+  stats.shaderCompileMilliseconds =
+      compiler.stats().compileMilliseconds + callableStats.compileMilliseconds;
+  stats.shaderCacheHits = compiler.stats().hits + callableStats.hits;
+  stats.shadersCompiled = compiler.stats().compiled + callableStats.compiled;
+  return pipelines;
+}
+
+}  // namespace memograph::runtime

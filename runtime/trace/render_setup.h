@@ -1,0 +1,46 @@
+// The first stages of Renderer::render: the request checked (validateRender), then, once the
+// materials are linked, what the render will run (planRender: the architecture, the material
+// dispatch, the cache's resolved options) and the statistics that describe it.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "runtime/materials/scene_materials.h"
+#include "runtime/memo/cache_options.h"
+#include "runtime/renderer.h"
+
+namespace memograph::runtime {
+
+// What the checks decided, for the stages after them.
+struct RenderPlan {
+  ShadingChoice shading;
+  bool wavefront = false;
+  MaterialDispatch dispatch = MaterialDispatch::Switch;
+  CacheOptions cache;  // resolved for the device (resolveCacheOptions)
+  // What a counted path's ray weighs in a LiPaC counting frame (CullingOptions::feedbackPaths:
+  // P / N); 1 without LiPaC.
+  std::uint32_t feedbackPathWeight = 1;
+  std::uint64_t accumulationBytes = 0;  // the image: 4 floats a pixel
+};
+
+// The checks that need neither the materials nor the device's resources: the settings, the
+// scene, the culling options and what the device cannot do for them. Returns the feedback
+// path weight. Throws std::invalid_argument naming the option.
+std::uint32_t validateRender(const RendererOptions& options, const RenderSettings& settings,
+                             const Scene& scene, const VulkanContext& context);
+
+// The architecture (resolveShading), then every check that needs it or the materials, before
+// anything compiles: the image's buffer, the material dispatch, the cache on this device and
+// the CPU's switch limit.
+RenderPlan planRender(const RendererOptions& options, const RenderSettings& settings,
+                      const Scene& scene, const VulkanContext& context,
+                      const SceneMaterials& materials, std::uint32_t feedbackPathWeight);
+
+// The statistics known before the upload: the device, the image, the architecture, the
+// materials and the culling mode.
+RenderStats describeRender(const RendererOptions& options, const RenderSettings& settings,
+                           const Scene& scene, const VulkanContext& context,
+                           const SceneMaterials& materials, const RenderPlan& plan);
+
+}  // namespace memograph::runtime

@@ -1,0 +1,100 @@
+#include "runtime/trace/shading.h"
+
+#include <stdexcept>
+
+#include "runtime/renderer.h"
+
+namespace memograph::runtime {
+
+const char* shadingName(Shading shading) {
+  switch (shading) {
+    case Shading::Auto:
+      return "auto";
+    case Shading::Wavefront:
+      return "wavefront";
+    case Shading::Megakernel:
+      break;
+  }
+  return "megakernel";
+}
+
+Shading parseShading(const std::string& text) {
+  if (text == "auto")
+    return Shading::Auto;
+  if (text == "megakernel")
+    return Shading::Megakernel;
+  if (text == "wavefront")
+    return Shading::Wavefront;
+  throw std::invalid_argument("--shading takes auto, megakernel or wavefront, not '" + text + "'");
+}
+
+std::string wavefrontOptionGap(const RendererOptions& options) {
+  const CacheOptions& cache = options.cache;
+  if (cache.mode != CacheMode::None && options.floorMaterials)
+    return "it fills the cache in its material passes, and the free-material floor has none "
+           "(time the floor's lookups with --shading megakernel)";
+  if (options.culling.mode != CullingMode::None)
+    return "it has no culling (--culling none)";
+  if (options.debugCacheMisses)
+    return "it has no --debug-misses view";
+  if (options.debugCullingSize > 0)
+    return "it has no --debug-culling view";
+  if (cache.mode == CacheMode::Tile &&
+      (cache.tileFill == TileFill::Subgroup || cache.groupByMaterial || cache.testRepacks))
+    return "it computes missing tiles from the deferred fill's queue; --tile-fill subgroup and "
+           "its grouping and test hook are the megakernel's";
+  return {};
+}
+
+std::string wavefrontGap(const RendererOptions& options, const Scene& scene,
+                         const ShadingDevice& device, bool neeEvaluatesEmission) {
+  std::string gap = wavefrontOptionGap(options);
+  if (!gap.empty())
+    return gap;
+  if (!device.wavefrontTraces)
+    return "on the pipeline backend it launches its traces with vkCmdTraceRaysIndirectKHR, "
+           "which the device lacks (use --backend query)";
+  if (!scene.animatedMeshes.empty() && !scene.animatedMotions.empty())
+    return "it renders static scenes only, and this one has animated meshes";
+  if (neeEvaluatesEmission && !options.floorMaterials)
+    return "it evaluates no emitter's graph for a light sample, and this scene's emission is "
+           "not a known constant";
+  return {};
+}
+
+void validateWavefrontOptions(const RendererOptions& options) {
+  if (options.shading == Shading::Megakernel && options.wavefrontPaths > 0)
+    throw std::invalid_argument(
+        "--wavefront-paths sets the wavefront's paths in flight; it needs --shading wavefront");
+  // Auto: render() decides once it knows the device and the scene.
+  if (options.shading != Shading::Wavefront)
+    return;
+  const std::string gap = wavefrontOptionGap(options);
+  if (!gap.empty())
+    throw std::invalid_argument("--shading wavefront is a prototype: " + gap);
+}
+
+// Auto: the wavefront on a GPU. On an NVIDIA H200 (1920x1080, P = 6, L = 4, the pipeline
+// backend) it was faster than the megakernel in all eight configurations measured
+// (docs/architecture.md, "Material-coherent shading"): the classroom 47.6 against 73.1 ms on
+// the floor, 96.7 against 2762 ms without a cache, 93.5 against 148.4 ms with the texel cache,
+// 95.0 against 181.6 ms with the tile cache; the landscape 23.3 against 30.6, 33.6 against
+// 203.7, 32.6 against 77.5 and 31.8 against 96.5 ms. Sorting hits by material keeps a GPU's
+// lanes on one graph, where the megakernel's lanes diverge over many. On lavapipe (a CPU) the
+// two could not be ranked (the megakernel ahead on the floor, 34.9 against 38.5 ms), so it
+// keeps the megakernel. Anything the wavefront prototype cannot do (wavefrontGap) picks the
+// megakernel too; an explicit --shading wavefront is refused for it instead.
+ShadingChoice resolveShading(const RendererOptions& options, const Scene& scene,
+                             const ShadingDevice& device, bool neeEvaluatesEmission) {
+  if (options.shading != Shading::Auto)
+    return {options.shading, ""};
+  if (device.type == VK_PHYSICAL_DEVICE_TYPE_CPU)
+    return {Shading::Megakernel,
+            "the device is a CPU, where the wavefront was not measured faster"};
+  const std::string gap = wavefrontGap(options, scene, device, neeEvaluatesEmission);
+  if (!gap.empty())
+    return {Shading::Megakernel, "the wavefront prototype cannot do what is asked: " + gap};
+  return {Shading::Wavefront, ""};
+}
+
+}  // namespace memograph::runtime
