@@ -20,7 +20,7 @@ std::string joined(const std::vector<std::string>& items) {
 }
 
 // The function a node's call goes to: its chosen overload, or the library's specialisation
-// of it for the first int input that is given a constant and has one (docs/node-library.md,
+// of it for the first int input that is given a constant and has one (docs/guide/nodes.md,
 // "Specialisations"), whose call then leaves that argument out.
 struct NodeCall {
   std::size_t function = 0;
@@ -81,7 +81,7 @@ std::vector<std::size_t> functionsToEmit(const EmitInput& in, Target target,
   for (const std::size_t node : in.order)
     visit(calls[node].function);
   // What the including shader may call to build MaterialInputs and defaults
-  // (docs/material-interface.md), then what the material's own function calls.
+  // (docs/design/material-interface.md), then what the material's own function calls.
   auto roots = identifiersIn(body);
   roots.insert(roots.begin(), {"mg_make_float_D", "mg_make_float2_D", "mg_make_float3_D",
                                "mg_make_float4_D", "mg_defaultMaterialOutputs"});

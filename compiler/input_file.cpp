@@ -67,7 +67,7 @@ std::optional<std::uint64_t> checkInputFile(const fs::path& path, std::uint64_t 
   }
   if (size > maxBytes) {
     error = "the file is " + formatBytes(size) + ", over the limit of " + formatBytes(maxBytes) +
-            " for " + what + " (docs/limits.md)";
+            " for " + what + " (docs/guide/limits.md)";
     return std::nullopt;
   }
   return size;

@@ -1,4 +1,4 @@
-// Reading input files with bounds (docs/limits.md): only regular files (a FIFO
+// Reading input files with bounds (docs/guide/limits.md): only regular files (a FIFO
 // would block forever, /dev/zero never ends), no larger than a documented limit, checked
 // before anything is allocated, and file-system errors (symlink loops, over-long names)
 // turned into messages instead of exceptions. C++ standard library only, like the rest
@@ -12,7 +12,7 @@
 
 namespace memograph::files {
 
-// The limits of docs/limits.md.
+// The limits of docs/guide/limits.md.
 inline constexpr std::uint64_t kMiB = 1024 * 1024;
 // Text inputs: material graphs, node library files, camera paths.
 inline constexpr std::uint64_t kMaxTextFileBytes = 16 * kMiB;

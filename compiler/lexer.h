@@ -1,4 +1,4 @@
-// Splits .mgraph text into tokens (grammar in docs/mgraph-format.md). Never fails: bytes it
+// Splits .mgraph text into tokens (grammar in docs/guide/graph-format.md). Never fails: bytes it
 // cannot read become Invalid tokens, which the parser reports.
 #pragma once
 

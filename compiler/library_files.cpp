@@ -12,7 +12,7 @@ namespace memograph::compiler {
 
 namespace fs = std::filesystem;
 
-// Bounds the work a library folder can cause (docs/limits.md).
+// Bounds the work a library folder can cause (docs/guide/limits.md).
 constexpr std::size_t kMaxNodeLibraryFiles = 4096;
 constexpr std::uint64_t kMaxNodeLibraryBytes = 64 * files::kMiB;
 
@@ -50,14 +50,14 @@ std::optional<std::vector<SourceFile>> readNodeLibraryDirectory(const std::strin
     if (totalBytes > kMaxNodeLibraryBytes) {
       diagnostics.error(directory, "the node library's .inc files hold more than " +
                                        files::formatBytes(kMaxNodeLibraryBytes) +
-                                       " in all (docs/limits.md)");
+                                       " in all (docs/guide/limits.md)");
       return std::nullopt;
     }
     files.push_back({fs::relative(it->path(), directory).generic_string(), std::move(*text)});
     if (files.size() > kMaxNodeLibraryFiles) {
       diagnostics.error(directory, "the node library has more than " +
                                        std::to_string(kMaxNodeLibraryFiles) +
-                                       " .inc files (docs/limits.md)");
+                                       " .inc files (docs/guide/limits.md)");
       return std::nullopt;
     }
   }

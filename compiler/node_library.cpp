@@ -132,7 +132,7 @@ bool isKnownOutput(std::string_view name) {
          kMaterialOutputNames.end();
 }
 
-// Bounds on @types (docs/limits.md).
+// Bounds on @types (docs/guide/limits.md).
 constexpr std::size_t kMaxTypeInstances = 64;
 constexpr std::size_t kMaxTypeVariables = 16;
 
@@ -215,14 +215,14 @@ class Loader {
     const std::size_t count =
         annotations.typeVariables.empty() ? 0 : annotations.typeVariables[0].second.size();
     // Each instance is a function of its own: a bound keeps a tiny file from costing
-    // gigabytes (docs/limits.md; the library's longest list has 8 types).
+    // gigabytes (docs/guide/limits.md; the library's longest list has 8 types).
     if (count > kMaxTypeInstances || annotations.typeVariables.size() > kMaxTypeVariables) {
       diagnostics_.error(file, item.location,
                          "@types lists " + std::to_string(count) + " types for " +
                              std::to_string(annotations.typeVariables.size()) +
                              " variables; the limits are " + std::to_string(kMaxTypeInstances) +
                              " types and " + std::to_string(kMaxTypeVariables) +
-                             " variables (docs/limits.md)");
+                             " variables (docs/guide/limits.md)");
       return std::nullopt;
     }
     for (const auto& [variable, types] : annotations.typeVariables) {

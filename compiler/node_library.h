@@ -1,5 +1,5 @@
 // The node library: overloads parsed from the function signatures in nodes/*.inc
-// (thesis §5.1; format in docs/node-library.md), with template instantiation and the
+// (thesis §5.1; format in docs/guide/nodes.md), with template instantiation and the
 // bodies needed to emit each function.
 #pragma once
 
@@ -61,7 +61,7 @@ struct Overload {
   // Gives `_D` outputs that would be invented: a source node (no input sockets) reading only
   // MaterialInputs members that vary over a footprint but carry no derivatives (normal,
   // tangent, vertexColor, view, geometricNormal). Type inference never chooses it
-  // (docs/mgraph-format.md, "Derivatives").
+  // (docs/guide/graph-format.md, "Derivatives").
   bool inventsDerivatives = false;
 };
 
@@ -99,7 +99,7 @@ class NodeLibrary {
   // Indices into functions() of every function (any target) named `name`, in definition
   // order; empty when there is none.
   const std::vector<std::size_t>& functionsNamed(std::string_view name) const;
-  // A node overload's specialisation for a constant int socket (docs/node-library.md,
+  // A node overload's specialisation for a constant int socket (docs/guide/nodes.md,
   // "Specialisations"): the helper mg_spec_<Node>_<Socket>_<value> whose parameters are the
   // overload's without that socket, or none. The emitter calls it instead of the overload, so
   // that the shader compilers never see the overload's other branches.

@@ -1,4 +1,4 @@
-// Parses .mgraph text (thesis Listing 5.1 plus the extensions in docs/mgraph-format.md)
+// Parses .mgraph text (thesis Listing 5.1 plus the extensions in docs/guide/graph-format.md)
 // into an untyped Graph. Reports every syntax error it can recover from.
 #pragma once
 

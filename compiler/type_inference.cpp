@@ -265,7 +265,7 @@ class Inference {
                 socketName(e.consumer, e.consumerSocket) + "', but they would come from '" +
                 nodeName(source) + "' (" + where(source) + "), which reads " + members +
                 ": MaterialInputs carries no derivatives of it, and memograph never invents "
-                "them (docs/mgraph-format.md, Derivatives)");
+                "them (docs/guide/graph-format.md, Derivatives)");
         std::string text = "'" + nodeName(e.consumer) + "' (" + where(e.consumer) + ")";
         for (const std::size_t node : *path)
           text += " ← '" + nodeName(node) + "' (" + where(node) + ")";
@@ -553,7 +553,7 @@ class Inference {
           diagnostics_.last().notes.push_back(
               "type inference gave up its exhaustive search after " +
               std::to_string(kMaxSearchSteps) +
-              " overload combinations (docs/mgraph-format.md); a valid choice may exist: "
+              " overload combinations (docs/guide/graph-format.md); a valid choice may exist: "
               "make some types explicit, e.g. with Separate/Combine or constants");
         }
         return std::nullopt;

@@ -4,7 +4,7 @@ point light, a sun, an area light and an emissive panel under a dim blue world.
     blender -b --factory-startup --python examples/blender/make_scene.py -- OUT.blend [--reference OUT.pfm --size N --samples S]
 
 writes the .blend (and, with --reference, Cycles' render of it as a PFM with the reference
-settings of tools/blender/cycles_reference.py, for the side-by-side in docs/). Then (docs/blender.md, "Example: a whole scene"):
+settings of tools/blender/cycles_reference.py, for the side-by-side in docs/). Then (docs/guide/blender.md, "Example: a whole scene"):
 
     memograph import-blender OUT.blend --out DIR --scene
     memograph render DIR/scene.gltf --materials DIR --size 96x96 --frames 64 --out memograph.pfm

@@ -43,7 +43,7 @@ struct CullingOptions {
   // omitted after `lowFrames` counting frames below σ_o.
   // The defaults of σ_a, σ_o, lowFrames and the feedback's sampling (feedbackStride,
   // feedbackPaths, feedbackEvery) are the H200's best measured on the city's street path
-  // (docs/culling.md, "Measured on the GPU machine": every 5th camera of the whole path, peak AS
+  // (docs/design/culling.md, "Measured on the GPU machine": every 5th camera of the whole path, peak AS
   // 0.25x the unculled scene's, the whole path's time 1.005x, the frames that do not count
   // 0.98x; counting every frame in 1 block of 4 at σ_a = 16: 0.30x and the path's 1.13x).
   double instanceActivate = 16.0;
@@ -83,7 +83,7 @@ struct CullingOptions {
   // that do with it, in dispatches of their own (planPathDispatches), so that only those run
   // the feedback's code (its probes' trace call and counters, which slow a pipeline whether a
   // path counts or not): on the H200 its counting frames took 0.940x the unculled frame's
-  // time against 1.119x in one dispatch, on an H100 0.939x against 1.128x (docs/culling.md,
+  // time against 1.119x in one dispatch, on an H100 0.939x against 1.128x (docs/design/culling.md,
   // "Split counting frames").
   std::uint32_t feedbackPaths = 1;
   // lipac: the trace counts every this many frames (frames 0, N, 2N, ...); the frames between
@@ -91,7 +91,7 @@ struct CullingOptions {
   // updates only activate what appears in the frustum. `lowFrames` counts counting frames
   // (the default 2 at N = 4 waits 8 frames). On the H200 a frame without the feedback took
   // 0.98x the unculled frame's time, one with it 1.09x with one path of 6 counted and 1.19x
-  // with every path (docs/culling.md). N = 8 (with lowFrames 1) was faster on an H100 only
+  // with every path (docs/design/culling.md). N = 8 (with lowFrames 1) was faster on an H100 only
   // by frames whose stale states lacked what their paths hit (rays down to 0.58x none's at
   // stride 5). 1: every frame counts.
   std::uint32_t feedbackEvery = 4;

@@ -129,7 +129,7 @@ std::optional<HdrImage> tryParsePfm(std::string_view data, std::string& error) {
   if (std::uint64_t(width) * std::uint64_t(height) > files::kMaxImagePixels) {
     error = "the PFM image is " + std::to_string(width) + "x" + std::to_string(height) +
             ", over the limit of " + std::to_string(files::kMaxImagePixels) +
-            " pixels (docs/limits.md)";
+            " pixels (docs/guide/limits.md)";
     return std::nullopt;
   }
   if (scale == 0.0 || !std::isfinite(scale)) {

@@ -1,4 +1,4 @@
-// `memograph bake` on the device (docs/bake.md): evaluates one compiled material graph at
+// `memograph bake` on the device (docs/guide/bake.md): evaluates one compiled material graph at
 // the pixel centres of its UV square in a compute shader (runtime/shaders/materials/bake.comp) and
 // reads back every MaterialOutputs member. One baker (one Vulkan device, one shader
 // compiler with its disk cache) bakes any number of materials, one compute shader each.

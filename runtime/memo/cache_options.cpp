@@ -160,14 +160,14 @@ void validateCacheOptions(const CacheOptions& cache) {
       throw std::invalid_argument("--tile-queue must be 1..16777216 tiles, not " +
                                   std::to_string(cache.tileQueue));
     if (cache.testRepacks && (cache.testRepackPercent < 1 || cache.testRepackPercent > 100))
-      throw std::invalid_argument("--test-give-up must be 0..100 %, not " +
+      throw std::invalid_argument("MEMOGRAPH_TEST_TILE_GIVE_UP must be 0..100 %, not " +
                                   std::to_string(cache.testRepackPercent));
     if (cache.testRepacks && cache.tileFill == TileFill::Deferred)
       throw std::invalid_argument(
-          "--test-give-up gives up the subgroup fill's tiles (--tile-fill subgroup)");
+          "MEMOGRAPH_TEST_TILE_GIVE_UP gives up the subgroup fill's tiles (--tile-fill subgroup)");
   }
   if (cache.clockShift && *cache.clockShift > 32)
-    throw std::invalid_argument("--clock-shift must be 0..32, not " +
+    throw std::invalid_argument("the cache's clock shift must be 0..32, not " +
                                 std::to_string(*cache.clockShift));
 }
 

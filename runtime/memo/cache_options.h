@@ -33,7 +33,8 @@ enum class CacheClock { Frame, Counter };
 // locks an entry and queues the tile, evaluates its own hit directly (as a texel-cache miss
 // does), and a second pass after the frame's trace computes every queued tile, one
 // invocation per texel, and publishes it for the next frame. The second pass needs no lane
-// to survive a callable in place, which NVIDIA's raygen does not guarantee (docs/runtime.md).
+// to survive a callable in place, which NVIDIA's raygen does not guarantee
+// (docs/design/path-tracer.md).
 enum class TileFill { Subgroup, Deferred };
 
 const char* cacheModeName(CacheMode mode);
@@ -58,12 +59,12 @@ TileFill parseTileFill(const std::string& text);
 // The entry count S when CacheOptions::entries is unset: the best rows measured on the GPU
 // machine, fitted to the device (material_cache.cpp: halved while over the storage-buffer
 // range or a quarter of the device-local memory). kDefaultTexelCacheEntries: 2^24 texels
-// (docs/gpu-results.md, Table 6.1; 3x faster there than 2^20 texels). kDefaultCacheEntries:
+// (docs/results.md, Table 6.1; 3x faster there than 2^20 texels). kDefaultCacheEntries:
 // 2^21 tiles of 4x4. Table 6.1's megakernel sweep went up to 2^20 tiles, each size faster
 // than the one below; in the wavefront, the GPU's default (H200, the classroom's whole path,
 // 1080p, P = 6, L = 4), 2^20, 2^21 and 2^22 tiles took 59.9, 59.8 and 59.6 ms with median
 // hit rates of 99.894, 99.937 and 99.955 %: 2^21 is past the 99.9 % at half 2^22's memory
-// (967 against 1,931 MB). docs/results/wavefront_h200.md, "The whole camera path".
+// (967 against 1,931 MB). docs/results.md, "The whole camera path".
 inline constexpr std::uint32_t kDefaultCacheEntries = 1u << 21;
 inline constexpr std::uint32_t kDefaultTexelCacheEntries = 1u << 24;
 
@@ -129,7 +130,8 @@ struct CacheOptions {
   // With testRepacks: the percentage of the subgroup fill's iterations the hook fires in
   // (100: every one), chosen by a hash of the subgroup, its first tile and the frame. The
   // H200 gives up about 60 % of the tiles it starts on the classroom (callable repacks); this
-  // lets lavapipe run the eviction policies under such a rate (CLI: --test-give-up).
+  // lets lavapipe run the eviction policies under such a rate (the CLI's test-only
+  // environment variable MEMOGRAPH_TEST_TILE_GIVE_UP).
   std::uint32_t testRepackPercent = 100;
 };
 

@@ -120,7 +120,7 @@ struct Scene {
   // Meshes whose vertices move every frame (the city's flags), and how the k-th one's rest
   // vertices (object space) move (gpu::VertexMotion, vertex_motion.h): the renderer's vertex
   // pass moves them on the GPU, recomputes their normals from the moved triangles and
-  // updates their BLASes in place (docs/culling.md). Without motions (the list empty) they
+  // updates their BLASes in place (docs/design/culling.md). Without motions (the list empty) they
   // are drawn at rest; with them, one per animated mesh (validateScene checks).
   std::vector<std::uint32_t> animatedMeshes;
   std::vector<gpu::VertexMotion> animatedMotions;

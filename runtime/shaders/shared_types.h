@@ -1,5 +1,5 @@
 // GPU structs, binding indices and constants shared by the host (C++) and the path tracer
-// (GLSL): one definition, so the two sides cannot drift apart (docs/architecture.md).
+// (GLSL): one definition, so the two sides cannot drift apart (docs/design/architecture.md).
 // Every struct is laid out in vec4-sized fields so std140/std430 and C++ agree.
 #ifndef MEMOGRAPH_SHARED_TYPES_H
 #define MEMOGRAPH_SHARED_TYPES_H

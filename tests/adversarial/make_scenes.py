@@ -5,7 +5,7 @@ They are generated rather than committed because some are large (a 20,000-deep n
 hierarchy) and all are variations of one valid triangle; `valid*.gltf` are the controls.
 Scenes with an external buffer have a `.bin` file of the same name beside them.
 Usage: make_scenes.py OUT_DIR
-       make_scenes.py --fuzz-seeds OUT_DIR   (seeds for the glTF fuzzers, docs/fuzzing.md)
+       make_scenes.py --fuzz-seeds OUT_DIR   (seeds for the glTF fuzzers, docs/design/testing.md)
 """
 import base64
 import json

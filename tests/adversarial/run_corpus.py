@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Runs the memograph CLI over the adversarial corpus (docs/limits.md).
+"""Runs the memograph CLI over the adversarial corpus (docs/guide/limits.md).
 
 For every input it asserts: the exit code (1 bad input, 2 usage) and the message shape,
 no crash (a signal fails the test), a time bound (TIMEOUT_S) and a memory bound (RLIMIT_AS

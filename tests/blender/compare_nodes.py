@@ -78,7 +78,7 @@ def compare(ref, got):
 
 def material_name(graph_path):
     """The material name `memograph bake` uses: the `material NAME;` statement, else the
-    file stem (docs/mgraph-format.md)."""
+    file stem (docs/guide/graph-format.md)."""
     with open(graph_path, encoding='utf-8', errors='replace') as f:
         text = f.read()
     m = re.search(r'^\s*material\s+([A-Za-z_][A-Za-z0-9_]*)\s*;', text, re.M)

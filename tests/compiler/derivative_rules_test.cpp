@@ -1,5 +1,5 @@
 // Derivatives that would be dropped or invented, the int → float cost, and
-// phase 3's exhaustive fallback on graphs that are not trees (docs/mgraph-format.md).
+// phase 3's exhaustive fallback on graphs that are not trees (docs/guide/graph-format.md).
 #include <gtest/gtest.h>
 
 #include "test_support.h"

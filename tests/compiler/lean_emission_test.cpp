@@ -1,5 +1,5 @@
 // A generated include carries only the prelude helpers and node functions
-// its material reaches (docs/node-library.md), yet any number of includes, and the whole
+// its material reaches (docs/guide/nodes.md), yet any number of includes, and the whole
 // prelude before them, still make one valid shader.
 #include <gtest/gtest.h>
 
@@ -73,7 +73,7 @@ TEST(LeanEmission, PreludeFunctionsComeFirstInDefinitionOrderEachGuarded) {
 }
 
 // A node called with a constant enum goes to the library's specialisation for that value
-// (docs/node-library.md, "Specialisations"), so that the shader compilers never see the
+// (docs/guide/nodes.md, "Specialisations"), so that the shader compilers never see the
 // node's other variants; a linked value keeps the node and all of them. Both compile.
 TEST(LeanEmission, AConstantEnumCallsTheNodesSpecialisation) {
   const char* constant =

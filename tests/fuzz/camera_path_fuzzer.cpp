@@ -1,6 +1,6 @@
 // libFuzzer entry point: any bytes as a camera-path file (runtime/scene/builtin/camera_path.h).
 // Crashes, hangs, leaks and sanitizer reports are findings; so is a rejected file without
-// an error, or an accepted one with a frame the renderer cannot use. docs/fuzzing.md.
+// an error, or an accepted one with a frame the renderer cannot use. docs/design/testing.md.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>

@@ -1,7 +1,7 @@
 // libFuzzer entry point: any bytes as a .mgraph file through the whole compiler (parse,
 // resolve, schedule, infer, emit GLSL and HLSL; and the `check` report), with the test node
 // library. Crashes, hangs, leaks and sanitizer reports are findings; so is a failed compile
-// whose diagnostics do not point into the file. How to run it: docs/fuzzing.md.
+// whose diagnostics do not point into the file. How to run it: docs/design/testing.md.
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>

@@ -1,5 +1,5 @@
 // A smoke fuzzer that runs in every test run (the libFuzzer target needs clang; see
-// docs/fuzzing.md): deterministic random bytes, token soup and mutated valid graphs go
+// docs/design/testing.md): deterministic random bytes, token soup and mutated valid graphs go
 // through compileMaterial with the test library. Each input must come back, and a failed
 // compile must carry an error that points into the file. Also replays the inputs that once
 // broke the compiler (tests/compiler/testdata/regressions/).

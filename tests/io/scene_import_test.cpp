@@ -207,7 +207,7 @@ TEST_F(SceneImportTest, GltfGivesSharedMeshesInstancesCameraLightsAndMaterials) 
   EXPECT_NEAR(glm::distance(sun->direction, glm::vec3(0, -1, 0)), 0.0f, 1e-4f);
 }
 
-// The Blender scene export's sidecar (docs/blender.md, "Scene export"): Z-up root, light
+// The Blender scene export's sidecar (docs/guide/blender.md, "Scene export"): Z-up root, light
 // units (/ 683), the named camera, the world, texture spaces, emitters and area lights.
 TEST_F(SceneImportTest, BlenderSidecarConvertsUnitsWorldTextureSpaceAndAreaLights) {
   const std::string path = write("quad.gltf", quadGltf());

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The classroom's noise at 96 samples per pixel, with and without emissive-triangle NEE,
-# against a 4096-sample reference (docs/runtime.md, Light sampling). Run on the GPU machine
+# against a 4096-sample reference (docs/design/path-tracer.md, Light sampling). Run on the GPU machine
 # after tools/bundle_device.sh (carry bundle and .gl): bash tools/bench/classroom_nee_noise_device.sh
 # Uncached renders (the true picture), static camera, P = 6 or 64 paths a frame, L = 4.
 # Back here: memograph diff REF.pfm X.pfm gives the mean LDR-FLIP; the per-frame GPU times in

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The culling measurement on the GPU machine (docs/culling.md, "Measured"): builtin:city at
+# The culling measurement on the GPU machine (docs/design/culling.md, "Measured"): builtin:city at
 # 1920x1080, P = 6, L = 4 with --culling none, frustum and lipac.
 #   bench      the city's camera path (360 frames; STRIDE=k renders every k-th camera):
 #              per frame the trace's GPU time, BLAS and TLAS build times, AS bytes, instance

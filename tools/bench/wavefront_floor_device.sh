@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # On the GPU machine, after tools/bundle_device.sh (carry bundle and .gl): the free-material
 # floor as a megakernel and as the wavefront prototype (--shading wavefront;
-# docs/architecture.md, "Material-coherent shading"), on the pipeline backend, one after
+# docs/design/architecture.md, "Material-coherent shading"), on the pipeline backend, one after
 # the other in one call so that they compare on one GPU. Classroom and landscape at
 # 1920x1080, P = 6, L = 4, every 10th camera of the built-in path (30 timed frames after 2
 # warm-up frames); each run under its own time limit, all within about 500 s. --local runs

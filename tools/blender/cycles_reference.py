@@ -1,4 +1,4 @@
-"""Cycles as memograph's reference (docs/blender.md): the settings under which memograph is
+"""Cycles as memograph's reference (docs/guide/blender.md): the settings under which memograph is
 compared with Cycles 3.4, for renders (CPU, no denoiser, no adaptive sampling, no clamping,
 no light threshold, a one-pixel box filter: memograph's pixel, the Standard view transform,
 a linear 32-bit EXR read back as a PFM) and for the node bakes (CPU, one sample, no

@@ -3,7 +3,7 @@
     blender -b scene.blend --python tools/blender/export_memograph.py -- --out DIR
             [--materials NAME...]
 
-Writes one .mgraph per material into DIR (see docs/blender.md). Warnings go to stderr as
+Writes one .mgraph per material into DIR (see docs/guide/blender.md). Warnings go to stderr as
 `warning: <material>: <node>: <message>`. Exit status: 0 written (warnings allowed), 1 a
 material could not be exported or a named material does not exist, 2 bad arguments.
 The add-on package is imported from beside this script (tools/blender/memograph_export,
@@ -24,7 +24,7 @@ def main(argv):
     parser.add_argument('--quiet', action='store_true', help='no summary on stdout')
     parser.add_argument('--scene', action='store_true',
                         help='also write DIR/scene.gltf (Blender\'s glTF exporter) and its '
-                             'sidecar DIR/scene.memograph (docs/blender.md, Scene export)')
+                             'sidecar DIR/scene.memograph (docs/guide/blender.md, Scene export)')
     try:
         args = parser.parse_args(argv)
     except SystemExit as exc:

@@ -1,5 +1,5 @@
 // memograph bake GRAPH|DIR... --size WxH --out DIR: evaluates every output a material
-// writes over its UV square and writes one image per output (docs/bake.md).
+// writes over its UV square and writes one image per output (docs/guide/bake.md).
 #include <algorithm>
 #include <array>
 #include <cmath>

@@ -126,7 +126,7 @@ std::string ignoredOptionNote(std::string_view option, std::string_view needs) {
 
 std::optional<std::string> readFile(const std::string& path, std::string& error) {
   // Regular files up to the text limit only: a FIFO, /dev/zero or a huge file is refused
-  // before reading (docs/limits.md).
+  // before reading (docs/guide/limits.md).
   return files::readInputFile(path, files::kMaxTextFileBytes, "graphs", error);
 }
 

@@ -32,7 +32,7 @@ bool parseNumber(std::string_view text, std::uint32_t& out);
 bool parseReal(std::string_view text, double& out);
 
 // An image size "WxH" for render and bench: each side 1..kMaxImageSide, and at most
-// files::kMaxImagePixels pixels (docs/limits.md). False with `error` saying why.
+// files::kMaxImagePixels pixels (docs/guide/limits.md). False with `error` saying why.
 constexpr std::uint32_t kMaxImageSide = 16384;
 bool parseImageSize(std::string_view text, std::uint32_t& width, std::uint32_t& height,
                     std::string& error);

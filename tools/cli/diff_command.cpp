@@ -30,7 +30,7 @@ constexpr std::string_view kHelp =
     "Compares TEST against REFERENCE with LDR-FLIP (Andersson et al., HPG 2020), a perceptual\n"
     "difference: 0 where a viewer flipping between the two sees no change, 1 for the largest\n"
     "(green against blue). Prints the mean (the headline figure), the maximum and the 50th,\n"
-    "90th, 95th and 99th percentiles of the per-pixel error. See docs/flip.md.\n"
+    "90th, 95th and 99th percentiles of the per-pixel error. See docs/design/flip.md.\n"
     "\n"
     "options:\n"
     "  --out MAP                 write the error map: .png colour-mapped (magma), .exr or\n"

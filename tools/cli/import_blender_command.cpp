@@ -1,7 +1,7 @@
 // memograph import-blender SCENE.blend --out DIR [--blender PATH] [--materials NAME...]:
 // runs Blender headless with the memograph exporter (tools/blender/export_memograph.py) and
-// writes one .mgraph per material into DIR (docs/blender.md). DIR is committed as a set
-// (docs/limits.md): Blender exports into a staging folder beside DIR, and only a
+// writes one .mgraph per material into DIR (docs/guide/blender.md). DIR is committed as a set
+// (docs/guide/limits.md): Blender exports into a staging folder beside DIR, and only a
 // complete, successful export reaches DIR.
 #include <fcntl.h>
 #include <signal.h>
@@ -42,7 +42,7 @@ constexpr std::string_view kHelp =
     "(`blender -b SCENE.blend --python export_memograph.py -- --out DIR`) and writes one\n"
     ".mgraph per material into DIR, images into DIR/textures/ and DIR/index.json (Blender's\n"
     "material names -> graph files). Warnings (nodes memograph approximates or cannot carry)\n"
-    "are printed on stderr. See docs/blender.md.\n"
+    "are printed on stderr. See docs/guide/blender.md.\n"
     "\n"
     "options:\n"
     "  --out DIR            output folder (created); written only when the whole export\n"

@@ -46,7 +46,7 @@ constexpr std::string_view kIntro =
     "glTF/OBJ file whose material names map to DIR/<name>.mgraph (--materials DIR), or a\n"
     "built-in scene (classroom, landscape, city) with options octaves, layers, terrain, nee,\n"
     "scale, path (the city's camera: street or aerial), e.g.\n"
-    "builtin:classroom:octaves=10,layers=3 (docs/scenes.md).\n";
+    "builtin:classroom:octaves=10,layers=3 (docs/guide/scenes.md).\n";
 
 std::string imageExtension(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();

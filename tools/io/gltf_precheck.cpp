@@ -92,7 +92,7 @@ class JsonParser {
   bool value(Json& out, int depth, bool keepLong = false) {
     if (depth > kMaxJsonDepth)
       return fail("the JSON is nested more than " + std::to_string(kMaxJsonDepth) +
-                  " levels deep, over the limit (docs/limits.md)");
+                  " levels deep, over the limit (docs/guide/limits.md)");
     skipSpace();
     if (pos_ >= text_.size())
       return fail("unexpected end of the JSON");
@@ -359,7 +359,7 @@ class Checker {
       if (d > kMaxNodeDepth) {
         error("the node hierarchy is " + std::to_string(d) + " levels deep at nodes[" +
               std::to_string(i) + "], over the limit of " + std::to_string(kMaxNodeDepth) +
-              " (docs/limits.md)");
+              " (docs/guide/limits.md)");
         return;
       }
     }

@@ -1,4 +1,4 @@
-// Checks a glTF/glb file before it reaches assimp (docs/limits.md). assimp
+// Checks a glTF/glb file before it reaches assimp (docs/guide/limits.md). assimp
 // allocates what a .glb header declares, recurses once per level of the node hierarchy
 // (a deep one overflows the stack) and follows indices without checking all of them, so
 // what it would trust is checked here first, cheaply and without recursion:

@@ -68,7 +68,7 @@ bool readRgba(const std::string& path, OIIO::TypeDesc type, T alphaOne, int& wid
                                 std::to_string(height) + " pixels with " +
                                 std::to_string(channels) + " channels, over the limit of " +
                                 std::to_string(files::kMaxImagePixels) +
-                                " pixels and 64 channels (docs/limits.md)");
+                                " pixels and 64 channels (docs/guide/limits.md)");
     return false;
   }
   std::vector<T> raw;

@@ -106,7 +106,7 @@ std::string fileSafe(std::string name) {
   return name;
 }
 
-// The Blender scene export's sidecar (docs/blender.md, "Scene export"): what glTF drops,
+// The Blender scene export's sidecar (docs/guide/blender.md, "Scene export"): what glTF drops,
 // one statement per line, read from <scene stem>.memograph beside the glTF.
 struct AreaLight {
   float sizeX = 1.0f, sizeY = 1.0f, power = 0.0f;
@@ -416,7 +416,7 @@ void applySidecar(Scene& scene, const Sidecar& side, const glm::mat4& root, cons
       scene.environment.imagePath = (dir / side.worldImage).string();
       scene.environment.imageStrength = side.worldStrength;
       // Blender's equirectangular u starts at -x (z up); memograph's at -z (y up): a quarter
-      // turn (docs/blender.md).
+      // turn (docs/guide/blender.md).
       scene.environment.imageUOffset = 0.25f;
     }
   }
@@ -442,7 +442,7 @@ void applySidecar(Scene& scene, const Sidecar& side, const glm::mat4& root, cons
       }
   for (const AreaLight& a : side.areas) {
     // Cycles 3.4 gives an area light of power P and area A the radiance P / (4 A) on its
-    // front (-z) side (measured: docs/blender.md, Light units).
+    // front (-z) side (measured: docs/guide/blender.md, Light units).
     const float area = std::max(a.sizeX * a.sizeY, 1e-8f);
     runtime::Mesh quad;
     quad.name = "area light " + a.name;

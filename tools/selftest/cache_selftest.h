@@ -16,10 +16,11 @@
 
 namespace memograph::runtime {
 
-// key: read key, values, key again (--cache-read-check key); counter: with the per-entry
-// update counter (the default); image-key / image-counter: the values in an rgba32f storage
-// image, as --tile-storage texture2d keeps tile texels; unprotected: no lock and no second
-// look, which shows that the device and harness can tear at all.
+// key: read key, values, key again (the thesis's §5.3.4 read check, which tears by the
+// A-B-A race); counter: with the per-entry update counter (the renderer's protocol); image-key /
+// image-counter: the values in an rgba32f storage image, as --tile-storage texture2d keeps tile
+// texels; unprotected: no lock and no second look, which shows that the device and harness can tear
+// at all.
 enum class CacheStressMode { Key, Counter, ImageKey, ImageCounter, Unprotected };
 
 const char* cacheStressModeName(CacheStressMode mode);
@@ -58,7 +59,7 @@ struct TileFillStressOptions {
   TileFillLanes lanes = TileFillLanes::All;
   bool repacks = false;
   bool fp16 = false;
-  bool updateCounter = true;  // --cache-read-check counter, the default
+  bool updateCounter = true;  // the renderer's protocol; false: the key read check
 };
 
 struct TileFillStressResult {

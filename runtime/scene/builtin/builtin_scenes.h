@@ -17,7 +17,7 @@ namespace memograph::runtime {
 // stays in the streets at about 9 m, where the buildings around hide most of the city, as
 // they do for a player in the thesis's game, so culling has something to drop. `Aerial`
 // starts 150 m above the city and ends flying up and out: most of the city is on screen for
-// much of it (the path docs/results/culling_h200.md was measured on).
+// much of it (the path docs/results.md was measured on).
 enum class CityCameraPath { Street, Aerial };
 
 struct BuiltinSceneOptions {
@@ -31,7 +31,7 @@ struct BuiltinSceneOptions {
   // light, so on the H200 NEE of its panels and windows lowered the picture error at equal
   // samples by 3 % (mean FLIP 0.203 against 0.209) but cost 24 ms a frame on the free-material
   // floor (89.5 against 65.4 ms) and 58 ms on the memoized frame (201 against 143 ms): at
-  // equal time it loses (docs/runtime.md, Light sampling).
+  // equal time it loses (docs/design/path-tracer.md, Light sampling).
   std::optional<bool> emissiveNee;
   // The city's size, in (0, 1]: the counts of buildings (unique meshes), props (instances)
   // and flags (animated meshes) scale together, and the street grid with them.

@@ -128,7 +128,7 @@ std::optional<CameraPath> parseCameraPath(const compiler::SourceFile& file,
 std::optional<CameraPath> loadCameraPath(const std::string& path,
                                          compiler::Diagnostics& diagnostics) {
   // A regular file within the text limit only: a FIFO or /dev/zero must not hang or
-  // exhaust memory (docs/limits.md).
+  // exhaust memory (docs/guide/limits.md).
   std::string error;
   auto text = files::readInputFile(path, files::kMaxTextFileBytes, "camera paths", error);
   if (!text) {

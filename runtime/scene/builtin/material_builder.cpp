@@ -1,6 +1,6 @@
 #include "runtime/scene/builtin/material_builder.h"
 
-// Node and socket names as declared in nodes/*.inc (docs/nodes.md): math.inc (Mul, Add,
+// Node and socket names as declared in nodes/*.inc (docs/guide/nodes.md): math.inc (Mul, Add,
 // Fract, MapRange, Mix), converter.inc (ColorRamp4), inputs.inc, outputs.inc, and the
 // texture families (NoiseTexture, VoronoiTexture, CheckerTextureFiltered, BrickTexture).
 namespace memograph::runtime {

@@ -1,4 +1,4 @@
-// `memograph bake` (docs/bake.md): evaluates one material graph at the pixel centres of its
+// `memograph bake` (docs/guide/bake.md): evaluates one material graph at the pixel centres of its
 // UV square, one invocation per pixel, as if the graph were on Blender's default plane (or
 // a plane spanning the given object bounds). The host provides "bake_material.glsl" (the
 // compiler's GLSL include of the material) and defines MG_TEXTURE_COUNT and

@@ -189,7 +189,7 @@ struct LightSample {
 };
 
 #ifdef MG_EMISSIVE_NEE
-// Emissive-triangle NEE (docs/runtime.md): one emissive triangle chosen by power (CDF in
+// Emissive-triangle NEE (docs/design/path-tracer.md): one emissive triangle chosen by power (CDF in
 // the light buffer) and a uniform point on it. Its emission is the triangle record's
 // constant where the host knows the material emits one colour everywhere (no material
 // evaluation, so no second material call site in the kernel); otherwise the graph is

@@ -5,7 +5,7 @@
 //
 // Why split at all: on the GPU machine (H100, no RT cores) the unculled city at P = 6 traced
 // in two dispatches (5 paths, then 1) took 0.935x the time of one dispatch of all six, at the
-// same rays (docs/runtime.md, "Paths per dispatch"). LiPaC's counting frames split for
+// same rays (docs/design/path-tracer.md, "Paths per dispatch"). LiPaC's counting frames split for
 // another reason too: only the counted paths need the pipeline with the hit feedback.
 #pragma once
 

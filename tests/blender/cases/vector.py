@@ -4,7 +4,7 @@ strengths), Bump (strength, distance, invert, the valid-reflection clamp), Norma
 Coordinate, UV Map, Geometry, Tangent, Object Info, Fresnel, Layer Weight, and the Checker,
 Gradient (7 types) and Brick textures.
 
-What the bake can't reproduce, and so has no case here (docs/nodes.md): Texture Coordinate
+What the bake can't reproduce, and so has no case here (docs/guide/nodes.md): Texture Coordinate
 Camera and Window and Camera Data (a bake has no render camera); Vector Transform to or from
 camera space; Geometry Parametric, Pointiness and Random Per Island; Object Info Random (the
 bake helper's per-object value is not Cycles' name hash), Color, Alpha and indices;
@@ -121,7 +121,7 @@ for _out in ('Generated', 'Normal', 'UV', 'Object', 'Reflection'):
 CASES.append(Case(name='uv_map', node='ShaderNodeUVMap', output='UV'))
 # The radial tangents about Z turn fastest next to the plane's centre, where the bake's
 # sampling offset (1.6e-5 in u, 3.1e-5 in v) turns them by up to 2.2e-3: the tolerance
-# there is the offset's effect, not the node's (docs/nodes.md).
+# there is the offset's effect, not the node's (docs/guide/nodes.md).
 _RADIAL_NOTE = 'bake sampling offset at the centre texels'
 for _out in ('Position', 'Normal', 'Tangent', 'True Normal', 'Incoming', 'Backfacing'):
     CASES.append(Case(name='geometry_%s' % _out.lower().replace(' ', '_'),

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""`memograph import-blender --out DIR` commits DIR as a set (docs/limits.md).
+"""`memograph import-blender --out DIR` commits DIR as a set (docs/guide/limits.md).
 No Blender needed: a fake `blender` (a shell script given with --blender) writes what the
 exporter writes (graphs, index.json, textures/) into the folder it is given, then exits 0,
 exits 1 or kills itself. A failed export must leave DIR as it was (and remove the staging

@@ -1,4 +1,4 @@
-// `memograph bake` through the CLI, as a user runs it (docs/bake.md): values, pixel
+// `memograph bake` through the CLI, as a user runs it (docs/guide/bake.md): values, pixel
 // orientation of every format, --bounds, batches with a bad graph, usage errors, and that a
 // failing material writes nothing. Images are tiny (a few pixels) so lavapipe is quick.
 #include <gtest/gtest.h>

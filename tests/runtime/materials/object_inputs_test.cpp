@@ -1,4 +1,4 @@
-// The path tracer's object-space material inputs (docs/material-interface.md): Generated
+// The path tracer's object-space material inputs (docs/design/material-interface.md): Generated
 // coordinates from the mesh's automatic texture space through the instance's inverse
 // transform, Object Info (location, random), the geometric normal and backfacing. Two
 // translated and scaled quads seen from above, each emitting what it reads.

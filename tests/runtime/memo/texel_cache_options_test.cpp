@@ -102,7 +102,7 @@ TEST(TexelCacheOptions, EntrySizesAndDefinesFollowTheOptions) {
 }
 
 // The defaults a user of --cache texel / --cache tile gets: the best configuration measured
-// on the H200 (docs/gpu-results.md, Table 6.1; the tiles' count in the wavefront): lru, the
+// on the H200 (docs/results.md, Table 6.1; the tiles' count in the wavefront): lru, the
 // frame clock for texels and the counter clock for tiles (where the device has 64-bit buffer
 // atomics), the update-counter read check, 2^24 texels or 2^21 4x4 tiles fitted to the
 // device, and per policy a clock shift.
@@ -366,7 +366,7 @@ TEST(TexelCacheOptions, DebugViewPaintsMissesRed) {
 
 // The floor run evaluates no graph: no cache lookup, a picture of per-material constants
 // that differs from the real materials, on both dispatches. With a cache it measures the
-// cache's own cost (docs/gpu-results.md): the same lookups and hits, and the constants come
+// cache's own cost (docs/results.md): the same lookups and hits, and the constants come
 // back out of the cache, so the picture is the uncached floor's.
 TEST(TexelCacheOptions, FloorRunReplacesEveryMaterialByConstants) {
   Scene scene = wallScene(stripesGraph(), true);

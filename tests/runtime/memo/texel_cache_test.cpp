@@ -47,7 +47,7 @@ TEST(TexelCache, OutputMaskFollowsTheWrittenOutputs) {
   EXPECT_THROW(cacheOutputMask({"sheen"}), std::runtime_error);
 }
 
-// Specular Tint and the Cycles weighting (docs/material-interface.md) are outputs like the
+// Specular Tint and the Cycles weighting (docs/design/material-interface.md) are outputs like the
 // others: both cache kinds store and restore them. A glossy red wall (Specular 1: F0 0.08)
 // under a grey sky and a point light, its outputs constant, so a cached entry holds
 // exactly the graph's values and the cached image is the uncached one. Tinted, the

@@ -114,7 +114,7 @@ TEST(TileCache, BilinearIsCloserToUncachedThanNearest) {
 // report their memory.
 TEST(TileCache, EveryStorageLayoutGivesThePicture) {
   Scene scene = wallScene(stripesGraph(), true);
-  // Both fills: the subgroup's and the deferred pass's stores (docs/runtime.md).
+  // Both fills: the subgroup's and the deferred pass's stores (docs/design/path-tracer.md).
   for (TileFill fill : {TileFill::Subgroup, TileFill::Deferred}) {
     RendererOptions entryOptions = tileOptions(4, 2);
     entryOptions.cache.tileFill = fill;

@@ -1,4 +1,4 @@
-// The tile cache's deferred fill (--tile-fill deferred, docs/runtime.md) on lavapipe: a
+// The tile cache's deferred fill (--tile-fill deferred, docs/design/path-tracer.md) on lavapipe: a
 // missed tile is queued once per frame and computed by a second pass after the frame's
 // trace, so it needs no subgroup and runs in the raygen of the ray-tracing pipeline with
 // callable materials too (the configuration NVIDIA offers), with tiles larger than

@@ -1,4 +1,4 @@
-"""The .mgraph text builder (docs/mgraph-format.md).
+"""The .mgraph text builder (docs/guide/graph-format.md).
 
 Deterministic by construction: nodes are written in the order the writers emit them (a
 post-order walk from the material output, following Blender's socket order) and links are

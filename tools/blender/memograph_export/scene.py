@@ -1,5 +1,5 @@
 """Scene export: the whole scene through Blender's own glTF exporter (io_scene_gltf2), plus a
-sidecar with what glTF drops. See docs/blender.md ("Scene export") for the sidecar format.
+sidecar with what glTF drops. See docs/guide/blender.md ("Scene export") for the sidecar format.
 
     export_scene(out_dir, names, context) -> (gltf_path, sidecar_path, warnings)
 
@@ -114,7 +114,7 @@ def emission_estimate(material):
 
 def sidecar_lines(scene, objects, out_dir, warnings, names=None):
     lines = ['memograph-blender-scene %d' % SIDECAR_VERSION,
-             '# written by tools/blender/memograph_export/scene.py; format: docs/blender.md',
+             '# written by tools/blender/memograph_export/scene.py; format: docs/guide/blender.md',
              'up z',
              _line('lighting', 'SPEC', WATTS_TO_LUMENS)]
     if scene.camera is not None:

@@ -8,7 +8,7 @@ approximation and says so in a warning naming the material, the node and what wa
 
 A Blender 3.x Principled BSDF (v1) also sets cycles_principled = 1: memograph's BRDF then
 weights and shapes its diffuse and specular as Cycles 3.4 does (runtime/shaders/common/brdf.glsl,
-docs/blender.md "Principled BSDF"); every other shader, and 4.x's v2, keeps memograph's
+docs/guide/blender.md "Principled BSDF"); every other shader, and 4.x's v2, keeps memograph's
 own energy-conserving weighting (0).
 """
 

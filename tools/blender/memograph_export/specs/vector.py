@@ -3,7 +3,7 @@ Map, Bump, Normal), the surface-relevant Input menu nodes (Texture Coordinate, U
 Geometry, Attribute, Color Attribute, Object Info, Fresnel, Layer Weight, Value, RGB,
 Tangent) and the Checker, Gradient and Brick textures. The mgraph nodes live in
 nodes/vector.inc, normal.inc, inputs.inc, blender_inputs.inc and pattern.inc; their
-fidelity is documented in docs/nodes.md.
+fidelity is documented in docs/guide/nodes.md.
 
 Blender outputs named like one of the node's inputs ('Vector', 'Normal') are 'Out' or keep
 the output's name while the input is renamed ('NormalIn'): an mgraph socket name is unique
@@ -13,7 +13,7 @@ exporter warns when they are linked:
   Pointiness and Random Per Island (need mesh data memograph does not keep), Object Info
   Color, Alpha, Object Index and Material Index (object settings). Camera Data has no spec
   (the exporter's unknown-node warning applies).
-Settings the specs cannot check and the exporter should warn about (see docs/nodes.md):
+Settings the specs cannot check and the exporter should warn about (see docs/guide/nodes.md):
   Vector Transform to/from CAMERA (treated as world space), Attribute names other than the
   mesh's color attribute, Normal Map / Tangent / UV Map uv_map other than the active one.
 """
