@@ -278,6 +278,62 @@ struct ProgramResult {
   std::vector<std::uint32_t> cache;  // the entries, when readCache
 };
 
+// The words of one cache entry, as the program's defines lay it out (texel_cache.glsl).
+struct EntryLayout {
+  std::uint32_t header = gpu::kCacheEntryHeader;
+  std::uint32_t valueWords = 1;
+};
+EntryLayout entryLayout(const std::vector<std::string>& defines) {
+  EntryLayout layout;
+  std::uint32_t values = 1;
+  bool entryWordsGiven = false, tile = false, deferred = false;
+  for (const std::string& d : defines) {
+    if (d.rfind("MG_CACHE_VALUES=", 0) == 0)
+      values = std::uint32_t(std::stoul(d.substr(16)));
+    if (d == "MG_CACHE_UPDATE_COUNTER=1")
+      layout.header = gpu::kCacheEntryHeaderWithCounter;
+    if (d.rfind("MG_CACHE_ENTRY_WORDS=", 0) == 0) {
+      layout.valueWords = std::uint32_t(std::stoul(d.substr(21)));
+      entryWordsGiven = true;
+    }
+    tile = tile || d.rfind("MG_CACHE_TILE=", 0) == 0;
+    deferred = deferred || d.rfind("MG_TILE_FILL_DEFERRED=", 0) == 0;
+  }
+  if (tile && !deferred)
+    layout.header += gpu::kCacheEntryTileCountWords;  // texel_cache.glsl kCacheTileCount
+  if (!entryWordsGiven)
+    layout.valueWords = values;  // fp32 values in the entry
+  return layout;
+}
+
+// A host-visible storage buffer of `words` zeros (at least one word).
+GpuBuffer zeroedBuffer(const VulkanContext& context, std::uint64_t words) {
+  std::vector<std::uint32_t> zeros(std::max<std::uint64_t>(words, 1), 0u);
+  GpuBuffer buffer =
+      hostBuffer(context, zeros.size() * sizeof(std::uint32_t), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  buffer.write(zeros.data(), zeros.size() * sizeof(std::uint32_t));
+  return buffer;
+}
+
+// The program's bindings: frame constants, results, the cache, and the tile cache's buffers
+// or storage image where the program uses them.
+std::vector<VkDescriptorSetLayoutBinding> programBindings(const Program& program) {
+  const auto binding = [](std::uint32_t index, VkDescriptorType type) {
+    return VkDescriptorSetLayoutBinding{index, type, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+  };
+  std::vector<VkDescriptorSetLayoutBinding> bindings = {
+      binding(gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER),
+      binding(gpu::kBindingRayCounter, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER),
+      binding(gpu::kBindingCache, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER)};
+  if (program.tileBuffers) {
+    bindings.push_back(binding(gpu::kBindingTileTexels, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER));
+    bindings.push_back(binding(gpu::kBindingTileLog, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER));
+  }
+  if (program.image)
+    bindings.push_back(binding(gpu::kBindingTileImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE));
+  return bindings;
+}
+
 // Compiles and runs one program; returns gpu::Counters, the result words and the cache.
 ProgramResult runProgram(const VulkanContext& context, const Program& program) {
   if (program.invocations == 0 || program.invocations % 64 != 0)
@@ -289,43 +345,12 @@ ProgramResult runProgram(const VulkanContext& context, const Program& program) {
   ShaderCompiler compiler(std::move(files), {});
   std::vector<std::uint32_t> spirv =
       compiler.compile({"cache_selftest.comp", ShaderStage::Compute, program.defines});
-  std::uint32_t values = 1, header = gpu::kCacheEntryHeader, entryWords = 0;
-  bool entryWordsGiven = false, tile = false, deferred = false;
-  for (const std::string& d : program.defines) {
-    if (d.rfind("MG_CACHE_VALUES=", 0) == 0)
-      values = std::uint32_t(std::stoul(d.substr(16)));
-    if (d == "MG_CACHE_UPDATE_COUNTER=1")
-      header = gpu::kCacheEntryHeaderWithCounter;
-    if (d.rfind("MG_CACHE_ENTRY_WORDS=", 0) == 0) {
-      entryWords = std::uint32_t(std::stoul(d.substr(21)));
-      entryWordsGiven = true;
-    }
-    tile = tile || d.rfind("MG_CACHE_TILE=", 0) == 0;
-    deferred = deferred || d.rfind("MG_TILE_FILL_DEFERRED=", 0) == 0;
-  }
-  if (tile && !deferred)
-    header += gpu::kCacheEntryTileCountWords;  // texel_cache.glsl kCacheTileCount
-  if (!entryWordsGiven)
-    entryWords = values;  // fp32 values in the entry
+  const EntryLayout entry = entryLayout(program.defines);
+  const std::uint32_t header = entry.header, entryWords = entry.valueWords;
 
   auto module = createShaderModule(device, spirv);
 
-  std::vector<VkDescriptorSetLayoutBinding> bindings = {
-      {gpu::kBindingFrame, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT,
-       nullptr},
-      {gpu::kBindingRayCounter, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT,
-       nullptr},
-      {gpu::kBindingCache, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT,
-       nullptr}};
-  if (program.tileBuffers) {
-    bindings.push_back({gpu::kBindingTileTexels, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-                        VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
-    bindings.push_back({gpu::kBindingTileLog, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
-                        VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
-  }
-  if (program.image)
-    bindings.push_back({gpu::kBindingTileImage, VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1,
-                        VK_SHADER_STAGE_COMPUTE_BIT, nullptr});
+  const std::vector<VkDescriptorSetLayoutBinding> bindings = programBindings(program);
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   setInfo.bindingCount = std::uint32_t(bindings.size());
   setInfo.pBindings = bindings.data();
@@ -357,14 +382,8 @@ ProgramResult runProgram(const VulkanContext& context, const Program& program) {
   // The tile cache's texel buffer and its log of published tiles (cleared).
   GpuBuffer tileTexels, tileLog;
   if (program.tileBuffers) {
-    std::vector<std::uint32_t> zeros(std::max<std::uint64_t>(program.tileTexelWords, 1), 0u);
-    tileTexels = hostBuffer(context, zeros.size() * sizeof(std::uint32_t),
-                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    tileTexels.write(zeros.data(), zeros.size() * sizeof(std::uint32_t));
-    zeros.assign(gpu::kTileLogEntries, 0u);
-    tileLog = hostBuffer(context, zeros.size() * sizeof(std::uint32_t),
-                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-    tileLog.write(zeros.data(), zeros.size() * sizeof(std::uint32_t));
+    tileTexels = zeroedBuffer(context, program.tileTexelWords);
+    tileLog = zeroedBuffer(context, gpu::kTileLogEntries);
   }
 
   StorageImage image;
