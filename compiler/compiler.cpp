@@ -1,6 +1,7 @@
 #include "compiler/compiler.h"
 
 #include "compiler/conversions.h"
+#include "compiler/cut.h"
 #include "compiler/emitter.h"
 #include "compiler/metadata.h"
 #include "compiler/parser.h"
@@ -53,10 +54,12 @@ std::optional<CompiledMaterial> compileMaterial(const SourceFile& file, const No
   if (!analysis.run(file, library, diagnostics))
     return std::nullopt;
   CompiledMaterial result;
-  result.metadata = collectMetadata(*analysis.resolved, *analysis.order, *analysis.chosen);
+  const MaterialCut cut = findCut(*analysis.resolved, *analysis.order, *analysis.chosen);
+  result.metadata = collectMetadata(*analysis.resolved, *analysis.order, *analysis.chosen, cut);
   result.metadataJson = metadataToJson(result.metadata);
-  const EmitInput emitInput{*analysis.resolved, *analysis.order, *analysis.chosen, library,
-                            result.metadata,    file.path};
+  const EmitInput emitInput{
+      *analysis.resolved, *analysis.order, *analysis.chosen, library, result.metadata, cut,
+      file.path};
   if (options.emitGlsl)
     result.glsl = emitMaterial(emitInput, Target::Glsl);
   if (options.emitHlsl)
@@ -71,7 +74,8 @@ std::optional<CheckReport> checkMaterial(const SourceFile& file, const NodeLibra
     return std::nullopt;
   const auto& graph = *analysis.resolved;
   CheckReport report;
-  report.metadata = collectMetadata(graph, *analysis.order, *analysis.chosen);
+  report.metadata = collectMetadata(graph, *analysis.order, *analysis.chosen,
+                                    findCut(graph, *analysis.order, *analysis.chosen));
   for (const std::size_t node : *analysis.order) {
     const auto& resolved = graph.nodes[node];
     const auto& type = *resolved.type;

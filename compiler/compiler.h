@@ -27,6 +27,14 @@ struct MaterialMetadata {
   bool cacheable = false;
   bool needsDerivatives = false;  // some edge carries derivatives
   std::size_t nodeCount = 0;      // nodes after pruning
+  // The part of the graph one cache key determines (compiler/cut.h): its key domain ("uv",
+  // "object", "world", or "none" when no part is worth caching and no cut/rest functions are
+  // emitted), the floats its values take, and the share of the graph's estimated cost it
+  // holds (0..1; the per-node costs are uncalibrated estimates). `cacheable` stays the
+  // whole-graph, uv-only test the runtime's caches use.
+  std::string cutDomain = "none";
+  std::size_t cutWidth = 0;
+  double cutCostShare = 0.0;
 };
 
 struct CompiledMaterial {

@@ -1,12 +1,15 @@
 // Writes a material's include for one target (thesis Listing 5.3, in SSA form): the prelude,
 // the library functions the material uses (each under an include guard, callees first), and
-// EvaluateMaterial_<Name>, with one variable per link, assigned exactly once.
+// EvaluateMaterial_<Name>, with one variable per link, assigned exactly once; after it, when
+// the material has a cut (compiler/cut.h), MaterialCut_<Name>, EvaluateMaterialCut_<Name>
+// and EvaluateMaterialRest_<Name>.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include "compiler/compiler.h"
+#include "compiler/cut.h"
 #include "compiler/resolved_graph.h"
 #include "compiler/type_inference.h"
 
@@ -18,6 +21,7 @@ struct EmitInput {
   const OverloadChoice& chosen;
   const NodeLibrary& library;
   const MaterialMetadata& metadata;
+  const MaterialCut& cut;
   std::string sourcePath;
 };
 

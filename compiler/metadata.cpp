@@ -61,8 +61,15 @@ std::string jsonList(const std::vector<std::string>& items) {
 
 }  // namespace
 
+std::string formatShare(double share) {
+  // Three decimals: the estimate is no finer, and a fixed format keeps the file stable.
+  char text[16];
+  std::snprintf(text, sizeof text, "%.3f", share);
+  return text;
+}
+
 MaterialMetadata collectMetadata(const ResolvedGraph& graph, const std::vector<std::size_t>& order,
-                                 const OverloadChoice& chosen) {
+                                 const OverloadChoice& chosen, const MaterialCut& cut) {
   MaterialMetadata meta;
   meta.name = graph.name;
   meta.textures = graph.textures;
@@ -83,6 +90,11 @@ MaterialMetadata collectMetadata(const ResolvedGraph& graph, const std::vector<s
   // texture coordinates varies across the surface.
   meta.cacheable = std::all_of(meta.inputsUsed.begin(), meta.inputsUsed.end(),
                                [](const std::string& input) { return input == "uv"; });
+  if (!cut.empty()) {
+    meta.cutDomain = std::string(variationName(cut.domain));
+    meta.cutWidth = cut.width;
+    meta.cutCostShare = cut.cachedShare();
+  }
   return meta;
 }
 
@@ -94,7 +106,10 @@ std::string metadataToJson(const MaterialMetadata& meta) {
   out += "  \"nodeCount\": " + std::to_string(meta.nodeCount) + ",\n";
   out += "  \"inputs\": " + jsonList(meta.inputsUsed) + ",\n";
   out += "  \"outputs\": " + jsonList(meta.outputsWritten) + ",\n";
-  out += "  \"textures\": " + jsonList(meta.textures) + "\n";
+  out += "  \"textures\": " + jsonList(meta.textures) + ",\n";
+  out += "  \"cutDomain\": " + jsonString(meta.cutDomain) + ",\n";
+  out += "  \"cutWidth\": " + std::to_string(meta.cutWidth) + ",\n";
+  out += "  \"cutCostShare\": " + formatShare(meta.cutCostShare) + "\n";
   return out + "}\n";
 }
 

@@ -107,7 +107,9 @@ TEST(Emitter, EveryLinkVariableIsAssignedExactlyOnce) {
   const auto run = compileText(kGoldenCases[1].graph);
   ASSERT_TRUE(run.material);
   const std::string& code = run.material->glsl;
-  const std::string body = code.substr(code.find("void EvaluateMaterial_"));
+  // The whole-graph function alone: the cut and rest functions after it redeclare its links.
+  const std::size_t start = code.find("void EvaluateMaterial_");
+  const std::string body = code.substr(start, code.find("\n}\n", start) - start);
   // Each link appears as the last argument (the out parameter) of exactly one call.
   std::set<std::string> declared;
   const std::regex declaration(R"(\n  \w+ (link\d+);)");

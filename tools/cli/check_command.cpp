@@ -5,6 +5,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "compiler/compiler.h"
+#include "compiler/metadata.h"
 
 namespace memograph::cli {
 
@@ -56,7 +57,13 @@ int runCheck(std::span<const std::string_view> args) {
             << (meta.needsDerivatives ? "used" : "not used") << "\n"
             << "  inputs:   " << joinOrNone(meta.inputsUsed) << "\n"
             << "  outputs:  " << joinOrNone(meta.outputsWritten) << "\n"
-            << "  textures: " << joinOrNone(meta.textures) << "\n\nnodes (emission order):\n";
+            << "  textures: " << joinOrNone(meta.textures) << "\n"
+            << "  cut:      "
+            << (meta.cutDomain == "none"
+                    ? std::string("none")
+                    : meta.cutDomain + " key, " + std::to_string(meta.cutWidth) + " floats, " +
+                          compiler::formatShare(meta.cutCostShare) + " of the estimated cost")
+            << "\n\nnodes (emission order):\n";
   for (const auto& node : report->nodes)
     std::cout << "  " << node << "\n";
   std::cout << "\nlinks:\n";

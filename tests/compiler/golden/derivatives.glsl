@@ -219,3 +219,36 @@ void EvaluateMaterial_derivatives(in MaterialInputs inputs, out MaterialOutputs 
   Wave(mg_to_float3(link4), link5);
   RoughnessOutput(link5, outputs);
 }
+
+// The values of derivatives that only uv space and constants determine: 2 values in 5 floats.
+struct MaterialCut_derivatives {
+  float v[5];
+};
+
+// Only the uv-space members of inputs reach the packed values; the others may hold
+// placeholders.
+void EvaluateMaterialCut_derivatives(in MaterialInputs inputs, out MaterialCut_derivatives cut) {
+  float2_D link1;
+  float2_D link2;
+  float4 link3;
+  float2 link4;
+  float link5;
+  UVInput(inputs, link1);
+  Mul(link1, mg_const_float2_D(float2(4.0, 4.0)), link2);
+  ImageTexture(inputs, 0, link2, link3);
+  Add(mg_drop_D(link1), float2(0.5, 0.5), link4);
+  Wave(mg_to_float3(link4), link5);
+  cut.v[0] = link3.x;
+  cut.v[1] = link3.y;
+  cut.v[2] = link3.z;
+  cut.v[3] = link3.w;
+  cut.v[4] = link5;
+}
+
+void EvaluateMaterialRest_derivatives(in MaterialInputs inputs, in MaterialCut_derivatives cut, out MaterialOutputs outputs) {
+  outputs = mg_defaultMaterialOutputs(inputs);
+  float4 link3 = float4(cut.v[0], cut.v[1], cut.v[2], cut.v[3]);
+  float link5 = cut.v[4];
+  BaseColorOutput(mg_to_float3(link3), outputs);
+  RoughnessOutput(link5, outputs);
+}

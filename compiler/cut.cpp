@@ -1,0 +1,259 @@
+#include "compiler/cut.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string_view>
+
+namespace memograph::compiler {
+
+namespace {
+
+// Estimated cost per node name, in units of about one arithmetic node (Add, Mul, Mix: 1,
+// the default). `perOctave` applies per fBm octave of the node's Detail socket (Cycles:
+// floor(Detail) + 1 octaves, one more blended in when Detail has a fraction). Derived from
+// the operation counts of nodes/*.inc, not timed: calibrate on the GPU before trusting a
+// share to more than a rough ranking.
+struct NodeCost {
+  std::string_view node;
+  double base = 0;
+  double perOctave = 0;
+};
+
+const NodeCost kNodeCosts[] = {
+    // Reading MaterialInputs and constants costs next to nothing.
+    {"UVInput", 0},
+    {"PositionInput", 0},
+    {"NormalInput", 0},
+    {"TangentInput", 0},
+    {"VertexColorInput", 0},
+    {"ViewInput", 0},
+    {"BackfacingInput", 0},
+    {"TimeInput", 0},
+    {"TextureCoordinate", 0},
+    {"UVMap", 0},
+    {"Geometry", 1},
+    {"Attribute", 0},
+    {"ObjectInfo", 0},
+    {"Float1Constant", 0},
+    {"Float2Constant", 0},
+    {"Float3Constant", 0},
+    {"Float4Constant", 0},
+    {"ColorConstant", 0},
+    {"IntConstant", 0},
+    // Output nodes store a field.
+    {"BaseColorOutput", 0},
+    {"ColorOutput", 0},
+    {"MetallicOutput", 0},
+    {"RoughnessOutput", 0},
+    {"NormalOutput", 0},
+    {"EmissionOutput", 0},
+    {"OpacityOutput", 0},
+    {"SpecularOutput", 0},
+    {"SpecularTintOutput", 0},
+    {"CyclesPrincipledOutput", 0},
+    {"PrincipledOutput", 1},
+    // Procedural textures: a 3D Perlin octave is 8 gradient hashes and a trilinear blend.
+    {"NoiseTexture", 2, 10},
+    {"MusgraveTexture", 2, 10},
+    {"WaveTexture", 4, 10},
+    {"SimplexNoiseTexture", 2, 8},
+    {"ValueNoiseTexture", 2, 5},
+    {"VoronoiTexture", 60},  // 27 cells (3D), each a hash and a distance
+    {"WhiteNoiseTexture", 3},
+    {"MagicTexture", 12},
+    {"BrickTexture", 10},
+    {"CheckerTexture", 3},
+    {"CheckerTextureFiltered", 6},
+    {"GradientTexture", 2},
+    // A filtered fetch with explicit gradients; more when it misses the texture cache.
+    {"ImageTexture", 8},
+    {"ColorRamp", 4},
+    {"ColorRamp4", 3},
+    {"FloatCurve", 4},
+    {"RGBCurves", 8},
+    {"VectorCurves", 8},
+    {"HueSaturationValue", 6},
+    {"Blackbody", 6},
+    {"Wavelength", 6},
+    {"Mapping", 3},
+    {"VectorRotate", 4},
+    {"VectorTransform", 3},
+    {"Tangent", 2},
+    {"Fresnel", 4},
+    {"LayerWeight", 4},
+    {"Bump", 12},
+    {"NormalMap", 6},
+    {"NormalFromPosition", 4},
+};
+
+// fBm octaves for a Detail input: its constant, or Blender's default of 2 when it is linked.
+double octaves(const ResolvedNode& node) {
+  const int socket = node.type->socketIndex("Detail");
+  double detail = 2.0;
+  if (socket >= 0) {
+    const auto& input = node.inputs[static_cast<std::size_t>(socket)];
+    if (input && input->kind != InputSource::Kind::Link && input->constant.components.size() == 1)
+      detail = input->constant.components[0];
+  }
+  detail = std::clamp(detail, 0.0, 15.0);
+  return std::floor(detail) + 1.0 + (detail > std::floor(detail) ? 1.0 : 0.0);
+}
+
+bool isLinked(const std::optional<InputSource>& input) {
+  return input && input->kind == InputSource::Kind::Link;
+}
+
+bool scheduled(const OverloadChoice& chosen, std::size_t node) {
+  return node < chosen.size() && chosen[node].has_value();
+}
+
+}  // namespace
+
+double estimatedNodeCost(const ResolvedNode& node) {
+  for (const auto& entry : kNodeCosts) {
+    if (entry.node == node.type->name)
+      return entry.base + (entry.perOctave > 0 ? entry.perOctave * octaves(node) : 0.0);
+  }
+  return 1.0;
+}
+
+MaterialCut cutForDomain(const ResolvedGraph& graph, const std::vector<std::size_t>& order,
+                         const OverloadChoice& chosen, const SocketVariation& variation,
+                         Variation domain) {
+  const std::size_t count = graph.nodes.size();
+  auto outputType = [&](std::size_t node, std::size_t socket) {
+    return graph.nodes[node].type->overloads[*chosen[node]].socketTypes[socket];
+  };
+  auto inDomain = [&](std::size_t node, std::size_t socket) {
+    const Variation v = variation[node][socket];
+    return v == Variation::Constant || v == domain;
+  };
+  // Nodes pushed out of the part because a value of theirs cannot cross the cut.
+  std::vector<char> excluded(count, 0);
+  std::vector<char> available(count, 0);  // the node may run in the part
+  std::vector<char> inPart(count, 0);     // and none of its outputs leaves the domain
+  std::vector<std::vector<char>> crossing(count);
+  for (;;) {
+    for (const std::size_t node : order) {
+      const auto& resolved = graph.nodes[node];
+      bool ok = !excluded[node] && !resolved.type->isSink;
+      bool allOutputsInDomain = true;
+      for (std::size_t s = 0; s < resolved.type->sockets.size(); ++s) {
+        if (resolved.type->sockets[s].direction == Direction::In) {
+          if (isLinked(resolved.inputs[s])) {
+            const auto& input = *resolved.inputs[s];
+            ok = ok && available[input.producer] && inDomain(input.producer, input.producerSocket);
+          }
+        } else {
+          allOutputsInDomain = allOutputsInDomain && inDomain(node, s);
+        }
+      }
+      available[node] = ok;
+      inPart[node] = ok && allOutputsInDomain;
+    }
+    bool changed = false;
+    for (const std::size_t node : order) {
+      const auto& resolved = graph.nodes[node];
+      crossing[node].assign(resolved.type->sockets.size(), 0);
+      if (!available[node])
+        continue;
+      for (std::size_t s = 0; s < resolved.type->sockets.size(); ++s) {
+        if (resolved.type->sockets[s].direction == Direction::In || variation[node][s] != domain)
+          continue;
+        const bool leaves = std::any_of(
+            resolved.consumers[s].begin(), resolved.consumers[s].end(),
+            [&](const Consumer& c) { return scheduled(chosen, c.node) && !inPart[c.node]; });
+        if (!leaves)
+          continue;
+        const Type type = outputType(node, s);
+        if (type.derivatives || type.width() == 0) {
+          excluded[node] = 1;
+          changed = true;
+        }
+        crossing[node][s] = 1;
+      }
+    }
+    if (!changed)
+      break;
+  }
+
+  // The rest: from the output nodes back, stopping at values the cut provides.
+  std::vector<char> inRest(count, 0);
+  for (auto it = order.rbegin(); it != order.rend(); ++it) {
+    const std::size_t node = *it;
+    const auto& resolved = graph.nodes[node];
+    if (resolved.type->isSink)
+      inRest[node] = 1;
+    if (!inRest[node])
+      continue;
+    for (std::size_t s = 0; s < resolved.type->sockets.size(); ++s) {
+      if (resolved.type->sockets[s].direction == Direction::Out || !isLinked(resolved.inputs[s]))
+        continue;
+      const auto& input = *resolved.inputs[s];
+      if (!crossing[input.producer][input.producerSocket])
+        inRest[input.producer] = 1;
+    }
+  }
+
+  MaterialCut cut;
+  cut.domain = domain;
+  std::vector<char> inCut(count, 0);
+  for (const std::size_t node : order) {
+    cut.totalCost += estimatedNodeCost(graph.nodes[node]);
+    // A source node the rest runs anyway gives its values there; caching them saves nothing.
+    if (inRest[node])
+      continue;
+    for (std::size_t s = 0; s < crossing[node].size(); ++s) {
+      if (!crossing[node][s])
+        continue;
+      const Type type = outputType(node, s);
+      cut.values.push_back({node, s, type, cut.width});
+      cut.width += static_cast<std::size_t>(type.width());
+      inCut[node] = 1;
+    }
+  }
+  // The cut function runs what the values need.
+  for (auto it = order.rbegin(); it != order.rend(); ++it) {
+    const std::size_t node = *it;
+    if (!inCut[node])
+      continue;
+    const auto& resolved = graph.nodes[node];
+    for (std::size_t s = 0; s < resolved.type->sockets.size(); ++s) {
+      if (resolved.type->sockets[s].direction != Direction::Out && isLinked(resolved.inputs[s]))
+        inCut[resolved.inputs[s]->producer] = 1;
+    }
+  }
+  for (const std::size_t node : order) {
+    if (inCut[node]) {
+      cut.cutNodes.push_back(node);
+      if (!inRest[node])
+        cut.cachedCost += estimatedNodeCost(graph.nodes[node]);
+    }
+    if (inRest[node])
+      cut.restNodes.push_back(node);
+  }
+  if (cut.cachedCost <= 0) {
+    MaterialCut none;
+    none.totalCost = cut.totalCost;
+    none.restNodes = order;
+    return none;
+  }
+  return cut;
+}
+
+MaterialCut findCut(const ResolvedGraph& graph, const std::vector<std::size_t>& order,
+                    const OverloadChoice& chosen) {
+  const SocketVariation variation = analyseVariation(graph, order);
+  MaterialCut best = cutForDomain(graph, order, chosen, variation, Variation::Uv);
+  for (const Variation domain : {Variation::Object, Variation::World}) {
+    MaterialCut candidate = cutForDomain(graph, order, chosen, variation, domain);
+    if (candidate.empty())
+      continue;
+    if (best.empty() || candidate.cachedCost > best.cachedCost ||
+        (candidate.cachedCost == best.cachedCost && candidate.width < best.width))
+      best = std::move(candidate);
+  }
+  return best;
+}
+
+}  // namespace memograph::compiler
