@@ -103,6 +103,11 @@ bool isLinked(const std::optional<InputSource>& input) {
   return input && input->kind == InputSource::Kind::Link;
 }
 
+bool isSource(const ResolvedNode& node) {
+  return std::none_of(node.inputs.begin(), node.inputs.end(),
+                      [](const auto& input) { return isLinked(input); });
+}
+
 bool scheduled(const OverloadChoice& chosen, std::size_t node) {
   return node < chosen.size() && chosen[node].has_value();
 }
@@ -167,6 +172,10 @@ MaterialCut cutForDomain(const ResolvedGraph& graph, const std::vector<std::size
           continue;
         const Type type = outputType(node, s);
         if (type.derivatives || type.width() == 0) {
+          // A source node (it reads only MaterialInputs) runs in both functions instead: it
+          // costs less than anything a cut could save, and its other readers stay in the part.
+          if (isSource(resolved))
+            continue;
           excluded[node] = 1;
           changed = true;
         }

@@ -1,6 +1,6 @@
 // The cut of a material graph: the largest part whose values one cache key determines, and
 // the values that leave it (thesis §7, "applying memoization to well-suited subgraphs
-// instead of the entire graph"; docs/design/memoization.md, "Partial graphs").
+// instead of the entire graph").
 //
 // For a key domain K (uv, object or world space), a node is in the part when every value it
 // reads is Constant or K (variation.h) and it writes no MaterialOutputs. The cut's values are

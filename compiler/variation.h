@@ -1,6 +1,6 @@
 // Variation analysis: over which domain each value of a material graph varies, so that the
 // part of a graph that one cache key determines can be memoized (thesis §7: memoize
-// well-suited subgraphs; docs/design/memoization.md, "Partial graphs").
+// well-suited subgraphs; the cut itself is in cut.h).
 //
 // The classes form a lattice. Constant is the bottom. The three key domains, Uv (texture
 // space, the thesis's key, §4.2), Object (object space per instance) and World (world space,
