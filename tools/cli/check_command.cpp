@@ -5,6 +5,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "compiler/compiler.h"
+#include "compiler/library_files.h"
 
 namespace memograph::cli {
 
@@ -36,6 +37,10 @@ int runCheck(std::span<const std::string_view> args) {
     return *exitCode;
   if (files.size() != 1)
     return usageError("check", "expected exactly one graph file");
+  if (scanner.given("--nodes")) {
+    if (const auto problem = compiler::nodeLibraryDirectoryProblem(nodesDir))
+      return usageError("check", "--nodes " + nodesDir + ": " + *problem);
+  }
 
   compiler::Diagnostics diagnostics;
   const auto library = loadNodeLibrary(nodesDir, diagnostics);
