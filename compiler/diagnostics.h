@@ -2,6 +2,7 @@
 // the driver prints them as `file:line:col: error: message` with the line and a caret.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <map>
 #include <string>
@@ -18,7 +19,10 @@ struct Diagnostic {
   std::string file;
   SourceLocation location;
   std::string message;
-  std::string sourceLine;          // copy of the offending line, for the caret display
+  // The offending line for the caret display: a copy of it, or of a window around the
+  // column when the line is long (a 16 MiB one-line graph must not be copied per error).
+  std::string sourceLine;
+  std::uint32_t caretColumn = 0;   // 1-based column of the caret in sourceLine; 0: none
   std::vector<std::string> notes;  // extra lines: candidates, the cycle, a fix
 };
 
@@ -34,7 +38,14 @@ class Diagnostics {
   // not kept, and one note says so: each kept one copies its source line, found by a scan
   // from the top of the file, so thousands of bad lines would cost quadratic time and memory.
   static constexpr std::size_t kMaxKeptPerFile = 100;
+  // Longer lines are shown as a window of this many bytes around the column, and longer
+  // messages keep their start and end: both may quote megabytes of a hostile input.
+  static constexpr std::size_t kMaxShownLineBytes = 160;
+  static constexpr std::size_t kMaxMessageBytes = 400;
 
+  // Whether the next diagnostic for `file` will be kept: costly notes (did-you-mean) are
+  // computed only then.
+  bool keeps(const SourceFile& file) const;
   bool hasErrors() const { return errorCount_ > 0; }
   std::size_t errorCount() const { return errorCount_; }
   const std::vector<Diagnostic>& all() const { return items_; }
@@ -46,7 +57,12 @@ class Diagnostics {
                   std::string message);
   std::vector<Diagnostic> items_;
   std::size_t errorCount_ = 0;
-  std::map<std::string, std::size_t, std::less<>> keptPerFile_;
+  struct FileCount {
+    std::size_t kept = 0;
+    std::size_t omitted = 0;
+    std::size_t note = 0;  // index in items_ of the "and N more" note, once there is one
+  };
+  std::map<std::string, FileCount, std::less<>> perFile_;
   Diagnostic discarded_;  // what add() returns for a diagnostic past the limit
 };
 

@@ -38,6 +38,11 @@ std::string formatBytes(std::uint64_t bytes) {
 
 std::optional<std::uint64_t> checkInputFile(const fs::path& path, std::uint64_t maxBytes,
                                             const std::string& what, std::string& error) {
+  if (path.empty()) {
+    // Joined to a base folder, "" would name the folder and read as "is a folder".
+    error = "the path is empty";
+    return std::nullopt;
+  }
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (ec || !fs::exists(status)) {

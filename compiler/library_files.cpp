@@ -16,16 +16,27 @@ namespace fs = std::filesystem;
 constexpr std::size_t kMaxNodeLibraryFiles = 4096;
 constexpr std::uint64_t kMaxNodeLibraryBytes = 64 * files::kMiB;
 
+std::optional<std::string> nodeLibraryDirectoryProblem(const std::string& directory) {
+  if (directory.empty())
+    return "the node library directory is an empty path";
+  std::error_code ec;
+  const fs::file_status status = fs::status(directory, ec);
+  if (ec && ec.value() != ENOENT)
+    return "cannot open the node library: " + files::describeFileError(ec);
+  if (!fs::exists(status))
+    return std::string("the node library directory does not exist");
+  if (!fs::is_directory(status))
+    return std::string("the node library must be a folder of .inc files; this is a file");
+  return std::nullopt;
+}
+
 std::optional<std::vector<SourceFile>> readNodeLibraryDirectory(const std::string& directory,
                                                                 Diagnostics& diagnostics) {
-  std::error_code ec;
-  if (!fs::is_directory(directory, ec)) {
-    diagnostics.error(directory,
-                      ec && ec.value() != ENOENT
-                          ? "cannot open the node library: " + files::describeFileError(ec)
-                          : "the node library directory does not exist");
+  if (const auto problem = nodeLibraryDirectoryProblem(directory)) {
+    diagnostics.error(directory, *problem);
     return std::nullopt;
   }
+  std::error_code ec;
   std::vector<SourceFile> files;
   std::uint64_t totalBytes = 0;
   for (fs::recursive_directory_iterator it(directory, ec), end; it != end && !ec;

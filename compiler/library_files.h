@@ -11,6 +11,10 @@
 
 namespace memograph::compiler {
 
+// Why `directory` cannot be a node library folder ("does not exist", "is not a folder"), or
+// nothing. Commands check `--nodes DIR` with it among their options, before any work.
+std::optional<std::string> nodeLibraryDirectoryProblem(const std::string& directory);
+
 std::optional<std::vector<SourceFile>> readNodeLibraryDirectory(const std::string& directory,
                                                                 Diagnostics& diagnostics);
 

@@ -3,6 +3,7 @@
 #include <charconv>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "compiler/lexer.h"
 #include "compiler/types.h"
@@ -17,40 +18,56 @@ constexpr std::size_t kMaxErrorsPerFile = 20;
 class Parser {
  public:
   Parser(const SourceFile& file, Diagnostics& diagnostics)
-      : file_(file), diagnostics_(diagnostics), tokens_(tokenize(file.text)) {}
+      : file_(file), diagnostics_(diagnostics), lexer_(file.text), current_(lexer_.next()) {}
 
   Graph run() {
     Graph graph;
     graph.name = materialNameFromPath(file_.path);
-    while (peek().kind != TokenKind::End) {
+    while (peek().kind != TokenKind::End && !stopped_) {
       if (errors_ >= kMaxErrorsPerFile) {
         diagnostics_.error(file_, peek().location, "too many errors; giving up on this file");
         break;
       }
-      if (!statement(graph))
+      if (!statement(graph) && !stopped_)
         skipPastSemicolon();
     }
     return graph;
   }
 
  private:
-  const Token& peek(std::size_t ahead = 0) const {
-    return tokens_[std::min(index_ + ahead, tokens_.size() - 1)];
+  // The parser looks at most one token past the current one, so it holds two, not the file's.
+  const Token& peek() const { return current_; }
+  const Token& peekSecond() {
+    if (!lookahead_)
+      lookahead_ = lexer_.next();
+    return *lookahead_;
   }
-  const Token& take() {
-    const Token& token = tokens_[index_];
-    if (index_ + 1 < tokens_.size())
-      ++index_;
+  Token take() {
+    const Token token = current_;
+    if (current_.kind != TokenKind::End) {
+      current_ = lookahead_ ? *lookahead_ : lexer_.next();
+      lookahead_.reset();
+    }
+    lastTakenLine_ = token.location.line;
     return token;
   }
 
   void error(const Token& at, std::string message) {
     ++errors_;
     if (at.kind == TokenKind::Invalid) {
-      diagnostics_.error(file_, at.location, at.error);
+      diagnostics_.error(file_, at.location, invalidTokenMessage(at));
     } else {
       diagnostics_.error(file_, at.location, std::move(message));
     }
+  }
+
+  // Past a limit the parse stops: what memory and time a graph costs grows with these counts.
+  void overLimit(const Token& at, std::string_view what, std::size_t limit) {
+    ++errors_;
+    diagnostics_.error(file_, at.location,
+                       "the graph has more than " + std::to_string(limit) + " " +
+                           std::string(what) + ", over the limit (docs/guide/limits.md)");
+    stopped_ = true;
   }
 
   void skipPastSemicolon() {
@@ -61,14 +78,21 @@ class Parser {
   }
 
   bool statement(Graph& graph) {
-    const Token& head = peek();
+    const Token head = peek();
     if (head.kind != TokenKind::Identifier) {
       error(head, "expected a node type at the start of a statement, found " +
                       std::string(tokenKindName(head.kind)));
       return false;
     }
-    if (head.text == "material" && peek(1).kind == TokenKind::Identifier) {
+    // No node type is called `material`: whatever follows it is meant as the name.
+    if (head.text == "material" && peekSecond().kind != TokenKind::Semicolon &&
+        peekSecond().kind != TokenKind::Less && peekSecond().kind != TokenKind::Greater &&
+        peekSecond().kind != TokenKind::Equals) {
       return materialDeclaration(graph);
+    }
+    if (graph.nodes.size() == kMaxGraphNodes) {
+      overLimit(head, "nodes", kMaxGraphNodes);
+      return false;
     }
     Node node;
     node.type = std::string(take().text);
@@ -84,7 +108,14 @@ class Parser {
 
   bool materialDeclaration(Graph& graph) {
     take();  // 'material'
-    const Token& name = take();
+    const Token name = take();
+    if (name.kind != TokenKind::Identifier) {
+      error(name, "'" + std::string(name.text) +
+                      "' is not a valid material name: a name starts with a letter or '_' and "
+                      "has only letters, digits and '_' (it names EvaluateMaterial_<name> and "
+                      "the output files)");
+      return false;
+    }
     graph.name = std::string(name.text);
     graph.nameLocation = name.location;
     if (peek().kind != TokenKind::Semicolon) {
@@ -97,7 +128,12 @@ class Parser {
   }
 
   bool item(Node& node) {
-    const Token& token = peek();
+    const Token token = peek();
+    if (items_ == kMaxGraphItems && token.kind != TokenKind::End) {
+      overLimit(token, "sockets and values", kMaxGraphItems);
+      return false;
+    }
+    ++items_;
     switch (token.kind) {
       case TokenKind::Identifier:
         return socketBinding(node);
@@ -122,8 +158,9 @@ class Parser {
   }
 
   bool socketBinding(Node& node) {
-    const Token& socket = take();
-    const Token& op = peek();
+    const std::uint32_t lineBefore = lastTakenLine_;
+    const Token socket = take();
+    const Token op = peek();
     if (op.kind == TokenKind::Less || op.kind == TokenKind::Greater) {
       take();
       std::int64_t link = 0;
@@ -146,7 +183,7 @@ class Parser {
       error(socket, "socket '" + name + "' is not bound: write " + name + "<id (input), " + name +
                         ">id (output) or " + name + "=value");
       // A name opening a new line is more likely the next node after a forgotten ';'.
-      if (index_ >= 2 && tokens_[index_ - 2].location.line < socket.location.line) {
+      if (lineBefore > 0 && lineBefore < socket.location.line) {
         diagnostics_.last().notes.push_back("or is a ';' missing at the end of the line above?");
       }
     } else {
@@ -157,7 +194,7 @@ class Parser {
   }
 
   bool linkId(std::int64_t& link) {
-    const Token& token = peek();
+    const Token token = peek();
     if (token.kind != TokenKind::Number) {
       error(token, "expected a link id (a whole number) after '<' or '>', found " +
                        std::string(tokenKindName(token.kind)));
@@ -204,7 +241,7 @@ class Parser {
   }
 
   bool literal(Literal& out) {
-    const Token& token = peek();
+    const Token token = peek();
     out.location = token.location;
     if (token.kind == TokenKind::String) {
       take();
@@ -231,7 +268,7 @@ class Parser {
     take();
     out.kind = Literal::Kind::Tuple;
     while (true) {
-      const Token& component = peek();
+      const Token component = peek();
       if (component.kind != TokenKind::Number) {
         error(component, "expected a number in the tuple, found " +
                              std::string(tokenKindName(component.kind)));
@@ -264,10 +301,10 @@ class Parser {
   // `[ n n n … ]`: a lookup table of kTableEntries RGBA entries (ramps, curves), numbers
   // separated by white space or commas.
   bool table(Literal& out) {
-    const Token& open = take();
+    const Token open = take();
     out.kind = Literal::Kind::Table;
     while (peek().kind != TokenKind::RightBracket) {
-      const Token& component = peek();
+      const Token component = peek();
       if (component.kind == TokenKind::Comma) {
         take();
         continue;
@@ -300,9 +337,13 @@ class Parser {
 
   const SourceFile& file_;
   Diagnostics& diagnostics_;
-  std::vector<Token> tokens_;
-  std::size_t index_ = 0;
+  Lexer lexer_;
+  Token current_;
+  std::optional<Token> lookahead_;
+  std::uint32_t lastTakenLine_ = 0;  // of the token take() returned last; 0 before any
   std::size_t errors_ = 0;
+  std::size_t items_ = 0;  // socket bindings and values of all nodes so far
+  bool stopped_ = false;   // a limit was reached
 };
 
 }  // namespace

@@ -71,7 +71,15 @@ class Resolver {
  private:
   void checkName() {
     const auto& name = graph_.name;
-    if (name.find("__") != std::string::npos || name.starts_with("gl_")) {
+    if (name.size() > kMaxMaterialNameLength) {
+      auto& d = diagnostics_.error(file_, graph_.nameLocation,
+                                   "the material name is " + std::to_string(name.size()) +
+                                       " characters long, over the limit of " +
+                                       std::to_string(kMaxMaterialNameLength));
+      d.notes.push_back(
+          "it names the output files <name>.glsl, <name>.hlsl and <name>.json, and "
+          "file names have at most 255 bytes; shorten it (`material Name;`)");
+    } else if (name.find("__") != std::string::npos || name.starts_with("gl_")) {
       diagnostics_.error(
           file_, graph_.nameLocation,
           "material name '" + name + "' is reserved in GLSL (no '__', no 'gl_' prefix)");
@@ -85,7 +93,10 @@ class Resolver {
       // Its links are already wrong once; consumers need not report them again.
       for (const auto& binding : node.outputs)
         brokenLinks_.insert(binding.link);
+      const bool kept = diagnostics_.keeps(file_);
       auto& d = diagnostics_.error(file_, node.location, "unknown node type '" + node.type + "'");
+      if (!kept)
+        return;
       const auto suggestions = library_.suggestions(node.type);
       if (!suggestions.empty()) {
         std::string list;
@@ -229,7 +240,10 @@ class Resolver {
         freeSockets.push_back(static_cast<int>(socket));
       }
     }
-    std::vector<Literal> values = node.positional;
+    // A copy only when several numbers become one tuple: the node's list may be long.
+    std::vector<Literal> tupleValue;
+    const std::vector<Literal>* valuesPointer = &node.positional;
+    const auto& values = node.positional;
     const bool allNumbers = std::all_of(values.begin(), values.end(), [](const Literal& l) {
       return l.kind == Literal::Kind::Number;
     });
@@ -245,17 +259,19 @@ class Resolver {
       tuple.location = values[0].location;
       for (const auto& v : values)
         tuple.components.push_back(v.components[0]);
-      values = {tuple};
+      tupleValue = {tuple};
+      valuesPointer = &tupleValue;
     }
-    for (std::size_t i = 0; i < values.size(); ++i) {
+    const auto& bound = *valuesPointer;
+    for (std::size_t i = 0; i < bound.size(); ++i) {
       if (i >= freeSockets.size()) {
-        auto& d = diagnostics_.error(file_, values[i].location,
+        auto& d = diagnostics_.error(file_, bound[i].location,
                                      "too many values for '" + type.name + "': its inputs are " +
                                          socketList(type, Direction::In));
         d.notes.push_back("name the socket a value is for: Socket=value");
         return;
       }
-      bindConstant(resolved, freeSockets[i], values[i], InputSource::Kind::Constant);
+      bindConstant(resolved, freeSockets[i], bound[i], InputSource::Kind::Constant);
     }
   }
 
@@ -280,6 +296,13 @@ class Resolver {
                            std::to_string(kTableNumbers) + " numbers ] (" +
                            std::to_string(kTableEntries) + " RGBA entries)"
                      : "input '" + name + "' of '" + type.name + "' does not take a [table]");
+      return;
+    }
+    if (wantsTexture && value.text.empty()) {
+      // An empty path would resolve to the graph's folder and fail later as "is a folder".
+      diagnostics_.error(file_, value.location,
+                         "input '" + name + "' of '" + type.name +
+                             "' has an empty texture path; name an image file, e.g. \"wood.png\"");
       return;
     }
     if (isIntSocket(type, socket) && !isShaderInt(value)) {

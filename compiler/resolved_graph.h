@@ -43,6 +43,11 @@ struct ResolvedGraph {
   std::vector<std::string> textures;  // string constants bound to TextureRef, slot order
 };
 
+// The longest material name: it names <name>.glsl/.hlsl/.json and their temporary files
+// (".<name>.XXXXXX.glsl.old"), which must fit the 255-byte file-name limit of common file
+// systems; checked here so that `check` and `compile` agree.
+inline constexpr std::size_t kMaxMaterialNameLength = 200;
+
 // Binds names and links. Reports unknown nodes (with did-you-mean), unknown sockets, links
 // produced twice or never, unbound inputs, misplaced literals.
 std::optional<ResolvedGraph> resolveGraph(const Graph& graph, const SourceFile& file,

@@ -55,6 +55,7 @@ def prepare(work):
         types = ", ".join("float" for _ in range(10000))
         f.write("/// @types T = %s\nvoid Copy(in T In, out T Out) { Out = In; }\n" % types)
     make_scenes.main(os.path.join(gen, "scenes"))
+    prepare_graph_parser(gen)
     return gen
 
 
@@ -158,6 +159,7 @@ def cases(gen):
         ("scene: FIFO", ["render", os.path.join(gen, "fifo.gltf"), "--out", "out/x.png"], 1,
          r"FIFO"),
     ]
+    out += graph_parser_cases(gen)
     for name in sorted(os.listdir(os.path.join(HERE, "graphs"))):
         if name != "valid.mgraph":
             out.append(("graph: " + name, ["compile", os.path.join(g, name), valid, "-o", "out"],
@@ -196,6 +198,49 @@ def cases(gen):
                                            "out/x.png", "--size", "8x8"], 1,
                         scene_messages.get(name, r"error: ")))
     return out
+
+
+# --- Graph parser and compiler messages: size limits near 16 MiB, names, paths, options ---
+def prepare_graph_parser(gen):
+    """Large graphs under the 16 MiB text limit, and small ones whose message is stated."""
+    def put(name, text):
+        with open(os.path.join(gen, name), "w") as f:
+            f.write(text)
+    put("links_3m.mgraph", "Float1Constant 0.5 Out>0;\nColorOutput " + "In<0 " * 3_000_000 + ";\n")
+    put("numbers_8m.mgraph", "Float1Constant " + "1 " * 8_000_000 + "Out>0;\n")
+    put("semicolons_16m.mgraph", ";" * 16_000_000)
+    put("nodes_8m.mgraph", "A;" * 8_000_000)
+    put("material_digit.mgraph", "material 1abc;\nNormalInput Out>1;\nColorOutput In<1;\n")
+    put("material_long.mgraph",
+        "material " + "x" * 100_000 + ";\nNormalInput Out>1;\nColorOutput In<1;\n")
+    put("image_empty.mgraph",
+        "UVInput Out>1;\nImageTexture Image=\"\" UV<1 Color>2;\nBaseColorOutput In<2;\n")
+    put("not_a_folder", "x")
+
+
+def graph_parser_cases(gen):
+    def g(name):
+        return os.path.join(gen, name)
+    return [
+        ("parser: 3M links", ["check", g("links_3m.mgraph")], 1, r"over the limit"),
+        ("parser: 8M numbers", ["check", g("numbers_8m.mgraph")], 1, r"over the limit"),
+        ("parser: 16M semicolons", ["check", g("semicolons_16m.mgraph")], 1,
+         r":1:1: error: expected a node type"),
+        ("parser: 8M nodes", ["compile", g("nodes_8m.mgraph"), "-o", "out"], 1,
+         r"more than 250000 nodes"),
+        ("parser: material 1abc", ["check", g("material_digit.mgraph")], 1,
+         r":1:10: error: '1abc' is not a valid material name"),
+        ("parser: material name 100k (check)", ["check", g("material_long.mgraph")], 1,
+         r"over the limit of 200"),
+        ("parser: material name 100k (compile)", ["compile", g("material_long.mgraph"), "-o",
+                                                  "out/new"], 1, r"over the limit of 200"),
+        ("parser: empty image path", ["check", g("image_empty.mgraph")], 1,
+         r"empty texture path"),
+        ("parser: bad --nodes before bad -o", ["compile", g("material_digit.mgraph"), "-o",
+                                               g("not_a_folder"), "--nodes", g("missing")], 2,
+         r"--nodes .*does not exist"),
+    ]
+# --- end of graph parser cases ---
 
 
 def run_case(memograph, work, index, case):

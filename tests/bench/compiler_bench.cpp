@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "compiler/compiler.h"
+#include "compiler/parser.h"
 #include "graph_generator.h"
 #include "memograph/node_library_loader.h"
 
@@ -94,6 +95,45 @@ void BM_LoadEmbeddedNodeLibrary(benchmark::State& state) {
 BENCHMARK(BM_LoadEmbeddedNodeLibrary)
     ->Unit(benchmark::kMicrosecond)
     ->Repetitions(10)
+    ->ReportAggregatesOnly(true);
+
+// Parse time per megabyte of graph text (the SetBytesProcessed rate), for a dense valid
+// graph (a chain of two-input nodes) and for a megabyte of numbers on one node, which the
+// parser refuses at its value limit.
+std::string denseChain(std::size_t bytes) {
+  std::string text = "Float1Constant 0.5 Out>0;\n";
+  for (std::size_t i = 0; text.size() < bytes; ++i) {
+    const std::string id = std::to_string(i);
+    text += "Add A<" + id + " B<" + id + " Out>" + std::to_string(i + 1) + ";\n";
+  }
+  return text;
+}
+
+void BM_ParseGraphPerMegabyte(benchmark::State& state) {
+  const std::size_t bytes = static_cast<std::size_t>(state.range(0)) << 20;
+  std::string text = "Float1Constant ";
+  if (state.range(1) == 0) {
+    text = denseChain(bytes);
+  } else {
+    for (std::size_t i = 0; text.size() < bytes; ++i)
+      text += "1 ";
+    text += "Out>0;\n";
+  }
+  const compiler::SourceFile file{"dense.mgraph", std::move(text)};
+  for (auto _ : state) {
+    compiler::Diagnostics diagnostics;
+    auto graph = compiler::parseGraph(file, diagnostics);
+    benchmark::DoNotOptimize(graph.nodes.data());
+  }
+  state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * file.text.size()));
+}
+// {MiB, 0 = dense chain / 1 = one node of numbers}
+BENCHMARK(BM_ParseGraphPerMegabyte)
+    ->Args({1, 0})
+    ->Args({8, 0})
+    ->Args({8, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->Repetitions(5)
     ->ReportAggregatesOnly(true);
 
 }  // namespace

@@ -458,5 +458,92 @@ TEST_F(CliTest, RandomBytesNeverCrashTheCompiler) {
   EXPECT_NE(run.output.find("noise.mgraph:1:"), std::string::npos);
 }
 
+// `material 1abc;` once read as a node named `material` with a bad number.
+TEST_F(CliTest, AMaterialNameThatIsNotANameIsReportedAsABadName) {
+  const auto graph = write("m.mgraph", "material 1abc;\nNormalInput Out>1;\nColorOutput In<1;\n");
+  const auto run = runCli("check " + graph + nodes());
+  EXPECT_EQ(run.exitCode, 1) << run.output;
+  EXPECT_NE(run.output.find("m.mgraph:1:10: error: '1abc' is not a valid material name"),
+            std::string::npos)
+      << run.output;
+  EXPECT_EQ(run.output.find("finite number"), std::string::npos) << run.output;
+}
+
+// The name names the output files: check must refuse what compile cannot write, and compile
+// must refuse it before it creates the output folder.
+TEST_F(CliTest, AMaterialNameTooLongForAFileNameFailsCheckAndCompileAlike) {
+  const auto graph = write("long.mgraph", "material " + std::string(100'000, 'x') +
+                                              ";\nNormalInput Out>1;\nColorOutput In<1;\n");
+  const auto check = runCli("check " + graph + nodes());
+  EXPECT_EQ(check.exitCode, 1) << check.output.substr(0, 2000);
+  EXPECT_NE(check.output.find("long.mgraph:1:10: error: the material name is 100000 characters "
+                              "long, over the limit of 200"),
+            std::string::npos)
+      << check.output.substr(0, 2000);
+  const auto out = directory_ / "out";
+  const auto compile = runCli("compile " + graph + " -o " + out.string() + nodes());
+  EXPECT_EQ(compile.exitCode, 1) << compile.output.substr(0, 2000);
+  EXPECT_NE(compile.output.find("over the limit of 200"), std::string::npos)
+      << compile.output.substr(0, 2000);
+  EXPECT_FALSE(fs::exists(out)) << "the output folder must not be created";
+  const auto fits = write("fits.mgraph", "material " + std::string(200, 'x') +
+                                             ";\nNormalInput Out>1;\nColorOutput In<1;\n");
+  const auto written = runCli("compile " + fits + " -o " + out.string() + nodes());
+  EXPECT_EQ(written.exitCode, 0) << written.output;
+  EXPECT_TRUE(fs::exists(out / (std::string(200, 'x') + ".glsl")));
+}
+
+TEST_F(CliTest, AnEmptyTexturePathIsItsOwnError) {
+  const auto graph = write("t.mgraph",
+                           "UVInput UV>1;\nImageTexture Image=\"\" UV<1 Color>2;\n"
+                           "BaseColorOutput In<2;\n");
+  for (const std::string command : {"check ", "compile "}) {
+    const auto run = runCli(command + graph + " -o " + (directory_ / "out").string() + nodes());
+    EXPECT_EQ(run.exitCode, command == "check " ? 2 : 1) << run.output;
+    if (command == "check ")
+      continue;  // check takes no -o: that usage error is not what this test is about
+    EXPECT_NE(run.output.find("t.mgraph:2:20: error: input 'Image' of 'ImageTexture' has an "
+                              "empty texture path"),
+              std::string::npos)
+        << run.output;
+    EXPECT_EQ(run.output.find("is a folder"), std::string::npos) << run.output;
+  }
+  const auto check = runCli("check " + graph + nodes());
+  EXPECT_EQ(check.exitCode, 1) << check.output;
+  EXPECT_NE(check.output.find("has an empty texture path"), std::string::npos) << check.output;
+}
+
+// Every option is validated (exit 2) before the output folder is looked at (exit 1).
+TEST_F(CliTest, CompileReportsABadOptionValueBeforeABadOutputFolder) {
+  const auto graph = write("g.mgraph", "NormalInput Out>1;\nColorOutput In<1;\n");
+  const auto file = write("not_a_folder", "x");
+  const auto missingNodes =
+      runCli("compile " + graph + " -o " + file + " --nodes " + (directory_ / "missing").string());
+  EXPECT_EQ(missingNodes.exitCode, 2) << missingNodes.output;
+  EXPECT_NE(missingNodes.output.find("--nodes " + (directory_ / "missing").string() +
+                                     ": the node library directory does not exist"),
+            std::string::npos)
+      << missingNodes.output;
+  EXPECT_EQ(missingNodes.output.find("is not a folder"), std::string::npos) << missingNodes.output;
+  const auto fileAsNodes = runCli("compile " + graph + " -o " + file + " --nodes " + file);
+  EXPECT_EQ(fileAsNodes.exitCode, 2) << fileAsNodes.output;
+  const auto checkNodes = runCli("check " + graph + " --nodes " + file);
+  EXPECT_EQ(checkNodes.exitCode, 2) << checkNodes.output;
+  EXPECT_EQ(fs::file_size(file), 1u);
+}
+
+// A diagnostic shows a window of a long line, not the line: a one-line graph of megabytes
+// once printed (and held) a full copy of it per error.
+TEST_F(CliTest, AnErrorOnAHugeLineShowsAWindowOfIt) {
+  std::string line = "Float1Constant 0.5 ";
+  for (int i = 0; i < 200'000; ++i)
+    line += "Out>" + std::to_string(i) + " ";
+  const auto graph = write("wide.mgraph", line + "junk@;\n");
+  const auto run = runCli("check " + graph + nodes());
+  EXPECT_EQ(run.exitCode, 1);
+  EXPECT_LT(run.output.size(), 20'000u) << run.output.substr(0, 2000);
+  EXPECT_NE(run.output.find("wide.mgraph:1:"), std::string::npos) << run.output.substr(0, 2000);
+}
+
 }  // namespace
 }  // namespace memograph

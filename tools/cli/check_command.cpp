@@ -5,6 +5,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "compiler/compiler.h"
+#include "compiler/library_files.h"
 #include "compiler/metadata.h"
 
 namespace memograph::cli {
@@ -37,6 +38,10 @@ int runCheck(std::span<const std::string_view> args) {
     return *exitCode;
   if (files.size() != 1)
     return usageError("check", "expected exactly one graph file");
+  if (scanner.given("--nodes")) {
+    if (const auto problem = compiler::nodeLibraryDirectoryProblem(nodesDir))
+      return usageError("check", "--nodes " + nodesDir + ": " + *problem);
+  }
 
   compiler::Diagnostics diagnostics;
   const auto library = loadNodeLibrary(nodesDir, diagnostics);

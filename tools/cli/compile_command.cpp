@@ -6,6 +6,7 @@
 #include "cli_common.h"
 #include "commands.h"
 #include "compiler/compiler.h"
+#include "compiler/library_files.h"
 
 namespace memograph::cli {
 
@@ -45,9 +46,13 @@ int runCompile(std::span<const std::string_view> args) {
   }
   if (files.empty())
     return usageError("compile", "no input files");
+  if (scanner.given("--nodes")) {
+    if (const auto problem = compiler::nodeLibraryDirectoryProblem(nodesDir))
+      return usageError("compile", "--nodes " + nodesDir + ": " + *problem);
+  }
 
-  // The output folder is checked before any work: a file in its place is an error now, not
-  // after compiling everything.
+  // The output folder is checked after every option (a usage error, exit 2, comes first) and
+  // before any work: a file in its place is an error now, not after compiling everything.
   if (std::error_code ec;
       std::filesystem::exists(outputDir, ec) && !std::filesystem::is_directory(outputDir, ec)) {
     std::cerr << "memograph compile: " << outputDir << ": exists and is not a folder\n";
