@@ -46,8 +46,8 @@ inline std::string cameraProblem(const Camera& camera) {
   const glm::dvec3 view = glm::dvec3(camera.target) - glm::dvec3(camera.position);
   const double length = glm::length(view);
   if (!(length > 0.0))
-    return "the camera has no view direction: its target " + point(camera.target) +
-           " equals its position";
+    return "the camera has no view direction: the target equals the camera position " +
+           point(camera.position);
   const glm::dvec3 up = glm::dvec3(camera.up);
   const double upLength = glm::length(up);
   if (!(upLength > 0.0) || !std::isfinite(upLength) ||

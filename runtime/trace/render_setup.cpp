@@ -266,13 +266,14 @@ std::uint32_t validateRender(const RendererOptions& options, const RenderSetting
   validateSettings(settings);
   validateScene(scene);
   // The cameras, before anything is built for them: a camera far outside float range would
-  // otherwise surface as a degenerate basis at the first frame.
+  // otherwise surface as a degenerate basis at the first frame. std::invalid_argument, as the
+  // frame loop's own camera checks (a request the caller can fix).
   if (const std::string problem = cameraProblem(scene.camera);
       !problem.empty() && settings.cameraPath.empty())
-    throw std::runtime_error(problem);
+    throw std::invalid_argument(problem);
   for (std::size_t k = 0; k < settings.cameraPath.size(); ++k)
     if (const std::string problem = cameraProblem(settings.cameraPath[k]); !problem.empty())
-      throw std::runtime_error("camera path frame " + std::to_string(k) + ": " + problem);
+      throw std::invalid_argument("camera path frame " + std::to_string(k) + ": " + problem);
   checkSceneFitsDevice(scene, context, options.culling);
   validateCullingOptions(options.culling);
   const std::uint32_t pathWeight =
