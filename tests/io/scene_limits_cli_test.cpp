@@ -156,6 +156,17 @@ TEST_F(HostileScenes, MtlTextureThatIsAFifoIsRefusedAtItsLine) {
       << run.output;
 }
 
+// Found by the OBJ import fuzzer: assimp 5.2 crashed on it (exit 139).
+TEST_F(HostileScenes, MtlTextureBeforeAnyMaterialIsRefusedNotCrashed) {
+  write("early.mtl", "map_Kd wood.png\nnewmtl wood\n");
+  write("early.obj", std::string("mtllib early.mtl\n") + kTriangle + "f 1 2 3\n");
+  const CliRun run = render("early.obj");
+  EXPECT_EQ(run.exitCode, 1) << run.output;
+  EXPECT_NE(run.output.find("early.mtl:1:1: error: 'map_Kd' comes before any 'newmtl'"),
+            std::string::npos)
+      << run.output;
+}
+
 TEST_F(HostileScenes, ObjMaterialLibraryWithAnAbsolutePathIsRefused) {
   write("abs.obj", std::string("mtllib /dev/zero\n") + kTriangle + "f 1 2 3\n");
   const CliRun run = render("abs.obj");

@@ -208,10 +208,21 @@ class ObjChecker {
       return;
     }
     const compiler::SourceFile mtl{resolved.string(), {}};
+    bool inMaterial = false;
     forEachLine(*bytes, [&](std::string_view text, std::uint32_t mtlLine) {
       const Line statement = splitLine(text);
+      if (statement.keyword == "newmtl")
+        inMaterial = true;
       if (!isTextureKeyword(statement.keyword))
         return true;
+      // assimp 5.2's MTL reader gives a texture to the current material without checking
+      // that there is one: before the first `newmtl` it crashes (found by the OBJ fuzzer).
+      if (!inMaterial) {
+        diagnostics_.error(mtl, {mtlLine, 1},
+                           "'" + std::string(statement.keyword) +
+                               "' comes before any 'newmtl': a texture belongs to a material");
+        return true;
+      }
       std::uint32_t column = statement.restColumn;
       const std::string_view name = textureName(statement.rest, column);
       fs::path texture;
