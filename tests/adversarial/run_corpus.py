@@ -206,7 +206,7 @@ def cases(gen):
          r"fifo_mtllib\.obj:1:8: error: the material library 'fifo\.mtl'.*a FIFO"),
         ("hostile: OBJ fallback mtl FIFO", ["render", os.path.join(h, "fallback.obj"), "--out",
                                             "out/x.png", "--size", "8x8"], 1,
-         r"fallback\.mtl: not a regular file \(a FIFO\)"),
+         r"fallback material library .*fallback\.mtl .*a FIFO"),
         ("hostile: MTL texture FIFO", ["render", os.path.join(h, "fifo_texture.obj"), "--out",
                                        "out/x.png", "--size", "8x8"], 1,
          r"textured\.mtl:2:8: error: the texture of 'map_Kd' 'fifo\.png'.*a FIFO"),

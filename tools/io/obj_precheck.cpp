@@ -196,8 +196,24 @@ class ObjChecker {
     fs::path resolved;
     const auto size =
         checkExternal(obj, {number, line.restColumn}, line.rest, "the material library", resolved);
-    if (!size)
-      return;
+    if (!size) {
+      // A missing library makes assimp open <OBJ name without "obj">mtl instead: checked as
+      // if named here.
+      std::error_code ec;
+      if (path_.size() < 3 || fs::symlink_status(resolved, ec).type() != fs::file_type::not_found)
+        return;
+      const std::string fallback = path_.substr(0, path_.size() - 3) + "mtl";
+      if (fs::symlink_status(fallback, ec).type() == fs::file_type::not_found)
+        return;
+      std::string error;
+      if (!files::checkInputFile(fallback, files::kMaxSceneFileBytes, "scenes", error)) {
+        diagnostics_.error(obj, {number, line.restColumn},
+                           "the fallback material library " + fallback + " (read in place of '" +
+                               std::string(line.rest) + "'): " + error);
+        return;
+      }
+      resolved = fallback;
+    }
     // Each library is read once, however often it is named.
     if (!seen_.insert(resolved.lexically_normal().string()).second)
       return;
