@@ -47,6 +47,13 @@ class BoundedIOSystem : public Assimp::DefaultIOSystem {
  public:
   Assimp::IOStream* Open(const char* file, const char* mode) override {
     std::error_code ec;
+    // An OBJ's material libraries are not read: memograph takes a material's graph from its
+    // `usemtl` name (assimp keeps the names without the library), nothing from the MTL, and
+    // assimp 5.2's MTL reader crashes on malformed libraries (found by the OBJ import
+    // fuzzer: a texture before any `newmtl`, stray NUL bytes). The pre-check has looked at
+    // them for the user.
+    if (skipMaterialLibraries && fs::path(file).extension() == ".mtl")
+      return nullptr;
     if (std::string_view(mode).find_first_of("wa+") == std::string_view::npos &&
         fs::symlink_status(file, ec).type() != fs::file_type::not_found) {
       std::string error;
@@ -67,6 +74,7 @@ class BoundedIOSystem : public Assimp::DefaultIOSystem {
     return fs::exists(file, ec);
   }
   std::vector<std::string> refused;
+  bool skipMaterialLibraries = false;
 };
 
 // Warnings without a source position: the import is about a whole file.
@@ -527,6 +535,12 @@ std::optional<Scene> importScene(const std::string& path, const std::string& mat
   auto ownedIo = std::make_unique<BoundedIOSystem>();
   BoundedIOSystem* io = ownedIo.get();
   importer.SetIOHandler(ownedIo.release());  // the importer owns it from here
+  {
+    std::string ext = fs::path(path).extension().string();
+    for (char& ch : ext)
+      ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    io->skipMaterialLibraries = ext == ".obj";
+  }
   // Points and lines are removed; everything else becomes indexed triangles with normals,
   // and tangents wherever there are UVs.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
