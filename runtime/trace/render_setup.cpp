@@ -1,10 +1,13 @@
 #include "runtime/trace/render_setup.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #include <glm/glm.hpp>
 
 #include "runtime/memo/material_cache.h"
+#include "runtime/scene/camera_range.h"
+#include "runtime/scene/scene_limits.h"
 #include "runtime/scene/scene_upload.h"
 #include "runtime/vk/gpu_buffer.h"
 
@@ -25,6 +28,137 @@ void validateSettings(const RenderSettings& s) {
     throw std::invalid_argument("rays per path must be at least 1");
   if (s.frames == 0)
     throw std::invalid_argument("frames must be at least 1");
+}
+
+std::string megabytes(std::uint64_t bytes) {
+  return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB";
+}
+
+// A buffer of the scene refused where the device cannot hold it: past the largest allocation
+// or, bound whole as a storage buffer, past maxStorageBufferRange. A SceneLimitError (exit
+// 1): the scene is too large for this device, the request itself is sound.
+void checkSceneBuffer(const VulkanContext& context, std::uint64_t bytes, const std::string& what,
+                      const std::string& counted, bool storageBinding) {
+  const DeviceInfo& info = context.info();
+  const std::uint64_t range = info.limits.maxStorageBufferRange;
+  if (storageBinding && range > 0 && bytes > range)
+    throw SceneLimitError("the scene's " + what + " would need " + std::to_string(bytes) +
+                          " bytes (" + counted + "), more than the " + std::to_string(range) +
+                          "-byte storage-buffer range of " + info.name +
+                          " (maxStorageBufferRange, the most one binding may address)");
+  if (info.maxMemoryAllocationSize > 0 && bytes > info.maxMemoryAllocationSize)
+    throw SceneLimitError("the scene's " + what + " would need " + std::to_string(bytes) +
+                          " bytes (" + counted + "), more than the largest allocation of " +
+                          info.name + " (" + std::to_string(info.maxMemoryAllocationSize) +
+                          " bytes)");
+}
+
+// The device's largest device-local heap (on a CPU device, the host memory it may use).
+std::uint64_t deviceLocalHeapBytes(const VulkanContext& context) {
+  VkPhysicalDeviceMemoryProperties memory{};
+  vkGetPhysicalDeviceMemoryProperties(context.physicalDevice(), &memory);
+  std::uint64_t largest = 0;
+  for (std::uint32_t h = 0; h < memory.memoryHeapCount; ++h)
+    if (memory.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+      largest = std::max<std::uint64_t>(largest, memory.memoryHeaps[h].size);
+  return largest;
+}
+
+// The scene against the fixed limits (scene_limits.h) and this device, from the Scene's
+// counts and the driver's own BLAS/TLAS size queries: a scene the device cannot hold is
+// refused in milliseconds, before a material is linked or a byte uploaded, instead of after
+// minutes and gigabytes in the driver. Throws SceneLimitError.
+void checkSceneFitsDevice(const Scene& scene, const VulkanContext& context,
+                          const CullingOptions& culling) {
+  const SceneFootprint f = measureScene(scene);
+  checkSceneLimits(f);
+  const DeviceInfo& info = context.info();
+  checkSceneBuffer(context, f.vertexBytes, "vertex buffer",
+                   std::to_string(f.vertices) + " vertices of 64 bytes", true);
+  checkSceneBuffer(context, f.indexBytes, "index buffer",
+                   std::to_string(f.triangles) + " triangles of 12 bytes", true);
+  checkSceneBuffer(context, f.instanceBytes, "instance buffer",
+                   std::to_string(f.instances) + " instances of " +
+                       std::to_string(sizeof(gpu::Instance)) + " bytes",
+                   true);
+  checkSceneBuffer(context, f.lightBytesAtMost, "light buffer",
+                   std::to_string(f.lights) +
+                       " lights and the triangles of its emitting instances, " +
+                       std::to_string(sizeof(gpu::Light)) + " bytes each",
+                   true);
+  checkSceneBuffer(context, f.environmentBytes, "environment image",
+                   std::to_string(f.environmentTexels) + " texels of 16 bytes", true);
+
+  // The acceleration structures: the driver's sizes for each mesh's BLAS (the query needs
+  // only counts, no buffers), and the TLAS over every instance.
+  VkPhysicalDeviceAccelerationStructurePropertiesKHR as{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_PROPERTIES_KHR};
+  VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+  properties.pNext = &as;
+  vkGetPhysicalDeviceProperties2(context.physicalDevice(), &properties);
+  if (as.maxInstanceCount > 0 && f.instances > as.maxInstanceCount)
+    throw SceneLimitError("the scene has " + std::to_string(f.instances) +
+                          " instances, more than the " + std::to_string(as.maxInstanceCount) +
+                          " a top-level acceleration structure of " + info.name +
+                          " may hold (maxInstanceCount)");
+  if (as.maxPrimitiveCount > 0 && f.largestMeshTriangles > as.maxPrimitiveCount)
+    throw SceneLimitError("a mesh of the scene has " + std::to_string(f.largestMeshTriangles) +
+                          " triangles, more than the " + std::to_string(as.maxPrimitiveCount) +
+                          " one acceleration structure of " + info.name +
+                          " may hold (maxPrimitiveCount)");
+  const DeviceFunctions& functions = context.functions();
+  if (!functions.getAccelerationStructureBuildSizes)
+    return;
+  const VkDeviceSize alignment = info.minAccelerationStructureScratchOffsetAlignment;
+  std::uint64_t blasBytes = 0, scratchBytes = 0, largestScratch = 0;
+  for (const Mesh& mesh : scene.meshes) {
+    VkAccelerationStructureGeometryKHR g{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_KHR};
+    g.geometryType = VK_GEOMETRY_TYPE_TRIANGLES_KHR;
+    g.flags = VK_GEOMETRY_OPAQUE_BIT_KHR;
+    g.geometry.triangles = {VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_GEOMETRY_TRIANGLES_DATA_KHR};
+    g.geometry.triangles.vertexFormat = VK_FORMAT_R32G32B32_SFLOAT;
+    g.geometry.triangles.vertexStride = sizeof(gpu::Vertex);
+    g.geometry.triangles.maxVertex =
+        mesh.positions.empty() ? 0 : static_cast<std::uint32_t>(mesh.positions.size() - 1);
+    g.geometry.triangles.indexType = VK_INDEX_TYPE_UINT32;
+    VkAccelerationStructureBuildGeometryInfoKHR build{
+        VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_GEOMETRY_INFO_KHR};
+    build.type = VK_ACCELERATION_STRUCTURE_TYPE_BOTTOM_LEVEL_KHR;
+    build.flags = VK_BUILD_ACCELERATION_STRUCTURE_PREFER_FAST_TRACE_BIT_KHR |
+                  VK_BUILD_ACCELERATION_STRUCTURE_ALLOW_COMPACTION_BIT_KHR;
+    build.mode = VK_BUILD_ACCELERATION_STRUCTURE_MODE_BUILD_KHR;
+    build.geometryCount = 1;
+    build.pGeometries = &g;
+    const std::uint32_t triangles = static_cast<std::uint32_t>(mesh.indices.size() / 3);
+    VkAccelerationStructureBuildSizesInfoKHR sizes{
+        VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_BUILD_SIZES_INFO_KHR};
+    functions.getAccelerationStructureBuildSizes(context.device(),
+                                                 VK_ACCELERATION_STRUCTURE_BUILD_TYPE_DEVICE_KHR,
+                                                 &build, &triangles, &sizes);
+    blasBytes += sizes.accelerationStructureSize;
+    largestScratch = std::max<std::uint64_t>(largestScratch, sizes.buildScratchSize);
+    scratchBytes += (sizes.buildScratchSize + alignment - 1) / alignment * alignment;
+  }
+  // The static set builds every BLAS in one batch with one scratch buffer (one allocation);
+  // culling builds them a budget at a time, each with at most the largest scratch.
+  const bool oneBatch = culling.mode == CullingMode::None;
+  checkSceneBuffer(context, oneBatch ? scratchBytes : largestScratch,
+                   "acceleration-structure build scratch",
+                   std::to_string(f.meshes) + " meshes, " + std::to_string(f.triangles) +
+                       " triangles, as the driver sizes their BLAS builds",
+                   false);
+  // Everything the scene puts on the device at once, against the device-local heap: the
+  // buffers, the BLASes before compaction and, for the static set, their build scratch.
+  const std::uint64_t total = f.vertexBytes + f.indexBytes + f.instanceBytes + f.meshBytes +
+                              f.lightBytesAtMost + f.environmentBytes + blasBytes +
+                              (oneBatch ? scratchBytes : largestScratch);
+  const std::uint64_t heap = deviceLocalHeapBytes(context);
+  if (heap > 0 && total > heap)
+    throw SceneLimitError(
+        "the scene needs about " + megabytes(total) + " of device memory (" +
+        megabytes(f.vertexBytes + f.indexBytes) + " geometry, " + megabytes(blasBytes) +
+        " acceleration structures, " + megabytes(oneBatch ? scratchBytes : largestScratch) +
+        " build scratch), more than the " + megabytes(heap) + " device-local heap of " + info.name);
 }
 
 // What one counted path's ray weighs when `counted` of a pixel's `paths` paths count in a
@@ -131,6 +265,16 @@ std::uint32_t validateRender(const RendererOptions& options, const RenderSetting
                              const Scene& scene, const VulkanContext& context) {
   validateSettings(settings);
   validateScene(scene);
+  // The cameras, before anything is built for them: a camera far outside float range would
+  // otherwise surface as a degenerate basis at the first frame. std::invalid_argument, as the
+  // frame loop's own camera checks (a request the caller can fix).
+  if (const std::string problem = cameraProblem(scene.camera);
+      !problem.empty() && settings.cameraPath.empty())
+    throw std::invalid_argument(problem);
+  for (std::size_t k = 0; k < settings.cameraPath.size(); ++k)
+    if (const std::string problem = cameraProblem(settings.cameraPath[k]); !problem.empty())
+      throw std::invalid_argument("camera path frame " + std::to_string(k) + ": " + problem);
+  checkSceneFitsDevice(scene, context, options.culling);
   validateCullingOptions(options.culling);
   const std::uint32_t pathWeight =
       options.culling.mode == CullingMode::Lipac
@@ -162,6 +306,18 @@ RenderPlan planRender(const RendererOptions& options, const RenderSettings& sett
                   "a " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
                       " image (16 bytes a pixel)",
                   true);
+  // The textures the linked graphs read, each an image in one array binding: refused before
+  // any is loaded (their texels are counted as they load, uploadSceneResources).
+  const std::uint64_t textures = materials.linked.texturePaths.size();
+  checkTextureLimits(textures, 0);
+  const std::uint32_t sampledImages =
+      std::min(context.info().limits.maxPerStageDescriptorSampledImages,
+               context.info().limits.maxDescriptorSetSampledImages);
+  if (textures > sampledImages)
+    throw SceneLimitError("the scene's materials read " + std::to_string(textures) +
+                          " textures, more than the " + std::to_string(sampledImages) +
+                          " sampled images " + context.info().name +
+                          " binds in one shader stage (maxPerStageDescriptorSampledImages)");
   plan.dispatch = resolveMaterialDispatch(options.materialDispatch, context.backend());
   plan.cache = resolveRenderCache(options, settings, context, plan.wavefront);
   checkCpuSwitchLimit(options, context, plan, materials.linked.distinct.size());

@@ -6,8 +6,10 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <sstream>
 
+#include <assimp/DefaultIOSystem.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <assimp/Importer.hpp>
@@ -19,6 +21,7 @@
 #include "runtime/scene/builtin/mesh_builder.h"
 #include "runtime/scene/builtin/scene_validation.h"
 #include "tools/io/gltf_precheck.h"
+#include "tools/io/obj_precheck.h"
 
 namespace memograph::io {
 namespace {
@@ -34,6 +37,45 @@ glm::mat4 toGlm(const aiMatrix4x4& m) {
 glm::vec3 toGlm(const aiVector3D& v) {
   return {v.x, v.y, v.z};
 }
+
+// Every file assimp opens, for any format it reads (a glTF's buffers and images, an OBJ's
+// material libraries and its fallback <name>.mtl, a format's includes): opened only when it
+// is a regular file within the scene limit. A FIFO would block the import forever and a
+// device never end; assimp cannot tell, so the open fails here instead and the import
+// reports it. A missing file is left to assimp (it probes for optional ones).
+class BoundedIOSystem : public Assimp::DefaultIOSystem {
+ public:
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    std::error_code ec;
+    // An OBJ's material libraries are not read: memograph takes a material's graph from its
+    // `usemtl` name (assimp keeps the names without the library), nothing from the MTL, and
+    // assimp 5.2's MTL reader crashes on malformed libraries (found by the OBJ import
+    // fuzzer: a texture before any `newmtl`, stray NUL bytes). The pre-check has looked at
+    // them for the user.
+    if (skipMaterialLibraries && fs::path(file).extension() == ".mtl")
+      return nullptr;
+    if (std::string_view(mode).find_first_of("wa+") == std::string_view::npos &&
+        fs::symlink_status(file, ec).type() != fs::file_type::not_found) {
+      std::string error;
+      if (!files::checkInputFile(file, files::kMaxSceneFileBytes, "scenes", error)) {
+        // assimp may ask again (an OBJ's fallback library is probed twice): said once.
+        std::string why = std::string(file) + ": " + error;
+        if (std::find(refused.begin(), refused.end(), why) == refused.end())
+          refused.push_back(std::move(why));
+        return nullptr;
+      }
+    }
+    return Assimp::DefaultIOSystem::Open(file, mode);
+  }
+  // DefaultIOSystem::Exists opens the file to see whether it exists, which blocks on a
+  // FIFO; a stat does not.
+  bool Exists(const char* file) const override {
+    std::error_code ec;
+    return fs::exists(file, ec);
+  }
+  std::vector<std::string> refused;
+  bool skipMaterialLibraries = false;
+};
 
 // Warnings without a source position: the import is about a whole file.
 void warn(compiler::Diagnostics& diagnostics, const std::string& path, std::string message) {
@@ -483,13 +525,22 @@ std::optional<Scene> importScene(const std::string& path, const std::string& mat
     return std::nullopt;
   }
   // What assimp would trust (declared lengths, indices, hierarchy depth) is checked first.
-  if (!precheckGltf(path, diagnostics))
+  if (!precheckGltf(path, diagnostics) || !precheckObj(path, diagnostics))
     return std::nullopt;
   if (!materialsDir.empty() && !fs::is_directory(materialsDir, ec)) {
     diagnostics.error(materialsDir, "the materials folder does not exist");
     return std::nullopt;
   }
   Assimp::Importer importer;
+  auto ownedIo = std::make_unique<BoundedIOSystem>();
+  BoundedIOSystem* io = ownedIo.get();
+  importer.SetIOHandler(ownedIo.release());  // the importer owns it from here
+  {
+    std::string ext = fs::path(path).extension().string();
+    for (char& ch : ext)
+      ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    io->skipMaterialLibraries = ext == ".obj";
+  }
   // Points and lines are removed; everything else becomes indexed triangles with normals,
   // and tangents wherever there are UVs.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE,
@@ -498,6 +549,14 @@ std::optional<Scene> importScene(const std::string& path, const std::string& mat
       path, aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_GenSmoothNormals |
                 aiProcess_CalcTangentSpace | aiProcess_SortByPType |
                 aiProcess_ValidateDataStructure | aiProcess_FindInvalidData);
+  if (!io->refused.empty()) {
+    for (const std::string& refused : io->refused)
+      diagnostics.error(path,
+                        "the scene reads a file that is not a regular file within the "
+                        "limit: " +
+                            refused);
+    return std::nullopt;
+  }
   if (!in) {
     diagnostics.error(path, std::string("cannot import the scene: ") + importer.GetErrorString());
     return std::nullopt;

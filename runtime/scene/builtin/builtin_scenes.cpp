@@ -5,6 +5,24 @@
 
 namespace memograph::runtime {
 
+namespace {
+
+std::string terrainRange() {
+  return "terrain (the landscape's terrain grid: cells per side) is an integer in " +
+         std::to_string(kMinTerrainCells) + ".." + std::to_string(kMaxTerrainCells) +
+         ", e.g. terrain=256";
+}
+std::string octavesRange() {
+  return "octaves (noise octaves of every generated material) is an integer in " +
+         std::to_string(kMinOctaves) + ".." + std::to_string(kMaxOctaves);
+}
+std::string layersRange() {
+  return "layers (extra layers of every generated material) is an integer in " +
+         std::to_string(kMinLayers) + ".." + std::to_string(kMaxLayers);
+}
+
+}  // namespace
+
 std::vector<std::string> builtinSceneNames() {
   return {"classroom", "landscape", "city"};
 }
@@ -61,11 +79,23 @@ std::optional<BuiltinSceneSpec> parseBuiltinSceneSpec(std::string_view text, std
               "': expected KEY=INTEGER";
       return std::nullopt;
     }
+    // The integer options' ranges, checked here so the message names the option as written.
+    const auto outOfRange = [&](const std::string& what) {
+      error =
+          "bad option '" + std::string(item) + "' for built-in scene '" + spec.name + "': " + what;
+      return std::nullopt;
+    };
     if (key == "octaves") {
+      if (number < kMinOctaves || number > kMaxOctaves)
+        return outOfRange(octavesRange());
       spec.options.materialCost.octaves = number;
     } else if (key == "layers") {
+      if (number < kMinLayers || number > kMaxLayers)
+        return outOfRange(layersRange());
       spec.options.materialCost.layers = number;
     } else if (key == "terrain") {
+      if (number < kMinTerrainCells || number > kMaxTerrainCells)
+        return outOfRange(terrainRange());
       spec.options.terrainCells = number;
     } else if (key == "nee") {
       if (number != 0 && number != 1) {
@@ -84,17 +114,15 @@ std::optional<BuiltinSceneSpec> parseBuiltinSceneSpec(std::string_view text, std
 }
 
 Scene makeBuiltinScene(std::string_view name, const BuiltinSceneOptions& options) {
-  if (options.terrainCells < 2 || options.terrainCells > 4096) {
-    throw std::invalid_argument("built-in scene: terrainCells must be in 2..4096, got " +
+  if (options.terrainCells < kMinTerrainCells || options.terrainCells > kMaxTerrainCells)
+    throw std::invalid_argument("built-in scene option " + terrainRange() + ", got " +
                                 std::to_string(options.terrainCells));
-  }
-  if (options.materialCost.octaves < 1 || options.materialCost.octaves > 16 ||
-      options.materialCost.layers < 0 || options.materialCost.layers > 16) {
-    throw std::invalid_argument(
-        "built-in scene: material octaves must be in 1..16 and layers in 0..16, got " +
-        std::to_string(options.materialCost.octaves) + " and " +
-        std::to_string(options.materialCost.layers));
-  }
+  if (options.materialCost.octaves < kMinOctaves || options.materialCost.octaves > kMaxOctaves)
+    throw std::invalid_argument("built-in scene option " + octavesRange() + ", got " +
+                                std::to_string(options.materialCost.octaves));
+  if (options.materialCost.layers < kMinLayers || options.materialCost.layers > kMaxLayers)
+    throw std::invalid_argument("built-in scene option " + layersRange() + ", got " +
+                                std::to_string(options.materialCost.layers));
   if (name == "classroom")
     return makeClassroomScene(options);
   if (name == "landscape")

@@ -20,6 +20,11 @@ namespace memograph::runtime {
 // much of it (the path docs/results.md was measured on).
 enum class CityCameraPath { Street, Aerial };
 
+// The options' ranges (parseBuiltinSceneSpec and makeBuiltinScene refuse others).
+inline constexpr int kMinTerrainCells = 2, kMaxTerrainCells = 4096;
+inline constexpr int kMinOctaves = 1, kMaxOctaves = 16;
+inline constexpr int kMinLayers = 0, kMaxLayers = 16;
+
 struct BuiltinSceneOptions {
   // How expensive every generated material graph is (noise octaves and extra layers); the
   // memoization benchmarks raise it until no-memo/floor matches the thesis.
@@ -53,8 +58,9 @@ struct BuiltinSceneSpec {
   std::string name;
   BuiltinSceneOptions options;
 };
-// Returns nothing and sets `error` (naming the bad part and the valid keys) on a syntax
-// error; the name and the ranges are checked by makeBuiltinScene.
+// Returns nothing and sets `error` (naming the bad part, the valid keys, or the option's
+// meaning and range) on a syntax error or a value out of range; the name is checked by
+// makeBuiltinScene.
 std::optional<BuiltinSceneSpec> parseBuiltinSceneSpec(std::string_view text, std::string& error);
 
 // Builds a built-in scene. Throws std::invalid_argument for an unknown name, the message

@@ -4,11 +4,14 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
 #include "runtime/scene/builtin/builtin_scenes.h"
+#include "runtime/scene/camera_range.h"
 
 namespace memograph::runtime {
 namespace {
@@ -34,15 +37,28 @@ std::vector<Field> splitFields(std::string_view line) {
   return fields;
 }
 
-std::optional<float> parseFloat(std::string_view s) {
-  float value = 0;
+// A number of a frame: nothing and `error` set when it is not one, or is one a float cannot
+// hold. A value too small for a float (1e-310, a double's denormal) is a number and becomes
+// the nearest float (0 or a float denormal), as a decimal too precise is rounded.
+std::optional<float> parseFloat(std::string_view s, std::string& error) {
   const char* end = s.data() + s.size();
   // from_chars rejects a leading '+'; accept it since people write it.
   const char* begin = (!s.empty() && s[0] == '+') ? s.data() + 1 : s.data();
+  double value = 0;
   const auto [ptr, ec] = std::from_chars(begin, end, value);
-  if (ec != std::errc() || ptr != end || !std::isfinite(value))
+  if (ptr != end || (ec != std::errc() && ec != std::errc::result_out_of_range) || s.empty()) {
+    error = "expected a number, found '" + std::string(s) + "'";
     return std::nullopt;
-  return value;
+  }
+  // Out of a double's range, from_chars leaves `value` alone; strtod says which way.
+  if (ec == std::errc::result_out_of_range)
+    value = std::strtod(std::string(begin, end).c_str(), nullptr);
+  if (!std::isfinite(value) || std::abs(value) > double(std::numeric_limits<float>::max())) {
+    error = "the number " + std::string(s) +
+            " is out of range: camera-path values are floats, finite and within ±3.4e38";
+    return std::nullopt;
+  }
+  return static_cast<float>(value);
 }
 
 }  // namespace
@@ -78,10 +94,10 @@ std::optional<CameraPath> parseCameraPath(const compiler::SourceFile& file,
     float v[7];
     bool ok = true;
     for (int i = 0; i < 7; ++i) {
-      const auto value = parseFloat(fields[i].text);
+      std::string error;
+      const auto value = parseFloat(fields[i].text, error);
       if (!value) {
-        diagnostics.error(file, {lineNumber, fields[i].column},
-                          "expected a number, found '" + std::string(fields[i].text) + "'");
+        diagnostics.error(file, {lineNumber, fields[i].column}, error);
         ok = false;
         break;
       }
@@ -99,18 +115,13 @@ std::optional<CameraPath> parseCameraPath(const compiler::SourceFile& file,
                             std::string(fields[6].text));
       continue;
     }
-    const glm::vec3 view = camera.target - camera.position;
-    const float length = glm::length(view);
-    if (length < 1e-6f) {
-      diagnostics.error(file, {lineNumber, fields[3].column},
-                        "the target equals the camera position: no view direction");
-      continue;
-    }
-    if (std::abs(view.y) / length > 0.99999f) {
-      diagnostics
-          .error(file, {lineNumber, fields[3].column},
-                 "the view direction is parallel to the up vector (0, 1, 0)")
-          .notes.push_back("move the target a little sideways");
+    // Range, view direction and up vector, before any scene is built.
+    if (const std::string problem = cameraProblem(camera); !problem.empty()) {
+      const bool position = problem.find("position (") != std::string::npos &&
+                            problem.find("out of range") != std::string::npos;
+      auto& d = diagnostics.error(file, {lineNumber, fields[position ? 0 : 3].column}, problem);
+      if (problem.find("parallel") != std::string::npos)
+        d.notes.push_back("move the target a little sideways");
       continue;
     }
     path.frames.push_back(camera);

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "runtime/scene/camera_range.h"
+
 namespace memograph::runtime {
 namespace {
 
@@ -80,14 +82,8 @@ bool validateScene(const Scene& scene, const std::string& sceneName,
             "') needs exactly one of a graph file and graph text");
     }
   }
-  const Camera& camera = scene.camera;
-  if (!finite(camera.position) || !finite(camera.target) ||
-      glm::length(camera.target - camera.position) <= 0.0f) {
-    error("the camera has no view direction (its target equals its position, or is not finite)");
-  }
-  if (!(camera.verticalFovDegrees > 0.0f && camera.verticalFovDegrees < 180.0f)) {
-    error("the camera's vertical field of view must be between 0 and 180 degrees");
-  }
+  if (const std::string problem = cameraProblem(scene.camera); !problem.empty())
+    error(problem);
   for (std::size_t l = 0; l < scene.lights.size(); ++l) {
     const Light& light = scene.lights[l];
     const std::string what = "light " + std::to_string(l);

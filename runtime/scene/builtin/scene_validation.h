@@ -14,7 +14,8 @@ namespace memograph::runtime {
 // per-vertex arrays as long as `positions` (uvs, tangents and colors may be empty); whole
 // triangles with indices in range; finite positions and transforms; instance mesh and
 // material indices in range; every material with exactly one of graphPath and graphText;
-// a camera with a view direction and 0 < fov < 180; lights with finite, non-negative
+// a camera that cameraProblem accepts (coordinates in range, a view direction, an up vector
+// off it, 0 < fov < 180); lights with finite, non-negative
 // intensity and directional lights with a direction.
 bool validateScene(const Scene& scene, const std::string& sceneName,
                    compiler::Diagnostics& diagnostics);

@@ -66,6 +66,33 @@ TEST(CameraPath, DegenerateViewsAreRejected) {
   EXPECT_NE(firstError("0 0 0 0 5 0 60\n").find("parallel to the up vector"), std::string::npos);
 }
 
+// A double's denormal is a number: it becomes the nearest float (here 0), not "expected a
+// number"; a value past a float's range is reported as out of range, at its column.
+TEST(CameraPath, TinyNumbersAreAcceptedAndHugeOnesAreOutOfRange) {
+  compiler::Diagnostics diagnostics;
+  const auto path =
+      parseCameraPath(compiler::SourceFile{"walk.campath", "0 1e-310 5 0 0 0 45\n"}, diagnostics);
+  ASSERT_TRUE(path) << compiler::formatDiagnostics(diagnostics);
+  EXPECT_EQ(path->frames[0].position.y, 0.0f);
+  EXPECT_EQ(firstError("0 0 5 1e39 0 0 45\n")
+                .rfind("walk.campath:1:7: error: the number 1e39 "
+                       "is out of range",
+                       0),
+            0u);
+}
+
+// A camera at 1e30 m made a degenerate basis at the first frame, reported as a parallel up
+// vector; its position is out of range, said at its column.
+TEST(CameraPath, CameraBeyondTheCoordinateRangeIsReportedAsOutOfRange) {
+  const std::string e = firstError("1e30 0 0 0 0 0 45\n");
+  EXPECT_EQ(e.rfind("walk.campath:1:1: error: the camera's position (1e+30, 0, 0) is out of "
+                    "range: each coordinate must be finite and within ±1e+18 m",
+                    0),
+            0u)
+      << e;
+  EXPECT_NE(firstError("0 0 0 -2e18 1 0 45\n").find("the camera's target"), std::string::npos);
+}
+
 TEST(CameraPath, EmptyFileHasNoFrames) {
   EXPECT_NE(firstError("# only a comment\n\n").find("has no frames"), std::string::npos);
   EXPECT_NE(firstError("").find("has no frames"), std::string::npos);
