@@ -353,6 +353,14 @@ def write_tex_coord(mw, flat, used):
     return result
 
 
+def _tex_coord_spec():
+    from .specs.vector import TEX_COORD
+    return TEX_COORD
+
+
+write_tex_coord.spec = _tex_coord_spec()
+
+
 CUSTOM_WRITERS = {
     'ShaderNodeTexCoord': write_tex_coord,
     'ShaderNodeValToRGB': write_color_ramp,
