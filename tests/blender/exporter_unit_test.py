@@ -153,6 +153,37 @@ def body(text):
 # -- tests ------------------------------------------------------------------------------
 
 
+class NodeSupportTableTest(unittest.TestCase):
+    """docs/guide/nodes.md's table of Blender nodes (tools/blender/node_support_table.py)
+    names every node type the exporter writes, with the status its map gives."""
+
+    def test_table_lists_every_known_node_type(self):
+        import re
+        doc = os.path.join(HERE, '..', '..', 'docs', 'guide', 'nodes.md')
+        with open(doc) as f:
+            text = f.read()
+        begin = text.index('<!-- blender-node-table: begin')
+        end = text.index('<!-- blender-node-table: end -->')
+        rows = {}
+        for line in text[begin:end].splitlines():
+            m = re.match(r'\| [^|]+ \| [^|]+ \| `(\w+)` \| ([a-z ]+) \|', line)
+            if m:
+                rows[m.group(1)] = m.group(2)
+        known = set(writers.build_table()) | set(shaders.SHADER_WRITERS)
+        missing = sorted(known - set(rows))
+        self.assertEqual(missing, [], 'node types the exporter writes that the table lacks; '
+                         'regenerate it (tools/blender/node_support_table.py)')
+        wrong = sorted(t for t in known if rows[t] == 'not supported')
+        self.assertEqual(wrong, [], 'written by the exporter but listed as not supported')
+        unknown = sorted(t for t, status in rows.items()
+                         if status != 'not supported' and t not in known
+                         and t != 'ShaderNodeOutputMaterial'
+                         and not t.startswith('ShaderNodeBsdf')
+                         and t not in ('ShaderNodeSubsurfaceScattering',
+                                       'ShaderNodeBackground'))
+        self.assertEqual(unknown, [], 'listed as handled, but the exporter has no writer')
+
+
 class SpecLoaderTest(unittest.TestCase):
     def make_pkg(self, files):
         root = tempfile.mkdtemp(prefix='mgspec')

@@ -40,6 +40,17 @@ def main(argv):
     if not bpy.data.filepath:
         print('error: no .blend file was opened (pass it before --python)', file=sys.stderr)
         return 1
+    blend_name = os.path.basename(bpy.data.filepath)
+    printed = []  # every warning line, so that the summary counts what was printed
+
+    def warn(line):
+        printed.append(line)
+        print('warning: ' + line, file=sys.stderr)
+
+    newer = exporter.newer_file_warning(tuple(bpy.data.version), tuple(bpy.app.version_file),
+                                        bpy.app.version_string)
+    if newer:
+        warn('%s: %s' % (blend_name, newer))
     mats = list(bpy.data.materials)
     if args.materials:
         by_name = {m.name: m for m in mats}
@@ -50,6 +61,11 @@ def main(argv):
                      ', '.join(sorted(by_name)) or 'none'), file=sys.stderr)
             return 1
         mats = [by_name[n] for n in args.materials]
+    elif not mats:
+        # Not an error: the file is valid and the (empty) export is complete; a batch over
+        # many files should not fail on one without materials. But never silently.
+        warn('%s: the file has no materials: only an empty index.json is written'
+             % blend_name)
     try:
         result = exporter.export_materials(mats, os.path.abspath(args.out))
     except SpecError as exc:
@@ -59,8 +75,7 @@ def main(argv):
         print('error: %s' % exc, file=sys.stderr)
         return 1
     for material, node, message in result.warnings:
-        print('warning: %s: %s: %s' % (material, node or '(material)', message),
-              file=sys.stderr)
+        warn('%s: %s: %s' % (material, node or '(material)', message))
     for material, message in result.errors:
         print('error: %s: %s' % (material, message), file=sys.stderr)
     if args.scene and not result.errors:
@@ -72,12 +87,19 @@ def main(argv):
             print('error: the scene export failed: %s' % exc, file=sys.stderr)
             return 1
         for message in scene_warnings:
-            print('warning: scene: %s' % message, file=sys.stderr)
+            warn('scene: %s' % message)
         if not args.quiet:
             print('memograph: wrote %s and %s' % (gltf, sidecar))
     if not args.quiet:
-        print('memograph: wrote %d material(s) to %s, %d warning(s), %d error(s)'
-              % (len(result.files), args.out, len(result.warnings), len(result.errors)))
+        if result.errors:
+            # No "wrote ... to DIR": run by import-blender, a failed export leaves DIR as it
+            # was (the files went to a staging folder that is removed).
+            print('memograph: the export failed: %d error(s), %d warning(s); %d other '
+                  'material(s) exported' % (len(result.errors), len(printed),
+                                            len(result.files)))
+        else:
+            print('memograph: wrote %d material(s) to %s, %d warning(s), 0 error(s)'
+                  % (len(result.files), args.out, len(printed)))
     return 1 if result.errors else 0
 
 

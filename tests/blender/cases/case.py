@@ -86,3 +86,34 @@ def drive_ok(spec) -> bool:
         if src in VECTOR_SOURCES:
             return _num_or_vec(a) and _num_or_vec(b)
     return False
+
+
+def snapped_input(targets, step=0.0731, offset=(-32.0, -32.0, 5.0)):
+    """extra() that drives inputs with floor(uv * 64 + offset) * step: the whole vector
+    ('vec') or one component ('x', 'y', 'z') per target socket."""
+    def extra(node, nt):
+        tc = nt.nodes.new('ShaderNodeTexCoord')
+        ma = nt.nodes.new('ShaderNodeVectorMath')
+        ma.operation = 'MULTIPLY_ADD'
+        ma.inputs[1].default_value = (64.0, 64.0, 64.0)
+        ma.inputs[2].default_value = offset
+        nt.links.new(tc.outputs['UV'], ma.inputs[0])
+        fl = nt.nodes.new('ShaderNodeVectorMath')
+        fl.operation = 'FLOOR'
+        nt.links.new(ma.outputs[0], fl.inputs[0])
+        mul = nt.nodes.new('ShaderNodeVectorMath')
+        mul.operation = 'MULTIPLY'
+        mul.inputs[1].default_value = (step, step, step)
+        nt.links.new(fl.outputs[0], mul.inputs[0])
+        sep = None
+        for sock, comp in targets.items():
+            if not node.inputs[sock].enabled:
+                continue
+            if comp == 'vec':
+                nt.links.new(mul.outputs[0], node.inputs[sock])
+            else:
+                if sep is None:
+                    sep = nt.nodes.new('ShaderNodeSeparateXYZ')
+                    nt.links.new(mul.outputs[0], sep.inputs[0])
+                nt.links.new(sep.outputs[comp.upper()], node.inputs[sock])
+    return extra

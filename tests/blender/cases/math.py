@@ -16,7 +16,7 @@ constant-input cases. Discontinuous operations (floor, modulo, snap, wrap, compa
 steps, burn/dodge's jumps) use constants and offsets that keep every pixel centre well away
 from a jump (checked against the baked images).
 """
-from .case import Case
+from .case import Case, snapped_input
 
 MATH_OPS = ['ADD', 'SUBTRACT', 'MULTIPLY', 'DIVIDE', 'MULTIPLY_ADD', 'POWER', 'LOGARITHM',
             'SQRT', 'INVERSE_SQRT', 'ABSOLUTE', 'EXPONENT', 'MINIMUM', 'MAXIMUM', 'LESS_THAN',
@@ -119,6 +119,7 @@ def _math_cases():
         ('math_power_zero_exponent', 'POWER', {'Value': _A}, {'Value_001': 0.0}),
         ('math_modulo_by_zero', 'MODULO', {'Value': _A}, {'Value_001': 0.0}),
         ('math_snap_by_zero', 'SNAP', {'Value': _A}, {'Value_001': 0.0}),
+        ('math_snap_exact_multiple', 'SNAP', {}, {'Value': 0.9, 'Value_001': 0.1}),
         ('math_wrap_empty_range', 'WRAP', {'Value': _A}, {'Value_001': 0.7, 'Value_002': 0.7}),
         ('math_pingpong_zero_scale', 'PINGPONG', {'Value': _A}, {'Value_001': 0.0}),
         ('math_smooth_min_zero', 'SMOOTH_MIN', {'Value': _A, 'Value_001': _B},
@@ -131,6 +132,11 @@ def _math_cases():
     for name, op, drive, inputs in extra:
         out.append(Case(name=name, node='ShaderNodeMath', props={'operation': op},
                         drive=drive, inputs=inputs, output='Value'))
+    # Snap at exact multiples per texel (see vmath_snap_exact_multiples_driven).
+    out.append(Case(name='math_snap_exact_multiples_driven', node='ShaderNodeMath',
+                    props={'operation': 'SNAP'}, inputs={'Value_001': 0.1},
+                    extra=snapped_input({'Value': 'x'}, step=0.1), output='Value',
+                    note='snapped input: exact multiples of the increment'))
     return out
 
 
@@ -194,6 +200,26 @@ def _vector_cases():
                         node='ShaderNodeVectorMath', props={'operation': op},
                         drive={'Vector': ('uv3', (6.0, 6.0, 0.0), (-3.0, -3.0, 2.3))},
                         inputs={'Vector_001': (0.375, -0.75, 0.0)}, output='Vector'))
+    # Snap at exact multiples: Cycles divides exactly (0.3 / 0.1 rounds to 3 in float32, so
+    # 0.3 stays 0.3); a division through a reciprocal gives 2.9999998 and a whole step less.
+    # The constant is the plain example; the driven one puts k * 0.1 (k over -32 .. 31,
+    # identical bits in both bakes) on every texel, each an exact multiple of the increment.
+    out.append(Case(name='vmath_snap_exact_multiples', node='ShaderNodeVectorMath',
+                    props={'operation': 'SNAP'},
+                    inputs={'Vector': (0.3, 0.6, 0.9), 'Vector_001': (0.1, 0.1, 0.1)},
+                    output='Vector'))
+    out.append(Case(name='vmath_snap_exact_multiples_driven', node='ShaderNodeVectorMath',
+                    props={'operation': 'SNAP'}, inputs={'Vector_001': (0.1, 0.1, 0.1)},
+                    extra=snapped_input({'Vector': 'vec'}, step=0.1,
+                                        offset=(-32.0, -32.0, 3.0)),
+                    output='Vector', note='snapped input: exact multiples of the increment'))
+    # Wrap divides the same way before floor.
+    out.append(Case(name='vmath_wrap_exact_multiples_driven', node='ShaderNodeVectorMath',
+                    props={'operation': 'WRAP'},
+                    inputs={'Vector_001': (0.1, 0.1, 0.1), 'Vector_002': (0.0, 0.0, 0.0)},
+                    extra=snapped_input({'Vector': 'vec'}, step=0.1,
+                                        offset=(-32.0, -32.0, 3.0)),
+                    output='Vector', note='snapped input: exact multiples of the range'))
     out.append(Case(name='vmath_wrap_empty_range', node='ShaderNodeVectorMath',
                     props={'operation': 'WRAP'}, drive={'Vector': _VA},
                     inputs={'Vector_001': (0.5, 0.5, 0.5), 'Vector_002': (0.5, -1.0, 0.5)},

@@ -118,6 +118,36 @@ CASES += [
 for _out in ('Generated', 'Normal', 'UV', 'Object', 'Reflection'):
     CASES.append(Case(name='tex_coord_%s' % _out.lower(), node='ShaderNodeTexCoord',
                       output=_out))
+
+
+def _placed_empty(node, nt):
+    """Texture Coordinate Object from an Empty that is moved, rotated about every axis and
+    scaled unevenly: Cycles gives the world position in the Empty's space."""
+    import bpy  # Blender only; the case modules stay importable by plain python3
+    empty = bpy.data.objects.new('tex_coord_empty', None)
+    bpy.context.scene.collection.objects.link(empty)
+    empty.location = (0.7, -1.3, 0.4)
+    empty.rotation_euler = (0.5, -0.3, 1.1)
+    empty.scale = (0.5, 2.0, 1.5)
+    bpy.context.view_layer.update()
+    node.object = empty
+
+
+CASES.append(Case(name='tex_coord_object_from_empty', node='ShaderNodeTexCoord',
+                  output='Object', extra=_placed_empty))
+# Object from the Empty next to another output of the same node (both written).
+CASES.append(Case(name='tex_coord_object_from_empty_with_uv', node='ShaderNodeVectorMath',
+                  props={'operation': 'ADD'},
+                  extra=lambda node, nt: _empty_and_uv(node, nt), output='Vector'))
+
+
+def _empty_and_uv(node, nt):
+    coords = nt.nodes.new('ShaderNodeTexCoord')
+    _placed_empty(coords, nt)
+    nt.links.new(coords.outputs['Object'], node.inputs[0])
+    nt.links.new(coords.outputs['UV'], node.inputs[1])
+
+
 CASES.append(Case(name='uv_map', node='ShaderNodeUVMap', output='UV'))
 # The radial tangents about Z turn fastest next to the plane's centre, where the bake's
 # sampling offset (1.6e-5 in u, 3.1e-5 in v) turns them by up to 2.2e-3: the tolerance

@@ -249,9 +249,16 @@ class MaterialWriter:
         mat = self.material
         self.builder.comment(header)
         tree = mat.node_tree if mat.use_nodes else None
-        if tree is None:
-            self.warn('', 'material does not use nodes: its viewport colour, metallic and '
-                      'roughness are written')
+        library = missing_library(mat)
+        if library is not None or tree is None:
+            if library is not None:
+                # A placeholder: Blender read nothing of the material but its name.
+                self.warn('', 'the material is linked from the library %s, which is '
+                          'missing: its placeholder\'s viewport colour, metallic and '
+                          'roughness are written' % library)
+            else:
+                self.warn('', 'material does not use nodes: its viewport colour, metallic '
+                          'and roughness are written')
             shaders.write_outputs(self, shaders.Params(
                 base_color=Literal(tuple(mat.diffuse_color)[:3]),
                 metallic=Literal(float(mat.metallic)),
@@ -296,6 +303,35 @@ def _collect_usage(flat, usage, visited):
         if isinstance(src, Out):
             usage.setdefault(src.node.key, set()).add(src.identifier)
             _collect_usage(src.node, usage, visited)
+
+
+def missing_library(material):
+    """'NAME' (PATH) of the library a linked material should come from when that library is
+    missing (Blender then keeps a placeholder without nodes), else None."""
+    library = getattr(material, 'library', None)
+    if library is None:
+        return None
+    path = getattr(library, 'filepath', '')
+    try:
+        import bpy
+        absolute = bpy.path.abspath(path, library=getattr(library, 'library', None))
+    except ImportError:
+        absolute = path
+    if not getattr(material, 'is_missing', False) and os.path.exists(absolute):
+        return None
+    return '%r (%s)' % (library.name, absolute)
+
+
+def newer_file_warning(file_version, running_file_version, running_name):
+    """The warning for a .blend saved by a newer Blender than the running one, else None.
+    Versions are (major, minor, file subversion): bpy.data.version, bpy.app.version_file."""
+    if tuple(file_version) <= tuple(running_file_version):
+        return None
+    return ('saved by Blender %d.%d (file version %d.%d.%d), newer than the running Blender '
+            '%s: results may differ (nodes, settings and defaults that this Blender does '
+            'not know are read as it can, or dropped by Blender itself)'
+            % (file_version[0], file_version[1], file_version[0], file_version[1],
+               file_version[2], running_name))
 
 
 def _header(material):

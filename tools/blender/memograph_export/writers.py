@@ -318,7 +318,51 @@ def write_image(mw, flat, used):
     return result
 
 
+def affine_rows(matrix):
+    """The top three rows of a 4x4 matrix (mathutils.Matrix or nested sequences) as the
+    float4 literals of AffineTransformPoint's Row0..Row2."""
+    return [Literal(tuple(float(matrix[r][c]) for c in range(4))) for r in range(3)]
+
+
+def write_tex_coord(mw, flat, used):
+    """ShaderNodeTexCoord. Its outputs as the TEX_COORD spec writes them, except Object with
+    an object set (an Empty placing a procedural texture): Cycles gives the hit's world
+    position in that object's space, so it is PositionInput moved by the object's inverse
+    world matrix (AffineTransformPoint), a constant of the export."""
+    from .specs.vector import TEX_COORD
+    node = flat.node
+    target = getattr(node, 'object', None)
+    if getattr(node, 'from_instancer', False):
+        mw.warn(flat, '"From Instancer" is not carried: the coordinates of the shaded object '
+                'itself are used')
+    if target is None or 'Object' not in used:
+        return spec_writer(TEX_COORD)(mw, flat, used)
+    rest = set(used) - {'Object'}
+    result = spec_writer(TEX_COORD)(mw, flat, rest) if rest else {}
+    position = mw.builder.new_link()
+    mw.builder.add('PositionInput', [], [('Out', position)],
+                   comment='%s: world position' % flat.label)
+    rows = affine_rows(target.matrix_world.inverted())
+    link = mw.builder.new_link()
+    mw.builder.add('AffineTransformPoint',
+                   [('Vector', position), ('Row0', rows[0]), ('Row1', rows[1]),
+                    ('Row2', rows[2])],
+                   [('Out', link)], comment='%s: Object coordinates of %s'
+                   % (flat.label, target.name))
+    result['Object'] = link
+    return result
+
+
+def _tex_coord_spec():
+    from .specs.vector import TEX_COORD
+    return TEX_COORD
+
+
+write_tex_coord.spec = _tex_coord_spec()
+
+
 CUSTOM_WRITERS = {
+    'ShaderNodeTexCoord': write_tex_coord,
     'ShaderNodeValToRGB': write_color_ramp,
     'ShaderNodeRGBCurve': write_rgb_curves,
     'ShaderNodeVectorCurve': write_vector_curves,

@@ -31,6 +31,15 @@ def _rgb(values):
     return tuple(float(v) for v in tuple(values)[:3])
 
 
+# Texture Coordinate: the exporter's custom writer (writers.write_tex_coord) uses this spec
+# for every output but Object with an object set, which it writes as that object's space.
+TEX_COORD = NodeSpec(
+    mgraph=_tex_coord_node,
+    inputs={},
+    outputs={'Generated': 'Generated', 'Normal': 'Normal', 'UV': 'UV', 'Object': 'Object',
+             'Reflection': 'Reflection'})
+
+
 NODES = {
     # --- Vector menu ---------------------------------------------------------------------
     'ShaderNodeMapping': NodeSpec(
@@ -71,11 +80,6 @@ NODES = {
                              lambda node: tuple(node.outputs['Normal'].default_value))}),
 
     # --- Input menu ----------------------------------------------------------------------
-    'ShaderNodeTexCoord': NodeSpec(
-        mgraph=_tex_coord_node,
-        inputs={},
-        outputs={'Generated': 'Generated', 'Normal': 'Normal', 'UV': 'UV', 'Object': 'Object',
-                 'Reflection': 'Reflection'}),
     'ShaderNodeUVMap': NodeSpec(
         mgraph='UVMap', inputs={}, outputs={'UV': 'UV'}),
     'ShaderNodeNewGeometry': NodeSpec(
