@@ -341,6 +341,11 @@ def run_untrusted_blender_tests(memograph, work, base, blend, log, command, envi
             so, se = p.communicate(timeout=15)
         except subprocess.TimeoutExpired:
             p.kill()
+            for pid in pids:  # they hold the pipes open: communicate() would wait for them
+                try:
+                    os.kill(pid, signal.SIGKILL)
+                except OSError:
+                    pass
             so, se = p.communicate()
         check(p.returncode == 128 + sig and 'stopped by signal' in se,
               'signal %d: exit %d (got %s: %s)' % (sig, 128 + sig, p.returncode, se.strip()))
