@@ -5,11 +5,17 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <signal.h>
+
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
+#include <charconv>
 #include <cstring>
 #include <mutex>
+#include <optional>
 #include <set>
+#include <string_view>
 
 namespace memograph::files {
 
@@ -29,6 +35,69 @@ mode_t creationMode() {
 
 fs::path folderOf(const fs::path& target) {
   return target.has_parent_path() ? target.parent_path() : fs::path(".");
+}
+
+constexpr std::string_view kTemporaryMark = ".partial-";
+
+// The writer's pid when `name` is one of our temporaries, `.<stem>.partial-<pid>-XXXXXX`
+// then the target's extension (none, or one '.' and no other). A previous version kept
+// aside during a commit (the same name + ".old") is not one: with a file system without
+// hard links it may be the only copy of the user's file.
+std::optional<pid_t> temporaryWriterPid(std::string_view name) {
+  if (name.size() < 2 || name[0] != '.')
+    return std::nullopt;
+  const std::size_t mark = name.rfind(kTemporaryMark);
+  if (mark == std::string_view::npos || mark == 0)
+    return std::nullopt;
+  std::string_view rest = name.substr(mark + kTemporaryMark.size());
+  pid_t pid = 0;
+  const auto [end, ec] = std::from_chars(rest.data(), rest.data() + rest.size(), pid);
+  if (ec != std::errc() || end == rest.data() || pid <= 0)
+    return std::nullopt;
+  rest.remove_prefix(std::size_t(end - rest.data()));
+  if (rest.size() < 7 || rest[0] != '-')
+    return std::nullopt;
+  for (const char c : rest.substr(1, 6)) {
+    if (!std::isalnum(static_cast<unsigned char>(c)))
+      return std::nullopt;
+  }
+  // ".old" alone is skipped too: a backup of an extension-less target looks the same.
+  const std::string_view extension = rest.substr(7);
+  if (!extension.empty() && (extension[0] != '.' || extension == ".old" ||
+                             extension.find('.', 1) != std::string_view::npos))
+    return std::nullopt;
+  return pid;
+}
+
+// Removes, once per folder and process, the temporaries in `folder` that processes which
+// no longer exist left behind (killed mid-write: a bake's full-size images). Only regular
+// files of our naming, owned by us, whose pid is not alive (kill(pid, 0) says ESRCH; a
+// reused pid only keeps a temporary a while longer). The set of swept folders is
+// process-wide so that a command writing many files into one folder lists it once.
+void removeStaleTemporaries(const fs::path& folder) {
+  static std::mutex mutex;
+  static std::set<std::string> swept;
+  {
+    std::error_code ec;
+    const std::string key = fs::weakly_canonical(folder, ec).string();
+    const std::lock_guard lock(mutex);
+    if (!swept.insert(ec ? folder.string() : key).second)
+      return;
+  }
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(folder, ec)) {
+    const std::string name = entry.path().filename().string();
+    const auto pid = temporaryWriterPid(name);
+    if (!pid || *pid == ::getpid())
+      continue;
+    struct stat info {};
+    if (::lstat(entry.path().c_str(), &info) != 0 || !S_ISREG(info.st_mode) ||
+        info.st_uid != ::geteuid())
+      continue;
+    if (::kill(*pid, 0) == 0 || errno != ESRCH)
+      continue;
+    ::unlink(entry.path().c_str());
+  }
 }
 
 // Holds exclusive flock(2)s on folders (in sorted order, so two sets never deadlock);
@@ -113,12 +182,16 @@ bool StagedFile::create(const fs::path& target, std::string& error) {
   discard();
   committed_ = false;
   target_ = target;
-  // ".<name>.XXXXXX<ext>": hidden, unique (mkstemps), and with the target's extension.
+  removeStaleTemporaries(folderOf(target));
+  // ".<name>.partial-<pid>-XXXXXX<ext>": hidden, unique (mkstemps), the writer's pid for
+  // removeStaleTemporaries, and the target's extension.
   const std::string extension = target.extension().string();
   std::string name = folderOf(target).string();  // appended, not operator+: GCC 12 bug 105329
   name += "/.";
   name += target.stem().string();
-  name += ".XXXXXX";
+  name += kTemporaryMark;
+  name += std::to_string(::getpid());
+  name += "-XXXXXX";
   name += extension;
   std::vector<char> buffer(name.begin(), name.end());
   buffer.push_back('\0');

@@ -3,12 +3,14 @@
 //
 // Every file is first written to a temporary created with a unique name (mkstemp) in the
 // target's own folder, so the final rename(2) never crosses a file system and is atomic;
-// two processes never share a temporary (fixed, pid- or time-based names collided: issue
-// 14). A set of files (`compile`'s folder) is committed under an exclusive flock(2) on the
-// target folder, the previous version of each file kept aside as a hard link, so that a
-// failure part-way through restores every file already replaced and concurrent commits
-// into one folder do not interleave. Standard library and POSIX only: the core (PFM, the
-// shader cache), the io library and the CLI all use it.
+// two processes never share a temporary (mkstemp's random part makes the name unique: a
+// fixed, pid- or time-based name alone collides). The name also carries the writer's pid,
+// so that temporaries of a process that was killed (SIGKILL leaves no chance to remove
+// them) are found and removed by the next write into that folder. A set of files (`compile`'s
+// folder) is committed under an exclusive flock(2) on the target folder, the previous version of
+// each file kept aside as a hard link, so that a failure part-way through restores every file
+// already replaced and concurrent commits into one folder do not interleave. Standard library and
+// POSIX only: the core (PFM, the shader cache), the io library and the CLI all use it.
 #pragma once
 
 #include <filesystem>
@@ -20,8 +22,10 @@
 namespace memograph::files {
 
 // A temporary file next to `target`, created empty and exclusively (mode 0666 & ~umask),
-// removed by the destructor unless committed. The name keeps the target's extension, so
-// libraries that pick a format by extension (OpenImageIO) can write it by path.
+// removed by the destructor unless committed: `.<stem>.partial-<pid>-XXXXXX<ext>`. The
+// name keeps the target's extension, so libraries that pick a format by extension
+// (OpenImageIO) can write it by path. The first create() in a folder (once per process)
+// removes the temporaries there of processes that no longer exist.
 class StagedFile {
  public:
   StagedFile() = default;

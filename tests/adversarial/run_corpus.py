@@ -233,6 +233,48 @@ def cases(gen):
          r"far\.campath:1:1: error: the camera's position \(1e\+30, 0, 0\) is out of range"),
     ]
     # --- end of hostile scenes ---
+    # import-blender with an untrusted Blender, and bake's --bounds and --out messages
+    # (tools/cli/import_blender_command.cpp, staged_import.cpp, child_process.cpp): fake
+    # Blenders (shell scripts) that hang, or leave links, FIFOs, garbage, huge graphs, a bad
+    # index or a file instead of the staging folder. DIR (out/imported) must stay unmade.
+    fakes = os.path.join(gen, "fake_blenders")
+    os.makedirs(fakes, exist_ok=True)
+    blend = os.path.join(fakes, "scene.blend")
+    with open(blend, "wb") as f:
+        f.write(b"BLENDER-v304" + b"\0" * 64)
+    export = ('out=; while [ $# -gt 0 ]; do [ "$1" = --out ] && out=$2; shift; done\n'
+              'printf "material a;\\n" > "$out/a.mgraph"\n'
+              'printf \'{"materials": {"A": {"file": "a.mgraph", "material": "a"}}}\' '
+              '> "$out/index.json"\n')
+    behaviours = {
+        "hang": ("sleep 1000\n", r"did not finish within --timeout 1 s"),
+        "link_passwd": ('ln -s /etc/passwd "$out/b.mgraph"\n', r"b\.mgraph: is a symbolic link"),
+        "link_etc": ('ln -s /etc "$out/etc"\n', r"etc: is a symbolic link"),
+        "fifo": ('mkfifo "$out/f.png"\n', r"f\.png: is a FIFO"),
+        "garbage": ('printf "}}} garbage" > "$out/a.mgraph"\n', r"a\.mgraph:1:\d+: error"),
+        "huge": ('truncate -s 200M "$out/a.mgraph"\n', r"a\.mgraph: the file is 200 MiB"),
+        "bad_index": ('printf "{[" > "$out/index.json"\n', r"index\.json: not the exporter"),
+        "replace_folder": ('rm -rf "$out"; echo x > "$out"\n', r"not a folder"),
+    }
+    for name, (action, pattern) in sorted(behaviours.items()):
+        script = os.path.join(fakes, name)
+        with open(script, "w") as f:
+            f.write("#!/bin/sh\n" + export + action +
+                    'echo "memograph: wrote 1 material(s) to $out, 0 warning(s), 0 error(s)"\n')
+        os.chmod(script, 0o755)
+        out.append(("import-blender: " + name,
+                    ["import-blender", blend, "--out", "out/imported", "--blender", script,
+                     "--timeout", "1"], 1, pattern))
+    out.append(("import-blender: /bin/true", ["import-blender", blend, "--out", "out/imported",
+                                              "--blender", "/bin/true"], 1,
+                r"index\.json: missing"))
+    os.symlink(os.path.join(gen, "nowhere"), os.path.join(fakes, "dangling_out"))
+    out.append(("bake: --bounds 1e38", ["bake", valid, "--size", "2x2", "--out", "out",
+                                        "--bounds", "-1e38,-1e38,-1e38,1e38,1e38,1e38"], 2,
+                r"xmin -1e38 is out of range"))
+    out.append(("bake: --out dangling link", ["bake", valid, "--size", "2x2", "--format", "pfm",
+                                              "--out", os.path.join(fakes, "dangling_out")], 1,
+                r"is a dangling symbolic link"))
     return out
 
 

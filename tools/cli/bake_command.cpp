@@ -62,25 +62,57 @@ constexpr std::string_view kHelp =
     "  --device N        Vulkan device index (render --list-devices lists them)\n"
     "  --quiet           print only errors\n";
 
-bool parseBounds(const std::string& text, std::array<float, 3>& lo, std::array<float, 3>& hi) {
+// Reads --bounds; false with `error` saying which number is wrong and why.
+bool parseBounds(const std::string& text, std::array<float, 3>& lo, std::array<float, 3>& hi,
+                 std::string& error) {
+  constexpr double kMaxBound = 1e30;  // finite as floats with room: the shader computes in float
+  constexpr std::array<const char*, 6> kNames = {"xmin", "ymin", "zmin", "xmax", "ymax", "zmax"};
   std::array<double, 6> values{};
   std::size_t start = 0;
   for (int k = 0; k < 6; ++k) {
     const std::size_t comma = text.find(',', start);
-    if ((k < 5) != (comma != std::string::npos))
+    if ((k < 5) != (comma != std::string::npos)) {
+      error = "takes six numbers xmin,ymin,zmin,xmax,ymax,zmax";
       return false;
+    }
     const std::string_view item = std::string_view(text).substr(
         start, comma == std::string::npos ? std::string::npos : comma - start);
-    // Finite as floats too: the shader computes in float.
-    if (!parseReal(item, values[k]) || std::abs(values[k]) > 1e30)
+    if (!parseReal(item, values[k]) || !std::isfinite(values[k])) {
+      error = std::string(kNames[k]) + " '" + std::string(item) + "' is not a number";
       return false;
+    }
+    if (std::abs(values[k]) > kMaxBound) {
+      error = std::string(kNames[k]) + " " + std::string(item) +
+              " is out of range: each bound must lie within -1e30..1e30";
+      return false;
+    }
     start = comma + 1;
   }
   for (int k = 0; k < 3; ++k) {
-    if (values[k] > values[k + 3])
+    if (values[k] > values[k + 3]) {
+      error = std::string(kNames[k]) + " is greater than " + kNames[k + 3];
       return false;
+    }
     lo[k] = float(values[k]);
     hi[k] = float(values[k + 3]);
+  }
+  return true;
+}
+
+// Checks --out before any work: a folder, or nothing there yet. A dangling symbolic link
+// or a file is named as such (create_directories alone says "File exists").
+bool checkOutputFolder(const std::string& outDir, std::string& error) {
+  std::error_code ec;
+  const fs::file_status linkStatus = fs::symlink_status(outDir, ec);
+  const fs::file_status status = fs::status(outDir, ec);
+  if (fs::is_symlink(linkStatus) && !fs::exists(status)) {
+    const fs::path to = fs::read_symlink(outDir, ec);
+    error = "is a dangling symbolic link (to " + to.string() + "); name a folder";
+    return false;
+  }
+  if (fs::exists(status) && !fs::is_directory(status)) {
+    error = "is a file, not a folder";
+    return false;
   }
   return true;
 }
@@ -417,11 +449,9 @@ std::optional<int> scanBakeArguments(std::span<const std::string_view> args, Bak
 std::optional<int> readBakeSettings(const BakeArguments& a, BakeRun& run) {
   if (std::string error; !parseImageSize(a.size, run.settings.width, run.settings.height, error))
     return usageError("bake", "--size: " + error);
-  if (!a.bounds.empty() && !parseBounds(a.bounds, run.settings.boundsMin, run.settings.boundsMax))
-    return usageError("bake",
-                      "--bounds takes six numbers xmin,ymin,zmin,xmax,ymax,zmax with each min "
-                      "<= max, not '" +
-                          a.bounds + "'");
+  if (std::string error; !a.bounds.empty() && !parseBounds(a.bounds, run.settings.boundsMin,
+                                                           run.settings.boundsMax, error))
+    return usageError("bake", "--bounds '" + a.bounds + "': " + error);
   std::uint32_t deviceIndex = 0;
   if (a.device != "-1" && !parseNumber(a.device, deviceIndex))
     return usageError("bake", "--device takes a device index, not '" + a.device + "'");
@@ -455,6 +485,10 @@ int runBake(std::span<const std::string_view> args) {
   run.library = &*library;
   const std::vector<std::string> files = expandInputs(a.inputs, setup);
   printDiagnostics(setup);
+  if (std::string error; !checkOutputFolder(a.outDir, error)) {
+    std::cerr << "memograph bake: --out " << a.outDir << ": " << error << "\n";
+    return kExitFailure;
+  }
   std::error_code ec;
   fs::create_directories(a.outDir, ec);
   if (ec || !fs::is_directory(a.outDir)) {

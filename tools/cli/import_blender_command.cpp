@@ -2,17 +2,17 @@
 // runs Blender headless with the memograph exporter (tools/blender/export_memograph.py) and
 // writes one .mgraph per material into DIR (docs/guide/blender.md). DIR is committed as a set
 // (docs/guide/limits.md): Blender exports into a staging folder beside DIR, and only a
-// complete, successful export reaches DIR.
-#include <fcntl.h>
+// complete, successful export that passes validateStagedExport (staged_import.h) reaches DIR.
 #include <signal.h>
-#include <spawn.h>
 #include <sys/stat.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
+#include <cctype>
 #include <cerrno>
-#include <cstdio>
+#include <charconv>
+#include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -22,11 +22,11 @@
 #include <string>
 #include <vector>
 
+#include "child_process.h"
 #include "cli_common.h"
 #include "commands.h"
 #include "runtime/host/atomic_file.h"
-
-extern char** environ;
+#include "staged_import.h"
 
 namespace memograph::cli {
 
@@ -36,7 +36,8 @@ namespace fs = std::filesystem;
 
 constexpr std::string_view kHelp =
     "usage: memograph import-blender SCENE.blend --out DIR [--blender PATH]\n"
-    "                                [--materials NAME...]\n"
+    "                                [--materials NAME...] [--scene] [--verbose]\n"
+    "                                [--timeout SECONDS]\n"
     "\n"
     "Exports the materials of a Blender file as memograph graphs: runs Blender headless\n"
     "(`blender -b SCENE.blend --python export_memograph.py -- --out DIR`) and writes one\n"
@@ -49,14 +50,22 @@ constexpr std::string_view kHelp =
     "                       succeeds: Blender writes into a staging folder beside it\n"
     "  --blender PATH       the Blender executable (default: `blender` on PATH)\n"
     "  --materials NAME...  only these materials (default: all)\n"
+    "  --timeout SECONDS    stop Blender (and what it started) after this long and fail\n"
+    "                       (default 600; 0: no limit)\n"
     "  --scene              also write the scene: DIR/scene.gltf (Blender's glTF exporter,\n"
     "                       lights and active camera) and DIR/scene.memograph (what glTF\n"
     "                       drops: world, area lights, texture spaces); then\n"
     "                       `memograph render DIR/scene.gltf --materials DIR` renders it\n"
     "  --verbose            also show Blender's own output\n"
     "\n"
-    "exit status: 0 written (warnings allowed), 1 Blender is missing, the .blend cannot be\n"
-    "read or a material cannot be exported, 2 a usage error.\n";
+    "Before anything reaches DIR the export is checked: only regular files and folders, each\n"
+    "within the size limits of docs/guide/limits.md, index.json naming exactly the graphs\n"
+    "present, every graph parsing; otherwise DIR is left as it was.\n"
+    "\n"
+    "exit status: 0 written (warnings allowed), 1 Blender is missing, fails, times out or\n"
+    "leaves an export that fails the check, the .blend cannot be read or a material cannot\n"
+    "be exported, 2 a usage error, 128+N when stopped by signal N (SIGINT, SIGTERM,\n"
+    "SIGHUP: Blender is stopped and nothing is left behind).\n";
 
 // The directory of the running binary (for the installed/build-tree exporter script).
 std::optional<fs::path> executableDir() {
@@ -70,10 +79,19 @@ std::optional<fs::path> executableDir() {
 // Where the exporter script is, in order: $MEMOGRAPH_BLENDER_EXPORTER; beside the binary in
 // a build tree (<build>/tools/blender/, copied by tools/blender/CMakeLists.txt); installed
 // (<prefix>/share/memograph/blender/); the source tree this binary was configured from.
+// A MEMOGRAPH_BLENDER_EXPORTER that names no regular file is an error of its own (the
+// user asked for that script), never a silent fall back to another one.
 std::optional<fs::path> findExporterScript(std::vector<std::string>& tried) {
   std::vector<fs::path> candidates;
-  if (const char* env = std::getenv("MEMOGRAPH_BLENDER_EXPORTER"); env && *env)
-    candidates.emplace_back(env);
+  if (const char* env = std::getenv("MEMOGRAPH_BLENDER_EXPORTER"); env && *env) {
+    std::error_code ec;
+    if (!fs::is_regular_file(env, ec)) {
+      tried.push_back(std::string("MEMOGRAPH_BLENDER_EXPORTER=") + env + " (" +
+                      (fs::exists(env, ec) ? "not a regular file" : "no such file") + ")");
+      return std::nullopt;
+    }
+    return fs::weakly_canonical(env, ec);
+  }
   if (auto dir = executableDir()) {
     candidates.push_back(*dir / "blender" / "export_memograph.py");
     candidates.push_back(*dir / ".." / "share" / "memograph" / "blender" / "export_memograph.py");
@@ -189,9 +207,10 @@ class CreatedFolders {
   bool keep_ = false;
 };
 
-// The folder Blender exports into: `.<DIR name>.import-XXXXXX` beside DIR (so on DIR's file
-// system, and renamed into place when DIR does not exist yet). Removed with everything in
-// it unless released.
+// The folder Blender exports into: `.<DIR name>.import-<pid>-XXXXXX` beside DIR (so on
+// DIR's file system, and renamed into place when DIR does not exist yet). Removed with
+// everything in it unless released. The pid in the name lets a later run tell a folder
+// left by a process that was killed (SIGKILL, a crash, a power cut) from one in use.
 class StagingFolder {
  public:
   ~StagingFolder() {
@@ -201,10 +220,10 @@ class StagingFolder {
     fs::remove_all(path_, ignored);
   }
   bool create(const fs::path& target, std::string& error) {
-    std::string hidden = ".";  // appended: GCC 12 warns falsely (-Wrestrict) on "." + string
-    hidden += target.filename().string();
-    std::string pattern = (target.parent_path() / hidden).string();
-    pattern += ".import-XXXXXX";
+    removeStale(target);
+    std::string pattern = (target.parent_path() / prefix(target)).string();
+    pattern += std::to_string(::getpid());
+    pattern += "-XXXXXX";
     if (!::mkdtemp(pattern.data())) {
       error =
           files::errnoMessage("cannot create a staging folder beside " + target.string(), errno);
@@ -221,6 +240,55 @@ class StagingFolder {
   void release() { path_.clear(); }
 
  private:
+  static std::string prefix(const fs::path& target) {
+    std::string name = ".";  // appended: GCC 12 warns falsely (-Wrestrict) on "." + string
+    name += target.filename().string();
+    name += ".import-";
+    return name;
+  }
+
+  // The pid in `name` when it is exactly prefix + <pid>-XXXXXX (mkdtemp's six characters).
+  static std::optional<pid_t> stagingPid(std::string_view name, std::string_view prefix) {
+    if (name.substr(0, prefix.size()) != prefix)
+      return std::nullopt;
+    name.remove_prefix(prefix.size());
+    pid_t pid = 0;
+    const auto [end, ec] = std::from_chars(name.data(), name.data() + name.size(), pid);
+    const std::string_view rest(end, std::size_t(name.data() + name.size() - end));
+    if (ec != std::errc() || end == name.data() || pid <= 0 || rest.size() != 7 || rest[0] != '-')
+      return std::nullopt;
+    for (const char c : rest.substr(1)) {
+      if (!std::isalnum(static_cast<unsigned char>(c)))
+        return std::nullopt;
+    }
+    return pid;
+  }
+
+  // Removes the staging folders of this DIR that earlier runs left when they were killed:
+  // only real folders (not links) of exactly our name pattern, owned by us, whose process
+  // is gone. A live pid (ours, another import, or a reused one) keeps its folder.
+  static void removeStale(const fs::path& target) {
+    const std::string wanted = prefix(target);
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(target.parent_path(), ec)) {
+      const std::string name = entry.path().filename().string();
+      const auto pid = stagingPid(name, wanted);
+      if (!pid || *pid == ::getpid())
+        continue;
+      struct stat info {};
+      if (::lstat(entry.path().c_str(), &info) != 0 || !S_ISDIR(info.st_mode) ||
+          info.st_uid != ::geteuid())
+        continue;
+      if (::kill(*pid, 0) == 0 || errno != ESRCH)
+        continue;
+      std::error_code removeError;
+      fs::remove_all(entry.path(), removeError);
+      if (!removeError)
+        std::cerr << kCommand << "removed " << entry.path().string()
+                  << ", left by an import (process " << *pid << ") that was stopped\n";
+    }
+  }
+
   fs::path path_;
 };
 
@@ -290,7 +358,11 @@ std::optional<fs::path> findBlender(const std::string& blender) {
 std::optional<fs::path> findExporter() {
   std::vector<std::string> tried;
   auto script = findExporterScript(tried);
-  if (!script) {
+  if (!script && std::getenv("MEMOGRAPH_BLENDER_EXPORTER") &&
+      *std::getenv("MEMOGRAPH_BLENDER_EXPORTER")) {
+    std::cerr << kCommand << "the exporter script " << tried.front()
+              << "; unset it to use the installed export_memograph.py\n";
+  } else if (!script) {
     std::cerr << kCommand << "the exporter script export_memograph.py was not found; looked at:\n";
     for (const auto& t : tried)
       std::cerr << "  " << t << "\n";
@@ -319,84 +391,95 @@ std::optional<fs::path> outputFolder(const std::string& outDir) {
 }
 
 struct ImportArguments {
-  std::string outDir, blender;
+  std::string outDir, blender, timeout = "600";
   std::vector<std::string> positional, materials;
   bool verbose = false, withScene = false;
 };
 
+// What Blender's run left to check the export against.
+struct BlenderRun {
+  int exitCode = kExitFailure;
+  StagedExportExpectation expected;
+};
+
 // Runs Blender (`argv`) with its stdout shown line by line (stderr, where the exporter's
 // warnings go, is shared): the lines that matter, or all with --verbose, the staging
-// folder's name shown as the output folder's. kExitOk when the export succeeded.
-int runBlender(std::vector<std::string> argv, const std::string& stagingName,
-               const fs::path& absOut, bool verbose) {
-  std::vector<char*> cargv;
-  for (auto& s : argv)
-    cargv.push_back(s.data());
-  cargv.push_back(nullptr);
-  int pipeFds[2];
-  if (::pipe(pipeFds) != 0) {
-    std::cerr << kCommand << "pipe: " << std::strerror(errno) << "\n";
-    return kExitFailure;
-  }
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, pipeFds[1], STDOUT_FILENO);
-  posix_spawn_file_actions_addclose(&actions, pipeFds[0]);
-  posix_spawn_file_actions_addclose(&actions, pipeFds[1]);
-  pid_t pid = 0;
-  const int spawned = posix_spawn(&pid, cargv[0], &actions, nullptr, cargv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  ::close(pipeFds[1]);
-  if (spawned != 0) {
-    ::close(pipeFds[0]);
-    std::cerr << kCommand << "cannot run " << argv[0] << ": " << std::strerror(spawned) << "\n";
-    return kExitFailure;
-  }
-  std::string pending;
-  std::array<char, 4096> buffer{};
-  auto show = [&](std::string line) {
-    for (std::size_t at; (at = line.find(stagingName)) != std::string::npos;)
-      line.replace(at, stagingName.size(), absOut.string());
-    std::cout << line << "\n" << std::flush;
-  };
-  while (true) {
-    const ssize_t n = ::read(pipeFds[0], buffer.data(), buffer.size());
-    if (n < 0 && errno == EINTR)
-      continue;
-    if (n <= 0)
-      break;
-    pending.append(buffer.data(), static_cast<std::size_t>(n));
-    std::size_t nl;
-    while ((nl = pending.find('\n')) != std::string::npos) {
-      std::string line = pending.substr(0, nl);
-      pending.erase(0, nl + 1);
-      if (verbose || interestingBlenderLine(line))
-        show(std::move(line));
+// folder's name shown as the output folder's. Blender is stopped after `timeout` (0: never)
+// and when we get SIGINT, SIGTERM or SIGHUP (exit code 128 + the signal).
+BlenderRun runBlender(const std::vector<std::string>& argv, const std::string& stagingName,
+                      const fs::path& absOut, std::chrono::milliseconds timeout, bool verbose) {
+  BlenderRun run;
+  auto asOutput = [&](std::string text) {
+    for (std::size_t at = 0; (at = text.find(stagingName, at)) != std::string::npos;) {
+      text.replace(at, stagingName.size(), absOut.string());
+      at += absOut.string().size();
     }
+    return text;
+  };
+  auto show = [&](const std::string& line) { std::cout << asOutput(line) << "\n" << std::flush; };
+  ChildOptions options;
+  options.timeout = timeout;
+  options.onLine = [&](std::string_view line, bool cut) {
+    if (!cut) {
+      if (const auto count = parseExportSummary(line))
+        run.expected.reportedMaterials = count;
+    }
+    if (verbose || interestingBlenderLine(line))
+      show(std::string(line) + (cut ? " [... line cut]" : ""));
+  };
+  const ChildResult child = runChild(argv, options);
+  const std::string unchanged = "; " + absOut.string() + " is unchanged";
+  auto showTail = [&] {
+    if (verbose || child.tail.empty())
+      return;
+    std::cerr << kCommand << "the end of Blender's output:\n";
+    std::string tail = asOutput(child.tail);
+    if (tail.back() != '\n')
+      tail += '\n';
+    std::cerr << tail;
+  };
+  switch (child.ending) {
+    case ChildResult::Ending::NotStarted:
+      std::cerr << kCommand << child.error << "\n";
+      return run;
+    case ChildResult::Ending::Interrupted:
+      std::cerr << kCommand << "stopped by signal " << child.signal << " ("
+                << strsignal(child.signal) << "): Blender was stopped" << unchanged << "\n";
+      run.exitCode = 128 + child.signal;
+      return run;
+    case ChildResult::Ending::TimedOut:
+      showTail();
+      std::cerr << kCommand << "Blender did not finish within --timeout "
+                << std::chrono::duration_cast<std::chrono::seconds>(timeout).count()
+                << " s and was stopped" << unchanged << "\n";
+      return run;
+    case ChildResult::Ending::Signalled:
+      showTail();
+      std::cerr << kCommand << "Blender ended with signal " << child.signal << " ("
+                << strsignal(child.signal) << ")" << unchanged << "\n";
+      return run;
+    case ChildResult::Ending::Exited:
+      if (child.exitCode != 0) {
+        std::cerr << kCommand << "the export failed (Blender exit status " << child.exitCode << ")"
+                  << unchanged << "\n";
+        return run;
+      }
+      run.exitCode = kExitOk;
+      return run;
   }
-  if (!pending.empty() && (verbose || interestingBlenderLine(pending)))
-    show(std::move(pending));
-  ::close(pipeFds[0]);
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (WIFSIGNALED(status)) {
-    std::cerr << kCommand << "Blender ended with signal " << WTERMSIG(status) << " ("
-              << strsignal(WTERMSIG(status)) << "); " << absOut.string() << " is unchanged\n";
-    return kExitFailure;
-  }
-  const int code = WIFEXITED(status) ? WEXITSTATUS(status) : 1;
-  if (code != 0) {
-    std::cerr << kCommand << "the export failed (Blender exit status " << code << "); "
-              << absOut.string() << " is unchanged\n";
-    return kExitFailure;
-  }
-  return kExitOk;
+  return run;
 }
 
 // A new output folder: the staging folder is renamed into place (atomic). One that exists
 // (or appeared meanwhile) takes the exported files as one set.
-int commitExport(StagingFolder& staging, const fs::path& absOut, CreatedFolders& created) {
+int commitExport(StagingFolder& staging, const fs::path& absOut, CreatedFolders& created,
+                 const StagedExportExpectation& expected) {
+  if (const std::string problem = validateStagedExport(staging.path(), absOut, expected);
+      !problem.empty()) {
+    std::cerr << kCommand << "the export is refused: " << problem << "\n"
+              << kCommand << absOut.string() << " is unchanged\n";
+    return kExitFailure;
+  }
   std::error_code ec;
   if (!fs::exists(absOut, ec)) {
     if (::rename(staging.path().c_str(), absOut.c_str()) == 0) {
@@ -425,6 +508,7 @@ std::optional<int> scanImportArguments(std::span<const std::string_view> args, I
   ArgumentScanner scanner("import-blender", args);
   scanner.option("--out", &a.outDir);
   scanner.option("--blender", &a.blender);
+  scanner.option("--timeout", &a.timeout);
   scanner.list("--materials", &a.materials);
   scanner.flag("--verbose", &a.verbose);
   scanner.flag("--scene", &a.withScene);
@@ -436,6 +520,10 @@ std::optional<int> scanImportArguments(std::span<const std::string_view> args, I
                                                              : "give exactly one .blend file");
   if (a.outDir.empty())
     return usageError("import-blender", "--out DIR is required");
+  double seconds = 0;
+  if (!parseReal(a.timeout, seconds) || !std::isfinite(seconds) || seconds < 0 || seconds > 1e7)
+    return usageError("import-blender",
+                      "--timeout takes seconds from 0 (no limit) to 1e7, not '" + a.timeout + "'");
   return std::nullopt;
 }
 
@@ -485,10 +573,15 @@ int runImportBlender(std::span<const std::string_view> args) {
     argv.emplace_back("--materials");
     argv.insert(argv.end(), a.materials.begin(), a.materials.end());
   }
-  if (const int code = runBlender(std::move(argv), stagingName, *absOut, a.verbose);
-      code != kExitOk)
-    return code;
-  return commitExport(staging, *absOut, created);
+  double seconds = 0;
+  parseReal(a.timeout, seconds);
+  const auto timeout = std::chrono::milliseconds(std::llround(seconds * 1000));
+  const BlenderRun run = runBlender(argv, stagingName, *absOut, timeout, a.verbose);
+  if (run.exitCode != kExitOk)
+    return run.exitCode;
+  StagedExportExpectation expectation = run.expected;
+  expectation.scene = a.withScene;
+  return commitExport(staging, *absOut, created, expectation);
 }
 
 }  // namespace memograph::cli

@@ -3,6 +3,7 @@
 // failing material writes nothing. Images are tiny (a few pixels) so lavapipe is quick.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -402,6 +403,61 @@ TEST_F(BakeCli, UsageErrorsExitTwoAndWriteNothing) {
   }
   EXPECT_FALSE(fs::exists(dir_ / "out"));
   EXPECT_EQ(runCli("bake --help").exitCode, 0);
+}
+
+TEST_F(BakeCli, BoundsOutOfRangeAreNamedAsSuchNotAsMinOverMax) {
+  const auto g = graph("Ok", "BaseColorOutput (1.0, 1.0, 1.0);\n");
+  const std::string o = " --out " + out();
+  const auto huge =
+      runCli("bake " + g + " --size 2x2 --bounds -1e38,-1e38,-1e38,1e38,1e38,1e38" + o);
+  EXPECT_EQ(huge.exitCode, 2) << huge.output;
+  EXPECT_NE(huge.output.find("xmin -1e38 is out of range"), std::string::npos) << huge.output;
+  EXPECT_EQ(huge.output.find("min <= max"), std::string::npos) << huge.output;
+  const auto swapped = runCli("bake " + g + " --size 2x2 --bounds 1,0,0,0,1,1" + o);
+  EXPECT_EQ(swapped.exitCode, 2) << swapped.output;
+  EXPECT_NE(swapped.output.find("xmin is greater than xmax"), std::string::npos) << swapped.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+TEST_F(BakeCli, OutOnADanglingLinkSaysSo) {
+  const auto g = graph("Ok", "BaseColorOutput (1.0, 1.0, 1.0);\n");
+  fs::create_symlink(dir_ / "nowhere", dir_ / "out");
+  const auto run = runCli("bake " + g + " --size 2x2 --format pfm --out " + out());
+  EXPECT_EQ(run.exitCode, 1) << run.output;
+  EXPECT_NE(run.output.find("is a dangling symbolic link"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("File exists"), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(dir_ / "nowhere"));
+}
+
+// A bake killed mid-write (SIGKILL) leaves its full-size temporaries; the next write into
+// that folder removes those of processes that are gone, and nothing else.
+TEST_F(BakeCli, TemporariesOfKilledWritersAreRemovedByTheNextWrite) {
+  const pid_t dead = ::fork();
+  if (dead == 0)
+    ::_exit(0);
+  ASSERT_GT(dead, 0);
+  ASSERT_EQ(::waitpid(dead, nullptr, 0), dead);
+  fs::create_directories(dir_ / "out");
+  const std::string deadPid = std::to_string(dead), livePid = std::to_string(::getpid());
+  const std::vector<std::string> stale = {".Const_baseColor.partial-" + deadPid + "-a1B2c3.pfm",
+                                          ".Other.partial-" + deadPid + "-zzzzzz"};
+  const std::vector<std::string> kept = {
+      ".Const_baseColor.partial-" + livePid + "-a1B2c3.pfm",  // a live writer
+      ".Other.partial-" + deadPid + "-zzzzzz.pfm.old",        // a commit's backup
+      ".notes.partial-" + deadPid,                            // not our naming
+      "Other.partial-" + deadPid + "-zzzzzz.pfm",             // not hidden
+  };
+  for (const auto& name : stale)
+    std::ofstream(dir_ / "out" / name) << std::string(1000, 'x');
+  for (const auto& name : kept)
+    std::ofstream(dir_ / "out" / name) << "keep";
+  const auto g = graph("Const", "BaseColorOutput (0.25, 0.1, 0.75);\n");
+  const auto run = runCli("bake " + g + " --size 2x2 --format pfm --out " + out());
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  std::vector<std::string> expected = kept;
+  expected.push_back("Const_baseColor.pfm");
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(outputFiles(), expected);
 }
 
 }  // namespace
