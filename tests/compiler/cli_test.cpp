@@ -394,14 +394,22 @@ TEST_F(CliTest, RenderAndBenchHelpListTheCommonOptionsAndHelpAllTheRest) {
   EXPECT_NE(runCli("render --help").output.find("--debug-misses"), std::string::npos);
 }
 
-// docs/guide/cli.md is the CLI reference: it holds `render --help-all` and `bench --help-all`
-// word for word (so a changed default or help line must reach it) and names every option.
-TEST_F(CliTest, TheCliReferenceHoldsEveryRenderAndBenchOption) {
+// docs/guide/cli.md is the CLI reference: it holds every command's help word for word
+// (`render` and `bench` with --help-all; tools/make_cli_reference.py writes them), so a changed
+// default or help line must reach it, and it names every render and bench option.
+TEST_F(CliTest, TheCliReferenceHoldsEveryCommandsHelp) {
   if (runCli("bench --help").output.find("this build") != std::string::npos)
     GTEST_SKIP() << "this memograph has no renderer";
   std::ifstream file(std::string(MEMOGRAPH_EXAMPLES_DIR) + "/../docs/guide/cli.md");
   ASSERT_TRUE(file) << "docs/guide/cli.md";
   const std::string reference((std::istreambuf_iterator<char>(file)), {});
+  for (const std::string command :
+       {"compile", "check", "nodes", "bake", "diff", "import-blender", "selftest"}) {
+    const std::string help = runCli(command + " --help").output;
+    EXPECT_NE(reference.find(help), std::string::npos)
+        << "docs/guide/cli.md does not hold `memograph " << command
+        << " --help` as printed (python3 tools/make_cli_reference.py build/tools/memograph)";
+  }
   int options = 0;
   for (const std::string command : {"render", "bench"}) {
     const std::string help = runCli(command + " --help-all").output;
