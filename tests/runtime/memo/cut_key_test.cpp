@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <ostream>
+#include <stdexcept>
 #include <string>
 
 #include <gtest/gtest.h>
@@ -88,6 +89,32 @@ RenderSettings settings(std::uint32_t frames) {
 // The linker's view of a graph: which key its cut takes, and its width.
 LinkedMaterial linked(const char* graph) {
   return linkMaterials({{"M", "", graph}}).materials.at(0);
+}
+
+// The compiler's domain names map to the shaders' codes; a material cacheable as a whole
+// keeps its whole-output entry (its cut, the graph less its output nodes, would cache the
+// same values), so today's uv materials render as before in every dispatch.
+TEST(CutKeys, LinkerKeysOnlyMaterialsNotCacheableAsAWhole) {
+  EXPECT_EQ(cacheCutDomain("none"), gpu::kCacheCutNone);
+  EXPECT_EQ(cacheCutDomain("uv"), gpu::kCacheCutUv);
+  EXPECT_EQ(cacheCutDomain("object"), gpu::kCacheCutObject);
+  EXPECT_EQ(cacheCutDomain("world"), gpu::kCacheCutWorld);
+  EXPECT_THROW(cacheCutDomain("volume"), std::runtime_error);
+  const char* uvNoise =
+      "material UvNoise;\nUVInput Out>1;\nNoiseTexture Vector<1 Detail=2.0 Color>2;\n"
+      "BaseColorOutput In<2;\nRoughnessOutput In=0.4;\n";
+  const LinkedMaterials both = linkMaterials({{"Whole", "", uvNoise}, {"Cut", "", kWorldGraph}});
+  const LinkedMaterial& whole = both.materials.at(0);
+  EXPECT_TRUE(whole.cacheable);
+  EXPECT_EQ(whole.cutDomain, gpu::kCacheCutNone);
+  EXPECT_EQ(whole.cacheValueCount, 4u);  // base colour and roughness
+  EXPECT_EQ(both.materials.at(1).cutDomain, gpu::kCacheCutWorld);
+  EXPECT_EQ(both.cacheValueCount, 4u);
+  EXPECT_EQ(both.cutValueCount, 3u);
+  EXPECT_NE(both.source.find("EvaluateMaterialCut_WorldTail(inputs, cut)"), std::string::npos);
+  EXPECT_EQ(both.source.find("EvaluateMaterialCut_UvNoise(inputs, cut)"), std::string::npos);
+  // The callable and wavefront dispatches' prelude carries no cut switches.
+  EXPECT_EQ(both.preludeSource.find("mg_materialCutInfo"), std::string::npos);
 }
 
 struct DomainCase {
