@@ -233,8 +233,10 @@ bool cacheVoxelKeyFor(uvec4 info, uint objectWord, vec3 p, vec3 axis1, vec3 axis
       any(greaterThanEqual(abs(voxel), vec3(kCacheVoxelLimit))))
     return false;
   uint x = cacheFixedPoint(voxel.x), y = cacheFixedPoint(voxel.y), z = cacheFixedPoint(voxel.z);
-  uint h0 = cachePcg(uint(m) ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ cachePcg(objectWord ^ info.y)))));
-  uint h1 = cachePcg(uint(m) ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ cachePcg(objectWord ^ info.z)))));
+  uint h0 = cachePcg(objectWord ^ info.y);
+  uint h1 = cachePcg(objectWord ^ info.z);
+  h0 = cachePcg(uint(m) ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h0))));
+  h1 = cachePcg(uint(m) ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h1))));
   if (h1 == kCacheKeyEmpty) h1 = 1u;
   if (h1 == kCacheKeyLock) h1 = kCacheKeyLock - 1u;
   key.base = h0 % (frame.cache.x - uint(MG_CACHE_PROBE));
@@ -244,7 +246,9 @@ bool cacheVoxelKeyFor(uvec4 info, uint objectWord, vec3 p, vec3 axis1, vec3 axis
 
 // The footprint a voxel-centred evaluation runs with: one voxel along x and along y of the
 // key's space (a float3_D carries two axes), whatever the hit's, so the value is the key's.
-vec3 voxelAxis(uint axis, float size) { return axis == 0u ? vec3(size, 0.0, 0.0) : vec3(0.0, size, 0.0); }
+vec3 voxelAxis(uint axis, float size) {
+  return axis == 0u ? vec3(size, 0.0, 0.0) : vec3(0.0, size, 0.0);
+}
 
 // Eq. 5.2-5.10 for the texel cache: the nearest texel of level m (eq. 5.6-5.7).
 bool cacheKeyFor(uvec4 info, MaterialInputs inputs, out CacheKey key) {
