@@ -50,6 +50,18 @@ std::uint32_t pcgHash(std::uint32_t v) {
   return (word >> 22u) ^ word;
 }
 
+std::uint32_t cacheCutDomain(const std::string& cutDomain) {
+  if (cutDomain == "none")
+    return gpu::kCacheCutNone;
+  if (cutDomain == "uv")
+    return gpu::kCacheCutUv;
+  if (cutDomain == "object")
+    return gpu::kCacheCutObject;
+  if (cutDomain == "world")
+    return gpu::kCacheCutWorld;
+  throw std::runtime_error("material cut domain '" + cutDomain + "' is unknown to the texel cache");
+}
+
 std::uint32_t cacheOutputMask(const std::vector<std::string>& outputsWritten,
                               std::uint32_t* valueCount) {
   struct Output {
@@ -101,6 +113,57 @@ std::string readText(const std::filesystem::path& path) {
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+// The texel cache's cut keys (texel_cache.glsl, MG_CACHE_CUTS): per scene material its
+// cut's domain, width and whether an object-space key names the instance, and the two
+// switches that evaluate a material's cut into the cache's float array (MG_CACHE_VALUES,
+// at least every cut's width) and its rest from that array. Guarded: MG_CACHE_VALUES
+// exists only with a cache, and only the switch dispatch's texel cache keys cuts.
+std::string cutSwitches(const std::vector<LinkedMaterial>& materials) {
+  std::string out = "#ifdef MG_CACHE_CUTS\n";
+  out += "// Cut keys: x gpu::kCacheCut* domain, y width (floats), z 1: keyed by instance.\n";
+  out += "const uvec4 mg_materialCutInfo[" + std::to_string(materials.size()) + "] = uvec4[](\n";
+  for (std::size_t i = 0; i < materials.size(); ++i) {
+    const LinkedMaterial& m = materials[i];
+    out += "    uvec4(" + std::to_string(m.cutDomain) + "u, " + std::to_string(m.cutWidth) + "u, " +
+           (m.cutKeyedByInstance ? "1u" : "0u") + ", 0u)" +
+           (i + 1 < materials.size() ? ",\n" : ");\n");
+  }
+  std::string cut =
+      "// The cut's values of scene material `materialId` at `inputs` (a key's centre).\n"
+      "void evaluateMaterialCutSwitch(uint materialId, MaterialInputs inputs, "
+      "out float values[MG_CACHE_VALUES]) {\n"
+      "  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;\n"
+      "  switch (materialId) {\n";
+  std::string rest =
+      "// The outputs of scene material `materialId` at `inputs` from its cut's `values`.\n"
+      "void evaluateMaterialRestSwitch(uint materialId, MaterialInputs inputs, "
+      "float values[MG_CACHE_VALUES], out MaterialOutputs outputs) {\n"
+      "  switch (materialId) {\n";
+  for (std::size_t i = 0; i < materials.size(); ++i) {
+    const LinkedMaterial& m = materials[i];
+    if (m.cutDomain == gpu::kCacheCutNone)
+      continue;
+    const std::string type = "MaterialCut_" + m.name;
+    const std::string head = "    case " + std::to_string(i) +
+                             "u: {\n      inputs.textureBase = " + std::to_string(m.textureBase) +
+                             ";\n      " + type + " cut;\n";
+    cut += head + "      EvaluateMaterialCut_" + m.name + "(inputs, cut);\n";
+    rest += head;
+    for (std::uint32_t k = 0; k < m.cutWidth; ++k) {
+      const std::string index = std::to_string(k);
+      cut += "      values[" + index + "] = cut.v[" + index + "];\n";
+      rest += "      cut.v[" + index + "] = values[" + index + "];\n";
+    }
+    rest += "      EvaluateMaterialRest_" + m.name + "(inputs, cut, outputs);\n";
+    cut += "      break;\n    }\n";
+    rest += "      break;\n    }\n";
+  }
+  cut += "    default:\n      break;\n  }\n}\n";
+  rest +=
+      "    default:\n      outputs = mg_defaultMaterialOutputs(inputs);\n      break;\n  }\n}\n";
+  return out + cut + rest + "#endif  // MG_CACHE_CUTS\n";
 }
 
 }  // namespace
@@ -177,6 +240,20 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
       entry.cacheOutputMask =
           cacheOutputMask(compiled->metadata.outputsWritten, &entry.cacheValueCount);
       linked.cacheValueCount = std::max(linked.cacheValueCount, entry.cacheValueCount);
+    } else {
+      // A cacheable material keeps its whole-output entry (today's images, every dispatch);
+      // the others are keyed by their cut where the texel cache can (MG_CACHE_CUTS).
+      entry.cutDomain = cacheCutDomain(compiled->metadata.cutDomain);
+      entry.cutWidth = static_cast<std::uint32_t>(compiled->metadata.cutWidth);
+      if (entry.cutDomain == gpu::kCacheCutNone || entry.cutWidth == 0) {
+        entry.cutDomain = gpu::kCacheCutNone;
+        entry.cutWidth = 0;
+      }
+      entry.cutKeyedByInstance = std::any_of(
+          entry.inputsUsed.begin(), entry.inputsUsed.end(), [](const std::string& input) {
+            return input == "objectRandom" || input == "objectLocation";
+          });
+      linked.cutValueCount = std::max(linked.cutValueCount, entry.cutWidth);
     }
     entry.distinctIndex = static_cast<std::uint32_t>(linked.distinct.size());
     for (const auto& texture : compiled->metadata.textures) {
@@ -236,6 +313,7 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
                  (i + 1 < linked.materials.size() ? ",\n" : ");\n");
   }
   out.insert(out.rfind("#endif"), cacheInfo);
+  out.insert(out.rfind("#endif"), cutSwitches(linked.materials));
   linked.preludeSource.insert(linked.preludeSource.rfind("#endif"), cacheInfo);
   linked.compileMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

@@ -2,8 +2,10 @@
 // compiler library (thesis §5.1) and generates the GLSL the two material dispatches need:
 // for the switch, "materials.glsl" with every compiled include followed by
 // evaluateMaterialSwitch(), a switch on the scene's material id that calls each
-// EvaluateMaterial_<Name> with its first texture slot; for callable shaders, only the
-// prelude (MaterialInputs, MaterialOutputs) for the raygen shader, and each material's own
+// EvaluateMaterial_<Name> with its first texture slot, and (under MG_CACHE_CUTS, for the
+// texel cache's cut keys) the switches over EvaluateMaterialCut_<Name> and
+// EvaluateMaterialRest_<Name> with the cut's values as a float array; for callable shaders, only
+// the prelude (MaterialInputs, MaterialOutputs) for the raygen shader, and each material's own
 // include for its callable.
 #pragma once
 
@@ -24,6 +26,14 @@ struct LinkedMaterial {
   // the graph's written outputs; 0 when not cacheable) and how many floats that is.
   std::uint32_t cacheOutputMask = 0;
   std::uint32_t cacheValueCount = 0;
+  // The cut the texel cache keys instead (compiler/cut.h), for materials that are not
+  // cacheable as a whole: gpu::kCacheCut* (kCacheCutNone for cacheable materials, which keep
+  // their whole-output entries, and for materials without a cut), the cut's floats, and
+  // whether an object-space key names the instance (the graph reads Object Info's
+  // per-instance members) or only the mesh (every instance of a mesh shares entries).
+  std::uint32_t cutDomain = 0;
+  std::uint32_t cutWidth = 0;
+  bool cutKeyedByInstance = false;
   // Index into LinkedMaterials::distinct: scene materials sharing a graph share one
   // compiled include (and one callable shader).
   std::uint32_t distinctIndex = 0;
@@ -48,6 +58,9 @@ struct LinkedMaterials {
   std::vector<std::string> texturePaths;  // resolved paths, in descriptor-array order
   // Floats per texel-cache entry: the largest cacheValueCount (0: nothing is cacheable).
   std::uint32_t cacheValueCount = 0;
+  // The largest cutWidth (0: no material is keyed by its cut). Only the switch dispatch's
+  // texel cache keys cuts (MG_CACHE_CUTS): its entries then hold the larger of the two.
+  std::uint32_t cutValueCount = 0;
   // Some material writes specularTint or cyclesPrincipled: the path tracer needs
   // MG_CYCLES_PRINCIPLED (brdf.glsl), which other scenes do without.
   bool cyclesPrincipled = false;
@@ -69,6 +82,10 @@ MaterialDispatch parseMaterialDispatch(const std::string& text);
 
 // The PCG hash of the shaders' mg_pcg (O'Neill 2014; Jarzynski and Olano 2020), on the host.
 std::uint32_t pcgHash(std::uint32_t v);
+
+// The compiler's cutDomain ("none", "uv", "object", "world") → gpu::kCacheCut*. Throws
+// std::runtime_error on a name it does not know.
+std::uint32_t cacheCutDomain(const std::string& cutDomain);
 
 // Members of MaterialOutputs named by the compiler's outputsWritten → gpu::kCacheOutput* bits
 // and their float count. Throws std::runtime_error on a name it does not know.

@@ -199,6 +199,15 @@ MG_CONSTANT(uint, kCacheOutputOpacity, 32);
 MG_CONSTANT(uint, kCacheOutputSpecular, 64);
 MG_CONSTANT(uint, kCacheOutputSpecularTint, 128);
 MG_CONSTANT(uint, kCacheOutputCyclesPrincipled, 256);
+// The key domain of a material's cut (compiler/cut.h) as the texel cache keys it
+// (mg_materialCutInfo.x, MG_CACHE_CUTS): none runs the whole graph uncached; uv keys the
+// cut's values by (material, uv texel, mip level) as §5.3.2 keys whole outputs; object by
+// (material, instance or mesh, object-space voxel, level); world by (material, world-space
+// voxel, level).
+MG_CONSTANT(uint, kCacheCutNone, 0);
+MG_CONSTANT(uint, kCacheCutUv, 1);
+MG_CONSTANT(uint, kCacheCutObject, 2);
+MG_CONSTANT(uint, kCacheCutWorld, 3);
 
 // Tile cache (thesis §4.6, §5.4): where a tile's texels live (MG_TILE_STORAGE, §5.4.1).
 MG_CONSTANT(uint, kTileStorageEntry, 0);      // after the key and metadata, in the entry

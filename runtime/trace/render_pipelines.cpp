@@ -28,7 +28,24 @@ struct ShaderBuild {
   // payload and the raygen's stack shrink (on the H200 the classroom's texel row: 144.7 ms
   // and a 896 B stack with them, 128.5 ms and 576 B without).
   bool omitObjectInputs = false;
+  // The texel cache keys materials by their cut (MG_CACHE_CUTS, texel_cache.glsl): see
+  // cutKeys.
+  bool cutKeys = false;
 };
+
+// Whether the texel cache keys the materials that are not cacheable as a whole by their cut
+// (uv texels, object-space or world-space voxels) in this render. Only in the megakernel's
+// switch dispatch, whose one shader holds every material's cut and rest functions
+// (materials.glsl). The callable dispatch would need each material's callable to run its cut
+// and rest apart, and the wavefront a lookup pass that knows the instance and a material pass
+// that runs the rest after a hit: both keep the whole-material uv cache. The tile cache keeps
+// it too: a tile is a square of texels of a 2D parameterisation of the surface (uv), which a
+// voxel key has none of; filling a tile around a hit from its derivatives (the thesis's
+// extrapolation, §5.4.3) for other domains is not done.
+bool keysCuts(const RenderPlan& plan, bool callables, bool floor, const LinkedMaterials& m) {
+  return plan.cache.mode == CacheMode::Texel && !callables && !floor && !plan.wavefront &&
+         m.cutValueCount > 0;
+}
 
 // The pipeline backend's callable material shaders, one per distinct material.
 MaterialCallables compileCallables(const ShaderBuild& b,
@@ -51,6 +68,8 @@ std::vector<std::string> pathTracerDefines(const ShaderBuild& b, const MaterialC
     defines.push_back("MG_MATERIAL_FLOOR=1");
   if (b.omitObjectInputs)
     defines.push_back("MG_OMIT_OBJECT_INPUTS=1");
+  if (b.cutKeys)
+    defines.push_back("MG_CACHE_CUTS=1");
   if (b.options.debugCacheMisses)
     defines.push_back("MG_DEBUG_CACHE_MISSES=1");
   // Cycles' Principled weighting, only for scenes whose materials write it (brdf.glsl).
@@ -145,6 +164,7 @@ RenderPipelines buildPipelines(const VulkanContext& context, const RendererOptio
   std::optional<MaterialCallables> materialCallables;
   if (callables)
     materialCallables = compileCallables(b, files, callableStats);
+  b.cutKeys = keysCuts(plan, callables, b.floor, materials);
   files["materials.glsl"] =
       callables || b.floor || plan.wavefront ? materials.preludeSource : materials.source;
   ShaderCompiler compiler(std::move(files), inputs.shaderCacheDirectory);
@@ -153,10 +173,13 @@ RenderPipelines buildPipelines(const VulkanContext& context, const RendererOptio
                 static_cast<std::uint32_t>(CacheEviction::Lrw) == gpu::kCacheEvictionLrw &&
                 static_cast<std::uint32_t>(CacheEviction::Random) == gpu::kCacheEvictionRandom);
   // The cache (thesis §5.3.1, §5.4.1): entries of a key hash, metadata and the largest
-  // cacheable material's written outputs (per texel of a tile with the tile cache), as fp32
-  // or packed fp16.
+  // cacheable material's written outputs (per texel of a tile with the tile cache), or the
+  // widest cut where the texel cache keys cuts, as fp32 or packed fp16.
   RenderPipelines pipelines;
-  pipelines.cache = std::make_unique<MaterialCache>(context, plan.cache, materials.cacheValueCount);
+  const std::uint32_t valueCount =
+      b.cutKeys ? std::max(materials.cacheValueCount, materials.cutValueCount)
+                : materials.cacheValueCount;
+  pipelines.cache = std::make_unique<MaterialCache>(context, plan.cache, valueCount);
   pipelines.cache->describe(stats);
   const std::vector<std::string> defines = pathTracerDefines(b, *pipelines.cache);
   pipelines.tracer =

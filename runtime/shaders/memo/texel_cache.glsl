@@ -15,6 +15,11 @@
 //                            of reads, one clock atomic per subgroup (cacheStampReads),
 //   MG_CACHE_QUIESCENT_READS (optional) no invocation of the including dispatch writes a
 //                            value: reads skip §5.3.4's check (MG_CACHE_COHERENT).
+//   MG_CACHE_CUTS            (optional; the megakernel's switch dispatch only) materials
+//                            that are not cacheable as a whole are keyed by their cut
+//                            (compiler/cut.h): uv texels, object-space or world-space voxels
+//                            (evaluateMaterialThroughCut); materials.glsl then provides
+//                            mg_materialCutInfo and the cut and rest switches.
 // The entry count S, the frame clock and the mip bias come per frame in frame.cache. The
 // includer declares `counters` (gpu::Counters at kBindingRayCounter): the occupancy and the
 // counter clock live there.
@@ -185,6 +190,64 @@ CacheKey cacheKeyOf(uvec4 info, int m, vec2 cell) {
   key.texelUv = vec2(0.0);
   key.texelSize = 0.0;
   return key;
+}
+
+// Voxel keys (MG_CACHE_CUTS) for cuts in object or world space, after seed 002 §3.1-3.2:
+// a position is quantised to the voxel of level m that holds it, a cube 2^-m wide, so the
+// voxel's integer coordinates are the position as a fixed-point number with m fractional
+// bits (§3.1, Fig. 3: the sign in the most significant bit, the magnitude below; the level
+// goes into the hash, so the same bits at two levels are two keys). Hashed like eq. 5.8-5.9:
+// nested PCG hashes (§3.1's multidimensional hash, "a nested version of a PCG", Jarzynski and
+// Olano 2020) of the object word, the three coordinates and the level, from the material's
+// two independent ids; the slot is eq. 5.10. The value is the voxel centre's (§3.1, Fig. 2:
+// the discrete position offset by half a voxel).
+//
+// The level follows the footprint as eq. 5.2-5.5 pick a texel level: the voxel about as wide
+// as the shorter axis of the ray cone's footprint ellipse in the key's space, with the mip
+// bias (positive: finer voxels). Levels stay within ±kCacheVoxelLevels, and a position whose
+// voxel coordinate would not fit 31 bits bypasses the cache, as a non-finite uv does.
+const float kCacheVoxelLevels = 20.0;
+const float kCacheVoxelLimit = 1073741824.0;  // 2^30
+
+uint cacheFixedPoint(float voxel) {
+  return voxel < 0.0 ? 0x80000000u | uint(-voxel) : uint(voxel);
+}
+
+// The voxel key of `p` with footprint axes `axis1`, `axis2`; `objectWord` the instance or mesh
+// (0 for world space). `centre` and `size` are the voxel's centre and width. False when the
+// position is unusable (non-finite, or its voxel outside the fixed-point range).
+bool cacheVoxelKeyFor(uvec4 info, uint objectWord, vec3 p, vec3 axis1, vec3 axis2,
+                      out CacheKey key, out vec3 centre, out float size) {
+  float lMin = min(length(axis1), length(axis2));
+  float bias = uintBitsToFloat(frame.cache.z);
+  float level = lMin > 0.0 ? -log2(lMin) + bias : kCacheVoxelLevels;
+  int m = int(clamp(round(isnan(level) ? 0.0 : level), -kCacheVoxelLevels, kCacheVoxelLevels));
+  size = exp2(-float(m));
+  vec3 voxel = floor(p * exp2(float(m)));
+  centre = (voxel + 0.5) * size;
+  key.base = 0u;
+  key.hash = 0u;
+  key.texelUv = vec2(0.0);
+  key.texelSize = 0.0;
+  if (isnan(level) || any(isnan(p)) || any(isinf(p)) ||
+      any(greaterThanEqual(abs(voxel), vec3(kCacheVoxelLimit))))
+    return false;
+  uint x = cacheFixedPoint(voxel.x), y = cacheFixedPoint(voxel.y), z = cacheFixedPoint(voxel.z);
+  uint h0 = cachePcg(objectWord ^ info.y);
+  uint h1 = cachePcg(objectWord ^ info.z);
+  h0 = cachePcg(uint(m) ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h0))));
+  h1 = cachePcg(uint(m) ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h1))));
+  if (h1 == kCacheKeyEmpty) h1 = 1u;
+  if (h1 == kCacheKeyLock) h1 = kCacheKeyLock - 1u;
+  key.base = h0 % (frame.cache.x - uint(MG_CACHE_PROBE));
+  key.hash = h1;
+  return true;
+}
+
+// The footprint a voxel-centred evaluation runs with: one voxel along x and along y of the
+// key's space (a float3_D carries two axes), whatever the hit's, so the value is the key's.
+vec3 voxelAxis(uint axis, float size) {
+  return axis == 0u ? vec3(size, 0.0, 0.0) : vec3(0.0, size, 0.0);
 }
 
 // Eq. 5.2-5.10 for the texel cache: the nearest texel of level m (eq. 5.6-5.7).
@@ -598,14 +661,93 @@ void cacheWrite(CacheKey key, float values[MG_CACHE_VALUES]) {
 
 // The wavefront splits this into its lookup pass and its material passes (wavefront.glsl).
 #ifndef MG_WAVEFRONT
-// Cacheable materials (mask != 0) read the cache and on a miss evaluate and insert;
-// others are evaluated directly and never touch the cache. With MG_CACHE_SNAP_UV a miss
+// Cacheable materials (mask != 0) read the cache and on a miss evaluate and insert; with
+// MG_CACHE_CUTS, a material with a cut is keyed by it (evaluateMaterialThroughCut); others
+// are evaluated directly and never touch the cache. With MG_CACHE_SNAP_UV a miss
 // evaluates at the texel centre (§6.1: "rounding the texture coordinates to the nearest
 // cache texel before evaluating") with the fictional derivatives of one texel along u and v
 // (eq. 5.16-5.17, as the tile cache computes its texels), so an entry holds its texel's
 // value, not that of whichever hit inside the texel came first (its footprint picks an image
 // texture's mip level); this hit then shades with that value too.
-void evaluateMaterialCached(uint materialId, MaterialInputs inputs, out MaterialOutputs outputs) {
+#ifdef MG_CACHE_CUTS
+// Scene material `materialId`'s cut key (mg_materialCutInfo; none past the scene's).
+uvec4 cutInfoOf(uint materialId) {
+  return materialId < uint(mg_materialCutInfo.length()) ? mg_materialCutInfo[materialId]
+                                                        : uvec4(0u);
+}
+
+// A material keyed by its cut (thesis §7: memoize the part of the graph one key determines;
+// compiler/cut.h): the cache holds the cut's values under a key of its domain, and the rest
+// of the graph always runs with this hit's inputs. A miss evaluates the cut at the key's
+// centre with the key's footprint, always (not only with --snap-uv): the uv texel's centre
+// with one texel along u and v (eq. 5.16-5.17), or the voxel's centre with one voxel along
+// x and y of its space, so an entry holds its key's value whichever hit filled it, and a
+// cached value is a function of the key. `object` is (instance, mesh) of the hit. Returns
+// false, having done nothing, when the hit has no usable key (non-finite coordinates or a
+// voxel outside the fixed-point range): the caller evaluates the whole graph uncached.
+bool evaluateMaterialThroughCut(uint materialId, uvec4 cut, uvec2 object, MaterialInputs inputs,
+                                out MaterialOutputs outputs) {
+  uvec4 info = cacheInfoOf(materialId);
+  CacheKey key;
+  MaterialInputs keyInputs = inputs;
+  bool usable = false;
+  if (cut.x == kCacheCutUv) {
+    usable = cacheKeyFor(info, inputs, key);
+    keyInputs = texelInputs(inputs, key.texelUv, key.texelSize);
+  } else if (cut.x == kCacheCutWorld) {
+    vec3 centre;
+    float size;
+    usable = cacheVoxelKeyFor(info, 0u, inputs.position.v, inputs.position.x, inputs.position.y,
+                              key, centre, size);
+    keyInputs.position.v = centre;
+    keyInputs.position.x = voxelAxis(0u, size);
+    keyInputs.position.y = voxelAxis(1u, size);
+  }
+#ifndef MG_OMIT_OBJECT_INPUTS  // an object-space cut reads them, so they are there
+  else if (cut.x == kCacheCutObject) {
+    // The instance where the graph reads Object Info's per-instance members, else the mesh:
+    // object-space values are the mesh's (Generated needs its texture space), shared by its
+    // instances. Materials sharing a graph share one choice, so the two never mix.
+    vec3 centre;
+    float size;
+    usable = cacheVoxelKeyFor(info, cut.z != 0u ? object.x : object.y, inputs.objectPosition.v,
+                              inputs.objectPosition.x, inputs.objectPosition.y, key, centre,
+                              size);
+    // Generated is affine in the object-space position (path_shading.glsl surfaceAt): moved
+    // with it to the centre, and its footprint the voxel's through the same scale.
+    vec3 toGenerated = 0.5 / meshes[object.y].textureSpaceSize.xyz;
+    keyInputs.objectPosition.v = centre;
+    keyInputs.objectPosition.x = voxelAxis(0u, size);
+    keyInputs.objectPosition.y = voxelAxis(1u, size);
+    keyInputs.generated.v = inputs.generated.v + (centre - inputs.objectPosition.v) * toGenerated;
+    keyInputs.generated.x = keyInputs.objectPosition.x * toGenerated;
+    keyInputs.generated.y = keyInputs.objectPosition.y * toGenerated;
+  }
+#endif
+  if (!usable) return false;
+  g_cacheLookups += 1u;
+  float values[MG_CACHE_VALUES];
+  if (cacheRead(key, values)) {
+    g_cacheHits += 1u;
+  } else {
+    g_cacheMisses += 1u;
+    g_cacheMissed = true;
+    evaluateMaterialCutSwitch(materialId, keyInputs, values);
+    cacheWrite(key, values);
+  }
+  evaluateMaterialRestSwitch(materialId, inputs, values, outputs);
+  return true;
+}
+#endif  // MG_CACHE_CUTS
+
+void evaluateMaterialCached(uint materialId, uvec2 object, MaterialInputs inputs,
+                            out MaterialOutputs outputs) {
+#ifdef MG_CACHE_CUTS
+  uvec4 cut = cutInfoOf(materialId);
+  if (cut.x != kCacheCutNone && frame.cache.x != 0u &&
+      evaluateMaterialThroughCut(materialId, cut, object, inputs, outputs))
+    return;
+#endif
   uvec4 info = cacheInfoOf(materialId);
   CacheKey key;
   if (info.x == 0u || frame.cache.x == 0u || !cacheKeyFor(info, inputs, key)) {

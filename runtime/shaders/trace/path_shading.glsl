@@ -46,6 +46,10 @@ vec3 environmentRadiance(vec3 d) {
 struct SurfaceHit {
   MaterialInputs inputs;
   uint materialId;
+  // The hit's instance and its mesh: what an object-space cache key names (texel_cache.glsl
+  // evaluateMaterialThroughCut), as the object-space position alone is the same on every
+  // instance of a mesh.
+  uvec2 object;
   vec3 geometricNormal;
   float curvature;
   float coneWidth;
@@ -57,6 +61,7 @@ SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
   Instance instance = instances[hit.instanceIndex];
   Mesh mesh = meshes[instance.ids.x];
   s.materialId = instance.ids.y;
+  s.object = uvec2(hit.instanceIndex, instance.ids.x);
   s.lightAreaPdf = instance.objectInfo.y;
   uint firstVertex = mesh.ranges.x;
   uint firstIndex = mesh.ranges.y + 3u * hit.primitiveIndex;

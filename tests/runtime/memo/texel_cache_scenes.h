@@ -1,5 +1,5 @@
 // Scenes and measures shared by the texel and tile cache tests: a striped (cacheable) wall,
-// a positional (not cacheable) material, renderer options with a cache, tiny render
+// a per-hit (not cacheable) material, renderer options with a cache, tiny render
 // settings, mean LDR-FLIP between two renders and the counters' consistency.
 #pragma once
 
@@ -23,9 +23,10 @@ inline std::string stripesGraph() {
          "RoughnessOutput Roughness=0.7;\n";
 }
 
-// Reads the hit position: not cacheable (thesis §4.2).
-inline std::string positionGraph() {
-  return "material Positional;\nPositionInput Out>0;\nWave In<0 Out>1;\nBaseColorOutput "
+// Reads the shading normal: not cacheable (thesis §4.2), and per hit, so it has no cut
+// either (a position would be a world-space cut, which the texel cache keys).
+inline std::string perHitGraph() {
+  return "material Shaded;\nNormalInput Out>0;\nWave In<0 Out>1;\nBaseColorOutput "
          "Color<1;\n";
 }
 

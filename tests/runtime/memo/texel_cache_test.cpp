@@ -1,8 +1,8 @@
 // The texel cache (thesis §4.2-4.5, §5.3) on lavapipe: a static camera's image with the
 // cache stays close to the uncached one (LDR-FLIP), its hit rate climbs above 99 %, a
-// material that reads more than uv never touches the cache, and a cache far too small for
-// the scene still renders (probe ranges full, writes dropped) without hanging; the
-// behavioural ones in both architectures (megakernel and wavefront).
+// per-hit material (neither cacheable nor with a cut) never touches the cache, and a cache
+// far too small for the scene still renders (probe ranges full, writes dropped) without
+// hanging; the behavioural ones in both architectures (megakernel and wavefront).
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -23,7 +23,7 @@ namespace {
 using testing::cacheOptions;
 using testing::expectConsistentCounters;
 using testing::meanFlip;
-using testing::positionGraph;
+using testing::perHitGraph;
 using testing::stripesGraph;
 using testing::wallScene;
 
@@ -210,7 +210,7 @@ TEST(TexelCache, MipBiasTradesHitRateForFidelity) {
 }
 
 TEST_P(TexelCacheInBothArchitectures, NonCacheableMaterialNeverTouchesTheCache) {
-  Scene scene = wallScene(positionGraph(), false);
+  Scene scene = wallScene(perHitGraph(), false);
   RenderResult off = Renderer(options(CacheMode::None)).render(scene, settings(3, 2));
   RenderResult on = Renderer(options(CacheMode::Texel)).render(scene, settings(3, 2));
   for (const FrameStats& f : on.stats.frames) {

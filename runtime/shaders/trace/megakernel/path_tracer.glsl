@@ -197,8 +197,9 @@ void evaluateMaterialDirect(uint materialId, MaterialInputs inputs,
 // would be unreachable. With MG_CACHE_SECONDARY_ONLY primary hits skip the cache: §6.1
 // finds the cache's errors "almost exclusively caused by sampling the cache at primary
 // hits" (Fig. 6.6). `bounce` is the same in every lane, so that early return is uniform.
-void evaluateMaterial(bool hasHit, uint materialId, MaterialInputs inputs, uint bounce,
-                      out MaterialOutputs outputs) {
+// `object` is the hit's (instance, mesh), which the texel cache's object-space cut keys name.
+void evaluateMaterial(bool hasHit, uint materialId, uvec2 object, MaterialInputs inputs,
+                      uint bounce, out MaterialOutputs outputs) {
 #ifdef MG_CACHE_SECONDARY_ONLY
   if (bounce == 0u) {
     if (hasHit) evaluateMaterialDirect(materialId, inputs, outputs);
@@ -214,7 +215,7 @@ void evaluateMaterial(bool hasHit, uint materialId, MaterialInputs inputs, uint 
     return;
   }
 #if defined(MG_CACHE_TEXEL)
-  evaluateMaterialCached(materialId, inputs, outputs);
+  evaluateMaterialCached(materialId, object, inputs, outputs);
 #else
   evaluateMaterialDirect(materialId, inputs, outputs);
 #endif
@@ -316,6 +317,7 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
     for (uint bounce = 0u; bounce < rayCountPerPath; ++bounce) {
       SurfaceHit s;
       s.materialId = 0u;
+      s.object = uvec2(0u);
       if (alive) {
         HitInfo hit;
         if (bounce == 0u && sharedPrimary) {
@@ -337,7 +339,7 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
       if (sharedPrimary && bounce == 0u && primaryEvaluated) {
         m = primaryOutputs;
       } else {
-        evaluateMaterial(alive, s.materialId, s.inputs, bounce, m);
+        evaluateMaterial(alive, s.materialId, s.object, s.inputs, bounce, m);
         if (sharedPrimary && bounce == 0u) {
           primaryOutputs = m;
           primaryEvaluated = true;

@@ -1,0 +1,272 @@
+// The texel cache keyed by each material's cut (compiler/cut.h; texel_cache.glsl
+// evaluateMaterialThroughCut, MG_CACHE_CUTS): on lavapipe, for each key domain (uv texels,
+// object-space and world-space voxels) the cached image is the uncached one up to the
+// centre evaluation of each key, two instances of one mesh that Object Info's Random tells
+// apart never share entries, a material without a cut never touches the cache, and an
+// object-space material's entries are found again in later frames. Graphs from the real
+// (embedded) node library, whose Noise, Layer Weight and Object Info the cuts need.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "render_test_support.h"
+#include "runtime/materials/material_linker.h"
+#include "runtime/shaders/shared_types.h"
+#include "texel_cache_scenes.h"
+
+namespace memograph::runtime {
+namespace {
+
+using testing::expectConsistentCounters;
+using testing::meanFlip;
+
+// A uv noise mixed towards black by a Layer Weight: the noise is a uv cut, the view-dependent
+// mix the rest, so the material is not cacheable as a whole.
+const char* kUvGraph =
+    "material UvTail;\n"
+    "UVInput Out>1;\n"
+    "NoiseTexture Vector<1 Detail=2.0 Color>2;\n"
+    "LayerWeight Facing>3;\n"
+    "MixColor Factor<3 A<2 B=(0.0, 0.0, 0.0) Result>4;\n"
+    "BaseColorOutput In<4;\n";
+
+// The same over Blender's Generated coordinates: an object-space cut keyed by the mesh.
+const char* kObjectGraph =
+    "material ObjectTail;\n"
+    "TextureCoordinate Generated>1;\n"
+    "NoiseTexture Vector<1 Detail=2.0 Color>2;\n"
+    "LayerWeight Facing>3;\n"
+    "MixColor Factor<3 A<2 B=(0.0, 0.0, 0.0) Result>4;\n"
+    "BaseColorOutput In<4;\n";
+
+// The same over the world-space position (Scale 1: features about 1 unit, several pixels).
+const char* kWorldGraph =
+    "material WorldTail;\n"
+    "PositionInput Out>1;\n"
+    "NoiseTexture Vector<1 Scale=1.0 Detail=2.0 Color>2;\n"
+    "LayerWeight Facing>3;\n"
+    "MixColor Factor<3 A<2 B=(0.0, 0.0, 0.0) Result>4;\n"
+    "BaseColorOutput In<4;\n";
+
+// A hue from Object Info's Random (red at 0, blue at 1) darkened by a Generated noise: an
+// object-space cut that reads a per-instance member, so keyed by the instance.
+const char* kPerInstanceGraph =
+    "material PerInstanceHue;\n"
+    "ObjectInfo Random>1;\n"
+    "TextureCoordinate Generated>2;\n"
+    "NoiseTexture Vector<2 Detail=2.0 Fac>3;\n"
+    "MixColor Factor<1 A=(1.0, 0.1, 0.1) B=(0.1, 0.1, 1.0) Result>4;\n"
+    "MixColor Factor<3 A=(0.0, 0.0, 0.0) B<4 Result>5;\n"
+    "BaseColorOutput In<5;\n";
+
+// No part one key determines: the noise of the view direction's facing ratio is per hit.
+const char* kViewOnlyGraph =
+    "material ViewOnly;\n"
+    "LayerWeight Facing>1;\n"
+    "NoiseTexture Vector<1 Detail=2.0 Color>2;\n"
+    "BaseColorOutput In<2;\n";
+
+RendererOptions options(CacheMode mode) {
+  RendererOptions o = testing::cacheOptions(mode, Backend::RayQuery);
+  o.nodeLibraryDirectory.clear();  // the embedded (real) node library
+  return o;
+}
+
+// 32x32 primary hits (L = 1), one path a pixel, seed 5.
+RenderSettings settings(std::uint32_t frames) {
+  RenderSettings s = testing::cacheSettings(frames, 1);
+  s.width = 32;
+  s.height = 32;
+  return s;
+}
+
+// The linker's view of a graph: which key its cut takes, and its width.
+LinkedMaterial linked(const char* graph) {
+  return linkMaterials({{"M", "", graph}}).materials.at(0);
+}
+
+// The compiler's domain names map to the shaders' codes; a material cacheable as a whole
+// keeps its whole-output entry (its cut, the graph less its output nodes, would cache the
+// same values), so today's uv materials render as before in every dispatch.
+TEST(CutKeys, LinkerKeysOnlyMaterialsNotCacheableAsAWhole) {
+  EXPECT_EQ(cacheCutDomain("none"), gpu::kCacheCutNone);
+  EXPECT_EQ(cacheCutDomain("uv"), gpu::kCacheCutUv);
+  EXPECT_EQ(cacheCutDomain("object"), gpu::kCacheCutObject);
+  EXPECT_EQ(cacheCutDomain("world"), gpu::kCacheCutWorld);
+  EXPECT_THROW(cacheCutDomain("volume"), std::runtime_error);
+  const char* uvNoise =
+      "material UvNoise;\nUVInput Out>1;\nNoiseTexture Vector<1 Detail=2.0 Color>2;\n"
+      "BaseColorOutput In<2;\nRoughnessOutput In=0.4;\n";
+  const LinkedMaterials both = linkMaterials({{"Whole", "", uvNoise}, {"Cut", "", kWorldGraph}});
+  const LinkedMaterial& whole = both.materials.at(0);
+  EXPECT_TRUE(whole.cacheable);
+  EXPECT_EQ(whole.cutDomain, gpu::kCacheCutNone);
+  EXPECT_EQ(whole.cacheValueCount, 4u);  // base colour and roughness
+  EXPECT_EQ(both.materials.at(1).cutDomain, gpu::kCacheCutWorld);
+  EXPECT_EQ(both.cacheValueCount, 4u);
+  EXPECT_EQ(both.cutValueCount, 3u);
+  EXPECT_NE(both.source.find("EvaluateMaterialCut_WorldTail(inputs, cut)"), std::string::npos);
+  EXPECT_EQ(both.source.find("EvaluateMaterialCut_UvNoise(inputs, cut)"), std::string::npos);
+  // The callable and wavefront dispatches' prelude carries no cut switches.
+  EXPECT_EQ(both.preludeSource.find("mg_materialCutInfo"), std::string::npos);
+}
+
+struct DomainCase {
+  const char* name;
+  const char* graph;
+  std::uint32_t domain;
+};
+
+void PrintTo(const DomainCase& c, std::ostream* os) {
+  *os << c.name;
+}
+
+class CutKeyDomains : public ::testing::TestWithParam<DomainCase> {};
+
+// Every cached value is the cut at its key's centre with the key's footprint, so cached and
+// uncached images differ only by where in its texel or voxel a hit's noise was taken (the
+// keys are about one footprint wide) and agree at one seed. Measured on lavapipe, mean
+// LDR-FLIP against the uncached image: 0.022 (uv), 0.077 (object), 0.041 (world). The object
+// key's is the largest: a voxel's centre lies up to half a voxel off the flat wall, and
+// Generated stretches the wall's zero depth to 1, four times its width's scale, so the noise
+// moves most across that offset. A key that ignored the texel or voxel (checked by hand:
+// every hit of the material on one entry) gave 0.180 (uv), 0.159 (object), 0.135 (world).
+// Bound 0.1.
+TEST_P(CutKeyDomains, CachedImageMatchesUncachedAtOneSeed) {
+  const DomainCase& c = GetParam();
+  const LinkedMaterial m = linked(c.graph);
+  EXPECT_FALSE(m.cacheable);
+  ASSERT_EQ(m.cutDomain, c.domain);
+  EXPECT_EQ(m.cutWidth, 3u);
+  const Scene scene = testing::wallScene(c.graph, false);
+  const RenderResult off = Renderer(options(CacheMode::None)).render(scene, settings(4));
+  const RenderResult on = Renderer(options(CacheMode::Texel)).render(scene, settings(4));
+  expectConsistentCounters(on.stats);
+  const double flip = meanFlip(off.image, on.image);
+  const FrameStats& last = on.stats.frames.back();
+  std::printf(
+      "cut key %s: mean LDR-FLIP cached vs uncached %.4f; last frame %llu lookups, hit "
+      "rate %.2f %%; %u floats an entry\n",
+      c.name, flip, (unsigned long long)last.cacheLookups, 100.0 * last.cacheHitRate(),
+      on.stats.cacheValueCount);
+  EXPECT_EQ(last.cacheLookups, 32u * 32u);  // the wall fills the view: one lookup a pixel
+  EXPECT_EQ(on.stats.cacheValueCount, 3u);  // the cut's floats, not the outputs'
+  EXPECT_LT(flip, 0.1);
+}
+
+INSTANTIATE_TEST_SUITE_P(, CutKeyDomains,
+                         ::testing::Values(DomainCase{"uv", kUvGraph, gpu::kCacheCutUv},
+                                           DomainCase{"object", kObjectGraph, gpu::kCacheCutObject},
+                                           DomainCase{"world", kWorldGraph, gpu::kCacheCutWorld}),
+                         [](const ::testing::TestParamInfo<DomainCase>& info) {
+                           return std::string(info.param.name);
+                         });
+
+// Two instances of one mesh, side by side, with the hue of their Object Info Random (0.549
+// for instance 0 on the left, 0.103 for instance 1 on the right: the right one redder). The
+// camera looks at the left instance for three frames, then at the right one from the same
+// offset for three more, so the right one's hits fall in the object-space voxels the left
+// one filled. Keyed by the instance, the first frame on the right instance finds next to none
+// of them (only entries its own earlier pixels filled that frame, as in any first frame), and
+// the cached image of the right instance is the uncached one up to the centre evaluation.
+// Keyed by the mesh (checked by hand), that frame's hit rate was 92 % and the right instance
+// showed the left one's hue (mean LDR-FLIP 0.22, against 0.033 keyed by the instance).
+TEST(CutKeys, InstancesOfOneMeshWithDifferentObjectRandomNeverShareEntries) {
+  const LinkedMaterial m = linked(kPerInstanceGraph);
+  ASSERT_EQ(m.cutDomain, gpu::kCacheCutObject);
+  EXPECT_TRUE(m.cutKeyedByInstance);
+  Scene scene;
+  scene.meshes.push_back(testing::quad(3.6f));
+  scene.materials.push_back({"Hue", "", kPerInstanceGraph});
+  const glm::mat4 facing = glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), glm::vec3(1, 0, 0));
+  for (float x : {-1.9f, 1.9f})
+    scene.instances.push_back({0, 0, glm::translate(glm::mat4(1.0f), glm::vec3(x, 0, 0)) * facing});
+  scene.lights.push_back({LightType::Point, {0, 1, 4}, {0, -1, 0}, glm::vec3(15.0f)});
+  scene.environment.constantRadiance = {0.3f, 0.3f, 0.3f};
+  RenderSettings path = settings(6);
+  for (std::uint32_t f = 0; f < path.frames; ++f) {
+    Camera camera;
+    camera.position = {f < 3 ? -1.9f : 1.9f, 0.0f, 2.5f};
+    camera.target = camera.position - glm::vec3(0.0f, 0.0f, 2.5f);
+    path.cameraPath.push_back(camera);
+  }
+  RenderSettings leftOnly = path;
+  leftOnly.frames = 3;
+  const RenderResult left = Renderer(options(CacheMode::None)).render(scene, leftOnly);
+  const RenderResult off = Renderer(options(CacheMode::None)).render(scene, path);
+  const RenderResult on = Renderer(options(CacheMode::Texel)).render(scene, path);
+  expectConsistentCounters(on.stats);
+  auto mean = [](const RenderResult& r, int c) {
+    return testing::meanChannel(r.image, c, 0, 0, int(r.image.width), int(r.image.height));
+  };
+  const double flip = meanFlip(off.image, on.image);
+  const FrameStats& firstOnRight = on.stats.frames.at(3);
+  std::printf(
+      "two instances of one mesh: left instance red/blue %.4f/%.4f; right instance "
+      "uncached %.4f/%.4f, cached %.4f/%.4f, mean LDR-FLIP %.4f; hit rate of the first "
+      "frame on the right instance %.2f %% (on the left: %.2f %%)\n",
+      mean(left, 0), mean(left, 2), mean(off, 0), mean(off, 2), mean(on, 0), mean(on, 2), flip,
+      100.0 * firstOnRight.cacheHitRate(), 100.0 * on.stats.frames.front().cacheHitRate());
+  // The scene tells the instances apart: the right one is redder without a cache.
+  EXPECT_GT(mean(off, 0) / mean(off, 2), 1.5 * mean(left, 0) / mean(left, 2));
+  EXPECT_GT(firstOnRight.cacheLookups, 0u);
+  EXPECT_LT(firstOnRight.cacheHitRate(), 0.5);
+  for (int c : {0, 2})
+    EXPECT_NEAR(mean(on, c), mean(off, c), 0.05 * mean(off, c)) << "channel " << c;
+  EXPECT_LT(flip, 0.1);
+}
+
+// A material whose cut is empty runs its whole graph uncached: no lookups, however many of
+// its hits, while a cut material in the same render (the same shader, MG_CACHE_CUTS) looks
+// up each of its hits. Here the cut material is a sphere behind the camera, never seen.
+TEST(CutKeys, AMaterialWithoutACutNeverTouchesTheCache) {
+  EXPECT_EQ(linked(kViewOnlyGraph).cutDomain, gpu::kCacheCutNone);
+  auto scene = [](const char* wallGraph) {
+    Scene s = testing::wallScene(wallGraph, false);
+    s.meshes.push_back(testing::sphere(8));
+    s.materials.push_back({"Hidden", "", kObjectGraph});
+    s.instances.push_back({1, 1, glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 20))});
+    return s;
+  };
+  const RenderResult viewOnly =
+      Renderer(options(CacheMode::Texel)).render(scene(kViewOnlyGraph), settings(3));
+  const RenderResult uncached =
+      Renderer(options(CacheMode::None)).render(scene(kViewOnlyGraph), settings(3));
+  const RenderResult objectWall =
+      Renderer(options(CacheMode::Texel)).render(scene(kObjectGraph), settings(3));
+  std::printf(
+      "material without a cut: %llu lookups a frame (a cut material's wall: %llu); "
+      "mean LDR-FLIP against no cache %.4f\n",
+      (unsigned long long)viewOnly.stats.frames.back().cacheLookups,
+      (unsigned long long)objectWall.stats.frames.back().cacheLookups,
+      meanFlip(uncached.image, viewOnly.image));
+  for (const FrameStats& f : viewOnly.stats.frames)
+    EXPECT_EQ(f.cacheLookups, 0u) << "frame " << f.frame;
+  for (const FrameStats& f : objectWall.stats.frames)
+    EXPECT_EQ(f.cacheLookups, 32u * 32u) << "frame " << f.frame;
+  EXPECT_EQ(meanFlip(uncached.image, viewOnly.image), 0.0);
+}
+
+// A static camera over an object-space material: the voxels of frame 0 are found again in
+// later frames (each pixel's jittered primary hit stays in its footprint-wide voxel mostly).
+TEST(CutKeys, ObjectSpaceHitRateClimbsOverFrames) {
+  const RenderResult on = Renderer(options(CacheMode::Texel))
+                              .render(testing::wallScene(kObjectGraph, false), settings(6));
+  expectConsistentCounters(on.stats);
+  for (const FrameStats& f : on.stats.frames)
+    std::printf("object-space cut, frame %u: %llu lookups, hit rate %.2f %%\n", f.frame,
+                (unsigned long long)f.cacheLookups, 100.0 * f.cacheHitRate());
+  const FrameStats& last = on.stats.frames.back();
+  EXPECT_GT(last.cacheLookups, 0u);
+  EXPECT_GT(last.cacheHitRate(), 0.0);
+  EXPECT_GT(last.cacheHitRate(), on.stats.frames.front().cacheHitRate());
+}
+
+}  // namespace
+}  // namespace memograph::runtime
