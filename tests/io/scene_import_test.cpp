@@ -346,5 +346,25 @@ TEST_F(SceneImportTest, BrokenFilesAreErrorsNotCrashes) {
   }
 }
 
+// assimp 5.2's MTL reader crashes on some bytes (found by the OBJ import fuzzer: an OBJ named
+// as its own material library). memograph reads only `usemtl` names, so an OBJ import opens
+// nothing but the OBJ, whatever a library is called: these import their triangle.
+TEST_F(SceneImportTest, AnObjsMaterialLibrariesAreNeverParsedWhateverTheirName) {
+  const std::string crashing =
+      std::string("mtllib self.obj\nv 0 0 1\nv 1 0 0\nv\xe0\xcf\xf7\x04 0 0 0\ndisp0  0");
+  write("library.obj", crashing);
+  write("library.mtl", crashing);
+  const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl Red\nf 1 2 3\n";
+  for (const std::string& library : {"library.obj", "library.mtl", "self.obj"}) {
+    SCOPED_TRACE(library);
+    const std::string path = write("self.obj", "mtllib " + library + "\n" + triangle);
+    Diagnostics diagnostics;
+    const auto scene = importScene(path, materials(), diagnostics);
+    ASSERT_TRUE(scene.has_value()) << compiler::formatDiagnostics(diagnostics);
+    ASSERT_EQ(scene->instances.size(), 1u);
+    EXPECT_EQ(scene->materials[scene->instances[0].material].name, "Red");
+  }
+}
+
 }  // namespace
 }  // namespace memograph::io

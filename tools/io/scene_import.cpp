@@ -7,6 +7,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <set>
 #include <sstream>
 
 #include <assimp/DefaultIOSystem.h>
@@ -50,9 +51,10 @@ class BoundedIOSystem : public Assimp::DefaultIOSystem {
     // An OBJ's material libraries are not read: memograph takes a material's graph from its
     // `usemtl` name (assimp keeps the names without the library), nothing from the MTL, and
     // assimp 5.2's MTL reader crashes on malformed libraries (found by the OBJ import
-    // fuzzer: a texture before any `newmtl`, stray NUL bytes). The pre-check has looked at
-    // them for the user.
-    if (skipMaterialLibraries && fs::path(file).extension() == ".mtl")
+    // fuzzer: a texture before any `newmtl`, stray NUL bytes, an OBJ named as a library).
+    // assimp's OBJ parser opens them while it holds the OBJ open, so every open made then
+    // is a library, whatever its name. The pre-check has looked at them for the user.
+    if (objOnly && !openObjStreams_.empty())
       return nullptr;
     if (std::string_view(mode).find_first_of("wa+") == std::string_view::npos &&
         fs::symlink_status(file, ec).type() != fs::file_type::not_found) {
@@ -65,7 +67,14 @@ class BoundedIOSystem : public Assimp::DefaultIOSystem {
         return nullptr;
       }
     }
-    return Assimp::DefaultIOSystem::Open(file, mode);
+    Assimp::IOStream* stream = Assimp::DefaultIOSystem::Open(file, mode);
+    if (objOnly && stream)
+      openObjStreams_.insert(stream);
+    return stream;
+  }
+  void Close(Assimp::IOStream* stream) override {
+    openObjStreams_.erase(stream);
+    Assimp::DefaultIOSystem::Close(stream);
   }
   // DefaultIOSystem::Exists opens the file to see whether it exists, which blocks on a
   // FIFO; a stat does not.
@@ -74,7 +83,11 @@ class BoundedIOSystem : public Assimp::DefaultIOSystem {
     return fs::exists(file, ec);
   }
   std::vector<std::string> refused;
-  bool skipMaterialLibraries = false;
+  // An OBJ import: only the OBJ itself is read (see Open).
+  bool objOnly = false;
+
+ private:
+  std::set<const Assimp::IOStream*> openObjStreams_;
 };
 
 // Warnings without a source position: the import is about a whole file.
@@ -539,7 +552,7 @@ std::optional<Scene> importScene(const std::string& path, const std::string& mat
     std::string ext = fs::path(path).extension().string();
     for (char& ch : ext)
       ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    io->skipMaterialLibraries = ext == ".obj";
+    io->objOnly = ext == ".obj";
   }
   // Points and lines are removed; everything else becomes indexed triangles with normals,
   // and tangents wherever there are UVs.
