@@ -16,6 +16,7 @@
 #include <optional>
 #include <set>
 #include <string_view>
+#include <utility>
 
 namespace memograph::files {
 
@@ -100,8 +101,10 @@ void removeStaleTemporaries(const fs::path& folder) {
   }
 }
 
-// Holds exclusive flock(2)s on folders (in sorted order, so two sets never deadlock);
-// released when destroyed.
+// Holds exclusive flock(2)s on folders, released when destroyed. A folder is known by its
+// device and inode, not its spelling: "out" and "./out" (or a link to it) are locked once,
+// as a second flock on another descriptor of a locked folder would wait forever; and the
+// locks are taken in that order, so two sets never deadlock however they spell a folder.
 class FolderLocks {
  public:
   ~FolderLocks() {
@@ -109,6 +112,13 @@ class FolderLocks {
       ::close(fd);  // closing releases the lock
   }
   bool lock(const std::set<std::string>& folders, std::string& error) {
+    struct Opened {
+      dev_t device;
+      ino_t inode;
+      int fd;
+      std::string folder;
+    };
+    std::vector<Opened> opened;
     for (const auto& folder : folders) {
       const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
       if (fd < 0) {
@@ -116,13 +126,27 @@ class FolderLocks {
         return false;
       }
       fds_.push_back(fd);
+      struct stat info {};
+      if (::fstat(fd, &info) != 0) {
+        error = errnoMessage(folder + ": cannot read the folder", errno);
+        return false;
+      }
+      opened.push_back({info.st_dev, info.st_ino, fd, folder});
+    }
+    std::sort(opened.begin(), opened.end(), [](const Opened& a, const Opened& b) {
+      return std::pair(a.device, a.inode) < std::pair(b.device, b.inode);
+    });
+    for (std::size_t i = 0; i < opened.size(); ++i) {
+      if (i > 0 && opened[i].device == opened[i - 1].device &&
+          opened[i].inode == opened[i - 1].inode)
+        continue;  // the same folder, spelled otherwise: locked already
       int result;
       do {
-        result = ::flock(fd, LOCK_EX);
+        result = ::flock(opened[i].fd, LOCK_EX);
       } while (result != 0 && errno == EINTR);
       // Some file systems have no flock: the set is still all-or-nothing for this process.
       if (result != 0 && errno != ENOLCK && errno != EOPNOTSUPP) {
-        error = errnoMessage(folder + ": cannot lock the folder", errno);
+        error = errnoMessage(opened[i].folder + ": cannot lock the folder", errno);
         return false;
       }
     }

@@ -275,6 +275,49 @@ def cases(gen):
     out.append(("bake: --out dangling link", ["bake", valid, "--size", "2x2", "--format", "pfm",
                                               "--out", os.path.join(fakes, "dangling_out")], 1,
                 r"is a dangling symbolic link"))
+    # CLI outputs and usage: no output over an input (by path, link or hard link) or over
+    # another output, every usage error before file or GPU work, errors on stderr.
+    o = os.path.join(gen, "cli_outputs")
+    os.makedirs(o)
+    shutil.copy(os.path.join(i, "ok_2x2.pfm"), os.path.join(o, "ref.pfm"))
+    os.symlink("ref.pfm", os.path.join(o, "ref_link.pfm"))
+    os.link(os.path.join(o, "ref.pfm"), os.path.join(o, "ref_hard.pfm"))
+    with open(os.path.join(o, "camera.txt"), "w") as f:
+        f.write("0 1 5  0 0 0  60\n")
+    os.symlink("camera.txt", os.path.join(o, "camera_link.csv"))
+    ref, ok = os.path.join(o, "ref.pfm"), os.path.join(i, "ok_2x2.pfm")
+    small = ["--size", "4x4", "--paths", "1", "--bounces", "1", "--floor-materials"]
+    out += [
+        ("cli: diff out is reference", ["diff", ref, ok, "--out", ref], 2,
+         r"--out '.*ref\.pfm' is REFERENCE"),
+        ("cli: diff out links to reference", ["diff", ref, ok, "--out",
+                                              os.path.join(o, "ref_link.pfm")], 2,
+         r"is REFERENCE"),
+        ("cli: diff out hard link of test", ["diff", ok, ref, "--out",
+                                             os.path.join(o, "ref_hard.pfm")], 2, r"is TEST"),
+        ("cli: render stats links to camera path",
+         ["render", "builtin:landscape", "--camera-path", os.path.join(o, "camera.txt"),
+          "--stats", os.path.join(o, "camera_link.csv"), "--out", "out/x.png"] + small, 2,
+         r"--stats '.*camera_link\.csv' is --camera-path"),
+        ("cli: render stats is out", ["render", "builtin:landscape", "--out", "out/x.png",
+                                      "--stats", "out/../out/x.png"] + small, 2,
+         r"two outputs cannot share a file"),
+        ("cli: render usage before folder", ["render", "builtin:landscape:terrain=1", "--out",
+                                             "out/missing/x.png"] + small, 2,
+         r"terrainCells must be in 2\.\.4096"),
+        ("cli: bench sizes trailing comma", ["bench", "builtin:landscape", "--sizes", "16x9,"],
+         2, r"--sizes takes WxH\[,WxH\.\.\.\], not '16x9,'"),
+        ("cli: bench second scene unknown", ["bench", "builtin:landscape:terrain=8",
+                                             "builtin:bogus", "--sizes", "8x8", "--csv",
+                                             "out/keep.txt"], 2,
+         r"unknown built-in scene 'bogus'"),
+        ("cli: bench csv is a per-frame file", ["bench", "builtin:landscape", "--sizes", "8x8",
+                                                "--frames-csv", "out/f_", "--csv",
+                                                "out/f_landscape_8x8.csv"], 2,
+         r"two outputs cannot share a file"),
+        ("cli: selftest too few iterations", ["selftest", "--iterations", "4"], 2,
+         r"give --iterations 6 or more"),
+    ]
     return out
 
 

@@ -101,5 +101,53 @@ TEST_F(BenchCliTest, TimeLimitStopsARunAndSaysSo) {
   EXPECT_EQ(runCli("bench builtin:landscape --time-limit soon").exitCode, 2);
 }
 
+// Every scene and every size is checked before any is measured: an empty --sizes item, an
+// unknown or out-of-range second scene, an animated scene for --shading wavefront are usage
+// errors (2) before the device is opened ("device: " starts a measurement's log).
+TEST_F(BenchCliTest, EverySceneAndSizeIsCheckedBeforeAnyIsMeasured) {
+  const std::pair<std::string, std::string> cases[] = {
+      {"builtin:landscape --sizes 16x9,", "--sizes takes WxH[,WxH...], not '16x9,'"},
+      {"builtin:landscape --sizes ,16x9", "a size is missing"},
+      {"builtin:landscape --sizes 16x9,,8x8", "a size is missing"},
+      {"builtin:landscape:terrain=8 builtin:bogus --sizes 8x8", "unknown built-in scene 'bogus'"},
+      {"builtin:landscape:terrain=8 builtin:landscape:terrain=1 --sizes 8x8",
+       "terrainCells must be in 2..4096"},
+      {"builtin:landscape:terrain=8 builtin:city:scale=0.02 --shading wavefront --sizes 8x8",
+       "renders static scenes only"},
+  };
+  for (const auto& [arguments, message] : cases) {
+    const auto run =
+        runCli("bench " + arguments + " --frames 1 --warmup 0 --csv " + path("out.csv"));
+    EXPECT_EQ(run.exitCode, 2) << arguments << ": " << run.output;
+    EXPECT_NE(run.output.find(message), std::string::npos) << arguments << ": " << run.output;
+    EXPECT_EQ(run.output.find("device: "), std::string::npos) << arguments << ": measured first";
+    EXPECT_FALSE(fs::exists(path("out.csv")));
+  }
+}
+
+// No output over an input (the node library's files, through a link too) or over another
+// output (--csv and a per-frame file): a usage error naming both, before anything runs.
+TEST_F(BenchCliTest, OutputsOverInputsOrEachOtherAreRefused) {
+  fs::create_directories(directory_ / "nodes" / "prelude");
+  std::ofstream(directory_ / "nodes" / "prelude" / "common.inc") << "// kept\n";
+  fs::create_symlink(directory_ / "nodes" / "prelude" / "common.inc", directory_ / "link.csv");
+  const std::pair<std::string, std::string> cases[] = {
+      {"--nodes " + path("nodes") + " --csv " + path("link.csv"),
+       "--csv '" + path("link.csv") + "' is --nodes file"},
+      {"--frames-csv " + path("f_") + " --csv " + path("f_landscape_16x9.csv"),
+       "--csv '" + path("f_landscape_16x9.csv") + "': two outputs cannot share a file"},
+  };
+  for (const auto& [arguments, message] : cases) {
+    const auto run = runCli("bench builtin:landscape --sizes 16x9 " + arguments);
+    EXPECT_EQ(run.exitCode, 2) << arguments << ": " << run.output;
+    EXPECT_NE(run.output.find(message), std::string::npos) << arguments << ": " << run.output;
+    EXPECT_EQ(run.output.find("device: "), std::string::npos) << arguments << ": measured first";
+  }
+  std::ifstream kept(directory_ / "nodes" / "prelude" / "common.inc");
+  std::string line;
+  std::getline(kept, line);
+  EXPECT_EQ(line, "// kept");
+}
+
 }  // namespace
 }  // namespace memograph

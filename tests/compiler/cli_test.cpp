@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -551,6 +552,147 @@ TEST_F(CliTest, AnErrorOnAHugeLineShowsAWindowOfIt) {
   EXPECT_EQ(run.exitCode, 1);
   EXPECT_LT(run.output.size(), 20'000u) << run.output.substr(0, 2000);
   EXPECT_NE(run.output.find("wide.mgraph:1:"), std::string::npos) << run.output.substr(0, 2000);
+}
+
+// Output over input, device range, order of checks: render and selftest.
+constexpr const char* kSmallestRender = " --size 4x4 --paths 1 --bounces 1 --floor-materials";
+
+// A shell command's exit code and output (its stdout), for runs that redirect otherwise
+// than runCli: stderr alone, or under `timeout`.
+testing::CliRun runShell(const std::string& command) {
+  testing::CliRun run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe)
+    return run;
+  std::array<char, 4096> buffer;
+  while (const std::size_t n = fread(buffer.data(), 1, buffer.size(), pipe))
+    run.output.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  run.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
+}
+// The CLI with stdout into `stdoutFile` and stderr alone in the output.
+testing::CliRun runCliStderrOnly(const std::string& arguments, const std::string& stdoutFile) {
+  return runShell(std::string(MEMOGRAPH_CLI) + " " + arguments + " 2>&1 >" + stdoutFile);
+}
+
+// A command never writes over a file it reads or one output over another, however the two
+// are named (the same path spelled otherwise, a symbolic link, a hard link): a usage error
+// naming both, before anything is read or rendered.
+TEST_F(CliTest, RenderRefusesAnOutputThatIsOneOfItsInputs) {
+  if (runCli("bench --help").exitCode != 0)
+    GTEST_SKIP() << "this memograph has no renderer";
+  const std::string camera = write("camera.txt", "0 1 5  0 0 0  60\n");
+  const std::string scene = write("scene.gltf", "{}");
+  const std::string environment = write("sky.exr", "not read");
+  fs::create_directories(directory_ / "materials");
+  const std::string graph = write("materials/Wood.mgraph", "material Wood;\n");
+  fs::create_symlink(camera, directory_ / "camera_link.csv");
+  fs::create_symlink(graph, directory_ / "graph_link.pfm");
+  fs::create_hard_link(camera, directory_ / "camera_hard.csv");
+  fs::create_directories(directory_ / "sub");
+  const std::string out = (directory_ / "x.pfm").string(), dir = directory_.string() + "/";
+  const std::pair<std::string, std::string> cases[] = {
+      {"builtin:landscape --camera-path " + camera + " --stats " + dir + "camera_link.csv",
+       "--stats '" + dir + "camera_link.csv' is --camera-path '" + camera + "'"},
+      {"builtin:landscape --camera-path " + camera + " --stats " + dir + "camera_hard.csv",
+       "is --camera-path"},
+      {scene + " --stats " + scene, "--stats '" + scene + "' is SCENE"},
+      {"builtin:landscape --environment " + environment + " --stats " + environment,
+       "is --environment"},
+      {scene + " --materials " + dir + "materials --debug-culling " + dir +
+           "graph_link.pfm --culling frustum",
+       "is --materials graph '" + graph + "'"},
+      {"builtin:landscape --stats " + dir + "sub/../x.pfm",
+       "is --out '" + out + "': two outputs cannot share a file"},
+  };
+  for (const auto& [arguments, message] : cases) {
+    // The smallest render, should a check let one through.
+    const auto run = runCli("render " + arguments + " --out " + out + kSmallestRender);
+    EXPECT_EQ(run.exitCode, 2) << arguments << ": " << run.output;
+    EXPECT_NE(run.output.find(message), std::string::npos) << arguments << ": " << run.output;
+    EXPECT_FALSE(fs::exists(out)) << arguments;
+  }
+  std::ifstream kept(camera);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(kept), {}), "0 1 5  0 0 0  60\n");
+  EXPECT_TRUE(fs::is_symlink(directory_ / "graph_link.pfm"));
+}
+
+// `--device N` past the last device is a usage error (2): the command line names a device
+// this machine lacks, and the message says how many there are and lists them. Checked
+// before any output or GPU work, in render and bench alike.
+TEST_F(CliTest, ADevicePastTheLastIsAUsageErrorThatCountsTheDevices) {
+  if (runCli("bench --help").exitCode != 0)
+    GTEST_SKIP() << "this memograph has no renderer";
+  if (runCli("render --list-devices").output.find("[0]") == std::string::npos)
+    GTEST_SKIP() << "no Vulkan device: the renderer's own message applies";
+  const auto out = (directory_ / "x.pfm").string();
+  for (const std::string& command : {"render builtin:landscape --out " + out + " --device 999",
+                                     std::string("bench --sizes 16x9 --device 999")}) {
+    const auto run = runCli(command);
+    EXPECT_EQ(run.exitCode, 2) << command << ": " << run.output;
+    EXPECT_NE(run.output.find("--device 999 is out of range: this machine has "), std::string::npos)
+        << run.output;
+    EXPECT_NE(run.output.find("Vulkan device"), std::string::npos) << run.output;
+    EXPECT_NE(run.output.find("[0] "), std::string::npos) << run.output;  // the listing
+    EXPECT_EQ(run.output.find("device: "), std::string::npos) << "bench measured first";
+  }
+  EXPECT_FALSE(fs::exists(out));
+}
+
+// A command line with a usage error and a missing output folder is a usage error (2),
+// whichever comes first on it: the formats, the built-in scene's values and the scene's
+// fitness for the shading are checked before the folders.
+TEST_F(CliTest, RenderUsageErrorsComeBeforeTheOutputFolders) {
+  if (runCli("bench --help").exitCode != 0)
+    GTEST_SKIP() << "this memograph has no renderer";
+  const auto missing = (directory_ / "missing" / "x.pfm").string();
+  const std::pair<std::string, std::string> cases[] = {
+      {"builtin:landscape:terrain=1 --out " + missing, "terrainCells must be in 2..4096"},
+      {"builtin:landscape --out " + missing + " --culling frustum --debug-culling " +
+           (directory_ / "top.txt").string(),
+       "--debug-culling must name a .pfm, .png or .exr file"},
+      {"builtin:city:scale=0.02 --shading wavefront --out " + missing,
+       "renders static scenes only"},
+  };
+  for (const auto& [arguments, message] : cases) {
+    const auto run = runCli("render " + arguments + kSmallestRender);
+    EXPECT_EQ(run.exitCode, 2) << arguments << ": " << run.output;
+    EXPECT_NE(run.output.find(message), std::string::npos) << arguments << ": " << run.output;
+  }
+}
+
+// Too few iterations for the tile fill's given-up tiles to publish anything is a usage
+// error before any GPU work, on stderr with the minimum; stdout (the log) stays empty. So
+// are the other bad values.
+TEST_F(CliTest, SelftestRefusesTooFewIterationsOnStderr) {
+  const std::string stdoutFile = (directory_ / "stdout.txt").string();
+  for (const std::string arguments : {"--invocations 64 --iterations 4", "--iterations 0",
+                                      "--invocations 100", "--rounds 0", "extra"}) {
+    const auto run = runCliStderrOnly("selftest " + arguments, stdoutFile);
+    EXPECT_EQ(run.exitCode, 2) << arguments << ": " << run.output;
+    EXPECT_NE(run.output.find("memograph selftest: "), std::string::npos) << run.output;
+    EXPECT_EQ(fs::file_size(stdoutFile), 0u) << arguments;
+  }
+  const auto tooFew = runCliStderrOnly("selftest --iterations 4", stdoutFile);
+  EXPECT_NE(tooFew.output.find("give --iterations 6 or more"), std::string::npos) << tooFew.output;
+}
+
+// Two outputs in one folder, the folder spelled two ways ("D" and "D/sub/.."): the set is
+// written (the folder locked once; a second lock on it waited forever), and the render ends.
+TEST_F(CliTest, OutputsInOneFolderSpelledTwoWaysAreWritten) {
+  if (runCli("bench --help").exitCode != 0)
+    GTEST_SKIP() << "this memograph has no renderer";
+  fs::create_directories(directory_ / "sub");
+  const std::string image = (directory_ / "x.pfm").string(),
+                    stats = (directory_ / "sub" / ".." / "x.csv").string();
+  // `timeout` ends a hang with exit 124 instead of stalling the suite.
+  const auto run = runShell("timeout 600 " + std::string(MEMOGRAPH_CLI) +
+                            " render builtin:landscape:terrain=8 --out " + image + " --stats " +
+                            stats + kSmallestRender + " 2>&1");
+  EXPECT_EQ(run.exitCode, 0) << run.output;
+  EXPECT_TRUE(fs::exists(image));
+  EXPECT_TRUE(fs::exists(directory_ / "x.csv"));
 }
 
 }  // namespace

@@ -176,5 +176,33 @@ TEST_F(DiffCliTest, UsageErrorsExitWithTwo) {
   EXPECT_NE(help.output.find("LDR-FLIP"), std::string::npos);
 }
 
+// `diff A B --out A` would replace A with the error map. An output that is an
+// input is a usage error, however it is named: the same path, another spelling of it, a
+// symbolic link to it, a hard link to it; the input is left as it was.
+TEST_F(DiffCliTest, RefusesAnErrorMapOverEitherInput) {
+  fs::create_symlink(path("ref.pfm"), path("link.pfm"));
+  fs::create_hard_link(path("test.pfm"), path("hard.pfm"));
+  fs::create_directories(directory_ / "sub");
+  const auto referenceBytes = fs::file_size(path("ref.pfm")),
+             testBytes = fs::file_size(path("test.pfm"));
+  const std::pair<std::string, std::string> outputs[] = {
+      {path("ref.pfm"), "is REFERENCE"},
+      {path("test.pfm"), "is TEST"},
+      {(directory_ / "sub" / ".." / "ref.pfm").string(), "is REFERENCE"},
+      {path("link.pfm"), "is REFERENCE"},
+      {path("hard.pfm"), "is TEST"},
+  };
+  for (const auto& [out, role] : outputs) {
+    const CliRun run = runCli(diff("ref.pfm", "test.pfm", "--out " + out));
+    EXPECT_EQ(run.exitCode, 2) << out << ": " << run.output;
+    EXPECT_NE(run.output.find("--out '" + out + "' " + role), std::string::npos) << run.output;
+    EXPECT_EQ(run.output.find("mean"), std::string::npos) << "compared before refusing";
+  }
+  EXPECT_EQ(fs::file_size(path("ref.pfm")), referenceBytes);
+  EXPECT_EQ(fs::file_size(path("test.pfm")), testBytes);
+  EXPECT_TRUE(fs::is_symlink(path("link.pfm")));
+  EXPECT_FLOAT_EQ(runtime::readPfm(path("ref.pfm")).pixel(0, 0)[0], 0.1f);  // still the image
+}
+
 }  // namespace
 }  // namespace memograph

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <span>
 #include <sstream>
 
@@ -53,9 +54,14 @@ struct Bench {
   Clock::time_point start;  // --time-limit counts from here
   std::ostringstream csv;
   std::vector<std::pair<std::string, std::string> > outputs;  // written as a set at the end
+  std::optional<runtime::Scene> firstScene;  // built by the checks, taken by its run
 };
 
-// The frame plan and every scene name, checked before anything is rendered or written.
+// The frame plan and every scene, checked before anything is rendered or written: each
+// scene is built here (its name and ranges are checked by building it, and --shading
+// wavefront needs it static), so that a bad second scene is not found after the first one
+// has been measured. The first scene is kept for its run; the others are built again then,
+// one at a time, so that a sweep's scenes are never all in memory at once.
 int checkPlanAndScenes(Bench& bench, const std::vector<std::string>& scenes) {
   const TraceCommandOptions& o = bench.options;
   bench.plan = {.warmup = o.warmup,
@@ -72,6 +78,21 @@ int checkPlanAndScenes(Bench& bench, const std::vector<std::string>& scenes) {
     std::string error;
     if (!runtime::parseBuiltinSceneSpec(std::string_view(sceneName).substr(8), error))
       return usageError("bench", error);
+  }
+  for (const auto& sceneName : scenes) {
+    std::string error;
+    const auto spec = runtime::parseBuiltinSceneSpec(std::string_view(sceneName).substr(8), error);
+    runtime::Scene scene;
+    try {
+      scene = runtime::makeBuiltinScene(spec->name, spec->options);
+    } catch (const std::invalid_argument& e) {
+      return usageError("bench", e.what());
+    }
+    if (o.renderer.shading == runtime::Shading::Wavefront && !scene.animatedMeshes.empty())
+      return usageError("bench", "--shading wavefront renders static scenes only; " + sceneName +
+                                     " has animated meshes");
+    if (!bench.firstScene)
+      bench.firstScene = std::move(scene);
   }
   return kExitOk;
 }
@@ -91,24 +112,6 @@ int checkModes(TraceCommandOptions& options) {
     return usageError("bench",
                       "--frame-stride needs --cache none: with a cache each frame "
                       "depends on the frames before it, so every frame must be rendered");
-  return kExitOk;
-}
-
-// Outputs are checked before any work, and written whole at the end (files::): an
-// existing --csv is not truncated by a run that then fails.
-int checkOutputs(const TraceCommandOptions& options) {
-  if (!options.csv.empty()) {
-    if (const int code = checkOutputFile("bench", options.csv); code != kExitOk)
-      return code;
-  }
-  if (!options.framesCsv.empty()) {
-    // PREFIX names a folder and the start of file names: that folder must exist.
-    std::string error;
-    if (!files::checkOutputPath(options.framesCsv + "frames.csv", error)) {
-      std::cerr << "memograph bench: --frames-csv " << options.framesCsv << ": " << error << "\n";
-      return kExitFailure;
-    }
-  }
   return kExitOk;
 }
 
@@ -141,6 +144,47 @@ RunNames runNames(const std::string& sceneName, const std::string& runLabel) {
   if (!runLabel.empty())
     names.file += "_" + runLabel;
   return names;
+}
+
+// The per-frame file of a scene's run at one size (--frames-csv PREFIX).
+std::string framesCsvPath(const TraceCommandOptions& options, const RunNames& names,
+                          ImageSize size) {
+  return options.framesCsv + names.file + "_" + std::to_string(size.width) + "x" +
+         std::to_string(size.height) + ".csv";
+}
+
+// Outputs are checked before any work, and written whole at the end (files::): an
+// existing --csv is not truncated by a run that then fails. The usage errors (an output
+// over an input or another output, --device) come before the folders' checks.
+int checkOutputs(const TraceCommandOptions& options, const std::vector<std::string>& scenes) {
+  std::vector<CommandFile> outputs = {{"--csv", options.csv}};
+  if (!options.framesCsv.empty()) {
+    for (const std::string& sceneName : scenes) {
+      const RunNames names = runNames(sceneName, options.label);
+      for (const ImageSize size : options.sizes)
+        outputs.push_back({"--frames-csv file", framesCsvPath(options, names, size)});
+    }
+  }
+  std::vector<CommandFile> inputs;
+  addFolderInputs(inputs, "--nodes file", options.renderer.nodeLibraryDirectory, ".inc", true);
+  if (const int code = refuseOutputOverInput("bench", outputs, inputs); code != kExitOk)
+    return code;
+  if (const int code = checkDeviceIndex("bench", options.renderer.context.deviceIndex);
+      code != kExitOk)
+    return code;
+  if (!options.csv.empty()) {
+    if (const int code = checkOutputFile("bench", options.csv); code != kExitOk)
+      return code;
+  }
+  if (!options.framesCsv.empty()) {
+    // PREFIX names a folder and the start of file names: that folder must exist.
+    std::string error;
+    if (!files::checkOutputPath(options.framesCsv + "frames.csv", error)) {
+      std::cerr << "memograph bench: --frames-csv " << options.framesCsv << ": " << error << "\n";
+      return kExitFailure;
+    }
+  }
+  return kExitOk;
 }
 
 // The device and the memory limits a cache size runs into (recorded with the figures).
@@ -280,21 +324,22 @@ void benchSize(Bench& bench, runtime::Renderer& renderer, const runtime::Scene& 
   if (!o.framesCsv.empty()) {
     std::ostringstream perFrame;
     runtime::writeStatsCsv(perFrame, result.stats);
-    bench.outputs.emplace_back(o.framesCsv + names.file + "_" + std::to_string(size.width) + "x" +
-                                   std::to_string(size.height) + ".csv",
-                               perFrame.str());
+    bench.outputs.emplace_back(framesCsvPath(o, names, size), perFrame.str());
   }
 }
 
-// Renders one scene at every size. A usage error's exit code, or kExitOk.
-int benchScene(Bench& bench, const std::string& sceneName) {
+// Renders one scene at every size (checked by checkPlanAndScenes).
+void benchScene(Bench& bench, const std::string& sceneName) {
   TraceCommandOptions& o = bench.options;
   std::string error;
   const auto spec = runtime::parseBuiltinSceneSpec(std::string_view(sceneName).substr(8), error);
-  runtime::Scene scene = runtime::makeBuiltinScene(spec->name, spec->options);
-  if (o.renderer.shading == runtime::Shading::Wavefront && !scene.animatedMeshes.empty())
-    return usageError("bench", "--shading wavefront renders static scenes only; " + sceneName +
-                                   " has animated meshes");
+  runtime::Scene scene;
+  if (bench.firstScene) {
+    scene = std::move(*bench.firstScene);
+    bench.firstScene.reset();
+  } else {
+    scene = runtime::makeBuiltinScene(spec->name, spec->options);  // checked already
+  }
   if (o.noEmissiveNee)
     scene.emissiveLightSampling = false;
   // Each scene gets its own renderer: --backend auto depends on its material count.
@@ -314,7 +359,6 @@ int benchScene(Bench& bench, const std::string& sceneName) {
   const RunNames names = runNames(sceneName, o.label);
   for (const ImageSize size : o.sizes)
     benchSize(bench, renderer, scene, names, size, cameras);
-  return kExitOk;
 }
 
 }  // namespace
@@ -330,19 +374,19 @@ int runBench(std::span<const std::string_view> args) {
     return *exitCode;
   if (scenes.empty())
     scenes = {"builtin:classroom", "builtin:landscape"};
-  if (const int code = checkPlanAndScenes(bench, scenes); code != kExitOk)
-    return code;
+  // Every usage check first (the scenes last, as they are built to be checked), then the
+  // outputs' folders.
   if (const int code = checkModes(bench.options); code != kExitOk)
     return code;
-  if (const int code = checkOutputs(bench.options); code != kExitOk)
+  if (const int code = checkPlanAndScenes(bench, scenes); code != kExitOk)
+    return code;
+  if (const int code = checkOutputs(bench.options, scenes); code != kExitOk)
     return code;
   if (!bench.options.csv.empty())
     writeCsvHeader(bench.csv);
   try {
-    for (const auto& sceneName : scenes) {
-      if (const int code = benchScene(bench, sceneName); code != kExitOk)
-        return code;
-    }
+    for (const auto& sceneName : scenes)
+      benchScene(bench, sceneName);
   } catch (const std::invalid_argument& e) {
     // The renderer's refusals of option combinations (e.g. --wavefront-paths when
     // --shading auto chose the megakernel): usage errors, as when the CLI catches them.

@@ -12,6 +12,10 @@
 #include "compiler/input_file.h"
 #include "runtime/host/atomic_file.h"
 
+#ifdef MEMOGRAPH_HAVE_RUNTIME
+#include "runtime/vk/vulkan_context.h"
+#endif
+
 namespace memograph::cli {
 
 namespace fs = std::filesystem;
@@ -141,6 +145,105 @@ int checkOutputFile(std::string_view command, const std::string& path) {
     return kExitOk;
   std::cerr << "memograph " << command << ": " << path << ": " << error << "\n";
   return kExitFailure;
+}
+
+void addFolderInputs(std::vector<CommandFile>& inputs, std::string_view role,
+                     const std::string& folder, std::string_view extension, bool recursive) {
+  if (folder.empty())
+    return;
+  std::error_code ec;
+  std::size_t listed = 0;
+  const auto add = [&](const fs::directory_entry& entry) {
+    std::error_code typeError;
+    if (entry.path().extension() == extension && entry.is_regular_file(typeError))
+      inputs.push_back({std::string(role), entry.path().string()});
+  };
+  // Errors end the listing quietly: reading the folder later reports them with context.
+  if (recursive) {
+    for (fs::recursive_directory_iterator
+             it(folder, fs::directory_options::skip_permission_denied, ec),
+         end;
+         !ec && it != end && listed < kMaxFolderInputs; it.increment(ec), ++listed)
+      add(*it);
+  } else {
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end && listed < kMaxFolderInputs;
+         it.increment(ec), ++listed)
+      add(*it);
+  }
+}
+
+namespace {
+
+// Whether `a` and `b` name one file. Both existing: the same device and inode
+// (fs::equivalent follows links). Otherwise the paths with links, '.' and '..' resolved as
+// far as they exist: an output not yet written can still be the same as another output.
+bool sameFile(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  const bool aExists = fs::exists(a, ec), bExists = fs::exists(b, ec);
+  if (aExists && bExists)
+    return fs::equivalent(a, b, ec) && !ec;
+  if (aExists != bExists)
+    return false;
+  // Made absolute first: weakly_canonical leaves a relative path whose first part does not
+  // exist ("x.pfm") relative, so it would differ from "./x.pfm".
+  const fs::path canonicalA = fs::weakly_canonical(fs::absolute(a, ec), ec);
+  if (ec)
+    return false;
+  const fs::path canonicalB = fs::weakly_canonical(fs::absolute(b, ec), ec);
+  return !ec && canonicalA == canonicalB;
+}
+
+}  // namespace
+
+int refuseOutputOverInput(std::string_view command, const std::vector<CommandFile>& outputs,
+                          const std::vector<CommandFile>& inputs) {
+  const auto refuse = [&](const CommandFile& output, const CommandFile& other,
+                          std::string_view why) {
+    return usageError(command, output.role + " '" + output.path + "' is " + other.role + " '" +
+                                   other.path + "'" + std::string(why));
+  };
+  for (std::size_t i = 0; i < outputs.size(); ++i) {
+    const CommandFile& output = outputs[i];
+    if (output.path.empty())
+      continue;
+    for (const CommandFile& input : inputs) {
+      if (!input.path.empty() && sameFile(output.path, input.path))
+        return refuse(output, input, ", an input: writing it would destroy what is read");
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      if (!outputs[j].path.empty() && sameFile(output.path, outputs[j].path))
+        return refuse(output, outputs[j], ": two outputs cannot share a file");
+    }
+  }
+  return kExitOk;
+}
+
+int checkDeviceIndex(std::string_view command, int deviceIndex) {
+#ifdef MEMOGRAPH_HAVE_RUNTIME
+  if (deviceIndex < 0)
+    return kExitOk;
+  std::vector<std::string> devices;
+  try {
+    devices = runtime::describeDevices();
+  } catch (const std::exception&) {
+    return kExitOk;  // no Vulkan loader or instance: the renderer reports it with the fix
+  }
+  if (devices.empty() || std::size_t(deviceIndex) < devices.size())
+    return kExitOk;
+  std::string message =
+      "--device " + std::to_string(deviceIndex) + " is out of range: this machine has ";
+  message += devices.size() == 1
+                 ? "one Vulkan device, --device 0:"
+                 : std::to_string(devices.size()) + " Vulkan devices, --device 0 to " +
+                       std::to_string(devices.size() - 1) + ":";
+  for (const std::string& device : devices)
+    message.append("\n  ").append(device);
+  return usageError(command, message);
+#else
+  (void)command;
+  (void)deviceIndex;
+  return kExitOk;
+#endif
 }
 
 void printDiagnostics(const compiler::Diagnostics& diagnostics) {

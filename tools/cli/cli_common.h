@@ -106,6 +106,37 @@ bool writeFilesAtomically(const std::vector<std::pair<std::string, std::string>>
 // printing "memograph <command>: <path>: <why>".
 int checkOutputFile(std::string_view command, const std::string& path);
 
+// A file a command reads or writes, named as its command line names it: `role` is the
+// option or argument ("--out", "REFERENCE", "--materials graph").
+struct CommandFile {
+  std::string role;
+  std::string path;
+};
+
+// The files of folder input `folder` that a command reads: those ending in `extension`, in
+// the folder itself or, with `recursive`, below it too (a node library's .inc files, a
+// scene's .mgraph graphs). Each becomes an input of `role`; a folder that cannot be listed
+// adds none (reading it reports the problem). At most kMaxFolderInputs files are listed.
+constexpr std::size_t kMaxFolderInputs = 100000;
+void addFolderInputs(std::vector<CommandFile>& inputs, std::string_view role,
+                     const std::string& folder, std::string_view extension, bool recursive);
+
+// Refuses, before any output is created, a command line whose output is one of its inputs
+// (`diff A B --out A` would replace A with the error map) or whose two outputs name one
+// file. Paths are compared as files: through symbolic links (a link to an input is the
+// input), and by device and inode where both exist (a hard link is the input too). kExitOk,
+// or kExitUsage after printing "memograph <command>: <role> 'out' is <role> 'in' ...".
+// Empty paths are skipped, so options not given may be passed as they are.
+int refuseOutputOverInput(std::string_view command, const std::vector<CommandFile>& outputs,
+                          const std::vector<CommandFile>& inputs);
+
+// Checks `--device N` (`deviceIndex`; negative: not given) against this machine's Vulkan
+// devices before any output or GPU work: an index past the last is a usage error (kExitUsage)
+// whose message gives how many devices there are and lists them, as `render --list-devices`
+// does. A machine with no device at all passes: the renderer then says which driver to
+// install. Builds without the renderer pass every index.
+int checkDeviceIndex(std::string_view command, int deviceIndex);
+
 void printDiagnostics(const compiler::Diagnostics& diagnostics);
 
 }  // namespace memograph::cli

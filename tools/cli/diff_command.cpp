@@ -152,6 +152,12 @@ int runDiff(std::span<const std::string_view> args) {
     const std::string ext = lowerExtension(out);
     if (ext != ".png" && ext != ".exr" && ext != ".pfm")
       return usageError("diff", "--out must name a .png, .exr or .pfm file, not '" + out + "'");
+  }
+  if (const int code = refuseOutputOverInput(
+          "diff", {{"--out", out}}, {{"REFERENCE", positional[0]}, {"TEST", positional[1]}});
+      code != kExitOk)
+    return code;
+  if (!out.empty()) {
     if (const int code = checkOutputFile("diff", out); code != kExitOk)
       return code;
   }

@@ -457,14 +457,20 @@ Value readValue(const Option& option, std::string_view text) {
       break;
     }
     case ValueType::SizeList: {
-      std::string_view rest = text;
-      while (!rest.empty()) {
-        const std::size_t comma = std::min(rest.find(','), rest.size());
+      // Every item between commas is a size: an empty one ("16x9," or "16x9,,8x8") is
+      // refused, not skipped, as a list cut short is likely a mistake.
+      for (std::size_t start = 0;;) {
+        const std::size_t comma = std::min(text.find(',', start), text.size());
+        if (comma == start)
+          throw std::invalid_argument(name + " takes WxH[,WxH...], not '" + std::string(text) +
+                                      "': a size is missing before or after a comma");
         ImageSize& size = value.sizes.emplace_back();
         if (std::string error;
-            !parseImageSize(rest.substr(0, comma), size.width, size.height, error))
+            !parseImageSize(text.substr(start, comma - start), size.width, size.height, error))
           throw std::invalid_argument(name + " takes WxH[,WxH...]: " + error);
-        rest.remove_prefix(std::min(comma + 1, rest.size()));
+        if (comma == text.size())
+          break;
+        start = comma + 1;
       }
       break;
     }

@@ -55,9 +55,8 @@ std::string imageExtension(const std::string& path) {
   return extension;
 }
 
-// An image output: a format this build writes (a usage error otherwise), in a folder that
-// exists.
-int checkImageOutput(const std::string& path, std::string_view flag) {
+// An image output's format: one this build writes, else a usage error.
+int checkImageFormat(const std::string& path, std::string_view flag) {
   const std::string extension = imageExtension(path);
 #ifndef MEMOGRAPH_HAVE_IO
   (void)flag;
@@ -70,24 +69,46 @@ int checkImageOutput(const std::string& path, std::string_view flag) {
     return usageError(
         "render", std::string(flag) + " must name a .pfm, .png or .exr file, not '" + path + "'");
 #endif
-  return checkOutputFile("render", path);
+  return kExitOk;
 }
 
-// Every output is checked before any work: its format (a usage error), then its folder.
-int checkOutputs(const TraceCommandOptions& options) {
-  if (const int code = checkImageOutput(options.out, "--out"); code != kExitOk)
+// The outputs' usage errors, before anything is read: formats, an output over an input or
+// over another output, a --device past the last.
+int checkOutputNames(const std::string& sceneName, const TraceCommandOptions& options) {
+  if (const int code = checkImageFormat(options.out, "--out"); code != kExitOk)
     return code;
   if (!options.debugCulling.empty()) {
-    if (const int code = checkImageOutput(options.debugCulling, "--debug-culling"); code != kExitOk)
+    if (const int code = checkImageFormat(options.debugCulling, "--debug-culling"); code != kExitOk)
       return code;
-    if (std::filesystem::path(options.debugCulling) == std::filesystem::path(options.out))
-      return usageError("render", "--debug-culling and --out name the same file");
   }
-  if (!options.stats.empty()) {
-    if (const int code = checkOutputFile("render", options.stats); code != kExitOk)
+  // What the render reads: the scene file, the images and paths named, the graphs of the
+  // scene's materials and the node library (the scene's own buffers and textures are
+  // known only once it is read).
+  std::vector<CommandFile> inputs = {
+      {"SCENE", sceneName.rfind("builtin:", 0) == 0 ? std::string() : sceneName},
+      {"--environment", options.environment},
+      {"--camera-path", options.cameraPath}};
+  addFolderInputs(inputs, "--materials graph", options.materials, ".mgraph", false);
+  addFolderInputs(inputs, "--nodes file", options.renderer.nodeLibraryDirectory, ".inc", true);
+  if (const int code = refuseOutputOverInput("render",
+                                             {{"--out", options.out},
+                                              {"--debug-culling", options.debugCulling},
+                                              {"--stats", options.stats}},
+                                             inputs);
+      code != kExitOk)
+    return code;
+  return checkDeviceIndex("render", options.renderer.context.deviceIndex);
+}
+
+// The outputs' folders (kExitFailure), checked once the scene is loaded, whose usage errors
+// (a built-in scene's ranges, an animated scene for --shading wavefront) come first so that
+// a command line with both problems is named a usage error whichever comes first on it.
+int checkOutputFolders(const TraceCommandOptions& options) {
+  for (const std::string* path : {&options.out, &options.debugCulling, &options.stats}) {
+    if (path->empty())
+      continue;
+    if (const int code = checkOutputFile("render", *path); code != kExitOk)
       return code;
-    if (std::filesystem::path(options.stats) == std::filesystem::path(options.out))
-      return usageError("render", "--stats and --out name the same file");
   }
   return kExitOk;
 }
@@ -126,8 +147,8 @@ int loadScene(const std::string& name, const TraceCommandOptions& options, runti
     try {
       scene = runtime::makeBuiltinScene(spec->name, spec->options);
     } catch (const std::invalid_argument& e) {
-      std::cerr << "memograph render: " << e.what() << "\n";
-      return kExitFailure;
+      // An unknown name or a value out of range: the command line's, as in bench.
+      return usageError("render", e.what());
     }
 #else
     std::cerr << "memograph render: this build has no built-in scenes\n";
@@ -357,12 +378,14 @@ int runRender(std::span<const std::string_view> args) {
     return usageError("render", "expected one scene");
   if (options.out.empty())
     return usageError("render", "--out FILE is required");
-  runtime::Scene scene;
-  if (const int code = checkOutputs(options); code != kExitOk)
-    return code;
   if (const int code = checkModes(options); code != kExitOk)
     return code;
+  if (const int code = checkOutputNames(positional[0], options); code != kExitOk)
+    return code;
+  runtime::Scene scene;
   if (const int code = loadScene(positional[0], options, scene); code != kExitOk)
+    return code;
+  if (const int code = checkOutputFolders(options); code != kExitOk)
     return code;
   if (const int code = loadEnvironment(options.environment, scene); code != kExitOk)
     return code;
