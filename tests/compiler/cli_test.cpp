@@ -695,5 +695,18 @@ TEST_F(CliTest, OutputsInOneFolderSpelledTwoWaysAreWritten) {
   EXPECT_TRUE(fs::exists(directory_ / "x.csv"));
 }
 
+// compile names its outputs after the materials: a graph file named like one (Foo.json for
+// material Foo) would be replaced by its own metadata. Refused as a usage error, the input kept.
+TEST_F(CliTest, CompileRefusesAnOutputThatIsOneOfItsInputs) {
+  const std::string text = "material Foo;\nNormalInput Out>1;\nColorOutput In<1;\n";
+  const auto graph = write("Foo.json", text);
+  const auto run = runCli("compile " + graph + " -o " + directory_.string() + nodes());
+  EXPECT_EQ(run.exitCode, 2) << run.output;
+  EXPECT_NE(run.output.find("an input: writing it would destroy what is read"), std::string::npos)
+      << run.output;
+  std::ifstream kept(graph);
+  EXPECT_EQ(std::string((std::istreambuf_iterator<char>(kept)), {}), text);
+}
+
 }  // namespace
 }  // namespace memograph

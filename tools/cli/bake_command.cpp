@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -453,9 +454,12 @@ std::optional<int> readBakeSettings(const BakeArguments& a, BakeRun& run) {
                                                            run.settings.boundsMax, error))
     return usageError("bake", "--bounds '" + a.bounds + "': " + error);
   std::uint32_t deviceIndex = 0;
-  if (a.device != "-1" && !parseNumber(a.device, deviceIndex))
+  if (a.device != "-1" && (!parseNumber(a.device, deviceIndex) ||
+                           deviceIndex > std::uint32_t(std::numeric_limits<int>::max())))
     return usageError("bake", "--device takes a device index, not '" + a.device + "'");
   run.deviceIndex = a.device == "-1" ? -1 : int(deviceIndex);
+  if (const int code = checkDeviceIndex("bake", run.deviceIndex); code != kExitOk)
+    return code;
   run.outDir = a.outDir;
   run.format = a.format;
   run.quiet = a.quiet;

@@ -101,6 +101,16 @@ int runCompile(std::span<const std::string_view> args) {
               << "; nothing written\n";
     return kExitFailure;
   }
+  // No output may replace an input (a graph or node-library file named like an output).
+  std::vector<CommandFile> written, read;
+  for (const auto& [path, contents] : outputs)
+    written.push_back({"-o file", path});
+  for (const auto& path : files)
+    read.push_back({"FILE", path});
+  if (!nodesDir.empty())
+    addFolderInputs(read, "--nodes file", nodesDir, ".inc", true);
+  if (const int code = refuseOutputOverInput("compile", written, read); code != kExitOk)
+    return code;
   std::error_code ec;
   std::filesystem::create_directories(outputDir, ec);
   std::string error;

@@ -534,6 +534,11 @@ int runImportBlender(std::span<const std::string_view> args) {
   if (const auto exitCode = scanImportArguments(args, a))
     return *exitCode;
   const fs::path blend = a.positional[0];
+  if (const int code =
+          refuseOutputOverInput("import-blender", {{"--out", a.outDir}},
+                                {{"SCENE.blend", blend.string()}, {"--blender", a.blender}});
+      code != kExitOk)
+    return code;
   if (auto problem = checkBlendFile(blend); !problem.empty()) {
     std::cerr << kCommand << blend.string() << ": " << problem << "\n";
     return kExitFailure;
