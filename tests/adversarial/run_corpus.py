@@ -304,7 +304,7 @@ def cases(gen):
          r"two outputs cannot share a file"),
         ("cli: render usage before folder", ["render", "builtin:landscape:terrain=1", "--out",
                                              "out/missing/x.png"] + small, 2,
-         r"terrainCells must be in 2\.\.4096"),
+         r"terrain \(the landscape's terrain grid: cells per side\) is an integer in 2\.\.4096"),
         ("cli: bench sizes trailing comma", ["bench", "builtin:landscape", "--sizes", "16x9,"],
          2, r"--sizes takes WxH\[,WxH\.\.\.\], not '16x9,'"),
         ("cli: bench second scene unknown", ["bench", "builtin:landscape:terrain=8",

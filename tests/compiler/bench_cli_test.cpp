@@ -111,7 +111,7 @@ TEST_F(BenchCliTest, EverySceneAndSizeIsCheckedBeforeAnyIsMeasured) {
       {"builtin:landscape --sizes 16x9,,8x8", "a size is missing"},
       {"builtin:landscape:terrain=8 builtin:bogus --sizes 8x8", "unknown built-in scene 'bogus'"},
       {"builtin:landscape:terrain=8 builtin:landscape:terrain=1 --sizes 8x8",
-       "terrainCells must be in 2..4096"},
+       "terrain (the landscape's terrain grid: cells per side) is an integer in 2..4096"},
       {"builtin:landscape:terrain=8 builtin:city:scale=0.02 --shading wavefront --sizes 8x8",
        "renders static scenes only"},
   };

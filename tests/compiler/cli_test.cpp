@@ -648,7 +648,8 @@ TEST_F(CliTest, RenderUsageErrorsComeBeforeTheOutputFolders) {
     GTEST_SKIP() << "this memograph has no renderer";
   const auto missing = (directory_ / "missing" / "x.pfm").string();
   const std::pair<std::string, std::string> cases[] = {
-      {"builtin:landscape:terrain=1 --out " + missing, "terrainCells must be in 2..4096"},
+      {"builtin:landscape:terrain=1 --out " + missing,
+       "terrain (the landscape's terrain grid: cells per side) is an integer in 2..4096"},
       {"builtin:landscape --out " + missing + " --culling frustum --debug-culling " +
            (directory_ / "top.txt").string(),
        "--debug-culling must name a .pfm, .png or .exr file"},
