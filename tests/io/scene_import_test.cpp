@@ -355,9 +355,9 @@ TEST_F(SceneImportTest, AnObjsMaterialLibrariesAreNeverParsedWhateverTheirName) 
   write("library.obj", crashing);
   write("library.mtl", crashing);
   const std::string triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl Red\nf 1 2 3\n";
-  for (const std::string& library : {"library.obj", "library.mtl", "self.obj"}) {
+  for (const char* library : {"library.obj", "library.mtl", "self.obj"}) {
     SCOPED_TRACE(library);
-    const std::string path = write("self.obj", "mtllib " + library + "\n" + triangle);
+    const std::string path = write("self.obj", std::string("mtllib ") + library + "\n" + triangle);
     Diagnostics diagnostics;
     const auto scene = importScene(path, materials(), diagnostics);
     ASSERT_TRUE(scene.has_value()) << compiler::formatDiagnostics(diagnostics);

@@ -235,8 +235,10 @@ class ObjChecker {
       // that there is one: before the first `newmtl` it crashes (found by the OBJ fuzzer).
       if (!inMaterial) {
         diagnostics_.error(mtl, {mtlLine, 1},
-                           "'" + std::string(statement.keyword) +
-                               "' comes before any 'newmtl': a texture belongs to a material");
+                           std::string("'")
+                               .append(statement.keyword)
+                               .append("' comes before any 'newmtl': a texture belongs to a "
+                                       "material"));
         return true;
       }
       std::uint32_t column = statement.restColumn;

@@ -40,9 +40,10 @@ TEST(SceneLimits, SceneWithMoreDistinctGraphsThanTheLimitIsRefused) {
   Scene scene;
   scene.meshes.push_back(triangle());
   scene.instances.push_back({0, 0});
-  for (int m = 0; m < 5000; ++m)
-    scene.materials.push_back(
-        {"m" + std::to_string(m), {}, "material m" + std::to_string(m) + ";\n"});
+  for (int m = 0; m < 5000; ++m) {
+    const std::string name = std::string("m").append(std::to_string(m));
+    scene.materials.push_back({name, {}, std::string("material ").append(name).append(";\n")});
+  }
   const std::string message = refusal(scene);
   EXPECT_NE(message.find("5000 distinct material graphs, more than the limit of 4096"),
             std::string::npos)
