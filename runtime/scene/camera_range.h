@@ -31,7 +31,13 @@ inline std::string cameraProblem(const Camera& camera) {
     return std::string(text);
   };
   const auto point = [&](glm::vec3 p) {
-    return "(" + number(p.x) + ", " + number(p.y) + ", " + number(p.z) + ")";
+    return std::string("(")
+        .append(number(p.x))
+        .append(", ")
+        .append(number(p.y))
+        .append(", ")
+        .append(number(p.z))
+        .append(")");
   };
   for (const auto& [what, p] : {std::pair<const char*, glm::vec3>{"position", camera.position},
                                 {"target", camera.target}}) {
