@@ -70,8 +70,8 @@ struct RendererOptions {
   // The megakernel: a frame's P paths per pixel are traced in dispatches of at most this many
   // paths each (runtime/trace/megakernel/path_dispatches.h); 0: all P in one. The default is the
   // fastest split measured: at P = 6 (5 paths, then 1) the unculled city's frame took 0.935x the
-  // time of one dispatch on an H100 (docs/design/path-tracer.md, "Paths per dispatch"); P <= 5 stays one
-  // dispatch. The wavefront ignores it: its rounds trace one path of every pixel each
+  // time of one dispatch on an H100 (docs/design/path-tracer.md, "Paths per dispatch"); P <= 5
+  // stays one dispatch. The wavefront ignores it: its rounds trace one path of every pixel each
   // already.
   std::uint32_t pathsPerDispatch = 5;
   // Thesis Fig. 6.9: the image shows each frame alone, pixels where a path missed the

@@ -59,7 +59,8 @@ TEST(TexelCacheStress, UpdateCounterGivesNoTornReads) {
   // The unprotected protocol's tears show that the harness can see a tear on this device
   // (lavapipe: 21000 to 44000 of about 360000 hits); reported, not asserted, since it depends
   // on the device's scheduling. The key-only checks are reported too (lavapipe: 0); on the
-  // GPU machine `memograph selftest` runs the same modes (docs/design/path-tracer.md has its counts).
+  // GPU machine `memograph selftest` runs the same modes (docs/design/path-tracer.md has its
+  // counts).
   EXPECT_TRUE(context.validationErrors().empty());
 }
 
