@@ -84,6 +84,30 @@ SceneFootprint measureScene(const Scene& scene);
 // count and the scene element.
 void checkSceneLimits(const SceneFootprint& footprint);
 
+// What one scene buffer (the vertices, the indices, the instances) may take on the device the
+// scene is for: the most one storage binding may address and the largest allocation. Bytes 0:
+// unknown (no device yet), only the fixed limits apply.
+struct SceneBufferBudget {
+  std::string device;                 // the device's name, for the message
+  std::uint64_t storageRangeBytes = 0;  // maxStorageBufferRange
+  std::uint64_t allocationBytes = 0;    // maxMemoryAllocationSize
+};
+
+// Throws SceneLimitError when a buffer of `bytes` (`what`, e.g. "vertex buffer", made of
+// `counted`, e.g. "N vertices of 64 bytes") passes the budget; `atLeast` says the count is
+// of a scene still being built, so its whole buffer needs more.
+void checkSceneBuffer(const SceneBufferBudget& budget, std::uint64_t bytes,
+                      const std::string& what, const std::string& counted, bool storageBinding,
+                      bool atLeast = false);
+
+// The vertex and index buffers of `vertices` and `triangles` against the budget (gpu::Vertex
+// and three uint32 a triangle); `atLeast` as above. The validate stage checks the whole
+// scene's counts; a built-in scene checks its counts so far after each mesh it adds
+// (BuiltinSceneOptions::onGeometry), so that a scene too large for the device is refused
+// before most of it is made.
+void checkGeometryBuffers(const SceneBufferBudget& budget, std::uint64_t vertices,
+                          std::uint64_t triangles, bool atLeast = false);
+
 // Throws SceneLimitError when `count` textures or `texels` texels in all pass their limits.
 void checkTextureLimits(std::uint64_t count, std::uint64_t texels);
 

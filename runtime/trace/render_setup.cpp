@@ -1,6 +1,7 @@
 #include "runtime/trace/render_setup.h"
 
 #include <algorithm>
+#include <optional>
 #include <stdexcept>
 
 #include <glm/glm.hpp>
@@ -34,23 +35,31 @@ std::string megabytes(std::uint64_t bytes) {
   return std::to_string((bytes + (1u << 20) - 1) >> 20) + " MiB";
 }
 
+}  // namespace
+
+SceneBufferBudget sceneBufferBudget(const DeviceInfo& info) {
+  return SceneBufferBudget{info.name, info.limits.maxStorageBufferRange,
+                           info.maxMemoryAllocationSize};
+}
+
+std::function<void(std::uint64_t, std::uint64_t)> deviceGeometryCheck(
+    const ContextOptions& options) {
+  const std::optional<DeviceInfo> info = peekDeviceInfo(options);
+  if (!info)
+    return {};
+  return [budget = sceneBufferBudget(*info)](std::uint64_t vertices, std::uint64_t triangles) {
+    checkGeometryBuffers(budget, vertices, triangles, true);
+  };
+}
+
+namespace {
+
 // A buffer of the scene refused where the device cannot hold it: past the largest allocation
 // or, bound whole as a storage buffer, past maxStorageBufferRange. A SceneLimitError (exit
 // 1): the scene is too large for this device, the request itself is sound.
 void checkSceneBuffer(const VulkanContext& context, std::uint64_t bytes, const std::string& what,
                       const std::string& counted, bool storageBinding) {
-  const DeviceInfo& info = context.info();
-  const std::uint64_t range = info.limits.maxStorageBufferRange;
-  if (storageBinding && range > 0 && bytes > range)
-    throw SceneLimitError("the scene's " + what + " would need " + std::to_string(bytes) +
-                          " bytes (" + counted + "), more than the " + std::to_string(range) +
-                          "-byte storage-buffer range of " + info.name +
-                          " (maxStorageBufferRange, the most one binding may address)");
-  if (info.maxMemoryAllocationSize > 0 && bytes > info.maxMemoryAllocationSize)
-    throw SceneLimitError("the scene's " + what + " would need " + std::to_string(bytes) +
-                          " bytes (" + counted + "), more than the largest allocation of " +
-                          info.name + " (" + std::to_string(info.maxMemoryAllocationSize) +
-                          " bytes)");
+  checkSceneBuffer(sceneBufferBudget(context.info()), bytes, what, counted, storageBinding);
 }
 
 // The device's largest device-local heap (on a CPU device, the host memory it may use).
@@ -73,10 +82,7 @@ void checkSceneFitsDevice(const Scene& scene, const VulkanContext& context,
   const SceneFootprint f = measureScene(scene);
   checkSceneLimits(f);
   const DeviceInfo& info = context.info();
-  checkSceneBuffer(context, f.vertexBytes, "vertex buffer",
-                   std::to_string(f.vertices) + " vertices of 64 bytes", true);
-  checkSceneBuffer(context, f.indexBytes, "index buffer",
-                   std::to_string(f.triangles) + " triangles of 12 bytes", true);
+  checkGeometryBuffers(sceneBufferBudget(info), f.vertices, f.triangles);
   checkSceneBuffer(context, f.instanceBytes, "instance buffer",
                    std::to_string(f.instances) + " instances of " +
                        std::to_string(sizeof(gpu::Instance)) + " bytes",

@@ -4,11 +4,13 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 
 #include "runtime/materials/scene_materials.h"
 #include "runtime/memo/cache_options.h"
 #include "runtime/renderer.h"
+#include "runtime/scene/scene_limits.h"
 
 namespace memograph::runtime {
 
@@ -23,6 +25,16 @@ struct RenderPlan {
   std::uint32_t feedbackPathWeight = 1;
   std::uint64_t accumulationBytes = 0;  // the image: 4 floats a pixel
 };
+
+// The device's limits on one scene buffer (scene_limits.h), for checks of a scene against it.
+SceneBufferBudget sceneBufferBudget(const DeviceInfo& info);
+
+// The check a built-in scene runs while it is built (BuiltinSceneOptions::onGeometry):
+// checkGeometryBuffers against the device a renderer with `options` would choose, read
+// before the renderer exists (peekDeviceInfo). Empty where no device qualifies; the renderer
+// then says why.
+std::function<void(std::uint64_t vertices, std::uint64_t triangles)> deviceGeometryCheck(
+    const ContextOptions& options);
 
 // The checks that need neither the materials nor the device's resources: the settings, the
 // scene, the culling options and what the device cannot do for them. Returns the feedback

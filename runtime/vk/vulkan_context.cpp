@@ -482,6 +482,25 @@ void readProperties(VkPhysicalDevice physicalDevice, DeviceInfo& info) {
 
 }  // namespace
 
+std::optional<DeviceInfo> peekDeviceInfo(const ContextOptions& options) {
+  try {
+    VulkanHandle<VkInstance> instance(createInstance(false, false),
+                                      [](VkInstance i) { vkDestroyInstance(i, nullptr); });
+    const Candidate chosen = chooseDevice(instance.get(), options);
+    DeviceInfo info;
+    info.name = chosen.properties.deviceName;
+    info.type = chosen.properties.deviceType;
+    info.apiVersion = chosen.properties.apiVersion;
+    info.rayQuery = chosen.rayQuery;
+    info.rayTracingPipeline = chosen.rayTracingPipeline;
+    info.timestampPeriodNs = chosen.properties.limits.timestampPeriod;
+    readProperties(chosen.device, info);
+    return info;
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+}
+
 VulkanContext::VulkanContext(const ContextOptions& options)
     : validationLog_(std::make_unique<ValidationLog>()) {
   if (options.validation && !instanceLayerPresent(kValidationLayer)) {

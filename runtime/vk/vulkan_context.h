@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -86,6 +87,12 @@ struct DeviceInfo {
 
 // Names and ray-tracing support of every device, for --list-devices and error messages.
 std::vector<std::string> describeDevices();
+
+// The device a VulkanContext made with `options` would choose, read through an instance
+// alone (no device is created): its name, type and properties (limits, largest allocation,
+// subgroup size), so that work done before the context exists can be bounded by them. The
+// feature fields stay unset. Nothing where no device qualifies; the constructor says why.
+std::optional<DeviceInfo> peekDeviceInfo(const ContextOptions& options);
 
 // Whether VK_LAYER_KHRONOS_validation is installed (tests turn validation on when it is).
 bool validationLayerAvailable();

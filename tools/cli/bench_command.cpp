@@ -23,6 +23,8 @@
 #ifdef MEMOGRAPH_HAVE_SCENES
 #include "runtime/scene/builtin/builtin_scenes.h"
 #include "runtime/scene/builtin/camera_path.h"
+#include "runtime/scene/scene_limits.h"
+#include "runtime/trace/render_setup.h"
 #endif
 
 namespace memograph::cli {
@@ -79,14 +81,20 @@ int checkPlanAndScenes(Bench& bench, const std::vector<std::string>& scenes) {
     if (!runtime::parseBuiltinSceneSpec(std::string_view(sceneName).substr(8), error))
       return usageError("bench", error);
   }
+  const auto geometryCheck = runtime::deviceGeometryCheck(o.renderer.context);
   for (const auto& sceneName : scenes) {
     std::string error;
-    const auto spec = runtime::parseBuiltinSceneSpec(std::string_view(sceneName).substr(8), error);
+    auto spec = runtime::parseBuiltinSceneSpec(std::string_view(sceneName).substr(8), error);
+    spec->options.onGeometry = geometryCheck;
     runtime::Scene scene;
     try {
       scene = runtime::makeBuiltinScene(spec->name, spec->options);
     } catch (const std::invalid_argument& e) {
       return usageError("bench", e.what());
+    } catch (const runtime::SceneLimitError& e) {
+      // Too large for the device: refused while the scene is built (exit 1).
+      std::cerr << "memograph bench: " << sceneName << ": " << e.what() << "\n";
+      return kExitFailure;
     }
     if (o.renderer.shading == runtime::Shading::Wavefront && !scene.animatedMeshes.empty())
       return usageError("bench", "--shading wavefront renders static scenes only; " + sceneName +

@@ -21,6 +21,8 @@
 #ifdef MEMOGRAPH_HAVE_SCENES
 #include "runtime/scene/builtin/builtin_scenes.h"
 #include "runtime/scene/builtin/camera_path.h"
+#include "runtime/scene/scene_limits.h"
+#include "runtime/trace/render_setup.h"
 #endif
 #ifdef MEMOGRAPH_HAVE_IO
 #include "tools/io/image_io.h"
@@ -144,11 +146,16 @@ int loadScene(const std::string& name, const TraceCommandOptions& options, runti
     auto spec = runtime::parseBuiltinSceneSpec(std::string_view(name).substr(8), error);
     if (!spec)
       return usageError("render", error);
+    spec->options.onGeometry = runtime::deviceGeometryCheck(options.renderer.context);
     try {
       scene = runtime::makeBuiltinScene(spec->name, spec->options);
     } catch (const std::invalid_argument& e) {
       // An unknown name or a value out of range: the command line's, as in bench.
       return usageError("render", e.what());
+    } catch (const runtime::SceneLimitError& e) {
+      // Too large for the device: refused while the scene is built (exit 1).
+      std::cerr << "memograph render: " << e.what() << "\n";
+      return kExitFailure;
     }
 #else
     std::cerr << "memograph render: this build has no built-in scenes\n";

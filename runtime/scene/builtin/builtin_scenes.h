@@ -3,6 +3,8 @@
 // material. They need no files, so the renderer can run them on the GPU machine.
 #pragma once
 
+#include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -44,6 +46,11 @@ struct BuiltinSceneOptions {
   // The city's default camera (the first frame of its path) and the path `memograph bench`
   // follows.
   CityCameraPath cityPath = CityCameraPath::Street;
+  // Called after each mesh the scene adds, with the vertices and triangles of all its meshes
+  // so far; it may throw to stop the build. The render and bench commands pass the device's
+  // buffer check (checkGeometryBuffers), so that a scene the device cannot hold is refused
+  // once its geometry passes the device's limits, not after all of it is made.
+  std::function<void(std::uint64_t vertices, std::uint64_t triangles)> onGeometry;
 };
 
 // "classroom", "landscape".

@@ -359,7 +359,7 @@ void addFlags(SceneBuilder& b, const CityLayout& layout, const CityCounts& count
 Scene makeCityScene(const BuiltinSceneOptions& options) {
   const CityCounts counts = cityCounts(options.cityScale);
   const CityLayout layout = cityLayout(options.cityScale);
-  SceneBuilder b;
+  SceneBuilder b(options.onGeometry);
   const CityMaterials m = addCityMaterials(b, options.materialCost);
   const std::vector<Lot> lots = addGroundAndLots(b, layout, m);
   addBuildings(b, layout, counts, lots, m);

@@ -394,7 +394,7 @@ void addDetails(Room& r) {
 }  // namespace
 
 Scene makeClassroomScene(const BuiltinSceneOptions& options) {
-  SceneBuilder builder;
+  SceneBuilder builder(options.onGeometry);
   Room room{builder, options.materialCost};
   addShell(room);
   addFront(room);

@@ -21,7 +21,7 @@ float landscapeTerrainHeight(float x, float z) {
 }
 
 Scene makeLandscapeScene(const BuiltinSceneOptions& options) {
-  SceneBuilder b;
+  SceneBuilder b(options.onGeometry);
   const MaterialCost cost = options.materialCost;
   // Cheap objects keep their own detail low: the terrain is the one expensive material.
   const MaterialCost light{std::max(1, cost.octaves / 2), 0};

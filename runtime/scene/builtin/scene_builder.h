@@ -2,6 +2,8 @@
 // indices, and computes tangents once a mesh is complete.
 #pragma once
 
+#include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 
@@ -14,8 +16,17 @@ namespace memograph::runtime {
 
 class SceneBuilder {
  public:
+  // `onGeometry`, if set, hears the totals after each mesh (BuiltinSceneOptions::onGeometry).
+  explicit SceneBuilder(
+      std::function<void(std::uint64_t vertices, std::uint64_t triangles)> onGeometry = {})
+      : onGeometry_(std::move(onGeometry)) {}
+
   // Adds a finished mesh (tangents are computed here) and returns its index.
   std::uint32_t addMesh(Mesh mesh) {
+    vertices_ += mesh.positions.size();
+    triangles_ += mesh.indices.size() / 3;
+    if (onGeometry_)
+      onGeometry_(vertices_, triangles_);
     computeTangents(mesh);
     scene_.meshes.push_back(std::move(mesh));
     return static_cast<std::uint32_t>(scene_.meshes.size() - 1);
@@ -37,6 +48,9 @@ class SceneBuilder {
  private:
   Scene scene_;
   std::map<std::string, std::uint32_t> materialIndex_;
+  std::function<void(std::uint64_t, std::uint64_t)> onGeometry_;
+  std::uint64_t vertices_ = 0;
+  std::uint64_t triangles_ = 0;
 };
 
 // A mesh made of axis-aligned boxes (furniture): {min, max} corner pairs in object space.

@@ -80,5 +80,29 @@ TEST(SceneLimits, TexturesPastTheirLimitsAreRefused) {
   EXPECT_THROW(checkTextureLimits(1, kMaxSceneTexels + 1), SceneLimitError);
 }
 
+TEST(SceneLimits, GeometryPastTheDeviceBufferRangeIsRefusedNamingTheLimit) {
+  const SceneBufferBudget budget{"Tiny GPU", 64 * 16, 0};
+  EXPECT_NO_THROW(checkGeometryBuffers(budget, 16, 1));
+  try {
+    checkGeometryBuffers(budget, 17, 1, true);
+    ADD_FAILURE() << "17 vertices of 64 bytes passed a 1024-byte range";
+  } catch (const SceneLimitError& e) {
+    EXPECT_STREQ(e.what(),
+                 "the scene's vertex buffer would need at least 1088 bytes (17 vertices of 64 "
+                 "bytes so far), more than the 1024-byte storage-buffer range of Tiny GPU "
+                 "(maxStorageBufferRange, the most one binding may address)");
+  }
+  const SceneBufferBudget allocation{"Tiny GPU", 0, 12};
+  try {
+    checkGeometryBuffers(allocation, 0, 2);
+    ADD_FAILURE() << "24 bytes of indices passed a 12-byte allocation";
+  } catch (const SceneLimitError& e) {
+    EXPECT_STREQ(e.what(),
+                 "the scene's index buffer would need 24 bytes (2 triangles of 12 bytes), more "
+                 "than the largest allocation of Tiny GPU (12 bytes)");
+  }
+  EXPECT_NO_THROW(checkGeometryBuffers(SceneBufferBudget{}, 1u << 30, 1u << 30));
+}
+
 }  // namespace
 }  // namespace memograph::runtime

@@ -240,5 +240,38 @@ TEST(BuiltinSceneSpec, BadOptionsNameTheProblem) {
   EXPECT_FALSE(parseBuiltinSceneSpec(":octaves=3", error).has_value());
 }
 
+// onGeometry hears the totals after every mesh and may stop the build: the render command's
+// device check relies on it to refuse the full city on lavapipe before most of it is made.
+TEST(BuiltinScenes, GeometryCheckHearsEveryMeshAndCanStopTheBuild) {
+  struct Stop {};
+  BuiltinSceneOptions options;
+  options.terrainCells = 64;
+  std::uint64_t calls = 0, lastVertices = 0, lastTriangles = 0;
+  options.onGeometry = [&](std::uint64_t vertices, std::uint64_t triangles) {
+    EXPECT_GE(vertices, lastVertices);
+    EXPECT_GE(triangles, lastTriangles);
+    ++calls;
+    lastVertices = vertices;
+    lastTriangles = triangles;
+  };
+  const Scene scene = makeLandscapeScene(options);
+  EXPECT_EQ(calls, scene.meshes.size());
+  std::uint64_t vertices = 0, triangles = 0;
+  for (const Mesh& mesh : scene.meshes) {
+    vertices += mesh.positions.size();
+    triangles += mesh.indices.size() / 3;
+  }
+  EXPECT_EQ(lastVertices, vertices);
+  EXPECT_EQ(lastTriangles, triangles);
+
+  std::uint64_t callsUntilStop = 0;
+  options.onGeometry = [&](std::uint64_t, std::uint64_t) {
+    if (++callsUntilStop == 2)
+      throw Stop{};
+  };
+  EXPECT_THROW(makeCityScene(options), Stop);
+  EXPECT_EQ(callsUntilStop, 2u);
+}
+
 }  // namespace
 }  // namespace memograph::runtime
