@@ -207,6 +207,18 @@ TEST(GltfPrecheck, DataUrisMustBeBase64AsAssimpReadsThem) {
   EXPECT_EQ(check("data:application/octet-stream,anything goes"), "ok");  // not base64
 }
 
+// The JSON reader's refusals reach the message with the byte of the JSON they are at.
+TEST(GltfPrecheck, InvalidJsonNamesTheByteOfTheJson) {
+  compiler::Diagnostics diagnostics;
+  EXPECT_FALSE(io::precheckGltfBytes("bad.gltf", R"({"asset": {"version": "2.0\ud800"}})", false,
+                                     diagnostics));
+  EXPECT_NE(compiler::formatDiagnostics(diagnostics)
+                .find("invalid glTF JSON: an unpaired surrogate in a \\u escape (at byte 26 of "
+                      "the JSON)"),
+            std::string::npos)
+      << compiler::formatDiagnostics(diagnostics);
+}
+
 TEST(GltfPrecheck, TheShowcaseScenePasses) {
   compiler::Diagnostics diagnostics;
   EXPECT_TRUE(io::precheckGltf(MEMOGRAPH_EXAMPLES_DIR "/scenes/showcase.gltf", diagnostics))

@@ -3,185 +3,19 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <string>
 #include <string_view>
 #include <vector>
 
 #include "compiler/input_file.h"
+#include "tools/io/json_reader.h"
 
 namespace memograph::io {
 namespace {
-
-// A JSON value. Long strings (embedded base64 buffers) are not kept: nothing checked here
-// reads them, and copying them would double the memory of a large file.
-struct Json {
-  enum class Kind { Null, Bool, Number, String, Array, Object };
-  Kind kind = Kind::Null;
-  double number = 0.0;
-  std::string string;
-  std::vector<Json> items;
-  // An object's members as two parallel lists: std::pair<std::string, Json> would need
-  // Json complete here (vector alone may hold an incomplete type).
-  std::vector<std::string> keys;
-  std::vector<Json> values;
-
-  const Json* get(std::string_view key) const {
-    if (kind != Kind::Object)
-      return nullptr;
-    for (std::size_t i = 0; i < keys.size(); ++i) {
-      if (keys[i] == key)
-        return &values[i];
-    }
-    return nullptr;
-  }
-  std::size_t size() const { return kind == Kind::Array ? items.size() : 0; }
-};
-
-// Recursive descent, but never deeper than kMaxJsonDepth: the recursion is bounded.
-class JsonParser {
- public:
-  explicit JsonParser(std::string_view text) : text_(text) {}
-
-  bool parse(Json& out, std::string& error) {
-    if (!value(out, 0)) {
-      error = error_ + " (at byte " + std::to_string(pos_) + " of the JSON)";
-      return false;
-    }
-    skipSpace();
-    if (pos_ != text_.size()) {
-      error = "text after the JSON value (at byte " + std::to_string(pos_) + ")";
-      return false;
-    }
-    return true;
-  }
-
- private:
-  void skipSpace() {
-    while (pos_ < text_.size() && (text_[pos_] == ' ' || text_[pos_] == '\n' ||
-                                   text_[pos_] == '\r' || text_[pos_] == '\t'))
-      ++pos_;
-  }
-  bool fail(std::string message) {
-    error_ = std::move(message);
-    return false;
-  }
-  bool literal(std::string_view word) {
-    if (text_.substr(pos_, word.size()) != word)
-      return fail("invalid JSON");
-    pos_ += word.size();
-    return true;
-  }
-  bool string(std::string& out, bool keepLong = false) {
-    ++pos_;  // the opening quote
-    const std::size_t start = pos_;
-    while (pos_ < text_.size() && text_[pos_] != '"') {
-      if (text_[pos_] == '\\')
-        ++pos_;
-      ++pos_;
-    }
-    if (pos_ >= text_.size())
-      return fail("unterminated string");
-    if (keepLong || pos_ - start <= 1024)
-      out.assign(text_.substr(start, pos_ - start));
-    ++pos_;
-    return true;
-  }
-  // `keepLong`: keep the string however long (buffer URIs, decoded to check indices).
-  bool value(Json& out, int depth, bool keepLong = false) {
-    if (depth > kMaxJsonDepth)
-      return fail("the JSON is nested more than " + std::to_string(kMaxJsonDepth) +
-                  " levels deep, over the limit (docs/guide/limits.md)");
-    skipSpace();
-    if (pos_ >= text_.size())
-      return fail("unexpected end of the JSON");
-    const char c = text_[pos_];
-    if (c == '{') {
-      out.kind = Json::Kind::Object;
-      ++pos_;
-      skipSpace();
-      if (pos_ < text_.size() && text_[pos_] == '}') {
-        ++pos_;
-        return true;
-      }
-      for (;;) {
-        skipSpace();
-        if (pos_ >= text_.size() || text_[pos_] != '"')
-          return fail("expected a member name");
-        std::string key;
-        if (!string(key))
-          return false;
-        skipSpace();
-        if (pos_ >= text_.size() || text_[pos_] != ':')
-          return fail("expected ':'");
-        ++pos_;
-        const bool uri = key == "uri";
-        out.keys.push_back(std::move(key));
-        out.values.emplace_back();
-        if (!value(out.values.back(), depth + 1, uri))
-          return false;
-        skipSpace();
-        if (pos_ < text_.size() && text_[pos_] == ',') {
-          ++pos_;
-          continue;
-        }
-        if (pos_ < text_.size() && text_[pos_] == '}') {
-          ++pos_;
-          return true;
-        }
-        return fail("expected ',' or '}'");
-      }
-    }
-    if (c == '[') {
-      out.kind = Json::Kind::Array;
-      ++pos_;
-      skipSpace();
-      if (pos_ < text_.size() && text_[pos_] == ']') {
-        ++pos_;
-        return true;
-      }
-      for (;;) {
-        out.items.emplace_back();
-        if (!value(out.items.back(), depth + 1))
-          return false;
-        skipSpace();
-        if (pos_ < text_.size() && text_[pos_] == ',') {
-          ++pos_;
-          continue;
-        }
-        if (pos_ < text_.size() && text_[pos_] == ']') {
-          ++pos_;
-          return true;
-        }
-        return fail("expected ',' or ']'");
-      }
-    }
-    if (c == '"') {
-      out.kind = Json::Kind::String;
-      return string(out.string, keepLong);
-    }
-    if (c == 't' || c == 'f') {
-      out.kind = Json::Kind::Bool;
-      out.number = c == 't';
-      return literal(c == 't' ? "true" : "false");
-    }
-    if (c == 'n')
-      return literal("null");
-    const std::size_t start = pos_;
-    while (pos_ < text_.size() && std::strchr("+-0123456789.eE", text_[pos_]) != nullptr)
-      ++pos_;
-    if (pos_ == start)
-      return fail("invalid JSON");
-    out.kind = Json::Kind::Number;
-    out.number = std::strtod(std::string(text_.substr(start, pos_ - start)).c_str(), nullptr);
-    return true;
-  }
-
-  std::string_view text_;
-  std::size_t pos_ = 0;
-  std::string error_;
-};
 
 std::uint32_t readU32(const std::string& bytes, std::size_t at) {
   return std::uint32_t(std::uint8_t(bytes[at])) | std::uint32_t(std::uint8_t(bytes[at + 1])) << 8 |
@@ -191,20 +25,20 @@ std::uint32_t readU32(const std::string& bytes, std::size_t at) {
 
 class Checker {
  public:
-  Checker(const Json& root, const std::string& path, std::string_view binChunk,
+  Checker(const JsonValue& root, const std::string& path, std::string_view binChunk,
           compiler::Diagnostics& diagnostics)
       : root_(root), path_(path), binChunk_(binChunk), diagnostics_(diagnostics) {}
 
   bool run() {
-    const Json& nodes = array("nodes");
+    const JsonValue& nodes = array("nodes");
     checkHierarchy(nodes);
     for (std::size_t s = 0; s < array("scenes").size(); ++s) {
-      if (const Json* list = array("scenes").items[s].get("nodes")) {
-        for (const Json& n : list->items)
+      if (const JsonValue* list = array("scenes").items[s].get("nodes")) {
+        for (const JsonValue& n : list->items)
           index(n, "nodes", "scenes[" + std::to_string(s) + "].nodes");
       }
     }
-    if (const Json* scene = root_.get("scene"))
+    if (const JsonValue* scene = root_.get("scene"))
       index(*scene, "scenes", "scene");
     for (std::size_t a = 0; a < array("accessors").size(); ++a)
       checkAccessor(array("accessors").items[a], "accessors[" + std::to_string(a) + "]");
@@ -221,15 +55,15 @@ class Checker {
     for (std::size_t m = 0; m < array("meshes").size(); ++m)
       checkMesh(array("meshes").items[m], "meshes[" + std::to_string(m) + "]", rangesGood);
     for (std::size_t t = 0; t < array("textures").size(); ++t) {
-      const Json& texture = array("textures").items[t];
+      const JsonValue& texture = array("textures").items[t];
       const std::string where = "textures[" + std::to_string(t) + "]";
-      if (const Json* source = texture.get("source"))
+      if (const JsonValue* source = texture.get("source"))
         index(*source, "images", where + ".source");
-      if (const Json* sampler = texture.get("sampler"))
+      if (const JsonValue* sampler = texture.get("sampler"))
         index(*sampler, "samplers", where + ".sampler");
     }
     for (std::size_t i = 0; i < array("images").size(); ++i) {
-      if (const Json* view = array("images").items[i].get("bufferView"))
+      if (const JsonValue* view = array("images").items[i].get("bufferView"))
         index(*view, "bufferViews", "images[" + std::to_string(i) + "].bufferView");
     }
     for (std::size_t m = 0; m < array("materials").size(); ++m)
@@ -239,10 +73,10 @@ class Checker {
   }
 
  private:
-  const Json& array(const char* name) {
-    static const Json empty;
-    const Json* value = root_.get(name);
-    return value && value->kind == Json::Kind::Array ? *value : empty;
+  const JsonValue& array(const char* name) {
+    static const JsonValue empty;
+    const JsonValue* value = root_.get(name);
+    return value && value->kind == JsonValue::Kind::Array ? *value : empty;
   }
   void error(const std::string& message) {
     if (errors_++ < 10)  // enough to fix the file; a generated one may have millions
@@ -250,12 +84,12 @@ class Checker {
     ok_ = false;
   }
   // An index into the top-level array `into`: a whole number in range.
-  bool index(const Json& value, const char* into, const std::string& where) {
+  bool index(const JsonValue& value, const char* into, const std::string& where) {
     const std::size_t count = array(into).size();
-    if (value.kind != Json::Kind::Number || value.number < 0 ||
+    if (value.kind != JsonValue::Kind::Number || value.number < 0 ||
         value.number != std::floor(value.number) || value.number >= double(count)) {
       error(where + " is " +
-            (value.kind == Json::Kind::Number ? format(value.number) : "not a number") +
+            (value.kind == JsonValue::Kind::Number ? format(value.number) : "not a number") +
             ", out of range: the file has " + std::to_string(count) + " " + into);
       return false;
     }
@@ -271,27 +105,28 @@ class Checker {
   static bool whole(double v, double lo = 0.0, double hi = 9007199254740992.0) {
     return v >= lo && v <= hi && v == std::floor(v);
   }
-  static double numberOr(const Json* value, double fallback) {
-    return value && value->kind == Json::Kind::Number ? value->number : fallback;
+  static double numberOr(const JsonValue* value, double fallback) {
+    return value && value->kind == JsonValue::Kind::Number ? value->number : fallback;
   }
 
   // Whether a node's own transform collapses space (zero scale, a zero quaternion, a
   // singular or non-finite matrix): a camera under it sees nothing.
-  static bool degenerate(const Json& node) {
-    if (const Json* scale = node.get("scale"); scale && scale->size() == 3) {
-      for (const Json& s : scale->items) {
-        if (s.kind != Json::Kind::Number || !std::isfinite(s.number) || std::abs(s.number) < 1e-12)
+  static bool degenerate(const JsonValue& node) {
+    if (const JsonValue* scale = node.get("scale"); scale && scale->size() == 3) {
+      for (const JsonValue& s : scale->items) {
+        if (s.kind != JsonValue::Kind::Number || !std::isfinite(s.number) ||
+            std::abs(s.number) < 1e-12)
           return true;
       }
     }
-    if (const Json* rotation = node.get("rotation"); rotation && rotation->size() == 4) {
+    if (const JsonValue* rotation = node.get("rotation"); rotation && rotation->size() == 4) {
       double norm = 0.0;
-      for (const Json& r : rotation->items)
+      for (const JsonValue& r : rotation->items)
         norm += r.number * r.number;
       if (!(norm > 1e-12) || !std::isfinite(norm))
         return true;
     }
-    if (const Json* matrix = node.get("matrix"); matrix && matrix->size() == 16) {
+    if (const JsonValue* matrix = node.get("matrix"); matrix && matrix->size() == 16) {
       double m[16];
       for (int i = 0; i < 16; ++i) {
         m[i] = matrix->items[i].number;
@@ -308,22 +143,22 @@ class Checker {
   }
 
   // Without recursion: parents first, then the depth of each node by walking up.
-  void checkHierarchy(const Json& nodes) {
+  void checkHierarchy(const JsonValue& nodes) {
     const std::size_t n = nodes.size();
     std::vector<std::int64_t> parent(n, -1);
     for (std::size_t i = 0; i < n; ++i) {
-      const Json& node = nodes.items[i];
+      const JsonValue& node = nodes.items[i];
       const std::string where = "nodes[" + std::to_string(i) + "]";
-      if (const Json* mesh = node.get("mesh"))
+      if (const JsonValue* mesh = node.get("mesh"))
         index(*mesh, "meshes", where + ".mesh");
-      if (const Json* camera = node.get("camera"))
+      if (const JsonValue* camera = node.get("camera"))
         index(*camera, "cameras", where + ".camera");
-      if (const Json* skin = node.get("skin"))
+      if (const JsonValue* skin = node.get("skin"))
         index(*skin, "skins", where + ".skin");
-      const Json* children = node.get("children");
+      const JsonValue* children = node.get("children");
       if (!children)
         continue;
-      for (const Json& child : children->items) {
+      for (const JsonValue& child : children->items) {
         if (!index(child, "nodes", where + ".children"))
           continue;
         const auto c = static_cast<std::size_t>(child.number);
@@ -378,20 +213,20 @@ class Checker {
     }
   }
 
-  void checkMesh(const Json& mesh, const std::string& where, bool readIndices) {
-    const Json* primitives = mesh.get("primitives");
+  void checkMesh(const JsonValue& mesh, const std::string& where, bool readIndices) {
+    const JsonValue* primitives = mesh.get("primitives");
     if (!primitives)
       return;
     for (std::size_t p = 0; p < primitives->size(); ++p) {
-      const Json& primitive = primitives->items[p];
+      const JsonValue& primitive = primitives->items[p];
       const std::string at = where + ".primitives[" + std::to_string(p) + "]";
-      if (const Json* attributes = primitive.get("attributes")) {
-        for (std::size_t i = 0; i < attributes->keys.size(); ++i)
-          index(attributes->values[i], "accessors", at + ".attributes." + attributes->keys[i]);
+      if (const JsonValue* attributes = primitive.get("attributes")) {
+        for (const JsonMember& attribute : attributes->members)
+          index(attribute.value, "accessors", at + ".attributes." + attribute.key);
       }
-      if (const Json* indices = primitive.get("indices"))
+      if (const JsonValue* indices = primitive.get("indices"))
         index(*indices, "accessors", at + ".indices");
-      if (const Json* material = primitive.get("material"))
+      if (const JsonValue* material = primitive.get("material"))
         index(*material, "materials", at + ".material");
       if (readIndices && ok_)
         checkIndexValues(primitive, at);
@@ -400,19 +235,19 @@ class Checker {
 
   // assimp drops a triangle with a vertex index past the vertex count without a word (an
   // incomplete mesh, exit 0): the index values are read here and checked.
-  void checkIndexValues(const Json& primitive, const std::string& at) {
-    const Json* indices = primitive.get("indices");
-    const Json* attributes = primitive.get("attributes");
-    const Json* position = attributes ? attributes->get("POSITION") : nullptr;
+  void checkIndexValues(const JsonValue& primitive, const std::string& at) {
+    const JsonValue* indices = primitive.get("indices");
+    const JsonValue* attributes = primitive.get("attributes");
+    const JsonValue* position = attributes ? attributes->get("POSITION") : nullptr;
     if (!indices || !position)
       return;
-    const Json& accessor = array("accessors").items[std::size_t(indices->number)];
+    const JsonValue& accessor = array("accessors").items[std::size_t(indices->number)];
     const double vertices =
         numberOr(array("accessors").items[std::size_t(position->number)].get("count"), 0);
-    const Json* viewIndex = accessor.get("bufferView");
+    const JsonValue* viewIndex = accessor.get("bufferView");
     if (!viewIndex)
       return;
-    const Json& view = array("bufferViews").items[std::size_t(viewIndex->number)];
+    const JsonValue& view = array("bufferViews").items[std::size_t(viewIndex->number)];
     const std::string* buffer = bufferBytes(std::size_t(numberOr(view.get("buffer"), 0)));
     if (!buffer)
       return;
@@ -448,9 +283,9 @@ class Checker {
   // path is refused (assimp would read it only for a glTF named without a folder). assimp
   // opens no file for a buffer of byteLength 0, and neither does this.
   void checkExternalBuffer(std::size_t b) {
-    const Json& buffer = array("buffers").items[b];
-    const Json* uri = buffer.get("uri");
-    if (!uri || uri->kind != Json::Kind::String || uri->string.rfind("data:", 0) == 0)
+    const JsonValue& buffer = array("buffers").items[b];
+    const JsonValue* uri = buffer.get("uri");
+    if (!uri || uri->kind != JsonValue::Kind::String || uri->string.rfind("data:", 0) == 0)
       return;
     const double length = numberOr(buffer.get("byteLength"), 0);
     if (!(length > 0))
@@ -458,7 +293,7 @@ class Checker {
     const std::string shown =
         uri->string.size() > 200 ? uri->string.substr(0, 200) + "..." : uri->string;
     const std::string where = "buffers[" + std::to_string(b) + "].uri '" + shown + "'";
-    const std::string name = unescape(uri->string);
+    const std::string& name = uri->string;
     if (name.empty() || name.find('\0') != std::string::npos) {
       error(where + " is not a file name");
       return;
@@ -481,84 +316,6 @@ class Checker {
   }
   std::filesystem::path externalPath(const std::string& name) const {
     return std::filesystem::path(path_).parent_path() / name;
-  }
-
-  // A JSON string's escapes resolved (the parser keeps strings as written): \" \\ \/ \b
-  // \f \n \r \t and \uXXXX (surrogate pairs included) as UTF-8.
-  static std::string unescape(std::string_view text) {
-    std::string out;
-    auto hex4 = [&](std::size_t at, std::uint32_t& v) {
-      if (at + 4 > text.size())
-        return false;
-      v = 0;
-      for (std::size_t k = at; k < at + 4; ++k) {
-        const char c = text[k];
-        const int d = c >= '0' && c <= '9'   ? c - '0'
-                      : c >= 'a' && c <= 'f' ? c - 'a' + 10
-                      : c >= 'A' && c <= 'F' ? c - 'A' + 10
-                                             : -1;
-        if (d < 0)
-          return false;
-        v = v << 4 | std::uint32_t(d);
-      }
-      return true;
-    };
-    for (std::size_t i = 0; i < text.size(); ++i) {
-      if (text[i] != '\\' || i + 1 >= text.size()) {
-        out.push_back(text[i]);
-        continue;
-      }
-      const char c = text[++i];
-      switch (c) {
-        case 'b':
-          out.push_back('\b');
-          break;
-        case 'f':
-          out.push_back('\f');
-          break;
-        case 'n':
-          out.push_back('\n');
-          break;
-        case 'r':
-          out.push_back('\r');
-          break;
-        case 't':
-          out.push_back('\t');
-          break;
-        case 'u': {
-          std::uint32_t v = 0, low = 0;
-          if (!hex4(i + 1, v)) {
-            out.push_back(c);
-            break;
-          }
-          i += 4;
-          if (v >= 0xD800 && v < 0xDC00 && i + 2 < text.size() && text[i + 1] == '\\' &&
-              text[i + 2] == 'u' && hex4(i + 3, low) && low >= 0xDC00 && low < 0xE000) {
-            v = 0x10000 + ((v - 0xD800) << 10) + (low - 0xDC00);
-            i += 6;
-          }
-          if (v < 0x80) {
-            out.push_back(char(v));
-          } else if (v < 0x800) {
-            out.push_back(char(0xC0 | v >> 6));
-            out.push_back(char(0x80 | (v & 0x3F)));
-          } else if (v < 0x10000) {
-            out.push_back(char(0xE0 | v >> 12));
-            out.push_back(char(0x80 | (v >> 6 & 0x3F)));
-            out.push_back(char(0x80 | (v & 0x3F)));
-          } else {
-            out.push_back(char(0xF0 | v >> 18));
-            out.push_back(char(0x80 | (v >> 12 & 0x3F)));
-            out.push_back(char(0x80 | (v >> 6 & 0x3F)));
-            out.push_back(char(0x80 | (v & 0x3F)));
-          }
-          break;
-        }
-        default:  // \" \\ \/ and anything else: the character itself
-          out.push_back(c);
-      }
-    }
-    return out;
   }
 
   // A data: URI split as assimp 5.2 splits it (glTFCommon ParseDataURI): the header up to
@@ -587,12 +344,11 @@ class Checker {
   // alphabet as zeros (found by memograph_gltf_import_fuzzer: a leak). So a data: URI has a
   // short header, and base64 data is whole groups of four characters of the alphabet with
   // '=' padding only at the end.
-  void checkDataUri(const Json& owner, const std::string& where) {
-    const Json* uri = owner.get("uri");
-    if (!uri || uri->kind != Json::Kind::String || uri->string.rfind("data:", 0) != 0)
+  void checkDataUri(const JsonValue& owner, const std::string& where) {
+    const JsonValue* uri = owner.get("uri");
+    if (!uri || uri->kind != JsonValue::Kind::String || uri->string.rfind("data:", 0) != 0)
       return;
-    const std::string text = unescape(uri->string);
-    const DataUri data = splitDataUri(text);
+    const DataUri data = splitDataUri(uri->string);
     if (data.header.size() > 100) {
       error(where + ": the data: URI's media type and parameters are " +
             std::to_string(data.header.size()) + " characters, over 100");
@@ -632,7 +388,7 @@ class Checker {
     if (slot.first)
       return &slot.second;  // empty when not readable here: nothing is checked
     slot.first = true;
-    const Json* uri = array("buffers").items[b].get("uri");
+    const JsonValue* uri = array("buffers").items[b].get("uri");
     if (!uri) {
       slot.second.assign(binChunk_);
       return &slot.second;
@@ -640,13 +396,12 @@ class Checker {
     const std::string& text = uri->string;
     if (text.rfind("data:", 0) != 0) {
       std::string ignored;  // reported by checkExternalBuffer
-      if (auto bytes = files::readInputFile(externalPath(unescape(text)), files::kMaxSceneFileBytes,
-                                            "scenes", ignored))
+      if (auto bytes = files::readInputFile(externalPath(text), files::kMaxSceneFileBytes, "scenes",
+                                            ignored))
         slot.second = std::move(*bytes);
       return &slot.second;
     }
-    const std::string unescaped = unescape(text);
-    const DataUri data = splitDataUri(unescaped);
+    const DataUri data = splitDataUri(text);
     slot.second = data.base64 ? base64(data.payload) : std::string(data.payload);
     return &slot.second;
   }
@@ -723,21 +478,21 @@ class Checker {
     return 0;
   }
 
-  void checkAccessor(const Json& accessor, const std::string& where) {
+  void checkAccessor(const JsonValue& accessor, const std::string& where) {
     const double count = numberOr(accessor.get("count"), -1);
     const std::uint64_t bytes = componentBytes(numberOr(accessor.get("componentType"), 0));
-    const Json* type = accessor.get("type");
+    const JsonValue* type = accessor.get("type");
     const std::uint64_t n = type ? components(type->string) : 0;
     if (count < 0 || count != std::floor(count) || bytes == 0 || n == 0) {
       error(where + " needs a whole count >= 0, a known componentType and type");
       return;
     }
-    const Json* view = accessor.get("bufferView");
+    const JsonValue* view = accessor.get("bufferView");
     if (!view)
       return;  // all zeros (or sparse): nothing to read out of range
     if (!index(*view, "bufferViews", where + ".bufferView"))
       return;
-    const Json& bufferView = array("bufferViews").items[std::size_t(view->number)];
+    const JsonValue& bufferView = array("bufferViews").items[std::size_t(view->number)];
     const std::uint64_t element = bytes * n;
     const double stride = numberOr(bufferView.get("byteStride"), double(element));
     const double offset = numberOr(accessor.get("byteOffset"), 0);
@@ -749,14 +504,14 @@ class Checker {
     }
   }
 
-  void checkView(const Json& view, const std::string& where) {
-    const Json* buffer = view.get("buffer");
+  void checkView(const JsonValue& view, const std::string& where) {
+    const JsonValue* buffer = view.get("buffer");
     if (!buffer || !index(*buffer, "buffers", where + ".buffer"))
       return;
     const double offset = numberOr(view.get("byteOffset"), 0);
     const double length = numberOr(view.get("byteLength"), -1);
     // The glTF specification's range for a stride; 0 would make readers loop in place.
-    if (const Json* stride = view.get("byteStride");
+    if (const JsonValue* stride = view.get("byteStride");
         stride && !whole(numberOr(stride, -1), 4, 252)) {
       error(where + ".byteStride must be a whole number from 4 to 252");
       return;
@@ -770,23 +525,21 @@ class Checker {
   }
 
   // Texture references ({"index": i} under a member named *Texture) anywhere in a material.
-  void checkTextureReferences(const Json& value, const std::string& where, int depth) {
+  void checkTextureReferences(const JsonValue& value, const std::string& where, int depth) {
     if (depth > kMaxJsonDepth)
       return;
-    for (std::size_t i = 0; i < value.keys.size(); ++i) {
-      const std::string& name = value.keys[i];
-      const Json& member = value.values[i];
-      if (member.kind != Json::Kind::Object)
+    for (const auto& [name, member] : value.members) {
+      if (member.kind != JsonValue::Kind::Object)
         continue;
       if (name.size() >= 7 && name.compare(name.size() - 7, 7, "Texture") == 0) {
-        if (const Json* i = member.get("index"))
+        if (const JsonValue* i = member.get("index"))
           index(*i, "textures", where + "." + name + ".index");
       }
       checkTextureReferences(member, where + "." + name, depth + 1);
     }
   }
 
-  const Json& root_;
+  const JsonValue& root_;
   const std::string& path_;
   std::string_view binChunk_;
   compiler::Diagnostics& diagnostics_;
@@ -845,17 +598,18 @@ bool precheckGltfBytes(const std::string& path, const std::string& bytes, bool g
     }
     json = std::string_view(bytes).substr(20, jsonLength);
   }
-  Json root;
-  std::string error;
-  if (!JsonParser(json).parse(root, error)) {
-    diagnostics.error(path, "invalid glTF JSON: " + error);
+  JsonError error;
+  const std::optional<JsonValue> root = readJson(json, error, kMaxJsonDepth);
+  if (!root) {
+    diagnostics.error(path, "invalid glTF JSON: " + error.message + " (at byte " +
+                                std::to_string(error.offset) + " of the JSON)");
     return false;
   }
-  if (root.kind != Json::Kind::Object) {
+  if (root->kind != JsonValue::Kind::Object) {
     diagnostics.error(path, "invalid glTF: the JSON is not an object");
     return false;
   }
-  return Checker(root, path, binChunk, diagnostics).run();
+  return Checker(*root, path, binChunk, diagnostics).run();
 }
 
 bool precheckGltf(const std::string& path, compiler::Diagnostics& diagnostics) {

@@ -4,7 +4,7 @@
 // what it would trust is checked here first, cheaply and without recursion:
 //  - .glb: the header's length and each chunk's length within the file, the first chunk
 //    JSON (a 4 GiB chunk declared in 28 bytes is refused before anything is allocated);
-//  - the JSON nested at most kMaxJsonDepth deep;
+//  - the JSON valid (tools/io/json_reader.h: strict, nested at most kMaxJsonDepth deep);
 //  - the node hierarchy: children in range, no node with two parents, no cycle, at most
 //    kMaxNodeDepth levels;
 //  - every index into nodes, meshes, cameras, materials, accessors, bufferViews and
@@ -22,7 +22,6 @@
 
 namespace memograph::io {
 
-inline constexpr int kMaxJsonDepth = 64;
 inline constexpr int kMaxNodeDepth = 1000;
 
 // True for files to check (extension .gltf or .glb); false with an error added otherwise.
