@@ -5,13 +5,16 @@
 #include <cerrno>
 #include <charconv>
 #include <map>
+#include <optional>
 #include <set>
+#include <string_view>
 #include <vector>
 
 #include "compiler/diagnostics.h"
 #include "compiler/parser.h"
 #include "compiler/source_file.h"
 #include "runtime/host/atomic_file.h"
+#include "tools/io/json_reader.h"
 
 namespace memograph::cli {
 
@@ -26,199 +29,60 @@ struct IndexEntry {
 
 // Reads index.json in the one shape the exporter writes (exporter.py, export_materials):
 // {"materials": {"<Blender name>": {"file": "<X>.mgraph", "material": "<X>"}, ...}}, any
-// whitespace and key order. The schema is two levels of objects of strings, so it is read
-// directly instead of through a general JSON value tree; anything else is an error with
-// its byte offset.
-class IndexReader {
- public:
-  explicit IndexReader(std::string_view text) : text_(text) {}
-
-  bool read(std::vector<IndexEntry>& entries, std::string& error) {
-    bool sawMaterials = false;
-    const bool ok = object([&](const std::string& key) {
-      if (key != "materials")
-        return fail("unknown key \"" + key + "\" (only \"materials\")");
-      if (sawMaterials)
-        return fail("\"materials\" given twice");
-      sawMaterials = true;
-      return materials(entries);
-    });
-    if (ok && !sawMaterials)
-      fail("no \"materials\" object");
-    skipSpace();
-    if (error_.empty() && pos_ != text_.size())
-      fail("text after the JSON value");
-    if (!error_.empty()) {
-      error = error_ + " (at byte " + std::to_string(errorAt_) + ")";
-      return false;
-    }
-    return true;
-  }
-
- private:
-  bool materials(std::vector<IndexEntry>& entries) {
-    std::set<std::string> names;
-    return object([&](const std::string& blenderName) {
-      if (!names.insert(blenderName).second)
-        return fail("material \"" + blenderName + "\" listed twice");
-      IndexEntry entry;
-      bool ok = object([&](const std::string& key) {
-        std::string* field = key == "file"       ? &entry.file
-                             : key == "material" ? &entry.material
-                                                 : nullptr;
-        if (!field)
-          return fail("unknown key \"" + key + "\" (only \"file\" and \"material\")");
-        return string(*field);
-      });
-      if (ok && (entry.file.empty() || entry.material.empty()))
-        ok = fail("material \"" + blenderName + "\" lacks \"file\" or \"material\"");
-      entries.push_back(std::move(entry));
-      return ok;
-    });
-  }
-
-  // An object whose every value `member(key)` reads.
-  template <typename Member>
-  bool object(Member&& member) {
-    skipSpace();
-    if (!take('{'))
-      return fail("expected '{'");
-    skipSpace();
-    if (take('}'))
-      return true;
-    while (true) {
-      skipSpace();
-      std::string key;
-      if (!string(key))
-        return false;
-      skipSpace();
-      if (!take(':'))
-        return fail("expected ':'");
-      skipSpace();
-      if (!member(key))
-        return false;
-      skipSpace();
-      if (take('}'))
-        return true;
-      if (!take(','))
-        return fail("expected ',' or '}'");
-    }
-  }
-
-  bool string(std::string& out) {
-    if (!take('"'))
-      return fail("expected a string");
-    out.clear();
-    while (pos_ < text_.size()) {
-      const char c = text_[pos_++];
-      if (c == '"')
-        return true;
-      if (static_cast<unsigned char>(c) < 0x20)
-        return fail("a control character in a string");
-      if (c != '\\') {
-        out += c;
-        continue;
-      }
-      if (pos_ >= text_.size())
-        break;
-      const char e = text_[pos_++];
-      switch (e) {
-        case '"':
-        case '\\':
-        case '/':
-          out += e;
-          break;
-        case 'b':
-          out += '\b';
-          break;
-        case 'f':
-          out += '\f';
-          break;
-        case 'n':
-          out += '\n';
-          break;
-        case 'r':
-          out += '\r';
-          break;
-        case 't':
-          out += '\t';
-          break;
-        case 'u': {
-          std::uint32_t code = 0;
-          if (!hex4(code))
-            return false;
-          if (code >= 0xD800 && code < 0xDC00) {  // a surrogate pair (json.dumps' default)
-            std::uint32_t low = 0;
-            if (!take('\\') || !take('u') || !hex4(low) || low < 0xDC00 || low >= 0xE000)
-              return fail("an unpaired surrogate in a \\u escape");
-            code = 0x10000 + ((code - 0xD800) << 10) + (low - 0xDC00);
-          } else if (code >= 0xDC00 && code < 0xE000) {
-            return fail("an unpaired surrogate in a \\u escape");
-          }
-          appendUtf8(out, code);
-          break;
-        }
-        default:
-          return fail("an invalid escape in a string");
-      }
-    }
-    return fail("an unterminated string");
-  }
-
-  bool hex4(std::uint32_t& code) {
-    if (text_.size() - pos_ < 4)
-      return fail("a short \\u escape");
-    const char* first = text_.data() + pos_;
-    const auto [end, ec] = std::from_chars(first, first + 4, code, 16);
-    if (ec != std::errc() || end != first + 4)
-      return fail("an invalid \\u escape");
-    pos_ += 4;
-    return true;
-  }
-
-  static void appendUtf8(std::string& out, std::uint32_t code) {
-    if (code < 0x80) {
-      out += char(code);
-    } else if (code < 0x800) {
-      out += char(0xC0 | (code >> 6));
-      out += char(0x80 | (code & 0x3F));
-    } else if (code < 0x10000) {
-      out += char(0xE0 | (code >> 12));
-      out += char(0x80 | ((code >> 6) & 0x3F));
-      out += char(0x80 | (code & 0x3F));
-    } else {
-      out += char(0xF0 | (code >> 18));
-      out += char(0x80 | ((code >> 12) & 0x3F));
-      out += char(0x80 | ((code >> 6) & 0x3F));
-      out += char(0x80 | (code & 0x3F));
-    }
-  }
-
-  void skipSpace() {
-    while (pos_ < text_.size() && (text_[pos_] == ' ' || text_[pos_] == '\n' ||
-                                   text_[pos_] == '\r' || text_[pos_] == '\t'))
-      ++pos_;
-  }
-  bool take(char c) {
-    if (pos_ < text_.size() && text_[pos_] == c) {
-      ++pos_;
-      return true;
-    }
+// whitespace and key order. Anything else is an error with its byte offset: JSON that is
+// not valid, or valid JSON of another shape (an unknown or repeated key, a missing field).
+bool readIndex(std::string_view text, std::vector<IndexEntry>& entries, std::string& error) {
+  const auto fail = [&](const std::string& message, std::size_t at) {
+    error = message + " (at byte " + std::to_string(at) + ")";
     return false;
+  };
+  io::JsonError jsonError;
+  const std::optional<io::JsonValue> root = io::readJson(text, jsonError);
+  if (!root)
+    return fail(jsonError.message, jsonError.offset);
+  using Kind = io::JsonValue::Kind;
+  if (root->kind != Kind::Object)
+    return fail("expected '{'", root->offset);
+  for (const auto& [key, value] : root->members) {
+    if (key != "materials")
+      return fail("unknown key \"" + key + "\" (only \"materials\")", value.offset);
   }
-  bool fail(std::string message) {
-    if (error_.empty()) {
-      error_ = std::move(message);
-      errorAt_ = pos_;
+  if (const auto repeated = root->repeatedMember())
+    return fail("\"materials\" given twice", root->members[*repeated].value.offset);
+  const io::JsonValue* materials = root->get("materials");
+  if (!materials)
+    return fail("no \"materials\" object", root->offset);
+  if (materials->kind != Kind::Object)
+    return fail("expected '{'", materials->offset);
+  if (const auto repeated = materials->repeatedMember()) {
+    const io::JsonMember& member = materials->members[*repeated];
+    return fail("material \"" + member.key + "\" listed twice", member.value.offset);
+  }
+  for (const auto& [blenderName, fields] : materials->members) {
+    if (fields.kind != Kind::Object)
+      return fail("expected '{'", fields.offset);
+    IndexEntry entry;
+    for (const auto& [key, value] : fields.members) {
+      std::string* field = key == "file"       ? &entry.file
+                           : key == "material" ? &entry.material
+                                               : nullptr;
+      if (!field)
+        return fail("unknown key \"" + key + "\" (only \"file\" and \"material\")", value.offset);
+      if (value.kind != Kind::String)
+        return fail("expected a string", value.offset);
+      *field = value.string;
     }
-    return false;
+    if (const auto repeated = fields.repeatedMember()) {
+      const io::JsonMember& member = fields.members[*repeated];
+      return fail("material \"" + blenderName + "\" gives \"" + member.key + "\" twice",
+                  member.value.offset);
+    }
+    if (entry.file.empty() || entry.material.empty())
+      return fail("material \"" + blenderName + "\" lacks \"file\" or \"material\"", fields.offset);
+    entries.push_back(std::move(entry));
   }
-
-  std::string_view text_;
-  std::size_t pos_ = 0;
-  std::string error_;
-  std::size_t errorAt_ = 0;
-};
+  return true;
+}
 
 // What a non-regular, non-folder entry is, for the message.
 std::string describeSpecial(const fs::path& path, const struct stat& info) {
@@ -327,7 +191,7 @@ std::string validateStagedExport(const fs::path& staging, const fs::path& displa
   if (!indexText)
     return shown("index.json") + ": " + error;
   std::vector<IndexEntry> index;
-  if (!IndexReader(*indexText).read(index, error))
+  if (!readIndex(*indexText, index, error))
     return shown("index.json") + ": not the exporter's index: " + error;
   std::set<std::string> named;
   for (const auto& entry : index) {

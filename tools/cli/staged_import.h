@@ -1,8 +1,8 @@
 // The check `import-blender` makes on what the exporter left in its staging folder before
 // any of it reaches the output folder: Blender runs arbitrary scripts and add-ons, so its
-// output is untrusted input like any other (docs/guide/limits.md). Standard library and the
-// compiler's parser only, so the fuzz target (tests/fuzz/staged_import_fuzzer.cpp) can
-// drive it without Blender.
+// output is untrusted input like any other (docs/guide/limits.md). Standard library, the
+// compiler's parser and the JSON reader (tools/io/json_reader.h) only, so the fuzz target
+// (tests/fuzz/staged_import_fuzzer.cpp) can drive it without Blender.
 #pragma once
 
 #include <cstddef>
