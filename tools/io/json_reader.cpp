@@ -150,9 +150,9 @@ class Reader {
       return expected("a value");
     switch (text_[pos_]) {
       case '{':
-        return object(out, depth);
+        return container(out, JsonValue::Kind::Object, depth);
       case '[':
-        return array(out, depth);
+        return container(out, JsonValue::Kind::Array, depth);
       case '"':
         out.kind = JsonValue::Kind::String;
         return string(out.string);
@@ -170,58 +170,41 @@ class Reader {
     }
   }
 
-  bool deeper(int depth) {
-    if (depth <= maxDepth_)
-      return true;
-    return fail("the JSON is nested more than " + std::to_string(maxDepth_) +
-                " levels deep, over the limit (docs/guide/limits.md)");
-  }
-
-  bool object(JsonValue& out, int depth) {
-    if (!deeper(depth))
-      return false;
-    out.kind = JsonValue::Kind::Object;
+  // An array or an object, from its opening bracket.
+  bool container(JsonValue& out, JsonValue::Kind kind, int depth) {
+    if (depth > maxDepth_)
+      return fail("the JSON is nested more than " + std::to_string(maxDepth_) +
+                  " levels deep, over the limit (docs/guide/limits.md)");
+    out.kind = kind;
+    const bool object = kind == JsonValue::Kind::Object;
+    const char close = object ? '}' : ']';
     ++pos_;
     skipSpace();
-    if (take('}'))
+    if (take(close))
       return true;
     for (;;) {
-      if (pos_ >= text_.size() || text_[pos_] != '"')
-        return expected("a member name");
-      JsonMember& member = out.members.emplace_back();
-      if (!string(member.key))
+      JsonValue* element = nullptr;
+      if (object) {
+        if (pos_ >= text_.size() || text_[pos_] != '"')
+          return expected("a member name");
+        JsonMember& member = out.members.emplace_back();
+        if (!string(member.key))
+          return false;
+        skipSpace();
+        if (!take(':'))
+          return expected("':'");
+        skipSpace();
+        element = &member.value;
+      } else {
+        element = &out.items.emplace_back();
+      }
+      if (!value(*element, depth + 1))
         return false;
       skipSpace();
-      if (!take(':'))
-        return expected("':'");
-      skipSpace();
-      if (!value(member.value, depth + 1))
-        return false;
-      skipSpace();
-      if (take('}'))
+      if (take(close))
         return true;
       if (!take(','))
-        return expected("',' or '}'");
-      skipSpace();
-    }
-  }
-
-  bool array(JsonValue& out, int depth) {
-    if (!deeper(depth))
-      return false;
-    out.kind = JsonValue::Kind::Array;
-    ++pos_;
-    skipSpace();
-    if (take(']'))
-      return true;
-    for (;;) {
-      if (!value(out.items.emplace_back(), depth + 1))
-        return false;
-      skipSpace();
-      if (take(']'))
-        return true;
-      if (!take(','))
-        return expected("',' or ']'");
+        return expected(object ? "',' or '}'" : "',' or ']'");
       skipSpace();
     }
   }
