@@ -20,11 +20,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "tests/fuzz/fuzz_folder.h"
 #include "tools/cli/staged_import.h"
 
 namespace {
@@ -32,11 +32,6 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string root;
-
-void removeRoot() {
-  std::error_code ignored;
-  fs::remove_all(root, ignored);
-}
 
 std::vector<std::string_view> split(std::string_view text) {
   std::vector<std::string_view> parts;
@@ -84,21 +79,10 @@ bool insideWithoutLinks(const fs::path& staging, const fs::path& relative) {
   return true;
 }
 
-void writeFile(const fs::path& path, std::string_view content) {
-  std::ofstream out(path, std::ios::binary | std::ios::trunc);
-  out.write(content.data(), std::streamsize(content.size()));
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  std::string pattern = (fs::temp_directory_path() / "memograph-staged-fuzz-XXXXXX");
-  if (!::mkdtemp(pattern.data())) {
-    std::perror("mkdtemp");
-    std::abort();
-  }
-  root = pattern;
-  std::atexit(removeRoot);
+  root = memograph::fuzz::makePrivateFolder("staged");
   return 0;
 }
 
@@ -113,7 +97,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   fs::create_directories(staging, ec);
 
   const auto parts = split(text);
-  writeFile(staging / "index.json", parts[0]);
+  memograph::fuzz::writeFile(staging / "index.json", parts[0]);
   for (std::size_t i = 1; i < parts.size(); ++i) {
     std::string_view part = parts[i];
     const std::size_t newline = part.find('\n');
@@ -140,7 +124,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     } else if (kind == '/') {
       fs::create_directories(path, ec);
     } else {
-      writeFile(path, body);
+      memograph::fuzz::writeFile(path, body);
     }
   }
 
