@@ -598,6 +598,8 @@ bool precheckGltfBytes(const std::string& path, const std::string& bytes, bool g
     }
     json = std::string_view(bytes).substr(20, jsonLength);
   }
+  // The tree keeps every string, at most the JSON's size again: a large .gltf is mostly its
+  // data: URIs, which the index check decodes anyway.
   JsonError error;
   const std::optional<JsonValue> root = readJson(json, error, kMaxJsonDepth);
   if (!root) {
