@@ -21,9 +21,10 @@ JsonValue read(std::string_view text) {
 }
 
 // The refusal of `text` as "message (at byte N)", or "accepted".
-std::string refusal(std::string_view text, int maxDepth = kMaxJsonDepth) {
+std::string refusal(std::string_view text, int maxDepth = kMaxJsonDepth,
+                    std::size_t maxValues = kMaxJsonValues) {
   JsonError error;
-  if (readJson(text, error, maxDepth))
+  if (readJson(text, error, maxDepth, maxValues))
     return "accepted";
   return error.message + " (at byte " + std::to_string(error.offset) + ")";
 }
@@ -100,6 +101,21 @@ TEST(JsonReader, RefusesNestingPastTheLimit) {
             "(at byte 12)");
   // Far past the limit: refused, not a stack overflow.
   EXPECT_NE(refusal(std::string(1000000, '[')).find("nested more than 64"), std::string::npos);
+}
+
+// The tree's memory is bounded by its value count, whatever the file's size: at the
+// default, 2^23 values of one-digit numbers (16 MiB of text) are refused, not read into a
+// tree of about 1 GB.
+TEST(JsonReader, RefusesMoreValuesThanTheLimit) {
+  EXPECT_EQ(refusal(R"({"a": [0, 1]})", kMaxJsonDepth, 4), "accepted");
+  EXPECT_EQ(refusal(R"({"a": [0, 1, 2]})", kMaxJsonDepth, 4),
+            "the JSON holds more than 4 values, over the limit (docs/guide/limits.md) (at "
+            "byte 13)");
+  std::string many = "[0";
+  for (std::size_t i = 1; i < kMaxJsonValues; ++i)
+    many += ",0";
+  many += "]";
+  EXPECT_NE(refusal(many).find("holds more than 8388608 values"), std::string::npos);
 }
 
 TEST(JsonReader, RefusesBadEscapes) {

@@ -101,7 +101,8 @@ bool tooLarge(std::string_view number) {
 // Recursive descent; `maxDepth` bounds the recursion.
 class Reader {
  public:
-  Reader(std::string_view text, int maxDepth) : text_(text), maxDepth_(maxDepth) {}
+  Reader(std::string_view text, int maxDepth, std::size_t maxValues)
+      : text_(text), maxDepth_(maxDepth), maxValues_(maxValues) {}
 
   std::optional<JsonValue> read(JsonError& error) {
     JsonValue root;
@@ -146,6 +147,9 @@ class Reader {
   // A value starting at pos_; `depth` is the nesting level it has if it is an array or object.
   bool value(JsonValue& out, int depth) {
     out.offset = pos_;
+    if (++values_ > maxValues_)
+      return fail("the JSON holds more than " + std::to_string(maxValues_) +
+                  " values, over the limit (docs/guide/limits.md)");
     if (pos_ >= text_.size())
       return expected("a value");
     switch (text_[pos_]) {
@@ -396,14 +400,17 @@ class Reader {
 
   std::string_view text_;
   int maxDepth_;
+  std::size_t maxValues_;
+  std::size_t values_ = 0;
   std::size_t pos_ = 0;
   JsonError error_;
 };
 
 }  // namespace
 
-std::optional<JsonValue> readJson(std::string_view text, JsonError& error, int maxDepth) {
-  return Reader(text, maxDepth).read(error);
+std::optional<JsonValue> readJson(std::string_view text, JsonError& error, int maxDepth,
+                                  std::size_t maxValues) {
+  return Reader(text, maxDepth, maxValues).read(error);
 }
 
 }  // namespace memograph::io

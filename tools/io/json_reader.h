@@ -4,7 +4,8 @@
 // memograph_json, depends on nothing).
 //
 // What it accepts is exactly one JSON text:
-//  - arrays and objects nested at most `maxDepth` deep, so the recursion is bounded;
+//  - arrays and objects nested at most `maxDepth` deep, so the recursion is bounded, and at
+//    most `maxValues` values in all, so the tree's memory is;
 //  - strings of valid UTF-8 without raw control characters, their escapes resolved to
 //    UTF-8 (\uXXXX surrogate pairs joined; a surrogate without its pair refused);
 //  - numbers in JSON's grammar (no '+', no leading zero, no bare '.'), read as doubles; one
@@ -28,6 +29,11 @@ namespace memograph::io {
 // or index.json needs, and shallow enough that the reader's recursion cannot exhaust the
 // stack.
 inline constexpr int kMaxJsonDepth = 64;
+// The most values one text may hold. Each costs about 100 bytes in the tree against as few
+// as 2 bytes of text ("0,"), so a 1 GiB scene file of small numbers would take some 50 GB;
+// 2^23 values bound the tree near 1 GB. A glTF's JSON holds its scene graph, not its vertex
+// data (that is in binary buffers), so real files stay far below it.
+inline constexpr std::size_t kMaxJsonValues = std::size_t(1) << 23;
 
 struct JsonMember;
 
@@ -62,6 +68,7 @@ struct JsonError {
 
 // Reads `text` as one JSON value; nullopt with `error` set when it is not one.
 std::optional<JsonValue> readJson(std::string_view text, JsonError& error,
-                                  int maxDepth = kMaxJsonDepth);
+                                  int maxDepth = kMaxJsonDepth,
+                                  std::size_t maxValues = kMaxJsonValues);
 
 }  // namespace memograph::io
