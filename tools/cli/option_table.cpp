@@ -172,7 +172,7 @@ const Option kOptions[] = {
      [](O& o, const Value& v) { o.frameRange = parseFrameRange(v.text); }},
     {"--warmup-frames", ValueType::Whole, "N",
      "with --cache or --culling lipac, a range first renders the N frames\n"
-     "before it, unwritten, to warm the cache and the culling (docs/guide/slurm.md)",
+     "before it, unwritten, to warm them",
      "8", kApplied, S::Image, kCommon, N::Nothing, kRender,
      [](O& o, const Value& v) { o.warmupFrames = v.whole; }},
     {"--resume", ValueType::Flag, "",
