@@ -100,6 +100,7 @@ class FrameRange(unittest.TestCase):
             (["--frame-range", "0:3", "--stats", os.path.join(self.dir, "s.csv"), "--out", out],
              "--stats and --debug-culling"),
             (["--resume", "--out", out], "it needs --frame-range"),
+            (["--frame-range", "0:4000000000", "--out", out], "at most 1000000 frames"),
             (["--frame-range", "0:360", "--camera-path", self.path, "--out", out],
              "ends past the camera path's last frame, 359"),
         ]

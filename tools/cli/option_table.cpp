@@ -66,6 +66,8 @@ struct Option {
   std::string_view benchHelp = {};     // bench's help, where it differs
 };
 
+constexpr std::uint32_t kMaxFramesInRange = 1000000;
+
 // "A:B" with A <= B, both whole numbers. Throws std::invalid_argument for the user.
 FrameRange parseFrameRange(std::string_view text) {
   const auto refuse = [&](std::string_view why) -> FrameRange {
@@ -81,6 +83,10 @@ FrameRange parseFrameRange(std::string_view text) {
     return refuse("");
   if (range.first > range.last)
     return refuse(": the last frame comes before the first");
+  // One run's frames are planned as a list (which to write, which are done): a bound keeps a
+  // mistyped range from asking for gigabytes of it. A farm splits a longer path into ranges.
+  if (range.last - range.first >= kMaxFramesInRange)
+    return refuse(": at most " + std::to_string(kMaxFramesInRange) + " frames in one range");
   return range;
 }
 

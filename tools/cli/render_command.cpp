@@ -147,6 +147,9 @@ int checkFrameRange(const TraceCommandOptions& options, FramePattern& pattern) {
       return usageError("render",
                         "--resume skips the finished frames of a --frame-range; "
                         "it needs --frame-range");
+    if (options.wasGiven("--warmup-frames"))
+      std::cerr << "memograph render: " << ignoredOptionNote("--warmup-frames", "--frame-range")
+                << "\n";
     return kExitOk;
   }
   if (options.wasGiven("--frames"))
