@@ -20,6 +20,7 @@ cleanup() {
   rm -rf "$tmp"
 }
 trap cleanup EXIT
+trap 'exit 1' INT TERM  # a ctest timeout or ^C still stops the daemons (through EXIT)
 export XDG_RUNTIME_DIR=${XDG_RUNTIME_DIR:-$tmp}
 start=$SECONDS
 start_slurm_cluster "$tmp/cluster" "$(nproc)"
