@@ -94,6 +94,13 @@ struct RenderSettings {
   std::uint32_t pathsPerPixel = 1;  // P
   std::uint32_t raysPerPath = 2;    // L: rays per path (1 = primary ray + direct light only)
   std::uint32_t frames = 1;
+  // The index of the first frame rendered: frames firstFrame..firstFrame+frames-1, each
+  // with its own camera of the path, clocks and random numbers, so that a range of a path
+  // rendered alone traces what the same frames of the whole path trace.
+  std::uint32_t firstFrame = 0;
+  // Every frame starts its pixels' means afresh, even where the camera stays: a frame of a
+  // frame range is an image of its own, the same whichever frames were rendered before it.
+  bool eachFrameAlone = false;
   std::uint32_t seed = 0;
   bool sharedPrimaryRay = false;  // one primary ray through the pixel centre for all P paths
   // One camera per frame (the last repeats); empty: the scene's camera. Accumulation
@@ -104,6 +111,10 @@ struct RenderSettings {
   // Asked after each frame; false ends the render there (RenderStats::frames then holds
   // fewer than `frames`), e.g. a benchmark's time limit.
   std::function<bool(const FrameStats&)> continueAfterFrame;
+  // Asked before each frame; true: the frame's image is read back after it and handed to
+  // onFrameImage (a frame range's outputs; warm-up frames and finished ones are not).
+  std::function<bool(std::uint32_t frame)> frameImageWanted;
+  std::function<void(std::uint32_t frame, const HdrImage&)> onFrameImage;
 };
 
 struct RenderResult {

@@ -12,6 +12,7 @@ packages=(
   python3
   blender  # 3.4: the reference for the Blender node tests (tests/blender/) and the exporter
   python3-numpy  # Blender's glTF exporter (io_scene_gltf2, scene export) imports numpy
+  slurm-wlm munge  # the Slurm job arrays' test starts its own cluster (tests/slurm/)
 )
 # lavapipe with ray tracing comes only from bookworm-backports (../shared/GPU.md).
 backports_mesa=mesa-vulkan-drivers

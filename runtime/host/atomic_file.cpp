@@ -11,6 +11,7 @@
 #include <cctype>
 #include <cerrno>
 #include <charconv>
+#include <cstdio>
 #include <cstring>
 #include <mutex>
 #include <optional>
@@ -40,22 +41,56 @@ fs::path folderOf(const fs::path& target) {
 
 constexpr std::string_view kTemporaryMark = ".partial-";
 
-// The writer's pid when `name` is one of our temporaries, `.<stem>.partial-<pid>-XXXXXX`
+// This host's mark in a temporary's name: 8 hex digits of a hash (FNV-1a) of its host
+// name. A pid means something only on the host that wrote it: in a folder on shared storage
+// (a render farm's frames), a writer on one node would otherwise take another node's live
+// writer for a dead one and remove its temporary mid-write.
+const std::string& hostMark() {
+  static const std::string mark = [] {
+    char name[256] = {};
+    if (::gethostname(name, sizeof name - 1) != 0)
+      name[0] = '\0';
+    std::uint32_t hash = 2166136261u;
+    for (const char* c = name; *c; ++c)
+      hash = (hash ^ static_cast<unsigned char>(*c)) * 16777619u;
+    char hex[9];
+    std::snprintf(hex, sizeof hex, "%08x", hash);
+    return std::string(hex);
+  }();
+  return mark;
+}
+
+// The writer of a temporary: its pid, and its host's mark where the name has one (names
+// without one, from before the mark, are taken as this host's).
+struct TemporaryWriter {
+  pid_t pid = 0;
+  std::string host;
+};
+
+// The writer when `name` is one of our temporaries, `.<stem>.partial-<pid>[@<host>]-XXXXXX`
 // then the target's extension (none, or one '.' and no other). A previous version kept
 // aside during a commit (the same name + ".old") is not one: with a file system without
 // hard links it may be the only copy of the user's file.
-std::optional<pid_t> temporaryWriterPid(std::string_view name) {
+std::optional<TemporaryWriter> temporaryWriter(std::string_view name) {
   if (name.size() < 2 || name[0] != '.')
     return std::nullopt;
   const std::size_t mark = name.rfind(kTemporaryMark);
   if (mark == std::string_view::npos || mark == 0)
     return std::nullopt;
   std::string_view rest = name.substr(mark + kTemporaryMark.size());
-  pid_t pid = 0;
-  const auto [end, ec] = std::from_chars(rest.data(), rest.data() + rest.size(), pid);
-  if (ec != std::errc() || end == rest.data() || pid <= 0)
+  TemporaryWriter writer;
+  const auto [end, ec] = std::from_chars(rest.data(), rest.data() + rest.size(), writer.pid);
+  if (ec != std::errc() || end == rest.data() || writer.pid <= 0)
     return std::nullopt;
   rest.remove_prefix(std::size_t(end - rest.data()));
+  if (!rest.empty() && rest[0] == '@') {
+    if (rest.size() < 9 || !std::all_of(rest.begin() + 1, rest.begin() + 9, [](char c) {
+          return std::isxdigit(static_cast<unsigned char>(c));
+        }))
+      return std::nullopt;
+    writer.host = rest.substr(1, 8);
+    rest.remove_prefix(9);
+  }
   if (rest.size() < 7 || rest[0] != '-')
     return std::nullopt;
   for (const char c : rest.substr(1, 6)) {
@@ -67,7 +102,7 @@ std::optional<pid_t> temporaryWriterPid(std::string_view name) {
   if (!extension.empty() && (extension[0] != '.' || extension == ".old" ||
                              extension.find('.', 1) != std::string_view::npos))
     return std::nullopt;
-  return pid;
+  return writer;
 }
 
 // Removes, once per folder and process, the temporaries in `folder` that processes which
@@ -88,14 +123,15 @@ void removeStaleTemporaries(const fs::path& folder) {
   std::error_code ec;
   for (const auto& entry : fs::directory_iterator(folder, ec)) {
     const std::string name = entry.path().filename().string();
-    const auto pid = temporaryWriterPid(name);
-    if (!pid || *pid == ::getpid())
+    const auto writer = temporaryWriter(name);
+    if (!writer || writer->pid == ::getpid() ||
+        (!writer->host.empty() && writer->host != hostMark()))
       continue;
     struct stat info {};
     if (::lstat(entry.path().c_str(), &info) != 0 || !S_ISREG(info.st_mode) ||
         info.st_uid != ::geteuid())
       continue;
-    if (::kill(*pid, 0) == 0 || errno != ESRCH)
+    if (::kill(writer->pid, 0) == 0 || errno != ESRCH)
       continue;
     ::unlink(entry.path().c_str());
   }
@@ -207,14 +243,16 @@ bool StagedFile::create(const fs::path& target, std::string& error) {
   committed_ = false;
   target_ = target;
   removeStaleTemporaries(folderOf(target));
-  // ".<name>.partial-<pid>-XXXXXX<ext>": hidden, unique (mkstemps), the writer's pid for
-  // removeStaleTemporaries, and the target's extension.
+  // ".<name>.partial-<pid>@<host>-XXXXXX<ext>": hidden, unique (mkstemps), the writer's
+  // pid and host for removeStaleTemporaries, and the target's extension.
   const std::string extension = target.extension().string();
   std::string name = folderOf(target).string();  // appended, not operator+: GCC 12 bug 105329
   name += "/.";
   name += target.stem().string();
   name += kTemporaryMark;
   name += std::to_string(::getpid());
+  name += '@';
+  name += hostMark();
   name += "-XXXXXX";
   name += extension;
   std::vector<char> buffer(name.begin(), name.end());

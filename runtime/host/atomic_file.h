@@ -22,10 +22,10 @@
 namespace memograph::files {
 
 // A temporary file next to `target`, created empty and exclusively (mode 0666 & ~umask),
-// removed by the destructor unless committed: `.<stem>.partial-<pid>-XXXXXX<ext>`. The
+// removed by the destructor unless committed: `.<stem>.partial-<pid>@<host>-XXXXXX<ext>`. The
 // name keeps the target's extension, so libraries that pick a format by extension
 // (OpenImageIO) can write it by path. The first create() in a folder (once per process)
-// removes the temporaries there of processes that no longer exist.
+// removes the temporaries there of processes of this host that no longer exist.
 class StagedFile {
  public:
   StagedFile() = default;

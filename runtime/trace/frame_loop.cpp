@@ -198,7 +198,7 @@ void FrameLoop::look(std::uint32_t f, const Camera& camera, FrameStats& look) {
   probe.counts = true;
   probe.look = true;
   probe.counted = {0, 1};
-  submit(f == 0, probe);
+  submit(f == in_.settings->firstFrame, probe);
   frame_.path = framePath;
   frame_.culling = frameCulling;
   frameBuffer_.write(&frame_, sizeof frame_);
@@ -279,12 +279,13 @@ void FrameLoop::run(RenderResult& result) {
   Camera previousCamera;
   std::uint32_t sampleIndex = 0;
   previousRays_ = 0;
-  for (std::uint32_t f = 0; f < settings.frames; ++f) {
+  const std::uint32_t first = settings.firstFrame, end = first + settings.frames;
+  for (std::uint32_t f = first; f < end; ++f) {
     const Camera& camera =
         settings.cameraPath.empty()
             ? in_.scene->camera
             : settings.cameraPath[std::min<std::size_t>(f, settings.cameraPath.size() - 1)];
-    if (f > 0 && !sameCamera(camera, previousCamera))
+    if (f > first && (settings.eachFrameAlone || !sameCamera(camera, previousCamera)))
       sampleIndex = 0;
     previousCamera = camera;
     frame_.cameraForward.w = float(f) * settings.secondsPerFrame;
@@ -311,12 +312,14 @@ void FrameLoop::run(RenderResult& result) {
     frameStats.feedbackFrame = trace.counts ? 1u : 0u;
     frameStats.traceDispatches = in_.tracer->dispatchCount(trace);
     const auto start = std::chrono::steady_clock::now();
-    submit(f == 0, trace);
+    submit(f == first, trace);
     frameStats.wallMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     readFrame(trace, lookStats, frameStats);
     accel.addFrame(frameStats, result.stats);
     result.stats.frames.push_back(frameStats);
+    if (settings.onFrameImage && settings.frameImageWanted && settings.frameImageWanted(f))
+      settings.onFrameImage(f, readImage());
     if (settings.onFrame)
       settings.onFrame(frameStats);
     ++sampleIndex;

@@ -1,6 +1,7 @@
 #include "runtime/trace/render_setup.h"
 
 #include <algorithm>
+#include <limits>
 #include <optional>
 #include <stdexcept>
 
@@ -29,6 +30,8 @@ void validateSettings(const RenderSettings& s) {
     throw std::invalid_argument("rays per path must be at least 1");
   if (s.frames == 0)
     throw std::invalid_argument("frames must be at least 1");
+  if (s.firstFrame > std::numeric_limits<std::uint32_t>::max() - s.frames)
+    throw std::invalid_argument("the last frame's index is past 2^32 - 1");
 }
 
 std::string megabytes(std::uint64_t bytes) {

@@ -61,6 +61,9 @@ constexpr std::string_view kHelp =
     "                    the object's bounding box (default -1,-1,0,1,1,0)\n"
     "  --nodes DIR       use the node library in DIR instead of the built-in one\n"
     "  --device N        Vulkan device index (render --list-devices lists them)\n"
+    "  --shard I/N       bake only shard I of N (0 <= I < N): the graphs whose index in the\n"
+    "                    list above (folders in name order) is I modulo N, so that N jobs\n"
+    "                    with the same arguments bake each graph once (docs/guide/slurm.md)\n"
     "  --quiet           print only errors\n";
 
 // Reads --bounds; false with `error` saying which number is wrong and why.
@@ -405,7 +408,8 @@ bool bakeOne(BakeRun& run, const std::string& path, const std::string& prefix) {
 #endif  // MEMOGRAPH_HAVE_RUNTIME
 
 struct BakeArguments {
-  std::string size, outDir, format, bounds, nodesDir, device = "-1";
+  std::string size, outDir, format, bounds, nodesDir, device = "-1", shard;
+  std::uint32_t shardIndex = 0, shardCount = 1;
   bool quiet = false;
   std::vector<std::string> inputs;
 };
@@ -420,6 +424,7 @@ std::optional<int> scanBakeArguments(std::span<const std::string_view> args, Bak
   scanner.option("--bounds", &a.bounds);
   scanner.option("--nodes", &a.nodesDir);
   scanner.option("--device", &a.device);
+  scanner.option("--shard", &a.shard);
   scanner.flag("--quiet", &a.quiet);
   scanner.help(kHelp);
   if (const auto exitCode = scanner.scan(a.inputs))
@@ -430,6 +435,17 @@ std::optional<int> scanBakeArguments(std::span<const std::string_view> args, Bak
     return usageError("bake", "--out DIR is required");
   if (a.size.empty())
     return usageError("bake", "--size WxH is required");
+  if (!a.shard.empty()) {
+    const std::size_t slash = a.shard.find('/');
+    if (slash == std::string::npos ||
+        !parseNumber(std::string_view(a.shard).substr(0, slash), a.shardIndex) ||
+        !parseNumber(std::string_view(a.shard).substr(slash + 1), a.shardCount) ||
+        a.shardCount == 0 || a.shardIndex >= a.shardCount)
+      return usageError("bake",
+                        "--shard takes I/N, shard I of N with 0 <= I < N (e.g. 0/4), "
+                        "not '" +
+                            a.shard + "'");
+  }
 #ifdef MEMOGRAPH_HAVE_IO
   if (a.format.empty())
     a.format = "exr";
@@ -487,8 +503,19 @@ int runBake(std::span<const std::string_view> args) {
     return kExitFailure;
   }
   run.library = &*library;
-  const std::vector<std::string> files = expandInputs(a.inputs, setup);
+  std::vector<std::string> files = expandInputs(a.inputs, setup);
   printDiagnostics(setup);
+  if (a.shardCount > 1) {
+    // By index in the expanded list, not by a hash of the name: the list is the same for
+    // every shard given the same arguments, and shards differ in size by one at most.
+    std::vector<std::string> shard;
+    for (std::size_t index = a.shardIndex; index < files.size(); index += a.shardCount)
+      shard.push_back(files[index]);
+    if (!a.quiet)
+      std::cerr << "shard " << a.shardIndex << "/" << a.shardCount << ": " << shard.size() << " of "
+                << files.size() << " graphs\n";
+    files = std::move(shard);
+  }
   if (std::string error; !checkOutputFolder(a.outDir, error)) {
     std::cerr << "memograph bake: --out " << a.outDir << ": " << error << "\n";
     return kExitFailure;

@@ -66,6 +66,30 @@ struct Option {
   std::string_view benchHelp = {};     // bench's help, where it differs
 };
 
+constexpr std::uint32_t kMaxFramesInRange = 1000000;
+
+// "A:B" with A <= B, both whole numbers. Throws std::invalid_argument for the user.
+FrameRange parseFrameRange(std::string_view text) {
+  const auto refuse = [&](std::string_view why) -> FrameRange {
+    throw std::invalid_argument(
+        "--frame-range takes A:B, the first and last frame (whole "
+        "numbers, A <= B), not '" +
+        std::string(text) + "'" + std::string(why));
+  };
+  const std::size_t colon = text.find(':');
+  FrameRange range;
+  if (colon == std::string_view::npos || !parseNumber(text.substr(0, colon), range.first) ||
+      !parseNumber(text.substr(colon + 1), range.last))
+    return refuse("");
+  if (range.first > range.last)
+    return refuse(": the last frame comes before the first");
+  // One run's frames are planned as a list (which to write, which are done): a bound keeps a
+  // mistyped range from asking for gigabytes of it. A farm splits a longer path into ranges.
+  if (range.last - range.first >= kMaxFramesInRange)
+    return refuse(": at most " + std::to_string(kMaxFramesInRange) + " frames in one range");
+  return range;
+}
+
 using O = TraceCommandOptions;
 using S = Section;
 using N = Needs;
@@ -75,7 +99,9 @@ constexpr bool kAdvanced = true, kCommon = false, kApplied = true, kShown = fals
 // are advanced: --help-all lists them.
 const Option kOptions[] = {
     // Input and output.
-    {"--out", ValueType::Path, "FILE", "the image: .pfm, or .png or .exr in builds with OpenImageIO",
+    {"--out", ValueType::Path, "FILE",
+     "the image: .pfm, or .png or .exr in builds with OpenImageIO; with\n"
+     "--frame-range, a run of '#' in the name is the frame's index, zero-padded",
      "", kShown, S::InputOutput, kCommon, N::Nothing, kRender,
      [](O& o, const Value& v) { o.out = v.text; }, {}, 0, 0, "-o"},
     {"--materials", ValueType::Path, "DIR", "folder of .mgraph graphs for a scene file's materials",
@@ -145,6 +171,19 @@ const Option kOptions[] = {
      "frames; a static camera accumulates them", "1", kApplied, S::Image, kCommon, N::Nothing,
      kBoth, [](O& o, const Value& v) { o.settings.frames = v.whole; }, "a whole number > 0", 1,
      std::numeric_limits<std::uint32_t>::max(), {}, "20", "timed frames"},
+    {"--frame-range", ValueType::Text, "A:B",
+     "frames A..B of the camera path, one image each (--out frame_####.pfm);\n"
+     "a frame's random numbers depend on its index and --seed alone",
+     "", kShown, S::Image, kCommon, N::Nothing, kRender,
+     [](O& o, const Value& v) { o.frameRange = parseFrameRange(v.text); }},
+    {"--warmup-frames", ValueType::Whole, "N",
+     "with --cache or --culling lipac, a range first renders the N frames\n"
+     "before it, unwritten, to warm them",
+     "8", kApplied, S::Image, kCommon, N::Nothing, kRender,
+     [](O& o, const Value& v) { o.warmupFrames = v.whole; }},
+    {"--resume", ValueType::Flag, "",
+     "with --frame-range, skip the frames whose files are complete (a requeued job)", "",
+     kShown, S::Image, kCommon, N::Nothing, kRender, [](O& o, const Value&) { o.resume = true; }},
     {"--seed", ValueType::Whole, "S", "random seed", "0", kApplied, S::Image, kCommon,
      N::Nothing, kRender, [](O& o, const Value& v) { o.settings.seed = v.whole; }},
     {"--warmup", ValueType::Whole, "W",

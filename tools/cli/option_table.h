@@ -22,6 +22,11 @@ struct ImageSize {
   std::uint32_t width = 0, height = 0;
 };
 
+// `--frame-range A:B`: frames A..B of the path, both included.
+struct FrameRange {
+  std::uint32_t first = 0, last = 0;
+};
+
 // What `render` and `bench` were asked for, as typed values: the renderer's options and a
 // frame's settings (the runtime's types), and each command's own.
 struct TraceCommandOptions {
@@ -33,6 +38,9 @@ struct TraceCommandOptions {
   // render
   std::string out, materials, cameraPath, environment, stats, debugCulling;
   bool listDevices = false, debugMisses = false;
+  std::optional<FrameRange> frameRange;
+  std::uint32_t warmupFrames = 0;
+  bool resume = false;
 
   // bench
   std::vector<ImageSize> sizes;

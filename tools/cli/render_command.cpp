@@ -12,6 +12,7 @@
 
 #include "cli_common.h"
 #include "commands.h"
+#include "frame_files.h"
 #include "runtime/host/atomic_file.h"
 
 #ifdef MEMOGRAPH_HAVE_RUNTIME
@@ -138,6 +139,54 @@ int checkModes(TraceCommandOptions& options) {
   return kExitOk;
 }
 
+// --frame-range's usage errors: the options it replaces or cannot share a run with, and an
+// --out that names the frames apart. Sets `pattern`.
+int checkFrameRange(const TraceCommandOptions& options, FramePattern& pattern) {
+  if (!options.frameRange) {
+    if (options.resume)
+      return usageError("render",
+                        "--resume skips the finished frames of a --frame-range; "
+                        "it needs --frame-range");
+    if (options.wasGiven("--warmup-frames"))
+      std::cerr << "memograph render: " << ignoredOptionNote("--warmup-frames", "--frame-range")
+                << "\n";
+    return kExitOk;
+  }
+  if (options.wasGiven("--frames"))
+    return usageError("render",
+                      "--frames accumulates one image over frames; with --frame-range each "
+                      "frame is an image of its own (--paths sets its samples)");
+  if (!options.stats.empty() || !options.debugCulling.empty())
+    return usageError("render",
+                      "--stats and --debug-culling describe one image's render; a "
+                      "--frame-range writes only its frames");
+  std::string error;
+  const auto parsed = parseFramePattern(options.out, error);
+  if (!parsed)
+    return usageError("render", error);
+  pattern = *parsed;
+  const FrameRange range = *options.frameRange;
+  if (pattern.hashesAt == std::string::npos && range.first != range.last)
+    return usageError("render", "--out '" + options.out + "' names one file for the " +
+                                    std::to_string(range.last - range.first + 1) +
+                                    " frames of --frame-range; put a run of '#' in its file name "
+                                    "for the frame's index (e.g. frame_####.pfm)");
+  return kExitOk;
+}
+
+// A range past the camera path's end: the path's last frame is the one the user meant to end
+// on, not a camera repeated (what a render of more frames than cameras does).
+int checkRangeOnPath(const TraceCommandOptions& options) {
+  const std::size_t cameras = options.settings.cameraPath.size();
+  if (!options.frameRange || cameras == 0 || options.frameRange->last < cameras)
+    return kExitOk;
+  return usageError("render", "--frame-range " + std::to_string(options.frameRange->first) + ":" +
+                                  std::to_string(options.frameRange->last) +
+                                  " ends past the camera path's last frame, " +
+                                  std::to_string(cameras - 1) + " (frames 0.." +
+                                  std::to_string(cameras - 1) + ")");
+}
+
 // The scene: built-in, or a file through the io module.
 int loadScene(const std::string& name, const TraceCommandOptions& options, runtime::Scene& scene) {
   if (name.rfind("builtin:", 0) == 0) {
@@ -261,14 +310,36 @@ void useTextureLoader([[maybe_unused]] runtime::RendererOptions& renderer) {
 void showProgress(runtime::RenderSettings& settings) {
   if (!isatty(STDERR_FILENO) || settings.frames <= 1)
     return;
-  const std::uint32_t frames = settings.frames;
-  settings.onFrame = [frames](const runtime::FrameStats& frame) {
-    int done = int(40.0 * (frame.frame + 1) / frames);
-    std::fprintf(stderr, "\r[%-40s] frame %u/%u  %.2f ms", std::string(done, '#').c_str(),
-                 frame.frame + 1, frames, frame.gpuMilliseconds);
-    if (frame.frame + 1 == frames)
+  const std::uint32_t frames = settings.frames, first = settings.firstFrame;
+  settings.onFrame = [frames, first](const runtime::FrameStats& frame) {
+    const std::uint32_t rendered = frame.frame - first + 1;
+    int done = int(40.0 * rendered / frames);
+    std::fprintf(stderr, "\r[%-40s] frame %u/%u  %.2f ms", std::string(done, '#').c_str(), rendered,
+                 frames, frame.gpuMilliseconds);
+    if (rendered == frames)
       std::fprintf(stderr, "\n");
   };
+}
+
+// Stages `image` as `path` (its format by the extension) into `file`; false after saying why.
+bool stageImageFile(const std::string& path, const runtime::HdrImage& image,
+                    files::StagedFile& file) {
+  if (imageExtension(path) == ".pfm") {
+    std::string error;
+    if (!file.create(path, error) || !file.write(runtime::encodePfm(image), error)) {
+      std::cerr << "memograph render: " << path << ": " << error << "\n";
+      return false;
+    }
+    return true;
+  }
+#ifdef MEMOGRAPH_HAVE_IO
+  compiler::Diagnostics diagnostics;
+  if (!io::stageImage(path, image, io::LdrOptions{}, file, diagnostics)) {
+    printDiagnostics(diagnostics);
+    return false;
+  }
+#endif
+  return true;
 }
 
 // The image, the top view and the statistics are one output set (files::commitFileSet):
@@ -277,22 +348,7 @@ int writeOutputs(const TraceCommandOptions& options, const runtime::RenderResult
   std::vector<files::StagedFile> staged;
   std::string error;
   auto stage = [&](const std::string& path, const runtime::HdrImage& image) {
-    files::StagedFile& file = staged.emplace_back();
-    if (imageExtension(path) == ".pfm") {
-      if (!file.create(path, error) || !file.write(runtime::encodePfm(image), error)) {
-        std::cerr << "memograph render: " << path << ": " << error << "\n";
-        return false;
-      }
-      return true;
-    }
-#ifdef MEMOGRAPH_HAVE_IO
-    compiler::Diagnostics diagnostics;
-    if (!io::stageImage(path, image, io::LdrOptions{}, file, diagnostics)) {
-      printDiagnostics(diagnostics);
-      return false;
-    }
-#endif
-    return true;
+    return stageImageFile(path, image, staged.emplace_back());
   };
   staged.reserve(3);
   if (!stage(options.out, result.image))
@@ -368,6 +424,91 @@ int renderAndWrite(TraceCommandOptions& options, const runtime::Scene& scene) {
   return kExitOk;
 }
 
+// What a frame range renders: the frames to write (all of the range, or with --resume those
+// whose files are not complete) and the frames before them that warm the state a frame
+// inherits. Returns false where nothing is left to render.
+struct RangePlan {
+  std::vector<bool> write;  // by frame - range.first
+  std::uint32_t firstRendered = 0, lastRendered = 0, warmup = 0, skipped = 0;
+};
+
+bool planRange(const TraceCommandOptions& options, const FramePattern& pattern, RangePlan& plan) {
+  const FrameRange range = *options.frameRange;
+  plan.write.assign(std::size_t(range.last - range.first) + 1, true);
+  std::optional<std::uint32_t> first, last;
+  for (std::uint32_t f = range.first;; ++f) {
+    if (options.resume && imageFileComplete(framePath(pattern, f))) {
+      plan.write[f - range.first] = false;
+      ++plan.skipped;
+    } else {
+      first = first.value_or(f);
+      last = f;
+    }
+    if (f == range.last)
+      break;
+  }
+  if (!first)
+    return false;
+  // Only the cache and LiPaC carry state from frame to frame; without them a frame is the
+  // same rendered alone, and warming would cost frames for nothing.
+  const runtime::RendererOptions& renderer = options.renderer;
+  const bool carriesState = renderer.cache.mode != runtime::CacheMode::None ||
+                            renderer.culling.mode == runtime::CullingMode::Lipac;
+  plan.warmup = carriesState ? std::min(*first, options.warmupFrames) : 0;
+  plan.firstRendered = *first - plan.warmup;
+  plan.lastRendered = *last;
+  return true;
+}
+
+// Renders frames of a --frame-range and writes each as it is done, each file on its own
+// (a frame is all or nothing; a preempted job keeps the frames it finished).
+int renderFrameRange(TraceCommandOptions& options, const runtime::Scene& scene,
+                     const FramePattern& pattern) {
+  const FrameRange range = *options.frameRange;
+  RangePlan plan;
+  if (!planRange(options, pattern, plan)) {
+    std::cerr << "memograph render: frames " << range.first << ".." << range.last
+              << " are all complete; nothing to render\n";
+    return kExitOk;
+  }
+  runtime::RenderSettings& settings = options.settings;
+  settings.firstFrame = plan.firstRendered;
+  settings.frames = plan.lastRendered - plan.firstRendered + 1;
+  settings.eachFrameAlone = true;
+  settings.frameImageWanted = [&](std::uint32_t f) {
+    return f >= range.first && f <= range.last && plan.write[f - range.first];
+  };
+  std::uint32_t written = 0;
+  settings.onFrameImage = [&](std::uint32_t f, const runtime::HdrImage& image) {
+    const std::string path = framePath(pattern, f);
+    files::StagedFile file;
+    std::string error;
+    if (!stageImageFile(path, image, file) || !file.commit(error))
+      throw std::runtime_error(error.empty() ? "frame " + std::to_string(f) + " not written"
+                                             : path + ": " + error);
+    ++written;
+  };
+  showProgress(settings);
+  try {
+    options.renderer.context.autoPrefersPipeline =
+        runtime::countDistinctMaterialGraphs(scene) > runtime::kManyMaterialGraphs;
+    runtime::Renderer renderer(options.renderer);
+    runtime::RenderResult result = renderer.render(scene, settings);
+    for (const auto& error : renderer.context().validationErrors())
+      std::cerr << "validation: " << error << "\n";
+    std::cerr << "frames " << range.first << ".." << range.last << ": " << written << " written, "
+              << plan.skipped << " complete already, " << plan.warmup
+              << " warm-up frames rendered first\n";
+    printSummary(framePath(pattern, plan.lastRendered), result.stats);
+  } catch (const std::invalid_argument& e) {
+    return usageError("render", e.what());
+  } catch (const std::exception& e) {
+    std::cerr << "memograph render: " << e.what() << "\n";
+    return kExitFailure;
+  }
+  return kExitOk;
+}
+
 }  // namespace
 
 int runRender(std::span<const std::string_view> args) {
@@ -387,6 +528,9 @@ int runRender(std::span<const std::string_view> args) {
     return usageError("render", "--out FILE is required");
   if (const int code = checkModes(options); code != kExitOk)
     return code;
+  FramePattern pattern;
+  if (const int code = checkFrameRange(options, pattern); code != kExitOk)
+    return code;
   if (const int code = checkOutputNames(positional[0], options); code != kExitOk)
     return code;
   runtime::Scene scene;
@@ -398,7 +542,11 @@ int runRender(std::span<const std::string_view> args) {
     return code;
   if (const int code = loadCameraPath(options.cameraPath, options.settings); code != kExitOk)
     return code;
+  if (const int code = checkRangeOnPath(options); code != kExitOk)
+    return code;
   useTextureLoader(options.renderer);
+  if (options.frameRange)
+    return renderFrameRange(options, scene, pattern);
   showProgress(options.settings);
   return renderAndWrite(options, scene);
 }

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -439,13 +440,26 @@ TEST_F(BakeCli, TemporariesOfKilledWritersAreRemovedByTheNextWrite) {
   ASSERT_EQ(::waitpid(dead, nullptr, 0), dead);
   fs::create_directories(dir_ / "out");
   const std::string deadPid = std::to_string(dead), livePid = std::to_string(::getpid());
+  // This host's mark in a temporary's name (atomic_file.cpp: FNV-1a of the host name), and
+  // another host's: a pid on another host (a farm's shared folder) is not ours to judge.
+  char host[256] = {};
+  ASSERT_EQ(::gethostname(host, sizeof host - 1), 0);
+  std::uint32_t hash = 2166136261u;
+  for (const char* c = host; *c; ++c)
+    hash = (hash ^ static_cast<unsigned char>(*c)) * 16777619u;
+  char hex[9];
+  std::snprintf(hex, sizeof hex, "%08x", hash);
+  const std::string here = hex,
+                    elsewhere = std::string(here[0] == '0' ? "1" : "0") + here.substr(1);
   const std::vector<std::string> stale = {".Const_baseColor.partial-" + deadPid + "-a1B2c3.pfm",
-                                          ".Other.partial-" + deadPid + "-zzzzzz"};
+                                          ".Other.partial-" + deadPid + "-zzzzzz",
+                                          ".Lit.partial-" + deadPid + "@" + here + "-q1w2e3.pfm"};
   const std::vector<std::string> kept = {
-      ".Const_baseColor.partial-" + livePid + "-a1B2c3.pfm",  // a live writer
-      ".Other.partial-" + deadPid + "-zzzzzz.pfm.old",        // a commit's backup
-      ".notes.partial-" + deadPid,                            // not our naming
-      "Other.partial-" + deadPid + "-zzzzzz.pfm",             // not hidden
+      ".Const_baseColor.partial-" + livePid + "-a1B2c3.pfm",        // a live writer
+      ".Other.partial-" + deadPid + "-zzzzzz.pfm.old",              // a commit's backup
+      ".notes.partial-" + deadPid,                                  // not our naming
+      "Other.partial-" + deadPid + "-zzzzzz.pfm",                   // not hidden
+      ".Lit.partial-" + deadPid + "@" + elsewhere + "-q1w2e3.pfm",  // another host's writer
   };
   for (const auto& name : stale)
     std::ofstream(dir_ / "out" / name) << std::string(1000, 'x');

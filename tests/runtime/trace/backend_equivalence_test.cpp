@@ -142,6 +142,45 @@ TEST(Determinism, SameSeedGivesIdenticalBytesAndOtherSeedsDiffer) {
   EXPECT_TRUE(renderer.context().validationErrors().empty());
 }
 
+// A frame range (render --frame-range): frames firstFrame.. of a camera path, each its own
+// image (eachFrameAlone), trace what the same frames of the whole path trace, byte for byte,
+// with or without the frames before them; so a path split over jobs gives one run's frames.
+// A still camera's frames differ (each has its own random numbers) and do not average.
+TEST(Determinism, AFrameRangeGivesTheWholePathsFramesByteForByte) {
+  const Scene scene = testScene();
+  Renderer renderer(testing::testOptions());
+  RenderSettings settings = smallSettings(9);
+  Camera camera = scene.camera;
+  for (int f = 0; f < 4; ++f) {
+    settings.cameraPath.push_back(camera);
+    if (f != 1)  // frames 1 and 2 share a camera: a still camera within the range
+      camera.position.x += 0.25f;
+  }
+  settings.eachFrameAlone = true;
+  const auto framesOf = [&](std::uint32_t first, std::uint32_t count) {
+    std::vector<std::vector<float>> images(4);
+    settings.firstFrame = first;
+    settings.frames = count;
+    settings.frameImageWanted = [](std::uint32_t) { return true; };
+    settings.onFrameImage = [&](std::uint32_t f, const HdrImage& image) { images[f] = image.rgba; };
+    const RenderResult result = renderer.render(scene, settings);
+    EXPECT_EQ(result.stats.frames.size(), count);
+    EXPECT_EQ(result.stats.frames.front().frame, first);
+    return images;
+  };
+  const auto whole = framesOf(0, 4);
+  const auto second = framesOf(2, 2);
+  const auto third = framesOf(3, 1);
+  for (std::uint32_t f = 0; f < 4; ++f)
+    ASSERT_FALSE(whole[f].empty()) << "frame " << f;
+  EXPECT_TRUE(second[0].empty() && second[1].empty()) << "frames before the range are not shown";
+  EXPECT_EQ(second[2], whole[2]);
+  EXPECT_EQ(second[3], whole[3]);
+  EXPECT_EQ(third[3], whole[3]);
+  EXPECT_NE(whole[1], whole[2]) << "a still camera's frames have their own random numbers";
+  EXPECT_TRUE(renderer.context().validationErrors().empty());
+}
+
 // --dispatch-paths: a frame's paths traced in several dispatches, each adding its share of
 // the pixels' mean, trace the same paths as one dispatch of all of them: the same rays (the
 // shared primary ray once more for each later dispatch) and the picture up to float rounding.
