@@ -482,18 +482,28 @@ void readProperties(VkPhysicalDevice physicalDevice, DeviceInfo& info) {
 
 }  // namespace
 
+namespace {
+
+// What a device's properties say of it, before its features or limits are read.
+DeviceInfo describeCandidate(const Candidate& chosen) {
+  DeviceInfo info;
+  info.name = chosen.properties.deviceName;
+  info.type = chosen.properties.deviceType;
+  info.apiVersion = chosen.properties.apiVersion;
+  info.rayQuery = chosen.rayQuery;
+  info.rayTracingPipeline = chosen.rayTracingPipeline;
+  info.timestampPeriodNs = chosen.properties.limits.timestampPeriod;
+  return info;
+}
+
+}  // namespace
+
 std::optional<DeviceInfo> peekDeviceInfo(const ContextOptions& options) {
   try {
     VulkanHandle<VkInstance> instance(createInstance(false, false),
                                       [](VkInstance i) { vkDestroyInstance(i, nullptr); });
     const Candidate chosen = chooseDevice(instance.get(), options);
-    DeviceInfo info;
-    info.name = chosen.properties.deviceName;
-    info.type = chosen.properties.deviceType;
-    info.apiVersion = chosen.properties.apiVersion;
-    info.rayQuery = chosen.rayQuery;
-    info.rayTracingPipeline = chosen.rayTracingPipeline;
-    info.timestampPeriodNs = chosen.properties.limits.timestampPeriod;
+    DeviceInfo info = describeCandidate(chosen);
     readProperties(chosen.device, info);
     return info;
   } catch (const std::exception&) {
@@ -516,12 +526,7 @@ VulkanContext::VulkanContext(const ContextOptions& options)
   const Candidate chosen = chooseDevice(instance_.get(), options);
   physicalDevice_ = chosen.device;
   backend_ = chooseBackend(options, chosen);
-  info_.name = chosen.properties.deviceName;
-  info_.type = chosen.properties.deviceType;
-  info_.apiVersion = chosen.properties.apiVersion;
-  info_.rayQuery = chosen.rayQuery;
-  info_.rayTracingPipeline = chosen.rayTracingPipeline;
-  info_.timestampPeriodNs = chosen.properties.limits.timestampPeriod;
+  info_ = describeCandidate(chosen);
 
   // Features: check what the renderer needs before asking for it, to name what is missing.
   SupportedFeatures supported;

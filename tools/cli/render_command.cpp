@@ -400,19 +400,20 @@ void printSummary(const std::string& out, const runtime::RenderStats& stats) {
   }
 }
 
-// Renders `scene` and writes the outputs.
-int renderAndWrite(TraceCommandOptions& options, const runtime::Scene& scene) {
+// Renders `scene` with `settings` and hands the result to `finish`, whose exit code it
+// returns; the renderer's errors become the command's.
+template <typename Finish>
+int renderScene(TraceCommandOptions& options, const runtime::Scene& scene,
+                const runtime::RenderSettings& settings, Finish&& finish) {
   try {
     // Many materials: per-material callables (pipeline backend) unless --backend says otherwise.
     options.renderer.context.autoPrefersPipeline =
         runtime::countDistinctMaterialGraphs(scene) > runtime::kManyMaterialGraphs;
     runtime::Renderer renderer(options.renderer);
-    runtime::RenderResult result = renderer.render(scene, options.settings);
+    runtime::RenderResult result = renderer.render(scene, settings);
     for (const auto& error : renderer.context().validationErrors())
       std::cerr << "validation: " << error << "\n";
-    if (const int code = writeOutputs(options, result); code != kExitOk)
-      return code;
-    printSummary(options.out, result.stats);
+    return finish(result);
   } catch (const std::invalid_argument& e) {
     // The renderer's refusals of option combinations (e.g. --wavefront-paths when
     // --shading auto chose the megakernel): usage errors, as when the CLI catches them.
@@ -421,7 +422,16 @@ int renderAndWrite(TraceCommandOptions& options, const runtime::Scene& scene) {
     std::cerr << "memograph render: " << e.what() << "\n";
     return kExitFailure;
   }
-  return kExitOk;
+}
+
+// Renders `scene` and writes the outputs.
+int renderAndWrite(TraceCommandOptions& options, const runtime::Scene& scene) {
+  return renderScene(options, scene, options.settings, [&](const runtime::RenderResult& result) {
+    if (const int code = writeOutputs(options, result); code != kExitOk)
+      return code;
+    printSummary(options.out, result.stats);
+    return kExitOk;
+  });
 }
 
 // What a frame range renders: the frames to write (all of the range, or with --resume those
@@ -489,24 +499,13 @@ int renderFrameRange(TraceCommandOptions& options, const runtime::Scene& scene,
     ++written;
   };
   showProgress(settings);
-  try {
-    options.renderer.context.autoPrefersPipeline =
-        runtime::countDistinctMaterialGraphs(scene) > runtime::kManyMaterialGraphs;
-    runtime::Renderer renderer(options.renderer);
-    runtime::RenderResult result = renderer.render(scene, settings);
-    for (const auto& error : renderer.context().validationErrors())
-      std::cerr << "validation: " << error << "\n";
+  return renderScene(options, scene, settings, [&](const runtime::RenderResult& result) {
     std::cerr << "frames " << range.first << ".." << range.last << ": " << written << " written, "
               << plan.skipped << " complete already, " << plan.warmup
               << " warm-up frames rendered first\n";
     printSummary(framePath(pattern, plan.lastRendered), result.stats);
-  } catch (const std::invalid_argument& e) {
-    return usageError("render", e.what());
-  } catch (const std::exception& e) {
-    std::cerr << "memograph render: " << e.what() << "\n";
-    return kExitFailure;
-  }
-  return kExitOk;
+    return kExitOk;
+  });
 }
 
 }  // namespace
