@@ -173,9 +173,8 @@ SceneCulling::SceneCulling(const Scene& scene, const CullingOptions& options)
   states_.assign(
       n, options_.mode == CullingMode::None ? InstanceState::Active : InstanceState::Inactive);
   inFrustum_.assign(n, 0);
-  lowFrames_.assign(n, 0);
   appeared_.assign(n, 0);
-  lowNeeded_.assign(n, options_.lowFrames);
+  instanceWaits_.assign(n, DepartureWait{0, options_.lowFrames, 0});
   instanceHitbox_.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     ownBlas_[i] = users[scene.instances[i].mesh] == 1;
@@ -221,8 +220,7 @@ SceneCulling::SceneCulling(const Scene& scene, const CullingOptions& options)
     hitboxBounds_[h].hi = glm::max(hitboxBounds_[h].hi, bounds_[i].hi);
   }
   hitboxActive_.assign(cells, 0);
-  hitboxLowFrames_.assign(cells, 0);
-  hitboxLowNeeded_.assign(cells, options_.lowFrames);
+  hitboxWaits_.assign(cells, DepartureWait{0, options_.lowFrames, 0});
   count();
 }
 
@@ -231,6 +229,29 @@ void SceneCulling::setState(std::uint32_t instance, InstanceState state) {
     states_[instance] = state;
     ++counts_.changes;
   }
+}
+
+bool SceneCulling::countInFrame(DepartureWait& wait, bool low) const {
+  if (!low) {
+    wait.lowFrames = 0;
+    countSettledFrame(wait);
+    return false;
+  }
+  wait.settledFrames = 0;  // a low frame ends the run that halves the wait
+  if (++wait.lowFrames < wait.neededFrames)
+    return false;
+  wait.lowFrames = 0;
+  wait.neededFrames = std::min(longestWait(), 2 * wait.neededFrames);
+  return true;
+}
+
+void SceneCulling::countSettledFrame(DepartureWait& wait) const {
+  if (wait.neededFrames <= options_.lowFrames)
+    return;
+  if (++wait.settledFrames < longestWait())
+    return;
+  wait.neededFrames = std::max(options_.lowFrames, wait.neededFrames / 2);
+  wait.settledFrames = 0;
 }
 
 bool SceneCulling::appearsLarge(std::uint32_t instance, const Camera& camera) const {
@@ -266,7 +287,7 @@ void SceneCulling::look(const Camera& camera, float aspect) {
     if (hitboxActive_[h] || hitboxInstances_[h].empty() || !frustum.intersects(hitboxBounds_[h]))
       continue;
     hitboxActive_[h] = 1;
-    hitboxLowFrames_[h] = 0;
+    hitboxWaits_[h].lowFrames = 0;
     opened[h] = 1;
   }
   for (std::uint32_t i = 0; i < instanceCount(); ++i) {
@@ -279,7 +300,7 @@ void SceneCulling::look(const Camera& camera, float aspect) {
     // Instances of hitboxes already active, or still inactive, keep their states (one that
     // appeared stays while it is hit).
     if (opened[instanceHitbox_[i]]) {
-      lowFrames_[i] = 0;
+      instanceWaits_[i].lowFrames = 0;
       appeared_[i] = 0;
       setState(i, ownBlas_[i] ? InstanceState::Omitted : InstanceState::Active);
     }
@@ -338,22 +359,16 @@ void SceneCulling::updateLipac(const Frustum& frustum, const Camera& camera,
       if (hitboxActive_[h]) {
         for (std::uint32_t i : hitboxInstances_[h])
           sum += hits[i];
-        if (double(sum) < deactivate) {
-          if (++hitboxLowFrames_[h] >= hitboxLowNeeded_[h]) {
-            hitboxActive_[h] = 0;
-            hitboxLowFrames_[h] = 0;
-            hitboxLowNeeded_[h] = std::min(kMaxLowFrames, 2 * hitboxLowNeeded_[h]);
-          }
-        } else {
-          hitboxLowFrames_[h] = 0;
-        }
+        if (countInFrame(hitboxWaits_[h], double(sum) < deactivate))
+          hitboxActive_[h] = 0;
       } else {
+        countSettledFrame(hitboxWaits_[h]);
         sum = hits[n + h];
         for (std::uint32_t i : hitboxInstances_[h])
           sum += hits[i];  // instances activated on their own (appearing) count too
         if (double(sum) >= activate) {
           hitboxActive_[h] = 1;
-          hitboxLowFrames_[h] = 0;
+          hitboxWaits_[h].lowFrames = 0;
         }
       }
     }
@@ -365,36 +380,37 @@ void SceneCulling::updateLipac(const Frustum& frustum, const Camera& camera,
       if (alwaysOn_[i])
         continue;
       const double c = hits[i];
+      const bool low = c < instanceDeactivate;
       const InstanceState state = states_[i];
-      // Low for long enough: the instance leaves, and needs twice as long next time.
-      auto lowFor = [&] {
-        lowFrames_[i] = c < instanceDeactivate ? lowFrames_[i] + 1 : 0;
-        if (lowFrames_[i] < lowNeeded_[i])
-          return false;
-        lowNeeded_[i] = std::min(kMaxLowFrames, 2 * lowNeeded_[i]);
-        return true;
-      };
+      DepartureWait& wait = instanceWaits_[i];
       if (!hitboxActive_[instanceHitbox_[i]]) {
-        // Only an instance activated on its own (it appeared) stays, while it is hit.
-        if (!appeared_[i] || state != InstanceState::Active || lowFor()) {
-          appeared_[i] = 0;
-          setState(i, InstanceState::Inactive);
+        // Only an instance activated on its own (it appeared) stays, while it is hit; low
+        // for long enough, it leaves (and waits longer next time).
+        if (appeared_[i] && state == InstanceState::Active) {
+          if (!countInFrame(wait, low))
+            continue;
+        } else {
+          countSettledFrame(wait);
         }
+        appeared_[i] = 0;
+        setState(i, InstanceState::Inactive);
         continue;
       }
       appeared_[i] = 0;
       if (!ownBlas_[i]) {
-        lowFrames_[i] = 0;
+        wait.lowFrames = 0;
+        countSettledFrame(wait);
         setState(i, InstanceState::Active);  // its BLAS is shared: cheap to include
       } else if (state == InstanceState::Inactive) {
+        countSettledFrame(wait);
         setState(i, InstanceState::Omitted);
       } else if (state == InstanceState::Omitted) {
+        countSettledFrame(wait);
         if (c >= instanceActivate) {
-          lowFrames_[i] = 0;
+          wait.lowFrames = 0;
           setState(i, InstanceState::Active);
         }
-      } else if (lowFor()) {
-        lowFrames_[i] = 0;
+      } else if (countInFrame(wait, low)) {
         setState(i, InstanceState::Omitted);
       }
     }
@@ -412,7 +428,7 @@ void SceneCulling::updateLipac(const Frustum& frustum, const Camera& camera,
     if (!appeared || states_[i] == InstanceState::Active)
       continue;
     if (appearsLarge(i, camera)) {
-      lowFrames_[i] = 0;
+      instanceWaits_[i].lowFrames = 0;
       appeared_[i] = hitboxActive_.empty() || !hitboxActive_[instanceHitbox_[i]];
       setState(i, InstanceState::Active);
     }

@@ -32,7 +32,9 @@ struct CullingOptions {
   // lipac thresholds, in hits per million rays traced in the frame, so that one setting
   // holds at every image size and sample count (activation takes at least 4 hits for a
   // hitbox, 2 for an instance, however small the frame). Deactivation waits `lowFrames`
-  // counting frames (feedbackEvery), doubled for a hitbox or an instance each time it leaves.
+  // counting frames (feedbackEvery): doubled for a hitbox or an instance each time it leaves,
+  // up to kDepartureWaitMaxDoublings doublings, and halved back after each run of that many
+  // (16 x lowFrames) counting frames without a low one (DepartureWait).
   // ϑ_a activates an inactive hitbox (its box's hits plus its instances'); an active one
   // deactivates after `lowFrames` counting frames in a row below ϑ_d (§3.3.2: "around factor
   // 10" apart, "low for several frames").
@@ -108,6 +110,29 @@ void validateCullingOptions(const CullingOptions& options);
 
 enum class InstanceState : std::uint8_t { Inactive = 0, Omitted = 1, Active = 2 };
 
+// A departure doubles the wait of a hitbox or an instance at most this many times: it never
+// exceeds 16 x CullingOptions::lowFrames counting frames (the default 2 at --feedback-every 4:
+// 32 counting frames, 128 frames).
+inline constexpr std::uint32_t kDepartureWaitMaxDoublings = 4;
+
+// How long a hitbox or an instance in the TLAS counts low before it leaves. §3.3.2 deactivates
+// "only after the number of hits has been low for several frames" and puts the thresholds
+// "around factor 10" apart "to avoid frequent state cycles". A small frame still cycled (its
+// few hits straddle the thresholds), so each departure doubles the wait: what cycles stays
+// longer each time. Several frames, not thousands: the doubling stops at
+// kDepartureWaitMaxDoublings, and the wait halves back towards `lowFrames` after each run of
+// as many counting frames as the longest wait without a low one (the hitbox or instance was
+// out, or in with enough hits), so one that stops cycling leaves as fast as a new one again.
+// A low frame ends the run, so what is in and straddles its threshold keeps its wait; a run
+// as long as the longest wait, not the current one, so what comes back after staying out for
+// a few frames, a slower cycle, keeps it too (with a run of the current wait the small city's
+// static camera never settled).
+struct DepartureWait {
+  std::uint32_t lowFrames = 0;      // counting frames in a row below its deactivation threshold
+  std::uint32_t neededFrames = 0;   // low frames after which it leaves
+  std::uint32_t settledFrames = 0;  // counting frames in a row without a low one
+};
+
 // World-space bounds of every instance of the scene.
 std::vector<Bounds> instanceBounds(const Scene& scene);
 
@@ -174,6 +199,14 @@ class SceneCulling {
                    std::span<const std::uint32_t> hits, std::uint64_t rays,
                    std::uint32_t countWeight);
   void setState(std::uint32_t instance, InstanceState state);
+  // A counting frame of a hitbox or an instance in the TLAS, `low` below its deactivation
+  // threshold: whether it leaves now (then its wait doubles, up to the cap).
+  bool countInFrame(DepartureWait& wait, bool low) const;
+  // The cap of a wait, and the run of counting frames without a low one that halves it.
+  std::uint32_t longestWait() const { return options_.lowFrames << kDepartureWaitMaxDoublings; }
+  // A counting frame in which it is out, or in above its threshold: its wait halves back
+  // towards lowFrames after longestWait() of these in a row.
+  void countSettledFrame(DepartureWait& wait) const;
   // Its bounding sphere is at least appearMinFraction of the vertical field of view.
   bool appearsLarge(std::uint32_t instance, const Camera& camera) const;
   void count();
@@ -185,9 +218,8 @@ class SceneCulling {
   // no one hitbox stands for.
   std::vector<std::uint8_t> alwaysOn_;
   std::vector<InstanceState> states_;
-  std::vector<std::uint8_t> inFrustum_;   // last update's frustum test (lipac)
-  std::vector<std::uint32_t> lowFrames_;  // per instance, frames below its deactivation
-  std::vector<std::uint32_t> lowNeeded_;  // per instance, as hitboxLowNeeded_
+  std::vector<std::uint8_t> inFrustum_;  // last update's frustum test (lipac)
+  std::vector<DepartureWait> instanceWaits_;
   // Activated on appearing in the frustum while its hitbox was inactive: it stays while it
   // is hit, until its hitbox activates (then the hitbox's rules hold).
   std::vector<std::uint8_t> appeared_;
@@ -195,11 +227,9 @@ class SceneCulling {
   std::vector<std::vector<std::uint32_t>> hitboxInstances_;
   std::vector<Bounds> hitboxBounds_;
   std::vector<std::uint8_t> hitboxActive_;
-  std::vector<std::uint32_t> hitboxLowFrames_;
-  // Frames below ϑ_d a hitbox needs before it deactivates: lowFrames, doubled each time it
-  // deactivates (up to kMaxLowFrames), so a hitbox whose box sees many rays but whose
-  // instances see few settles instead of cycling.
-  std::vector<std::uint32_t> hitboxLowNeeded_;
+  // A hitbox whose box sees many rays but whose instances see few waits longer each time it
+  // leaves, so it settles instead of cycling.
+  std::vector<DepartureWait> hitboxWaits_;
   CullingCounts counts_;
   bool first_ = true;
 };

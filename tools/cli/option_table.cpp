@@ -324,7 +324,7 @@ const Option kOptions[] = {
      [](O& o, const Value& v) { o.renderer.culling.instanceDeactivate = v.real; }},
     {"--low-frames", ValueType::Whole, "K",
      "lipac: counting frames below a deactivation threshold before it acts\n"
-     "(doubled each time it deactivates)",
+     "(doubled each time it deactivates, at most 16 K; decays back)",
      "2", kShown, S::Culling, kAdvanced, N::Lipac, kBoth,
      [](O& o, const Value& v) { o.renderer.culling.lowFrames = v.whole; }},
     {"--feedback-every", ValueType::Whole, "K",

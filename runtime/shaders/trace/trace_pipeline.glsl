@@ -30,12 +30,12 @@ bool traceShadow(vec3 origin, vec3 direction, float tMax) {
 #ifdef MG_HIT_FEEDBACK
 layout(set = 0, binding = kBindingCountingBoxes) uniform accelerationStructureEXT countingBoxes;
 
-// A counting box the ray segment crosses, the first the traversal finds (not necessarily the
-// nearest: the thesis's any-hit counts the first candidate too): its custom index (a
-// hit-feedback counter slot), or ~0u when the segment crosses none.
+// The nearest counting box the ray segment crosses, as trace_query.glsl's (the closest-hit
+// shader reports it): its custom index (a hit-feedback counter slot), or ~0u when the segment
+// crosses none.
 uint traceCountingBox(vec3 origin, vec3 direction, float tMax) {
-  traceRayEXT(countingBoxes, gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT,
-              kMaskCountingBox, 0, 1, kMissClosest, origin, 0.0, direction, tMax, 0);
+  traceRayEXT(countingBoxes, gl_RayFlagsOpaqueEXT, kMaskCountingBox, 0, 1, kMissClosest, origin,
+              0.0, direction, tMax, 0);
   return hitPayload.hit.t >= 0.0 ? hitPayload.hit.instanceIndex : 0xFFFFFFFFu;
 }
 #endif

@@ -48,14 +48,14 @@ bool traceShadow(vec3 origin, vec3 direction, float tMax) {
 #ifdef MG_HIT_FEEDBACK
 layout(set = 0, binding = kBindingCountingBoxes) uniform accelerationStructureEXT countingBoxes;
 
-// A counting box the ray segment crosses, the first the traversal finds (not necessarily the
-// nearest: the thesis's any-hit counts the first candidate too): its custom index (a
-// hit-feedback counter slot), or ~0u when the segment crosses none.
+// The nearest counting box the ray segment crosses (seeds/001 §3.3.2: the hitboxes'
+// closest-hit shader registers the hit; a traversal that stopped at the first box it found
+// could count one behind it): its custom index (a hit-feedback counter slot), or ~0u when the
+// segment crosses none.
 uint traceCountingBox(vec3 origin, vec3 direction, float tMax) {
   rayQueryEXT query;
-  rayQueryInitializeEXT(query, countingBoxes,
-                        gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT,
-                        kMaskCountingBox, origin, 0.0, direction, tMax);
+  rayQueryInitializeEXT(query, countingBoxes, gl_RayFlagsOpaqueEXT, kMaskCountingBox, origin,
+                        0.0, direction, tMax);
   while (rayQueryProceedEXT(query)) {
   }
   if (rayQueryGetIntersectionTypeEXT(query, true) != gl_RayQueryCommittedIntersectionTriangleEXT)

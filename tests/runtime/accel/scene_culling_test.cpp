@@ -1,13 +1,14 @@
 // SceneCulling without a device (seeds/001 §3.3.2): the frustum test, frustum culling's
 // radius, and LiPaC's state machine fed made-up hit counters: hitboxes activate above ϑ_a
-// and deactivate only after K frames below ϑ_d (doubling K each time, so nothing cycles),
+// and deactivate only after K frames below ϑ_d (doubling K each time, so nothing cycles, up to
+// 16 K, and halving it back once it stops cycling),
 // instances with their own BLAS go through "omitted" and activate above σ_a, instances that
 // appear in the frustum large enough are activated at once, and bad options are refused.
+#include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
-
-#include <limits>
 
 #include <gtest/gtest.h>
 
@@ -224,6 +225,128 @@ TEST(Lipac, QuietFramesLeaveTheLowFramesAsTheyAre) {
   }
   culling.update(farAway(), 1.0f, hits, kRays);  // 2 of 2
   EXPECT_FALSE(culling.hitboxActive(h));
+}
+
+// The departure wait over hundreds of cycles (§3.3.2: deactivate "only after the number of
+// hits has been low for several frames"). A hitbox whose box sees many rays while its
+// instances see none, the cycle the doubling is for, waits 3, 6, 12, 24, then 48 counting
+// frames (16 x --low-frames 3), never more however often it comes back. In, and straddling
+// its threshold, it keeps that wait. Once it stops cycling the wait halves back after each
+// run of 48 counting frames without a low one: out for 47 it still waits 48, out for 48 it
+// waits 24, out for 4 x 48 it waits 3 again, and in with hits for 3 x 48 a wait of 24 is 3.
+TEST(Lipac, TheHitboxDepartureWaitStaysBoundedAndDecaysBack) {
+  const CullingOptions o = lipac();
+  ASSERT_EQ(o.lowFrames, 3u);
+  const std::uint32_t cap = 48;
+  ASSERT_EQ(o.lowFrames << kDepartureWaitMaxDoublings, cap);
+  SceneCulling culling(row(), o);
+  const std::uint32_t n = culling.instanceCount();
+  const std::uint32_t h = culling.hitboxOf(0);
+  culling.update(farAway(), 1.0f, {}, 0);
+  std::vector<std::uint32_t> boxHit(culling.counterCount(), 0);
+  boxHit[n + h] = 100;
+  std::vector<std::uint32_t> instanceHit(culling.counterCount(), 0);
+  instanceHit[0] = 50;
+  const std::vector<std::uint32_t> none(culling.counterCount(), 0);
+  auto frames = [&](const std::vector<std::uint32_t>& hits, std::uint32_t count) {
+    for (std::uint32_t f = 0; f < count; ++f)
+      culling.update(farAway(), 1.0f, hits, kRays);
+  };
+  // Counting frames with no hits until it leaves (at most 5000, where the old doubling went
+  // past 1000).
+  auto framesToLeave = [&] {
+    std::uint32_t count = 0;
+    while (culling.hitboxActive(h) && count < 5000) {
+      culling.update(farAway(), 1.0f, none, kRays);
+      ++count;
+    }
+    return count;
+  };
+  auto activate = [&] {
+    frames(boxHit, 1);
+    EXPECT_TRUE(culling.hitboxActive(h));
+  };
+
+  std::vector<std::uint32_t> waits;
+  for (int cycle = 0; cycle < 300; ++cycle) {
+    activate();
+    waits.push_back(framesToLeave());
+  }
+  EXPECT_EQ(std::vector<std::uint32_t>(waits.begin(), waits.begin() + 6),
+            (std::vector<std::uint32_t>{3, 6, 12, 24, 48, 48}));
+  EXPECT_EQ(*std::max_element(waits.begin(), waits.end()), cap);
+  EXPECT_EQ(std::count(waits.begin(), waits.end(), cap), 296) << "at the cap from then on";
+
+  activate();
+  for (int frame = 0; frame < 100; ++frame)
+    frames(frame % 2 ? instanceHit : none, 1);  // neither 48 low frames nor 48 hit in a row
+  ASSERT_TRUE(culling.hitboxActive(h));
+  EXPECT_EQ(framesToLeave(), cap) << "straddling its threshold does not shorten the wait";
+  // The frame that activates it is out too: a run of cap - 1, then of cap.
+  frames(none, cap - 2);
+  activate();
+  EXPECT_EQ(framesToLeave(), cap) << "one frame short of a run";
+  frames(none, cap - 1);
+  activate();
+  EXPECT_EQ(framesToLeave(), cap / 2) << "one run: halved once";
+  frames(none, 4 * cap);
+  activate();
+  EXPECT_EQ(framesToLeave(), 3u) << "four runs: 48 down to 3";
+  activate();
+  EXPECT_EQ(framesToLeave(), 6u) << "a departure still doubles it";
+  activate();
+  EXPECT_EQ(framesToLeave(), 12u);
+  activate();
+  frames(instanceHit, 3 * cap - 1);  // in, and hit: not cycling either
+  ASSERT_TRUE(culling.hitboxActive(h));
+  EXPECT_EQ(framesToLeave(), 3u) << "three runs: 24 down to 3";
+}
+
+// The same for an instance with its own BLAS in an active hitbox: active while its rays come,
+// omitted after its wait, at most 48 counting frames over 300 cycles, and back to 3 after it
+// stays omitted for 4 runs of 48 counting frames.
+TEST(Lipac, TheInstanceDepartureWaitStaysBoundedAndDecaysBack) {
+  SceneCulling culling(row(), lipac());
+  const std::uint32_t n = culling.instanceCount();
+  const std::uint32_t far = culling.hitboxOf(4);
+  culling.update(farAway(), 1.0f, {}, 0);
+  // The shared instances beside it keep the hitbox active; instance 4 counts σ_a or nothing.
+  std::vector<std::uint32_t> reached(culling.counterCount(), 0);
+  reached[2] = reached[3] = 50;
+  reached[n + far] = 100;
+  reached[4] = 4;
+  std::vector<std::uint32_t> notReached = reached;
+  notReached[n + far] = 0;
+  notReached[4] = 0;
+  culling.update(farAway(), 1.0f, reached, kRays);
+  ASSERT_TRUE(culling.hitboxActive(far));
+  ASSERT_EQ(culling.states()[4], InstanceState::Omitted);
+  auto activate = [&] {
+    culling.update(farAway(), 1.0f, reached, kRays);
+    EXPECT_EQ(culling.states()[4], InstanceState::Active);
+  };
+  auto framesToLeave = [&] {
+    std::uint32_t count = 0;
+    while (culling.states()[4] == InstanceState::Active && count < 5000) {
+      culling.update(farAway(), 1.0f, notReached, kRays);
+      ++count;
+    }
+    EXPECT_TRUE(culling.hitboxActive(far));
+    return count;
+  };
+  std::vector<std::uint32_t> waits;
+  for (int cycle = 0; cycle < 300; ++cycle) {
+    activate();
+    waits.push_back(framesToLeave());
+  }
+  EXPECT_EQ(std::vector<std::uint32_t>(waits.begin(), waits.begin() + 6),
+            (std::vector<std::uint32_t>{3, 6, 12, 24, 48, 48}));
+  EXPECT_EQ(*std::max_element(waits.begin(), waits.end()), 48u);
+  for (int frame = 0; frame < 4 * 48; ++frame)
+    culling.update(farAway(), 1.0f, notReached, kRays);
+  ASSERT_EQ(culling.states()[4], InstanceState::Omitted);
+  activate();
+  EXPECT_EQ(framesToLeave(), 3u);
 }
 
 TEST(Lipac, ThresholdsScaleWithTheRaysTraced) {

@@ -67,11 +67,10 @@ bool dispatchTracesPath(uint path, uint pathCount) {
 #include "hit_counters.glsl"
 
 // LiPaC's hit feedback (seeds/001 §3.3.2): a path ray counts the instance it hit, and a
-// probe along the same segment through the counting boxes' own TLAS counts a box it crosses
-// before that hit (a hitbox, or an omitted instance's box: the custom index is the counter
-// slot). The probe ends at the first box its traversal finds, as the thesis's any-hit
-// registers the first candidate and lets the ray go on: one box per ray, without a second
-// path through the raygen, and path rays never traverse a box.
+// probe along the same segment through the counting boxes' own TLAS counts the nearest box it
+// crosses before that hit (a hitbox, or an omitted instance's box: the custom index is the
+// counter slot), as the thesis's hitbox closest-hit shader registers the hit and masks out
+// the other boxes: one box per ray, and path rays never traverse a box.
 //
 // The counts of an invocation go through a two-slot buffer first: the P camera rays of a
 // pixel mostly hit one instance, and the bounces of its paths keep returning to a few (the
