@@ -321,7 +321,8 @@ void printSummary(const std::string& out, const runtime::RenderStats& stats) {
             << ", " << stats.shading << "): median " << stats.medianGpuMilliseconds()
             << " ms per frame; shaders " << stats.shadersCompiled << " compiled in "
             << stats.shaderCompileMilliseconds << " ms, pipeline "
-            << stats.pipelineCreateMilliseconds << " ms\n";
+            << stats.pipelineCreateMilliseconds << " ms (" << runtime::pipelineCacheText(stats)
+            << ")\n";
   if (stats.cache != "none" && !stats.frames.empty()) {
     const auto& last = stats.frames.back();
     std::cerr << stats.cache << " cache"

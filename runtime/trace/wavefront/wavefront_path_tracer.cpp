@@ -174,7 +174,7 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
     auto module = createShaderModule(
         device, compiler.compile({"wavefront.glsl", ShaderStage::Compute, passDefines}));
     computePasses_[pass] =
-        createComputePipeline(device, module.get(), layout_.get(), kPassNames[pass]);
+        createComputePipeline(context_, module.get(), layout_.get(), kPassNames[pass]);
   }
   if (materials)
     createMaterialPasses(compiler, *materials, defines, setup.compileThreads);
@@ -205,7 +205,7 @@ void WavefrontPathTracer::createMaterialPasses(ShaderCompiler& compiler,
   parallelFor(spirv.size(), compileThreads, [&](std::size_t bin, std::uint32_t) {
     auto module = createShaderModule(device, spirv[bin]);
     materialPasses_[bin] =
-        createComputePipeline(device, module.get(), layout_.get(),
+        createComputePipeline(context_, module.get(), layout_.get(),
                               ("wavefront material " + materials.distinct[bin].name).c_str());
   });
 }
