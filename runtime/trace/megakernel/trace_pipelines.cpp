@@ -8,6 +8,7 @@
 #include <thread>
 #include <vector>
 
+#include "runtime/host/parallel_for.h"
 #include "runtime/shaders/shared_types.h"
 #include "runtime/vk/compute_pipeline.h"
 #include "runtime/vk/vulkan_error.h"
@@ -251,14 +252,17 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   fillDefines.push_back("MG_TILE_FILL_PASS=1");
 
   if (query) {
-    auto module = createShaderModule(
-        device, compiler.compile({"path_tracer.glsl", ShaderStage::Compute, defines}));
-    pipeline_ = createComputePipeline(context, module.get(), layout, "path tracer");
-    if (tileFillPass) {
-      auto fillModule = createShaderModule(
-          device, compiler.compile({"path_tracer.glsl", ShaderStage::Compute, fillDefines}));
-      fillPipeline_ = createComputePipeline(context, fillModule.get(), layout, "tile fill");
-    }
+    // The path tracer and the tile fill: both compiled, then both pipelines created at once.
+    std::vector<ShaderCompileRequest> requests = {
+        {"path_tracer.glsl", ShaderStage::Compute, defines}};
+    if (tileFillPass)
+      requests.push_back({"path_tracer.glsl", ShaderStage::Compute, fillDefines});
+    const auto spirv = compiler.compileAll(requests, setup.compileThreads);
+    parallelFor(spirv.size(), setup.compileThreads, [&](std::size_t i, std::uint32_t) {
+      auto module = createShaderModule(device, spirv[i]);
+      (i == 0 ? pipeline_ : fillPipeline_) = createComputePipeline(
+          context, module.get(), layout, i == 0 ? "path tracer" : "tile fill");
+    });
     return;
   }
 
