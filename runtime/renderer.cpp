@@ -1,5 +1,6 @@
 #include "runtime/renderer.h"
 
+#include <chrono>
 #include <set>
 #include <stdexcept>
 
@@ -64,6 +65,7 @@ Renderer::~Renderer() = default;
 // textures uploaded; the acceleration structures built; the shaders compiled into the chosen
 // architecture's pipelines; then the frames.
 RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings) {
+  const auto renderStart = std::chrono::steady_clock::now();
   const VulkanContext& context = *context_;
   const std::uint32_t pathWeight = validateRender(options_, settings, scene, context);
   const SceneMaterials materials = linkSceneMaterials(scene, options_.nodeLibraryDirectory);
@@ -108,6 +110,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   frames.cache = pipelines.cache.get();
   frames.tracer = pipelines.tracer.get();
   frames.cullingViewSize = options_.debugCullingSize;
+  frames.renderStart = renderStart;
   FrameLoop(context, frames).run(result);
   return result;
 }

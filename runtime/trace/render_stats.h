@@ -148,6 +148,10 @@ struct RenderStats {
   bool pipelineCacheHitsReported = false;
   std::uint64_t pipelineCacheLoadedBytes = 0;
   bool pipelineCacheWritten = false;
+  // Wall time from the start of Renderer::render (the device is open by then) to the end of
+  // the first frame read back: every set-up stage (materials, upload, acceleration
+  // structures, shaders, pipelines) and the first frame.
+  double firstFrameMilliseconds = 0.0;
   RayTracingStack rayTracingStack;  // pipeline backend only
   std::string cache = "none";       // "none", "texel" or "tile"
   std::string cacheTile;            // tile cache: "4x4 nearest entry [grouped]"

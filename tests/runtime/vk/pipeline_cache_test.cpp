@@ -351,6 +351,7 @@ TEST(PipelineCache, TheRendererKeepsItBesideTheShaderCache) {
   EXPECT_TRUE(first.pipelineCacheWritten);
   EXPECT_GT(second.pipelineCacheLoadedBytes, 0u);
   EXPECT_FALSE(second.pipelineCacheWritten);
+  EXPECT_GT(first.firstFrameMilliseconds, first.pipelineCreateMilliseconds);
   std::size_t pipelineFiles = 0;
   for (const auto& name : folderNames(folder)) {
     EXPECT_EQ(name.find(".partial-"), std::string::npos) << name;
