@@ -173,8 +173,19 @@ PipelineCache::PipelineCache(VkDevice device, const VkPhysicalDeviceProperties& 
   } else if (tooLarge) {
     warnUnusable(file_, "larger than " + std::to_string(kMaxPipelineCacheFileBytes >> 20) + " MiB");
   }
-  cache_ = createCache(device_, data);
-  loadedBytes_ = data.size();
+  // The driver may still refuse data it wrote (it must not crash on it): then it starts empty.
+  VkPipelineCacheCreateInfo info{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
+  info.initialDataSize = data.size();
+  info.pInitialData = data.empty() ? nullptr : data.data();
+  const VkResult result = vkCreatePipelineCache(device_, &info, nullptr, &cache_);
+  if (result == VK_SUCCESS) {
+    loadedBytes_ = data.size();
+    return;
+  }
+  if (data.empty())
+    checkVk(result, "vkCreatePipelineCache");
+  warnUnusable(file_, std::string("the driver refused it: ") + resultName(result));
+  cache_ = createCache(device_, {});
 }
 
 PipelineCache::~PipelineCache() {
