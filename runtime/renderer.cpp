@@ -1,5 +1,6 @@
 #include "runtime/renderer.h"
 
+#include <chrono>
 #include <set>
 #include <stdexcept>
 
@@ -34,8 +35,27 @@ std::size_t countDistinctMaterialGraphs(const Scene& scene) {
   return graphs.size();
 }
 
+namespace {
+
+// Where compiled shaders and the device's pipeline cache are kept (none without the cache).
+std::filesystem::path cacheDirectory(const RendererOptions& options) {
+  if (!options.shaderCache)
+    return {};
+  return options.shaderCacheDirectory.empty() ? defaultShaderCacheDirectory()
+                                              : options.shaderCacheDirectory;
+}
+
+ContextOptions contextOptions(const RendererOptions& options) {
+  ContextOptions context = options.context;
+  context.pipelineCacheDirectory = cacheDirectory(options);
+  return context;
+}
+
+}  // namespace
+
 Renderer::Renderer(RendererOptions options)
-    : options_(std::move(options)), context_(std::make_unique<VulkanContext>(options_.context)) {}
+    : options_(std::move(options)),
+      context_(std::make_unique<VulkanContext>(contextOptions(options_))) {}
 
 Renderer::~Renderer() = default;
 
@@ -45,6 +65,7 @@ Renderer::~Renderer() = default;
 // textures uploaded; the acceleration structures built; the shaders compiled into the chosen
 // architecture's pipelines; then the frames.
 RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings) {
+  const auto renderStart = std::chrono::steady_clock::now();
   const VulkanContext& context = *context_;
   const std::uint32_t pathWeight = validateRender(options_, settings, scene, context);
   const SceneMaterials materials = linkSceneMaterials(scene, options_.nodeLibraryDirectory);
@@ -52,11 +73,9 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   RenderResult result;
   result.stats = describeRender(options_, settings, scene, context, materials, plan);
 
-  // Where compiled shaders are kept (none without the cache).
-  std::filesystem::path shaderCacheDirectory;
-  if (options_.shaderCache)
-    shaderCacheDirectory = options_.shaderCacheDirectory.empty() ? defaultShaderCacheDirectory()
-                                                                 : options_.shaderCacheDirectory;
+  const std::filesystem::path shaderCacheDirectory = cacheDirectory(options_);
+  PipelineCache& pipelineCache = context.pipelineCache();
+  const PipelineCacheCounts countsBefore = pipelineCache.counts();
 
   SceneResources resources =
       uploadSceneResources(context, scene, materials.emissionKinds, materials.linked.texturePaths,
@@ -72,6 +91,14 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   pipelineInputs.shaderCacheDirectory = shaderCacheDirectory;
   const RenderPipelines pipelines =
       buildPipelines(context, options_, settings, plan, pipelineInputs, result.stats);
+  // Every pipeline of the render exists now (the animated meshes' pass too): the driver's
+  // cache is written back before the frames, so a render that fails later still leaves it.
+  const PipelineCacheCounts countsAfter = pipelineCache.counts();
+  result.stats.pipelinesCreated = countsAfter.created - countsBefore.created;
+  result.stats.pipelineCacheHitsReported = countsAfter.reported > countsBefore.reported;
+  result.stats.pipelineCacheHits = countsAfter.hits - countsBefore.hits;
+  result.stats.pipelineCacheLoadedBytes = pipelineCache.loadedBytes();
+  result.stats.pipelineCacheWritten = pipelineCache.save();
 
   FrameLoopInputs frames;
   frames.scene = &scene;
@@ -83,6 +110,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   frames.cache = pipelines.cache.get();
   frames.tracer = pipelines.tracer.get();
   frames.cullingViewSize = options_.debugCullingSize;
+  frames.renderStart = renderStart;
   FrameLoop(context, frames).run(result);
   return result;
 }

@@ -38,6 +38,8 @@ constexpr std::size_t kManyMaterialGraphs = 8;
 
 struct RendererOptions {
   ContextOptions context;
+  // The SPIR-V cache, and the device's pipeline cache file in the same folder
+  // (runtime/vk/pipeline_cache.h); false: neither.
   bool shaderCache = true;
   std::filesystem::path shaderCacheDirectory;  // empty: defaultShaderCacheDirectory()
   std::filesystem::path nodeLibraryDirectory;  // empty: the embedded node library

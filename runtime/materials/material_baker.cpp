@@ -30,9 +30,20 @@ constexpr std::uint32_t kBakeVec4PerPixel = 4;  // bake.comp's BakeValues layout
 
 }  // namespace
 
+namespace {
+
+// The device's pipeline cache beside the SPIR-V cache, as the renderer keeps it.
+ContextOptions withPipelineCache(ContextOptions options,
+                                 const std::filesystem::path& shaderCacheDirectory) {
+  options.pipelineCacheDirectory = shaderCacheDirectory;
+  return options;
+}
+
+}  // namespace
+
 MaterialBaker::MaterialBaker(const ContextOptions& options,
                              std::filesystem::path shaderCacheDirectory)
-    : context_(std::make_unique<VulkanContext>(options)),
+    : context_(std::make_unique<VulkanContext>(withPipelineCache(options, shaderCacheDirectory))),
       shaderCacheDirectory_(std::move(shaderCacheDirectory)) {}
 
 MaterialBaker::~MaterialBaker() = default;
@@ -96,7 +107,8 @@ BakeOutputs MaterialBaker::bake(const BakeMaterial& material, const BakeSettings
       rawLayout, [device](VkPipelineLayout l) { vkDestroyPipelineLayout(device, l, nullptr); });
 
   VulkanHandle<VkPipeline> pipeline =
-      createComputePipeline(device, module.get(), rawLayout, "bake");
+      createComputePipeline(context, module.get(), rawLayout, "bake");
+  context.pipelineCache().save();
 
   VkDescriptorPoolSize poolSizes[2] = {
       {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},

@@ -52,7 +52,8 @@ struct BakeOutputs {
 
 class MaterialBaker {
  public:
-  // `shaderCacheDirectory`: empty disables the SPIR-V disk cache.
+  // `shaderCacheDirectory`: the SPIR-V disk cache and the device's pipeline cache (empty:
+  // neither).
   MaterialBaker(const ContextOptions& options, std::filesystem::path shaderCacheDirectory);
   ~MaterialBaker();
   MaterialBaker(const MaterialBaker&) = delete;

@@ -316,6 +316,10 @@ void FrameLoop::run(RenderResult& result) {
     frameStats.wallMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     readFrame(trace, lookStats, frameStats);
+    if (f == 0)
+      result.stats.firstFrameMilliseconds = std::chrono::duration<double, std::milli>(
+                                                std::chrono::steady_clock::now() - in_.renderStart)
+                                                .count();
     accel.addFrame(frameStats, result.stats);
     result.stats.frames.push_back(frameStats);
     if (settings.onFrameImage && settings.frameImageWanted && settings.frameImageWanted(f))

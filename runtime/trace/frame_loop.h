@@ -4,6 +4,7 @@
 // frame's statistics; at the end the accumulated image.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <vector>
 
@@ -31,6 +32,8 @@ struct FrameLoopInputs {
   const MaterialCache* cache = nullptr;
   const FrameTracer* tracer = nullptr;
   std::uint32_t cullingViewSize = 0;  // RendererOptions::debugCullingSize
+  // When Renderer::render began: RenderStats::firstFrameMilliseconds counts from it.
+  std::chrono::steady_clock::time_point renderStart = std::chrono::steady_clock::now();
 };
 
 class FrameLoop {

@@ -133,6 +133,7 @@ std::unique_ptr<FrameTracer> buildMegakernel(const ShaderBuild& b, ShaderCompile
                                     : std::max(1u, std::thread::hardware_concurrency());
   setup.pipeline.pipelineThreads =
       b.context.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? 1 : threads;
+  setup.pipeline.compileThreads = b.options.shaderCompileThreads;
   setup.pipeline.defines = defines;
   if (hitFeedback)
     setup.pipeline.defines.push_back("MG_HIT_FEEDBACK=1");

@@ -9,6 +9,16 @@ std::string RenderStats::cacheEntriesText() const {
          (cacheEntriesFitted ? " (the default, fitted to the device)" : "");
 }
 
+std::string pipelineCacheText(const RenderStats& stats) {
+  std::string text = std::to_string(stats.pipelinesCreated) +
+                     (stats.pipelinesCreated == 1 ? " pipeline, " : " pipelines, ");
+  if (stats.pipelineCacheHitsReported)
+    text += std::to_string(stats.pipelineCacheHits) + " from the pipeline cache";
+  else
+    text += "the driver does not say how many from the pipeline cache";
+  return text;
+}
+
 double RenderStats::medianGpuMilliseconds() const {
   if (frames.empty())
     return 0.0;

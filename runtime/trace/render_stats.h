@@ -138,6 +138,20 @@ struct RenderStats {
   std::uint32_t wavefrontChunks = 0;
   // Shader modules and pipeline (the driver's own compile), excluding GLSL → SPIR-V.
   double pipelineCreateMilliseconds = 0.0;
+  // The pipelines created for the render (the animated meshes' pass included) and, where
+  // the driver says (VK_EXT_pipeline_creation_feedback: pipelineCacheHitsReported), how many
+  // it found in the pipeline cache. The driver's data read from the cache file when the
+  // device was opened (0: none, or the file was ignored), and whether the render wrote the
+  // file back (false when nothing was new).
+  std::uint32_t pipelinesCreated = 0;
+  std::uint32_t pipelineCacheHits = 0;
+  bool pipelineCacheHitsReported = false;
+  std::uint64_t pipelineCacheLoadedBytes = 0;
+  bool pipelineCacheWritten = false;
+  // Wall time from the start of Renderer::render (the device is open by then) to the end of
+  // the first frame read back: every set-up stage (materials, upload, acceleration
+  // structures, shaders, pipelines) and the first frame.
+  double firstFrameMilliseconds = 0.0;
   RayTracingStack rayTracingStack;  // pipeline backend only
   std::string cache = "none";       // "none", "texel" or "tile"
   std::string cacheTile;            // tile cache: "4x4 nearest entry [grouped]"
@@ -161,6 +175,10 @@ struct RenderStats {
   // `render` and `bench` print).
   std::string cacheEntriesText() const;
 };
+
+// "12 pipelines, 12 from the pipeline cache" (or "..., the driver does not say how many from
+// the pipeline cache"): what `render` and `bench` print after the pipeline time.
+std::string pipelineCacheText(const RenderStats& stats);
 
 // One header line, then one line per frame; set-up figures repeat on every line so each
 // line stands alone in a spreadsheet.

@@ -34,17 +34,42 @@ VulkanHandle<VkPipelineLayout> createPipelineLayout(VkDevice device, VkDescripto
       layout, [device](VkPipelineLayout l) { vkDestroyPipelineLayout(device, l, nullptr); });
 }
 
-VulkanHandle<VkPipeline> createComputePipeline(VkDevice device, VkShaderModule module,
+PipelineCreationFeedback::PipelineCreationFeedback(const VulkanContext& context,
+                                                   std::uint32_t stageCount)
+    : context_(context), stages_(stageCount) {
+  info_.sType = VK_STRUCTURE_TYPE_PIPELINE_CREATION_FEEDBACK_CREATE_INFO;
+  info_.pPipelineCreationFeedback = &pipeline_;
+  info_.pipelineStageCreationFeedbackCount = stageCount;
+  info_.pPipelineStageCreationFeedbacks = stages_.data();
+}
+
+const void* PipelineCreationFeedback::chain(const void* next) {
+  if (!context_.info().pipelineCreationFeedback)
+    return next;
+  info_.pNext = next;
+  return &info_;
+}
+
+void PipelineCreationFeedback::count() const {
+  context_.pipelineCache().countCreated(pipeline_);
+}
+
+VulkanHandle<VkPipeline> createComputePipeline(const VulkanContext& context, VkShaderModule module,
                                                VkPipelineLayout layout, const char* what) {
+  VkDevice device = context.device();
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
   info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
   info.stage.module = module;
   info.stage.pName = "main";
   info.layout = layout;
+  PipelineCreationFeedback feedback(context, 1);
+  info.pNext = feedback.chain(info.pNext);
   VkPipeline pipeline = VK_NULL_HANDLE;
-  checkVk(vkCreateComputePipelines(device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline),
+  checkVk(vkCreateComputePipelines(device, context.pipelineCache().handle(), 1, &info, nullptr,
+                                   &pipeline),
           ("vkCreateComputePipelines (" + std::string(what) + ")").c_str());
+  feedback.count();
   return VulkanHandle<VkPipeline>(
       pipeline, [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); });
 }
@@ -59,7 +84,7 @@ PushConstantPass createPushConstantPass(const VulkanContext& context, const std:
   PushConstantPass pass;
   pass.layout =
       createPipelineLayout(device, VK_NULL_HANDLE, VK_SHADER_STAGE_COMPUTE_BIT, pushBytes);
-  pass.pipeline = createComputePipeline(device, module.get(), pass.layout.get(), what);
+  pass.pipeline = createComputePipeline(context, module.get(), pass.layout.get(), what);
   return pass;
 }
 

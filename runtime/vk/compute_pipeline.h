@@ -26,8 +26,28 @@ VulkanHandle<VkPipelineLayout> createPipelineLayout(VkDevice device, VkDescripto
                                                     VkShaderStageFlags pushStages = 0,
                                                     std::uint32_t pushBytes = 0);
 
-// A compute pipeline of `module`'s "main" under `layout`; `what` names it in errors.
-VulkanHandle<VkPipeline> createComputePipeline(VkDevice device, VkShaderModule module,
+// What the driver says of one pipeline it creates (VK_EXT_pipeline_creation_feedback),
+// where the device has it: chain() puts the request into a create info's pNext chain, and
+// count() gives the answer to the context's pipeline cache, after the pipeline is created.
+class PipelineCreationFeedback {
+ public:
+  PipelineCreationFeedback(const VulkanContext& context, std::uint32_t stageCount);
+  PipelineCreationFeedback(const PipelineCreationFeedback&) = delete;
+  PipelineCreationFeedback& operator=(const PipelineCreationFeedback&) = delete;
+  // `next` where the device has no feedback; else this request, followed by `next`.
+  const void* chain(const void* next);
+  void count() const;
+
+ private:
+  const VulkanContext& context_;
+  VkPipelineCreationFeedback pipeline_{};
+  std::vector<VkPipelineCreationFeedback> stages_;
+  VkPipelineCreationFeedbackCreateInfo info_{};
+};
+
+// A compute pipeline of `module`'s "main" under `layout`, created with the context's
+// pipeline cache; `what` names it in errors.
+VulkanHandle<VkPipeline> createComputePipeline(const VulkanContext& context, VkShaderModule module,
                                                VkPipelineLayout layout, const char* what);
 
 // A compute pass that reads and writes only through buffer device addresses in its push

@@ -1,5 +1,6 @@
 #include "runtime/vk/shader_compiler.h"
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdlib>
@@ -15,6 +16,7 @@
 #include <glslang/build_info.h>
 
 #include "runtime/host/atomic_file.h"
+#include "runtime/host/parallel_for.h"
 
 namespace memograph::runtime {
 
@@ -216,6 +218,36 @@ ShaderCompiler ShaderCompiler::withFile(const std::string& name, std::string tex
   std::map<std::string, std::string> files = files_;
   files[name] = std::move(text);
   return ShaderCompiler(std::move(files), cacheDirectory_);
+}
+
+std::vector<std::vector<std::uint32_t>> ShaderCompiler::compileAll(
+    const std::vector<ShaderCompileRequest>& requests, std::uint32_t threads) {
+  std::vector<std::vector<std::uint32_t>> spirv(requests.size());
+  std::vector<ShaderCompiler> compilers(workerThreads(threads, requests.size()), fresh());
+  const auto start = std::chrono::steady_clock::now();
+  parallelFor(requests.size(), threads, [&](std::size_t index, std::uint32_t thread) {
+    spirv[index] = compilers[thread].compile(requests[index]);
+  });
+  const double waited =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  for (const auto& compiler : compilers) {
+    stats_.hits += compiler.stats_.hits;
+    stats_.compiled += compiler.stats_.compiled;
+  }
+  if (std::any_of(compilers.begin(), compilers.end(),
+                  [](const ShaderCompiler& c) { return c.stats_.compiled > 0; }))
+    stats_.compileMilliseconds += waited;
+  return spirv;
+}
+
+void ShaderCompiler::addConcurrentStats(const std::vector<ShaderCacheStats>& concurrent) {
+  double longest = 0.0;
+  for (const auto& s : concurrent) {
+    stats_.hits += s.hits;
+    stats_.compiled += s.compiled;
+    longest = std::max(longest, s.compileMilliseconds);
+  }
+  stats_.compileMilliseconds += longest;
 }
 
 std::vector<std::uint32_t> ShaderCompiler::compile(const ShaderCompileRequest& request) {

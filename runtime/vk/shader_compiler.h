@@ -37,7 +37,22 @@ class ShaderCompiler {
   // Returns SPIR-V; throws std::runtime_error with glslang's log on a compile error.
   std::vector<std::uint32_t> compile(const ShaderCompileRequest& request);
 
+  // Every request's SPIR-V, in the order given, compiled on up to `threads` threads (0: one
+  // per hardware thread), each with a copy of this compiler. Adds their hits and compiles to
+  // this compiler's statistics, and the wall time waited when anything was compiled (not
+  // the threads' sum). Throws the first compile error.
+  std::vector<std::vector<std::uint32_t>> compileAll(
+      const std::vector<ShaderCompileRequest>& requests, std::uint32_t threads);
+
   const ShaderCacheStats& stats() const { return stats_; }
+
+  // Adds the statistics of compilers that ran at the same time, each from the same start (a
+  // fresh() copy per thread): their hits and compiles, and the longest of their compile
+  // times, which is the wall time they took together.
+  void addConcurrentStats(const std::vector<ShaderCacheStats>& concurrent);
+
+  // A compiler of the same files and cache folder with fresh statistics, for another thread.
+  ShaderCompiler fresh() const { return ShaderCompiler(files_, cacheDirectory_); }
 
   // A compiler that sees this one's files plus `name` (replacing one of that name): one
   // generated include per shader, as the per-material shaders need, with fresh statistics.

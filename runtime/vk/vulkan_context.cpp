@@ -32,6 +32,7 @@ struct Candidate {
   bool accelerationStructure = false;
   bool rayQuery = false;
   bool rayTracingPipeline = false;
+  bool pipelineCreationFeedback = false;
   std::vector<std::string> missing;  // what keeps it from ray tracing
 };
 
@@ -46,6 +47,8 @@ Candidate inspect(VkPhysicalDevice device) {
   c.rayQuery = c.accelerationStructure && hasExtension(extensions, VK_KHR_RAY_QUERY_EXTENSION_NAME);
   c.rayTracingPipeline = c.accelerationStructure &&
                          hasExtension(extensions, VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME);
+  c.pipelineCreationFeedback =
+      hasExtension(extensions, VK_EXT_PIPELINE_CREATION_FEEDBACK_EXTENSION_NAME);
   if (c.properties.apiVersion < VK_API_VERSION_1_2)
     c.missing.push_back("Vulkan 1.2");
   if (!c.accelerationStructure)
@@ -538,6 +541,10 @@ VulkanContext::VulkanContext(const ContextOptions& options)
                                          VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
   extensions.push_back(backend_ == Backend::RayQuery ? VK_KHR_RAY_QUERY_EXTENSION_NAME
                                                      : VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME);
+  // Optional: only the pipeline cache's counts of hits use it.
+  info_.pipelineCreationFeedback = chosen.pipelineCreationFeedback;
+  if (info_.pipelineCreationFeedback)
+    extensions.push_back(VK_EXT_PIPELINE_CREATION_FEEDBACK_EXTENSION_NAME);
 
   queueFamily_ = chooseQueueFamily(physicalDevice_, info_);
 
@@ -571,11 +578,17 @@ VulkanContext::VulkanContext(const ContextOptions& options)
   loadDeviceFunctions(device, backend_, info_.traceRaysIndirect, functions_);
   readProperties(physicalDevice_, info_);
   vkGetPhysicalDeviceMemoryProperties(physicalDevice_, &memoryProperties_);
+  pipelineCache_ = std::make_unique<PipelineCache>(
+      device, chosen.properties,
+      options.pipelineCacheDirectory.empty()
+          ? std::filesystem::path()
+          : options.pipelineCacheDirectory / pipelineCacheFileName(chosen.properties));
 }
 
 VulkanContext::~VulkanContext() {
-  // Members go in reverse order: pool, device, messenger, instance.
+  // Members go in reverse order: pool, pipeline cache, device, messenger, instance.
   commandPool_.reset();
+  pipelineCache_.reset();
   device_.reset();
 }
 

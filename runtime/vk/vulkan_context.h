@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -11,6 +12,7 @@
 
 #include <vulkan/vulkan.h>
 
+#include "runtime/vk/pipeline_cache.h"
 #include "runtime/vk/vulkan_handle.h"
 
 namespace memograph::runtime {
@@ -30,6 +32,9 @@ struct ContextOptions {
   // With Backend::Auto: take the pipeline backend when the device has it, else ray query.
   // Set for scenes with many materials, where per-material callables keep shaders small.
   bool autoPrefersPipeline = false;
+  // Where the device's pipeline cache file is kept (PipelineCache; the Renderer puts it in
+  // the shader cache's folder). Empty: no pipeline cache.
+  std::filesystem::path pipelineCacheDirectory;
 };
 
 // Entry points of device extensions, loaded per device (no global dispatch state).
@@ -83,6 +88,9 @@ struct DeviceInfo {
   // shaderInt64 and shaderBufferInt64Atomics, enabled when present: the texel cache's 64-bit
   // counter clock (thesis §5.3.3) needs both.
   bool bufferInt64Atomics = false;
+  // VK_EXT_pipeline_creation_feedback enabled: pipelines say whether the driver found them in
+  // the pipeline cache.
+  bool pipelineCreationFeedback = false;
 };
 
 // Names and ray-tracing support of every device, for --list-devices and error messages.
@@ -113,6 +121,10 @@ class VulkanContext {
   const DeviceInfo& info() const { return info_; }
   // The backend chosen from the requested one and what the device supports.
   Backend backend() const { return backend_; }
+  // The device's pipeline cache: every pipeline is created with it (handle() is
+  // VK_NULL_HANDLE without a folder). Thread-safe; the renderer saves it after creating its
+  // pipelines.
+  PipelineCache& pipelineCache() const { return *pipelineCache_; }
 
   // Validation-layer errors seen so far (empty without validation).
   std::vector<std::string> validationErrors() const;
@@ -139,6 +151,7 @@ class VulkanContext {
   VkQueue queue_ = VK_NULL_HANDLE;
   std::uint32_t queueFamily_ = 0;
   VulkanHandle<VkCommandPool> commandPool_;
+  std::unique_ptr<PipelineCache> pipelineCache_;
   DeviceFunctions functions_;
   DeviceInfo info_;
   Backend backend_ = Backend::Auto;

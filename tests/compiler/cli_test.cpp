@@ -323,10 +323,10 @@ TEST_F(CliTest, RenderAndBenchRefuseBadCacheOptionValues) {
   EXPECT_FALSE(fs::exists(directory_ / "x.pfm"));
 }
 
-// The shader cache is an optimisation. An entry that cannot be written (here its
-// folder is a file; a full disk is ShaderCache.AnUnwritableEntryIsAWarningAndLeavesNoTemporary
-// in tests/runtime, since a file-size limit also breaks lavapipe's file-backed memory) is a
-// warning, and the render goes on.
+// The shader and pipeline caches are optimisations. An entry that cannot be written (here
+// their folder is a file; a full disk is
+// ShaderCache.AnUnwritableEntryIsAWarningAndLeavesNoTemporary in tests/runtime, since a file-size
+// limit also breaks lavapipe's file-backed memory) is a warning, and the render goes on.
 TEST_F(CliTest, RenderGoesOnWhenTheShaderCacheCannotBeWritten) {
   if (runCli("bench --help").exitCode != 0)
     GTEST_SKIP() << "this memograph has no renderer";
@@ -350,6 +350,8 @@ TEST_F(CliTest, RenderGoesOnWhenTheShaderCacheCannotBeWritten) {
     GTEST_SKIP() << "this memograph reads no scene files or writes no PNG: " << run.output;
   EXPECT_EQ(run.exitCode, 0) << run.output;
   EXPECT_NE(run.output.find("warning: cannot write the shader cache entry"), std::string::npos)
+      << run.output;
+  EXPECT_NE(run.output.find("warning: cannot write the pipeline cache"), std::string::npos)
       << run.output;
   EXPECT_TRUE(fs::exists(out));
   std::vector<std::string> names;

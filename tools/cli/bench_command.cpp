@@ -259,8 +259,9 @@ void printRun(const Bench& bench, const RunNames& names, const BenchRun& run) {
   if (!o.staticCamera)
     std::cout << " of a " << bench.plan.pathCameras << "-camera path, stride " << bench.plan.stride;
   std::cout << "; " << stats.materialCount << " materials, " << stats.materialDispatch << ", "
-            << stats.shading << "; pipeline " << stats.pipelineCreateMilliseconds << " ms; BLAS "
-            << as.blasBytes << " B, TLAS " << as.tlasBytes << " B)\n";
+            << stats.shading << "; pipeline " << stats.pipelineCreateMilliseconds << " ms ("
+            << runtime::pipelineCacheText(stats) << "); BLAS " << as.blasBytes << " B, TLAS "
+            << as.tlasBytes << " B)\n";
   if (const auto& stack = stats.rayTracingStack; stack.driverDefault > 0)
     std::cout << "  ray-tracing stack " << stack.pipeline << " B an invocation (the spec's "
               << "default " << stack.driverDefault << " B; raygen " << stack.raygen << ", hit "

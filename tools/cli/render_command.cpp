@@ -377,7 +377,9 @@ void printSummary(const std::string& out, const runtime::RenderStats& stats) {
             << ", " << stats.shading << "): median " << stats.medianGpuMilliseconds()
             << " ms per frame; shaders " << stats.shadersCompiled << " compiled in "
             << stats.shaderCompileMilliseconds << " ms, pipeline "
-            << stats.pipelineCreateMilliseconds << " ms\n";
+            << stats.pipelineCreateMilliseconds << " ms (" << runtime::pipelineCacheText(stats)
+            << "); first frame done " << stats.firstFrameMilliseconds
+            << " ms after the render began\n";
   if (stats.cache != "none" && !stats.frames.empty()) {
     const auto& last = stats.frames.back();
     std::cerr << stats.cache << " cache"

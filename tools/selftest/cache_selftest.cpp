@@ -363,7 +363,7 @@ ProgramResult runProgram(const VulkanContext& context, const Program& program) {
   VkPipelineLayout rawLayout = VK_NULL_HANDLE;
   checkVk(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &rawLayout), "pipeline layout");
   auto layout = handle(device, rawLayout, vkDestroyPipelineLayout);
-  auto pipeline = createComputePipeline(device, module.get(), rawLayout, "self-test");
+  auto pipeline = createComputePipeline(context, module.get(), rawLayout, "self-test");
 
   gpu::FrameConstants frame{};
   frame.cache = glm::uvec4(program.entries, 1u, 0u, program.tilesPerRow);

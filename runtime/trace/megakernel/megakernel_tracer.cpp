@@ -1,5 +1,7 @@
 #include "runtime/trace/megakernel/megakernel_tracer.h"
 
+#include <future>
+
 namespace memograph::runtime {
 
 namespace {
@@ -22,15 +24,28 @@ void shaderBarrier(VkCommandBuffer commands) {
 
 MegakernelTracer::MegakernelTracer(const VulkanContext& context, ShaderCompiler& compiler,
                                    std::uint32_t textureCount, const MegakernelSetup& setup)
-    : pipeline_(context, compiler, textureCount, setup.pipeline),
-      splitCounting_(setup.splitCounting),
+    : splitCounting_(setup.splitCounting),
       pathsPerDispatch_(setup.pathsPerDispatch),
       width_(setup.width),
       height_(setup.height),
       tileFillRows_(setup.tileFillRows) {
-  if (setup.quietDefines)
-    quietPipeline_.emplace(context, compiler, textureCount,
-                           quietSetup(setup.pipeline, *setup.quietDefines));
+  if (!setup.quietDefines) {
+    pipeline_.emplace(context, compiler, textureCount, setup.pipeline);
+    return;
+  }
+  // Each with a compiler of its own (a compiler's statistics are not shared); their compile
+  // times overlap, so the longer one is what the pair cost.
+  ShaderCompiler countingCompiler = compiler.fresh();
+  ShaderCompiler quietCompiler = compiler.fresh();
+  const TracePipelineSetup quiet = quietSetup(setup.pipeline, *setup.quietDefines);
+  // Declared after what it uses: if the counting pipeline throws, leaving the scope waits
+  // for the quiet one first.
+  std::future<void> quietBuilt = std::async(std::launch::async, [&] {
+    quietPipeline_.emplace(context, quietCompiler, textureCount, quiet);
+  });
+  pipeline_.emplace(context, countingCompiler, textureCount, setup.pipeline);
+  quietBuilt.get();
+  compiler.addConcurrentStats({countingCompiler.stats(), quietCompiler.stats()});
 }
 
 std::vector<PathDispatch> MegakernelTracer::plan(const FrameTrace& trace) const {
@@ -49,14 +64,14 @@ void MegakernelTracer::recordTrace(VkCommandBuffer commands, VkDescriptorSet set
     // A later dispatch adds its share to what the earlier ones wrote (renderPixel).
     if (d.adds)
       shaderBarrier(commands);
-    const TracePipeline& traced = quietPipeline_ && !d.feedback ? *quietPipeline_ : pipeline_;
+    const TracePipeline& traced = quietPipeline_ && !d.feedback ? *quietPipeline_ : *pipeline_;
     traced.record(commands, set, width_, height_, d.push());
   }
   if (tileFillRows_ > 0) {
     // The deferred tile fill computes the tiles the trace queued (its stores, queue and
     // locks ordered after the trace's); the frame's time includes it.
     shaderBarrier(commands);
-    pipeline_.recordTileFill(commands, set, tileFillRows_);
+    pipeline_->recordTileFill(commands, set, tileFillRows_);
   }
 }
 

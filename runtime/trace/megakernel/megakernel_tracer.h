@@ -28,13 +28,15 @@ struct MegakernelSetup {
 
 class MegakernelTracer final : public FrameTracer {
  public:
+  // Builds the pipeline and, with quietDefines, the quiet one at the same time on a second
+  // thread (each a whole pipeline the driver compiles on the thread that creates it).
   MegakernelTracer(const VulkanContext& context, ShaderCompiler& compiler,
                    std::uint32_t textureCount, const MegakernelSetup& setup);
 
-  const RayTracingStack& stack() const { return pipeline_.stack(); }
+  const RayTracingStack& stack() const { return pipeline_->stack(); }
 
   VkDescriptorSetLayout descriptorSetLayout() const override {
-    return pipeline_.descriptorSetLayout();
+    return pipeline_->descriptorSetLayout();
   }
   void addResources(TraceResources&) const override {}
   std::uint32_t timestampCount(std::uint32_t, std::uint32_t) const override { return 0; }
@@ -47,7 +49,7 @@ class MegakernelTracer final : public FrameTracer {
  private:
   std::vector<PathDispatch> plan(const FrameTrace& trace) const;
 
-  TracePipeline pipeline_;
+  std::optional<TracePipeline> pipeline_;  // always built (the counting one with LiPaC)
   std::optional<TracePipeline> quietPipeline_;
   bool splitCounting_ = false;
   std::uint32_t pathsPerDispatch_ = 0;

@@ -8,6 +8,7 @@
 #include <thread>
 #include <vector>
 
+#include "runtime/host/parallel_for.h"
 #include "runtime/shaders/shared_types.h"
 #include "runtime/vk/compute_pipeline.h"
 #include "runtime/vk/vulkan_error.h"
@@ -16,10 +17,10 @@ namespace memograph::runtime {
 
 namespace {
 
-// vkCreateRayTracingPipelinesKHR through a deferred operation joined by up to `threads`
-// host threads: a driver that compiles the pipeline's shaders itself (one per material with
-// callables) can then compile them in parallel. A driver that does not defer simply
-// creates the pipeline in the call.
+// vkCreateRayTracingPipelinesKHR, with the context's pipeline cache, through a deferred
+// operation joined by up to `threads` host threads: a driver that compiles the pipeline's
+// shaders itself (one per material with callables) can then compile them in parallel. A
+// driver that does not defer simply creates the pipeline in the call.
 VkPipeline createWithDeferredOperation(const VulkanContext& context,
                                        const VkRayTracingPipelineCreateInfoKHR& info,
                                        std::uint32_t threads) {
@@ -32,9 +33,12 @@ VkPipeline createWithDeferredOperation(const VulkanContext& context,
     if (op != VK_NULL_HANDLE)
       f.destroyDeferredOperation(device, op, nullptr);
   });
+  VkRayTracingPipelineCreateInfoKHR withFeedback = info;
+  PipelineCreationFeedback feedback(context, info.stageCount);
+  withFeedback.pNext = feedback.chain(info.pNext);
   VkPipeline pipeline = VK_NULL_HANDLE;
-  VkResult result =
-      f.createRayTracingPipelines(device, operation, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
+  VkResult result = f.createRayTracingPipelines(device, operation, context.pipelineCache().handle(),
+                                                1, &withFeedback, nullptr, &pipeline);
   if (result == VK_OPERATION_DEFERRED_KHR) {
     std::uint32_t concurrency = f.getDeferredOperationMaxConcurrency(device, operation);
     std::uint32_t count = std::max(1u, std::min(threads, concurrency));
@@ -54,6 +58,7 @@ VkPipeline createWithDeferredOperation(const VulkanContext& context,
     result = VK_SUCCESS;
   }
   checkVk(result, "vkCreateRayTracingPipelinesKHR");
+  feedback.count();  // written once the (deferred) creation has completed
   return pipeline;
 }
 
@@ -247,14 +252,17 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
   fillDefines.push_back("MG_TILE_FILL_PASS=1");
 
   if (query) {
-    auto module = createShaderModule(
-        device, compiler.compile({"path_tracer.glsl", ShaderStage::Compute, defines}));
-    pipeline_ = createComputePipeline(device, module.get(), layout, "path tracer");
-    if (tileFillPass) {
-      auto fillModule = createShaderModule(
-          device, compiler.compile({"path_tracer.glsl", ShaderStage::Compute, fillDefines}));
-      fillPipeline_ = createComputePipeline(device, fillModule.get(), layout, "tile fill");
-    }
+    // The path tracer and the tile fill: both compiled, then both pipelines created at once.
+    std::vector<ShaderCompileRequest> requests = {
+        {"path_tracer.glsl", ShaderStage::Compute, defines}};
+    if (tileFillPass)
+      requests.push_back({"path_tracer.glsl", ShaderStage::Compute, fillDefines});
+    const auto spirv = compiler.compileAll(requests, setup.compileThreads);
+    parallelFor(spirv.size(), setup.compileThreads, [&](std::size_t i, std::uint32_t) {
+      auto module = createShaderModule(device, spirv[i]);
+      (i == 0 ? pipeline_ : fillPipeline_) = createComputePipeline(
+          context, module.get(), layout, i == 0 ? "path tracer" : "tile fill");
+    });
     return;
   }
 

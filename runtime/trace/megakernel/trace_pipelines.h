@@ -71,6 +71,9 @@ struct TracePipelineSetup {
   // Host threads that may join the driver's ray-tracing pipeline compile
   // (VK_KHR_deferred_host_operations); 1 creates it on the calling thread alone.
   std::uint32_t pipelineThreads = 1;
+  // Query backend: threads compiling the GLSL and creating the compute pipelines (the path
+  // tracer's and the tile fill's at once); 0: one per hardware thread.
+  std::uint32_t compileThreads = 0;
   // Defines of the path tracer (raygen or compute) only, e.g. the texel cache's.
   std::vector<std::string> defines;
   bool tileImage = false;

@@ -159,7 +159,9 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   }
   const bool computeSubgroups =
       (context.info().subgroupArithmeticStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0;
-  computePasses_.resize(gpu::kWavefrontPassCount);
+  // Every shader's SPIR-V first, then every pipeline at once (createPipelines).
+  std::vector<std::uint32_t> passes;  // the compute passes, gpu::kWavefront* indices
+  std::vector<ShaderCompileRequest> requests;
   for (std::uint32_t pass = 0; pass < gpu::kWavefrontPassCount; ++pass) {
     const bool traces = pass == gpu::kWavefrontTrace || pass == gpu::kWavefrontShadow;
     const bool binning = pass == gpu::kWavefrontBinCount || pass == gpu::kWavefrontBinOffsets ||
@@ -171,28 +173,27 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
     passDefines.push_back(kPassDefines[pass]);
     if (computeSubgroups)
       passDefines.push_back("MG_SUBGROUP_RAY_COUNT=1");
-    auto module = createShaderModule(
-        device, compiler.compile({"wavefront.glsl", ShaderStage::Compute, passDefines}));
-    computePasses_[pass] =
-        createComputePipeline(device, module.get(), layout_.get(), kPassNames[pass]);
+    passes.push_back(pass);
+    requests.push_back({"wavefront.glsl", ShaderStage::Compute, std::move(passDefines)});
   }
+  PipelineShaders shaders;
+  shaders.passes = std::move(passes);
+  shaders.passSpirv = compiler.compileAll(requests, setup.compileThreads);
   if (materials)
-    createMaterialPasses(compiler, *materials, defines, setup.compileThreads);
+    shaders.materialSpirv =
+        compileMaterialPasses(compiler, *materials, defines, setup.compileThreads);
   if (!query_)
-    createRayTracingPasses(compiler, defines);
+    compileRayTracingPasses(compiler, defines, shaders);
+  createPipelines(shaders, materials, setup.compileThreads);
 }
 
-// One small pipeline per distinct graph, compiled with only that graph's include (as a
+// One small shader per distinct graph, compiled with only that graph's include (as a
 // material callable is), so no compile ever sees all of a scene's graphs: the query
 // backend's megakernel inlines every one (the classroom's 88 do not compile on lavapipe).
-// The GLSL compiles and the driver's pipeline compiles both run on several threads. The
-// driver's share is the large one: on lavapipe the classroom's pipelines took 33.9 s on one
-// thread and 17.5 s on this 2-core machine's two, glslang 4.4 s for every shader, cold.
-void WavefrontPathTracer::createMaterialPasses(ShaderCompiler& compiler,
-                                               const LinkedMaterials& materials,
-                                               const std::vector<std::string>& defines,
-                                               std::uint32_t compileThreads) {
-  VkDevice device = context_.device();
+// Compiled on several threads (glslang took 4.4 s for all of the classroom's, cold).
+std::vector<std::vector<std::uint32_t>> WavefrontPathTracer::compileMaterialPasses(
+    ShaderCompiler& compiler, const LinkedMaterials& materials,
+    const std::vector<std::string>& defines, std::uint32_t compileThreads) {
   MaterialShaderRequest request;
   request.source = "wavefront.glsl";
   request.stage = ShaderStage::Compute;
@@ -200,41 +201,69 @@ void WavefrontPathTracer::createMaterialPasses(ShaderCompiler& compiler,
   request.defines.push_back(kPassDefines[gpu::kWavefrontMaterial]);
   request.threads = compileThreads;
   request.what = "wavefront material pass";
-  const auto spirv = compileMaterialShaders(compiler, materials, request, materialShaderStats_);
-  materialPasses_.resize(spirv.size());
-  parallelFor(spirv.size(), compileThreads, [&](std::size_t bin, std::uint32_t) {
-    auto module = createShaderModule(device, spirv[bin]);
-    materialPasses_[bin] =
-        createComputePipeline(device, module.get(), layout_.get(),
-                              ("wavefront material " + materials.distinct[bin].name).c_str());
-  });
+  return compileMaterialShaders(compiler, materials, request, materialShaderStats_);
 }
 
-// Ray-tracing pipeline and its table: [trace raygen][shadow raygen][miss, shadow miss][hit],
-// the hit and miss shaders the megakernel's (they only report the hit); the default stack.
-void WavefrontPathTracer::createRayTracingPasses(ShaderCompiler& compiler,
-                                                 const std::vector<std::string>& defines) {
+// The ray-tracing pipeline's shaders: the trace and shadow raygens, then the megakernel's
+// miss and hit shaders (they only report the hit).
+void WavefrontPathTracer::compileRayTracingPasses(ShaderCompiler& compiler,
+                                                  const std::vector<std::string>& defines,
+                                                  PipelineShaders& shaders) {
   VkDevice device = context_.device();
   auto raygenDefines = [&](std::uint32_t pass) {
     std::vector<std::string> d = defines;
     d.push_back(kPassDefines[pass]);
     return d;
   };
-  std::vector<VulkanHandle<VkShaderModule>> modules;
-  modules.push_back(
-      createShaderModule(device, compiler.compile({"wavefront.glsl", ShaderStage::RayGen,
-                                                   raygenDefines(gpu::kWavefrontTrace)})));
-  modules.push_back(
-      createShaderModule(device, compiler.compile({"wavefront.glsl", ShaderStage::RayGen,
-                                                   raygenDefines(gpu::kWavefrontShadow)})));
-  std::vector<VkShaderStageFlagBits> stageBits = {VK_SHADER_STAGE_RAYGEN_BIT_KHR,
-                                                  VK_SHADER_STAGE_RAYGEN_BIT_KHR};
-  appendReportingShaders(device, compiler, modules, stageBits);
-  std::vector<VkShaderModule> moduleHandles;
-  for (const auto& module : modules)
-    moduleHandles.push_back(module.get());
-  rayTracing_ =
-      createRayTracingPipeline(context_, moduleHandles, stageBits, layout_.get(), 1, false);
+  for (std::uint32_t pass : {gpu::kWavefrontTrace, gpu::kWavefrontShadow}) {
+    shaders.rayTracingModules.push_back(createShaderModule(
+        device, compiler.compile({"wavefront.glsl", ShaderStage::RayGen, raygenDefines(pass)})));
+    shaders.rayTracingStages.push_back(VK_SHADER_STAGE_RAYGEN_BIT_KHR);
+  }
+  appendReportingShaders(device, compiler, shaders.rayTracingModules, shaders.rayTracingStages);
+}
+
+// The pipelines are independent, and the driver compiles each on the thread that creates
+// it: creating them one after another left all but one core idle (on lavapipe the
+// classroom's material pipelines took 33.9 s on one thread and 17.5 s on this 2-core
+// machine's two). So every pipeline is one job of a parallelFor, the ray-tracing pipeline
+// (five shaders) first, then the compute passes, then the material passes; each job writes
+// its own slot, so the result does not depend on the order they finish in. The pipeline
+// cache they share is internally synchronised.
+void WavefrontPathTracer::createPipelines(const PipelineShaders& shaders,
+                                          const LinkedMaterials* materials, std::uint32_t threads) {
+  VkDevice device = context_.device();
+  computePasses_.resize(gpu::kWavefrontPassCount);
+  materialPasses_.resize(shaders.materialSpirv.size());
+  const std::size_t rayTracingJobs = shaders.rayTracingModules.empty() ? 0 : 1;
+  const std::size_t jobs = rayTracingJobs + shaders.passes.size() + shaders.materialSpirv.size();
+  parallelFor(jobs, threads, [&](std::size_t job, std::uint32_t) {
+    if (job < rayTracingJobs) {
+      std::vector<VkShaderModule> moduleHandles;
+      for (const auto& module : shaders.rayTracingModules)
+        moduleHandles.push_back(module.get());
+      rayTracing_ = createRayTracingPipeline(context_, moduleHandles, shaders.rayTracingStages,
+                                             layout_.get(), 1, false);
+      return;
+    }
+    job -= rayTracingJobs;
+    if (job < shaders.passes.size()) {
+      const std::uint32_t pass = shaders.passes[job];
+      auto module = createShaderModule(device, shaders.passSpirv[job]);
+      computePasses_[pass] =
+          createComputePipeline(context_, module.get(), layout_.get(), kPassNames[pass]);
+      return;
+    }
+    const std::size_t bin = job - shaders.passes.size();
+    auto module = createShaderModule(device, shaders.materialSpirv[bin]);
+    materialPasses_[bin] =
+        createComputePipeline(context_, module.get(), layout_.get(),
+                              ("wavefront material " + materials->distinct[bin].name).c_str());
+  });
+  if (rayTracingJobs == 0)
+    return;
+  // The table: [trace raygen][shadow raygen][miss, shadow miss][hit]; the pipeline keeps the
+  // spec's default stack.
   ShaderBindingTable table = createShaderBindingTable(context_, rayTracing_.get(), 5,
                                                       {{{0}, true}, {{1}, true}, {{2, 3}}, {{4}}});
   shaderBindingTable_ = std::move(table.buffer);

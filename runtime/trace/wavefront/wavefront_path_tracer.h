@@ -38,7 +38,8 @@ struct WavefrontSetup {
   // storage-buffer range and work-group count allow); a round over more pixels runs in
   // chunks of at most that many, one after another.
   std::uint32_t pathSlots = 0;
-  std::uint32_t compileThreads = 0;  // the material shaders' GLSL compiles; 0: one per core
+  // Threads compiling the GLSL and creating the pipelines; 0: one per core.
+  std::uint32_t compileThreads = 0;
 };
 
 class WavefrontPathTracer final : public FrameTracer {
@@ -47,9 +48,10 @@ class WavefrontPathTracer final : public FrameTracer {
   // backend; on the pipeline backend trace and shadow are the raygens of one ray-tracing
   // pipeline, launched with vkCmdTraceRaysIndirectKHR (refused, std::runtime_error, where the
   // device lacks it). `extraDefines` as the megakernel's (floor, cache, NEE, object inputs).
-  // The material pipelines compile from `compiler`'s files plus each graph's include, on
-  // `setup.compileThreads` threads. Throws std::invalid_argument when a given capacity does
-  // not fit the device, or for a texel cache without materials.
+  // The material shaders compile from `compiler`'s files plus each graph's include; the
+  // GLSL compiles, then the pipelines (all of them at once, with the context's pipeline
+  // cache), run on `setup.compileThreads` threads. Throws std::invalid_argument when a given
+  // capacity does not fit the device, or for a texel cache without materials.
   WavefrontPathTracer(const VulkanContext& context, ShaderCompiler& compiler,
                       std::uint32_t textureCount, const std::vector<std::string>& extraDefines,
                       std::uint32_t width, std::uint32_t height, const WavefrontSetup& setup);
@@ -124,11 +126,26 @@ class WavefrontPathTracer final : public FrameTracer {
   GpuBuffer control_;
   GpuBuffer binReadback_;  // host-visible copy of the bins' records after a frame
 
-  // One compute pipeline per distinct graph (the material bins), from its include alone.
-  void createMaterialPasses(ShaderCompiler& compiler, const LinkedMaterials& materials,
-                            const std::vector<std::string>& defines, std::uint32_t compileThreads);
-  // The pipeline backend's trace and shadow raygens: one ray-tracing pipeline and its table.
-  void createRayTracingPasses(ShaderCompiler& compiler, const std::vector<std::string>& defines);
+  // The shaders of every pipeline, compiled before any pipeline is created.
+  struct PipelineShaders {
+    std::vector<std::uint32_t> passes;                      // the compute passes (gpu::kWavefront*)
+    std::vector<std::vector<std::uint32_t>> passSpirv;      // one a compute pass
+    std::vector<std::vector<std::uint32_t>> materialSpirv;  // one a material bin
+    // Pipeline backend: the trace and shadow raygens, the misses and the hit.
+    std::vector<VulkanHandle<VkShaderModule>> rayTracingModules;
+    std::vector<VkShaderStageFlagBits> rayTracingStages;
+  };
+  // One shader per distinct graph (the material bins), from its include alone.
+  std::vector<std::vector<std::uint32_t>> compileMaterialPasses(
+      ShaderCompiler& compiler, const LinkedMaterials& materials,
+      const std::vector<std::string>& defines, std::uint32_t compileThreads);
+  // The pipeline backend's trace and shadow raygens and the report-only shaders.
+  void compileRayTracingPasses(ShaderCompiler& compiler, const std::vector<std::string>& defines,
+                               PipelineShaders& shaders);
+  // Every pipeline (compute passes, material passes, the ray-tracing pipeline and its
+  // table) at once, on up to `threads` threads.
+  void createPipelines(const PipelineShaders& shaders, const LinkedMaterials* materials,
+                       std::uint32_t threads);
   void recordPass(VkCommandBuffer commands, std::uint32_t pass, std::uint32_t chunk,
                   std::uint32_t round, std::uint32_t bounce) const;
 };

@@ -200,5 +200,36 @@ TEST(ShaderCache, CompileErrorsNameTheFile) {
   }
 }
 
+// compileAll (the wavefront's passes, the path tracer and its tile fill) compiles on several
+// threads and returns each request's SPIR-V in the order asked, as one at a time would; its
+// statistics count every shader once, and no compile time when everything came from the cache.
+TEST(ShaderCache, CompileAllKeepsTheRequestsOrder) {
+  const auto directory = std::filesystem::temp_directory_path() /
+                         ("memograph-compile-all-test-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(directory);
+  const std::map<std::string, std::string> sources = {
+      {"value.comp",
+       "#version 460\nlayout(local_size_x = 1) in;\nlayout(set = 0, binding = 0) buffer B { "
+       "uint v; };\nvoid main() { v = VALUE; }\n"}};
+  std::vector<ShaderCompileRequest> requests;
+  for (int i = 0; i < 7; ++i)
+    requests.push_back({"value.comp", ShaderStage::Compute, {"VALUE=" + std::to_string(i)}});
+  ShaderCompiler one(sources, {});
+  std::vector<std::vector<std::uint32_t>> expected;
+  for (const auto& request : requests)
+    expected.push_back(one.compile(request));
+  ShaderCompiler compiler(sources, directory);
+  EXPECT_EQ(compiler.compileAll(requests, 3), expected);
+  EXPECT_EQ(compiler.stats().compiled, 7u);
+  EXPECT_EQ(compiler.stats().hits, 0u);
+  EXPECT_GT(compiler.stats().compileMilliseconds, 0.0);
+  ShaderCompiler again(sources, directory);
+  EXPECT_EQ(again.compileAll(requests, 3), expected);
+  EXPECT_EQ(again.stats().compiled, 0u);
+  EXPECT_EQ(again.stats().hits, 7u);
+  EXPECT_EQ(again.stats().compileMilliseconds, 0.0);
+  std::filesystem::remove_all(directory);
+}
+
 }  // namespace
 }  // namespace memograph::runtime
