@@ -45,7 +45,7 @@ struct CullingOptions {
   // omitted after `lowFrames` counting frames below σ_o.
   // The defaults of σ_a, σ_o, lowFrames and the feedback's sampling (feedbackStride,
   // feedbackPaths, feedbackEvery) are the H200's best measured on the city's street path
-  // (docs/design/culling.md, "Measured on the GPU machine": every 5th camera of the whole path,
+  // (docs/design/culling.md, "Measuring on the GPU machine": every 5th camera of the whole path,
   // peak AS 0.25x the unculled scene's, the whole path's time 1.005x, the frames that do not count
   // 0.98x; counting every frame in 1 block of 4 at σ_a = 16: 0.30x and the path's 1.13x).
   double instanceActivate = 16.0;

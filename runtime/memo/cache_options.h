@@ -34,7 +34,7 @@ enum class CacheClock { Frame, Counter };
 // does), and a second pass after the frame's trace computes every queued tile, one
 // invocation per texel, and publishes it for the next frame. The second pass needs no lane
 // to survive a callable in place, which NVIDIA's raygen does not guarantee
-// (docs/design/path-tracer.md).
+// (docs/design/memoization.md, "The tile cache").
 enum class TileFill { Subgroup, Deferred };
 
 const char* cacheModeName(CacheMode mode);

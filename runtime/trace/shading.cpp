@@ -76,7 +76,7 @@ void validateWavefrontOptions(const RendererOptions& options) {
 
 // Auto: the wavefront on a GPU. On an NVIDIA H200 (1920x1080, P = 6, L = 4, the pipeline
 // backend) it was faster than the megakernel in all eight configurations measured
-// (docs/design/architecture.md, "Material-coherent shading"): the classroom 47.6 against 73.1 ms on
+// (docs/design/wavefront.md, "Choosing the architecture"): the classroom 47.6 against 73.1 ms on
 // the floor, 96.7 against 2762 ms without a cache, 93.5 against 148.4 ms with the texel cache,
 // 95.0 against 181.6 ms with the tile cache; the landscape 23.3 against 30.6, 33.6 against
 // 203.7, 32.6 against 77.5 and 31.8 against 96.5 ms. Sorting hits by material keeps a GPU's

@@ -11,7 +11,7 @@ namespace memograph::runtime {
 struct RendererOptions;
 struct Scene;
 
-// How the path tracer is organised (docs/design/architecture.md, "Material-coherent shading"):
+// How the path tracer is organised (docs/design/wavefront.md, "Choosing the architecture"):
 // one kernel that runs each path to its end, or passes over queues of paths with their state
 // in memory (Laine, Karras and Aila, "Megakernels Considered Harmful", HPG 2013). The
 // wavefront is a prototype (with the floor's constants or the scene's graphs). Auto: the

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The cache checks on the GPU machine (docs/design/path-tracer.md, "Memory ordering" and "Defaults"):
+# The cache checks on the GPU machine (docs/design/memoization.md, "Concurrency (§5.3.4)"; docs/results.md, "Cache correctness on the GPU"):
 # the torn-read stress test in every mode (`memograph selftest`), then bench rows of the
 # classroom at 1920x1080, P = 6, L = 4 over the 300-camera path, as the memoization sweep
 # runs Table 6.1: the default-flag rows (`--cache texel`, `--cache tile` and nothing else)

@@ -118,7 +118,7 @@ read -r -d '' VARIANTS <<'TABLE'
   110   diag  classroom  none_shared           300     10     --cache none --shared-primary
   120   diag  classroom  texel_s24_lru-counter_shared 300 1   --cache texel --cache-entries 16777216 --eviction lru --clock counter --shared-primary
   120   diag  classroom  texel_s24_lru-counter_sec_shared 300 1 --cache texel --cache-entries 16777216 --eviction lru --clock counter --cache-secondary-only --shared-primary
-# Tile repacks on NVIDIA (docs/design/path-tracer.md): §5.4.4's grouping pairs tiles of one material
+# Tile repacks on NVIDIA (docs/design/memoization.md, "The tile cache"): §5.4.4's grouping pairs tiles of one material
 # in an iteration, so a pass's lanes call one callable; whether the driver then regroups
 # lanes less shows in the repack and fallback counters.
   120   diag  classroom  tile_s24_lru-counter_group 300 1     --cache tile --tile 4x4 --filter nearest --cache-entries 1048576 --eviction lru --clock counter --group-by-material
