@@ -456,6 +456,10 @@ ProgramResult runProgram(const VulkanContext& context, const Program& program) {
 
 }  // namespace
 
+bool cacheStressModeMustNotTear(CacheStressMode mode) {
+  return mode == CacheStressMode::Counter || mode == CacheStressMode::ImageCounter;
+}
+
 const char* cacheStressModeName(CacheStressMode mode) {
   switch (mode) {
     case CacheStressMode::Key:

@@ -25,6 +25,13 @@ enum class CacheStressMode { Key, Counter, ImageKey, ImageCounter, Unprotected }
 
 const char* cacheStressModeName(CacheStressMode mode);
 
+// Whether a torn read in `mode` is a defect: true for the renderer's protocol (the update
+// counter, with values in a buffer or an image), which must never tear. The key re-read
+// check tears by design (two writes that restore the key while a reader reads, the A-B-A
+// race of §5.3.4 that the counter closes) and no protection tears at once; both are run as
+// demonstrations that the harness sees tears, so their counts are reported, never failed.
+bool cacheStressModeMustNotTear(CacheStressMode mode);
+
 struct CacheStressResult {
   CacheStressMode mode = CacheStressMode::Key;
   std::uint32_t invocations = 0, iterations = 0;
