@@ -84,6 +84,15 @@ RoundingDifference roundingDifference(const HdrImage& image, const HdrImage& ref
   return d;
 }
 
+Scene greyQuadScene(const std::string& material) {
+  Scene scene;
+  scene.meshes.push_back(quad(2.0f));
+  scene.materials.push_back({material, "", constantGraph(material, {0.5f, 0.5f, 0.5f}, 0.5f)});
+  scene.instances.push_back({0, 0, glm::mat4(1.0f)});
+  scene.camera.position = {0, 3, 1};
+  return scene;
+}
+
 double meanChannel(const HdrImage& image, int c, int x0, int y0, int x1, int y1) {
   double sum = 0;
   int n = 0;

@@ -25,6 +25,10 @@ Mesh sphere(int segments);
 // Graph text of a material with a constant base color and roughness.
 std::string constantGraph(const std::string& name, glm::vec3 baseColor, float roughness);
 
+// The smallest scene that renders something: a 2 m quad of one grey material named
+// `material` (constantGraph, roughness 0.5), seen from 3 m above it.
+Scene greyQuadScene(const std::string& material = "Grey");
+
 // Mean of channel `c` over the pixels in [x0,x1) x [y0,y1).
 double meanChannel(const HdrImage& image, int c, int x0, int y0, int x1, int y1);
 

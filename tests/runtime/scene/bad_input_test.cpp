@@ -11,12 +11,7 @@ namespace memograph::runtime {
 namespace {
 
 Scene oneQuad() {
-  Scene scene;
-  scene.meshes.push_back(testing::quad(2.0f));
-  scene.materials.push_back({"Grey", "", testing::constantGraph("Grey", {0.5f, 0.5f, 0.5f}, 0.5f)});
-  scene.instances.push_back({0, 0, glm::mat4(1.0f)});
-  scene.camera.position = {0, 3, 1};
-  return scene;
+  return testing::greyQuadScene();
 }
 
 RenderSettings tiny() {

@@ -328,11 +328,7 @@ TEST(PipelineCache, TheRendererKeepsItBesideTheShaderCache) {
   const fs::path folder = freshFolder("pipeline-cache-render");
   RendererOptions options = testing::testOptions();
   options.shaderCacheDirectory = folder;
-  Scene scene;
-  scene.meshes.push_back(testing::quad(2.0f));
-  scene.materials.push_back({"A", "", testing::constantGraph("A", {0.5f, 0.5f, 0.5f}, 0.5f)});
-  scene.instances.push_back({0, 0, glm::mat4(1.0f)});
-  scene.camera.position = {0, 3, 1};
+  const Scene scene = testing::greyQuadScene("A");
   RenderSettings settings;
   settings.width = settings.height = 4;
   RenderStats first, second;

@@ -22,11 +22,7 @@ TEST(ShaderCache, SecondRunLoadsSpirvFromDisk) {
   std::filesystem::remove_all(directory);
   RendererOptions options = testing::testOptions();
   options.shaderCacheDirectory = directory;
-  Scene scene;
-  scene.meshes.push_back(testing::quad(2.0f));
-  scene.materials.push_back({"A", "", testing::constantGraph("A", {0.5f, 0.5f, 0.5f}, 0.5f)});
-  scene.instances.push_back({0, 0, glm::mat4(1.0f)});
-  scene.camera.position = {0, 3, 1};
+  Scene scene = testing::greyQuadScene("A");
   RenderSettings settings;
   settings.width = settings.height = 8;
 
