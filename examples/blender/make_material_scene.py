@@ -1,5 +1,5 @@
 """The material-heavy Blender scene (issue 41, part 4): twelve procedural materials of the
-kinds artists make, on a floor, a back wall and seven objects, lit by a sun, an area light
+kinds artists make, on a floor, a back wall and ten objects, lit by a sun, an area light
 and a dim world, seen by a camera that moves along a keyframed path.
 
     blender -b --factory-startup --python examples/blender/make_material_scene.py -- \
