@@ -73,6 +73,7 @@ TEST(RealNodeLibrary, HasTheNodesTheIssueAsksFor) {
                            "BrickTexture",
                            "GradientTexture",
                            "ImageTexture",
+                           "ImageTextureClosest",
                            "NormalMap",
                            "Bump",
                            "NormalFromPosition",

@@ -258,9 +258,11 @@ def write_image(mw, flat, used):
     with mip-maps and repeat addressing, and its v points down the image, so: v is flipped
     (u, 1 - v); an image whose colour space is sRGB (8-bit or float) gets an
     SRGBToLinear after the sample (Cycles converts per texel before filtering: the two
-    differ only between texels); Non-Color/Linear/Raw images are used as stored. Closest,
-    Cubic and Smart interpolation, EXTEND/CLIP extension and non-FLAT projections are
-    reported and the memograph sampler is used instead.
+    differ only between texels); Non-Color/Linear/Raw images are used as stored. Closest
+    interpolation becomes ImageTextureClosest with the image's size in texels (the texel that
+    holds the UV, unfiltered, as Cycles). Cubic and Smart interpolation, EXTEND/CLIP
+    extension and non-FLAT projections are reported and the memograph sampler is used
+    instead.
     """
     node = flat.node
     image = node.image
@@ -279,7 +281,16 @@ def write_image(mw, flat, used):
         return result
     if node.projection != 'FLAT':
         mw.warn(flat, 'projection %s is not supported: FLAT is used' % node.projection)
-    if node.interpolation != 'Linear':
+    closest_size = None
+    if node.interpolation == 'Closest':
+        width, height = (int(n) for n in image.size)
+        if width > 0 and height > 0:
+            closest_size = (width, height)
+        else:
+            mw.warn(flat, 'interpolation Closest needs the image\'s size, which Blender does '
+                    'not know (the image did not load): memograph filters linearly '
+                    '(mip-mapped)')
+    elif node.interpolation != 'Linear':
         mw.warn(flat, 'interpolation %s is not supported: memograph filters linearly '
                 '(mip-mapped)' % node.interpolation)
     if node.extension != 'REPEAT':
@@ -301,8 +312,15 @@ def write_image(mw, flat, used):
     uv = flipped
     color_link = mw.builder.new_link()
     alpha_link = mw.builder.new_link()
-    mw.builder.add('ImageTexture', [('Image', Literal(path, 'string')), ('UV', uv)],
-                   [('Color', color_link), ('Alpha', alpha_link)], comment=flat.label)
+    if closest_size is None:
+        mw.builder.add('ImageTexture', [('Image', Literal(path, 'string')), ('UV', uv)],
+                       [('Color', color_link), ('Alpha', alpha_link)], comment=flat.label)
+    else:
+        mw.builder.add('ImageTextureClosest',
+                       [('Image', Literal(path, 'string')), ('UV', uv),
+                        ('Width', Literal(closest_size[0], 'int')),
+                        ('Height', Literal(closest_size[1], 'int'))],
+                       [('Color', color_link), ('Alpha', alpha_link)], comment=flat.label)
     result = {'Alpha': alpha_link}
     colorspace = getattr(image.colorspace_settings, 'name', 'sRGB')
     if colorspace == 'sRGB':  # Cycles linearises sRGB images, 8-bit or float
