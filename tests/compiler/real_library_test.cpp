@@ -74,6 +74,7 @@ TEST(RealNodeLibrary, HasTheNodesTheIssueAsksFor) {
                            "GradientTexture",
                            "ImageTexture",
                            "ImageTextureClosest",
+                           "ImageTextureBilinear",
                            "NormalMap",
                            "Bump",
                            "NormalFromPosition",

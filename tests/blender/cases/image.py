@@ -3,8 +3,10 @@ export unpacks them next to the graph). Linear on a smooth periodic image (Cycle
 without mip-maps; on a smooth image the two agree); Closest on pixel art of unrelated colours,
 the UV doubled and shifted by whole texels (negative u and v: the floor and the repeat wrap),
 so every bake pixel centre is an eighth of a texel or more from a texel edge and the texels
-must match exactly (linear filtering blends neighbours and misses by up to 0.87). The images
-whose Color is compared are opaque: with Alpha unlinked Cycles gives the colour premultiplied.
+must match exactly (linear filtering blends neighbours and misses by up to 0.87). Extend and
+Clip, with Closest and with Linear (ImageTextureBilinear: the four texels, no mip-maps), on
+the same UV, which runs half an image beyond every edge. The images whose Color is compared
+are opaque: with Alpha unlinked Cycles gives the colour premultiplied.
 """
 from math import cos, pi, sin
 
@@ -36,7 +38,7 @@ def _smooth(width, height):
     return px
 
 
-def _image(name, width, height, pixels, colorspace, interpolation):
+def _image(name, width, height, pixels, colorspace, interpolation, extension='REPEAT'):
     def extra(node):
         import bpy  # only inside Blender
         img = bpy.data.images.get(name)
@@ -47,6 +49,7 @@ def _image(name, width, height, pixels, colorspace, interpolation):
             img.colorspace_settings.name = colorspace
         node.image = img
         node.interpolation = interpolation
+        node.extension = extension
     return extra
 
 
@@ -67,4 +70,30 @@ CASES = [
          output='Alpha',
          extra=_image('mg_case_art_alpha', 8, 4, _pixel_art_alpha, 'sRGB', 'Closest'),
          note='8x4 pixel art, alpha 0 to 1'),
+    # Extend and Clip: the UV runs from -0.5 to 1.5, half an image beyond every edge. Linear
+    # on Non-Color images (Cycles linearises sRGB texels before filtering, memograph after).
+    Case(name='image_closest_extend', node='ShaderNodeTexImage', drive=_SHIFTED,
+         output='Color',
+         extra=_image('mg_case_art', 8, 4, _pixel_art, 'sRGB', 'Closest', 'EXTEND'),
+         note='8x4 pixel art, sRGB'),
+    Case(name='image_closest_clip', node='ShaderNodeTexImage', drive=_SHIFTED,
+         output='Color',
+         extra=_image('mg_case_art', 8, 4, _pixel_art, 'sRGB', 'Closest', 'CLIP'),
+         note='8x4 pixel art, sRGB'),
+    Case(name='image_closest_clip_alpha', node='ShaderNodeTexImage', drive=_SHIFTED,
+         output='Alpha',
+         extra=_image('mg_case_art', 8, 4, _pixel_art, 'sRGB', 'Closest', 'CLIP'),
+         note='8x4 pixel art, sRGB'),
+    Case(name='image_linear_extend', node='ShaderNodeTexImage', drive=_SHIFTED,
+         output='Color',
+         extra=_image('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Linear', 'EXTEND'),
+         note='8x4 pixel art, Non-Color'),
+    Case(name='image_linear_clip', node='ShaderNodeTexImage', drive=_SHIFTED,
+         output='Color',
+         extra=_image('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Linear', 'CLIP'),
+         note='8x4 pixel art, Non-Color'),
+    Case(name='image_linear_clip_alpha', node='ShaderNodeTexImage', drive=_SHIFTED,
+         output='Alpha',
+         extra=_image('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Linear', 'CLIP'),
+         note='8x4 pixel art, Non-Color'),
 ]

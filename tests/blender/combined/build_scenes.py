@@ -412,8 +412,7 @@ def build_warnings():
     tex.projection = 'BOX'
     emit(nt, out, tex.outputs['Color'])
     exp[mat.name] = [('T', 'projection BOX is not supported'),
-                     ('T', 'interpolation Cubic is not supported'),
-                     ('T', 'extension EXTEND is not supported')]
+                     ('T', 'interpolation Cubic is not supported')]
 
     mat, nt, out = new_material('W_image_missing')
     tex = nt.nodes.new('ShaderNodeTexImage')

@@ -250,6 +250,11 @@ def write_mix_rgb(mw, flat, used):
     return result
 
 
+# Blender 3.4's Image Texture extensions as ImageTextureClosest's / ImageTextureBilinear's
+# Extension (Mirror came with Blender 3.5).
+IMAGE_EXTENSIONS = {'REPEAT': 0, 'EXTEND': 1, 'CLIP': 2}
+
+
 def write_image(mw, flat, used):
     """ShaderNodeTexImage -> ImageTexture "textures/<name>.<ext>" UV -> Color, Alpha.
 
@@ -260,9 +265,10 @@ def write_image(mw, flat, used):
     SRGBToLinear after the sample (Cycles converts per texel before filtering: the two
     differ only between texels); Non-Color/Linear/Raw images are used as stored. Closest
     interpolation becomes ImageTextureClosest with the image's size in texels (the texel that
-    holds the UV, unfiltered, as Cycles). Cubic and Smart interpolation, EXTEND/CLIP
-    extension and non-FLAT projections are reported and the memograph sampler is used
-    instead.
+    holds the UV, unfiltered, as Cycles), with the node's extension. Linear with EXTEND or
+    CLIP becomes ImageTextureBilinear (Cycles' bilinear filter from the four texels, no
+    mip-maps); Linear with REPEAT stays the mip-mapped ImageTexture. Cubic and Smart
+    interpolation (filtered linearly) and non-FLAT projections are reported.
     """
     node = flat.node
     image = node.image
@@ -281,20 +287,28 @@ def write_image(mw, flat, used):
         return result
     if node.projection != 'FLAT':
         mw.warn(flat, 'projection %s is not supported: FLAT is used' % node.projection)
-    closest_size = None
+    # The texel-exact nodes: Closest, and Linear with EXTEND or CLIP.
+    extension = IMAGE_EXTENSIONS.get(node.extension)
+    if extension is None:
+        mw.warn(flat, 'extension %s is not supported: REPEAT is used' % node.extension)
+        extension = IMAGE_EXTENSIONS['REPEAT']
+    if node.interpolation not in ('Linear', 'Closest'):
+        mw.warn(flat, 'interpolation %s is not supported: memograph filters linearly'
+                % node.interpolation)
+    texel_node = None
     if node.interpolation == 'Closest':
+        texel_node = 'ImageTextureClosest'
+    elif extension != IMAGE_EXTENSIONS['REPEAT']:
+        texel_node = 'ImageTextureBilinear'
+    texel_size = None
+    if texel_node is not None:
         width, height = (int(n) for n in image.size)
         if width > 0 and height > 0:
-            closest_size = (width, height)
+            texel_size = (width, height)
         else:
-            mw.warn(flat, 'interpolation Closest needs the image\'s size, which Blender does '
-                    'not know (the image did not load): memograph filters linearly '
-                    '(mip-mapped)')
-    elif node.interpolation != 'Linear':
-        mw.warn(flat, 'interpolation %s is not supported: memograph filters linearly '
-                '(mip-mapped)' % node.interpolation)
-    if node.extension != 'REPEAT':
-        mw.warn(flat, 'extension %s is not supported: REPEAT is used' % node.extension)
+            mw.warn(flat, 'interpolation %s with extension %s needs the image\'s size, which '
+                    'Blender does not know (the image did not load): memograph filters '
+                    'linearly (mip-mapped) with REPEAT' % (node.interpolation, node.extension))
     path = mw.assets.image_path(image, lambda msg: mw.warn(flat, msg))
     if path is None:
         return {}
@@ -312,14 +326,15 @@ def write_image(mw, flat, used):
     uv = flipped
     color_link = mw.builder.new_link()
     alpha_link = mw.builder.new_link()
-    if closest_size is None:
+    if texel_size is None:
         mw.builder.add('ImageTexture', [('Image', Literal(path, 'string')), ('UV', uv)],
                        [('Color', color_link), ('Alpha', alpha_link)], comment=flat.label)
     else:
-        mw.builder.add('ImageTextureClosest',
+        mw.builder.add(texel_node,
                        [('Image', Literal(path, 'string')), ('UV', uv),
-                        ('Width', Literal(closest_size[0], 'int')),
-                        ('Height', Literal(closest_size[1], 'int'))],
+                        ('Width', Literal(texel_size[0], 'int')),
+                        ('Height', Literal(texel_size[1], 'int')),
+                        ('Extension', Literal(extension, 'int'))],
                        [('Color', color_link), ('Alpha', alpha_link)], comment=flat.label)
     result = {'Alpha': alpha_link}
     colorspace = getattr(image.colorspace_settings, 'name', 'sRGB')
