@@ -75,6 +75,7 @@ TEST(RealNodeLibrary, HasTheNodesTheIssueAsksFor) {
                            "ImageTexture",
                            "ImageTextureClosest",
                            "ImageTextureBilinear",
+                           "ImageTextureBicubic",
                            "NormalMap",
                            "Bump",
                            "NormalFromPosition",

@@ -5,8 +5,9 @@ the UV doubled and shifted by whole texels (negative u and v: the floor and the 
 so every bake pixel centre is an eighth of a texel or more from a texel edge and the texels
 must match exactly (linear filtering blends neighbours and misses by up to 0.87). Extend and
 Clip, with Closest and with Linear (ImageTextureBilinear: the four texels, no mip-maps), on
-the same UV, which runs half an image beyond every edge. The images whose Color is compared
-are opaque: with Alpha unlinked Cycles gives the colour premultiplied.
+the same UV, which runs half an image beyond every edge; Cubic and Smart likewise. The images
+whose Color is compared are opaque: with Alpha unlinked Cycles gives the colour
+premultiplied.
 """
 from math import cos, pi, sin
 
@@ -95,5 +96,22 @@ CASES = [
     Case(name='image_linear_clip_alpha', node='ShaderNodeTexImage', drive=_SHIFTED,
          output='Alpha',
          extra=_image('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Linear', 'CLIP'),
+         note='8x4 pixel art, Non-Color'),
+    # Cubic (a B-spline: it blurs) and Smart (Cubic on the CPU), Non-Color, every extension.
+    Case(name='image_cubic_repeat', node='ShaderNodeTexImage', drive=_SHIFTED,
+         output='Color',
+         extra=_image('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Cubic', 'REPEAT'),
+         note='8x4 pixel art, Non-Color'),
+    Case(name='image_cubic_extend', node='ShaderNodeTexImage', drive=_SHIFTED,
+         output='Color',
+         extra=_image('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Cubic', 'EXTEND'),
+         note='8x4 pixel art, Non-Color'),
+    Case(name='image_cubic_clip', node='ShaderNodeTexImage', drive=_SHIFTED,
+         output='Color',
+         extra=_image('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Cubic', 'CLIP'),
+         note='8x4 pixel art, Non-Color'),
+    Case(name='image_smart_repeat', node='ShaderNodeTexImage', drive=_SHIFTED,
+         output='Color',
+         extra=_image('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Smart', 'REPEAT'),
          note='8x4 pixel art, Non-Color'),
 ]

@@ -250,8 +250,8 @@ def write_mix_rgb(mw, flat, used):
     return result
 
 
-# Blender 3.4's Image Texture extensions as ImageTextureClosest's / ImageTextureBilinear's
-# Extension (Mirror came with Blender 3.5).
+# Blender 3.4's Image Texture extensions as the Extension of ImageTextureClosest,
+# ImageTextureBilinear and ImageTextureBicubic (Mirror came with Blender 3.5).
 IMAGE_EXTENSIONS = {'REPEAT': 0, 'EXTEND': 1, 'CLIP': 2}
 
 
@@ -267,8 +267,9 @@ def write_image(mw, flat, used):
     interpolation becomes ImageTextureClosest with the image's size in texels (the texel that
     holds the UV, unfiltered, as Cycles), with the node's extension. Linear with EXTEND or
     CLIP becomes ImageTextureBilinear (Cycles' bilinear filter from the four texels, no
-    mip-maps); Linear with REPEAT stays the mip-mapped ImageTexture. Cubic and Smart
-    interpolation (filtered linearly) and non-FLAT projections are reported.
+    mip-maps); Linear with REPEAT stays the mip-mapped ImageTexture. Cubic and Smart become
+    ImageTextureBicubic (Cycles' cubic B-spline over 4 x 4 texels, which Cycles also uses
+    for Smart on the CPU). Non-FLAT projections are reported.
     """
     node = flat.node
     image = node.image
@@ -287,18 +288,20 @@ def write_image(mw, flat, used):
         return result
     if node.projection != 'FLAT':
         mw.warn(flat, 'projection %s is not supported: FLAT is used' % node.projection)
-    # The texel-exact nodes: Closest, and Linear with EXTEND or CLIP.
+    # The texel-exact nodes: Closest, Cubic and Smart, and Linear with EXTEND or CLIP.
     extension = IMAGE_EXTENSIONS.get(node.extension)
     if extension is None:
         mw.warn(flat, 'extension %s is not supported: REPEAT is used' % node.extension)
         extension = IMAGE_EXTENSIONS['REPEAT']
-    if node.interpolation not in ('Linear', 'Closest'):
-        mw.warn(flat, 'interpolation %s is not supported: memograph filters linearly'
-                % node.interpolation)
     texel_node = None
     if node.interpolation == 'Closest':
         texel_node = 'ImageTextureClosest'
-    elif extension != IMAGE_EXTENSIONS['REPEAT']:
+    elif node.interpolation in ('Cubic', 'Smart'):
+        texel_node = 'ImageTextureBicubic'
+    elif node.interpolation != 'Linear':
+        mw.warn(flat, 'interpolation %s is not supported: memograph filters linearly'
+                % node.interpolation)
+    if texel_node is None and extension != IMAGE_EXTENSIONS['REPEAT']:
         texel_node = 'ImageTextureBilinear'
     texel_size = None
     if texel_node is not None:
