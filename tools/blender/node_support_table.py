@@ -29,8 +29,7 @@ APPROXIMATIONS = {
     'ShaderNodeBsdfGlossy': 'Principled metal (distribution dropped)',
     'ShaderNodeBsdfTransparent': 'opacity 0 (tint dropped)',
     'ShaderNodeAddShader': 'emissions summed, the surface of the non-emission side',
-    'ShaderNodeTexImage': 'linear filtering with mip-maps, repeat, flat projection; sRGB '
-                          'after filtering',
+    'ShaderNodeTexImage': 'flat projection only; sRGB after filtering',
     'ShaderNodeVectorTransform': 'object space from the location only; camera = world',
     'ShaderNodeBump': 'heights differenced over memograph\'s footprint, not Cycles\' dP',
     'ShaderNodeTexCoord': 'Normal in object space exact for unrotated objects; From '

@@ -208,6 +208,38 @@ def build_combined(out_dir):
         tex = nt.nodes.new('ShaderNodeTexImage')
         tex.image = img  # Vector unlinked: UV
         emit(nt, out, tex.outputs['Color'])
+    # Closest interpolation on pixel art: 8 x 4 texels of unrelated colours, the UV doubled
+    # and shifted by whole texels (negative u and v: the floor and the repeat wrap). Every
+    # bake pixel centre stays an eighth of a texel or more from a texel edge, far beyond the
+    # bake's offset from the centre (docs/guide/blender.md), so the texels must match
+    # exactly; linear filtering blends neighbours and misses by up to ~0.5. Opaque: with
+    # Alpha unlinked Cycles gives an image's colour premultiplied, which is another matter.
+    art_w, art_h = 8, 4
+    img = bpy.data.images.new('mg_C_image_closest', art_w, art_h, alpha=True)
+    px = []
+    for j in range(art_h):
+        for i in range(art_w):
+            k = i + art_w * j
+            px += [((k * 37) % 11) / 10.0, ((k * 53) % 7) / 6.0, ((k * 29) % 5) / 4.0, 1.0]
+    img.pixels = px
+    path = os.path.join(out_dir, 'images', 'C_image_closest.png')
+    img.filepath_raw = path
+    img.file_format = 'PNG'
+    img.save()
+    img.source = 'FILE'
+    img.reload()
+    img.pack()
+    mat, nt, out = new_material('C_image_closest')
+    scaled = nt.nodes.new('ShaderNodeVectorMath')
+    scaled.operation = 'MULTIPLY_ADD'
+    nt.links.new(uv(nt), scaled.inputs[0])
+    scaled.inputs[1].default_value = (2.0, 2.0, 2.0)
+    scaled.inputs[2].default_value = (-0.5, -0.5, 0.0)
+    tex = nt.nodes.new('ShaderNodeTexImage')
+    tex.image = img
+    tex.interpolation = 'Closest'
+    nt.links.new(scaled.outputs[0], tex.inputs['Vector'])
+    emit(nt, out, tex.outputs['Color'])
     # Tables: ColorRamp and the three curve nodes, sampled from Blender's own evaluation.
     for name, interp in (('C_ramp_ease', 'EASE'), ('C_ramp_constant', 'CONSTANT'),
                          ('C_ramp_bspline', 'B_SPLINE')):
@@ -375,13 +407,11 @@ def build_warnings():
     tex.name = 'T'
     tex.image = bpy.data.images.new('mg_modes', 4, 4)
     tex.image.pack()
-    tex.interpolation = 'Closest'
+    tex.interpolation = 'Linear'
     tex.extension = 'EXTEND'
     tex.projection = 'BOX'
     emit(nt, out, tex.outputs['Color'])
-    exp[mat.name] = [('T', 'projection BOX is not supported'),
-                     ('T', 'interpolation Closest is not supported'),
-                     ('T', 'extension EXTEND is not supported')]
+    exp[mat.name] = [('T', 'projection BOX is not supported')]
 
     mat, nt, out = new_material('W_image_missing')
     tex = nt.nodes.new('ShaderNodeTexImage')

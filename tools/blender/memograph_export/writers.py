@@ -250,6 +250,11 @@ def write_mix_rgb(mw, flat, used):
     return result
 
 
+# Blender 3.4's Image Texture extensions as the Extension of ImageTextureClosest,
+# ImageTextureBilinear and ImageTextureBicubic (Mirror came with Blender 3.5).
+IMAGE_EXTENSIONS = {'REPEAT': 0, 'EXTEND': 1, 'CLIP': 2}
+
+
 def write_image(mw, flat, used):
     """ShaderNodeTexImage -> ImageTexture "textures/<name>.<ext>" UV -> Color, Alpha.
 
@@ -258,9 +263,13 @@ def write_image(mw, flat, used):
     with mip-maps and repeat addressing, and its v points down the image, so: v is flipped
     (u, 1 - v); an image whose colour space is sRGB (8-bit or float) gets an
     SRGBToLinear after the sample (Cycles converts per texel before filtering: the two
-    differ only between texels); Non-Color/Linear/Raw images are used as stored. Closest,
-    Cubic and Smart interpolation, EXTEND/CLIP extension and non-FLAT projections are
-    reported and the memograph sampler is used instead.
+    differ only between texels); Non-Color/Linear/Raw images are used as stored. Closest
+    interpolation becomes ImageTextureClosest with the image's size in texels (the texel that
+    holds the UV, unfiltered, as Cycles), with the node's extension. Linear with EXTEND or
+    CLIP becomes ImageTextureBilinear (Cycles' bilinear filter from the four texels, no
+    mip-maps); Linear with REPEAT stays the mip-mapped ImageTexture. Cubic and Smart become
+    ImageTextureBicubic (Cycles' cubic B-spline over 4 x 4 texels, which Cycles also uses
+    for Smart on the CPU). Non-FLAT projections are reported.
     """
     node = flat.node
     image = node.image
@@ -279,11 +288,30 @@ def write_image(mw, flat, used):
         return result
     if node.projection != 'FLAT':
         mw.warn(flat, 'projection %s is not supported: FLAT is used' % node.projection)
-    if node.interpolation != 'Linear':
-        mw.warn(flat, 'interpolation %s is not supported: memograph filters linearly '
-                '(mip-mapped)' % node.interpolation)
-    if node.extension != 'REPEAT':
+    # The texel-exact nodes: Closest, Cubic and Smart, and Linear with EXTEND or CLIP.
+    extension = IMAGE_EXTENSIONS.get(node.extension)
+    if extension is None:
         mw.warn(flat, 'extension %s is not supported: REPEAT is used' % node.extension)
+        extension = IMAGE_EXTENSIONS['REPEAT']
+    texel_node = None
+    if node.interpolation == 'Closest':
+        texel_node = 'ImageTextureClosest'
+    elif node.interpolation in ('Cubic', 'Smart'):
+        texel_node = 'ImageTextureBicubic'
+    elif node.interpolation != 'Linear':
+        mw.warn(flat, 'interpolation %s is not supported: memograph filters linearly'
+                % node.interpolation)
+    if texel_node is None and extension != IMAGE_EXTENSIONS['REPEAT']:
+        texel_node = 'ImageTextureBilinear'
+    texel_size = None
+    if texel_node is not None:
+        width, height = (int(n) for n in image.size)
+        if width > 0 and height > 0:
+            texel_size = (width, height)
+        else:
+            mw.warn(flat, 'interpolation %s with extension %s needs the image\'s size, which '
+                    'Blender does not know (the image did not load): memograph filters '
+                    'linearly (mip-mapped) with REPEAT' % (node.interpolation, node.extension))
     path = mw.assets.image_path(image, lambda msg: mw.warn(flat, msg))
     if path is None:
         return {}
@@ -301,8 +329,16 @@ def write_image(mw, flat, used):
     uv = flipped
     color_link = mw.builder.new_link()
     alpha_link = mw.builder.new_link()
-    mw.builder.add('ImageTexture', [('Image', Literal(path, 'string')), ('UV', uv)],
-                   [('Color', color_link), ('Alpha', alpha_link)], comment=flat.label)
+    if texel_size is None:
+        mw.builder.add('ImageTexture', [('Image', Literal(path, 'string')), ('UV', uv)],
+                       [('Color', color_link), ('Alpha', alpha_link)], comment=flat.label)
+    else:
+        mw.builder.add(texel_node,
+                       [('Image', Literal(path, 'string')), ('UV', uv),
+                        ('Width', Literal(texel_size[0], 'int')),
+                        ('Height', Literal(texel_size[1], 'int')),
+                        ('Extension', Literal(extension, 'int'))],
+                       [('Color', color_link), ('Alpha', alpha_link)], comment=flat.label)
     result = {'Alpha': alpha_link}
     colorspace = getattr(image.colorspace_settings, 'name', 'sRGB')
     if colorspace == 'sRGB':  # Cycles linearises sRGB images, 8-bit or float
