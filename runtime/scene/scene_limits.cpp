@@ -78,33 +78,31 @@ void checkSceneLimits(const SceneFootprint& f) {
            "the vertex and index buffers are storage bindings");
 }
 
-void checkSceneBuffer(const SceneBufferBudget& budget, std::uint64_t bytes,
-                      const std::string& what, const std::string& counted, bool storageBinding,
-                      bool atLeast) {
-  const std::string need = "the scene's " + what + " would need " +
-                           (atLeast ? "at least " : "") + count(bytes) + " bytes (" + counted +
-                           ")";
+void checkSceneBuffer(const SceneBufferBudget& budget, std::uint64_t bytes, const std::string& what,
+                      const std::string& counted, bool storageBinding, bool atLeast) {
+  const std::string need = "the scene's " + what + " would need " + (atLeast ? "at least " : "") +
+                           count(bytes) + " bytes (" + counted + ")";
   const std::uint64_t range = budget.storageRangeBytes;
   if (storageBinding && range > 0 && bytes > range)
     throw SceneLimitError(need + ", more than the " + count(range) +
                           "-byte storage-buffer range of " + budget.device +
                           " (maxStorageBufferRange, the most one binding may address)");
   if (budget.allocationBytes > 0 && bytes > budget.allocationBytes)
-    throw SceneLimitError(need + ", more than the largest allocation of " + budget.device +
-                          " (" + count(budget.allocationBytes) + " bytes)");
+    throw SceneLimitError(need + ", more than the largest allocation of " + budget.device + " (" +
+                          count(budget.allocationBytes) + " bytes)");
 }
 
 void checkGeometryBuffers(const SceneBufferBudget& budget, std::uint64_t vertices,
                           std::uint64_t triangles, bool atLeast) {
   const std::string soFar = atLeast ? " so far" : "";
-  checkSceneBuffer(budget, vertices * sizeof(gpu::Vertex), "vertex buffer",
-                   count(vertices) + " vertices of " + count(sizeof(gpu::Vertex)) + " bytes" +
-                       soFar,
-                   true, atLeast);
-  checkSceneBuffer(budget, triangles * 3 * sizeof(std::uint32_t), "index buffer",
-                   count(triangles) + " triangles of " + count(3 * sizeof(std::uint32_t)) +
-                       " bytes" + soFar,
-                   true, atLeast);
+  checkSceneBuffer(
+      budget, vertices * sizeof(gpu::Vertex), "vertex buffer",
+      count(vertices) + " vertices of " + count(sizeof(gpu::Vertex)) + " bytes" + soFar, true,
+      atLeast);
+  checkSceneBuffer(
+      budget, triangles * 3 * sizeof(std::uint32_t), "index buffer",
+      count(triangles) + " triangles of " + count(3 * sizeof(std::uint32_t)) + " bytes" + soFar,
+      true, atLeast);
 }
 
 void checkTextureLimits(std::uint64_t textures, std::uint64_t texels) {

@@ -88,7 +88,7 @@ void checkSceneLimits(const SceneFootprint& footprint);
 // scene is for: the most one storage binding may address and the largest allocation. Bytes 0:
 // unknown (no device yet), only the fixed limits apply.
 struct SceneBufferBudget {
-  std::string device;                 // the device's name, for the message
+  std::string device;                   // the device's name, for the message
   std::uint64_t storageRangeBytes = 0;  // maxStorageBufferRange
   std::uint64_t allocationBytes = 0;    // maxMemoryAllocationSize
 };
@@ -96,9 +96,8 @@ struct SceneBufferBudget {
 // Throws SceneLimitError when a buffer of `bytes` (`what`, e.g. "vertex buffer", made of
 // `counted`, e.g. "N vertices of 64 bytes") passes the budget; `atLeast` says the count is
 // of a scene still being built, so its whole buffer needs more.
-void checkSceneBuffer(const SceneBufferBudget& budget, std::uint64_t bytes,
-                      const std::string& what, const std::string& counted, bool storageBinding,
-                      bool atLeast = false);
+void checkSceneBuffer(const SceneBufferBudget& budget, std::uint64_t bytes, const std::string& what,
+                      const std::string& counted, bool storageBinding, bool atLeast = false);
 
 // The vertex and index buffers of `vertices` and `triangles` against the budget (gpu::Vertex
 // and three uint32 a triangle); `atLeast` as above. The validate stage checks the whole
