@@ -83,6 +83,18 @@ def separate_x(nt, vec):
 # -- combined graphs ---------------------------------------------------------------------
 
 
+def pack_as_png(img, path):
+    """Saves a generated image as the PNG at `path` and packs that file into the .blend, so
+    the image the exporter unpacks is the 8-bit file Cycles samples, not the float pixels."""
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    img.filepath_raw = path
+    img.file_format = 'PNG'
+    img.save()
+    img.source = 'FILE'
+    img.reload()
+    img.pack()
+
+
 def inner_group():
     g = bpy.data.node_groups.new('MG_Inner', 'ShaderNodeTree')
     gi = g.nodes.new('NodeGroupInput')
@@ -195,14 +207,7 @@ def build_combined(out_dir):
                 px += [0.5 + 0.45 * sin(t * i), 0.5 + 0.45 * cos(t * j),
                        0.5 + 0.45 * sin(t * (i + j)), 1.0]
         img.pixels = px
-        path = os.path.join(out_dir, 'images', name + '.png')
-        os.makedirs(os.path.dirname(path), exist_ok=True)
-        img.filepath_raw = path
-        img.file_format = 'PNG'
-        img.save()
-        img.source = 'FILE'
-        img.reload()
-        img.pack()
+        pack_as_png(img, os.path.join(out_dir, 'images', name + '.png'))
         img.colorspace_settings.name = cs
         mat, nt, out = new_material(name)
         tex = nt.nodes.new('ShaderNodeTexImage')
@@ -222,13 +227,7 @@ def build_combined(out_dir):
             k = i + art_w * j
             px += [((k * 37) % 11) / 10.0, ((k * 53) % 7) / 6.0, ((k * 29) % 5) / 4.0, 1.0]
     img.pixels = px
-    path = os.path.join(out_dir, 'images', 'C_image_closest.png')
-    img.filepath_raw = path
-    img.file_format = 'PNG'
-    img.save()
-    img.source = 'FILE'
-    img.reload()
-    img.pack()
+    pack_as_png(img, os.path.join(out_dir, 'images', 'C_image_closest.png'))
     mat, nt, out = new_material('C_image_closest')
     scaled = nt.nodes.new('ShaderNodeVectorMath')
     scaled.operation = 'MULTIPLY_ADD'
