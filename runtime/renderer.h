@@ -116,6 +116,10 @@ struct RenderSettings {
   // Asked before each frame; true: the frame's image is read back after it and handed to
   // onFrameImage (a frame range's outputs; warm-up frames and finished ones are not).
   std::function<bool(std::uint32_t frame)> frameImageWanted;
+  // Asked before each frame; true: the frame is not rendered at all. Only for frames whose
+  // state nothing later needs (a resumed frame range's finished frames without a cache or
+  // LiPaC, each frame alone); never the first frame of the render.
+  std::function<bool(std::uint32_t frame)> skipFrame;
   std::function<void(std::uint32_t frame, const HdrImage&)> onFrameImage;
 };
 

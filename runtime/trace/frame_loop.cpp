@@ -280,12 +280,15 @@ void FrameLoop::run(RenderResult& result) {
   std::uint32_t sampleIndex = 0;
   previousRays_ = 0;
   const std::uint32_t first = settings.firstFrame, end = first + settings.frames;
+  bool firstRendered = true;  // the render's first frame: submit sets up, its time is reported
   for (std::uint32_t f = first; f < end; ++f) {
+    if (settings.skipFrame && settings.skipFrame(f))
+      continue;
     const Camera& camera =
         settings.cameraPath.empty()
             ? in_.scene->camera
             : settings.cameraPath[std::min<std::size_t>(f, settings.cameraPath.size() - 1)];
-    if (f > first && (settings.eachFrameAlone || !sameCamera(camera, previousCamera)))
+    if (!firstRendered && (settings.eachFrameAlone || !sameCamera(camera, previousCamera)))
       sampleIndex = 0;
     previousCamera = camera;
     frame_.cameraForward.w = float(f) * settings.secondsPerFrame;
@@ -312,11 +315,11 @@ void FrameLoop::run(RenderResult& result) {
     frameStats.feedbackFrame = trace.counts ? 1u : 0u;
     frameStats.traceDispatches = in_.tracer->dispatchCount(trace);
     const auto start = std::chrono::steady_clock::now();
-    submit(f == first, trace);
+    submit(firstRendered, trace);
     frameStats.wallMilliseconds =
         std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     readFrame(trace, lookStats, frameStats);
-    if (f == 0)
+    if (firstRendered)
       result.stats.firstFrameMilliseconds = std::chrono::duration<double, std::milli>(
                                                 std::chrono::steady_clock::now() - in_.renderStart)
                                                 .count();
@@ -327,6 +330,7 @@ void FrameLoop::run(RenderResult& result) {
     if (settings.onFrame)
       settings.onFrame(frameStats);
     ++sampleIndex;
+    firstRendered = false;
     if (settings.continueAfterFrame && !settings.continueAfterFrame(frameStats))
       break;  // the image is the accumulation of the frames rendered so far
   }

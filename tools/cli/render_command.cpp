@@ -442,6 +442,9 @@ int renderAndWrite(TraceCommandOptions& options, const runtime::Scene& scene) {
 struct RangePlan {
   std::vector<bool> write;  // by frame - range.first
   std::uint32_t firstRendered = 0, lastRendered = 0, warmup = 0, skipped = 0;
+  // No state crosses frames (no cache, no LiPaC): a finished frame between missing ones is
+  // skipped, not rendered again.
+  bool framesIndependent = true;
 };
 
 bool planRange(const TraceCommandOptions& options, const FramePattern& pattern, RangePlan& plan) {
@@ -466,6 +469,7 @@ bool planRange(const TraceCommandOptions& options, const FramePattern& pattern, 
   const runtime::RendererOptions& renderer = options.renderer;
   const bool carriesState = renderer.cache.mode != runtime::CacheMode::None ||
                             renderer.culling.mode == runtime::CullingMode::Lipac;
+  plan.framesIndependent = !carriesState;
   plan.warmup = carriesState ? std::min(*first, options.warmupFrames) : 0;
   plan.firstRendered = *first - plan.warmup;
   plan.lastRendered = *last;
@@ -490,6 +494,8 @@ int renderFrameRange(TraceCommandOptions& options, const runtime::Scene& scene,
   settings.frameImageWanted = [&](std::uint32_t f) {
     return f >= range.first && f <= range.last && plan.write[f - range.first];
   };
+  if (plan.framesIndependent)
+    settings.skipFrame = [&](std::uint32_t f) { return !settings.frameImageWanted(f); };
   std::uint32_t written = 0;
   settings.onFrameImage = [&](std::uint32_t f, const runtime::HdrImage& image) {
     const std::string path = framePath(pattern, f);
@@ -504,7 +510,8 @@ int renderFrameRange(TraceCommandOptions& options, const runtime::Scene& scene,
   return renderScene(options, scene, settings, [&](const runtime::RenderResult& result) {
     std::cerr << "frames " << range.first << ".." << range.last << ": " << written << " written, "
               << plan.skipped << " complete already, " << plan.warmup
-              << " warm-up frames rendered first\n";
+              << " warm-up frames rendered first; " << result.stats.frames.size()
+              << " frames rendered in all\n";
     printSummary(framePath(pattern, plan.lastRendered), result.stats);
     return kExitOk;
   });
