@@ -166,34 +166,44 @@ def run_blender(args, out):
     return secs
 
 
-def run_bake(args, out, graphs):
+def run_bake(args, out, graphs_by_normal):
+    """One `memograph bake` call per plane normal (None: the default +Z), all into DIR/mg;
+    returns the time and, per normal, what went wrong."""
     memograph = args.memograph or default_memograph()
     mg_out = os.path.join(out, 'mg')
     shutil.rmtree(mg_out, ignore_errors=True)
     os.makedirs(mg_out)
-    if not graphs:
-        return 0.0, ''
+    if not any(graphs_by_normal.values()):
+        return 0.0, {}
     if not os.access(memograph, os.X_OK):
-        return 0.0, 'memograph binary not found: %s (build it or pass --memograph)' % memograph
-    cmd = [memograph, 'bake'] + graphs + ['--size', '%dx%d' % (SIZE, SIZE), '--format', 'pfm',
-                                          '--out', mg_out]
-    if args.nodes:
-        cmd += ['--nodes', args.nodes]
+        missing = 'memograph binary not found: %s (build it or pass --memograph)' % memograph
+        return 0.0, {normal: missing for normal in graphs_by_normal}
     t0 = time.time()
     log_path = os.path.join(out, 'bake.log')
+    problems = {}
     with open(log_path, 'w') as log:
-        log.write(' '.join(cmd) + '\n')
-        log.flush()
-        rc = subprocess.call(cmd, stdout=log, stderr=subprocess.STDOUT, cwd=REPO)
-    return time.time() - t0, '' if rc == 0 else 'memograph bake exited with %d (see %s)' % (
-        rc, log_path)
+        for normal in sorted(graphs_by_normal, key=lambda n: (n is not None, n or ())):
+            graphs = sorted(set(graphs_by_normal[normal]))
+            cmd = [memograph, 'bake'] + graphs + ['--size', '%dx%d' % (SIZE, SIZE), '--format',
+                                                  'pfm', '--out', mg_out]
+            if normal is not None:
+                cmd += ['--normal', ','.join(repr(float(x)) for x in normal)]
+            if args.nodes:
+                cmd += ['--nodes', args.nodes]
+            log.write(' '.join(cmd) + '\n')
+            log.flush()
+            rc = subprocess.call(cmd, stdout=log, stderr=subprocess.STDOUT, cwd=REPO)
+            if rc != 0:
+                problems[normal] = 'memograph bake exited with %d (see %s)' % (rc, log_path)
+    return time.time() - t0, problems
 
 
 def bake_errors_for(out, graph):
     """The lines of bake.log that name this graph (its errors)."""
     try:
         with open(os.path.join(out, 'bake.log'), errors='replace') as f:
-            lines = f.read().splitlines()[1:]
+            # Without the command lines (one per bake call), which name every graph.
+            lines = [ln for ln in f.read().splitlines() if ' bake ' not in ln]
     except OSError:
         return ''
     base = os.path.basename(graph)
@@ -249,7 +259,16 @@ def main(argv=None):
             exp = rec.get('export', '?')
             problems[c.name] = ('no graph (export skipped; see above)'
                                 if exp.startswith('skipped') else 'no graph: export ' + exp)
-    bake_secs, bake_problem = run_bake(args, out, sorted(set(graphs.values())))
+    # The tilted plane's face normal as Blender computed it (build_and_bake.py records it),
+    # closer to Cycles' own than the case's rounded one.
+    graphs_by_normal, normal_of = {}, {}
+    for c in selected:
+        if c.name in graphs:
+            normal = records[c.name].get('normal')
+            key = tuple(float(x) for x in normal) if normal is not None else None
+            graphs_by_normal.setdefault(key, []).append(graphs[c.name])
+            normal_of[c.name] = key
+    bake_secs, bake_problems = run_bake(args, out, graphs_by_normal)
 
     results = []
     for c in selected:
@@ -263,7 +282,8 @@ def main(argv=None):
         if not os.path.exists(mg_path):
             r['why'] = 'memograph bake wrote no %s%s' % (
                 os.path.basename(mg_path),
-                ': ' + (bake_errors_for(out, g) or bake_problem or 'see bake.log'))
+                ': ' + (bake_errors_for(out, g) or bake_problems.get(normal_of.get(c.name))
+                       or 'see bake.log'))
             continue
         try:
             _, _, ref = read_pfm(records[c.name]['cycles'])
