@@ -56,6 +56,19 @@ def _image(name, width, height, pixels, colorspace, interpolation, extension='RE
 
 _SHIFTED = {'Vector': ('uv3', 2.0, (-0.5, -0.5, 0.0))}
 
+def _color_plus_alpha(name, interpolation, extension):
+    """extra(node, tree) for a Vector Math ADD of an Image Texture's Color and Alpha: with
+    Alpha linked, Cycles divides the filtered, associated colour by the filtered alpha."""
+    set_image = _image(name, 8, 4, _pixel_art_alpha, 'sRGB', interpolation, extension)
+
+    def extra(node, nt):
+        tex = nt.nodes.new('ShaderNodeTexImage')
+        set_image(tex)
+        nt.links.new(tex.outputs['Color'], node.inputs[0])
+        nt.links.new(tex.outputs['Alpha'], node.inputs[1])
+    return extra
+
+
 CASES = [
     Case(name='image_linear_smooth', node='ShaderNodeTexImage', drive={'Vector': 'uv3'},
          output='Color', extra=_image('mg_case_smooth', 32, 32, _smooth, 'sRGB', 'Linear'),
@@ -114,4 +127,19 @@ CASES = [
          output='Color',
          extra=_image('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Smart', 'REPEAT'),
          note='8x4 pixel art, Non-Color'),
+    # Straight alpha on an 8-bit image: Cycles associates each texel (C * A / 255, rounded
+    # down) before filtering; with Alpha unlinked its Color stays associated, with Alpha
+    # linked it is divided by the filtered alpha (memograph: Premultiply 1 and 2).
+    Case(name='image_closest_premultiplied', node='ShaderNodeTexImage', drive=_SHIFTED,
+         output='Color',
+         extra=_image('mg_case_art_alpha', 8, 4, _pixel_art_alpha, 'sRGB', 'Closest'),
+         note='8x4 pixel art, alpha 0 to 1, Alpha unlinked: associated'),
+    Case(name='image_linear_premultiplied_clip', node='ShaderNodeTexImage', drive=_SHIFTED,
+         output='Color',
+         extra=_image('mg_case_art_alpha', 8, 4, _pixel_art_alpha, 'sRGB', 'Linear', 'CLIP'),
+         note='8x4 pixel art, alpha 0 to 1, Alpha unlinked: associated'),
+    Case(name='image_cubic_unassociated', node='ShaderNodeVectorMath', props={'operation': 'ADD'},
+         output='Vector',
+         extra=_color_plus_alpha('mg_case_art_alpha', 'Cubic', 'REPEAT'),
+         note='Color + Alpha of 8x4 pixel art, alpha 0 to 1: Alpha linked, divided back'),
 ]

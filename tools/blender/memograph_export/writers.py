@@ -255,6 +255,23 @@ def write_mix_rgb(mw, flat, used):
 IMAGE_EXTENSIONS = {'REPEAT': 0, 'EXTEND': 1, 'CLIP': 2}
 
 
+def image_premultiply(image, colorspace, used):
+    """The Premultiply of the texel nodes (ImageTextureClosest/Bilinear/Bicubic/Box): how
+    Cycles 3.4 associates the colour of an 8-bit image with its straight alpha. Its loaders
+    premultiply byte images per texel, C * A / 255 rounded down ("byte images are always
+    straight for Blender"), unless the colour space is data (Non-Color) or the alpha is
+    channel-packed or ignored; its lookup divides the filtered colour back by the filtered
+    alpha only when the Alpha output is linked (ImageTextureNode::compile,
+    NODE_IMAGE_ALPHA_UNASSOCIATE). 0: not associated; 1: associated (Alpha unused); 2:
+    associated, then divided (Alpha used). Float images (associated in float by Cycles) and
+    images without an alpha channel get 0."""
+    if colorspace == 'Non-Color' or getattr(image, 'alpha_mode', 'STRAIGHT') != 'STRAIGHT':
+        return 0
+    if getattr(image, 'is_float', False) or getattr(image, 'channels', 4) != 4:
+        return 0
+    return 2 if 'Alpha' in used else 1
+
+
 def write_image(mw, flat, used):
     """ShaderNodeTexImage -> ImageTexture "textures/<name>.<ext>" UV -> Color, Alpha.
 
@@ -327,6 +344,7 @@ def write_image(mw, flat, used):
                                    ('C', Literal((0.0, 1.0, 0.0)))], [('Out', flipped)],
                    comment=flat.label + ' v up -> v down')
     uv = flipped
+    colorspace = getattr(image.colorspace_settings, 'name', 'sRGB')
     color_link = mw.builder.new_link()
     alpha_link = mw.builder.new_link()
     if texel_size is None:
@@ -337,10 +355,11 @@ def write_image(mw, flat, used):
                        [('Image', Literal(path, 'string')), ('UV', uv),
                         ('Width', Literal(texel_size[0], 'int')),
                         ('Height', Literal(texel_size[1], 'int')),
-                        ('Extension', Literal(extension, 'int'))],
+                        ('Extension', Literal(extension, 'int')),
+                        ('Premultiply',
+                         Literal(image_premultiply(image, colorspace, used), 'int'))],
                        [('Color', color_link), ('Alpha', alpha_link)], comment=flat.label)
     result = {'Alpha': alpha_link}
-    colorspace = getattr(image.colorspace_settings, 'name', 'sRGB')
     if colorspace == 'sRGB':  # Cycles linearises sRGB images, 8-bit or float
         linear = mw.builder.new_link()
         mw.builder.add('SRGBToLinear', [('Color', color_link)], [('Out', linear)],
