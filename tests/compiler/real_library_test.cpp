@@ -76,6 +76,7 @@ TEST(RealNodeLibrary, HasTheNodesTheIssueAsksFor) {
                            "ImageTextureClosest",
                            "ImageTextureBilinear",
                            "ImageTextureBicubic",
+                           "ImageTextureBox",
                            "NormalMap",
                            "Bump",
                            "NormalFromPosition",

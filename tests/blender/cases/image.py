@@ -56,6 +56,28 @@ def _image(name, width, height, pixels, colorspace, interpolation, extension='RE
 
 _SHIFTED = {'Vector': ('uv3', 2.0, (-0.5, -0.5, 0.0))}
 
+
+def _box(name, width, height, pixels, colorspace, interpolation, extension, blend):
+    """Case arguments for Box projection: props (projection, projection_blend, and, for the
+    table, interpolation and extension) and extra(node, tree): the image, and a Vector that
+    varies on all three axes, so that every plane's lookup moves over the image: UV through a
+    Mapping (rotated, doubled, shifted: about -0.9 to 1.9 on each axis, beyond every edge)."""
+    set_image = _image(name, width, height, pixels, colorspace, interpolation, extension)
+
+    def extra(node, nt):
+        set_image(node)
+        coord = nt.nodes.new('ShaderNodeTexCoord')
+        mapping = nt.nodes.new('ShaderNodeMapping')
+        mapping.inputs['Location'].default_value = (-0.4, -0.3, 0.2)
+        mapping.inputs['Rotation'].default_value = (0.5, -0.4, 0.3)
+        mapping.inputs['Scale'].default_value = (2.0, 2.0, 2.0)
+        nt.links.new(coord.outputs['UV'], mapping.inputs['Vector'])
+        nt.links.new(mapping.outputs['Vector'], node.inputs['Vector'])
+    return {'props': {'projection': 'BOX', 'projection_blend': blend,
+                      'interpolation': interpolation, 'extension': extension},
+            'extra': extra}
+
+
 def _color_plus_alpha(name, interpolation, extension):
     """extra(node, tree) for a Vector Math ADD of an Image Texture's Color and Alpha: with
     Alpha linked, Cycles divides the filtered, associated colour by the filtered alpha."""
@@ -68,6 +90,16 @@ def _color_plus_alpha(name, interpolation, extension):
         nt.links.new(tex.outputs['Alpha'], node.inputs[1])
     return extra
 
+
+# Box projection: the plane tilted (Case.normal) into each zone of Cycles' weight triangle:
+# a corner (one plane), the three edges (two planes) and the middle (three planes), both
+# signs of each axis (the sides whose u Cycles turns), Blend 0, 0.2 and 1, every
+# interpolation and extension. Colour on opaque images.
+_XY = (1.0, 0.9, 0.05)      # Blend 0: x alone; 0.2: x and y
+_YZ = (0.05, -0.9, 1.0)     # Blend 0.2: y and z
+_XZ = (-1.0, 0.05, -0.9)    # Blend 0.2: x and z
+_XYZ = (-0.8, 0.9, -1.0)    # Blend 0.2: all three
+_TILT = (1.0, -0.7, 0.5)    # Blend 1: all three, weights |n| / sum |n|
 
 CASES = [
     Case(name='image_linear_smooth', node='ShaderNodeTexImage', drive={'Vector': 'uv3'},
@@ -142,4 +174,49 @@ CASES = [
          output='Vector',
          extra=_color_plus_alpha('mg_case_art_alpha', 'Cubic', 'REPEAT'),
          note='Color + Alpha of 8x4 pixel art, alpha 0 to 1: Alpha linked, divided back'),
+    # Box projection.
+    Case(name='image_box_flat_linear', node='ShaderNodeTexImage', output='Color',
+         **_box('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Linear', 'REPEAT', 0.0),
+         note='box on the flat plane: the z plane alone'),
+    Case(name='image_box_blend0_closest_extend', node='ShaderNodeTexImage', output='Color',
+         normal=_XY,
+         **_box('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Closest', 'EXTEND', 0.0),
+         note='box, normal (1, 0.9, 0.05), Blend 0: x alone'),
+    Case(name='image_box_blend02_xy_linear_clip', node='ShaderNodeTexImage', output='Color',
+         normal=_XY,
+         **_box('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Linear', 'CLIP', 0.2),
+         note='box, normal (1, 0.9, 0.05), Blend 0.2: x and y'),
+    Case(name='image_box_blend02_yz_cubic', node='ShaderNodeTexImage', output='Color',
+         normal=_YZ,
+         **_box('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Cubic', 'REPEAT', 0.2),
+         note='box, normal (0.05, -0.9, 1), Blend 0.2: y and z'),
+    Case(name='image_box_blend02_xz_closest', node='ShaderNodeTexImage', output='Color',
+         normal=_XZ,
+         **_box('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Closest', 'REPEAT', 0.2),
+         note='box, normal (-1, 0.05, -0.9), Blend 0.2: x and z'),
+    Case(name='image_box_blend02_xyz_linear_extend', node='ShaderNodeTexImage',
+         output='Color', normal=_XYZ,
+         **_box('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Linear', 'EXTEND', 0.2),
+         note='box, normal (-0.8, 0.9, -1), Blend 0.2: all three'),
+    Case(name='image_box_blend1_cubic_clip', node='ShaderNodeTexImage', output='Color',
+         normal=_TILT,
+         **_box('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Cubic', 'CLIP', 1.0),
+         note='box, normal (1, -0.7, 0.5), Blend 1: all three'),
+    Case(name='image_box_blend1_smart_srgb', node='ShaderNodeTexImage', output='Color',
+         normal=_XYZ,
+         **_box('mg_case_art', 8, 4, _pixel_art, 'sRGB', 'Smart', 'REPEAT', 1.0),
+         note='box, sRGB: linearised per lookup, before the planes blend'),
+    Case(name='image_box_blend02_linear_srgb', node='ShaderNodeTexImage', output='Color',
+         normal=_XY,
+         **_box('mg_case_art', 8, 4, _pixel_art, 'sRGB', 'Linear', 'REPEAT', 0.2),
+         note='box, sRGB, Blend 0.2: x and y'),
+    Case(name='image_box_premultiplied', node='ShaderNodeTexImage', output='Color',
+         normal=_XY,
+         **_box('mg_case_art_alpha', 8, 4, _pixel_art_alpha, 'sRGB', 'Linear', 'EXTEND', 0.2),
+         note='box, alpha 0 to 1, Alpha unlinked: associated per lookup'),
+    Case(name='image_box_blend02_alpha', node='ShaderNodeTexImage', output='Alpha',
+         normal=_XZ,
+         **_box('mg_case_art_alpha', 8, 4, _pixel_art_alpha, 'sRGB', 'Closest', 'REPEAT',
+                    0.2),
+         note='box, alpha, Blend 0.2: x and z'),
 ]

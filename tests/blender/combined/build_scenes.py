@@ -408,9 +408,9 @@ def build_warnings():
     tex.image.pack()
     tex.interpolation = 'Linear'
     tex.extension = 'EXTEND'
-    tex.projection = 'BOX'
+    tex.projection = 'SPHERE'  # Box is carried (ImageTextureBox); Sphere and Tube are not
     emit(nt, out, tex.outputs['Color'])
-    exp[mat.name] = [('T', 'projection BOX is not supported')]
+    exp[mat.name] = [('T', 'projection SPHERE is not supported')]
 
     mat, nt, out = new_material('W_image_missing')
     tex = nt.nodes.new('ShaderNodeTexImage')

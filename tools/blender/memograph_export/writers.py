@@ -286,7 +286,11 @@ def write_image(mw, flat, used):
     CLIP becomes ImageTextureBilinear (Cycles' bilinear filter from the four texels, no
     mip-maps); Linear with REPEAT stays the mip-mapped ImageTexture. Cubic and Smart become
     ImageTextureBicubic (Cycles' cubic B-spline over 4 x 4 texels, which Cycles also uses
-    for Smart on the CPU). Non-FLAT projections are reported.
+    for Smart on the CPU). BOX projection becomes ImageTextureBox (Cycles'
+    svm_node_tex_image_box: three axis-plane lookups blended by the normal and
+    projection_blend, each filtered from the texels with the node's interpolation and
+    extension, and, for an sRGB image, linearised per lookup inside the node, since Cycles
+    converts before it blends the planes). SPHERE and TUBE are reported (FLAT is used).
     """
     node = flat.node
     image = node.image
@@ -303,8 +307,10 @@ def write_image(mw, flat, used):
                                comment=flat.label + ' (no image)')
                 result[socket.identifier] = link
         return result
-    if node.projection != 'FLAT':
-        mw.warn(flat, 'projection %s is not supported: FLAT is used' % node.projection)
+    projection = node.projection
+    if projection not in ('FLAT', 'BOX'):
+        mw.warn(flat, 'projection %s is not supported: FLAT is used' % projection)
+        projection = 'FLAT'
     # The texel-exact nodes: Closest, Cubic and Smart, and Linear with EXTEND or CLIP.
     extension = IMAGE_EXTENSIONS.get(node.extension)
     if extension is None:
@@ -321,10 +327,15 @@ def write_image(mw, flat, used):
     if texel_node is None and extension != IMAGE_EXTENSIONS['REPEAT']:
         texel_node = 'ImageTextureBilinear'
     texel_size = None
-    if texel_node is not None:
+    if texel_node is not None or projection == 'BOX':
         width, height = (int(n) for n in image.size)
         if width > 0 and height > 0:
             texel_size = (width, height)
+        elif projection == 'BOX':
+            mw.warn(flat, 'projection BOX needs the image\'s size, which Blender does not know '
+                    '(the image did not load): FLAT is used, filtered linearly (mip-mapped) '
+                    'with REPEAT')
+            projection = 'FLAT'
         else:
             mw.warn(flat, 'interpolation %s with extension %s needs the image\'s size, which '
                     'Blender does not know (the image did not load): memograph filters '
@@ -337,6 +348,27 @@ def write_image(mw, flat, used):
         uv = mw.implicit('uv2')
     else:
         uv = mw.operand(src)
+    colorspace = getattr(image.colorspace_settings, 'name', 'sRGB')
+    if colorspace not in ('sRGB', 'Non-Color', 'Linear', 'Raw', 'Linear Rec.709'):
+        mw.warn(flat, 'colour space %s is not carried: the stored values are used' % colorspace)
+    if projection == 'BOX':
+        # Blender's coordinate goes in as is: the node projects it on the planes and flips
+        # each plane's v itself.
+        color_link = mw.builder.new_link()
+        alpha_link = mw.builder.new_link()
+        mw.builder.add('ImageTextureBox',
+                       [('Image', Literal(path, 'string')), ('Vector', uv),
+                        ('Blend', Literal(float(node.projection_blend))),
+                        ('Width', Literal(texel_size[0], 'int')),
+                        ('Height', Literal(texel_size[1], 'int')),
+                        ('Interpolation', prop_value(node, 'interpolation')),
+                        ('Extension', Literal(extension, 'int')),
+                        ('Premultiply',
+                         Literal(image_premultiply(image, colorspace, used), 'int')),
+                        ('Srgb', Literal(1 if colorspace == 'sRGB' else 0, 'int'))],
+                       [('Color', color_link), ('Alpha', alpha_link)],
+                       comment=flat.label + ' box projection')
+        return {'Color': color_link, 'Alpha': alpha_link}
     # Blender's v points up the image (row 0 at the bottom); memograph samples images with v
     # down (glTF's convention, top row first): sample at (u, 1 - v).
     flipped = mw.builder.new_link()
@@ -344,7 +376,6 @@ def write_image(mw, flat, used):
                                    ('C', Literal((0.0, 1.0, 0.0)))], [('Out', flipped)],
                    comment=flat.label + ' v up -> v down')
     uv = flipped
-    colorspace = getattr(image.colorspace_settings, 'name', 'sRGB')
     color_link = mw.builder.new_link()
     alpha_link = mw.builder.new_link()
     if texel_size is None:
@@ -366,9 +397,6 @@ def write_image(mw, flat, used):
                        comment=flat.label + ' colour space sRGB')
         result['Color'] = linear
     else:
-        if colorspace not in ('sRGB', 'Non-Color', 'Linear', 'Raw', 'Linear Rec.709'):
-            mw.warn(flat, 'colour space %s is not carried: the stored values are used'
-                    % colorspace)
         result['Color'] = color_link
     return result
 
