@@ -5,9 +5,11 @@ the UV doubled and shifted by whole texels (negative u and v: the floor and the 
 so every bake pixel centre is an eighth of a texel or more from a texel edge and the texels
 must match exactly (linear filtering blends neighbours and misses by up to 0.87). Extend and
 Clip, with Closest and with Linear (ImageTextureBilinear: the four texels, no mip-maps), on
-the same UV, which runs half an image beyond every edge; Cubic and Smart likewise. The images
-whose Color is compared are opaque: with Alpha unlinked Cycles gives the colour
-premultiplied.
+the same UV, which runs half an image beyond every edge; Cubic and Smart likewise. sRGB pixel
+art filtered (where Cycles linearises). Alpha below 1: Cycles' association of an 8-bit
+image's colour with its alpha, with Alpha unlinked and linked. Box projection on a tilted
+plane (Case.normal), in every zone of its blend. Colour cases on images with alpha say so;
+the others use opaque images.
 """
 from math import cos, pi, sin
 
@@ -116,8 +118,7 @@ CASES = [
          output='Alpha',
          extra=_image('mg_case_art_alpha', 8, 4, _pixel_art_alpha, 'sRGB', 'Closest'),
          note='8x4 pixel art, alpha 0 to 1'),
-    # Extend and Clip: the UV runs from -0.5 to 1.5, half an image beyond every edge. Linear
-    # on Non-Color images (Cycles linearises sRGB texels before filtering, memograph after).
+    # Extend and Clip: the UV runs from -0.5 to 1.5, half an image beyond every edge.
     Case(name='image_closest_extend', node='ShaderNodeTexImage', drive=_SHIFTED,
          output='Color',
          extra=_image('mg_case_art', 8, 4, _pixel_art, 'sRGB', 'Closest', 'EXTEND'),
@@ -159,6 +160,18 @@ CASES = [
          output='Color',
          extra=_image('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Smart', 'REPEAT'),
          note='8x4 pixel art, Non-Color'),
+    # 8-bit sRGB images with filtering, on pixel art whose neighbours differ by up to 1: where
+    # Cycles linearises shows between texels. It filters the stored bytes and linearises each
+    # lookup (NODE_IMAGE_COMPRESS_AS_SRGB in svm_image_texture), as memograph's SRGBToLinear
+    # after the filter; linearising each texel before filtering would miss by about 0.29.
+    Case(name='image_linear_extend_srgb', node='ShaderNodeTexImage', drive=_SHIFTED,
+         output='Color',
+         extra=_image('mg_case_art', 8, 4, _pixel_art, 'sRGB', 'Linear', 'EXTEND'),
+         note='8x4 pixel art, sRGB: linearised after filtering'),
+    Case(name='image_cubic_repeat_srgb', node='ShaderNodeTexImage', drive=_SHIFTED,
+         output='Color',
+         extra=_image('mg_case_art', 8, 4, _pixel_art, 'sRGB', 'Cubic', 'REPEAT'),
+         note='8x4 pixel art, sRGB: linearised after filtering'),
     # Straight alpha on an 8-bit image: Cycles associates each texel (C * A / 255, rounded
     # down) before filtering; with Alpha unlinked its Color stays associated, with Alpha
     # linked it is divided by the filtered alpha (memograph: Premultiply 1 and 2).

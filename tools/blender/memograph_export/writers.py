@@ -279,8 +279,9 @@ def write_image(mw, flat, used):
     reads image files as stored (PNG 8-bit as value/255, EXR as is) and filters linearly
     with mip-maps and repeat addressing, and its v points down the image, so: v is flipped
     (u, 1 - v); an image whose colour space is sRGB (8-bit or float) gets an
-    SRGBToLinear after the sample (Cycles converts per texel before filtering: the two
-    differ only between texels); Non-Color/Linear/Raw images are used as stored. Closest
+    SRGBToLinear after the sample (Cycles, too, filters an 8-bit sRGB image as stored and
+    linearises each lookup: NODE_IMAGE_COMPRESS_AS_SRGB; measured by the image_*_srgb
+    cases); Non-Color/Linear/Raw images are used as stored. Closest
     interpolation becomes ImageTextureClosest with the image's size in texels (the texel that
     holds the UV, unfiltered, as Cycles), with the node's extension. Linear with EXTEND or
     CLIP becomes ImageTextureBilinear (Cycles' bilinear filter from the four texels, no
