@@ -31,7 +31,7 @@ APPROXIMATIONS = {
     'ShaderNodeAddShader': 'emissions summed, the surface of the non-emission side',
     'ShaderNodeTexImage': 'Flat and Box projection (Box: the world normal stands for the '
                           'object one, exact for unrotated objects), Sphere and Tube as Flat; '
-                          'Linear with Repeat mip-mapped and not associated with alpha',
+                          'Linear with Repeat mip-mapped, associated with alpha after filtering',
     'ShaderNodeVectorTransform': 'object space from the location only; camera = world',
     'ShaderNodeBump': 'heights differenced over memograph\'s footprint, not Cycles\' dP',
     'ShaderNodeTexCoord': 'Normal in object space exact for unrotated objects; From '

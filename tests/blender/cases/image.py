@@ -41,6 +41,14 @@ def _smooth(width, height):
     return px
 
 
+def _smooth_alpha(width, height):
+    px = _smooth(width, height)
+    for j in range(height):
+        for i in range(width):
+            px[4 * (i + width * j) + 3] = 0.5 + 0.45 * cos(2.0 * pi * (i / width - j / height))
+    return px
+
+
 def _image(name, width, height, pixels, colorspace, interpolation, extension='REPEAT'):
     def extra(node):
         import bpy  # only inside Blender
@@ -183,6 +191,12 @@ CASES = [
          output='Color',
          extra=_image('mg_case_art_alpha', 8, 4, _pixel_art_alpha, 'sRGB', 'Linear', 'CLIP'),
          note='8x4 pixel art, alpha 0 to 1, Alpha unlinked: associated'),
+    Case(name='image_linear_repeat_premultiplied', node='ShaderNodeTexImage',
+         drive={'Vector': 'uv3'}, output='Color', tolerance=1e-2,
+         extra=_image('mg_case_smooth_alpha', 32, 32, _smooth_alpha, 'sRGB', 'Linear'),
+         note='smooth image, alpha 0.05 to 0.95, mip-mapped: associated after filtering, so '
+              'Cycles\' 8-bit rounding down (up to 1/255 before linearising) and the blend '
+              'between texels differ'),
     Case(name='image_cubic_unassociated', node='ShaderNodeVectorMath', props={'operation': 'ADD'},
          output='Vector',
          extra=_color_plus_alpha('mg_case_art_alpha', 'Cubic', 'REPEAT'),

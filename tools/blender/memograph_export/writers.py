@@ -391,6 +391,15 @@ def write_image(mw, flat, used):
                         ('Premultiply',
                          Literal(image_premultiply(image, colorspace, used), 'int'))],
                        [('Color', color_link), ('Alpha', alpha_link)], comment=flat.label)
+    if texel_size is None and image_premultiply(image, colorspace, used) == 1:
+        # Cycles associates each texel with its alpha before filtering; the mip-mapped sample
+        # can only be associated after it: the same at texel centres (but for Cycles' 8-bit
+        # rounding down), apart between texels whose alpha differs.
+        associated = mw.builder.new_link()
+        mw.builder.add('MultiplyAdd', [('A', color_link), ('B', alpha_link),
+                                       ('C', Literal((0.0, 0.0, 0.0)))], [('Out', associated)],
+                       comment=flat.label + ' colour associated with alpha')
+        color_link = associated
     result = {'Alpha': alpha_link}
     if colorspace == 'sRGB':  # Cycles linearises sRGB images, 8-bit or float
         linear = mw.builder.new_link()
