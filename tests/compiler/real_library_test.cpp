@@ -77,6 +77,7 @@ TEST(RealNodeLibrary, HasTheNodesTheIssueAsksFor) {
                            "ImageTextureBilinear",
                            "ImageTextureBicubic",
                            "ImageTextureBox",
+                           "ImageProjection",
                            "NormalMap",
                            "Bump",
                            "NormalFromPosition",

@@ -88,6 +88,22 @@ def _box(name, width, height, pixels, colorspace, interpolation, extension, blen
             'extra': extra}
 
 
+def _mapped(name, width, height, pixels, colorspace, interpolation, extension, projection):
+    """Case arguments for Sphere and Tube projection: props and extra(node, tree) with the
+    same rotated, doubled, shifted Vector as the Box cases (about -0.9 to 1.9 on each axis, so
+    around the centre 0.5 where the projections' angles turn)."""
+    args = _box(name, width, height, pixels, colorspace, interpolation, extension, 0.0)
+    args['props'] = {'projection': projection, 'interpolation': interpolation,
+                     'extension': extension}
+    set_vector = args['extra']
+
+    def extra(node, nt):
+        set_vector(node, nt)
+        node.projection = projection
+    args['extra'] = extra
+    return args
+
+
 def _color_plus_alpha(name, interpolation, extension):
     """extra(node, tree) for a Vector Math ADD of an Image Texture's Color and Alpha: with
     Alpha linked, Cycles divides the filtered, associated colour by the filtered alpha."""
@@ -241,6 +257,23 @@ CASES = [
          normal=_XY,
          **_box('mg_case_art_alpha', 8, 4, _pixel_art_alpha, 'sRGB', 'Linear', 'EXTEND', 0.2),
          note='box, alpha 0 to 1, Alpha unlinked: associated per lookup'),
+    # Sphere and Tube: the vector mapped to a UV (Cycles' map_to_sphere / map_to_tube), then
+    # a Flat lookup. Not with Linear and Repeat: that lookup is mip-mapped, and near the
+    # centre, where the projections squeeze the image, it blurs (0.15) where Cycles does not.
+    Case(name='image_sphere_linear_clip', node='ShaderNodeTexImage', output='Color',
+         **_mapped('mg_case_smooth', 32, 32, _smooth, 'sRGB', 'Linear', 'CLIP', 'SPHERE'),
+         note='sphere, smooth image, sRGB'),
+    Case(name='image_sphere_closest', node='ShaderNodeTexImage', output='Color',
+         **_mapped('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Closest', 'REPEAT',
+                   'SPHERE'),
+         note='sphere, 8x4 pixel art, Non-Color'),
+    Case(name='image_tube_cubic', node='ShaderNodeTexImage', output='Color',
+         **_mapped('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Cubic', 'REPEAT',
+                   'TUBE'),
+         note='tube, 8x4 pixel art, Non-Color'),
+    Case(name='image_tube_linear_extend', node='ShaderNodeTexImage', output='Color',
+         **_mapped('mg_case_art', 8, 4, _pixel_art, 'sRGB', 'Linear', 'EXTEND', 'TUBE'),
+         note='tube, 8x4 pixel art, sRGB'),
     Case(name='image_box_blend02_alpha', node='ShaderNodeTexImage', output='Alpha',
          normal=_XZ,
          **_box('mg_case_art_alpha', 8, 4, _pixel_art_alpha, 'sRGB', 'Closest', 'REPEAT',

@@ -291,7 +291,8 @@ def write_image(mw, flat, used):
     svm_node_tex_image_box: three axis-plane lookups blended by the normal and
     projection_blend, each filtered from the texels with the node's interpolation and
     extension, and, for an sRGB image, linearised per lookup inside the node, since Cycles
-    converts before it blends the planes). SPHERE and TUBE are reported (FLAT is used).
+    converts before it blends the planes). SPHERE and TUBE map the vector to a UV first
+    (ImageProjection: Cycles' map_to_sphere / map_to_tube), then look up as FLAT.
     """
     node = flat.node
     image = node.image
@@ -309,7 +310,7 @@ def write_image(mw, flat, used):
                 result[socket.identifier] = link
         return result
     projection = node.projection
-    if projection not in ('FLAT', 'BOX'):
+    if projection not in ('FLAT', 'BOX', 'SPHERE', 'TUBE'):  # Blender 3.4's four
         mw.warn(flat, 'projection %s is not supported: FLAT is used' % projection)
         projection = 'FLAT'
     # The texel-exact nodes: Closest, Cubic and Smart, and Linear with EXTEND or CLIP.
@@ -349,6 +350,14 @@ def write_image(mw, flat, used):
         uv = mw.implicit('uv2')
     else:
         uv = mw.operand(src)
+    if projection in ('SPHERE', 'TUBE'):
+        # Cycles maps the vector to a UV first (svm_node_tex_image), then looks up as Flat.
+        projected = mw.builder.new_link()
+        mw.builder.add('ImageProjection', [('Vector', uv),
+                                           ('Projection', prop_value(node, 'projection'))],
+                       [('UV', projected)],
+                       comment='%s %s projection' % (flat.label, projection.lower()))
+        uv = projected
     colorspace = getattr(image.colorspace_settings, 'name', 'sRGB')
     if colorspace not in ('sRGB', 'Non-Color', 'Linear', 'Raw', 'Linear Rec.709'):
         mw.warn(flat, 'colour space %s is not carried: the stored values are used' % colorspace)
