@@ -21,9 +21,10 @@ namespace {
 struct BakePush {
   float boundsMin[4];
   float boundsMax[4];
+  float normal[4];
   std::uint32_t size[4];
 };
-static_assert(sizeof(BakePush) == 48);
+static_assert(sizeof(BakePush) == 64);
 
 constexpr std::uint32_t kBakeWorkgroup = 8;     // bake.comp's local size
 constexpr std::uint32_t kBakeVec4PerPixel = 4;  // bake.comp's BakeValues layout
@@ -152,6 +153,7 @@ BakeOutputs MaterialBaker::bake(const BakeMaterial& material, const BakeSettings
   for (int k = 0; k < 3; ++k) {
     push.boundsMin[k] = settings.boundsMin[k];
     push.boundsMax[k] = settings.boundsMax[k];
+    push.normal[k] = settings.normal[k];
   }
   push.size[0] = settings.width;
   push.size[1] = settings.height;

@@ -25,6 +25,10 @@ struct BakeSettings {
   // plane (size 2).
   std::array<float, 3> boundsMin = {-1.0f, -1.0f, 0.0f};
   std::array<float, 3> boundsMax = {1.0f, 1.0f, 0.0f};
+  // The shading normal (unit) over the whole plane; the geometric normal and the view stay
+  // +Z. A tilted one stands for a mesh with custom normals, as Cycles' bakes of nodes that
+  // read the normal (Box projection) need.
+  std::array<float, 3> normal = {0.0f, 0.0f, 1.0f};
 };
 
 // One material to bake: the compiler's GLSL include and its textures (in slot order).

@@ -76,6 +76,8 @@ TEST(RealNodeLibrary, HasTheNodesTheIssueAsksFor) {
                            "ImageTextureClosest",
                            "ImageTextureBilinear",
                            "ImageTextureBicubic",
+                           "ImageTextureBox",
+                           "ImageProjection",
                            "NormalMap",
                            "Bump",
                            "NormalFromPosition",

@@ -40,9 +40,9 @@ constexpr std::string_view kHelp =
     "((i + 0.5) / W, (j + 0.5) / H); j = 0 is v near 0 (Blender's img.pixels row 0).\n"
     "\n"
     "The material sits on a plane spanning the bounds in x and y at their centre in z\n"
-    "(default: Blender's default plane, position = object = (2u-1, 2v-1, 0)), normal,\n"
-    "geometric normal and view +Z, tangent +X, Generated coordinates from Blender's\n"
-    "automatic texture space of the bounds, vertex colour 1, time 0.\n"
+    "(default: Blender's default plane, position = object = (2u-1, 2v-1, 0)), normal\n"
+    "+Z (or --normal), geometric normal and view +Z, tangent +X, Generated coordinates\n"
+    "from Blender's automatic texture space of the bounds, vertex colour 1, time 0.\n"
     "\n"
     "Files: every image is RGB; scalars are grey (R = G = B).\n"
     "  exr  32-bit float, exact values; the first stored row is the top (v near 1)\n"
@@ -59,6 +59,8 @@ constexpr std::string_view kHelp =
     "  --format F        exr, png or pfm (default exr; pfm in builds without OpenImageIO)\n"
     "  --bounds X0,Y0,Z0,X1,Y1,Z1\n"
     "                    the object's bounding box (default -1,-1,0,1,1,0)\n"
+    "  --normal X,Y,Z    the shading normal over the whole plane, normalized (default\n"
+    "                    0,0,1): a plane with custom normals, for nodes that read it\n"
     "  --nodes DIR       use the node library in DIR instead of the built-in one\n"
     "  --device N        Vulkan device index (render --list-devices lists them)\n"
     "  --shard I/N       bake only shard I of N (0 <= I < N): the graphs whose index in the\n"
@@ -100,6 +102,37 @@ bool parseBounds(const std::string& text, std::array<float, 3>& lo, std::array<f
     lo[k] = float(values[k]);
     hi[k] = float(values[k + 3]);
   }
+  return true;
+}
+
+// Reads --normal: three finite numbers, not all zero, normalized; false with `error` saying
+// which number is wrong and why.
+bool parseNormal(const std::string& text, std::array<float, 3>& normal, std::string& error) {
+  constexpr std::array<const char*, 3> kNames = {"x", "y", "z"};
+  std::array<double, 3> values{};
+  std::size_t start = 0;
+  for (int k = 0; k < 3; ++k) {
+    const std::size_t comma = text.find(',', start);
+    if ((k < 2) != (comma != std::string::npos)) {
+      error = "takes three numbers x,y,z";
+      return false;
+    }
+    const std::string_view item = std::string_view(text).substr(
+        start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (!parseReal(item, values[k]) || !std::isfinite(values[k]) || std::abs(values[k]) > 1e30) {
+      error = std::string(kNames[k]) + " '" + std::string(item) + "' is not a finite number";
+      return false;
+    }
+    start = comma + 1;
+  }
+  const double length =
+      std::sqrt(values[0] * values[0] + values[1] * values[1] + values[2] * values[2]);
+  if (!(length > 0.0)) {
+    error = "the normal must not be zero";
+    return false;
+  }
+  for (int k = 0; k < 3; ++k)
+    normal[k] = float(values[k] / length);
   return true;
 }
 
@@ -408,7 +441,7 @@ bool bakeOne(BakeRun& run, const std::string& path, const std::string& prefix) {
 #endif  // MEMOGRAPH_HAVE_RUNTIME
 
 struct BakeArguments {
-  std::string size, outDir, format, bounds, nodesDir, device = "-1", shard;
+  std::string size, outDir, format, bounds, normal, nodesDir, device = "-1", shard;
   std::uint32_t shardIndex = 0, shardCount = 1;
   bool quiet = false;
   std::vector<std::string> inputs;
@@ -422,6 +455,7 @@ std::optional<int> scanBakeArguments(std::span<const std::string_view> args, Bak
   scanner.option("-o", &a.outDir);
   scanner.option("--format", &a.format);
   scanner.option("--bounds", &a.bounds);
+  scanner.option("--normal", &a.normal);
   scanner.option("--nodes", &a.nodesDir);
   scanner.option("--device", &a.device);
   scanner.option("--shard", &a.shard);
@@ -469,6 +503,8 @@ std::optional<int> readBakeSettings(const BakeArguments& a, BakeRun& run) {
   if (std::string error; !a.bounds.empty() && !parseBounds(a.bounds, run.settings.boundsMin,
                                                            run.settings.boundsMax, error))
     return usageError("bake", "--bounds '" + a.bounds + "': " + error);
+  if (std::string error; !a.normal.empty() && !parseNormal(a.normal, run.settings.normal, error))
+    return usageError("bake", "--normal '" + a.normal + "': " + error);
   std::uint32_t deviceIndex = 0;
   if (a.device != "-1" && (!parseNumber(a.device, deviceIndex) ||
                            deviceIndex > std::uint32_t(std::numeric_limits<int>::max())))

@@ -26,6 +26,7 @@ layout(set = 0, binding = 0, std430) writeonly buffer BakeValues {
 layout(push_constant) uniform BakePush {
   vec4 boundsMin;  // xyz: the object's bounding box (object = world space here)
   vec4 boundsMax;
+  vec4 normal;  // xyz: the shading normal (unit; the host normalizes it)
   uvec4 size;  // x width, y height
 } bake;
 
@@ -67,7 +68,7 @@ void main() {
   inputs.position.v = position;
   inputs.position.x = dPdx;
   inputs.position.y = dPdy;
-  inputs.normal = vec3(0.0, 0.0, 1.0);
+  inputs.normal = bake.normal.xyz;
   inputs.tangent = vec3(1.0, 0.0, 0.0);
   inputs.bitangentSign = vec3(1.0, 0.0, 0.0);
   inputs.vertexColor = vec4(1.0);

@@ -11,7 +11,7 @@ as `from .case import Case`.
 """
 from dataclasses import dataclass, field
 import re
-from typing import Any, Callable, Dict, Optional
+from typing import Any, Callable, Dict, Optional, Tuple
 
 # Default tolerance by kind: the issue's ceilings (max abs error per channel).
 TOLERANCE = {'analytic': 1e-3, 'noise': 1e-2}
@@ -44,6 +44,12 @@ class Case:
     # extra(node) or extra(node, node_tree) (e.g. ColorRamp stops, curve points).
     extra: Optional[Callable[..., None]] = None
     note: str = ''                 # free text shown in the table (e.g. why a tolerance differs)
+    # The plane's normal (object = world space), None: its own +Z. For nodes that read the
+    # normal (Box projection). Blender tilts the plane's mesh about the origin so that its
+    # face normal is this (custom normals would not do: Blender stores them as 16-bit angles,
+    # about 1e-4 off), and `memograph bake` gets it as --normal. The tilt moves the Object and
+    # Generated coordinates, so such a case drives its inputs from UV.
+    normal: Optional[Tuple[float, float, float]] = None
     family: str = ''               # filled in by discovery: the module's name
 
     @property
@@ -64,6 +70,11 @@ class Case:
                              'material name)' % self.name)
         if self.kind not in TOLERANCE:
             raise ValueError('case %s: kind must be one of %s' % (self.name, sorted(TOLERANCE)))
+        if self.normal is not None and (
+                not _num_or_vec(self.normal) or isinstance(self.normal, (int, float))
+                or not any(self.normal)):
+            raise ValueError('case %s: normal must be three numbers, not all zero: %r'
+                             % (self.name, self.normal))
         for sock, spec in self.drive.items():
             if not drive_ok(spec):
                 raise ValueError('case %s: bad drive for %r: %r' % (self.name, sock, spec))

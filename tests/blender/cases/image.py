@@ -5,9 +5,11 @@ the UV doubled and shifted by whole texels (negative u and v: the floor and the 
 so every bake pixel centre is an eighth of a texel or more from a texel edge and the texels
 must match exactly (linear filtering blends neighbours and misses by up to 0.87). Extend and
 Clip, with Closest and with Linear (ImageTextureBilinear: the four texels, no mip-maps), on
-the same UV, which runs half an image beyond every edge; Cubic and Smart likewise. The images
-whose Color is compared are opaque: with Alpha unlinked Cycles gives the colour
-premultiplied.
+the same UV, which runs half an image beyond every edge; Cubic and Smart likewise. sRGB pixel
+art filtered (where Cycles linearises). Alpha below 1: Cycles' association of an 8-bit
+image's colour with its alpha, with Alpha unlinked and linked. Box projection on a tilted
+plane (Case.normal), in every zone of its blend. Colour cases on images with alpha say so;
+the others use opaque images.
 """
 from math import cos, pi, sin
 
@@ -39,6 +41,14 @@ def _smooth(width, height):
     return px
 
 
+def _smooth_alpha(width, height):
+    px = _smooth(width, height)
+    for j in range(height):
+        for i in range(width):
+            px[4 * (i + width * j) + 3] = 0.5 + 0.45 * cos(2.0 * pi * (i / width - j / height))
+    return px
+
+
 def _image(name, width, height, pixels, colorspace, interpolation, extension='REPEAT'):
     def extra(node):
         import bpy  # only inside Blender
@@ -56,6 +66,67 @@ def _image(name, width, height, pixels, colorspace, interpolation, extension='RE
 
 _SHIFTED = {'Vector': ('uv3', 2.0, (-0.5, -0.5, 0.0))}
 
+
+def _box(name, width, height, pixels, colorspace, interpolation, extension, blend):
+    """Case arguments for Box projection: props (projection, projection_blend, and, for the
+    table, interpolation and extension) and extra(node, tree): the image, and a Vector that
+    varies on all three axes, so that every plane's lookup moves over the image: UV through a
+    Mapping (rotated, doubled, shifted: about -0.9 to 1.9 on each axis, beyond every edge)."""
+    set_image = _image(name, width, height, pixels, colorspace, interpolation, extension)
+
+    def extra(node, nt):
+        set_image(node)
+        coord = nt.nodes.new('ShaderNodeTexCoord')
+        mapping = nt.nodes.new('ShaderNodeMapping')
+        mapping.inputs['Location'].default_value = (-0.4, -0.3, 0.2)
+        mapping.inputs['Rotation'].default_value = (0.5, -0.4, 0.3)
+        mapping.inputs['Scale'].default_value = (2.0, 2.0, 2.0)
+        nt.links.new(coord.outputs['UV'], mapping.inputs['Vector'])
+        nt.links.new(mapping.outputs['Vector'], node.inputs['Vector'])
+    return {'props': {'projection': 'BOX', 'projection_blend': blend,
+                      'interpolation': interpolation, 'extension': extension},
+            'extra': extra}
+
+
+def _mapped(name, width, height, pixels, colorspace, interpolation, extension, projection):
+    """Case arguments for Sphere and Tube projection: props and extra(node, tree) with the
+    same rotated, doubled, shifted Vector as the Box cases (about -0.9 to 1.9 on each axis, so
+    around the centre 0.5 where the projections' angles turn)."""
+    args = _box(name, width, height, pixels, colorspace, interpolation, extension, 0.0)
+    args['props'] = {'projection': projection, 'interpolation': interpolation,
+                     'extension': extension}
+    set_vector = args['extra']
+
+    def extra(node, nt):
+        set_vector(node, nt)
+        node.projection = projection
+    args['extra'] = extra
+    return args
+
+
+def _color_plus_alpha(name, interpolation, extension):
+    """extra(node, tree) for a Vector Math ADD of an Image Texture's Color and Alpha: with
+    Alpha linked, Cycles divides the filtered, associated colour by the filtered alpha."""
+    set_image = _image(name, 8, 4, _pixel_art_alpha, 'sRGB', interpolation, extension)
+
+    def extra(node, nt):
+        tex = nt.nodes.new('ShaderNodeTexImage')
+        set_image(tex)
+        nt.links.new(tex.outputs['Color'], node.inputs[0])
+        nt.links.new(tex.outputs['Alpha'], node.inputs[1])
+    return extra
+
+
+# Box projection: the plane tilted (Case.normal) into each zone of Cycles' weight triangle:
+# a corner (one plane), the three edges (two planes) and the middle (three planes), both
+# signs of each axis (the sides whose u Cycles turns), Blend 0, 0.2 and 1, every
+# interpolation and extension. Colour on opaque images.
+_XY = (1.0, 0.9, 0.05)      # Blend 0: x alone; 0.2: x and y
+_YZ = (0.05, -0.9, 1.0)     # Blend 0.2: y and z
+_XZ = (-1.0, 0.05, -0.9)    # Blend 0.2: x and z
+_XYZ = (-0.8, 0.9, -1.0)    # Blend 0.2: all three
+_TILT = (1.0, -0.7, 0.5)    # Blend 1: all three, weights |n| / sum |n|
+
 CASES = [
     Case(name='image_linear_smooth', node='ShaderNodeTexImage', drive={'Vector': 'uv3'},
          output='Color', extra=_image('mg_case_smooth', 32, 32, _smooth, 'sRGB', 'Linear'),
@@ -71,8 +142,7 @@ CASES = [
          output='Alpha',
          extra=_image('mg_case_art_alpha', 8, 4, _pixel_art_alpha, 'sRGB', 'Closest'),
          note='8x4 pixel art, alpha 0 to 1'),
-    # Extend and Clip: the UV runs from -0.5 to 1.5, half an image beyond every edge. Linear
-    # on Non-Color images (Cycles linearises sRGB texels before filtering, memograph after).
+    # Extend and Clip: the UV runs from -0.5 to 1.5, half an image beyond every edge.
     Case(name='image_closest_extend', node='ShaderNodeTexImage', drive=_SHIFTED,
          output='Color',
          extra=_image('mg_case_art', 8, 4, _pixel_art, 'sRGB', 'Closest', 'EXTEND'),
@@ -114,4 +184,99 @@ CASES = [
          output='Color',
          extra=_image('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Smart', 'REPEAT'),
          note='8x4 pixel art, Non-Color'),
+    # 8-bit sRGB images with filtering, on pixel art whose neighbours differ by up to 1: where
+    # Cycles linearises shows between texels. It filters the stored bytes and linearises each
+    # lookup (NODE_IMAGE_COMPRESS_AS_SRGB in svm_image_texture), as memograph's SRGBToLinear
+    # after the filter; linearising each texel before filtering would miss by about 0.29.
+    Case(name='image_linear_extend_srgb', node='ShaderNodeTexImage', drive=_SHIFTED,
+         output='Color',
+         extra=_image('mg_case_art', 8, 4, _pixel_art, 'sRGB', 'Linear', 'EXTEND'),
+         note='8x4 pixel art, sRGB: linearised after filtering'),
+    Case(name='image_cubic_repeat_srgb', node='ShaderNodeTexImage', drive=_SHIFTED,
+         output='Color',
+         extra=_image('mg_case_art', 8, 4, _pixel_art, 'sRGB', 'Cubic', 'REPEAT'),
+         note='8x4 pixel art, sRGB: linearised after filtering'),
+    # Straight alpha on an 8-bit image: Cycles associates each texel (C * A / 255, rounded
+    # down) before filtering; with Alpha unlinked its Color stays associated, with Alpha
+    # linked it is divided by the filtered alpha (memograph: Premultiply 1 and 2).
+    Case(name='image_closest_premultiplied', node='ShaderNodeTexImage', drive=_SHIFTED,
+         output='Color',
+         extra=_image('mg_case_art_alpha', 8, 4, _pixel_art_alpha, 'sRGB', 'Closest'),
+         note='8x4 pixel art, alpha 0 to 1, Alpha unlinked: associated'),
+    Case(name='image_linear_premultiplied_clip', node='ShaderNodeTexImage', drive=_SHIFTED,
+         output='Color',
+         extra=_image('mg_case_art_alpha', 8, 4, _pixel_art_alpha, 'sRGB', 'Linear', 'CLIP'),
+         note='8x4 pixel art, alpha 0 to 1, Alpha unlinked: associated'),
+    Case(name='image_linear_repeat_premultiplied', node='ShaderNodeTexImage',
+         drive={'Vector': 'uv3'}, output='Color', tolerance=1e-2,
+         extra=_image('mg_case_smooth_alpha', 32, 32, _smooth_alpha, 'sRGB', 'Linear'),
+         note='smooth image, alpha 0.05 to 0.95, mip-mapped: associated after filtering, so '
+              'Cycles\' 8-bit rounding down (up to 1/255 before linearising) and the blend '
+              'between texels differ'),
+    Case(name='image_cubic_unassociated', node='ShaderNodeVectorMath', props={'operation': 'ADD'},
+         output='Vector',
+         extra=_color_plus_alpha('mg_case_art_alpha', 'Cubic', 'REPEAT'),
+         note='Color + Alpha of 8x4 pixel art, alpha 0 to 1: Alpha linked, divided back'),
+    # Box projection.
+    Case(name='image_box_flat_linear', node='ShaderNodeTexImage', output='Color',
+         **_box('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Linear', 'REPEAT', 0.0),
+         note='box on the flat plane: the z plane alone'),
+    Case(name='image_box_blend0_closest_extend', node='ShaderNodeTexImage', output='Color',
+         normal=_XY,
+         **_box('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Closest', 'EXTEND', 0.0),
+         note='box, normal (1, 0.9, 0.05), Blend 0: x alone'),
+    Case(name='image_box_blend02_xy_linear_clip', node='ShaderNodeTexImage', output='Color',
+         normal=_XY,
+         **_box('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Linear', 'CLIP', 0.2),
+         note='box, normal (1, 0.9, 0.05), Blend 0.2: x and y'),
+    Case(name='image_box_blend02_yz_cubic', node='ShaderNodeTexImage', output='Color',
+         normal=_YZ,
+         **_box('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Cubic', 'REPEAT', 0.2),
+         note='box, normal (0.05, -0.9, 1), Blend 0.2: y and z'),
+    Case(name='image_box_blend02_xz_closest', node='ShaderNodeTexImage', output='Color',
+         normal=_XZ,
+         **_box('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Closest', 'REPEAT', 0.2),
+         note='box, normal (-1, 0.05, -0.9), Blend 0.2: x and z'),
+    Case(name='image_box_blend02_xyz_linear_extend', node='ShaderNodeTexImage',
+         output='Color', normal=_XYZ,
+         **_box('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Linear', 'EXTEND', 0.2),
+         note='box, normal (-0.8, 0.9, -1), Blend 0.2: all three'),
+    Case(name='image_box_blend1_cubic_clip', node='ShaderNodeTexImage', output='Color',
+         normal=_TILT,
+         **_box('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Cubic', 'CLIP', 1.0),
+         note='box, normal (1, -0.7, 0.5), Blend 1: all three'),
+    Case(name='image_box_blend1_smart_srgb', node='ShaderNodeTexImage', output='Color',
+         normal=_XYZ,
+         **_box('mg_case_art', 8, 4, _pixel_art, 'sRGB', 'Smart', 'REPEAT', 1.0),
+         note='box, sRGB: linearised per lookup, before the planes blend'),
+    Case(name='image_box_blend02_linear_srgb', node='ShaderNodeTexImage', output='Color',
+         normal=_XY,
+         **_box('mg_case_art', 8, 4, _pixel_art, 'sRGB', 'Linear', 'REPEAT', 0.2),
+         note='box, sRGB, Blend 0.2: x and y'),
+    Case(name='image_box_premultiplied', node='ShaderNodeTexImage', output='Color',
+         normal=_XY,
+         **_box('mg_case_art_alpha', 8, 4, _pixel_art_alpha, 'sRGB', 'Linear', 'EXTEND', 0.2),
+         note='box, alpha 0 to 1, Alpha unlinked: associated per lookup'),
+    # Sphere and Tube: the vector mapped to a UV (Cycles' map_to_sphere / map_to_tube), then
+    # a Flat lookup. Not with Linear and Repeat: that lookup is mip-mapped, and near the
+    # centre, where the projections squeeze the image, it blurs (0.15) where Cycles does not.
+    Case(name='image_sphere_linear_clip', node='ShaderNodeTexImage', output='Color',
+         **_mapped('mg_case_smooth', 32, 32, _smooth, 'sRGB', 'Linear', 'CLIP', 'SPHERE'),
+         note='sphere, smooth image, sRGB'),
+    Case(name='image_sphere_closest', node='ShaderNodeTexImage', output='Color',
+         **_mapped('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Closest', 'REPEAT',
+                   'SPHERE'),
+         note='sphere, 8x4 pixel art, Non-Color'),
+    Case(name='image_tube_cubic', node='ShaderNodeTexImage', output='Color',
+         **_mapped('mg_case_art_data', 8, 4, _pixel_art, 'Non-Color', 'Cubic', 'REPEAT',
+                   'TUBE'),
+         note='tube, 8x4 pixel art, Non-Color'),
+    Case(name='image_tube_linear_extend', node='ShaderNodeTexImage', output='Color',
+         **_mapped('mg_case_art', 8, 4, _pixel_art, 'sRGB', 'Linear', 'EXTEND', 'TUBE'),
+         note='tube, 8x4 pixel art, sRGB'),
+    Case(name='image_box_blend02_alpha', node='ShaderNodeTexImage', output='Alpha',
+         normal=_XZ,
+         **_box('mg_case_art_alpha', 8, 4, _pixel_art_alpha, 'sRGB', 'Closest', 'REPEAT',
+                    0.2),
+         note='box, alpha, Blend 0.2: x and z'),
 ]

@@ -23,6 +23,9 @@ CASES = [
     Case(name='smoke_object_coords', node='ShaderNodeVectorMath', props={'operation': 'ADD'},
          drive={'Vector': 'object'}, inputs={'Vector_001': (0.0, 0.0, 0.5)}, output='Vector',
          note='object = (2u-1, 2v-1, 0) on the default plane'),
+    Case(name='smoke_tilted_normal', node='ShaderNodeVectorMath', props={'operation': 'ADD'},
+         drive={'Vector': 'normal'}, inputs={'Vector_001': 0.0}, output='Vector',
+         normal=(1.0, -2.0, 2.0), note='the plane tilted to normal (1, -2, 2) / 3'),
     Case(name='smoke_generated_coords', node='ShaderNodeVectorMath', props={'operation': 'ADD'},
          drive={'Vector': 'generated'}, inputs={'Vector_001': 0.0}, output='Vector'),
 ]

@@ -408,9 +408,10 @@ def build_warnings():
     tex.image.pack()
     tex.interpolation = 'Linear'
     tex.extension = 'EXTEND'
-    tex.projection = 'BOX'
+    tex.projection = 'SPHERE'  # carried (ImageProjection): no warning
+    tex.image.colorspace_settings.name = 'Filmic Log'
     emit(nt, out, tex.outputs['Color'])
-    exp[mat.name] = [('T', 'projection BOX is not supported')]
+    exp[mat.name] = [('T', 'colour space Filmic Log is not carried')]
 
     mat, nt, out = new_material('W_image_missing')
     tex = nt.nodes.new('ShaderNodeTexImage')

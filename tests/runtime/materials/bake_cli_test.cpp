@@ -322,6 +322,34 @@ TEST_F(BakeCli, BoundsSetObjectPositionAndGenerated) {
   EXPECT_EQ(rest[2], 1.0f);
 }
 
+// --normal tilts the shading normal over the whole plane (normalized), as a plane with
+// custom normals in Blender; without it the normal is +Z.
+TEST_F(BakeCli, NormalSetsTheShadingNormal) {
+  const auto g = graph("Tilted",
+                       "NormalInput Out>0;\n"
+                       "EmissionOutput Color<0;\n");
+  struct Case {
+    std::string normal;
+    float expected[3];
+  };
+  const Case cases[] = {
+      {"", {0.0f, 0.0f, 1.0f}},
+      {"1,-2,2", {1.0f / 3.0f, -2.0f / 3.0f, 2.0f / 3.0f}},
+      {"0,0,-5", {0.0f, 0.0f, -1.0f}},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.normal);
+    const auto run = runCli("bake " + g + " --size 2x2 --format pfm --out " + out() +
+                            (c.normal.empty() ? "" : " --normal " + c.normal));
+    ASSERT_EQ(run.exitCode, 0) << run.output;
+    int w = 0, h = 0;
+    const auto normal = rawPfm(outFile("Tilted_emission.pfm"), w, h);
+    ASSERT_EQ(normal.size(), 2u * 2u * 3u);
+    for (std::size_t at = 0; at < normal.size(); ++at)
+      EXPECT_NEAR(normal[at], c.expected[at % 3], 1e-6f) << "value " << at;
+  }
+}
+
 // Cycles' bake footprint: half a texel (averaged over x and y) along the diagonals.
 TEST_F(BakeCli, GeneratedDerivativesFollowCyclesBakeFootprint) {
   const std::string nodes = objectSpaceLibrary(dir_);
@@ -396,6 +424,9 @@ TEST_F(BakeCli, UsageErrorsExitTwoAndWriteNothing) {
       g + " --size 2x2 --bounds 1,2,3" + o,        // too few numbers
       g + " --size 2x2 --bounds 1,0,0,0,1,1" + o,  // min > max
       g + " --size 2x2 --bounds 0,0,0,1,1,x" + o,  // not a number
+      g + " --size 2x2 --normal 0,0,0" + o,        // a zero normal
+      g + " --size 2x2 --normal 1,2" + o,          // too few numbers
+      g + " --size 2x2 --normal 1,x,0" + o,        // not a number
       g + " --size 2x2 --frobnicate" + o,          // unknown option
   };
   for (const auto& arguments : bad) {

@@ -255,6 +255,23 @@ def write_mix_rgb(mw, flat, used):
 IMAGE_EXTENSIONS = {'REPEAT': 0, 'EXTEND': 1, 'CLIP': 2}
 
 
+def image_premultiply(image, colorspace, used):
+    """The Premultiply of the texel nodes (ImageTextureClosest/Bilinear/Bicubic/Box): how
+    Cycles 3.4 associates the colour of an 8-bit image with its straight alpha. Its loaders
+    premultiply byte images per texel, C * A / 255 rounded down ("byte images are always
+    straight for Blender"), unless the colour space is data (Non-Color) or the alpha is
+    channel-packed or ignored; its lookup divides the filtered colour back by the filtered
+    alpha only when the Alpha output is linked (ImageTextureNode::compile,
+    NODE_IMAGE_ALPHA_UNASSOCIATE). 0: not associated; 1: associated (Alpha unused); 2:
+    associated, then divided (Alpha used). Float images (associated in float by Cycles) and
+    images without an alpha channel get 0."""
+    if colorspace == 'Non-Color' or getattr(image, 'alpha_mode', 'STRAIGHT') != 'STRAIGHT':
+        return 0
+    if getattr(image, 'is_float', False) or getattr(image, 'channels', 4) != 4:
+        return 0
+    return 2 if 'Alpha' in used else 1
+
+
 def write_image(mw, flat, used):
     """ShaderNodeTexImage -> ImageTexture "textures/<name>.<ext>" UV -> Color, Alpha.
 
@@ -262,14 +279,20 @@ def write_image(mw, flat, used):
     reads image files as stored (PNG 8-bit as value/255, EXR as is) and filters linearly
     with mip-maps and repeat addressing, and its v points down the image, so: v is flipped
     (u, 1 - v); an image whose colour space is sRGB (8-bit or float) gets an
-    SRGBToLinear after the sample (Cycles converts per texel before filtering: the two
-    differ only between texels); Non-Color/Linear/Raw images are used as stored. Closest
+    SRGBToLinear after the sample (Cycles, too, filters an 8-bit sRGB image as stored and
+    linearises each lookup: NODE_IMAGE_COMPRESS_AS_SRGB; measured by the image_*_srgb
+    cases); Non-Color/Linear/Raw images are used as stored. Closest
     interpolation becomes ImageTextureClosest with the image's size in texels (the texel that
     holds the UV, unfiltered, as Cycles), with the node's extension. Linear with EXTEND or
     CLIP becomes ImageTextureBilinear (Cycles' bilinear filter from the four texels, no
     mip-maps); Linear with REPEAT stays the mip-mapped ImageTexture. Cubic and Smart become
     ImageTextureBicubic (Cycles' cubic B-spline over 4 x 4 texels, which Cycles also uses
-    for Smart on the CPU). Non-FLAT projections are reported.
+    for Smart on the CPU). BOX projection becomes ImageTextureBox (Cycles'
+    svm_node_tex_image_box: three axis-plane lookups blended by the normal and
+    projection_blend, each filtered from the texels with the node's interpolation and
+    extension, and, for an sRGB image, linearised per lookup inside the node, since Cycles
+    converts before it blends the planes). SPHERE and TUBE map the vector to a UV first
+    (ImageProjection: Cycles' map_to_sphere / map_to_tube), then look up as FLAT.
     """
     node = flat.node
     image = node.image
@@ -286,8 +309,10 @@ def write_image(mw, flat, used):
                                comment=flat.label + ' (no image)')
                 result[socket.identifier] = link
         return result
-    if node.projection != 'FLAT':
-        mw.warn(flat, 'projection %s is not supported: FLAT is used' % node.projection)
+    projection = node.projection
+    if projection not in ('FLAT', 'BOX', 'SPHERE', 'TUBE'):  # Blender 3.4's four
+        mw.warn(flat, 'projection %s is not supported: FLAT is used' % projection)
+        projection = 'FLAT'
     # The texel-exact nodes: Closest, Cubic and Smart, and Linear with EXTEND or CLIP.
     extension = IMAGE_EXTENSIONS.get(node.extension)
     if extension is None:
@@ -304,10 +329,15 @@ def write_image(mw, flat, used):
     if texel_node is None and extension != IMAGE_EXTENSIONS['REPEAT']:
         texel_node = 'ImageTextureBilinear'
     texel_size = None
-    if texel_node is not None:
+    if texel_node is not None or projection == 'BOX':
         width, height = (int(n) for n in image.size)
         if width > 0 and height > 0:
             texel_size = (width, height)
+        elif projection == 'BOX':
+            mw.warn(flat, 'projection BOX needs the image\'s size, which Blender does not know '
+                    '(the image did not load): FLAT is used, filtered linearly (mip-mapped) '
+                    'with REPEAT')
+            projection = 'FLAT'
         else:
             mw.warn(flat, 'interpolation %s with extension %s needs the image\'s size, which '
                     'Blender does not know (the image did not load): memograph filters '
@@ -320,6 +350,35 @@ def write_image(mw, flat, used):
         uv = mw.implicit('uv2')
     else:
         uv = mw.operand(src)
+    if projection in ('SPHERE', 'TUBE'):
+        # Cycles maps the vector to a UV first (svm_node_tex_image), then looks up as Flat.
+        projected = mw.builder.new_link()
+        mw.builder.add('ImageProjection', [('Vector', uv),
+                                           ('Projection', prop_value(node, 'projection'))],
+                       [('UV', projected)],
+                       comment='%s %s projection' % (flat.label, projection.lower()))
+        uv = projected
+    colorspace = getattr(image.colorspace_settings, 'name', 'sRGB')
+    if colorspace not in ('sRGB', 'Non-Color', 'Linear', 'Raw', 'Linear Rec.709'):
+        mw.warn(flat, 'colour space %s is not carried: the stored values are used' % colorspace)
+    if projection == 'BOX':
+        # Blender's coordinate goes in as is: the node projects it on the planes and flips
+        # each plane's v itself.
+        color_link = mw.builder.new_link()
+        alpha_link = mw.builder.new_link()
+        mw.builder.add('ImageTextureBox',
+                       [('Image', Literal(path, 'string')), ('Vector', uv),
+                        ('Blend', Literal(float(node.projection_blend))),
+                        ('Width', Literal(texel_size[0], 'int')),
+                        ('Height', Literal(texel_size[1], 'int')),
+                        ('Interpolation', prop_value(node, 'interpolation')),
+                        ('Extension', Literal(extension, 'int')),
+                        ('Premultiply',
+                         Literal(image_premultiply(image, colorspace, used), 'int')),
+                        ('Srgb', Literal(1 if colorspace == 'sRGB' else 0, 'int'))],
+                       [('Color', color_link), ('Alpha', alpha_link)],
+                       comment=flat.label + ' box projection')
+        return {'Color': color_link, 'Alpha': alpha_link}
     # Blender's v points up the image (row 0 at the bottom); memograph samples images with v
     # down (glTF's convention, top row first): sample at (u, 1 - v).
     flipped = mw.builder.new_link()
@@ -337,19 +396,26 @@ def write_image(mw, flat, used):
                        [('Image', Literal(path, 'string')), ('UV', uv),
                         ('Width', Literal(texel_size[0], 'int')),
                         ('Height', Literal(texel_size[1], 'int')),
-                        ('Extension', Literal(extension, 'int'))],
+                        ('Extension', Literal(extension, 'int')),
+                        ('Premultiply',
+                         Literal(image_premultiply(image, colorspace, used), 'int'))],
                        [('Color', color_link), ('Alpha', alpha_link)], comment=flat.label)
+    if texel_size is None and image_premultiply(image, colorspace, used) == 1:
+        # Cycles associates each texel with its alpha before filtering; the mip-mapped sample
+        # can only be associated after it: the same at texel centres (but for Cycles' 8-bit
+        # rounding down), apart between texels whose alpha differs.
+        associated = mw.builder.new_link()
+        mw.builder.add('MultiplyAdd', [('A', color_link), ('B', alpha_link),
+                                       ('C', Literal((0.0, 0.0, 0.0)))], [('Out', associated)],
+                       comment=flat.label + ' colour associated with alpha')
+        color_link = associated
     result = {'Alpha': alpha_link}
-    colorspace = getattr(image.colorspace_settings, 'name', 'sRGB')
     if colorspace == 'sRGB':  # Cycles linearises sRGB images, 8-bit or float
         linear = mw.builder.new_link()
         mw.builder.add('SRGBToLinear', [('Color', color_link)], [('Out', linear)],
                        comment=flat.label + ' colour space sRGB')
         result['Color'] = linear
     else:
-        if colorspace not in ('sRGB', 'Non-Color', 'Linear', 'Raw', 'Linear Rec.709'):
-            mw.warn(flat, 'colour space %s is not carried: the stored values are used'
-                    % colorspace)
         result['Color'] = color_link
     return result
 
