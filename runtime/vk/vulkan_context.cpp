@@ -348,6 +348,12 @@ void readFeatures(VkPhysicalDevice physicalDevice, Backend backend, const std::s
     missingFeatures.push_back("bufferDeviceAddress");
   if (!features12.shaderSampledImageArrayNonUniformIndexing)
     missingFeatures.push_back("shaderSampledImageArrayNonUniformIndexing");
+  // The material cache's protocol is written for the Vulkan memory model with device-scope
+  // atomics and fences (texel_cache.glsl, cacheFence); shaders that include it declare it.
+  if (!features12.vulkanMemoryModel)
+    missingFeatures.push_back("vulkanMemoryModel");
+  if (!features12.vulkanMemoryModelDeviceScope)
+    missingFeatures.push_back("vulkanMemoryModelDeviceScope");
   if (!asFeatures.accelerationStructure)
     missingFeatures.push_back("accelerationStructure");
   if (backend == Backend::RayQuery && !rayQueryFeatures.rayQuery)
@@ -381,6 +387,8 @@ void enableFeatures(const SupportedFeatures& supported, Backend backend, DeviceI
   enable12.bufferDeviceAddress = VK_TRUE;
   enable12.shaderSampledImageArrayNonUniformIndexing = VK_TRUE;
   enable12.hostQueryReset = features12.hostQueryReset;
+  enable12.vulkanMemoryModel = VK_TRUE;
+  enable12.vulkanMemoryModelDeviceScope = VK_TRUE;
   // Optional: only the counter clock uses them, and the renderer names them if missing.
   info.bufferInt64Atomics = features2.features.shaderInt64 && features12.shaderBufferInt64Atomics;
   enable12.shaderBufferInt64Atomics = info.bufferInt64Atomics;

@@ -334,17 +334,21 @@ std::vector<VkDescriptorSetLayoutBinding> programBindings(const Program& program
   return bindings;
 }
 
+// One program's SPIR-V.
+std::vector<std::uint32_t> compileProgram(const Program& program) {
+  std::map<std::string, std::string> files = embeddedShaderFiles();
+  files["cache_selftest.comp"] =
+      std::string(kProgramHead) + program.functions + kMainOpen + program.body + "\n}\n";
+  ShaderCompiler compiler(std::move(files), {});
+  return compiler.compile({"cache_selftest.comp", ShaderStage::Compute, program.defines});
+}
+
 // Compiles and runs one program; returns gpu::Counters, the result words and the cache.
 ProgramResult runProgram(const VulkanContext& context, const Program& program) {
   if (program.invocations == 0 || program.invocations % 64 != 0)
     throw std::invalid_argument("cache self-test: invocations must be a positive multiple of 64");
   VkDevice device = context.device();
-  std::map<std::string, std::string> files = embeddedShaderFiles();
-  files["cache_selftest.comp"] =
-      std::string(kProgramHead) + program.functions + kMainOpen + program.body + "\n}\n";
-  ShaderCompiler compiler(std::move(files), {});
-  std::vector<std::uint32_t> spirv =
-      compiler.compile({"cache_selftest.comp", ShaderStage::Compute, program.defines});
+  std::vector<std::uint32_t> spirv = compileProgram(program);
   const EntryLayout entry = entryLayout(program.defines);
   const std::uint32_t header = entry.header, entryWords = entry.valueWords;
 
@@ -476,8 +480,10 @@ const char* cacheStressModeName(CacheStressMode mode) {
   return "key";
 }
 
-CacheStressResult runCacheStress(const VulkanContext& context, CacheStressMode mode,
-                                 std::uint32_t invocations, std::uint32_t iterations) {
+namespace {
+
+Program cacheStressProgram(CacheStressMode mode, std::uint32_t invocations,
+                           std::uint32_t iterations) {
   Program program;
   program.body = kStressBody;
   program.invocations = invocations;
@@ -496,7 +502,18 @@ CacheStressResult runCacheStress(const VulkanContext& context, CacheStressMode m
     program.defines.push_back("MG_CACHE_VALUES_IN_IMAGE=1");
     program.imageExtent = {3 * program.entries, 1, 1};  // 3 rgba32f texels an entry, one row
   }
-  ProgramResult run = runProgram(context, program);
+  return program;
+}
+
+}  // namespace
+
+std::vector<std::uint32_t> cacheStressSpirv(CacheStressMode mode) {
+  return compileProgram(cacheStressProgram(mode, 64, 1));
+}
+
+CacheStressResult runCacheStress(const VulkanContext& context, CacheStressMode mode,
+                                 std::uint32_t invocations, std::uint32_t iterations) {
+  ProgramResult run = runProgram(context, cacheStressProgram(mode, invocations, iterations));
   const std::vector<std::uint32_t>& words = run.words;
   CacheStressResult result;
   result.mode = mode;

@@ -45,6 +45,10 @@ inline constexpr std::uint32_t kCacheStressEntries = 32;
 CacheStressResult runCacheStress(const VulkanContext& context, CacheStressMode mode,
                                  std::uint32_t invocations, std::uint32_t iterations);
 
+// The SPIR-V of `mode`'s stress program, as runCacheStress compiles it: what a test reads to
+// check that the protocol is written for the Vulkan memory model.
+std::vector<std::uint32_t> cacheStressSpirv(CacheStressMode mode);
+
 // The tile cache's subgroup fill (tile_cache.glsl tileComputeMissing, thesis §5.4.3) under
 // the same contention: 64 tiles of one material, whose texels are a known function of their
 // uv, on 32 entries (D = 8, random eviction), through the real tile_cache.glsl. Each

@@ -28,6 +28,16 @@
 #ifndef MG_TEXEL_CACHE_GLSL
 #define MG_TEXEL_CACHE_GLSL
 #extension GL_EXT_control_flow_attributes : require
+// The entry protocol (§5.3.4) is written for the Vulkan memory model: every word that one
+// invocation writes while another may read it (keys, update counters, clocks, tile counts
+// and the values in buffers) is accessed only by atomics of device scope, and the fences
+// between them are acquire-release fences of device scope (cacheFence). Under this model a
+// plain load that races with a store is a data race (undefined), and a fence synchronizes
+// only through an atomic on each side: the plain coherent loads and memoryBarrier() that
+// the protocol used before ordered the accesses on x86 and NVIDIA in practice, not by the
+// model's rules. The renderer enables vulkanMemoryModel and vulkanMemoryModelDeviceScope.
+#extension GL_KHR_memory_scope_semantics : require
+#pragma use_vulkan_memory_model
 
 // The entries' words (kCacheEntryHeader[WithCounter] + values each, gpu::cacheEntryWords):
 // the S keys first, one word an entry (cacheKeyWord), then each entry's record
@@ -94,6 +104,58 @@ const uint kCacheRecordWords = kCacheHeader + kCacheValueWords;
 layout(set = 0, binding = kBindingCache, std430) MG_CACHE_COHERENT buffer CacheBlock {
   uint cacheData[];
 };
+
+// The storage a cache fence orders: the cache buffer, and image memory too where values live
+// in a storage image (--tile-storage texture2d|texture3d, the self-test's image modes).
+#ifdef MG_CACHE_VALUES_IN_IMAGE
+#define MG_CACHE_FENCE_STORAGE (gl_StorageSemanticsBuffer | gl_StorageSemanticsImage)
+#else
+#define MG_CACHE_FENCE_STORAGE gl_StorageSemanticsBuffer
+#endif
+
+// A word of the table that other invocations may write meanwhile: a relaxed atomic load or
+// store of device scope. Its order against the other words comes from cacheFence; being
+// atomic is what lets the fences synchronize through it (fence synchronization of the Vulkan
+// memory model) and what keeps the race of a seqlock read with a writer defined.
+uint cacheLoadWord(uint word) {
+  return atomicLoad(cacheData[word], gl_ScopeDevice, gl_StorageSemanticsBuffer,
+                    gl_SemanticsRelaxed);
+}
+void cacheStoreWord(uint word, uint value) {
+  atomicStore(cacheData[word], value, gl_ScopeDevice, gl_StorageSemanticsBuffer,
+              gl_SemanticsRelaxed);
+}
+
+// The read-modify-writes of the protocol (locks, unlocks, counters): relaxed as well, of device
+// scope; cacheFence orders them.
+uint cacheExchangeWord(uint word, uint value) {
+  return atomicExchange(cacheData[word], value, gl_ScopeDevice, gl_StorageSemanticsBuffer,
+                        gl_SemanticsRelaxed);
+}
+uint cacheCompareExchangeWord(uint word, uint expected, uint value) {
+  return atomicCompSwap(cacheData[word], expected, value, gl_ScopeDevice,
+                        gl_StorageSemanticsBuffer, gl_SemanticsRelaxed,
+                        gl_StorageSemanticsBuffer, gl_SemanticsRelaxed);
+}
+uint cacheAddWord(uint word, uint value) {
+  return atomicAdd(cacheData[word], value, gl_ScopeDevice, gl_StorageSemanticsBuffer,
+                   gl_SemanticsRelaxed);
+}
+
+// MG_CACHE_QUIESCENT_READS: no invocation of the dispatch writes a value, and none writes a
+// key either unless it is the tile cache's lookup pass (tileEnqueue locks entries). A word
+// nothing writes meanwhile races with nothing, so a plain load is defined, and a GPU may
+// serve it from its L1, which it does not for an atomic. Everywhere else relaxed atomics.
+#ifdef MG_CACHE_QUIESCENT_READS
+uint cacheLoadValueWord(uint word) { return cacheData[word]; }
+#else
+uint cacheLoadValueWord(uint word) { return cacheLoadWord(word); }
+#endif
+#if defined(MG_CACHE_QUIESCENT_READS) && !defined(MG_CACHE_TILE)
+uint cacheLoadKeyWord(uint word) { return cacheData[word]; }
+#else
+uint cacheLoadKeyWord(uint word) { return cacheLoadWord(word); }
+#endif
 
 // Counts of this invocation, added to gpu::Counters once per pixel.
 uint g_cacheLookups = 0u;
@@ -307,13 +369,14 @@ void cacheValueFromWord(uint word, uint w, inout float values[MG_CACHE_VALUES]) 
 
 // Writes one texel's values at cacheData[wordOffset ..] as kCacheValueWords words.
 void cacheStoreValues(uint wordOffset, float values[MG_CACHE_VALUES]) {
-  for (uint w = 0u; w < kCacheValueWords; ++w) cacheData[wordOffset + w] = cacheValueWord(values, w);
+  for (uint w = 0u; w < kCacheValueWords; ++w) cacheStoreWord(wordOffset + w, cacheValueWord(values, w));
 }
 
 // Reads what cacheStoreValues wrote at cacheData[wordOffset ..].
 void cacheLoadValues(uint wordOffset, out float values[MG_CACHE_VALUES]) {
   for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;
-  for (uint w = 0u; w < kCacheValueWords; ++w) cacheValueFromWord(cacheData[wordOffset + w], w, values);
+  for (uint w = 0u; w < kCacheValueWords; ++w)
+    cacheValueFromWord(cacheLoadValueWord(wordOffset + w), w, values);
 }
 
 // The clock (§5.3.3), advanced by `tick`: 1 for an access that stamps an entry's metadata,
@@ -336,19 +399,18 @@ uint cacheClock(uint tick) {
 // The ordering of the entry protocol (§5.3.4, a seqlock): a writer's lock must be visible
 // before any of its value stores, and its value stores before the key that unlocks; a
 // reader's first key load before its value loads, and those before its second key load.
-// Where values live in a storage image (--tile-storage texture2d|texture3d, or the
-// self-test's image modes: MG_CACHE_VALUES_IN_IMAGE), memoryBarrier() (OpMemoryBarrier,
-// device scope, acquire-release over uniform, image and workgroup memory) orders the cache
-// buffer and the image together: a buffer-only barrier does not order imageLoad/imageStore.
-// Everywhere else every entry lives in buffers, and memoryBarrierBuffer() (uniform memory
-// only) is all the protocol needs: the wider barrier also orders image memory, which the
-// path tracer's texture reads use, on every lookup.
+// An acquire-release fence of device scope between each step: with the words on each side
+// atomic (cacheLoadWord, cacheStoreWord, the lock's and unlock's exchanges), a writer's
+// fence before its unlock synchronizes with a reader's fence after the load that saw the
+// key, so the values are visible; and a reader that loaded a value of a later writer
+// synchronizes with that writer's fence after its lock, so its second key (or counter) load
+// sees the lock: the read is a miss. MakeAvailable and MakeVisible carry the image stores
+// and loads of a tile in a storage image, which cannot be atomic (MG_CACHE_FENCE_STORAGE).
+// Buffer-only where nothing lives in an image: a fence over image memory too would order
+// the path tracer's texture reads on every lookup.
 void cacheFence() {
-#ifdef MG_CACHE_VALUES_IN_IMAGE
-  memoryBarrier();
-#else
-  memoryBarrierBuffer();
-#endif
+  memoryBarrier(gl_ScopeDevice, MG_CACHE_FENCE_STORAGE,
+                gl_SemanticsAcquireRelease | gl_SemanticsMakeAvailable | gl_SemanticsMakeVisible);
 }
 
 // The values an entry stores for output mask `mask`, in kCacheOutput* order.
@@ -421,7 +483,7 @@ MaterialOutputs cacheUnpack(uint mask, float values[MG_CACHE_VALUES], MaterialIn
 int cacheFind(CacheKey key) {
   uint stored[MG_CACHE_PROBE];
   [[unroll]] for (uint d = 0u; d < uint(MG_CACHE_PROBE); ++d)
-    stored[d] = cacheData[cacheKeyWord(key.base + d)];
+    stored[d] = cacheLoadKeyWord(cacheKeyWord(key.base + d));
   int found = -1;
   [[unroll]] for (uint d = 0u; d < uint(MG_CACHE_PROBE); ++d) {
     if (found < 0 && stored[d] == key.hash) found = int(key.base + d);
@@ -440,9 +502,9 @@ uint cacheReadBegin(uint entry, CacheKey key) {
 #ifdef MG_CACHE_UPDATE_COUNTER
   uint offset = cacheEntryOffset(entry);
   cacheFence();
-  counterBefore = cacheData[offset + kCacheCounterWord];
+  counterBefore = cacheLoadWord(offset + kCacheCounterWord);
   cacheFence();
-  if (cacheData[cacheKeyWord(entry)] != key.hash) return kCacheKeyLock;
+  if (cacheLoadWord(cacheKeyWord(entry)) != key.hash) return kCacheKeyLock;
 #endif
   cacheFence();  // key, then values
 #endif
@@ -456,7 +518,7 @@ uint cacheReadBegin(uint entry, CacheKey key) {
 // lookup pass's 43 ms (classroom 1080p, P = 6, L = 4: 47.9 M hits a frame, each a store into
 // a 671 MB table; with the frame clock, which already stored only a change, 15 ms).
 void cacheStamp(uint offset, uint stamp) {
-  if (cacheData[offset + kCacheClockWord] != stamp) cacheData[offset + kCacheClockWord] = stamp;
+  if (cacheLoadWord(offset + kCacheClockWord) != stamp) cacheStoreWord(offset + kCacheClockWord, stamp);
 }
 
 #if defined(MG_CACHE_STAMP_BY_SUBGROUP) && MG_CACHE_EVICTION == 1 && \
@@ -498,9 +560,9 @@ bool cacheReadValid(uint entry, CacheKey key, uint counterBefore) {
   if (counterBefore == kCacheKeyLock) return false;
 #endif
   cacheFence();  // values, then the second key load
-  if (cacheData[cacheKeyWord(entry)] != key.hash) return false;  // overwritten while reading
+  if (cacheLoadWord(cacheKeyWord(entry)) != key.hash) return false;  // overwritten while reading
 #ifdef MG_CACHE_UPDATE_COUNTER
-  if (cacheData[offset + kCacheCounterWord] != counterBefore) return false;  // key restored
+  if (cacheLoadWord(offset + kCacheCounterWord) != counterBefore) return false;  // key restored
 #endif
 #endif
 #if MG_CACHE_EVICTION == 1  // kCacheEvictionLru
@@ -540,7 +602,7 @@ int cacheChooseSlot(CacheKey key) {
 #endif
   bool besideALock = false;  // counted (g_locksBesideALock) when a slot is chosen
   [[unroll]] for (uint d = 0u; d < uint(MG_CACHE_PROBE); ++d) {
-    uint stored = cacheData[cacheKeyWord(key.base + d)];
+    uint stored = cacheLoadWord(cacheKeyWord(key.base + d));
     if (stored == kCacheKeyEmpty) {
       if (besideALock) g_locksBesideALock += 1u;
       return int(d);
@@ -550,7 +612,7 @@ int cacheChooseSlot(CacheKey key) {
     if (stored != kCacheKeyLock) {
       // Age modulo 2^32: after the clock wraps, the newest stamps are small numbers but
       // small ages (comparing the stamps themselves evicted the newest entries first).
-      uint age = now - cacheData[cacheEntryOffset(key.base + d) + kCacheClockWord];
+      uint age = now - cacheLoadWord(cacheEntryOffset(key.base + d) + kCacheClockWord);
       if (oldest < 0 || age > oldestAge) {
         oldestAge = age;
         oldest = int(d);
@@ -582,13 +644,13 @@ int cacheLockEvicting(CacheKey key, out uint evicted) {
   // Only an entry still empty: between cacheChooseSlot's read and the lock another
   // invocation may have locked it and published its key, which an exchange would evict (a
   // tile computed into an entry that counted no new occupant, seen on lavapipe).
-  uint previous = atomicCompSwap(cacheData[cacheKeyWord(entry)], kCacheKeyEmpty, kCacheKeyLock);
+  uint previous = cacheCompareExchangeWord(cacheKeyWord(entry), kCacheKeyEmpty, kCacheKeyLock);
   if (previous != kCacheKeyEmpty) {
     g_locksContended += 1u;
     return -1;
   }
 #else
-  uint previous = atomicExchange(cacheData[cacheKeyWord(entry)], kCacheKeyLock);
+  uint previous = cacheExchangeWord(cacheKeyWord(entry), kCacheKeyLock);
   if (previous == kCacheKeyLock) {
     g_locksContended += 1u;
     return -1;
@@ -597,7 +659,7 @@ int cacheLockEvicting(CacheKey key, out uint evicted) {
   evicted = previous;
   if (previous == kCacheKeyEmpty) atomicAdd(counters.cacheOccupancy, 1u);
 #ifdef MG_CACHE_UPDATE_COUNTER
-  atomicAdd(cacheData[offset + kCacheCounterWord], 1u);  // before any value changes (§5.3.4)
+  cacheAddWord(offset + kCacheCounterWord, 1u);  // before any value changes (§5.3.4)
 #endif
   // The lock (and the counter) before any value store, in both read-check modes: without
   // this fence a reader could see the old key around new values (the key mode had none).
@@ -615,12 +677,12 @@ int cacheLock(CacheKey key) {
 void cacheUnlock(uint entry, CacheKey key) {
   uint offset = cacheEntryOffset(entry);
 #if MG_CACHE_EVICTION == 1 || MG_CACHE_EVICTION == 2
-  cacheData[offset + kCacheClockWord] = cacheClock(1u);
+  cacheStoreWord(offset + kCacheClockWord, cacheClock(1u));
 #else
-  cacheData[offset + kCacheClockWord] = frame.cache.y;  // unread by none and random
+  cacheStoreWord(offset + kCacheClockWord, frame.cache.y);  // unread by none and random
 #endif
   cacheFence();  // the values (buffer or image) and the clock, then the key
-  atomicExchange(cacheData[cacheKeyWord(entry)], key.hash);
+  cacheExchangeWord(cacheKeyWord(entry), key.hash);
 }
 
 // Gives up a locked entry without a value: empty again, and one fewer occupied entry (a
@@ -629,7 +691,7 @@ void cacheUnlock(uint entry, CacheKey key) {
 // up hundreds of thousands of entries a frame (callable repacks); without this the
 // occupancy overstated S threefold.
 void cacheUnlockEmpty(uint entry) {
-  atomicExchange(cacheData[cacheKeyWord(entry)], kCacheKeyEmpty);
+  cacheExchangeWord(cacheKeyWord(entry), kCacheKeyEmpty);
   atomicAdd(counters.cacheOccupancy, 0xFFFFFFFFu);  // minus one
 }
 
@@ -648,7 +710,7 @@ void cacheRestore(uint entry, uint evicted) {
     return;
   }
   cacheFence();
-  atomicExchange(cacheData[cacheKeyWord(entry)], evicted);
+  cacheExchangeWord(cacheKeyWord(entry), evicted);
 }
 
 // The texel cache's insert: lock, values, unlock.

@@ -83,14 +83,26 @@ layout(set = 0, binding = kBindingTileTexels, std430) MG_CACHE_COHERENT buffer T
   uint tileTexels[];
 };
 uint tileTexelWord(uint entry, uint texel) { return (entry * kTileTexels + texel) * kCacheValueWords; }
+// Relaxed atomics of device scope, as the values in the cache buffer (cacheStoreWord): a read
+// may race with a writer that locked the entry meanwhile, and its check discards what it read.
 void tileStoreTexel(uint entry, uint texel, float values[MG_CACHE_VALUES]) {
   uint word = tileTexelWord(entry, texel);
-  for (uint w = 0u; w < kCacheValueWords; ++w) tileTexels[word + w] = cacheValueWord(values, w);
+  for (uint w = 0u; w < kCacheValueWords; ++w)
+    atomicStore(tileTexels[word + w], cacheValueWord(values, w), gl_ScopeDevice,
+                gl_StorageSemanticsBuffer, gl_SemanticsRelaxed);
 }
 void tileLoadTexel(uint entry, uint texel, out float values[MG_CACHE_VALUES]) {
   for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;
   uint word = tileTexelWord(entry, texel);
-  for (uint w = 0u; w < kCacheValueWords; ++w) cacheValueFromWord(tileTexels[word + w], w, values);
+  for (uint w = 0u; w < kCacheValueWords; ++w) {
+#ifdef MG_CACHE_QUIESCENT_READS
+    uint stored = tileTexels[word + w];  // nothing stores a texel in this dispatch
+#else
+    uint stored = atomicLoad(tileTexels[word + w], gl_ScopeDevice, gl_StorageSemanticsBuffer,
+                             gl_SemanticsRelaxed);
+#endif
+    cacheValueFromWord(stored, w, values);
+  }
 }
 #else
 // Images hold four values per texel; a texel's value groups sit side by side in x (2D) or
@@ -364,7 +376,7 @@ void tileQuantize(inout float values[MG_CACHE_VALUES]) {
 // through a ballot or shuffle), so a fence in each lane followed by a ballot and the
 // locking lane's key store ordered nothing across lanes: a reader that saw the key could
 // read stale texels on a GPU. Instead each lane that stores a texel then does a release
-// fence (memoryBarrier: buffer and image memory, so every --tile-storage) and an atomic add
+// fence (cacheFence: buffer and image memory, so every --tile-storage) and an atomic add
 // on the entry's count word (kCacheTileCount), as the deferred fill does on its queue item.
 // The adds of one lock form a release sequence on that word (every write to it is an atomic
 // read-modify-write), so the add that completes the count reads a value that every earlier
@@ -391,12 +403,12 @@ const uint kTileCountCancel = 0x10000u;
 // publishes the tile under `key`, or gives the entry back empty when the tile was given up.
 void tileCountTexels(uint entry, CacheKey key, uint amount) {
   uint word = cacheEntryOffset(entry) + kCacheTileCount;
-  uint after = atomicAdd(cacheData[word], amount) + amount;
+  uint after = cacheAddWord(word, amount) + amount;
   if ((after & kTileCountMask) != kTileTexels) return;
   // Acquire: every lane's texel (stored before its release fence and its add) happens-before
   // what follows, here the key store.
   cacheFence();
-  atomicExchange(cacheData[word], 0u);  // 0 for the entry's next lock, before the key
+  cacheExchangeWord(word, 0u);  // 0 for the entry's next lock, before the key
   if ((after & kTileCountCancel) != 0u) {
     cacheFence();  // the reset before the key that lets the next lock in
     cacheUnlockEmpty(entry);
