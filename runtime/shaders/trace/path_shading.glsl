@@ -171,6 +171,68 @@ SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
   return s;
 }
 
+// The path state that Blender's Light Path node reads (MaterialInputs rayFlags and the
+// depths), kept as Cycles 3.4 keeps it (kernel/integrator/path_state.h path_state_init_integrator
+// and path_state_next): the kind of ray that left the last vertex (MG_RAY_* bits, prelude)
+// and the bounces so far, overall and by lobe. memograph's BSDF only reflects and its shadow
+// rays are opaque, so no ray is a transmission one and no material is evaluated for a shadow
+// ray: MG_RAY_TRANSMIT, MG_RAY_SHADOW and the transmission depth are never set. Scenes whose
+// graphs read none of it (MG_OMIT_PATH_INPUTS) carry it along unread, and the compilers drop it.
+struct PathState {
+  int flags;
+  int depth;
+  int diffuseDepth;
+  int glossyDepth;
+};
+
+PathState cameraPathState() {
+  PathState path;
+  path.flags = MG_RAY_CAMERA;
+  path.depth = 0;
+  path.diffuseDepth = 0;
+  path.glossyDepth = 0;
+  return path;
+}
+
+// A reflection by the lobe continuePath sampled: diffuse, or the GGX lobe (glossy, and
+// singular too where Cycles' microfacet is a perfect mirror: alpha_x alpha_y <= 1e-7 in
+// bsdf_microfacet.h, alpha = roughness^2; memograph's GGX clamps its roughness at 0.02 but
+// labels the bounce as Cycles would).
+void pathStateAfterReflection(inout PathState path, bool specularLobe, float roughness) {
+  path.depth += 1;
+  if (specularLobe) {
+    path.glossyDepth += 1;
+    float alpha = roughness * roughness;
+    path.flags = MG_RAY_REFLECT | MG_RAY_GLOSSY | (alpha * alpha <= 1e-7 ? MG_RAY_SINGULAR : 0);
+  } else {
+    path.diffuseDepth += 1;
+    path.flags = MG_RAY_REFLECT | MG_RAY_DIFFUSE;
+  }
+}
+
+// The state an emitter's graph sees when it is evaluated for a light sample of the vertex
+// whose state is `path` (Cycles' light_sample_shader_eval: PATH_RAY_EMISSION alone, so no
+// flag here; svm_node_light_path then counts Ray Depth one bounce further, the lobes' depths
+// not).
+PathState lightSamplePathState(PathState path) {
+  path.flags = 0;
+  path.depth += 1;
+  return path;
+}
+
+// Puts the path state and the ray's length to the hit (the ray's t: its direction is unit)
+// into a hit's material inputs.
+void setPathInputs(inout MaterialInputs inputs, PathState path, float rayLength) {
+#ifndef MG_OMIT_PATH_INPUTS
+  inputs.rayFlags = path.flags;
+  inputs.rayLength = rayLength;
+  inputs.rayDepth = path.depth;
+  inputs.diffuseDepth = path.diffuseDepth;
+  inputs.glossyDepth = path.glossyDepth;
+  inputs.transmissionDepth = 0;
+#endif
+}
+
 // The power heuristic (beta 2) for a sample of pdf a against a strategy of pdf b.
 float misWeight(float a, float b) {
   float a2 = a * a;
@@ -369,11 +431,12 @@ float lightSampleMisWeight(LightSample s, ShadingPoint p, bool mis) {
 }
 
 // BRDF importance sampling of the next direction (eq. 2.9 with the lobe mixture): the
-// throughput, the pdf (for the next hit's MIS), the ray cone (eq. 2.11, 2.12) and the ray
-// leave with it. False: the path ends here (no direction above the surface).
+// throughput, the pdf (for the next hit's MIS), the ray cone (eq. 2.11, 2.12), the ray and
+// the path state (the sampled lobe: Light Path) leave with it. False: the path ends here (no
+// direction above the surface).
 bool continuePath(ShadingPoint p, SurfaceHit s, inout Rng rng, inout vec3 throughput,
                   inout float previousBsdfPdf, inout RayCone cone, inout vec3 origin,
-                  inout vec3 direction) {
+                  inout vec3 direction, inout PathState path) {
   vec3 woLocal = p.toLocal * p.wo;
   float uLobe = rngNext(rng);
   vec3 wiLocal = brdfSample(p.brdf, woLocal, uLobe, rngNext2(rng));
@@ -392,5 +455,6 @@ bool continuePath(ShadingPoint p, SurfaceHit s, inout Rng rng, inout vec3 throug
   cone.width = s.coneWidth;
   origin = offsetRayOrigin(p.position, s.geometricNormal);
   direction = wi;
+  pathStateAfterReflection(path, specularLobe, p.brdf.roughness);
   return true;
 }
