@@ -134,7 +134,7 @@ MG_CONSTANT(uint, kPathStateFields, 9);
 // BSDF needs), written by the material passes.
 MG_CONSTANT(uint, kPathStateFieldsWithMaterials, 13);
 // With graphs that read the path state (Light Path, MG_OMIT_PATH_INPUTS undefined), one more:
-// the ray's flags and its depths (path_shading.glsl PathState) from one bounce to the next.
+// the ray's kind and its depths (path_shading.glsl PathState) from one bounce to the next.
 MG_CONSTANT(uint, kPathStateFieldsWithPathInputs, 14);
 
 // The wavefront's queue counts and indirect arguments (binding kBindingWavefrontControl).

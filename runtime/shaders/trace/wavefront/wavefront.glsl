@@ -150,7 +150,7 @@ const uint kFieldMaterialNormal = 10u;     // normal, roughness
 const uint kFieldMaterialEmission = 11u;   // emission, specular
 const uint kFieldMaterialRest = 12u;       // specularTint, cyclesPrincipled, opacity, and
                                            // with a cache the bin to evaluate (w)
-// With graphs that read the path state (no MG_OMIT_PATH_INPUTS): PathState's flags and
+// With graphs that read the path state (no MG_OMIT_PATH_INPUTS): PathState's ray kind and
 // depths (int bits), written where the path's ray is (the generate and shade passes).
 const uint kFieldPathState = 13u;
 
@@ -231,7 +231,7 @@ PathState loadPathState(uint slot) {
 #ifndef MG_OMIT_PATH_INPUTS
   ivec4 bits = floatBitsToInt(pathState[fieldIndex(kFieldPathState, slot)]);
   PathState path;
-  path.flags = bits.x;
+  path.ray = bits.x;
   path.depth = bits.y;
   path.diffuseDepth = bits.z;
   path.glossyDepth = bits.w;
@@ -244,7 +244,7 @@ PathState loadPathState(uint slot) {
 void storePathState(uint slot, PathState path) {
 #ifndef MG_OMIT_PATH_INPUTS
   pathState[fieldIndex(kFieldPathState, slot)] =
-      intBitsToFloat(ivec4(path.flags, path.depth, path.diffuseDepth, path.glossyDepth));
+      intBitsToFloat(ivec4(path.ray, path.depth, path.diffuseDepth, path.glossyDepth));
 #endif
 }
 
