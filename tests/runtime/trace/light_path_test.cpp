@@ -53,8 +53,8 @@ Scene cornerScene() {
   return scene;
 }
 
-RendererOptions options(Shading shading) {
-  RendererOptions o = testing::testOptions(Backend::RayQuery);
+RendererOptions options(Shading shading, Backend backend = Backend::RayQuery) {
+  RendererOptions o = testing::testOptions(backend);
   o.nodeLibraryDirectory.clear();  // the real node library, which has LightPath
   o.shading = shading;
   return o;
@@ -75,9 +75,20 @@ RenderSettings settings(std::uint32_t bounces) {
 // no bounce, no lobe, and Ray Length the hit's distance from the camera (blue / 0.02), which
 // the corner keeps between 1 m (the camera's height over the floor) and 21 m (the far corner
 // of the 40 m wall).
+// The megakernel on the query backend (the switch) and on the pipeline backend (the
+// material callables, whose payload carries the path state), and the wavefront.
 TEST(LightPath, CameraRaysSeeTheCameraState) {
-  for (Shading shading : {Shading::Megakernel, Shading::Wavefront}) {
-    const HdrImage image = Renderer(options(shading)).render(cornerScene(), settings(1)).image;
+  struct Case {
+    Shading shading;
+    Backend backend;
+    const char* name;
+  };
+  for (const Case& c :
+       {Case{Shading::Megakernel, Backend::RayQuery, "megakernel, switch"},
+        Case{Shading::Megakernel, Backend::RayTracingPipeline, "megakernel, callables"},
+        Case{Shading::Wavefront, Backend::RayQuery, "wavefront"}}) {
+    const HdrImage image =
+        Renderer(options(c.shading, c.backend)).render(cornerScene(), settings(1)).image;
     double shortest = 1e30, longest = 0.0;
     for (std::uint32_t y = 0; y < image.height; ++y)
       for (std::uint32_t x = 0; x < image.width; ++x) {
@@ -87,8 +98,7 @@ TEST(LightPath, CameraRaysSeeTheCameraState) {
         shortest = std::min(shortest, p[2] / 0.02);
         longest = std::max(longest, p[2] / 0.02);
       }
-    std::printf("%s: ray lengths %.3f to %.3f m\n",
-                shading == Shading::Megakernel ? "megakernel" : "wavefront", shortest, longest);
+    std::printf("%s: ray lengths %.3f to %.3f m\n", c.name, shortest, longest);
     EXPECT_GT(shortest, 1.0);
     EXPECT_LT(longest, 21.0);
     EXPECT_GT(longest, shortest + 1.0);  // the lengths are the hits', not one constant
