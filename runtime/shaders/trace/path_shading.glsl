@@ -194,6 +194,7 @@ struct PathState {
   int glossyDepth;
 };
 
+// A camera ray's state: the path's start (Cycles' PATH_RAY_CAMERA, every depth 0).
 PathState cameraPathState() {
   PathState path;
   path.ray = kPathRayCamera;

@@ -241,6 +241,7 @@ PathState loadPathState(uint slot) {
 #endif
 }
 
+// Keeps the Light Path state of a path's next ray for the next bounce's passes.
 void storePathState(uint slot, PathState path) {
 #ifndef MG_OMIT_PATH_INPUTS
   pathState[fieldIndex(kFieldPathState, slot)] =
