@@ -10,18 +10,45 @@
 
 namespace memograph::compiler {
 
-inline constexpr std::array<std::string_view, 13> kMaterialInputNames = {
-    "uv",        "position",  "normal",         "tangent",         "vertexColor",    "view",
-    "time",      "generated", "objectPosition", "geometricNormal", "objectLocation", "objectRandom",
-    "backfacing"};
+inline constexpr std::array<std::string_view, 19> kMaterialInputNames = {"uv",
+                                                                         "position",
+                                                                         "normal",
+                                                                         "tangent",
+                                                                         "vertexColor",
+                                                                         "view",
+                                                                         "time",
+                                                                         "generated",
+                                                                         "objectPosition",
+                                                                         "geometricNormal",
+                                                                         "objectLocation",
+                                                                         "objectRandom",
+                                                                         "backfacing",
+                                                                         "rayFlags",
+                                                                         "rayLength",
+                                                                         "rayDepth",
+                                                                         "diffuseDepth",
+                                                                         "glossyDepth",
+                                                                         "transmissionDepth"};
 
 // The object-space inputs (Blender's Texture Coordinate, Geometry and Object Info): the
-// members from `generated` on, which the prelude leaves out under MG_OMIT_OBJECT_INPUTS.
+// members from `generated` up to the path state, which the prelude leaves out under
+// MG_OMIT_OBJECT_INPUTS.
 inline constexpr std::size_t kFirstObjectSpaceInput = 7;
 static_assert(kMaterialInputNames[kFirstObjectSpaceInput] == "generated");
 
+// The path-state inputs (Blender's Light Path node): the members from `rayFlags` on, which
+// the prelude leaves out under MG_OMIT_PATH_INPUTS.
+inline constexpr std::size_t kFirstPathInput = 13;
+static_assert(kMaterialInputNames[kFirstPathInput] == "rayFlags");
+
 inline bool isObjectSpaceInput(std::string_view name) {
   const auto first = kMaterialInputNames.begin() + kFirstObjectSpaceInput;
+  const auto last = kMaterialInputNames.begin() + kFirstPathInput;
+  return std::find(first, last, name) != last;
+}
+
+inline bool isPathInput(std::string_view name) {
+  const auto first = kMaterialInputNames.begin() + kFirstPathInput;
   return std::find(first, kMaterialInputNames.end(), name) != kMaterialInputNames.end();
 }
 

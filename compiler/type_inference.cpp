@@ -7,6 +7,7 @@
 
 #include "compiler/conversions.h"
 #include "compiler/literal.h"
+#include "compiler/material_interface.h"
 
 namespace memograph::compiler {
 
@@ -349,14 +350,18 @@ class Inference {
   }
 
   // Whether a node's outputs vary over a pixel's footprint: it reads a MaterialInputs member
-  // that does (all but the per-object or per-frame ones), or a linked input varies.
+  // that does (all but the per-object or per-frame ones, and the path state, which is one
+  // ray's: its ray length too, whose derivatives Cycles' bump also takes as zero, as it
+  // offsets the position and not the ray), or a linked input varies.
   void computeVarying() {
     varies_.assign(graph_.nodes.size(), 0);
     for (const std::size_t node : order_) {
       const auto& resolved = graph_.nodes[node];
       for (const auto& member : resolved.type->inputsRead) {
-        if (member != "time" && member != "objectLocation" && member != "objectRandom" &&
-            member != "backfacing") {
+        const bool constantOverFootprint = member == "time" || member == "objectLocation" ||
+                                           member == "objectRandom" || member == "backfacing" ||
+                                           isPathInput(member);
+        if (!constantOverFootprint) {
           varies_[node] = 1;
         }
       }

@@ -3,6 +3,8 @@
 #include <optional>
 #include <string>
 
+#include "compiler/material_interface.h"
+
 namespace memograph::compiler {
 
 namespace {
@@ -85,6 +87,11 @@ Variation inputVariation(std::string_view member) {
     return Variation::PerFrame;
   if (member == "normal" || member == "tangent" || member == "vertexColor" || member == "view" ||
       member == "geometricNormal" || member == "backfacing")
+    return Variation::PerHit;
+  // The path state (Light Path) belongs to the ray, not to the surface: two rays reaching
+  // one texel at different depths or by different lobes see different values, so no key
+  // domain determines it and it never enters a cut.
+  if (isPathInput(member))
     return Variation::PerHit;
   return Variation::Constant;
 }

@@ -6,7 +6,8 @@
 // space, the thesis's key, §4.2), Object (object space per instance) and World (world space,
 // the voxel key of seed 002 §3.1-3.2), sit above it and are incomparable: a value that mixes
 // two of them has no single key, so it is PerHit, like every value that is interpolated or
-// depends on the ray (normal, tangent, vertexColor, view, backfacing, geometricNormal).
+// depends on the ray (normal, tangent, vertexColor, view, backfacing, geometricNormal, and
+// the path state that Light Path reads: rayFlags, rayLength and the depths).
 // PerFrame (time) is the top: such a value changes every frame, so no frame can reuse
 // another's entry whatever the key.
 #pragma once

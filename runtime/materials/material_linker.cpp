@@ -232,6 +232,9 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
     if (std::any_of(entry.inputsUsed.begin(), entry.inputsUsed.end(),
                     [](const std::string& input) { return compiler::isObjectSpaceInput(input); }))
       linked.objectInputs = true;
+    if (std::any_of(entry.inputsUsed.begin(), entry.inputsUsed.end(),
+                    [](const std::string& input) { return compiler::isPathInput(input); }))
+      linked.pathInputs = true;
     for (const std::string& output : compiled->metadata.outputsWritten)
       if (output == "specularTint" || output == "cyclesPrincipled")
         linked.cyclesPrincipled = true;

@@ -68,6 +68,10 @@ struct LinkedMaterials {
   // objectLocation, objectRandom, backfacing); without one the shaders define
   // MG_OMIT_OBJECT_INPUTS and MaterialInputs carries none of them.
   bool objectInputs = false;
+  // Some material reads the path state (Light Path: rayFlags, rayLength, the depths); without
+  // one the shaders define MG_OMIT_PATH_INPUTS, MaterialInputs carries none of it and the
+  // path tracer tracks no path state.
+  bool pathInputs = false;
   double compileMilliseconds = 0.0;
 };
 

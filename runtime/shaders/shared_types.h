@@ -133,6 +133,9 @@ MG_CONSTANT(uint, kPathStateFields, 9);
 // With material graphs, four more: the material's outputs at the hit (what the shade pass's
 // BSDF needs), written by the material passes.
 MG_CONSTANT(uint, kPathStateFieldsWithMaterials, 13);
+// With graphs that read the path state (Light Path, MG_OMIT_PATH_INPUTS undefined), one more:
+// the ray's kind and its depths (path_shading.glsl PathState) from one bounce to the next.
+MG_CONSTANT(uint, kPathStateFieldsWithPathInputs, 14);
 
 // The wavefront's queue counts and indirect arguments (binding kBindingWavefrontControl).
 // Each launch block is a VkDispatchIndirectCommand (work groups) or a

@@ -28,6 +28,9 @@ struct ShaderBuild {
   // payload and the raygen's stack shrink (on the H200 the classroom's texel row: 144.7 ms
   // and a 896 B stack with them, 128.5 ms and 576 B without).
   bool omitObjectInputs = false;
+  // Likewise without the path state when no graph reads it (Light Path): the path tracer
+  // then tracks none, so such scenes trace as before it existed.
+  bool omitPathInputs = false;
   // The texel cache keys materials by their cut (MG_CACHE_CUTS, texel_cache.glsl): see
   // cutKeys.
   bool cutKeys = false;
@@ -54,6 +57,8 @@ MaterialCallables compileCallables(const ShaderBuild& b,
   MaterialCallableCompileOptions callableOptions;
   if (b.omitObjectInputs)
     callableOptions.defines.push_back("MG_OMIT_OBJECT_INPUTS=1");
+  if (b.omitPathInputs)
+    callableOptions.defines.push_back("MG_OMIT_PATH_INPUTS=1");
   callableOptions.files = files;
   callableOptions.cacheDirectory = b.inputs.shaderCacheDirectory;
   callableOptions.textureCount = b.inputs.scene->textures->count();
@@ -68,6 +73,8 @@ std::vector<std::string> pathTracerDefines(const ShaderBuild& b, const MaterialC
     defines.push_back("MG_MATERIAL_FLOOR=1");
   if (b.omitObjectInputs)
     defines.push_back("MG_OMIT_OBJECT_INPUTS=1");
+  if (b.omitPathInputs)
+    defines.push_back("MG_OMIT_PATH_INPUTS=1");
   if (b.cutKeys)
     defines.push_back("MG_CACHE_CUTS=1");
   if (b.options.debugCacheMisses)
@@ -155,6 +162,7 @@ RenderPipelines buildPipelines(const VulkanContext& context, const RendererOptio
   ShaderBuild b{context, options, settings, plan, inputs};
   b.floor = options.floorMaterials;
   b.omitObjectInputs = b.floor || !inputs.materials->linked.objectInputs;
+  b.omitPathInputs = b.floor || !inputs.materials->linked.pathInputs;
   const LinkedMaterials& materials = inputs.materials->linked;
   // Shaders: the embedded sources plus the generated materials.glsl; with callables, also
   // one callable shader per distinct material. The wavefront evaluates graphs in material

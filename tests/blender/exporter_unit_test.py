@@ -451,6 +451,47 @@ class SpecWriterTest(unittest.TestCase):
         self.assertNotIn('Math', text)  # only the ignored input read it
 
 
+LIGHT_PATH_OUTPUTS = ('Is Camera Ray', 'Is Shadow Ray', 'Is Diffuse Ray', 'Is Glossy Ray',
+                      'Is Singular Ray', 'Is Reflection Ray', 'Is Transmission Ray',
+                      'Ray Length', 'Ray Depth', 'Diffuse Depth', 'Glossy Depth',
+                      'Transparent Depth', 'Transmission Depth')
+
+
+def light_path_material(output):
+    """Emission whose Strength is Light Path's `output`."""
+    tree = Tree()
+    out = output_node(tree)
+    em = emission(tree)
+    lp = tree.add(Node('ShaderNodeLightPath', 'Light Path', [],
+                       [Sock(o, 'VALUE', 0.0) for o in LIGHT_PATH_OUTPUTS]))
+    tree.link(lp.outputs[LIGHT_PATH_OUTPUTS.index(output)], em.inputs[1])
+    tree.link(em.outputs[0], out.inputs[0])
+    return Material('Mat', tree)
+
+
+class LightPathTest(unittest.TestCase):
+    """Light Path's outputs are the path tracer's per-ray inputs (LightPath node), carried
+    without a warning; Transparent Depth, which memograph has no use for (no transparent
+    bounces), is warned and written as its default, 0."""
+
+    def test_carried_outputs_need_no_warning(self):
+        table = writers.build_table(load_specs())
+        for output in LIGHT_PATH_OUTPUTS:
+            if output == 'Transparent Depth':
+                continue
+            result, (text,) = export([light_path_material(output)], table)
+            self.assertEqual(result.warnings, [], output)
+            socket = output.replace(' ', '')
+            self.assertRegex(text, r'LightPath %s>\d+;' % socket)
+
+    def test_transparent_depth_is_warned(self):
+        result, (text,) = export([light_path_material('Transparent Depth')],
+                                 writers.build_table(load_specs()))
+        msgs = ' | '.join(w[2] for w in result.warnings)
+        self.assertIn("output 'Transparent Depth' is not carried: its default 0", msgs)
+        self.assertIn('Strength=0', text)
+
+
 class Blender4Test(unittest.TestCase):
     def test_principled_v2(self):
         tree = Tree()

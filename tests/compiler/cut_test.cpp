@@ -3,6 +3,7 @@
 // metadata that reports them.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <regex>
@@ -64,6 +65,20 @@ constexpr const char* kGeneratedUnderLayerWeight =
     "MixColor Factor<3 A<2 B=(0.0, 0.0, 0.0) Result>4;\n"
     "BaseColorOutput In<4;\n";
 
+// A UV noise whose colour Light Path switches: white for camera rays, the noise for the
+// others, and darker with every bounce (Ray Depth). The noise is the cut; Light Path, per ray,
+// stays in the rest.
+constexpr const char* kUvNoiseUnderLightPath =
+    "material RaySwitched;\n"
+    "UVInput Out>1;\n"
+    "NoiseTexture Vector<1 Detail=2.0 Color>2;\n"
+    "LightPath IsCameraRay>3 RayDepth>4;\n"
+    "Mix A<2 B=(1.0, 1.0, 1.0) Factor<3 Out>5;\n"
+    "Add A<4 B=1.0 Out>6;\n"
+    "Div A=1.0 B<6 Out>7;\n"
+    "BaseColorOutput In<5;\n"
+    "RoughnessOutput In<7;\n";
+
 TEST(Variation, KeyDomainsMixToPerHitAndTimeToPerFrame) {
   EXPECT_EQ(join(Variation::Constant, Variation::Uv), Variation::Uv);
   EXPECT_EQ(join(Variation::Object, Variation::Object), Variation::Object);
@@ -86,6 +101,10 @@ TEST(Variation, EveryMaterialInputHasItsClass) {
   for (const char* perHit :
        {"normal", "tangent", "vertexColor", "view", "geometricNormal", "backfacing"})
     EXPECT_EQ(inputVariation(perHit), Variation::PerHit) << perHit;
+  // The path state (Light Path) is the ray's: never a key domain, so never in a cut.
+  for (const char* perRay :
+       {"rayFlags", "rayLength", "rayDepth", "diffuseDepth", "glossyDepth", "transmissionDepth"})
+    EXPECT_EQ(inputVariation(perRay), Variation::PerHit) << perRay;
 }
 
 // The per-socket table names nodes and sockets of the real library, and covers every source
@@ -212,6 +231,34 @@ TEST(Cut, TimeMakesAValuePerFrame) {
   EXPECT_EQ(c.metadata.cutDomain, "none");
 }
 
+TEST(Cut, LightPathStaysOutOfTheCut) {
+  const auto c = compileReal(kUvNoiseUnderLightPath);
+  EXPECT_FALSE(c.metadata.cacheable);
+  EXPECT_EQ(c.metadata.cutDomain, "uv");
+  EXPECT_EQ(c.metadata.cutWidth, 3u);  // the noise's Color
+  EXPECT_NE(c.cut.find("NoiseTexture"), std::string::npos) << c.cut;
+  EXPECT_EQ(c.cut.find("LightPath"), std::string::npos) << c.cut;
+  EXPECT_EQ(c.cut.find("inputs.ray"), std::string::npos) << c.cut;
+  EXPECT_NE(c.rest.find("LightPath("), std::string::npos) << c.rest;
+  EXPECT_EQ(c.rest.find("NoiseTexture"), std::string::npos) << c.rest;
+  const auto& inputs = c.metadata.inputsUsed;
+  for (const char* member : {"uv", "rayFlags", "rayDepth"})
+    EXPECT_NE(std::find(inputs.begin(), inputs.end(), member), inputs.end()) << member;
+}
+
+// A per-ray value entering the noise's coordinates leaves nothing to cache.
+TEST(Cut, ANoiseOfTheRayDepthHasNoCut) {
+  const auto c = compileReal(
+      "material DepthNoise;\n"
+      "UVInput Out>1;\n"
+      "LightPath RayDepth>2;\n"
+      "Add A<1 B<2 Out>3;\n"
+      "NoiseTexture Vector<3 Detail=2.0 Color>4;\n"
+      "BaseColorOutput In<4;\n");
+  EXPECT_EQ(c.metadata.cutDomain, "none");
+  EXPECT_TRUE(c.cut.empty());
+}
+
 // Object Info's Random is per instance: it joins object space rather than breaking it.
 TEST(Cut, PerInstanceInputsJoinTheObjectDomain) {
   const auto c = compileReal(
@@ -286,7 +333,8 @@ std::string hostCall(const std::string& name) {
 }
 
 TEST(Cut, CutAndRestCompileWithGlslangForBothTargets) {
-  for (const char* graph : {kUvPrefixViewTail, kGeneratedUnderLayerWeight}) {
+  for (const char* graph :
+       {kUvPrefixViewTail, kGeneratedUnderLayerWeight, kUvNoiseUnderLightPath}) {
     const auto run = compileText(graph, realLibrary());
     ASSERT_TRUE(run.material) << run.messages();
     const auto& m = *run.material;
@@ -319,15 +367,15 @@ TEST(Cut, OutputIsByteIdenticalAcrossRuns) {
 
 // The material's own functions (whole, cut, rest) of one material with a cut, both targets,
 // and its metadata. Set MEMOGRAPH_UPDATE_GOLDEN=1 to rewrite them after an intended change.
-TEST(Cut, GoldenCutAndRestFunctions) {
-  const auto run = compileText(kGeneratedUnderLayerWeight, realLibrary(), "cut.mgraph");
+void expectGoldenCutAndRest(const char* graph, const std::string& stem) {
+  const auto run = compileText(graph, realLibrary(), "cut.mgraph");
   ASSERT_TRUE(run.material) << run.messages();
   const std::string dir = std::string(MEMOGRAPH_TEST_DATA_DIR) + "/../golden/";
   const auto& m = *run.material;
   const std::pair<std::string, std::string> files[] = {
-      {"cut_generated_under_layer_weight.glsl", m.glsl.substr(m.glsl.find("\nvoid Evaluate"))},
-      {"cut_generated_under_layer_weight.hlsl", m.hlsl.substr(m.hlsl.find("\nvoid Evaluate"))},
-      {"cut_generated_under_layer_weight.json", m.metadataJson}};
+      {stem + ".glsl", m.glsl.substr(m.glsl.find("\nvoid Evaluate"))},
+      {stem + ".hlsl", m.hlsl.substr(m.hlsl.find("\nvoid Evaluate"))},
+      {stem + ".json", m.metadataJson}};
   for (const auto& [file, actual] : files) {
     if (std::getenv("MEMOGRAPH_UPDATE_GOLDEN")) {
       std::ofstream(dir + file, std::ios::binary) << actual;
@@ -341,6 +389,15 @@ TEST(Cut, GoldenCutAndRestFunctions) {
     }
     EXPECT_EQ(actual, expected) << "generated code differs from " << dir + file;
   }
+}
+
+TEST(Cut, GoldenCutAndRestFunctions) {
+  expectGoldenCutAndRest(kGeneratedUnderLayerWeight, "cut_generated_under_layer_weight");
+}
+
+// Light Path's per-ray inputs read in the rest, never in the cut.
+TEST(Cut, GoldenLightPathInTheRest) {
+  expectGoldenCutAndRest(kUvNoiseUnderLightPath, "cut_uv_noise_under_light_path");
 }
 
 }  // namespace

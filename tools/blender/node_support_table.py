@@ -39,11 +39,13 @@ APPROXIMATIONS = {
     'ShaderNodeNormalMap': 'tangent space from the active UV only',
     'ShaderNodeTangent': 'the active UV map only',
     'ShaderNodeAttribute': 'the mesh\'s colour attribute only',
+    'ShaderNodeLightPath': 'memograph has no transparent bounces (a linked Transparent '
+                           'Depth is 0); shadow rays evaluate no material (Is Shadow Ray 0); '
+                           'diffuse or glossy as memograph\'s BSDF picks its lobe',
 }
 
 # Why a node has no writer, where there is more to say than "no memograph node".
 NOT_SUPPORTED = {
-    'ShaderNodeLightPath': 'needs the path state (ray type, depth) inside the material',
     'ShaderNodeCameraData': 'needs the render camera',
     'ShaderNodeScript': 'OSL scripts are not compiled',
     'ShaderNodeOutputLight': 'a light\'s node tree: lights are exported as lights',

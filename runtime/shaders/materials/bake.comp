@@ -83,6 +83,14 @@ void main() {
   inputs.objectLocation = vec3(0.0);
   inputs.objectRandom = 0.0;
   inputs.backfacing = 0.0;
+  // Cycles' bake (integrator/init_from_bake.h): a camera path at depth 0 whose intersection
+  // lies at t = 1 along a ray from one unit above the surface.
+  inputs.rayFlags = MG_RAY_CAMERA;
+  inputs.rayLength = 1.0;
+  inputs.rayDepth = 0;
+  inputs.diffuseDepth = 0;
+  inputs.glossyDepth = 0;
+  inputs.transmissionDepth = 0;
 
   MaterialOutputs outputs;
   MG_BAKE_EVALUATE(inputs, outputs);

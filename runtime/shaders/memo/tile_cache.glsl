@@ -323,6 +323,14 @@ MaterialInputs tileFillInputs(TileFillItem item, uint texel) {
   inputs.objectRandom = 0.0;
   inputs.backfacing = 0.0;
 #endif
+#ifndef MG_OMIT_PATH_INPUTS
+  inputs.rayFlags = MG_RAY_CAMERA;
+  inputs.rayLength = 0.0;
+  inputs.rayDepth = 0;
+  inputs.diffuseDepth = 0;
+  inputs.glossyDepth = 0;
+  inputs.transmissionDepth = 0;
+#endif
   vec2 tile = vec2(uintBitsToFloat(item.tileX), uintBitsToFloat(item.tileY));
   return tileTexelInputs(inputs, int(item.level), tile, texel);
 }

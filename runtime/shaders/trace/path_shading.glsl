@@ -171,6 +171,82 @@ SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
   return s;
 }
 
+// The path state that Blender's Light Path node reads (MaterialInputs rayFlags and the
+// depths), kept as Cycles 3.4 keeps it (kernel/integrator/path_state.h path_state_init_integrator
+// and path_state_next): how the ray left the last vertex and the bounces so far, overall and
+// by lobe. memograph's BSDF only reflects and its shadow rays are opaque, so no ray is a
+// transmission one and no material is evaluated for a shadow ray: MG_RAY_TRANSMIT,
+// MG_RAY_SHADOW and the transmission depth are never set. The ray's kind is the tracer's own
+// (kPathRay*), turned into the prelude's MG_RAY_* bits only where MaterialInputs has the path
+// state, so that the tracer compiles with a node library whose prelude has none of it. Scenes
+// whose graphs read none of it (MG_OMIT_PATH_INPUTS) carry it along unread, and the compilers
+// drop it.
+const int kPathRayCamera = 0;       // the camera ray
+const int kPathRayDiffuse = 1;      // reflected by the diffuse lobe
+const int kPathRayGlossy = 2;       // reflected by the GGX lobe
+const int kPathRaySingular = 3;     // reflected by a GGX lobe Cycles takes as a perfect mirror
+const int kPathRayLightSample = 4;  // a light sample's ray to an emitter
+
+struct PathState {
+  int ray;  // kPathRay*
+  int depth;
+  int diffuseDepth;
+  int glossyDepth;
+};
+
+// A camera ray's state: the path's start (Cycles' PATH_RAY_CAMERA, every depth 0).
+PathState cameraPathState() {
+  PathState path;
+  path.ray = kPathRayCamera;
+  path.depth = 0;
+  path.diffuseDepth = 0;
+  path.glossyDepth = 0;
+  return path;
+}
+
+// A reflection by the lobe continuePath sampled: diffuse, or the GGX lobe (glossy, and
+// singular where Cycles' microfacet is a perfect mirror: alpha_x alpha_y <= 1e-7 in
+// bsdf_microfacet.h, alpha = roughness^2; memograph's GGX clamps its roughness at 0.02 but
+// labels the bounce as Cycles would). Cycles counts a singular bounce as a glossy one.
+void pathStateAfterReflection(inout PathState path, bool specularLobe, float roughness) {
+  path.depth += 1;
+  if (specularLobe) {
+    path.glossyDepth += 1;
+    float alpha = roughness * roughness;
+    path.ray = alpha * alpha <= 1e-7 ? kPathRaySingular : kPathRayGlossy;
+  } else {
+    path.diffuseDepth += 1;
+    path.ray = kPathRayDiffuse;
+  }
+}
+
+// The state an emitter's graph sees when it is evaluated for a light sample of the vertex
+// whose state is `path` (Cycles' light_sample_shader_eval: PATH_RAY_EMISSION alone, so no
+// flag; svm_node_light_path then counts Ray Depth one bounce further, the lobes' depths not).
+PathState lightSamplePathState(PathState path) {
+  path.ray = kPathRayLightSample;
+  path.depth += 1;
+  return path;
+}
+
+// Puts the path state and the ray's length to the hit (the ray's t: its direction is unit)
+// into a hit's material inputs.
+void setPathInputs(inout MaterialInputs inputs, PathState path, float rayLength) {
+#ifndef MG_OMIT_PATH_INPUTS
+  int flags = 0;  // kPathRayLightSample: Cycles' PATH_RAY_EMISSION, which Light Path ignores
+  if (path.ray == kPathRayCamera) flags = MG_RAY_CAMERA;
+  else if (path.ray == kPathRayDiffuse) flags = MG_RAY_REFLECT | MG_RAY_DIFFUSE;
+  else if (path.ray == kPathRayGlossy) flags = MG_RAY_REFLECT | MG_RAY_GLOSSY;
+  else if (path.ray == kPathRaySingular) flags = MG_RAY_REFLECT | MG_RAY_GLOSSY | MG_RAY_SINGULAR;
+  inputs.rayFlags = flags;
+  inputs.rayLength = rayLength;
+  inputs.rayDepth = path.depth;
+  inputs.diffuseDepth = path.diffuseDepth;
+  inputs.glossyDepth = path.glossyDepth;
+  inputs.transmissionDepth = 0;
+#endif
+}
+
 // The power heuristic (beta 2) for a sample of pdf a against a strategy of pdf b.
 float misWeight(float a, float b) {
   float a2 = a * a;
@@ -369,11 +445,12 @@ float lightSampleMisWeight(LightSample s, ShadingPoint p, bool mis) {
 }
 
 // BRDF importance sampling of the next direction (eq. 2.9 with the lobe mixture): the
-// throughput, the pdf (for the next hit's MIS), the ray cone (eq. 2.11, 2.12) and the ray
-// leave with it. False: the path ends here (no direction above the surface).
+// throughput, the pdf (for the next hit's MIS), the ray cone (eq. 2.11, 2.12), the ray and
+// the path state (the sampled lobe: Light Path) leave with it. False: the path ends here (no
+// direction above the surface).
 bool continuePath(ShadingPoint p, SurfaceHit s, inout Rng rng, inout vec3 throughput,
                   inout float previousBsdfPdf, inout RayCone cone, inout vec3 origin,
-                  inout vec3 direction) {
+                  inout vec3 direction, inout PathState path) {
   vec3 woLocal = p.toLocal * p.wo;
   float uLobe = rngNext(rng);
   vec3 wiLocal = brdfSample(p.brdf, woLocal, uLobe, rngNext2(rng));
@@ -392,5 +469,6 @@ bool continuePath(ShadingPoint p, SurfaceHit s, inout Rng rng, inout vec3 throug
   cone.width = s.coneWidth;
   origin = offsetRayOrigin(p.position, s.geometricNormal);
   direction = wi;
+  pathStateAfterReflection(path, specularLobe, p.brdf.roughness);
   return true;
 }

@@ -92,13 +92,15 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
     throw std::logic_error(
         "WavefrontPathTracer: a cache without material passes, or a pipeline "
         "without indirect trace launches");
-  // The path state (vec4 fields a slot, four more for material outputs), the queues (two
+  // The path state (vec4 fields a slot, four more for material outputs, one more for the
+  // path state that Light Path reads), the queues (two
   // live, one shadow, with materials the material-sorted one; a uint a slot) and the control
   // block (with a record a material bin); each bound whole, so each must fit a storage
   // binding. Bins are distinct graphs: materials sharing a graph share its pipeline.
   const std::uint32_t bins = materials ? static_cast<std::uint32_t>(materials->distinct.size()) : 0;
-  const std::uint32_t fields =
-      materials ? gpu::kPathStateFieldsWithMaterials : gpu::kPathStateFields;
+  const std::uint32_t fields = !materials              ? gpu::kPathStateFields
+                               : materials->pathInputs ? gpu::kPathStateFieldsWithPathInputs
+                                                       : gpu::kPathStateFieldsWithMaterials;
   // Paths in flight: as asked, else every pixel, or as many as one storage binding of path
   // state, a row of work groups and the largest allocation hold (lavapipe's 128 MiB range:
   // about 645,000 with graphs, so a 1080p round there runs in 4 chunks).

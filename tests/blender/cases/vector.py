@@ -1,8 +1,8 @@
 """Vector, Input and pattern-texture nodes against Cycles 3.4: Mapping (4 types), Vector
 Rotate (5 types, inverted), Vector Transform (world <-> object), Normal Map (5 spaces,
 strengths), Bump (strength, distance, invert, the valid-reflection clamp), Normal, Texture
-Coordinate, UV Map, Geometry, Tangent, Object Info, Fresnel, Layer Weight, and the Checker,
-Gradient (7 types) and Brick textures.
+Coordinate, UV Map, Geometry, Tangent, Object Info, Light Path (a bake's camera state),
+Fresnel, Layer Weight, and the Checker, Gradient (7 types) and Brick textures.
 
 What the bake can't reproduce, and so has no case here (docs/guide/nodes.md): Texture Coordinate
 Camera and Window and Camera Data (a bake has no render camera); Vector Transform to or from
@@ -167,6 +167,14 @@ for _axis in ('X', 'Y', 'Z'):
 CASES.append(Case(name='tangent_uv_map', node='ShaderNodeTangent',
                   props={'direction_type': 'UV_MAP'}, output='Tangent'))
 CASES.append(Case(name='object_info_location', node='ShaderNodeObjectInfo', output='Location'))
+# A bake is Cycles' camera path at depth 0 whose hit lies at t = 1 (init_from_bake.h), and
+# memograph's bake sets the same state; the path tracer's values are checked by the scene
+# tests (light_path_camera, light_path_depth). Transparent Depth is not carried (warned, 0).
+for _out in ('Is Camera Ray', 'Is Shadow Ray', 'Is Diffuse Ray', 'Is Glossy Ray',
+             'Is Singular Ray', 'Is Reflection Ray', 'Is Transmission Ray', 'Ray Length',
+             'Ray Depth', 'Diffuse Depth', 'Glossy Depth', 'Transmission Depth'):
+    CASES.append(Case(name='light_path_%s' % _out.lower().replace(' ', '_'),
+                      node='ShaderNodeLightPath', output=_out))
 
 # --- Fresnel, Layer Weight ----------------------------------------------------------------
 # A normal tilted over the plane (not normalized: Cycles takes it as given).

@@ -19,6 +19,11 @@ no clamping, no light threshold) and DIR/export/ (the memograph exporter with --
   Principled diffuse's retro-reflection shows). Both also write DIR/tiles.json:
   each tile's material and the pixel box (x0, y0, x1, y1, inclusive, row 0 at the bottom as
   in PFM) of its middle, which compare_scene.py averages per tile.
+- light_path_camera: (a) an emissive panel whose colour Light Path's Is Camera Ray picks
+  (red to the camera, blue to every other ray) over a grey floor, which it lights blue.
+- light_path_depth: (b) an emissive panel that emits only for Ray Depth 1 (black to the
+  camera, lighting the floor and a wall directly, no bounced light). Both write
+  DIR/tiles.json with their regions (panel, floor, wall) as the Principled scenes do.
 """
 
 import argparse
@@ -226,18 +231,74 @@ def principled_scene(view='mirror'):
     return tiles
 
 
-def tile_boxes(tiles, size, half=0.3):
-    """Pixel boxes of each tile's middle (half-width `half` m around its centre): the box
-    inside the projected square, so no pixel sees an edge."""
+def light_path_emission(name, camera_color, other_color, strength):
+    """Emission whose colour Blender's Light Path picks: `camera_color` for camera rays
+    (Is Camera Ray 1), `other_color` for every other ray and for light samples."""
+    def by_ray(nt, color, _strength):
+        lp = nt.nodes.new('ShaderNodeLightPath')
+        mix = nt.nodes.new('ShaderNodeMixRGB')
+        mix.inputs['Color1'].default_value = (*other_color, 1)
+        mix.inputs['Color2'].default_value = (*camera_color, 1)
+        nt.links.new(lp.outputs['Is Camera Ray'], mix.inputs['Fac'])
+        nt.links.new(mix.outputs['Color'], color)
+    return emission(name, strength=strength, color_node=by_ray)
+
+
+def light_path_camera_scene():
+    """(a) Is Camera Ray: a panel the camera sees red lights the floor in front of it blue."""
+    world()
+    plane('Floor', 4.0, diffuse('Floor', color=(0.8, 0.8, 0.8)))
+    plane('Panel', 1.2, light_path_emission('Panel', (1.0, 0.15, 0.05), (0.05, 0.25, 1.0), 3.0),
+          location=(0, 0.6, 0.7), rotation=(math.radians(90), 0, 0))
+    camera((0, -1.9, 1.1), rotation=(math.radians(74), 0, 0), lens=24)
+    # The panel's middle and the floor in front of it (x, y, z corners of each region).
+    return [('panel', [(x, 0.6, z) for x in (-0.45, 0.45) for z in (0.25, 1.15)]),
+            ('floor', [(x, y, 0.0) for x in (-0.7, 0.7) for y in (-0.6, 0.4)])]
+
+
+def light_path_depth_scene():
+    """(b) Ray Depth: a panel that emits only for rays of depth exactly 1 (Math Compare with
+    1, epsilon 0.5): the camera sees it black, it lights the floor and the wall directly, and
+    no light that bounced (depth 2 and on) reaches the camera."""
+    world()
+
+    def first_bounce_only(nt, _color, strength):
+        lp = nt.nodes.new('ShaderNodeLightPath')
+        cmp = nt.nodes.new('ShaderNodeMath')
+        cmp.operation = 'COMPARE'
+        cmp.inputs[1].default_value = 1.0
+        cmp.inputs[2].default_value = 0.5
+        scale = nt.nodes.new('ShaderNodeMath')
+        scale.operation = 'MULTIPLY'
+        scale.inputs[1].default_value = 4.0
+        nt.links.new(lp.outputs['Ray Depth'], cmp.inputs[0])
+        nt.links.new(cmp.outputs[0], scale.inputs[0])
+        nt.links.new(scale.outputs[0], strength)
+
+    plane('Floor', 4.0, diffuse('Floor', color=(0.8, 0.8, 0.8)))
+    plane('Wall', 4.0, diffuse('Wall', color=(0.7, 0.6, 0.5)), location=(0, 1.5, 2),
+          rotation=(math.radians(90), 0, 0))
+    plane('Panel', 0.8, emission('Panel', color=(1.0, 0.95, 0.9),
+                                 color_node=first_bounce_only),
+          location=(0.5, 0.7, 1.0), rotation=(math.radians(60), 0, 0))
+    camera((0, -2.8, 1.4), rotation=(math.radians(75), 0, 0), lens=28)
+    return [('floor', [(x, y, 0.0) for x in (-1.2, 0.4) for y in (-0.5, 0.6)]),
+            ('wall', [(x, 1.5, z) for x in (-1.4, -0.3) for z in (0.4, 1.8)]),
+            ('panel', [(0.5 + x, 0.7 + y, 1.0 + z) for x in (-0.3, 0.3)
+                       for (y, z) in ((-0.15, -0.26), (0.15, 0.26))])]
+
+
+def region_boxes(regions, size):
+    """Pixel boxes of regions given by four world-space corners each: the box inside their
+    projection, so no pixel sees an edge."""
     from bpy_extras.object_utils import world_to_camera_view
     from mathutils import Vector
     sc = bpy.context.scene
     sc.render.resolution_x = sc.render.resolution_y = size  # the view's aspect
     sc.render.resolution_percentage = 100
     boxes = []
-    for name, x, y in tiles:
-        pts = [world_to_camera_view(sc, sc.camera, Vector((x + dx, y + dy, 0.0)))
-               for dx in (-half, half) for dy in (-half, half)]
+    for name, corners in regions:
+        pts = [world_to_camera_view(sc, sc.camera, Vector(c)) for c in corners]
         xs = sorted(p.x * size for p in pts)
         ys = sorted(p.y * size for p in pts)
         # Inner box: the second smallest and second largest of the corners' coordinates.
@@ -245,6 +306,12 @@ def tile_boxes(tiles, size, half=0.3):
                math.floor(ys[2]) - 1]
         boxes.append({'material': name, 'box': box})
     return boxes
+
+
+def tile_boxes(tiles, size, half=0.3):
+    """Pixel boxes of each tile's middle (half-width `half` m around its centre)."""
+    return region_boxes([(name, [(x + dx, y + dy, 0.0) for dx in (-half, half)
+                                 for dy in (-half, half)]) for name, x, y in tiles], size)
 
 
 def render(out_dir, size, samples):
@@ -260,6 +327,8 @@ SCENES = {
     'room': room_scene,
     'principled': principled_scene,
     'principled_retro': lambda: principled_scene('retro'),
+    'light_path_camera': light_path_camera_scene,
+    'light_path_depth': light_path_depth_scene,
 }
 
 
@@ -277,8 +346,11 @@ def main(argv):
     tiles = SCENES[args.scene]()
     bpy.context.view_layer.update()
     if tiles:
+        # Principled tiles as (name, x, y); the light-path scenes' regions as (name, corners).
+        boxes = (region_boxes(tiles, args.size) if len(tiles[0]) == 2
+                 else tile_boxes(tiles, args.size))
         with open(os.path.join(out, 'tiles.json'), 'w') as f:
-            json.dump(tile_boxes(tiles, args.size), f, indent=1)
+            json.dump(boxes, f, indent=1)
     bpy.ops.wm.save_as_mainfile(filepath=os.path.join(out, args.scene + '.blend'))
     if not args.no_render:
         render(out, args.size, args.samples)

@@ -15,6 +15,8 @@ scene export), compared. One scene per run:
    - principled, principled_retro: per tile (DIR/tiles.json: the middle of each Principled BSDF tile), the
      mean of each channel within LIMIT of Cycles', relative (|m - c| / max(c, 0.01)); the
      largest over tiles and channels is the figure.
+   - light_path_camera, light_path_depth: as the tiles, over the scene's regions
+     (DIR/tiles.json: panel, floor, wall), and the whole image's mean too.
 Exit 0 pass, 1 fail (a clear message; also when Blender is missing: it never skips).
 """
 
@@ -32,6 +34,7 @@ sys.path.insert(0, os.path.join(HERE, '..'))
 sys.dont_write_bytecode = True
 from compare_nodes import read_pfm  # noqa: E402
 
+LIGHT_PATH_LIMIT = 0.05
 # scene: (size, Cycles samples, memograph --frames, --paths, --bounces, check, limit)
 CHECKS = {
     'units_point': (16, 64, 4, 4, 1, 'mean', 0.02),
@@ -44,6 +47,11 @@ CHECKS = {
     # weighting were carried).
     'principled': (48, 64, 4, 4, 1, 'tiles', 0.02),
     'principled_retro': (48, 64, 4, 4, 1, 'tiles', 0.02),
+    # Light Path (per-ray material inputs): (a) Is Camera Ray, (b) Ray Depth. 'regions': the
+    # image's mean and each region's (tiles.json) per channel within LIMIT, relative as for
+    # the tiles.
+    'light_path_camera': (32, 256, 8, 16, 3, 'regions', LIGHT_PATH_LIMIT),
+    'light_path_depth': (32, 256, 8, 16, 3, 'regions', LIGHT_PATH_LIMIT),
 }
 
 
@@ -120,7 +128,7 @@ def main(argv=None):
                   for c in range(3))
         figure = tot / (w0 * h0 * 3)
         print('  mean absolute error: %.5f (limit %.3f)' % (figure, limit))
-    elif check == 'tiles':
+    elif check in ('tiles', 'regions'):
         with open(os.path.join(out, 'tiles.json')) as f:
             tiles = json.load(f)
         figure = 0.0
@@ -136,8 +144,14 @@ def main(argv=None):
             print('  %-3s %3d px  Cycles (%.4f, %.4f, %.4f)  memograph (%.4f, %.4f, %.4f)  '
                   'rel %s' % (tile['material'], n, *tm[0], *tm[1],
                               ' '.join('%5.1f %%' % (100 * x) for x in rel)))
-        print('  largest tile-mean relative error: %.2f %% (limit %.1f %%)'
-              % (100 * figure, 100 * limit))
+        if check == 'regions':
+            rel = [abs(b - a) / max(a, 0.01) for a, b in zip(mref, mgot)]
+            print('  image mean relative error per channel: %s'
+                  % ', '.join('%.2f %%' % (100 * x) for x in rel))
+            figure = max([figure] + rel)
+        print('  largest %s relative error: %.2f %% (limit %.1f %%)'
+              % ('tile-mean' if check == 'tiles' else 'mean (image or region)',
+                 100 * figure, 100 * limit))
     else:
         r = subprocess.run([args.memograph, 'diff', os.path.join(out, 'cycles.pfm'), mg,
                             '--out', os.path.join(out, 'flip.pfm')],

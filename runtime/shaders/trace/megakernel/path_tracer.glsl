@@ -224,8 +224,10 @@ void evaluateMaterial(bool hasHit, uint materialId, uvec2 object, MaterialInputs
 #include "path_shading.glsl"
 
 // Direct light (thesis §5.2): one light sample through one shadow ray, traced here; an
-// emissive sample is MIS-weighted when `mis` (path_shading.glsl). Returns f * cos * L_i / pdf.
-vec3 sampleDirectLight(ShadingPoint p, bool mis, inout Rng rng, inout uint rays) {
+// emissive sample is MIS-weighted when `mis` (path_shading.glsl); an emitter's graph sees
+// the light sample's path state from `path`, the vertex's. Returns f * cos * L_i / pdf.
+vec3 sampleDirectLight(ShadingPoint p, PathState path, bool mis, inout Rng rng,
+                       inout uint rays) {
   LightSample s;
   vec3 fCos;
   if (!sampleLightBeforeShadowRay(p, rng, s, fCos)) return vec3(0.0);
@@ -237,6 +239,7 @@ vec3 sampleDirectLight(ShadingPoint p, bool mis, inout Rng rng, inout uint rays)
     cone.width = 0.0;
     cone.spread = 0.0;
     SurfaceHit light = surfaceAt(s.hit, p.position, s.wi, cone);
+    setPathInputs(light.inputs, lightSamplePathState(path), s.hit.t);
     MaterialOutputs m;
     evaluateMaterialDirect(light.materialId, light.inputs, m);
     s.incident *= m.emission;
@@ -308,6 +311,7 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
     vec3 throughput = vec3(1.0);
     vec3 radiance = vec3(0.0);
     float previousBsdfPdf = 0.0;  // the BSDF ray's pdf that found this hit (0: camera ray)
+    PathState pathState = cameraPathState();  // Light Path's view of the ray (path_shading.glsl)
     bool alive = inside;
     uint pathWeight = 0u;
 #ifdef MG_HIT_FEEDBACK
@@ -332,6 +336,7 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
           alive = false;
         } else {
           s = surfaceAt(hit, origin, direction, cone);
+          setPathInputs(s.inputs, pathState, hit.t);
         }
       }
       MaterialOutputs m;
@@ -351,9 +356,11 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
       radiance += throughput * m.emission * emissionMisWeight(s, origin, direction, previousBsdfPdf);
       bool continues = bounce + 1u < rayCountPerPath;
       rng = rngForPathVertex(pixelIndex, sampleIndex, bounce + 1u, frame.image.w);
-      if (!countsOnly) radiance += throughput * sampleDirectLight(p, continues, rng, rays);
+      if (!countsOnly)
+        radiance += throughput * sampleDirectLight(p, pathState, continues, rng, rays);
       if (bounce + 1u == rayCountPerPath) continue;
-      if (!continuePath(p, s, rng, throughput, previousBsdfPdf, cone, origin, direction))
+      if (!continuePath(p, s, rng, throughput, previousBsdfPdf, cone, origin, direction,
+                        pathState))
         alive = false;
     }
     // A path that still produced NaN or infinity (a material graph dividing by zero) is

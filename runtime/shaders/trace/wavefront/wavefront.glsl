@@ -150,6 +150,9 @@ const uint kFieldMaterialNormal = 10u;     // normal, roughness
 const uint kFieldMaterialEmission = 11u;   // emission, specular
 const uint kFieldMaterialRest = 12u;       // specularTint, cyclesPrincipled, opacity, and
                                            // with a cache the bin to evaluate (w)
+// With graphs that read the path state (no MG_OMIT_PATH_INPUTS): PathState's ray kind and
+// depths (int bits), written where the path's ray is (the generate and shade passes).
+const uint kFieldPathState = 13u;
 
 // The path state's slots (its capacity: every pixel, or a chunk of them; push.chunk).
 uint slotCount() {
@@ -223,6 +226,29 @@ void appendToQueue(uint queue, bool shadow, uint slot, bool append) {
 #endif
 }
 
+// The Light Path state of a path's ray (kFieldPathState); the camera's where no graph reads it.
+PathState loadPathState(uint slot) {
+#ifndef MG_OMIT_PATH_INPUTS
+  ivec4 bits = floatBitsToInt(pathState[fieldIndex(kFieldPathState, slot)]);
+  PathState path;
+  path.ray = bits.x;
+  path.depth = bits.y;
+  path.diffuseDepth = bits.z;
+  path.glossyDepth = bits.w;
+  return path;
+#else
+  return cameraPathState();
+#endif
+}
+
+// Keeps the Light Path state of a path's next ray for the next bounce's passes.
+void storePathState(uint slot, PathState path) {
+#ifndef MG_OMIT_PATH_INPUTS
+  pathState[fieldIndex(kFieldPathState, slot)] =
+      intBitsToFloat(ivec4(path.ray, path.depth, path.diffuseDepth, path.glossyDepth));
+#endif
+}
+
 // The surface a live path's traced hit lies on (its ray, cone and hit from the path state),
 // as the megakernel's loop body builds it: the material passes and the shade pass both
 // start from here.
@@ -239,7 +265,9 @@ SurfaceHit surfaceOfPath(uint slot, out vec3 origin, out vec3 direction, out Ray
   hit.t = pathState[fieldIndex(kFieldRadiance, slot)].w;
   cone.width = originField.w;
   cone.spread = directionField.w;
-  return surfaceAt(hit, origin, direction, cone);
+  SurfaceHit s = surfaceAt(hit, origin, direction, cone);
+  setPathInputs(s.inputs, loadPathState(slot), hit.t);
+  return s;
 }
 
 #ifndef MG_MATERIAL_FLOOR
@@ -379,6 +407,7 @@ void main() {
   pathState[fieldIndex(kFieldDirection, slot)] = vec4(direction, frame.cameraPosition.w);
   pathState[fieldIndex(kFieldThroughput, slot)] = vec4(1.0, 1.0, 1.0, 0.0);
   pathState[fieldIndex(kFieldRadiance, slot)] = vec4(0.0);
+  storePathState(slot, cameraPathState());
   pathQueues[queueIndex(0u, slot)] = slot;
 }
 
@@ -614,9 +643,11 @@ void main() {
         pathState[fieldIndex(kFieldShadowContribution, slot)] =
             vec4(throughput * (fCos * light.incident), 0.0);
       }
-      if (continues &&
-          continuePath(p, s, rng, throughput, previousBsdfPdf, cone, origin, direction)) {
+      PathState path = loadPathState(slot);
+      if (continues && continuePath(p, s, rng, throughput, previousBsdfPdf, cone, origin,
+                                    direction, path)) {
         queueNext = true;
+        storePathState(slot, path);
         pathState[fieldIndex(kFieldOrigin, slot)] = vec4(origin, cone.width);
         pathState[fieldIndex(kFieldDirection, slot)] = vec4(direction, cone.spread);
         pathState[fieldIndex(kFieldThroughput, slot)] = vec4(throughput, previousBsdfPdf);

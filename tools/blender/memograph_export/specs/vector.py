@@ -96,6 +96,18 @@ NODES = {
         mgraph='VertexColorInput', inputs={}, outputs={'Color': 'Out', 'Alpha': 'Alpha'}),
     'ShaderNodeObjectInfo': NodeSpec(
         mgraph='ObjectInfo', inputs={}, outputs={'Location': 'Location', 'Random': 'Random'}),
+    # The path state the path tracer puts in MaterialInputs (docs/design/path-tracer.md,
+    # "Light Path"). Transparent Depth is not carried: memograph's tracer has no transparent
+    # bounces, so a linked one is warned and its consumers get the socket's default, 0.
+    'ShaderNodeLightPath': NodeSpec(
+        mgraph='LightPath',
+        inputs={},
+        outputs={'Is Camera Ray': 'IsCameraRay', 'Is Shadow Ray': 'IsShadowRay',
+                 'Is Diffuse Ray': 'IsDiffuseRay', 'Is Glossy Ray': 'IsGlossyRay',
+                 'Is Singular Ray': 'IsSingularRay', 'Is Reflection Ray': 'IsReflectionRay',
+                 'Is Transmission Ray': 'IsTransmissionRay', 'Ray Length': 'RayLength',
+                 'Ray Depth': 'RayDepth', 'Diffuse Depth': 'DiffuseDepth',
+                 'Glossy Depth': 'GlossyDepth', 'Transmission Depth': 'TransmissionDepth'}),
     'ShaderNodeFresnel': NodeSpec(
         mgraph='Fresnel', inputs={'IOR': 'IOR', 'Normal': 'Normal'}, outputs={'Fac': 'Fac'}),
     'ShaderNodeLayerWeight': NodeSpec(
