@@ -69,7 +69,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   const VulkanContext& context = *context_;
   const std::uint32_t pathWeight = validateRender(options_, settings, scene, context);
   const SceneMaterials materials = linkSceneMaterials(scene, options_.nodeLibraryDirectory);
-  const RenderPlan plan = planRender(options_, settings, scene, context, materials, pathWeight);
+  const RenderPlan plan = planRender(options_, settings, context, materials, pathWeight);
   RenderResult result;
   result.stats = describeRender(options_, settings, scene, context, materials, plan);
 

@@ -153,7 +153,8 @@ struct WavefrontControl {
 // capacity, RendererOptions::wavefrontPaths): chunk c covers pixels c * slots onwards.
 struct WavefrontPush {
   uvec4 step;   // x round (path index of every pixel), y bounce, z live queue (0 or 1), w bin
-  uvec4 chunk;  // x slots (the path state's capacity), y the chunk's first pixel, z its pixels
+  uvec4 chunk;  // x slots (the path state's capacity), y the chunk's first pixel, z its pixels,
+                // w 1 where the trace pass counts LiPaC's hit feedback (a counting frame)
 };
 
 // FrameConstants::flags bits.

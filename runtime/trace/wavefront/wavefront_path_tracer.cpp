@@ -280,14 +280,15 @@ std::uint32_t WavefrontPathTracer::timestampCount(std::uint32_t paths,
 }
 
 void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pass,
-                                     std::uint32_t chunk, std::uint32_t round,
-                                     std::uint32_t bounce) const {
+                                     std::uint32_t chunk, std::uint32_t round, std::uint32_t bounce,
+                                     bool countsHits) const {
   // Live queues alternate: bounce b traces queue b % 2 and appends to the other.
   gpu::WavefrontPush push{};
   push.step = glm::uvec4(round, bounce, bounce % 2, 0);
   const std::uint32_t firstPixel = chunk * slots_;
   const std::uint32_t chunkPixels = std::min(slots_, pixels_ - firstPixel);
-  push.chunk = glm::uvec4(slots_, firstPixel, chunkPixels, 0);
+  // w: LiPaC's counting frame (the trace pass counts its rays, hit_feedback.glsl).
+  push.chunk = glm::uvec4(slots_, firstPixel, chunkPixels, countsHits ? 1u : 0u);
   VkShaderStageFlags stages = query_ ? VK_SHADER_STAGE_COMPUTE_BIT
                                      : VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_RAYGEN_BIT_KHR;
   vkCmdPushConstants(commands, layout_.get(), stages, 0, sizeof push, &push);
@@ -339,7 +340,7 @@ void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pas
 }
 
 void WavefrontPathTracer::record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t paths,
-                                 std::uint32_t bounces, VkQueryPool timestamps,
+                                 std::uint32_t bounces, bool countsHits, VkQueryPool timestamps,
                                  std::uint32_t firstQuery) const {
   vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set, 0,
                           nullptr);
@@ -366,7 +367,7 @@ void WavefrontPathTracer::record(VkCommandBuffer commands, VkDescriptorSet set, 
       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
   std::uint32_t chunk = 0, round = 0, bounce = 0;
   for (std::uint32_t pass : framePasses(chunks_, paths, bounces, materials, lookup_)) {
-    recordPass(commands, pass, chunk, round, bounce);
+    recordPass(commands, pass, chunk, round, bounce, countsHits);
     if (timestamps)
       vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, query++);
     vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,

@@ -81,9 +81,11 @@ class WavefrontPathTracer final : public FrameTracer {
   // Records one frame: per chunk of pixels, P rounds of one path a pixel, each generate, L x
   // (trace, [[lookup,]
   // bin count, bin offsets, bin scatter, material passes,] shade, queue, shadow), finish, with a
-  // barrier between passes. `timestamps` VK_NULL_HANDLE: none.
+  // barrier between passes. `countsHits`: the trace passes count LiPaC's hit feedback (a
+  // tracer built with MG_HIT_FEEDBACK; the frame counts). `timestamps` VK_NULL_HANDLE: none.
   void record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t paths,
-              std::uint32_t bounces, VkQueryPool timestamps, std::uint32_t firstQuery) const;
+              std::uint32_t bounces, bool countsHits, VkQueryPool timestamps,
+              std::uint32_t firstQuery) const;
 
   // Adds the passes' GPU times to `frame` (its wavefront*Milliseconds) from the timestamps
   // record() wrote, read back as `ticks` (timestampCount of them).
@@ -91,12 +93,13 @@ class WavefrontPathTracer final : public FrameTracer {
                     std::uint32_t bounces, double millisecondsPerTick, FrameStats& frame) const;
 
   // FrameTracer: the path state, queues and control in the set; no megakernel dispatches;
-  // record() for the frame's P and L; the bins' hits and the passes' times.
+  // record() for the frame's P and L (a look: one round, its rays counted, no light
+  // samples; frame.culling says so); the bins' hits and the passes' times.
   void addResources(TraceResources& resources) const override;
   std::uint32_t dispatchCount(const FrameTrace&) const override { return 0; }
   void recordTrace(VkCommandBuffer commands, VkDescriptorSet set, const FrameTrace& trace,
                    VkQueryPool timestamps, std::uint32_t firstTimestamp) const override {
-    record(commands, set, trace.paths, trace.rays, timestamps, firstTimestamp);
+    record(commands, set, trace.paths, trace.rays, trace.counts, timestamps, firstTimestamp);
   }
   void addFrameStats(const FrameTrace& trace, const std::vector<std::uint64_t>* passTicks,
                      double millisecondsPerTick, FrameStats& stats) const override;
@@ -147,7 +150,7 @@ class WavefrontPathTracer final : public FrameTracer {
   void createPipelines(const PipelineShaders& shaders, const LinkedMaterials* materials,
                        std::uint32_t threads);
   void recordPass(VkCommandBuffer commands, std::uint32_t pass, std::uint32_t chunk,
-                  std::uint32_t round, std::uint32_t bounce) const;
+                  std::uint32_t round, std::uint32_t bounce, bool countsHits) const;
 };
 
 }  // namespace memograph::runtime

@@ -68,6 +68,11 @@
 #endif
 
 #include "scene_bindings.glsl"
+#if defined(MG_HIT_FEEDBACK) && defined(MG_WAVEFRONT_TRACE)
+// LiPaC's counts (seeds/001 §3.3.2): the trace pass counts its rays as the megakernel counts
+// the same rays (the pixels, paths and weights of hit_feedback.glsl).
+#include "hit_feedback.glsl"
+#endif
 #if defined(MG_MATERIAL_FLOOR)
 #include "material_floor.glsl"
 #elif defined(MG_WAVEFRONT_MATERIAL)
@@ -143,7 +148,8 @@ const uint kFieldHit = 4u;                 // instance, primitive, barycentrics 
 const uint kFieldShadowOrigin = 5u;        // xyz origin, w length
 const uint kFieldShadowDirection = 6u;     // xyz direction
 const uint kFieldShadowContribution = 7u;  // rgb: what the shadow ray adds when unblocked
-const uint kFieldPixelSum = 8u;            // rgb: the pixel's radiance summed over rounds
+const uint kFieldPixelSum = 8u;            // rgb: the pixel's radiance summed over rounds;
+                                           // w with --debug-misses: 1 where a path missed
 // With material graphs: the material's outputs at the hit (MaterialOutputs, 15 floats).
 const uint kFieldMaterialBase = 9u;        // baseColor, metallic
 const uint kFieldMaterialNormal = 10u;     // normal, roughness
@@ -379,22 +385,52 @@ void main() {
   pathState[fieldIndex(kFieldDirection, slot)] = vec4(direction, frame.cameraPosition.w);
   pathState[fieldIndex(kFieldThroughput, slot)] = vec4(1.0, 1.0, 1.0, 0.0);
   pathState[fieldIndex(kFieldRadiance, slot)] = vec4(0.0);
+#ifdef MG_DEBUG_CACHE_MISSES
+  // The pixel's "a path missed the cache" flag (kFieldPixelSum's w) starts each frame clear.
+  if (push.step.x == 0u) pathState[fieldIndex(kFieldPixelSum, slot)] = vec4(0.0);
+#endif
   pathQueues[queueIndex(0u, slot)] = slot;
 }
 
 #elif defined(MG_WAVEFRONT_TRACE)
+#ifdef MG_HIT_FEEDBACK
+// What the ray this pass traces for `slot` counts in LiPaC's feedback: what the megakernel's
+// tracePixel counts for the same ray (0 in a frame that does not count, push.chunk.w 0).
+// With --shared-primary the megakernel traces a pixel's camera ray once and counts it with the
+// pixel's weight; the wavefront traces it every round and counts it in round 0.
+uint traceFeedbackWeight(uint slot) {
+  if (push.chunk.w == 0u) return 0u;
+  uint pixelIndex = pixelOfSlot(slot);
+  uint weight = hitFeedbackWeight(uvec2(pixelIndex % frame.image.x, pixelIndex / frame.image.x));
+  uint round = push.step.x;
+  if (push.step.y == 0u && (frame.path.z & kFlagSharedPrimaryRay) != 0u)
+    return round == 0u ? weight : 0u;
+  return pathFeedbackWeight(round, max(frame.path.x, 1u), weight);
+}
+#endif
+
 // The closest hit of every live path; camera rays skip lights' quads, as in the megakernel.
+// With LiPaC's feedback the ray is counted after its trace (every invocation reaches the
+// tally: with subgroup arithmetic it is one atomic per subgroup).
 void main() {
   uint i = invocationIndex();
-  if (i >= control.counts.x) return;
-  uint slot = pathQueues[queueIndex(push.step.z, i)];
-  vec3 origin = pathState[fieldIndex(kFieldOrigin, slot)].xyz;
-  vec3 direction = pathState[fieldIndex(kFieldDirection, slot)].xyz;
-  HitInfo hit = traceClosest(origin, direction, kRayTMax,
-                             push.step.y == 0u ? kRayMaskNoLightQuads : kRayMaskAll);
-  pathState[fieldIndex(kFieldHit, slot)] =
-      uintBitsToFloat(uvec4(hit.instanceIndex, hit.primitiveIndex, floatBitsToUint(hit.barycentrics)));
-  pathState[fieldIndex(kFieldRadiance, slot)].w = hit.t;
+  if (i < control.counts.x) {
+    uint slot = pathQueues[queueIndex(push.step.z, i)];
+    vec3 origin = pathState[fieldIndex(kFieldOrigin, slot)].xyz;
+    vec3 direction = pathState[fieldIndex(kFieldDirection, slot)].xyz;
+    HitInfo hit = traceClosest(origin, direction, kRayTMax,
+                               push.step.y == 0u ? kRayMaskNoLightQuads : kRayMaskAll);
+    pathState[fieldIndex(kFieldHit, slot)] = uintBitsToFloat(
+        uvec4(hit.instanceIndex, hit.primitiveIndex, floatBitsToUint(hit.barycentrics)));
+    pathState[fieldIndex(kFieldRadiance, slot)].w = hit.t;
+#ifdef MG_HIT_FEEDBACK
+    countHitFeedback(origin, direction, hit, traceFeedbackWeight(slot));
+    flushHitFeedback();
+#endif
+  }
+#ifdef MG_HIT_FEEDBACK
+  addHitFeedbackTally();
+#endif
 }
 
 #elif defined(MG_WAVEFRONT_LOOKUP)
@@ -431,6 +467,9 @@ void main() {
           bin = kNoBin;
         } else {
           g_cacheMisses += 1u;
+#ifdef MG_DEBUG_CACHE_MISSES
+          pathState[fieldIndex(kFieldPixelSum, slot)].w = 1.0;  // the pixel's flag (finish)
+#endif
 #ifdef MG_WAVEFRONT_TILES
           // Queued once a frame (the tile log) for its bin's material pass to compute.
           tileEnqueue(s.materialId, request);
@@ -598,9 +637,15 @@ void main() {
       // Key bounce + 1: key 0 is the camera ray's (the generate pass).
       Rng rng = rngForPathVertex(pixelOfSlot(slot), sampleIndexOf(push.step.x), bounce + 1u,
                                  frame.image.w);
+      // A look (SceneCulling::look, frame.culling.w) traces only for its counts, as the
+      // megakernel's: no light sample, so its paths draw the megakernel's numbers too.
+      bool countsOnly = false;
+#ifdef MG_HIT_FEEDBACK
+      countsOnly = (frame.culling.w & kCullingLook) != 0u;
+#endif
       LightSample light;
       vec3 fCos;
-      if (sampleLightBeforeShadowRay(p, rng, light, fCos)) {
+      if (!countsOnly && sampleLightBeforeShadowRay(p, rng, light, fCos)) {
         queueShadow = true;
 #ifdef MG_EMISSIVE_NEE
         // A free material emits nothing: an emitter whose emission is its graph's adds 0
@@ -669,17 +714,24 @@ void main() {
   if (slot >= push.chunk.z) return;
   uint round = push.step.x;
   vec3 radiance = pathState[fieldIndex(kFieldRadiance, slot)].rgb;
-  vec3 sum = round == 0u ? vec3(0.0) : pathState[fieldIndex(kFieldPixelSum, slot)].rgb;
+  vec4 pixelSum = pathState[fieldIndex(kFieldPixelSum, slot)];
+  vec3 sum = round == 0u ? vec3(0.0) : pixelSum.rgb;
   if (!any(isnan(radiance)) && !any(isinf(radiance))) sum += radiance;
   uint pathCount = max(frame.path.x, 1u);
   if (round + 1u < pathCount) {
-    pathState[fieldIndex(kFieldPixelSum, slot)] = vec4(sum, 0.0);
+    pathState[fieldIndex(kFieldPixelSum, slot)] = vec4(sum, pixelSum.w);
     return;
   }
   vec3 mean = sum / float(pathCount);
-  uint sampleIndex = frame.environmentSize.z;
   uint pixel = pixelOfSlot(slot);
+#ifdef MG_DEBUG_CACHE_MISSES
+  // Thesis Fig. 6.9, as the megakernel's renderPixel: red where a path of this pixel missed
+  // the cache in this frame (the lookup pass's flag), this frame's alone (no running mean).
+  accumulation[pixel] = vec4(pixelSum.w != 0.0 ? vec3(1.0, 0.0, 0.0) : mean, 1.0);
+#else
+  uint sampleIndex = frame.environmentSize.z;
   vec3 previous = sampleIndex == 0u ? vec3(0.0) : accumulation[pixel].rgb;
   accumulation[pixel] = vec4(mix(previous, mean, 1.0 / float(sampleIndex + 1u)), 1.0);
+#endif
 }
 #endif
