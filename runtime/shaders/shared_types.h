@@ -133,6 +133,9 @@ MG_CONSTANT(uint, kPathStateFields, 9);
 // With material graphs, four more: the material's outputs at the hit (what the shade pass's
 // BSDF needs), written by the material passes.
 MG_CONSTANT(uint, kPathStateFieldsWithMaterials, 13);
+// With emitters whose light samples evaluate their graphs, two more: the sample's point (its
+// hit, and the shading point it is seen from), for the material pass after the shadow pass.
+MG_CONSTANT(uint, kPathStateFieldsWithLightPoints, 15);
 
 // The wavefront's queue counts and indirect arguments (binding kBindingWavefrontControl).
 // Each launch block is a VkDispatchIndirectCommand (work groups) or a
@@ -142,7 +145,8 @@ MG_CONSTANT(uint, kPathStateFieldsWithMaterials, 13);
 // queue, scatter cursor, hits in the batch), then the same for the bin's queued tiles (with
 // the tile cache; zero otherwise).
 struct WavefrontControl {
-  uvec4 counts;        // x: paths in the live queue, y: appended to the next, z: shadow rays
+  uvec4 counts;        // x: paths in the live queue, y: appended to the next, z: shadow rays,
+                       // w: light points queued by the shadow pass (emitters' graphs)
   uvec4 liveGroups;    // compute passes over the live queue
   uvec4 liveLaunch;    // the pipeline backend's trace of the live queue
   uvec4 shadowGroups;  // the query backend's shadow pass
@@ -154,8 +158,12 @@ struct WavefrontControl {
 struct WavefrontPush {
   uvec4 step;   // x round (path index of every pixel), y bounce, z live queue (0 or 1), w bin
   uvec4 chunk;  // x slots (the path state's capacity), y the chunk's first pixel, z its pixels,
-                // w 1 where the trace pass counts LiPaC's hit feedback (a counting frame)
+                // w kWavefront* bits below
 };
+// WavefrontPush::chunk.w bits: the trace pass counts LiPaC's hit feedback (a counting frame);
+// the binning and material passes bin and evaluate light samples' points, not hits.
+MG_CONSTANT(uint, kWavefrontCountsHits, 1);
+MG_CONSTANT(uint, kWavefrontLightPoints, 2);
 
 // FrameConstants::flags bits.
 MG_CONSTANT(uint, kFlagSharedPrimaryRay, 1);

@@ -82,7 +82,7 @@ std::vector<std::string> pathTracerDefines(const ShaderBuild& b, const MaterialC
   if (b.inputs.scene->buffers.emissiveTriangles)
     defines.push_back("MG_EMISSIVE_NEE=1");
   if (b.inputs.materials->neeEvaluatesEmission && !b.floor)
-    defines.push_back("MG_NEE_EVALUATES_EMISSION=1");  // never the wavefront (wavefrontGap)
+    defines.push_back("MG_NEE_EVALUATES_EMISSION=1");
   return defines;
 }
 
@@ -95,6 +95,7 @@ std::unique_ptr<FrameTracer> buildWavefront(const ShaderBuild& b, ShaderCompiler
   setup.cacheLookups = b.plan.cache.mode != CacheMode::None;
   setup.tileQueueCapacity = b.plan.cache.mode == CacheMode::Tile ? b.plan.cache.tileQueue : 0;
   setup.tileImage = cache.tileImageView() != VK_NULL_HANDLE;
+  setup.emitterGraphs = b.inputs.materials->neeEvaluatesEmission && !b.floor;
   setup.pathSlots = b.options.wavefrontPaths;
   setup.compileThreads = b.options.shaderCompileThreads;
   // LiPaC's hit feedback: one set of passes for every frame (a push constant says whether a

@@ -40,17 +40,13 @@ std::string wavefrontOptionGap(const RendererOptions& options) {
   return {};
 }
 
-std::string wavefrontGap(const RendererOptions& options, const ShadingDevice& device,
-                         bool neeEvaluatesEmission) {
+std::string wavefrontGap(const RendererOptions& options, const ShadingDevice& device) {
   std::string gap = wavefrontOptionGap(options);
   if (!gap.empty())
     return gap;
   if (!device.wavefrontTraces)
     return "on the pipeline backend it launches its traces with vkCmdTraceRaysIndirectKHR, "
            "which the device lacks (use --backend query)";
-  if (neeEvaluatesEmission && !options.floorMaterials)
-    return "it evaluates no emitter's graph for a light sample, and this scene's emission is "
-           "not a known constant";
   return {};
 }
 
@@ -77,16 +73,15 @@ void validateWavefrontOptions(const RendererOptions& options) {
 // keeps the megakernel. Anything the wavefront prototype cannot do (wavefrontGap) picks the
 // megakernel too; an explicit --shading wavefront is refused for it instead. Culling (frustum
 // and LiPaC), animated meshes and the debug views are the frame loop's, which runs either
-// architecture the same way, and LiPaC's counts are hit_feedback.glsl's in both, so none of
-// them is a gap.
-ShadingChoice resolveShading(const RendererOptions& options, const ShadingDevice& device,
-                             bool neeEvaluatesEmission) {
+// architecture the same way, LiPaC's counts are hit_feedback.glsl's in both, and an emitter's
+// graph at a light sample is a material pass after the shadow pass, so none of them is a gap.
+ShadingChoice resolveShading(const RendererOptions& options, const ShadingDevice& device) {
   if (options.shading != Shading::Auto)
     return {options.shading, ""};
   if (device.type == VK_PHYSICAL_DEVICE_TYPE_CPU)
     return {Shading::Megakernel,
             "the device is a CPU, where the wavefront was not measured faster"};
-  const std::string gap = wavefrontGap(options, device, neeEvaluatesEmission);
+  const std::string gap = wavefrontGap(options, device);
   if (!gap.empty())
     return {Shading::Megakernel, "the wavefront prototype cannot do what is asked: " + gap};
   return {Shading::Wavefront, ""};

@@ -42,16 +42,12 @@ struct ShadingChoice {
 };
 // The architecture a render runs: options.shading unless Auto; Auto is the wavefront on a
 // GPU when it does everything asked, else the megakernel (never a refusal).
-// `neeEvaluatesEmission`: some emitter's emission NEE must take from its graph
-// (sceneNeeEvaluatesEmission).
-ShadingChoice resolveShading(const RendererOptions& options, const ShadingDevice& device,
-                             bool neeEvaluatesEmission);
+ShadingChoice resolveShading(const RendererOptions& options, const ShadingDevice& device);
 
 // What the wavefront prototype cannot do that the options ask, in words that follow "it"
 // ("--shading wavefront is a prototype: it ...", or auto's reason); empty when it can.
 std::string wavefrontOptionGap(const RendererOptions& options);
-// The same for the device and the scene's emitters, after the options' gaps.
-std::string wavefrontGap(const RendererOptions& options, const ShadingDevice& device,
-                         bool neeEvaluatesEmission);
+// The same for the device, after the options' gaps.
+std::string wavefrontGap(const RendererOptions& options, const ShadingDevice& device);
 
 }  // namespace memograph::runtime

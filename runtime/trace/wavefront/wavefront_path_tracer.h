@@ -34,6 +34,10 @@ struct WavefrontSetup {
   bool cacheLookups = false;
   std::uint32_t tileQueueCapacity = 0;
   bool tileImage = false;  // the tile cache stores its texels in an image (a binding more)
+  // With materials: some emitter's emission NEE must take from its graph
+  // (MG_NEE_EVALUATES_EMISSION in the defines): after each bounce's shadow pass its unblocked
+  // samples' points are binned and their emitters' graphs evaluated by the material passes.
+  bool emitterGraphs = false;
   // The path state's capacity, paths in flight (0: every pixel, or as many as the device's
   // storage-buffer range and work-group count allow); a round over more pixels runs in
   // chunks of at most that many, one after another.
@@ -79,9 +83,9 @@ class WavefrontPathTracer final : public FrameTracer {
   const ShaderCacheStats& materialShaderStats() const { return materialShaderStats_; }
 
   // Records one frame: per chunk of pixels, P rounds of one path a pixel, each generate, L x
-  // (trace, [[lookup,]
-  // bin count, bin offsets, bin scatter, material passes,] shade, queue, shadow), finish, with a
-  // barrier between passes. `countsHits`: the trace passes count LiPaC's hit feedback (a
+  // (trace, [[lookup,] bin count, bin offsets, bin scatter, material passes,] shade, queue,
+  // shadow[, the light points' bin count, offsets, scatter and material passes]), finish, with
+  // a barrier between passes. `countsHits`: the trace passes count LiPaC's hit feedback (a
   // tracer built with MG_HIT_FEEDBACK; the frame counts). `timestamps` VK_NULL_HANDLE: none.
   void record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t paths,
               std::uint32_t bounces, bool countsHits, VkQueryPool timestamps,
@@ -107,7 +111,8 @@ class WavefrontPathTracer final : public FrameTracer {
  private:
   const VulkanContext& context_;
   bool query_ = true;
-  bool lookup_ = false;  // the texel cache's lookup pass
+  bool lookup_ = false;       // the texel cache's lookup pass
+  bool lightPoints_ = false;  // WavefrontSetup::emitterGraphs
   std::uint32_t pixels_ = 0;
   std::uint32_t slots_ = 0;   // paths in flight: a pixel's each, up to the capacity
   std::uint32_t chunks_ = 1;  // chunks of at most slots_ pixels a round takes
@@ -149,8 +154,16 @@ class WavefrontPathTracer final : public FrameTracer {
   // table) at once, on up to `threads` threads.
   void createPipelines(const PipelineShaders& shaders, const LinkedMaterials* materials,
                        std::uint32_t threads);
+  // One pass of a frame; `lightPoints`: a binning or material pass over the light samples'
+  // points (WavefrontSetup::emitterGraphs).
+  struct FramePass {
+    std::uint32_t pass = 0;  // gpu::kWavefront*
+    bool lightPoints = false;
+  };
+  std::vector<FramePass> framePasses(std::uint32_t paths, std::uint32_t bounces) const;
   void recordPass(VkCommandBuffer commands, std::uint32_t pass, std::uint32_t chunk,
-                  std::uint32_t round, std::uint32_t bounce, bool countsHits) const;
+                  std::uint32_t round, std::uint32_t bounce, bool countsHits,
+                  bool lightPoints) const;
 };
 
 }  // namespace memograph::runtime

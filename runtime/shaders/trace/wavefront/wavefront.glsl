@@ -46,10 +46,6 @@
 #extension GL_EXT_shader_atomic_int64 : require
 #endif
 
-#ifdef MG_NEE_EVALUATES_EMISSION
-#error the wavefront evaluates no emitter's graph for a light sample (MG_NEE_EVALUATES_EMISSION)
-#endif
-
 #define MG_WAVEFRONT 1
 #include "shared_types.h"
 #include "materials.glsl"
@@ -156,6 +152,10 @@ const uint kFieldMaterialNormal = 10u;     // normal, roughness
 const uint kFieldMaterialEmission = 11u;   // emission, specular
 const uint kFieldMaterialRest = 12u;       // specularTint, cyclesPrincipled, opacity, and
                                            // with a cache the bin to evaluate (w)
+// With emitters whose light samples evaluate their graphs (MG_NEE_EVALUATES_EMISSION): the
+// light sample's point, for its bin's material pass.
+const uint kFieldLightHit = 13u;           // instance, primitive, barycentrics (uint bits)
+const uint kFieldLightOrigin = 14u;        // xyz the shading point, w the point's t along wi
 
 // The path state's slots (its capacity: every pixel, or a chunk of them; push.chunk).
 uint slotCount() {
@@ -266,9 +266,32 @@ uint binOfPath(uint slot) {
   return materialId < uint(MG_MATERIAL_COUNT) ? kBinOfMaterial[materialId] : kNoBin;
 }
 
+// The binning and material passes after the shadow pass bin and evaluate light samples'
+// points (push.chunk.w's kWavefrontLightPoints): the shadow pass's unblocked samples of
+// emitters whose emission is their graph's, queued in the bounce's spent live queue.
+bool binsLightPoints() {
+#ifdef MG_NEE_EVALUATES_EMISSION
+  return (push.chunk.w & kWavefrontLightPoints) != 0u;
+#else
+  return false;
+#endif
+}
+
+// The paths the binning passes bin: the live queue's, or the light points'.
+uint binnedCount() {
+  return binsLightPoints() ? control.counts.w : control.counts.x;
+}
+
 // The bin whose material pass must evaluate a live path's hit: with the texel cache what
-// the lookup pass left (kNoBin after a cache hit), otherwise the hit's own.
+// the lookup pass left (kNoBin after a cache hit), otherwise the hit's own; for a light
+// point its emitter's.
 uint binToEvaluate(uint slot) {
+#ifdef MG_NEE_EVALUATES_EMISSION
+  if (binsLightPoints()) {
+    uint materialId = instances[floatBitsToUint(pathState[fieldIndex(kFieldLightHit, slot)].x)].ids.y;
+    return materialId < uint(MG_MATERIAL_COUNT) ? kBinOfMaterial[materialId] : kNoBin;
+  }
+#endif
 #ifdef MG_WAVEFRONT_CACHE
   return floatBitsToUint(pathState[fieldIndex(kFieldMaterialRest, slot)].w);
 #else
@@ -395,11 +418,11 @@ void main() {
 #elif defined(MG_WAVEFRONT_TRACE)
 #ifdef MG_HIT_FEEDBACK
 // What the ray this pass traces for `slot` counts in LiPaC's feedback: what the megakernel's
-// tracePixel counts for the same ray (0 in a frame that does not count, push.chunk.w 0).
+// tracePixel counts for the same ray (0 in a frame that does not count, push.chunk.w).
 // With --shared-primary the megakernel traces a pixel's camera ray once and counts it with the
 // pixel's weight; the wavefront traces it every round and counts it in round 0.
 uint traceFeedbackWeight(uint slot) {
-  if (push.chunk.w == 0u) return 0u;
+  if ((push.chunk.w & kWavefrontCountsHits) == 0u) return 0u;
   uint pixelIndex = pixelOfSlot(slot);
   uint weight = hitFeedbackWeight(uvec2(pixelIndex % frame.image.x, pixelIndex / frame.image.x));
   uint round = push.step.x;
@@ -497,7 +520,7 @@ void main() {
   addToBinRecord(tile ? kBinRecords * kBinOfMaterial[tileQueue[i].materialId] + 2u : 0u, false,
                  tile);
 #endif
-  uint bin = i < control.counts.x ? binToEvaluate(pathQueues[queueIndex(push.step.z, i)]) : kNoBin;
+  uint bin = i < binnedCount() ? binToEvaluate(pathQueues[queueIndex(push.step.z, i)]) : kNoBin;
   addToBinRecord(kBinRecords * bin + 1u, false, bin != kNoBin);
 }
 
@@ -536,8 +559,8 @@ void main() {
       tile ? kBinRecords * kBinOfMaterial[tileQueue[i].materialId] + 2u : 0u, true, tile);
   if (tile) pathQueues[queueIndex(4u, tilePlace)] = i;
 #endif
-  uint slot = i < control.counts.x ? pathQueues[queueIndex(push.step.z, i)] : 0u;
-  uint bin = i < control.counts.x ? binToEvaluate(slot) : kNoBin;
+  uint slot = i < binnedCount() ? pathQueues[queueIndex(push.step.z, i)] : 0u;
+  uint bin = i < binnedCount() ? binToEvaluate(slot) : kNoBin;
   uint place = addToBinRecord(kBinRecords * bin + 1u, true, bin != kNoBin);
   if (bin != kNoBin) pathQueues[queueIndex(3u, place)] = slot;
 }
@@ -570,6 +593,31 @@ void main() {
 #endif
   if (i >= bin.w) return;
   uint slot = pathQueues[queueIndex(3u, bin.y + i)];
+#ifdef MG_NEE_EVALUATES_EMISSION
+  if (binsLightPoints()) {
+    // The light sample's point, as the megakernel's sampleDirectLight evaluates it once its
+    // shadow ray is unblocked: the surface seen from the shading point along wi, a zero cone,
+    // the graph without the cache; its emission scales the sample's contribution.
+    uvec4 hitBits = floatBitsToUint(pathState[fieldIndex(kFieldLightHit, slot)]);
+    vec4 lightOrigin = pathState[fieldIndex(kFieldLightOrigin, slot)];
+    HitInfo lightHit;
+    lightHit.instanceIndex = hitBits.x;
+    lightHit.primitiveIndex = hitBits.y;
+    lightHit.barycentrics = uintBitsToFloat(hitBits.zw);
+    lightHit.t = lightOrigin.w;
+    RayCone pointCone;
+    pointCone.width = 0.0;
+    pointCone.spread = 0.0;
+    SurfaceHit light = surfaceAt(lightHit, lightOrigin.xyz,
+                                 pathState[fieldIndex(kFieldShadowDirection, slot)].xyz, pointCone);
+    light.inputs.textureBase = MG_TEXTURE_BASE;
+    MaterialOutputs emitter;
+    MG_EVALUATE_MATERIAL(light.inputs, emitter);
+    vec3 contribution = pathState[fieldIndex(kFieldShadowContribution, slot)].rgb;
+    pathState[fieldIndex(kFieldRadiance, slot)].rgb += contribution * emitter.emission;
+    return;
+  }
+#endif
   vec3 origin, direction;
   RayCone cone;
   SurfaceHit s = surfaceOfPath(slot, origin, direction, cone);
@@ -647,17 +695,29 @@ void main() {
       vec3 fCos;
       if (!countsOnly && sampleLightBeforeShadowRay(p, rng, light, fCos)) {
         queueShadow = true;
-#ifdef MG_EMISSIVE_NEE
+        float evaluate = 0.0;  // the shadow pass queues the point for its emitter's graph
+#if defined(MG_NEE_EVALUATES_EMISSION)
+        // An emitter whose emission is its graph's: the point for the material pass after the
+        // shadow pass, which multiplies the contribution by the emission there.
+        if (light.evaluate) {
+          evaluate = 1.0;
+          pathState[fieldIndex(kFieldLightHit, slot)] = uintBitsToFloat(uvec4(
+              light.hit.instanceIndex, light.hit.primitiveIndex, floatBitsToUint(light.hit.barycentrics)));
+          pathState[fieldIndex(kFieldLightOrigin, slot)] = vec4(p.position, light.hit.t);
+        }
+#elif defined(MG_EMISSIVE_NEE)
         // A free material emits nothing: an emitter whose emission is its graph's adds 0
         // (the megakernel's floor traces that ray and then drops it).
         queueShadow = !light.evaluate;
+#endif
+#ifdef MG_EMISSIVE_NEE
         light.incident *= lightSampleMisWeight(light, p, continues);
 #endif
         pathState[fieldIndex(kFieldShadowOrigin, slot)] =
             vec4(offsetRayOrigin(p.position, p.geometricNormal), light.tMax);
         pathState[fieldIndex(kFieldShadowDirection, slot)] = vec4(light.wi, 0.0);
         pathState[fieldIndex(kFieldShadowContribution, slot)] =
-            vec4(throughput * (fCos * light.incident), 0.0);
+            vec4(throughput * (fCos * light.incident), evaluate);
       }
       if (continues &&
           continuePath(p, s, rng, throughput, previousBsdfPdf, cone, origin, direction)) {
@@ -701,8 +761,16 @@ void main() {
   vec4 origin = pathState[fieldIndex(kFieldShadowOrigin, slot)];
   vec3 direction = pathState[fieldIndex(kFieldShadowDirection, slot)].xyz;
   if (traceShadow(origin.xyz, direction, origin.w)) return;
-  vec3 contribution = pathState[fieldIndex(kFieldShadowContribution, slot)].rgb;
-  pathState[fieldIndex(kFieldRadiance, slot)].rgb += contribution;
+  vec4 contribution = pathState[fieldIndex(kFieldShadowContribution, slot)];
+#ifdef MG_NEE_EVALUATES_EMISSION
+  // An emitter's graph to evaluate: into the light points' queue, the bounce's live queue,
+  // which the shade pass has read (the binning and material passes that follow evaluate it).
+  if (contribution.w != 0.0) {
+    pathQueues[queueIndex(push.step.z, atomicAdd(control.counts.w, 1u))] = slot;
+    return;
+  }
+#endif
+  pathState[fieldIndex(kFieldRadiance, slot)].rgb += contribution.rgb;
 }
 
 #elif defined(MG_WAVEFRONT_FINISH)

@@ -302,17 +302,6 @@ TEST(Wavefront, OptionsThePrototypeLacksAreRefused) {
   subgroupFill.cache.mode = CacheMode::Tile;
   subgroupFill.cache.tileFill = TileFill::Subgroup;
   refuses(subgroupFill, s, "--tile-fill subgroup");
-  // An emitter whose emission NEE must take from its graph at the light point: the wavefront
-  // has no material pass for light points.
-  Scene emitting = scene;
-  emitting.materials[0].emissionEstimate = glm::vec3(1.0f);
-  emitting.materials[0].emissionKind = MaterialRef::EmissionKind::Graph;
-  try {
-    Renderer(graphOptions(Backend::RayQuery, Shading::Wavefront)).render(emitting, s);
-    ADD_FAILURE() << "rendered; expected a refusal naming the emitter";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("emitter's graph"), std::string::npos) << e.what();
-  }
   EXPECT_THROW(parseShading("wave"), std::invalid_argument);
   EXPECT_EQ(parseShading("wavefront"), Shading::Wavefront);
 }
@@ -341,9 +330,8 @@ TEST(Wavefront, AutoShadingPicksTheWavefrontOnlyOnAGpuAndOnlyForWhatItDoes) {
   const ShadingDevice gpu{VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, true};
   const ShadingDevice cpu{VK_PHYSICAL_DEVICE_TYPE_CPU, true};
   auto pick = [&](const RendererOptions& options,
-                  const ShadingDevice& device = {VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, true},
-                  bool neeEvaluatesEmission = false) {
-    const ShadingChoice choice = resolveShading(options, device, neeEvaluatesEmission);
+                  const ShadingDevice& device = {VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, true}) {
+    const ShadingChoice choice = resolveShading(options, device);
     EXPECT_NE(choice.shading, Shading::Auto);
     EXPECT_EQ(choice.whyMegakernel.empty(),
               options.shading != Shading::Auto || choice.shading == Shading::Wavefront);
@@ -384,11 +372,9 @@ TEST(Wavefront, AutoShadingPicksTheWavefrontOnlyOnAGpuAndOnlyForWhatItDoes) {
     EXPECT_EQ(pick(misses), Shading::Wavefront) << cacheModeName(mode);
     EXPECT_EQ(pick(misses, cpu), Shading::Megakernel) << cacheModeName(mode);
   }
-  // An emitter whose emission NEE takes from its graph; the floor evaluates no graph.
-  EXPECT_EQ(pick(plain, gpu, true), Shading::Megakernel);
-  EXPECT_EQ(pick(floor, gpu, true), Shading::Wavefront);
-  // What the renderer passes for it: the landscape has no emitter; one whose emission is
-  // its graph's counts, unless NEE does not sample emitters.
+  // Whether NEE must evaluate an emitter's graph (the wavefront's material passes after the
+  // shadow pass do): the landscape has no emitter; one whose emission is its graph's counts,
+  // unless NEE does not sample emitters.
   EXPECT_FALSE(sceneNeeEvaluatesEmission(scene, {}));
   Scene emitting = scene;
   emitting.materials[0].emissionEstimate = glm::vec3(1.0f);
@@ -414,7 +400,7 @@ TEST(Wavefront, AutoShadingPicksTheWavefrontOnlyOnAGpuAndOnlyForWhatItDoes) {
   EXPECT_EQ(pick(megakernel, gpu), Shading::Megakernel);
   RendererOptions wavefront = plain;
   wavefront.shading = Shading::Wavefront;
-  EXPECT_EQ(pick(wavefront, cpu, true), Shading::Wavefront);
+  EXPECT_EQ(pick(wavefront, cpu), Shading::Wavefront);
 }
 
 // On lavapipe (a CPU) auto runs the megakernel, and the stats say so; --wavefront-paths
