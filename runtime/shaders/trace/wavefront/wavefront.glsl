@@ -27,8 +27,15 @@
 // - MG_WAVEFRONT_QUEUE: one invocation turns the queues' counts into the next passes'
 //   indirect arguments;
 // - MG_WAVEFRONT_SHADOW: traces the queued shadow rays and adds the unblocked contributions;
+//   with emitters whose emission NEE takes from their graphs (MG_NEE_EVALUATES_EMISSION) it
+//   queues such an emitter's unblocked samples instead, and the binning and material passes
+//   run once more over their points (push.chunk.w's kWavefrontLightPoints), each graph's pass
+//   adding the contribution times the emission it evaluates at its points;
 // - MG_WAVEFRONT_FINISH: folds the round's radiance into the pixel's sum, and after the last
 //   round the mean into the accumulation buffer (as the megakernel's renderPixel does).
+// With LiPaC (MG_HIT_FEEDBACK) the trace pass counts its rays as the megakernel does
+// (hit_feedback.glsl); with --debug-misses the lookup pass flags a pixel's misses for the
+// finish pass.
 // Shading is path_shading.glsl's, the megakernel's own; random numbers are counter-based
 // (rng.glsl), keyed by pixel, sample, bounce and dimension, so no pass order changes a sample,
 // and with the megakernel's keys: at one seed both architectures trace the same paths.
