@@ -96,6 +96,7 @@ std::unique_ptr<FrameTracer> buildWavefront(const ShaderBuild& b, ShaderCompiler
   setup.tileQueueCapacity = b.plan.cache.mode == CacheMode::Tile ? b.plan.cache.tileQueue : 0;
   setup.tileImage = cache.tileImageView() != VK_NULL_HANDLE;
   setup.emitterGraphs = b.inputs.materials->neeEvaluatesEmission && !b.floor;
+  setup.sharedPrimaryHits = b.settings.sharedPrimaryRay;
   setup.pathSlots = b.options.wavefrontPaths;
   setup.compileThreads = b.options.shaderCompileThreads;
   // LiPaC's hit feedback: one set of passes for every frame (a push constant says whether a

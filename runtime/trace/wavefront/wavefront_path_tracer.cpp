@@ -107,9 +107,12 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   // block (with a record a material bin); each bound whole, so each must fit a storage
   // binding. Bins are distinct graphs: materials sharing a graph share its pipeline.
   const std::uint32_t bins = materials ? static_cast<std::uint32_t>(materials->distinct.size()) : 0;
-  const std::uint32_t fields = lightPoints_ ? gpu::kPathStateFieldsWithLightPoints
-                               : materials  ? gpu::kPathStateFieldsWithMaterials
-                                            : gpu::kPathStateFields;
+  // With --shared-primary two more after the others keep the camera ray's hit for the later
+  // rounds (wavefront.glsl, MG_WAVEFRONT_PRIMARY_FIELD).
+  const std::uint32_t fieldsBeforePrimary = lightPoints_ ? gpu::kPathStateFieldsWithLightPoints
+                                            : materials  ? gpu::kPathStateFieldsWithMaterials
+                                                         : gpu::kPathStateFields;
+  const std::uint32_t fields = fieldsBeforePrimary + (setup.sharedPrimaryHits ? 2u : 0u);
   // Paths in flight: as asked, else every pixel, or as many as one storage binding of path
   // state, a row of work groups and the largest allocation hold (lavapipe's 128 MiB range:
   // about 645,000 with graphs, so a 1080p round there runs in 4 chunks).
@@ -159,6 +162,8 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   std::vector<std::string> defines = {"MG_TEXTURE_COUNT=" + std::to_string(textureCount),
                                       query_ ? "MG_BACKEND_QUERY=1" : "MG_BACKEND_PIPELINE=1"};
   defines.insert(defines.end(), extraDefines.begin(), extraDefines.end());
+  if (setup.sharedPrimaryHits)
+    defines.push_back("MG_WAVEFRONT_PRIMARY_FIELD=" + std::to_string(fieldsBeforePrimary));
   if (materials) {
     // Scene material id -> bin (its distinct graph), for the binning passes' lookup.
     std::string binOf = "uint[](";

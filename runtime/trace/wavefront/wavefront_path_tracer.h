@@ -38,6 +38,9 @@ struct WavefrontSetup {
   // (MG_NEE_EVALUATES_EMISSION in the defines): after each bounce's shadow pass its unblocked
   // samples' points are binned and their emitters' graphs evaluated by the material passes.
   bool emitterGraphs = false;
+  // --shared-primary (RenderSettings::sharedPrimaryRay): round 0 traces each pixel's camera ray
+  // and keeps its hit in two more fields, which the later rounds take instead of tracing it.
+  bool sharedPrimaryHits = false;
   // The path state's capacity, paths in flight (0: every pixel, or as many as the device's
   // storage-buffer range and work-group count allow); a round over more pixels runs in
   // chunks of at most that many, one after another.

@@ -163,6 +163,12 @@ const uint kFieldMaterialRest = 12u;       // specularTint, cyclesPrincipled, op
 // light sample's point, for its bin's material pass.
 const uint kFieldLightHit = 13u;           // instance, primitive, barycentrics (uint bits)
 const uint kFieldLightOrigin = 14u;        // xyz the shading point, w the point's t along wi
+#ifdef MG_WAVEFRONT_PRIMARY_FIELD
+// With --shared-primary, after the fields above (the host's count of them): the pixel's
+// camera-ray hit, traced in round 0 and read by the later rounds' trace passes.
+const uint kFieldPrimaryHit = uint(MG_WAVEFRONT_PRIMARY_FIELD);  // as kFieldHit
+const uint kFieldPrimaryT = kFieldPrimaryHit + 1u;                // x the hit's t
+#endif
 
 // The path state's slots (its capacity: every pixel, or a chunk of them; push.chunk).
 uint slotCount() {
@@ -399,15 +405,17 @@ void main() {
     control.counts = uvec4(slots, 0u, 0u, 0u);
     control.liveGroups = uvec4(workgroupsFor(slots), 1u, 1u, 0u);
     control.liveLaunch = uvec4(slots, 1u, 1u, 0u);
-    atomicAdd(counters.rays, slots);
+    // With --shared-primary the later rounds' camera rays are round 0's hits, not traced.
+    bool traced = (frame.path.z & kFlagSharedPrimaryRay) == 0u || push.step.x == 0u;
+    if (traced) atomicAdd(counters.rays, slots);
   }
   if (slot >= slots) return;
   uint pixelIndex = pixelOfSlot(slot);
   uvec2 pixel = uvec2(pixelIndex % frame.image.x, pixelIndex / frame.image.x);
   Rng rng = rngForPathVertex(pixelIndex, sampleIndexOf(push.step.x), 0u, frame.image.w);
-  // --shared-primary (thesis §5.1): every round's camera ray through the pixel centre. The
-  // megakernel traces it once for the P paths; each round here traces it again (the same
-  // hit), so the wavefront counts P camera rays a pixel where the megakernel counts one.
+  // --shared-primary (thesis §5.1): every round's camera ray through the pixel centre, traced
+  // once for the P paths (round 0; the trace pass keeps its hit for the others), as the
+  // megakernel traces it.
   bool sharedPrimary = (frame.path.z & kFlagSharedPrimaryRay) != 0u;
   vec3 origin, direction;
   primaryRay(pixel, sharedPrimary ? vec2(0.5) : rngNext2(rng), origin, direction);
@@ -426,8 +434,8 @@ void main() {
 #ifdef MG_HIT_FEEDBACK
 // What the ray this pass traces for `slot` counts in LiPaC's feedback: what the megakernel's
 // tracePixel counts for the same ray (0 in a frame that does not count, push.chunk.w).
-// With --shared-primary the megakernel traces a pixel's camera ray once and counts it with the
-// pixel's weight; the wavefront traces it every round and counts it in round 0.
+// With --shared-primary the camera ray is traced once, in round 0, and counted there with the
+// pixel's weight, as the megakernel counts its one trace of it.
 uint traceFeedbackWeight(uint slot) {
   if ((push.chunk.w & kWavefrontCountsHits) == 0u) return 0u;
   uint pixelIndex = pixelOfSlot(slot);
@@ -440,19 +448,41 @@ uint traceFeedbackWeight(uint slot) {
 #endif
 
 // The closest hit of every live path; camera rays skip lights' quads, as in the megakernel.
-// With LiPaC's feedback the ray is counted after its trace (every invocation reaches the
-// tally: with subgroup arithmetic it is one atomic per subgroup).
+// With --shared-primary round 0 traces the pixel's camera ray and keeps its hit, which the
+// later rounds take instead of tracing the same ray again. With LiPaC's feedback the ray is
+// counted after its trace (every invocation reaches the tally: with subgroup arithmetic it is
+// one atomic per subgroup).
 void main() {
   uint i = invocationIndex();
   if (i < control.counts.x) {
     uint slot = pathQueues[queueIndex(push.step.z, i)];
     vec3 origin = pathState[fieldIndex(kFieldOrigin, slot)].xyz;
     vec3 direction = pathState[fieldIndex(kFieldDirection, slot)].xyz;
-    HitInfo hit = traceClosest(origin, direction, kRayTMax,
-                               push.step.y == 0u ? kRayMaskNoLightQuads : kRayMaskAll);
-    pathState[fieldIndex(kFieldHit, slot)] = uintBitsToFloat(
+    HitInfo hit;
+#ifdef MG_WAVEFRONT_PRIMARY_FIELD
+    bool sharedCameraRay = push.step.y == 0u && (frame.path.z & kFlagSharedPrimaryRay) != 0u;
+    if (sharedCameraRay && push.step.x != 0u) {
+      uvec4 hitBits = floatBitsToUint(pathState[fieldIndex(kFieldPrimaryHit, slot)]);
+      hit.instanceIndex = hitBits.x;
+      hit.primitiveIndex = hitBits.y;
+      hit.barycentrics = uintBitsToFloat(hitBits.zw);
+      hit.t = pathState[fieldIndex(kFieldPrimaryT, slot)].x;
+    } else
+#endif
+    {
+      hit = traceClosest(origin, direction, kRayTMax,
+                         push.step.y == 0u ? kRayMaskNoLightQuads : kRayMaskAll);
+    }
+    vec4 hitField = uintBitsToFloat(
         uvec4(hit.instanceIndex, hit.primitiveIndex, floatBitsToUint(hit.barycentrics)));
+    pathState[fieldIndex(kFieldHit, slot)] = hitField;
     pathState[fieldIndex(kFieldRadiance, slot)].w = hit.t;
+#ifdef MG_WAVEFRONT_PRIMARY_FIELD
+    if (sharedCameraRay && push.step.x == 0u) {
+      pathState[fieldIndex(kFieldPrimaryHit, slot)] = hitField;
+      pathState[fieldIndex(kFieldPrimaryT, slot)] = vec4(hit.t, 0.0, 0.0, 0.0);
+    }
+#endif
 #ifdef MG_HIT_FEEDBACK
     countHitFeedback(origin, direction, hit, traceFeedbackWeight(slot));
     flushHitFeedback();
