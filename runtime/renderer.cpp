@@ -60,8 +60,8 @@ Renderer::Renderer(RendererOptions options)
 Renderer::~Renderer() = default;
 
 // The stages in order, each refusing bad input before the next spends time on it: the
-// request checked; the materials linked (whether NEE must evaluate an emitter's graph decides
-// what Shading::Auto can run); the plan (architecture, dispatch, cache); the scene and its
+// request checked; the materials linked (the graphs, and whether NEE must evaluate an
+// emitter's); the plan (architecture, dispatch, cache); the scene and its
 // textures uploaded; the acceleration structures built; the shaders compiled into the chosen
 // architecture's pipelines; then the frames.
 RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings) {
@@ -69,7 +69,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   const VulkanContext& context = *context_;
   const std::uint32_t pathWeight = validateRender(options_, settings, scene, context);
   const SceneMaterials materials = linkSceneMaterials(scene, options_.nodeLibraryDirectory);
-  const RenderPlan plan = planRender(options_, settings, scene, context, materials, pathWeight);
+  const RenderPlan plan = planRender(options_, settings, context, materials, pathWeight);
   RenderResult result;
   result.stats = describeRender(options_, settings, scene, context, materials, plan);
 

@@ -135,7 +135,11 @@ MG_CONSTANT(uint, kPathStateFields, 9);
 MG_CONSTANT(uint, kPathStateFieldsWithMaterials, 13);
 // With graphs that read the path state (Light Path, MG_OMIT_PATH_INPUTS undefined), one more:
 // the ray's kind and its depths (path_shading.glsl PathState) from one bounce to the next.
-MG_CONSTANT(uint, kPathStateFieldsWithPathInputs, 14);
+MG_CONSTANT(uint, kPathStateFieldsForPathInputs, 1);
+// With emitters whose light samples evaluate their graphs, two more after those: the sample's
+// point (its hit, and the shading point it is seen from), for the material pass after the
+// shadow pass.
+MG_CONSTANT(uint, kPathStateFieldsForLightPoints, 2);
 
 // The wavefront's queue counts and indirect arguments (binding kBindingWavefrontControl).
 // Each launch block is a VkDispatchIndirectCommand (work groups) or a
@@ -145,7 +149,8 @@ MG_CONSTANT(uint, kPathStateFieldsWithPathInputs, 14);
 // queue, scatter cursor, hits in the batch), then the same for the bin's queued tiles (with
 // the tile cache; zero otherwise).
 struct WavefrontControl {
-  uvec4 counts;        // x: paths in the live queue, y: appended to the next, z: shadow rays
+  uvec4 counts;        // x: paths in the live queue, y: appended to the next, z: shadow rays,
+                       // w: light points queued by the shadow pass (emitters' graphs)
   uvec4 liveGroups;    // compute passes over the live queue
   uvec4 liveLaunch;    // the pipeline backend's trace of the live queue
   uvec4 shadowGroups;  // the query backend's shadow pass
@@ -156,8 +161,13 @@ struct WavefrontControl {
 // capacity, RendererOptions::wavefrontPaths): chunk c covers pixels c * slots onwards.
 struct WavefrontPush {
   uvec4 step;   // x round (path index of every pixel), y bounce, z live queue (0 or 1), w bin
-  uvec4 chunk;  // x slots (the path state's capacity), y the chunk's first pixel, z its pixels
+  uvec4 chunk;  // x slots (the path state's capacity), y the chunk's first pixel, z its pixels,
+                // w kWavefront* bits below
 };
+// WavefrontPush::chunk.w bits: the trace pass counts LiPaC's hit feedback (a counting frame);
+// the binning and material passes bin and evaluate light samples' points, not hits.
+MG_CONSTANT(uint, kWavefrontCountsHits, 1);
+MG_CONSTANT(uint, kWavefrontLightPoints, 2);
 
 // FrameConstants::flags bits.
 MG_CONSTANT(uint, kFlagSharedPrimaryRay, 1);

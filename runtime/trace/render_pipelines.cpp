@@ -89,7 +89,7 @@ std::vector<std::string> pathTracerDefines(const ShaderBuild& b, const MaterialC
   if (b.inputs.scene->buffers.emissiveTriangles)
     defines.push_back("MG_EMISSIVE_NEE=1");
   if (b.inputs.materials->neeEvaluatesEmission && !b.floor)
-    defines.push_back("MG_NEE_EVALUATES_EMISSION=1");  // never the wavefront (wavefrontGap)
+    defines.push_back("MG_NEE_EVALUATES_EMISSION=1");
   return defines;
 }
 
@@ -102,11 +102,19 @@ std::unique_ptr<FrameTracer> buildWavefront(const ShaderBuild& b, ShaderCompiler
   setup.cacheLookups = b.plan.cache.mode != CacheMode::None;
   setup.tileQueueCapacity = b.plan.cache.mode == CacheMode::Tile ? b.plan.cache.tileQueue : 0;
   setup.tileImage = cache.tileImageView() != VK_NULL_HANDLE;
+  setup.emitterGraphs = b.inputs.materials->neeEvaluatesEmission && !b.floor;
+  setup.sharedPrimaryHits = b.settings.sharedPrimaryRay;
   setup.pathSlots = b.options.wavefrontPaths;
   setup.compileThreads = b.options.shaderCompileThreads;
-  auto tracer =
-      std::make_unique<WavefrontPathTracer>(b.context, compiler, b.inputs.scene->textures->count(),
-                                            defines, b.settings.width, b.settings.height, setup);
+  // LiPaC's hit feedback: one set of passes for every frame (a push constant says whether a
+  // frame counts), where the megakernel keeps a second, quiet pipeline: only the trace pass
+  // counts, and it is small.
+  std::vector<std::string> passDefines = defines;
+  if (b.inputs.hitFeedback)
+    passDefines.push_back("MG_HIT_FEEDBACK=1");
+  auto tracer = std::make_unique<WavefrontPathTracer>(
+      b.context, compiler, b.inputs.scene->textures->count(), passDefines, b.settings.width,
+      b.settings.height, setup);
   stats.wavefrontPathSlots = tracer->pathSlots();
   stats.wavefrontChunks = tracer->chunks();
   // The wavefront has no callables: its material pipelines' compiles count in their place.

@@ -195,20 +195,19 @@ MaterialDispatch resolveMaterialDispatch(MaterialDispatch requested, Backend bac
 }
 
 // The architecture the render runs, refused where the options ask what it cannot do.
-ShadingChoice chooseShading(const RendererOptions& options, const Scene& scene,
-                            const VulkanContext& context, bool neeEvaluatesEmission) {
+ShadingChoice chooseShading(const RendererOptions& options, const VulkanContext& context) {
   ShadingDevice device;
   device.type = context.info().type;
   device.wavefrontTraces =
       context.backend() == Backend::RayQuery || context.info().traceRaysIndirect;
-  const ShadingChoice shading = resolveShading(options, scene, device, neeEvaluatesEmission);
+  const ShadingChoice shading = resolveShading(options, device);
   if (options.wavefrontPaths > 0 && shading.shading != Shading::Wavefront)
     throw std::invalid_argument(
         "--wavefront-paths sets the wavefront's paths in flight; it needs the wavefront, which "
         "--shading auto did not choose: " +
         shading.whyMegakernel + " (--shading wavefront asks for it)");
   if (options.shading == Shading::Wavefront) {
-    const std::string gap = wavefrontGap(options, scene, device, neeEvaluatesEmission);
+    const std::string gap = wavefrontGap(options, device);
     if (!gap.empty())
       throw std::invalid_argument("--shading wavefront is a prototype: " + gap +
                                   " (--shading megakernel or auto)");
@@ -302,11 +301,11 @@ std::uint32_t validateRender(const RendererOptions& options, const RenderSetting
 }
 
 RenderPlan planRender(const RendererOptions& options, const RenderSettings& settings,
-                      const Scene& scene, const VulkanContext& context,
-                      const SceneMaterials& materials, std::uint32_t feedbackPathWeight) {
+                      const VulkanContext& context, const SceneMaterials& materials,
+                      std::uint32_t feedbackPathWeight) {
   RenderPlan plan;
   plan.feedbackPathWeight = feedbackPathWeight;
-  plan.shading = chooseShading(options, scene, context, materials.neeEvaluatesEmission);
+  plan.shading = chooseShading(options, context);
   plan.wavefront = plan.shading.shading == Shading::Wavefront;
   // The image is one storage buffer of 4 floats a pixel: refused before anything compiles
   // when the device cannot bind it whole.

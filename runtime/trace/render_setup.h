@@ -46,8 +46,8 @@ std::uint32_t validateRender(const RendererOptions& options, const RenderSetting
 // anything compiles: the image's buffer, the material dispatch, the cache on this device and
 // the CPU's switch limit.
 RenderPlan planRender(const RendererOptions& options, const RenderSettings& settings,
-                      const Scene& scene, const VulkanContext& context,
-                      const SceneMaterials& materials, std::uint32_t feedbackPathWeight);
+                      const VulkanContext& context, const SceneMaterials& materials,
+                      std::uint32_t feedbackPathWeight);
 
 // The statistics known before the upload: the device, the image, the architecture, the
 // materials and the culling mode.

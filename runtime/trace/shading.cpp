@@ -33,12 +33,6 @@ std::string wavefrontOptionGap(const RendererOptions& options) {
   if (cache.mode != CacheMode::None && options.floorMaterials)
     return "it fills the cache in its material passes, and the free-material floor has none "
            "(time the floor's lookups with --shading megakernel)";
-  if (options.culling.mode != CullingMode::None)
-    return "it has no culling (--culling none)";
-  if (options.debugCacheMisses)
-    return "it has no --debug-misses view";
-  if (options.debugCullingSize > 0)
-    return "it has no --debug-culling view";
   if (cache.mode == CacheMode::Tile &&
       (cache.tileFill == TileFill::Subgroup || cache.groupByMaterial || cache.testRepacks))
     return "it computes missing tiles from the deferred fill's queue; --tile-fill subgroup and "
@@ -46,19 +40,13 @@ std::string wavefrontOptionGap(const RendererOptions& options) {
   return {};
 }
 
-std::string wavefrontGap(const RendererOptions& options, const Scene& scene,
-                         const ShadingDevice& device, bool neeEvaluatesEmission) {
+std::string wavefrontGap(const RendererOptions& options, const ShadingDevice& device) {
   std::string gap = wavefrontOptionGap(options);
   if (!gap.empty())
     return gap;
   if (!device.wavefrontTraces)
     return "on the pipeline backend it launches its traces with vkCmdTraceRaysIndirectKHR, "
            "which the device lacks (use --backend query)";
-  if (!scene.animatedMeshes.empty() && !scene.animatedMotions.empty())
-    return "it renders static scenes only, and this one has animated meshes";
-  if (neeEvaluatesEmission && !options.floorMaterials)
-    return "it evaluates no emitter's graph for a light sample, and this scene's emission is "
-           "not a known constant";
   return {};
 }
 
@@ -83,15 +71,17 @@ void validateWavefrontOptions(const RendererOptions& options) {
 // lanes on one graph, where the megakernel's lanes diverge over many. On lavapipe (a CPU) the
 // two could not be ranked (the megakernel ahead on the floor, 34.9 against 38.5 ms), so it
 // keeps the megakernel. Anything the wavefront prototype cannot do (wavefrontGap) picks the
-// megakernel too; an explicit --shading wavefront is refused for it instead.
-ShadingChoice resolveShading(const RendererOptions& options, const Scene& scene,
-                             const ShadingDevice& device, bool neeEvaluatesEmission) {
+// megakernel too; an explicit --shading wavefront is refused for it instead. Culling (frustum
+// and LiPaC), animated meshes and the debug views are the frame loop's, which runs either
+// architecture the same way, LiPaC's counts are hit_feedback.glsl's in both, and an emitter's
+// graph at a light sample is a material pass after the shadow pass, so none of them is a gap.
+ShadingChoice resolveShading(const RendererOptions& options, const ShadingDevice& device) {
   if (options.shading != Shading::Auto)
     return {options.shading, ""};
   if (device.type == VK_PHYSICAL_DEVICE_TYPE_CPU)
     return {Shading::Megakernel,
             "the device is a CPU, where the wavefront was not measured faster"};
-  const std::string gap = wavefrontGap(options, scene, device, neeEvaluatesEmission);
+  const std::string gap = wavefrontGap(options, device);
   if (!gap.empty())
     return {Shading::Megakernel, "the wavefront prototype cannot do what is asked: " + gap};
   return {Shading::Wavefront, ""};

@@ -9,7 +9,6 @@
 namespace memograph::runtime {
 
 struct RendererOptions;
-struct Scene;
 
 // How the path tracer is organised (docs/design/wavefront.md, "Choosing the architecture"):
 // one kernel that runs each path to its end, or passes over queues of paths with their state
@@ -23,8 +22,8 @@ const char* shadingName(Shading shading);
 Shading parseShading(const std::string& text);
 
 // Refuses (std::invalid_argument, naming the option) what an explicit Shading::Wavefront
-// cannot do that the options alone tell (culling, debug views, a cache on the floor, the
-// subgroup tile fill; the scene's and device's gaps render() refuses), and wavefrontPaths with
+// cannot do that the options alone tell (a cache on the floor, the subgroup tile fill; the
+// scene's and device's gaps render() refuses), and wavefrontPaths with
 // Shading::Megakernel (with Auto, render() checks it once resolved). The same list decides
 // Auto (resolveShading).
 void validateWavefrontOptions(const RendererOptions& options);
@@ -43,16 +42,12 @@ struct ShadingChoice {
 };
 // The architecture a render runs: options.shading unless Auto; Auto is the wavefront on a
 // GPU when it does everything asked, else the megakernel (never a refusal).
-// `neeEvaluatesEmission`: some emitter's emission NEE must take from its graph
-// (sceneNeeEvaluatesEmission).
-ShadingChoice resolveShading(const RendererOptions& options, const Scene& scene,
-                             const ShadingDevice& device, bool neeEvaluatesEmission);
+ShadingChoice resolveShading(const RendererOptions& options, const ShadingDevice& device);
 
 // What the wavefront prototype cannot do that the options ask, in words that follow "it"
 // ("--shading wavefront is a prototype: it ...", or auto's reason); empty when it can.
 std::string wavefrontOptionGap(const RendererOptions& options);
-// The same for the scene and the device, after the options' gaps.
-std::string wavefrontGap(const RendererOptions& options, const Scene& scene,
-                         const ShadingDevice& device, bool neeEvaluatesEmission);
+// The same for the device, after the options' gaps.
+std::string wavefrontGap(const RendererOptions& options, const ShadingDevice& device);
 
 }  // namespace memograph::runtime

@@ -102,8 +102,8 @@ TEST_F(BenchCliTest, TimeLimitStopsARunAndSaysSo) {
 }
 
 // Every scene and every size is checked before any is measured: an empty --sizes item, an
-// unknown or out-of-range second scene, an animated scene for --shading wavefront are usage
-// errors (2) before the device is opened ("device: " starts a measurement's log).
+// unknown or out-of-range second scene are usage errors (2) before the device is opened
+// ("device: " starts a measurement's log).
 TEST_F(BenchCliTest, EverySceneAndSizeIsCheckedBeforeAnyIsMeasured) {
   const std::pair<std::string, std::string> cases[] = {
       {"builtin:landscape --sizes 16x9,", "--sizes takes WxH[,WxH...], not '16x9,'"},
@@ -112,8 +112,6 @@ TEST_F(BenchCliTest, EverySceneAndSizeIsCheckedBeforeAnyIsMeasured) {
       {"builtin:landscape:terrain=8 builtin:bogus --sizes 8x8", "unknown built-in scene 'bogus'"},
       {"builtin:landscape:terrain=8 builtin:landscape:terrain=1 --sizes 8x8",
        "terrain (the landscape's terrain grid: cells per side) is an integer in 2..4096"},
-      {"builtin:landscape:terrain=8 builtin:city:scale=0.02 --shading wavefront --sizes 8x8",
-       "renders static scenes only"},
   };
   for (const auto& [arguments, message] : cases) {
     const auto run =

@@ -643,7 +643,7 @@ TEST_F(CliTest, ADevicePastTheLastIsAUsageErrorThatCountsTheDevices) {
 }
 
 // A command line with a usage error and a missing output folder is a usage error (2),
-// whichever comes first on it: the formats, the built-in scene's values and the scene's
+// whichever comes first on it: the formats, the built-in scene's values and the options'
 // fitness for the shading are checked before the folders.
 TEST_F(CliTest, RenderUsageErrorsComeBeforeTheOutputFolders) {
   if (runCli("bench --help").exitCode != 0)
@@ -655,8 +655,8 @@ TEST_F(CliTest, RenderUsageErrorsComeBeforeTheOutputFolders) {
       {"builtin:landscape --out " + missing + " --culling frustum --debug-culling " +
            (directory_ / "top.txt").string(),
        "--debug-culling must name a .pfm, .png or .exr file"},
-      {"builtin:city:scale=0.02 --shading wavefront --out " + missing,
-       "renders static scenes only"},
+      {"builtin:landscape --shading wavefront --floor-materials --cache texel --out " + missing,
+       "the free-material floor has none"},
   };
   for (const auto& [arguments, message] : cases) {
     const auto run = runCli("render " + arguments + kSmallestRender);

@@ -60,8 +60,8 @@ struct Bench {
 };
 
 // The frame plan and every scene, checked before anything is rendered or written: each
-// scene is built here (its name and ranges are checked by building it, and --shading
-// wavefront needs it static), so that a bad second scene is not found after the first one
+// scene is built here (its name and ranges are checked by building it), so that a bad second
+// scene is not found after the first one
 // has been measured. The first scene is kept for its run; the others are built again then,
 // one at a time, so that a sweep's scenes are never all in memory at once.
 int checkPlanAndScenes(Bench& bench, const std::vector<std::string>& scenes) {
@@ -96,9 +96,6 @@ int checkPlanAndScenes(Bench& bench, const std::vector<std::string>& scenes) {
       std::cerr << "memograph bench: " << sceneName << ": " << e.what() << "\n";
       return kExitFailure;
     }
-    if (o.renderer.shading == runtime::Shading::Wavefront && !scene.animatedMeshes.empty())
-      return usageError("bench", "--shading wavefront renders static scenes only; " + sceneName +
-                                     " has animated meshes");
     if (!bench.firstScene)
       bench.firstScene = std::move(scene);
   }

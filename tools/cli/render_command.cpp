@@ -104,7 +104,7 @@ int checkOutputNames(const std::string& sceneName, const TraceCommandOptions& op
 }
 
 // The outputs' folders (kExitFailure), checked once the scene is loaded, whose usage errors
-// (a built-in scene's ranges, an animated scene for --shading wavefront) come first so that
+// (a built-in scene's ranges) come first so that
 // a command line with both problems is named a usage error whichever comes first on it.
 int checkOutputFolders(const TraceCommandOptions& options) {
   for (const std::string* path : {&options.out, &options.debugCulling, &options.stats}) {
@@ -224,9 +224,6 @@ int loadScene(const std::string& name, const TraceCommandOptions& options, runti
     return kExitFailure;
 #endif
   }
-  if (options.renderer.shading == runtime::Shading::Wavefront && !scene.animatedMeshes.empty())
-    return usageError("render", "--shading wavefront renders static scenes only; " + name +
-                                    " has animated meshes");
   if (options.noEmissiveNee)
     scene.emissiveLightSampling = false;
   return kExitOk;

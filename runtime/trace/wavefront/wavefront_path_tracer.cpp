@@ -46,34 +46,43 @@ std::uint32_t workgroupsFor(std::uint64_t invocations) {
                                     gpu::kWavefrontWorkgroupSize);
 }
 
+}  // namespace
+
 // The passes of a frame in recording order (the timestamp after each says when it ended);
 // kWavefrontMaterial stands for every bin's material pass of the bounce; `lookup`: the texel
-// cache's lookup before the binning. Every chunk of pixels runs all P rounds before the next.
-std::vector<std::uint32_t> framePasses(std::uint32_t chunks, std::uint32_t paths,
-                                       std::uint32_t bounces, bool materials, bool lookup) {
-  std::vector<std::uint32_t> passes;
-  for (std::uint32_t round = 0; round < chunks * paths; ++round) {
-    passes.push_back(gpu::kWavefrontGenerate);
+// cache's lookup before the binning; `lightPoints`: after the shadow pass the light samples'
+// points are binned and their emitters' graphs evaluated. Every chunk of pixels runs all P
+// rounds before the next.
+std::vector<WavefrontPathTracer::FramePass> WavefrontPathTracer::framePasses(
+    std::uint32_t paths, std::uint32_t bounces) const {
+  const bool materials = !materialPasses_.empty();
+  std::vector<FramePass> passes;
+  auto binning = [&](bool lightPoints) {
+    for (std::uint32_t pass : {gpu::kWavefrontBinCount, gpu::kWavefrontBinOffsets,
+                               gpu::kWavefrontBinScatter, gpu::kWavefrontMaterial})
+      passes.push_back({pass, lightPoints});
+  };
+  for (std::uint32_t round = 0; round < chunks_ * paths; ++round) {
+    passes.push_back({gpu::kWavefrontGenerate});
     for (std::uint32_t bounce = 0; bounce < bounces; ++bounce) {
-      passes.push_back(gpu::kWavefrontTrace);
+      passes.push_back({gpu::kWavefrontTrace});
       if (materials) {
-        if (lookup)
-          passes.push_back(gpu::kWavefrontLookup);
-        passes.push_back(gpu::kWavefrontBinCount);
-        passes.push_back(gpu::kWavefrontBinOffsets);
-        passes.push_back(gpu::kWavefrontBinScatter);
-        passes.push_back(gpu::kWavefrontMaterial);
+        if (lookup_)
+          passes.push_back({gpu::kWavefrontLookup});
+        binning(false);
       }
-      passes.push_back(gpu::kWavefrontShade);
-      passes.push_back(gpu::kWavefrontQueue);
-      passes.push_back(gpu::kWavefrontShadow);
+      passes.push_back({gpu::kWavefrontShade});
+      passes.push_back({gpu::kWavefrontQueue});
+      passes.push_back({gpu::kWavefrontShadow});
+      if (lightPoints_)
+        binning(true);
     }
-    passes.push_back(gpu::kWavefrontFinish);
+    passes.push_back({gpu::kWavefrontFinish});
   }
   return passes;
 }
 
-}  // namespace
+namespace {}  // namespace
 
 WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCompiler& compiler,
                                          std::uint32_t textureCount,
@@ -83,24 +92,30 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
     : context_(context),
       query_(context.backend() == Backend::RayQuery),
       lookup_(setup.cacheLookups),
+      lightPoints_(setup.emitterGraphs),
       pixels_(width * height) {
   VkDevice device = context.device();
   const LinkedMaterials* materials = setup.materials;
   const std::uint32_t pathSlots = setup.pathSlots;
   // The renderer refuses both first, in the user's words (trace/shading.cpp, wavefrontGap).
-  if ((lookup_ && !materials) || (!query_ && !context.info().traceRaysIndirect))
+  if (((lookup_ || lightPoints_) && !materials) || (!query_ && !context.info().traceRaysIndirect))
     throw std::logic_error(
-        "WavefrontPathTracer: a cache without material passes, or a pipeline "
-        "without indirect trace launches");
+        "WavefrontPathTracer: a cache or emitters' graphs without material passes, or a "
+        "pipeline without indirect trace launches");
   // The path state (vec4 fields a slot, four more for material outputs, one more for the
-  // path state that Light Path reads), the queues (two
+  // path state that Light Path reads, two more for light samples' points), the queues (two
   // live, one shadow, with materials the material-sorted one; a uint a slot) and the control
   // block (with a record a material bin); each bound whole, so each must fit a storage
   // binding. Bins are distinct graphs: materials sharing a graph share its pipeline.
   const std::uint32_t bins = materials ? static_cast<std::uint32_t>(materials->distinct.size()) : 0;
-  const std::uint32_t fields = !materials              ? gpu::kPathStateFields
-                               : materials->pathInputs ? gpu::kPathStateFieldsWithPathInputs
-                                                       : gpu::kPathStateFieldsWithMaterials;
+  // With --shared-primary two more after the others keep the camera ray's hit for the later
+  // rounds (wavefront.glsl, MG_WAVEFRONT_PRIMARY_FIELD).
+  const std::uint32_t fieldsBeforePrimary =
+      !materials ? gpu::kPathStateFields
+                 : gpu::kPathStateFieldsWithMaterials +
+                       (materials->pathInputs ? gpu::kPathStateFieldsForPathInputs : 0u) +
+                       (lightPoints_ ? gpu::kPathStateFieldsForLightPoints : 0u);
+  const std::uint32_t fields = fieldsBeforePrimary + (setup.sharedPrimaryHits ? 2u : 0u);
   // Paths in flight: as asked, else every pixel, or as many as one storage binding of path
   // state, a row of work groups and the largest allocation hold (lavapipe's 128 MiB range:
   // about 645,000 with graphs, so a 1080p round there runs in 4 chunks).
@@ -150,6 +165,8 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   std::vector<std::string> defines = {"MG_TEXTURE_COUNT=" + std::to_string(textureCount),
                                       query_ ? "MG_BACKEND_QUERY=1" : "MG_BACKEND_PIPELINE=1"};
   defines.insert(defines.end(), extraDefines.begin(), extraDefines.end());
+  if (setup.sharedPrimaryHits)
+    defines.push_back("MG_WAVEFRONT_PRIMARY_FIELD=" + std::to_string(fieldsBeforePrimary));
   if (materials) {
     // Scene material id -> bin (its distinct graph), for the binning passes' lookup.
     std::string binOf = "uint[](";
@@ -277,19 +294,22 @@ void WavefrontPathTracer::createPipelines(const PipelineShaders& shaders,
 
 std::uint32_t WavefrontPathTracer::timestampCount(std::uint32_t paths,
                                                   std::uint32_t bounces) const {
-  return 1 + static_cast<std::uint32_t>(
-                 framePasses(chunks_, paths, bounces, !materialPasses_.empty(), lookup_).size());
+  return 1 + static_cast<std::uint32_t>(framePasses(paths, bounces).size());
 }
 
 void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pass,
-                                     std::uint32_t chunk, std::uint32_t round,
-                                     std::uint32_t bounce) const {
+                                     std::uint32_t chunk, std::uint32_t round, std::uint32_t bounce,
+                                     bool countsHits, bool lightPoints) const {
   // Live queues alternate: bounce b traces queue b % 2 and appends to the other.
   gpu::WavefrontPush push{};
   push.step = glm::uvec4(round, bounce, bounce % 2, 0);
   const std::uint32_t firstPixel = chunk * slots_;
   const std::uint32_t chunkPixels = std::min(slots_, pixels_ - firstPixel);
-  push.chunk = glm::uvec4(slots_, firstPixel, chunkPixels, 0);
+  // w: LiPaC's counting frame (the trace pass counts its rays, hit_feedback.glsl); the
+  // light samples' points binned and evaluated after the shadow pass.
+  push.chunk = glm::uvec4(slots_, firstPixel, chunkPixels,
+                          (countsHits ? gpu::kWavefrontCountsHits : 0u) |
+                              (lightPoints ? gpu::kWavefrontLightPoints : 0u));
   VkShaderStageFlags stages = query_ ? VK_SHADER_STAGE_COMPUTE_BIT
                                      : VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_RAYGEN_BIT_KHR;
   vkCmdPushConstants(commands, layout_.get(), stages, 0, sizeof push, &push);
@@ -333,6 +353,13 @@ void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pas
       vkCmdDispatchIndirect(commands, control_.buffer(),
                             offsetof(gpu::WavefrontControl, shadowGroups));
       break;
+    case gpu::kWavefrontBinCount:
+    case gpu::kWavefrontBinScatter:
+      // The light points are some of the shadow rays: their groups cover them.
+      vkCmdDispatchIndirect(commands, control_.buffer(),
+                            lightPoints ? offsetof(gpu::WavefrontControl, shadowGroups)
+                                        : offsetof(gpu::WavefrontControl, liveGroups));
+      break;
     default:  // trace, shade, bin count and scatter: over the live queue
       vkCmdDispatchIndirect(commands, control_.buffer(),
                             offsetof(gpu::WavefrontControl, liveGroups));
@@ -341,7 +368,7 @@ void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pas
 }
 
 void WavefrontPathTracer::record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t paths,
-                                 std::uint32_t bounces, VkQueryPool timestamps,
+                                 std::uint32_t bounces, bool countsHits, VkQueryPool timestamps,
                                  std::uint32_t firstQuery) const {
   vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set, 0,
                           nullptr);
@@ -367,16 +394,18 @@ void WavefrontPathTracer::record(VkCommandBuffer commands, VkDescriptorSet set, 
   barrier.dstAccessMask =
       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
   std::uint32_t chunk = 0, round = 0, bounce = 0;
-  for (std::uint32_t pass : framePasses(chunks_, paths, bounces, materials, lookup_)) {
-    recordPass(commands, pass, chunk, round, bounce);
+  for (const FramePass& step : framePasses(paths, bounces)) {
+    recordPass(commands, step.pass, chunk, round, bounce, countsHits, step.lightPoints);
     if (timestamps)
       vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, query++);
     vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
                          VK_PIPELINE_STAGE_ALL_COMMANDS_BIT, 0, 1, &barrier, 0, nullptr, 0,
                          nullptr);
-    if (pass == gpu::kWavefrontShadow)
+    // A bounce ends with its shadow pass, or with the material passes of its light points.
+    if ((step.pass == gpu::kWavefrontShadow && !lightPoints_) ||
+        (step.pass == gpu::kWavefrontMaterial && step.lightPoints))
       ++bounce;
-    if (pass == gpu::kWavefrontFinish) {
+    if (step.pass == gpu::kWavefrontFinish) {
       bounce = 0;
       if (++round == paths) {
         round = 0;
@@ -410,12 +439,12 @@ std::vector<std::uint32_t> WavefrontPathTracer::binHits() const {
 void WavefrontPathTracer::addPassTimes(const std::vector<std::uint64_t>& ticks, std::uint32_t paths,
                                        std::uint32_t bounces, double millisecondsPerTick,
                                        FrameStats& frame) const {
-  const auto passes = framePasses(chunks_, paths, bounces, !materialPasses_.empty(), lookup_);
+  const auto passes = framePasses(paths, bounces);
   if (ticks.size() < passes.size() + 1)
     return;
   for (std::size_t i = 0; i < passes.size(); ++i) {
     const double ms = double(ticks[i + 1] - ticks[i]) * millisecondsPerTick;
-    frame.*kPassTimes[passes[i]] += ms;
+    frame.*kPassTimes[passes[i].pass] += ms;
   }
 }
 

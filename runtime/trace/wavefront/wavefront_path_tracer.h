@@ -34,6 +34,13 @@ struct WavefrontSetup {
   bool cacheLookups = false;
   std::uint32_t tileQueueCapacity = 0;
   bool tileImage = false;  // the tile cache stores its texels in an image (a binding more)
+  // With materials: some emitter's emission NEE must take from its graph
+  // (MG_NEE_EVALUATES_EMISSION in the defines): after each bounce's shadow pass its unblocked
+  // samples' points are binned and their emitters' graphs evaluated by the material passes.
+  bool emitterGraphs = false;
+  // --shared-primary (RenderSettings::sharedPrimaryRay): round 0 traces each pixel's camera ray
+  // and keeps its hit in two more fields, which the later rounds take instead of tracing it.
+  bool sharedPrimaryHits = false;
   // The path state's capacity, paths in flight (0: every pixel, or as many as the device's
   // storage-buffer range and work-group count allow); a round over more pixels runs in
   // chunks of at most that many, one after another.
@@ -79,11 +86,13 @@ class WavefrontPathTracer final : public FrameTracer {
   const ShaderCacheStats& materialShaderStats() const { return materialShaderStats_; }
 
   // Records one frame: per chunk of pixels, P rounds of one path a pixel, each generate, L x
-  // (trace, [[lookup,]
-  // bin count, bin offsets, bin scatter, material passes,] shade, queue, shadow), finish, with a
-  // barrier between passes. `timestamps` VK_NULL_HANDLE: none.
+  // (trace, [[lookup,] bin count, bin offsets, bin scatter, material passes,] shade, queue,
+  // shadow[, the light points' bin count, offsets, scatter and material passes]), finish, with
+  // a barrier between passes. `countsHits`: the trace passes count LiPaC's hit feedback (a
+  // tracer built with MG_HIT_FEEDBACK; the frame counts). `timestamps` VK_NULL_HANDLE: none.
   void record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t paths,
-              std::uint32_t bounces, VkQueryPool timestamps, std::uint32_t firstQuery) const;
+              std::uint32_t bounces, bool countsHits, VkQueryPool timestamps,
+              std::uint32_t firstQuery) const;
 
   // Adds the passes' GPU times to `frame` (its wavefront*Milliseconds) from the timestamps
   // record() wrote, read back as `ticks` (timestampCount of them).
@@ -91,12 +100,13 @@ class WavefrontPathTracer final : public FrameTracer {
                     std::uint32_t bounces, double millisecondsPerTick, FrameStats& frame) const;
 
   // FrameTracer: the path state, queues and control in the set; no megakernel dispatches;
-  // record() for the frame's P and L; the bins' hits and the passes' times.
+  // record() for the frame's P and L (a look: one round, its rays counted, no light
+  // samples; frame.culling says so); the bins' hits and the passes' times.
   void addResources(TraceResources& resources) const override;
   std::uint32_t dispatchCount(const FrameTrace&) const override { return 0; }
   void recordTrace(VkCommandBuffer commands, VkDescriptorSet set, const FrameTrace& trace,
                    VkQueryPool timestamps, std::uint32_t firstTimestamp) const override {
-    record(commands, set, trace.paths, trace.rays, timestamps, firstTimestamp);
+    record(commands, set, trace.paths, trace.rays, trace.counts, timestamps, firstTimestamp);
   }
   void addFrameStats(const FrameTrace& trace, const std::vector<std::uint64_t>* passTicks,
                      double millisecondsPerTick, FrameStats& stats) const override;
@@ -104,7 +114,8 @@ class WavefrontPathTracer final : public FrameTracer {
  private:
   const VulkanContext& context_;
   bool query_ = true;
-  bool lookup_ = false;  // the texel cache's lookup pass
+  bool lookup_ = false;       // the texel cache's lookup pass
+  bool lightPoints_ = false;  // WavefrontSetup::emitterGraphs
   std::uint32_t pixels_ = 0;
   std::uint32_t slots_ = 0;   // paths in flight: a pixel's each, up to the capacity
   std::uint32_t chunks_ = 1;  // chunks of at most slots_ pixels a round takes
@@ -146,8 +157,16 @@ class WavefrontPathTracer final : public FrameTracer {
   // table) at once, on up to `threads` threads.
   void createPipelines(const PipelineShaders& shaders, const LinkedMaterials* materials,
                        std::uint32_t threads);
+  // One pass of a frame; `lightPoints`: a binning or material pass over the light samples'
+  // points (WavefrontSetup::emitterGraphs).
+  struct FramePass {
+    std::uint32_t pass = 0;  // gpu::kWavefront*
+    bool lightPoints = false;
+  };
+  std::vector<FramePass> framePasses(std::uint32_t paths, std::uint32_t bounces) const;
   void recordPass(VkCommandBuffer commands, std::uint32_t pass, std::uint32_t chunk,
-                  std::uint32_t round, std::uint32_t bounce) const;
+                  std::uint32_t round, std::uint32_t bounce, bool countsHits,
+                  bool lightPoints) const;
 };
 
 }  // namespace memograph::runtime

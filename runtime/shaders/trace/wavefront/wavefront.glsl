@@ -27,8 +27,15 @@
 // - MG_WAVEFRONT_QUEUE: one invocation turns the queues' counts into the next passes'
 //   indirect arguments;
 // - MG_WAVEFRONT_SHADOW: traces the queued shadow rays and adds the unblocked contributions;
+//   with emitters whose emission NEE takes from their graphs (MG_NEE_EVALUATES_EMISSION) it
+//   queues such an emitter's unblocked samples instead, and the binning and material passes
+//   run once more over their points (push.chunk.w's kWavefrontLightPoints), each graph's pass
+//   adding the contribution times the emission it evaluates at its points;
 // - MG_WAVEFRONT_FINISH: folds the round's radiance into the pixel's sum, and after the last
 //   round the mean into the accumulation buffer (as the megakernel's renderPixel does).
+// With LiPaC (MG_HIT_FEEDBACK) the trace pass counts its rays as the megakernel does
+// (hit_feedback.glsl); with --debug-misses the lookup pass flags a pixel's misses for the
+// finish pass.
 // Shading is path_shading.glsl's, the megakernel's own; random numbers are counter-based
 // (rng.glsl), keyed by pixel, sample, bounce and dimension, so no pass order changes a sample,
 // and with the megakernel's keys: at one seed both architectures trace the same paths.
@@ -44,10 +51,6 @@
 // The texel cache's 64-bit counter clock (§5.3.3): gpu::Counters::cacheClock is a uint64_t.
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
-#endif
-
-#ifdef MG_NEE_EVALUATES_EMISSION
-#error the wavefront evaluates no emitter's graph for a light sample (MG_NEE_EVALUATES_EMISSION)
 #endif
 
 #define MG_WAVEFRONT 1
@@ -68,6 +71,11 @@
 #endif
 
 #include "scene_bindings.glsl"
+#if defined(MG_HIT_FEEDBACK) && defined(MG_WAVEFRONT_TRACE)
+// LiPaC's counts (seeds/001 §3.3.2): the trace pass counts its rays as the megakernel counts
+// the same rays (the pixels, paths and weights of hit_feedback.glsl).
+#include "hit_feedback.glsl"
+#endif
 #if defined(MG_MATERIAL_FLOOR)
 #include "material_floor.glsl"
 #elif defined(MG_WAVEFRONT_MATERIAL)
@@ -141,9 +149,11 @@ const uint kFieldThroughput = 2u;          // rgb throughput, w the last BSDF pd
 const uint kFieldRadiance = 3u;            // rgb radiance so far, w the hit's t (< 0: miss)
 const uint kFieldHit = 4u;                 // instance, primitive, barycentrics (uint bits)
 const uint kFieldShadowOrigin = 5u;        // xyz origin, w length
-const uint kFieldShadowDirection = 6u;     // xyz direction
+const uint kFieldShadowDirection = 6u;     // xyz direction, w (uint bits) with the path state
+                                           // a light point's (packLightPathState)
 const uint kFieldShadowContribution = 7u;  // rgb: what the shadow ray adds when unblocked
-const uint kFieldPixelSum = 8u;            // rgb: the pixel's radiance summed over rounds
+const uint kFieldPixelSum = 8u;            // rgb: the pixel's radiance summed over rounds;
+                                           // w with --debug-misses: 1 where a path missed
 // With material graphs: the material's outputs at the hit (MaterialOutputs, 15 floats).
 const uint kFieldMaterialBase = 9u;        // baseColor, metallic
 const uint kFieldMaterialNormal = 10u;     // normal, roughness
@@ -152,7 +162,22 @@ const uint kFieldMaterialRest = 12u;       // specularTint, cyclesPrincipled, op
                                            // with a cache the bin to evaluate (w)
 // With graphs that read the path state (no MG_OMIT_PATH_INPUTS): PathState's ray kind and
 // depths (int bits), written where the path's ray is (the generate and shade passes).
+// With emitters whose light samples evaluate their graphs (MG_NEE_EVALUATES_EMISSION), after
+// it: the light sample's point, for its bin's material pass. The host counts the same fields
+// (WavefrontPathTracer, gpu::kPathStateFieldsFor*).
+#ifndef MG_OMIT_PATH_INPUTS
 const uint kFieldPathState = 13u;
+const uint kFieldLightHit = 14u;           // instance, primitive, barycentrics (uint bits)
+#else
+const uint kFieldLightHit = 13u;
+#endif
+const uint kFieldLightOrigin = kFieldLightHit + 1u;  // xyz the shading point, w its t along wi
+#ifdef MG_WAVEFRONT_PRIMARY_FIELD
+// With --shared-primary, after the fields above (the host's count of them): the pixel's
+// camera-ray hit, traced in round 0 and read by the later rounds' trace passes.
+const uint kFieldPrimaryHit = uint(MG_WAVEFRONT_PRIMARY_FIELD);  // as kFieldHit
+const uint kFieldPrimaryT = kFieldPrimaryHit + 1u;                // x the hit's t
+#endif
 
 // The path state's slots (its capacity: every pixel, or a chunk of them; push.chunk).
 uint slotCount() {
@@ -241,6 +266,23 @@ PathState loadPathState(uint slot) {
 #endif
 }
 
+// The state a light point's emitter sees (lightSamplePathState of the vertex's), in one word
+// beside the shadow ray's direction: the shade pass has stored the next ray's state in
+// kFieldPathState by the time the light points' material pass runs. Depths stay below 2^10
+// (--bounces is far smaller).
+uint packLightPathState(PathState vertex) {
+  PathState light = lightSamplePathState(vertex);
+  return uint(light.depth) | (uint(light.diffuseDepth) << 10u) | (uint(light.glossyDepth) << 20u);
+}
+PathState unpackLightPathState(uint bits) {
+  PathState light;
+  light.ray = kPathRayLightSample;
+  light.depth = int(bits & 0x3FFu);
+  light.diffuseDepth = int((bits >> 10u) & 0x3FFu);
+  light.glossyDepth = int((bits >> 20u) & 0x3FFu);
+  return light;
+}
+
 // Keeps the Light Path state of a path's next ray for the next bounce's passes.
 void storePathState(uint slot, PathState path) {
 #ifndef MG_OMIT_PATH_INPUTS
@@ -288,9 +330,32 @@ uint binOfPath(uint slot) {
   return materialId < uint(MG_MATERIAL_COUNT) ? kBinOfMaterial[materialId] : kNoBin;
 }
 
+// The binning and material passes after the shadow pass bin and evaluate light samples'
+// points (push.chunk.w's kWavefrontLightPoints): the shadow pass's unblocked samples of
+// emitters whose emission is their graph's, queued in the bounce's spent live queue.
+bool binsLightPoints() {
+#ifdef MG_NEE_EVALUATES_EMISSION
+  return (push.chunk.w & kWavefrontLightPoints) != 0u;
+#else
+  return false;
+#endif
+}
+
+// The paths the binning passes bin: the live queue's, or the light points'.
+uint binnedCount() {
+  return binsLightPoints() ? control.counts.w : control.counts.x;
+}
+
 // The bin whose material pass must evaluate a live path's hit: with the texel cache what
-// the lookup pass left (kNoBin after a cache hit), otherwise the hit's own.
+// the lookup pass left (kNoBin after a cache hit), otherwise the hit's own; for a light
+// point its emitter's.
 uint binToEvaluate(uint slot) {
+#ifdef MG_NEE_EVALUATES_EMISSION
+  if (binsLightPoints()) {
+    uint materialId = instances[floatBitsToUint(pathState[fieldIndex(kFieldLightHit, slot)].x)].ids.y;
+    return materialId < uint(MG_MATERIAL_COUNT) ? kBinOfMaterial[materialId] : kNoBin;
+  }
+#endif
 #ifdef MG_WAVEFRONT_CACHE
   return floatBitsToUint(pathState[fieldIndex(kFieldMaterialRest, slot)].w);
 #else
@@ -391,15 +456,17 @@ void main() {
     control.counts = uvec4(slots, 0u, 0u, 0u);
     control.liveGroups = uvec4(workgroupsFor(slots), 1u, 1u, 0u);
     control.liveLaunch = uvec4(slots, 1u, 1u, 0u);
-    atomicAdd(counters.rays, slots);
+    // With --shared-primary the later rounds' camera rays are round 0's hits, not traced.
+    bool traced = (frame.path.z & kFlagSharedPrimaryRay) == 0u || push.step.x == 0u;
+    if (traced) atomicAdd(counters.rays, slots);
   }
   if (slot >= slots) return;
   uint pixelIndex = pixelOfSlot(slot);
   uvec2 pixel = uvec2(pixelIndex % frame.image.x, pixelIndex / frame.image.x);
   Rng rng = rngForPathVertex(pixelIndex, sampleIndexOf(push.step.x), 0u, frame.image.w);
-  // --shared-primary (thesis §5.1): every round's camera ray through the pixel centre. The
-  // megakernel traces it once for the P paths; each round here traces it again (the same
-  // hit), so the wavefront counts P camera rays a pixel where the megakernel counts one.
+  // --shared-primary (thesis §5.1): every round's camera ray through the pixel centre, traced
+  // once for the P paths (round 0; the trace pass keeps its hit for the others), as the
+  // megakernel traces it.
   bool sharedPrimary = (frame.path.z & kFlagSharedPrimaryRay) != 0u;
   vec3 origin, direction;
   primaryRay(pixel, sharedPrimary ? vec2(0.5) : rngNext2(rng), origin, direction);
@@ -408,22 +475,74 @@ void main() {
   pathState[fieldIndex(kFieldThroughput, slot)] = vec4(1.0, 1.0, 1.0, 0.0);
   pathState[fieldIndex(kFieldRadiance, slot)] = vec4(0.0);
   storePathState(slot, cameraPathState());
+#ifdef MG_DEBUG_CACHE_MISSES
+  // The pixel's "a path missed the cache" flag (kFieldPixelSum's w) starts each frame clear.
+  if (push.step.x == 0u) pathState[fieldIndex(kFieldPixelSum, slot)] = vec4(0.0);
+#endif
   pathQueues[queueIndex(0u, slot)] = slot;
 }
 
 #elif defined(MG_WAVEFRONT_TRACE)
+#ifdef MG_HIT_FEEDBACK
+// What the ray this pass traces for `slot` counts in LiPaC's feedback: what the megakernel's
+// tracePixel counts for the same ray (0 in a frame that does not count, push.chunk.w).
+// With --shared-primary the camera ray is traced once, in round 0, and counted there with the
+// pixel's weight, as the megakernel counts its one trace of it.
+uint traceFeedbackWeight(uint slot) {
+  if ((push.chunk.w & kWavefrontCountsHits) == 0u) return 0u;
+  uint pixelIndex = pixelOfSlot(slot);
+  uint weight = hitFeedbackWeight(uvec2(pixelIndex % frame.image.x, pixelIndex / frame.image.x));
+  uint round = push.step.x;
+  if (push.step.y == 0u && (frame.path.z & kFlagSharedPrimaryRay) != 0u)
+    return round == 0u ? weight : 0u;
+  return pathFeedbackWeight(round, max(frame.path.x, 1u), weight);
+}
+#endif
+
 // The closest hit of every live path; camera rays skip lights' quads, as in the megakernel.
+// With --shared-primary round 0 traces the pixel's camera ray and keeps its hit, which the
+// later rounds take instead of tracing the same ray again. With LiPaC's feedback the ray is
+// counted after its trace (every invocation reaches the tally: with subgroup arithmetic it is
+// one atomic per subgroup).
 void main() {
   uint i = invocationIndex();
-  if (i >= control.counts.x) return;
-  uint slot = pathQueues[queueIndex(push.step.z, i)];
-  vec3 origin = pathState[fieldIndex(kFieldOrigin, slot)].xyz;
-  vec3 direction = pathState[fieldIndex(kFieldDirection, slot)].xyz;
-  HitInfo hit = traceClosest(origin, direction, kRayTMax,
-                             push.step.y == 0u ? kRayMaskNoLightQuads : kRayMaskAll);
-  pathState[fieldIndex(kFieldHit, slot)] =
-      uintBitsToFloat(uvec4(hit.instanceIndex, hit.primitiveIndex, floatBitsToUint(hit.barycentrics)));
-  pathState[fieldIndex(kFieldRadiance, slot)].w = hit.t;
+  if (i < control.counts.x) {
+    uint slot = pathQueues[queueIndex(push.step.z, i)];
+    vec3 origin = pathState[fieldIndex(kFieldOrigin, slot)].xyz;
+    vec3 direction = pathState[fieldIndex(kFieldDirection, slot)].xyz;
+    HitInfo hit;
+#ifdef MG_WAVEFRONT_PRIMARY_FIELD
+    bool sharedCameraRay = push.step.y == 0u && (frame.path.z & kFlagSharedPrimaryRay) != 0u;
+    if (sharedCameraRay && push.step.x != 0u) {
+      uvec4 hitBits = floatBitsToUint(pathState[fieldIndex(kFieldPrimaryHit, slot)]);
+      hit.instanceIndex = hitBits.x;
+      hit.primitiveIndex = hitBits.y;
+      hit.barycentrics = uintBitsToFloat(hitBits.zw);
+      hit.t = pathState[fieldIndex(kFieldPrimaryT, slot)].x;
+    } else
+#endif
+    {
+      hit = traceClosest(origin, direction, kRayTMax,
+                         push.step.y == 0u ? kRayMaskNoLightQuads : kRayMaskAll);
+    }
+    vec4 hitField = uintBitsToFloat(
+        uvec4(hit.instanceIndex, hit.primitiveIndex, floatBitsToUint(hit.barycentrics)));
+    pathState[fieldIndex(kFieldHit, slot)] = hitField;
+    pathState[fieldIndex(kFieldRadiance, slot)].w = hit.t;
+#ifdef MG_WAVEFRONT_PRIMARY_FIELD
+    if (sharedCameraRay && push.step.x == 0u) {
+      pathState[fieldIndex(kFieldPrimaryHit, slot)] = hitField;
+      pathState[fieldIndex(kFieldPrimaryT, slot)] = vec4(hit.t, 0.0, 0.0, 0.0);
+    }
+#endif
+#ifdef MG_HIT_FEEDBACK
+    countHitFeedback(origin, direction, hit, traceFeedbackWeight(slot));
+    flushHitFeedback();
+#endif
+  }
+#ifdef MG_HIT_FEEDBACK
+  addHitFeedbackTally();
+#endif
 }
 
 #elif defined(MG_WAVEFRONT_LOOKUP)
@@ -460,6 +579,9 @@ void main() {
           bin = kNoBin;
         } else {
           g_cacheMisses += 1u;
+#ifdef MG_DEBUG_CACHE_MISSES
+          pathState[fieldIndex(kFieldPixelSum, slot)].w = 1.0;  // the pixel's flag (finish)
+#endif
 #ifdef MG_WAVEFRONT_TILES
           // Queued once a frame (the tile log) for its bin's material pass to compute.
           tileEnqueue(s.materialId, request);
@@ -487,7 +609,7 @@ void main() {
   addToBinRecord(tile ? kBinRecords * kBinOfMaterial[tileQueue[i].materialId] + 2u : 0u, false,
                  tile);
 #endif
-  uint bin = i < control.counts.x ? binToEvaluate(pathQueues[queueIndex(push.step.z, i)]) : kNoBin;
+  uint bin = i < binnedCount() ? binToEvaluate(pathQueues[queueIndex(push.step.z, i)]) : kNoBin;
   addToBinRecord(kBinRecords * bin + 1u, false, bin != kNoBin);
 }
 
@@ -526,8 +648,8 @@ void main() {
       tile ? kBinRecords * kBinOfMaterial[tileQueue[i].materialId] + 2u : 0u, true, tile);
   if (tile) pathQueues[queueIndex(4u, tilePlace)] = i;
 #endif
-  uint slot = i < control.counts.x ? pathQueues[queueIndex(push.step.z, i)] : 0u;
-  uint bin = i < control.counts.x ? binToEvaluate(slot) : kNoBin;
+  uint slot = i < binnedCount() ? pathQueues[queueIndex(push.step.z, i)] : 0u;
+  uint bin = i < binnedCount() ? binToEvaluate(slot) : kNoBin;
   uint place = addToBinRecord(kBinRecords * bin + 1u, true, bin != kNoBin);
   if (bin != kNoBin) pathQueues[queueIndex(3u, place)] = slot;
 }
@@ -560,6 +682,33 @@ void main() {
 #endif
   if (i >= bin.w) return;
   uint slot = pathQueues[queueIndex(3u, bin.y + i)];
+#ifdef MG_NEE_EVALUATES_EMISSION
+  if (binsLightPoints()) {
+    // The light sample's point, as the megakernel's sampleDirectLight evaluates it once its
+    // shadow ray is unblocked: the surface seen from the shading point along wi, a zero cone,
+    // the graph without the cache; its emission scales the sample's contribution.
+    uvec4 hitBits = floatBitsToUint(pathState[fieldIndex(kFieldLightHit, slot)]);
+    vec4 lightOrigin = pathState[fieldIndex(kFieldLightOrigin, slot)];
+    HitInfo lightHit;
+    lightHit.instanceIndex = hitBits.x;
+    lightHit.primitiveIndex = hitBits.y;
+    lightHit.barycentrics = uintBitsToFloat(hitBits.zw);
+    lightHit.t = lightOrigin.w;
+    RayCone pointCone;
+    pointCone.width = 0.0;
+    pointCone.spread = 0.0;
+    vec4 shadowDirection = pathState[fieldIndex(kFieldShadowDirection, slot)];
+    SurfaceHit light = surfaceAt(lightHit, lightOrigin.xyz, shadowDirection.xyz, pointCone);
+    setPathInputs(light.inputs, unpackLightPathState(floatBitsToUint(shadowDirection.w)),
+                  lightHit.t);
+    light.inputs.textureBase = MG_TEXTURE_BASE;
+    MaterialOutputs emitter;
+    MG_EVALUATE_MATERIAL(light.inputs, emitter);
+    vec3 contribution = pathState[fieldIndex(kFieldShadowContribution, slot)].rgb;
+    pathState[fieldIndex(kFieldRadiance, slot)].rgb += contribution * emitter.emission;
+    return;
+  }
+#endif
   vec3 origin, direction;
   RayCone cone;
   SurfaceHit s = surfaceOfPath(slot, origin, direction, cone);
@@ -627,23 +776,42 @@ void main() {
       // Key bounce + 1: key 0 is the camera ray's (the generate pass).
       Rng rng = rngForPathVertex(pixelOfSlot(slot), sampleIndexOf(push.step.x), bounce + 1u,
                                  frame.image.w);
+      // A look (SceneCulling::look, frame.culling.w) traces only for its counts, as the
+      // megakernel's: no light sample, so its paths draw the megakernel's numbers too.
+      bool countsOnly = false;
+#ifdef MG_HIT_FEEDBACK
+      countsOnly = (frame.culling.w & kCullingLook) != 0u;
+#endif
+      PathState path = loadPathState(slot);  // the vertex's: its ray's state
       LightSample light;
       vec3 fCos;
-      if (sampleLightBeforeShadowRay(p, rng, light, fCos)) {
+      if (!countsOnly && sampleLightBeforeShadowRay(p, rng, light, fCos)) {
         queueShadow = true;
-#ifdef MG_EMISSIVE_NEE
+        float evaluate = 0.0;  // the shadow pass queues the point for its emitter's graph
+#if defined(MG_NEE_EVALUATES_EMISSION)
+        // An emitter whose emission is its graph's: the point for the material pass after the
+        // shadow pass, which multiplies the contribution by the emission there.
+        if (light.evaluate) {
+          evaluate = 1.0;
+          pathState[fieldIndex(kFieldLightHit, slot)] = uintBitsToFloat(uvec4(
+              light.hit.instanceIndex, light.hit.primitiveIndex, floatBitsToUint(light.hit.barycentrics)));
+          pathState[fieldIndex(kFieldLightOrigin, slot)] = vec4(p.position, light.hit.t);
+        }
+#elif defined(MG_EMISSIVE_NEE)
         // A free material emits nothing: an emitter whose emission is its graph's adds 0
         // (the megakernel's floor traces that ray and then drops it).
         queueShadow = !light.evaluate;
+#endif
+#ifdef MG_EMISSIVE_NEE
         light.incident *= lightSampleMisWeight(light, p, continues);
 #endif
         pathState[fieldIndex(kFieldShadowOrigin, slot)] =
             vec4(offsetRayOrigin(p.position, p.geometricNormal), light.tMax);
-        pathState[fieldIndex(kFieldShadowDirection, slot)] = vec4(light.wi, 0.0);
+        pathState[fieldIndex(kFieldShadowDirection, slot)] =
+            vec4(light.wi, uintBitsToFloat(packLightPathState(path)));
         pathState[fieldIndex(kFieldShadowContribution, slot)] =
-            vec4(throughput * (fCos * light.incident), 0.0);
+            vec4(throughput * (fCos * light.incident), evaluate);
       }
-      PathState path = loadPathState(slot);
       if (continues && continuePath(p, s, rng, throughput, previousBsdfPdf, cone, origin,
                                     direction, path)) {
         queueNext = true;
@@ -687,8 +855,16 @@ void main() {
   vec4 origin = pathState[fieldIndex(kFieldShadowOrigin, slot)];
   vec3 direction = pathState[fieldIndex(kFieldShadowDirection, slot)].xyz;
   if (traceShadow(origin.xyz, direction, origin.w)) return;
-  vec3 contribution = pathState[fieldIndex(kFieldShadowContribution, slot)].rgb;
-  pathState[fieldIndex(kFieldRadiance, slot)].rgb += contribution;
+  vec4 contribution = pathState[fieldIndex(kFieldShadowContribution, slot)];
+#ifdef MG_NEE_EVALUATES_EMISSION
+  // An emitter's graph to evaluate: into the light points' queue, the bounce's live queue,
+  // which the shade pass has read (the binning and material passes that follow evaluate it).
+  if (contribution.w != 0.0) {
+    pathQueues[queueIndex(push.step.z, atomicAdd(control.counts.w, 1u))] = slot;
+    return;
+  }
+#endif
+  pathState[fieldIndex(kFieldRadiance, slot)].rgb += contribution.rgb;
 }
 
 #elif defined(MG_WAVEFRONT_FINISH)
@@ -700,17 +876,24 @@ void main() {
   if (slot >= push.chunk.z) return;
   uint round = push.step.x;
   vec3 radiance = pathState[fieldIndex(kFieldRadiance, slot)].rgb;
-  vec3 sum = round == 0u ? vec3(0.0) : pathState[fieldIndex(kFieldPixelSum, slot)].rgb;
+  vec4 pixelSum = pathState[fieldIndex(kFieldPixelSum, slot)];
+  vec3 sum = round == 0u ? vec3(0.0) : pixelSum.rgb;
   if (!any(isnan(radiance)) && !any(isinf(radiance))) sum += radiance;
   uint pathCount = max(frame.path.x, 1u);
   if (round + 1u < pathCount) {
-    pathState[fieldIndex(kFieldPixelSum, slot)] = vec4(sum, 0.0);
+    pathState[fieldIndex(kFieldPixelSum, slot)] = vec4(sum, pixelSum.w);
     return;
   }
   vec3 mean = sum / float(pathCount);
-  uint sampleIndex = frame.environmentSize.z;
   uint pixel = pixelOfSlot(slot);
+#ifdef MG_DEBUG_CACHE_MISSES
+  // Thesis Fig. 6.9, as the megakernel's renderPixel: red where a path of this pixel missed
+  // the cache in this frame (the lookup pass's flag), this frame's alone (no running mean).
+  accumulation[pixel] = vec4(pixelSum.w != 0.0 ? vec3(1.0, 0.0, 0.0) : mean, 1.0);
+#else
+  uint sampleIndex = frame.environmentSize.z;
   vec3 previous = sampleIndex == 0u ? vec3(0.0) : accumulation[pixel].rgb;
   accumulation[pixel] = vec4(mix(previous, mean, 1.0 / float(sampleIndex + 1u)), 1.0);
+#endif
 }
 #endif

@@ -1,0 +1,110 @@
+// LiPaC's hit feedback (seeds/001 §3.3.2) as both architectures count it: which pixels and
+// paths count in a counting frame, with what weight, and the counts of one invocation through
+// a two-slot buffer into the counters. The megakernel (path_tracer.glsl) counts every path
+// ray of its pixel's paths; the wavefront's trace pass (wavefront.glsl) counts the one ray it
+// traces. The same pixels, paths and weights in both, so at one seed they count the same
+// sums. Needs FrameConstants `frame`, hit_counters.glsl's `hitCounts` and the backend's
+// traceCountingBox; the host defines MG_HIT_FEEDBACK where LiPaC counts.
+#ifndef MG_HIT_FEEDBACK_GLSL
+#define MG_HIT_FEEDBACK_GLSL
+#include "hit_counters.glsl"
+
+// The paths of a pixel that count this frame (CullingOptions::feedbackPaths): N of P, from
+// the counting frame's index on; every path where N is 0 or at least P.
+uint sampledPathCount(uint pathCount) {
+  uint counted = frame.culling.z;
+  return counted == 0u || counted >= pathCount ? pathCount : counted;
+}
+bool countedPath(uint path, uint pathCount) {
+  uint counted = sampledPathCount(pathCount);
+  uint first = (frame.culling.y * counted) % pathCount;
+  return (path + pathCount - first) % pathCount < counted;
+}
+
+// A path ray counts the instance it hit, and a probe along the same segment through the
+// counting boxes' own TLAS counts the nearest box it crosses before that hit (a hitbox, or an
+// omitted instance's box: the custom index is the counter slot), as the thesis's hitbox
+// closest-hit shader registers the hit and masks out the other boxes: one box per ray, and
+// path rays never traverse a box.
+//
+// The counts of an invocation go through a two-slot buffer first: the P camera rays of a
+// pixel mostly hit one instance, and the bounces of its paths keep returning to a few (the
+// ground, the facade in front), so a run of equal slots costs one atomic instead of one a
+// ray, and the counters most rays hit (the ground's) see far fewer same-address atomics.
+// The sums are the same, so the states and the picture are too.
+//
+// The counts this invocation made, added after the frame's counters (the buffer's last uint)
+// so that the host can check they all arrived (addHitFeedbackTally).
+uint g_feedbackTally = 0u;
+uvec2 g_feedbackSlots = uvec2(0xFFFFFFFFu);
+uvec2 g_feedbackCounts = uvec2(0u);
+
+// Adds a slot's count to its counter; the caller then reuses the slot or is done with it.
+void writeFeedbackSlot(uint i) {
+  if (g_feedbackCounts[i] != 0u) atomicAdd(hitCounts[g_feedbackSlots[i]], g_feedbackCounts[i]);
+}
+
+void bufferHitFeedback(uint slot, uint weight) {
+  g_feedbackTally += weight;
+  if (slot == g_feedbackSlots.x) {
+    g_feedbackCounts.x += weight;
+  } else if (slot == g_feedbackSlots.y) {
+    g_feedbackCounts.y += weight;
+  } else {
+    // The older slot goes; the newer becomes the older.
+    writeFeedbackSlot(1u);
+    g_feedbackSlots.y = g_feedbackSlots.x;
+    g_feedbackCounts.y = g_feedbackCounts.x;
+    g_feedbackSlots.x = slot;
+    g_feedbackCounts.x = weight;
+  }
+}
+
+// What is still buffered, once the invocation's rays are done.
+void flushHitFeedback() {
+  writeFeedbackSlot(0u);
+  writeFeedbackSlot(1u);
+}
+
+// `weight` 0: this ray does not count this frame (hitFeedbackWeight, pathFeedbackWeight).
+void countHitFeedback(vec3 origin, vec3 direction, HitInfo hit, uint weight) {
+  if (weight == 0u) return;
+  if (hit.t >= 0.0) bufferHitFeedback(hit.instanceIndex, weight);
+  uint box = traceCountingBox(origin, direction, hit.t >= 0.0 ? hit.t : kRayTMax);
+  if (box != 0xFFFFFFFFu) bufferHitFeedback(box, weight);
+}
+
+// Sampled feedback (CullingOptions::feedbackStride = N): 1 in N blocks of 8×8 pixels counts
+// its rays, weighted N, a different block each counting frame (frame.culling.y: with
+// --feedback-every K the frames that count are 0, K, 2K, ..., whose own indices picked the
+// same blocks every time at K = N, and the small city's static camera never settled). Whole
+// blocks, so that neighbouring invocations, which mostly share a subgroup (the query
+// backend's 8×8 work groups; the pipeline's launch order is the driver's), skip the probe
+// together.
+uint hitFeedbackWeight(uvec2 pixel) {
+  uint stride = max(frame.culling.x, 1u);
+  uvec2 block = pixel >> 3u;
+  return (block.x + 5u * block.y + frame.culling.y) % stride == 0u ? stride : 0u;
+}
+
+// Sampled paths (CullingOptions::feedbackPaths = N, frame.culling.z; 0: every path): N of
+// the pixel's P paths count their rays, weighted P / N besides the block's weight, other
+// paths each counting frame. The same paths in every pixel, so a subgroup, whose lanes run
+// path p together, skips the probes together; and every pixel counts, so what a few pixels
+// see is counted in every counting frame (which 1 block in N would not do).
+uint pathFeedbackWeight(uint path, uint pathCount, uint weight) {
+  return countedPath(path, pathCount) ? weight * (pathCount / sampledPathCount(pathCount))
+                                      : 0u;
+}
+
+// The invocation's tally into the buffer's last uint, once it flushed its counts; with
+// MG_SUBGROUP_RAY_COUNT every invocation of the subgroup must come here.
+void addHitFeedbackTally() {
+#ifdef MG_SUBGROUP_RAY_COUNT
+  uint subgroupTally = subgroupAdd(g_feedbackTally);
+  if (subgroupElect() && subgroupTally > 0u) atomicAdd(hitCounts[hitCounts.length() - 1], subgroupTally);
+#else
+  if (g_feedbackTally > 0u) atomicAdd(hitCounts[hitCounts.length() - 1], g_feedbackTally);
+#endif
+}
+#endif  // MG_HIT_FEEDBACK_GLSL
