@@ -39,6 +39,9 @@ std::string wavefrontOptionGap(const RendererOptions& options) {
     return "it has no --debug-misses view";
   if (options.debugCullingSize > 0)
     return "it has no --debug-culling view";
+  if (cache.mode == CacheMode::Texel && cache.filter != CacheFilter::Nearest)
+    return "its lookup pass reads one entry a hit; --cache-filter trilinear and stochastic are "
+           "the megakernel's";
   if (cache.mode == CacheMode::Tile &&
       (cache.tileFill == TileFill::Subgroup || cache.groupByMaterial || cache.testRepacks))
     return "it computes missing tiles from the deferred fill's queue; --tile-fill subgroup and "
