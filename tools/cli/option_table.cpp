@@ -232,8 +232,8 @@ const Option kOptions[] = {
      "", kShown, S::Memoization, kCommon, N::Cache, kBoth,
      [](O& o, const Value&) { o.renderer.cache.snapUv = true; }},
     {"--cache-filter", ValueType::Choice, "nearest|trilinear|stochastic",
-     "texel lookups: the nearest texel; a blend of the 8 texels (16 voxels) around\n"
-     "the hit on 2 levels; or one of them drawn by its weight (megakernel only)",
+     "the nearest entry; the 8 texels (16 voxels) of 2 levels, blended;\n"
+     "or one of them by weight",
      "nearest", kShown, S::Memoization, kAdvanced, N::Cache, kBoth,
      [](O& o, const Value& v) { o.renderer.cache.filter = runtime::parseCacheFilter(v.text); }},
     {"--floor-materials", ValueType::Flag, "",
