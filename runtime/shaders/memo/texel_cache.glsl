@@ -702,13 +702,16 @@ MaterialInputs voxelKeyInputs(uint domain, MaterialInputs inputs, uvec2 object, 
   }
 #ifndef MG_OMIT_OBJECT_INPUTS  // an object-space cut reads them, so they are there
   else {
-    // Generated is affine in the object-space position (path_shading.glsl surfaceAt): moved
-    // with it to the centre, and its footprint the voxel's through the same scale.
+    // Generated is affine in the object-space position (path_shading.glsl surfaceAt): the
+    // same map at the centre, and its footprint the voxel's through the same scale. Computed
+    // from the centre alone, not moved from the hit's, so an entry's value is the same to the
+    // bit whichever hit filled it (moved, it differed by float rounding from run to run).
     vec3 toGenerated = 0.5 / meshes[object.y].textureSpaceSize.xyz;
     keyInputs.objectPosition.v = centre;
     keyInputs.objectPosition.x = voxelAxis(0u, size);
     keyInputs.objectPosition.y = voxelAxis(1u, size);
-    keyInputs.generated.v = inputs.generated.v + (centre - inputs.objectPosition.v) * toGenerated;
+    keyInputs.generated.v =
+        (centre - meshes[object.y].textureSpaceLocation.xyz) * toGenerated + 0.5;
     keyInputs.generated.x = keyInputs.objectPosition.x * toGenerated;
     keyInputs.generated.y = keyInputs.objectPosition.y * toGenerated;
   }

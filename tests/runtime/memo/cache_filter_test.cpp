@@ -157,19 +157,26 @@ INSTANTIATE_TEST_SUITE_P(
 
 // A filtered entry is its key's centre value whichever hit filled it, and the stochastic
 // pick is a function of pixel, sample, bounce and seed: two renders at one seed are the same
-// image, bit for bit (tolerance 0), over bounces (L = 3) and frames that reuse entries.
+// image, bit for bit (tolerance 0), over bounces (L = 3) and frames that reuse entries, for a
+// world and an object key, nearest included. (The object key's Generated input once differed
+// by float rounding with the hit that filled an entry; the imported procedural.blend scene
+// showed it, this small wall did not.)
 TEST(CacheFilter, RendersRepeatPerSeed) {
-  Scene scene = testing::wallScene(kWorldRampGraph, true);
-  // The ball before the wall, in the embedded library's sockets: bounces hit the wall.
-  scene.materials.at(1).graphText =
-      "material Ball;\nBaseColorOutput In=(0.7, 0.3, 0.2);\nRoughnessOutput In=0.3;\n";
-  RenderSettings s = settings(3);
-  s.raysPerPath = 3;
-  for (CacheFilter filter : {CacheFilter::Trilinear, CacheFilter::Stochastic}) {
-    const RenderResult a = Renderer(options(CacheMode::Texel, filter)).render(scene, s);
-    const RenderResult b = Renderer(options(CacheMode::Texel, filter)).render(scene, s);
-    ASSERT_EQ(a.image.rgba.size(), b.image.rgba.size());
-    EXPECT_EQ(a.image.rgba, b.image.rgba) << cacheFilterName(filter);
+  for (const char* graph : {kWorldRampGraph, kObjectRampGraph}) {
+    Scene scene = testing::wallScene(graph, true);
+    // The ball before the wall, in the embedded library's sockets: bounces hit the wall.
+    scene.materials.at(1).graphText =
+        "material Ball;\nBaseColorOutput In=(0.7, 0.3, 0.2);\nRoughnessOutput In=0.3;\n";
+    RenderSettings s = settings(3);
+    s.raysPerPath = 3;
+    for (CacheFilter filter :
+         {CacheFilter::Nearest, CacheFilter::Trilinear, CacheFilter::Stochastic}) {
+      const RenderResult a = Renderer(options(CacheMode::Texel, filter)).render(scene, s);
+      const RenderResult b = Renderer(options(CacheMode::Texel, filter)).render(scene, s);
+      ASSERT_EQ(a.image.rgba.size(), b.image.rgba.size());
+      EXPECT_EQ(a.image.rgba, b.image.rgba)
+          << cacheFilterName(filter) << " on " << scene.materials.at(0).name;
+    }
   }
 }
 
