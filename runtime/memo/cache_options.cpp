@@ -11,6 +11,9 @@ namespace memograph::runtime {
 static_assert(static_cast<std::uint32_t>(CacheEviction::Lru) == gpu::kCacheEvictionLru &&
               static_cast<std::uint32_t>(CacheEviction::Lrw) == gpu::kCacheEvictionLrw &&
               static_cast<std::uint32_t>(CacheEviction::Random) == gpu::kCacheEvictionRandom);
+static_assert(static_cast<std::uint32_t>(CacheFilter::Nearest) == gpu::kCacheFilterNearest &&
+              static_cast<std::uint32_t>(CacheFilter::Trilinear) == gpu::kCacheFilterTrilinear &&
+              static_cast<std::uint32_t>(CacheFilter::Stochastic) == gpu::kCacheFilterStochastic);
 
 const char* cacheModeName(CacheMode mode) {
   switch (mode) {
@@ -44,6 +47,29 @@ const char* cacheValueFormatName(CacheValueFormat format) {
 
 const char* cacheClockName(CacheClock clock) {
   return clock == CacheClock::Counter ? "counter" : "frame";
+}
+
+const char* cacheFilterName(CacheFilter filter) {
+  switch (filter) {
+    case CacheFilter::Nearest:
+      return "nearest";
+    case CacheFilter::Trilinear:
+      return "trilinear";
+    case CacheFilter::Stochastic:
+      return "stochastic";
+  }
+  return "nearest";
+}
+
+CacheFilter parseCacheFilter(const std::string& text) {
+  if (text == "nearest")
+    return CacheFilter::Nearest;
+  if (text == "trilinear")
+    return CacheFilter::Trilinear;
+  if (text == "stochastic")
+    return CacheFilter::Stochastic;
+  throw std::invalid_argument("unknown --cache-filter '" + text +
+                              "' (choose nearest, trilinear or stochastic)");
 }
 
 CacheMode parseCacheMode(const std::string& text) {
@@ -142,6 +168,10 @@ void validateCacheOptions(const CacheOptions& cache) {
                                 ")");
   if (!std::isfinite(cache.mipBias))
     throw std::invalid_argument("--mip-bias must be finite");
+  if (cache.mode == CacheMode::Tile && cache.filter != CacheFilter::Nearest)
+    throw std::invalid_argument(std::string("--cache-filter ") + cacheFilterName(cache.filter) +
+                                " is the texel cache's (--cache texel); the tile cache filters "
+                                "with --filter bilinear");
   if (cache.mode == CacheMode::Tile) {
     const std::string size =
         std::to_string(cache.tileWidth) + "x" + std::to_string(cache.tileHeight);
@@ -244,6 +274,9 @@ std::vector<std::string> cacheShaderDefines(const CacheOptions& cache, std::uint
     defines.push_back("MG_CACHE_SNAP_UV=1");
   if (cache.secondaryOnly)
     defines.push_back("MG_CACHE_SECONDARY_ONLY=1");
+  if (cache.mode == CacheMode::Texel && cache.filter != CacheFilter::Nearest)
+    defines.push_back("MG_CACHE_FILTER=" +
+                      std::to_string(static_cast<std::uint32_t>(cache.filter)));
   if (cache.mode == CacheMode::Tile) {
     defines.push_back("MG_CACHE_ENTRY_WORDS=" + std::to_string(entryValueWords(cache, valueCount)));
     defines.push_back("MG_TILE_W=" + std::to_string(cache.tileWidth));

@@ -36,6 +36,13 @@ enum class CacheClock { Frame, Counter };
 // to survive a callable in place, which NVIDIA's raygen does not guarantee
 // (docs/design/memoization.md, "The tile cache").
 enum class TileFill { Subgroup, Deferred };
+// How the texel cache reads its key space (docs/design/memoization.md, "Filtering"): the
+// nearest entry of the nearest level; the trilinear blend of the entries around the hit at
+// the two levels around its continuous level (thesis §7; 8 lookups for uv keys, 16 for voxel
+// keys); or one of those entries picked per sample with its weight as probability (seed 002
+// §3.2), one lookup, the trilinear value in expectation. Values are the shader's
+// kCacheFilter*.
+enum class CacheFilter { Nearest = 0, Trilinear = 1, Stochastic = 2 };
 
 const char* cacheModeName(CacheMode mode);
 const char* cacheEvictionName(CacheEviction eviction);
@@ -44,6 +51,7 @@ const char* cacheClockName(CacheClock clock);
 const char* tileFilterName(TileFilter filter);
 const char* tileStorageName(TileStorage storage);
 const char* tileFillName(TileFill fill);
+const char* cacheFilterName(CacheFilter filter);
 // Parse "none"/"texel", "none"/"lru"/"lrw"/"random", "fp32"/"fp16" and "frame"/"counter";
 // throw std::invalid_argument naming the choices.
 CacheMode parseCacheMode(const std::string& text);
@@ -55,6 +63,8 @@ TileFilter parseTileFilter(const std::string& text);
 TileStorage parseTileStorage(const std::string& text);
 // "subgroup"/"deferred".
 TileFill parseTileFill(const std::string& text);
+// "nearest"/"trilinear"/"stochastic".
+CacheFilter parseCacheFilter(const std::string& text);
 
 // The entry count S when CacheOptions::entries is unset: the best rows measured on the GPU
 // machine, fitted to the device (material_cache.cpp: halved while over the storage-buffer
@@ -104,6 +114,10 @@ struct CacheOptions {
   std::optional<std::uint32_t> clockShift;
   // §6.1: evaluate a miss at its texel's centre, so an entry holds the texel's value.
   bool snapUv = false;
+  // The texel cache's filter (docs/design/memoization.md, "Filtering"); a filtered miss is
+  // always evaluated at its entry's centre, with or without snapUv. Megakernel only (the
+  // wavefront's lookup pass reads one entry a hit).
+  CacheFilter filter = CacheFilter::Nearest;
   // §6.1, Fig. 6.6: primary hits evaluate their graph directly; only bounces >= 1 cache.
   bool secondaryOnly = false;
   // Tile cache (§5.4): texels stored per tile (W x H <= the device's subgroup size; the

@@ -232,6 +232,7 @@ void MaterialCache::describe(RenderStats& stats) const {
   stats.cacheClock = cacheClockName(cacheClockOf(options_));
   stats.cacheSnapUv = options_.snapUv;
   stats.cacheSecondaryOnly = options_.secondaryOnly;
+  stats.cacheFilter = cacheFilterName(options_.filter);
   if (options_.mode == CacheMode::Tile)
     stats.cacheTile =
         std::to_string(options_.tileWidth) + "x" + std::to_string(options_.tileHeight) + " " +

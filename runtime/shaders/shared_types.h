@@ -199,6 +199,15 @@ MG_CONSTANT(uint, kCacheEvictionNone, 0);    // insert only into an empty entry
 MG_CONSTANT(uint, kCacheEvictionLru, 1);     // least recently used, frame clock in the metadata
 MG_CONSTANT(uint, kCacheEvictionLrw, 2);     // least recently written, frame clock
 MG_CONSTANT(uint, kCacheEvictionRandom, 3);  // a pseudo-random entry of the probe range
+// How the texel cache reads a key space (MG_CACHE_FILTER; docs/design/memoization.md,
+// "Filtering"): the nearest texel or voxel of the nearest level (eq. 5.5-5.7); trilinear, the
+// 2x2 texels (2x2x2 voxels) around the hit at the two levels around its continuous level,
+// blended (thesis §7's trilinear interpolation between mip levels); stochastic, one of those
+// entries picked with its blend weight as probability (seed 002 §3.2's random selection by
+// weight), whose mean over samples is the trilinear value.
+MG_CONSTANT(uint, kCacheFilterNearest, 0);
+MG_CONSTANT(uint, kCacheFilterTrilinear, 1);
+MG_CONSTANT(uint, kCacheFilterStochastic, 2);
 // Bits of a material's output mask (which MaterialOutputs members an entry stores, in this
 // order: baseColor 3 floats, metallic 1, roughness 1, normal 3, emission 3, opacity 1,
 // specular 1, specularTint 1, cyclesPrincipled 1; the later members came last, so the older

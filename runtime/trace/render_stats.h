@@ -166,6 +166,8 @@ struct RenderStats {
   std::string cacheClock;             // "frame" or "counter" (§5.3.3)
   bool cacheSnapUv = false;           // misses evaluated at the texel centre (§6.1)
   bool cacheSecondaryOnly = false;    // primary hits bypass the cache (Fig. 6.6)
+  // The texel cache's --cache-filter: "nearest", "trilinear" or "stochastic".
+  std::string cacheFilter = "nearest";
   std::uint64_t cacheBytes = 0;
   std::string culling = "none";  // --culling: none, frustum or lipac
 

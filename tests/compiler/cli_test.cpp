@@ -306,6 +306,24 @@ TEST_F(CliTest, RenderAndBenchRefuseBadCacheOptionValues) {
       EXPECT_NE(run.output.find("unknown option '" + removed + "'"), std::string::npos)
           << run.output;
     }
+    const auto filter = runCli(command + " --cache texel --cache-filter bilinear");
+    EXPECT_EQ(filter.exitCode, 2) << filter.output;
+    EXPECT_NE(
+        filter.output.find("--cache-filter takes nearest, trilinear or stochastic, not 'bilinear'"),
+        std::string::npos)
+        << filter.output;
+    // The tile cache filters with --filter; the wavefront's lookup pass reads one entry.
+    const auto tileFilter = runCli(command + " --cache tile --cache-filter trilinear");
+    EXPECT_EQ(tileFilter.exitCode, 2) << tileFilter.output;
+    EXPECT_NE(tileFilter.output.find("is the texel cache's"), std::string::npos)
+        << tileFilter.output;
+    const auto wavefrontFilter =
+        runCli(command + " --shading wavefront --cache texel --cache-filter stochastic");
+    EXPECT_EQ(wavefrontFilter.exitCode, 2) << wavefrontFilter.output;
+    EXPECT_NE(wavefrontFilter.output.find("--cache-filter trilinear and stochastic are the "
+                                          "megakernel's"),
+              std::string::npos)
+        << wavefrontFilter.output;
     const auto probe = runCli(command + " --floor-materials --cache texel --probe 17");
     EXPECT_EQ(probe.exitCode, 2) << probe.output;
     const auto device = runCli(command + " --device x");  // shared renderer options
@@ -375,9 +393,9 @@ TEST_F(CliTest, RenderAndBenchHelpListTheCommonOptionsAndHelpAllTheRest) {
     for (const char* option : {"--cache", "--snap-uv", "--floor-materials", "--culling",
                                "--shading", "Material memoization", "--help-all"})
       EXPECT_NE(help.output.find(option), std::string::npos) << command << " " << option;
-    for (const char* option :
-         {"--value-format", "--eviction", "--clock", "--tile-storage", "--cache-secondary-only",
-          "--look-appearing", "--blas-budget", "--dispatch-paths", "--wavefront-paths"}) {
+    for (const char* option : {"--value-format", "--eviction", "--clock", "--tile-storage",
+                               "--cache-secondary-only", "--cache-filter", "--look-appearing",
+                               "--blas-budget", "--dispatch-paths", "--wavefront-paths"}) {
       EXPECT_EQ(help.output.find(option), std::string::npos) << command << " " << option;
       EXPECT_NE(all.output.find(option), std::string::npos) << command << " " << option;
     }

@@ -224,6 +224,7 @@ void printCacheAndCulling(const BenchRun& run) {
               << stats.cacheClock << ", " << stats.cacheValueFormat << ", " << stats.cacheBytes
               << " B" << (stats.cacheTile.empty() ? "" : ", tiles " + stats.cacheTile)
               << (stats.cacheSnapUv ? ", snapped uv" : "")
+              << (stats.cacheFilter != "nearest" ? ", filter " + stats.cacheFilter : "")
               << (stats.cacheSecondaryOnly ? ", secondary hits only" : "") << "): median hit rate "
               << 100.0 * run.summary.medianCacheHitRate << " %, total "
               << 100.0 * run.summary.totalCacheHitRate << " %\n";

@@ -231,6 +231,11 @@ const Option kOptions[] = {
      "eq. 5.16-5.17): a texel-cached render becomes repeatable",
      "", kShown, S::Memoization, kCommon, N::Cache, kBoth,
      [](O& o, const Value&) { o.renderer.cache.snapUv = true; }},
+    {"--cache-filter", ValueType::Choice, "nearest|trilinear|stochastic",
+     "the nearest entry; the 8 texels (16 voxels) of 2 levels, blended;\n"
+     "or one of them by weight",
+     "nearest", kShown, S::Memoization, kAdvanced, N::Cache, kBoth,
+     [](O& o, const Value& v) { o.renderer.cache.filter = runtime::parseCacheFilter(v.text); }},
     {"--floor-materials", ValueType::Flag, "",
      "every material replaced by constants (the cost of a free material); with\n"
      "--cache, the cache's own cost: the same lookups, misses that cost nothing",

@@ -15,6 +15,9 @@
 //                            of reads, one clock atomic per subgroup (cacheStampReads),
 //   MG_CACHE_QUIESCENT_READS (optional) no invocation of the including dispatch writes a
 //                            value: reads skip §5.3.4's check (MG_CACHE_COHERENT).
+//   MG_CACHE_FILTER          (optional; the megakernel only) kCacheFilter{Trilinear,
+//                            Stochastic}: how a lookup reads the key space (cacheFilterEntry);
+//                            unset, the nearest entry of the nearest level.
 //   MG_CACHE_CUTS            (optional; the megakernel's switch dispatch only) materials
 //                            that are not cacheable as a whole are keyed by their cut
 //                            (compiler/cut.h): uv texels, object-space or world-space voxels
@@ -275,6 +278,24 @@ uint cacheFixedPoint(float voxel) {
   return voxel < 0.0 ? 0x80000000u | uint(-voxel) : uint(voxel);
 }
 
+// The key of voxel `voxel` (integer coordinates, each within ±kCacheVoxelLimit) of level m;
+// `objectWord` the instance or mesh (0 for world space).
+CacheKey cacheVoxelKeyOf(uvec4 info, uint objectWord, int m, vec3 voxel) {
+  uint x = cacheFixedPoint(voxel.x), y = cacheFixedPoint(voxel.y), z = cacheFixedPoint(voxel.z);
+  uint h0 = cachePcg(objectWord ^ info.y);
+  uint h1 = cachePcg(objectWord ^ info.z);
+  h0 = cachePcg(uint(m) ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h0))));
+  h1 = cachePcg(uint(m) ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h1))));
+  if (h1 == kCacheKeyEmpty) h1 = 1u;
+  if (h1 == kCacheKeyLock) h1 = kCacheKeyLock - 1u;
+  CacheKey key;
+  key.base = h0 % (frame.cache.x - uint(MG_CACHE_PROBE));
+  key.hash = h1;
+  key.texelUv = vec2(0.0);
+  key.texelSize = 0.0;
+  return key;
+}
+
 // The voxel key of `p` with footprint axes `axis1`, `axis2`; `objectWord` the instance or mesh
 // (0 for world space). `centre` and `size` are the voxel's centre and width. False when the
 // position is unusable (non-finite, or its voxel outside the fixed-point range).
@@ -294,15 +315,7 @@ bool cacheVoxelKeyFor(uvec4 info, uint objectWord, vec3 p, vec3 axis1, vec3 axis
   if (isnan(level) || any(isnan(p)) || any(isinf(p)) ||
       any(greaterThanEqual(abs(voxel), vec3(kCacheVoxelLimit))))
     return false;
-  uint x = cacheFixedPoint(voxel.x), y = cacheFixedPoint(voxel.y), z = cacheFixedPoint(voxel.z);
-  uint h0 = cachePcg(objectWord ^ info.y);
-  uint h1 = cachePcg(objectWord ^ info.z);
-  h0 = cachePcg(uint(m) ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h0))));
-  h1 = cachePcg(uint(m) ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h1))));
-  if (h1 == kCacheKeyEmpty) h1 = 1u;
-  if (h1 == kCacheKeyLock) h1 = kCacheKeyLock - 1u;
-  key.base = h0 % (frame.cache.x - uint(MG_CACHE_PROBE));
-  key.hash = h1;
+  key = cacheVoxelKeyOf(info, objectWord, m, voxel);
   return true;
 }
 
@@ -738,18 +751,252 @@ uvec4 cutInfoOf(uint materialId) {
                                                         : uvec4(0u);
 }
 
+// The inputs a voxel key's cut is evaluated with: the voxel's centre, with the footprint of
+// one voxel along x and y of its space, so the value is the key's whichever hit asks.
+// `domain` kCacheCutWorld or kCacheCutObject, `object` the hit's (instance, mesh).
+MaterialInputs voxelKeyInputs(uint domain, MaterialInputs inputs, uvec2 object, vec3 centre,
+                              float size) {
+  MaterialInputs keyInputs = inputs;
+  if (domain == kCacheCutWorld) {
+    keyInputs.position.v = centre;
+    keyInputs.position.x = voxelAxis(0u, size);
+    keyInputs.position.y = voxelAxis(1u, size);
+  }
+#ifndef MG_OMIT_OBJECT_INPUTS  // an object-space cut reads them, so they are there
+  else {
+    // Generated is affine in the object-space position (path_shading.glsl surfaceAt): the
+    // same map at the centre, and its footprint the voxel's through the same scale. Computed
+    // from the centre alone, not moved from the hit's, so an entry's value is the same to the
+    // bit whichever hit filled it (moved, it differed by float rounding from run to run).
+    vec3 toGenerated = 0.5 / meshes[object.y].textureSpaceSize.xyz;
+    keyInputs.objectPosition.v = centre;
+    keyInputs.objectPosition.x = voxelAxis(0u, size);
+    keyInputs.objectPosition.y = voxelAxis(1u, size);
+    keyInputs.generated.v =
+        (centre - meshes[object.y].textureSpaceLocation.xyz) * toGenerated + 0.5;
+    keyInputs.generated.x = keyInputs.objectPosition.x * toGenerated;
+    keyInputs.generated.y = keyInputs.objectPosition.y * toGenerated;
+  }
+#endif
+  return keyInputs;
+}
+
+// The instance where the graph reads Object Info's per-instance members, else the mesh:
+// object-space values are the mesh's (Generated needs its texture space), shared by its
+// instances. Materials sharing a graph share one choice, so the two never mix.
+uint cutObjectWord(uvec4 cut, uvec2 object) { return cut.z != 0u ? object.x : object.y; }
+#endif  // MG_CACHE_CUTS
+
+#ifdef MG_CACHE_FILTER
+// Filtering (docs/design/memoization.md, "Filtering"). Nearest reads the one entry whose
+// texel (eq. 5.6-5.7) or voxel (seed 002 §3.1) holds the hit, at the level round(L) of the
+// continuous level L = -log2(l_min) + bias (eq. 5.5): where a texel, voxel or level boundary
+// crosses a surface the value steps. Thesis §7 proposes trilinear interpolation between mip
+// levels: at levels floor(L) and floor(L) + 1 the entries whose centres surround the hit (2x2
+// texels, 2x2x2 voxels), bilinearly (trilinearly) weighted in each level and linearly across
+// the two, each entry evaluated at its centre on a miss. MG_CACHE_FILTER ==
+// kCacheFilterTrilinear reads all of them and blends; kCacheFilterStochastic reads one, picked
+// with its weight as probability (seed 002 §3.2's random selection by weight, instead of its
+// Fig. 9a jitter; for fixed cells the two are the same: jittering the point uniformly by up to
+// half a cell and taking the cell that holds it picks a cell with its linear weight). Its
+// expectation is the trilinear value, so the step averages out under accumulation at the cost
+// of one lookup, not 8 or 16.
+
+// The stochastic pick's random numbers: path_tracer.glsl sets the key before each material
+// evaluation from the path vertex's (pixel, sample, bounce, seed), so the picks repeat per seed
+// and differ per sample; hashed once more so they are not the vertex's shading numbers.
+uint g_cacheFilterKey = 0u;
+uint g_cacheFilterDimension = 0u;
+
+float cacheFilterRandom() {
+  uint word = cachePcg(g_cacheFilterKey ^ cachePcg(g_cacheFilterDimension));
+  g_cacheFilterDimension += 1u;
+  return float(word >> 8u) * (1.0 / 16777216.0);
+}
+
+// Where a filtered lookup reads a key space: the hit's position in it (uv: z = 0), the
+// cells' place (cell k's centre lies at (k + centreOffset) 2^-m: 0 for texels, which round,
+// 0.5 for voxels, which floor), the coarser level and the finer level's weight.
+struct CacheFilterSite {
+  vec3 position;
+  uint dimensions;  // 2 (uv texels) or 3 (voxels)
+  float centreOffset;
+  int coarseLevel;    // floor(L); the finer level is coarseLevel + 1
+  float fineWeight;   // L - floor(L)
+};
+
+// The coarse level and the weight of the fine one for the continuous level `level` within
+// ±`range` (the nearest filter's clamp).
+void cacheFilterLevels(float level, float range, inout CacheFilterSite site) {
+  float clamped = clamp(level, -range, range);
+  site.coarseLevel = int(min(floor(clamped), range - 1.0));
+  site.fineWeight = clamped - float(site.coarseLevel);
+}
+
+// The uv site of a hit, with cacheMipLevel's level unrounded. False where cacheMipLevel's is.
+bool cacheUvFilterSite(MaterialInputs inputs, out CacheFilterSite site) {
+  vec2 uv = inputs.uv.v;
+  float lMin = min(length(inputs.uv.x), length(inputs.uv.y));
+  float bias = uintBitsToFloat(frame.cache.z);
+  float level = lMin > 0.0 ? -log2(lMin) + bias : 24.0;
+  site.position = vec3(uv, 0.0);
+  site.dimensions = 2u;
+  site.centreOffset = 0.0;
+  site.coarseLevel = 0;
+  site.fineWeight = 0.0;
+  if (isnan(level) || any(isnan(uv)) || any(isinf(uv))) return false;
+  cacheFilterLevels(level, 24.0, site);
+  return true;
+}
+
+// The voxel site of position `p` with footprint axes `axis1`, `axis2`, with
+// cacheVoxelKeyFor's level unrounded. False when p is not finite or a voxel of the finer level
+// around it (one past floor on each axis) is outside the fixed-point range.
+bool cacheVoxelFilterSite(vec3 p, vec3 axis1, vec3 axis2, out CacheFilterSite site) {
+  float lMin = min(length(axis1), length(axis2));
+  float bias = uintBitsToFloat(frame.cache.z);
+  float level = lMin > 0.0 ? -log2(lMin) + bias : kCacheVoxelLevels;
+  site.position = p;
+  site.dimensions = 3u;
+  site.centreOffset = 0.5;
+  site.coarseLevel = 0;
+  site.fineWeight = 0.0;
+  if (isnan(level) || any(isnan(p)) || any(isinf(p))) return false;
+  cacheFilterLevels(level, kCacheVoxelLevels, site);
+  vec3 fine = floor(p * exp2(float(site.coarseLevel + 1)) - 0.5);
+  return all(lessThan(abs(fine) + 1.0, vec3(kCacheVoxelLimit)));
+}
+
+// Entries a filtered lookup reads at most: both levels' 2^dimensions cells, or one.
+uint cacheFilterEntryCount(CacheFilterSite site) {
+#if MG_CACHE_FILTER == 1  // kCacheFilterTrilinear
+  return 2u << site.dimensions;
+#else
+  return 1u;
+#endif
+}
+
+// Entry `index` (< cacheFilterEntryCount) of the filter at `site`: its level m, its cell
+// (integer coordinates at m; z = 0 for uv) and its weight. Trilinear: index bits are the cell's
+// corner per axis, then the level; the weight is the product of the linear weights. Stochastic:
+// the level, then the corner on each axis, drawn with their linear weights as probabilities, so
+// the entry comes with the trilinear weight as its probability and counts with weight 1.
+void cacheFilterEntry(CacheFilterSite site, uint index, out int m, out vec3 cell,
+                      out float weight) {
+#if MG_CACHE_FILTER == 1
+  uint fine = index >> site.dimensions;
+#else
+  uint fine = cacheFilterRandom() < site.fineWeight ? 1u : 0u;
+#endif
+  m = site.coarseLevel + int(fine);
+  vec3 t = site.position * exp2(float(m)) - site.centreOffset;
+  vec3 lower = floor(t);
+  vec3 f = t - lower;  // 0 in z for uv (position.z = 0, offset 0)
+#if MG_CACHE_FILTER == 1
+  vec3 corner = vec3(uvec3(index, index >> 1u, site.dimensions == 3u ? index >> 2u : 0u) & 1u);
+  vec3 axisWeights = mix(1.0 - f, f, corner);
+  weight = axisWeights.x * axisWeights.y * axisWeights.z *
+           (fine != 0u ? site.fineWeight : 1.0 - site.fineWeight);
+#else
+  vec3 corner = vec3(cacheFilterRandom() < f.x ? 1.0 : 0.0, cacheFilterRandom() < f.y ? 1.0 : 0.0,
+                     cacheFilterRandom() < f.z ? 1.0 : 0.0);
+  weight = 1.0;
+#endif
+  cell = lower + corner;
+}
+
+// One entry of a filtered lookup: its values, read, or on a miss evaluated at `keyInputs` (its
+// centre) — the cut with `throughCut`, else the whole material packed — and inserted under the
+// usual protocol (cacheRead, cacheWrite). Counted as one lookup.
+void cacheReadOrFill(uint materialId, uvec4 info, bool throughCut, CacheKey key,
+                     MaterialInputs keyInputs, out float values[MG_CACHE_VALUES]) {
+  g_cacheLookups += 1u;
+  if (cacheRead(key, values)) {
+    g_cacheHits += 1u;
+    return;
+  }
+  g_cacheMisses += 1u;
+  g_cacheMissed = true;
+#ifdef MG_CACHE_CUTS
+  if (throughCut) {
+    evaluateMaterialCutSwitch(materialId, keyInputs, values);
+  } else
+#endif
+  {
+    MaterialOutputs outputs;
+    evaluateMaterialDirect(materialId, keyInputs, outputs);
+    cachePack(info.x, outputs, values);
+  }
+  cacheWrite(key, values);
+}
+
+// The filtered values at `site` of a uv key (`domain` kCacheCutUv, or kCacheCutNone for a
+// whole material) or a voxel key (kCacheCutWorld, kCacheCutObject with `objectWord`).
+void cacheFilteredValues(uint materialId, uvec4 info, uint domain, uint objectWord,
+                         uvec2 object, MaterialInputs inputs, CacheFilterSite site,
+                         out float blended[MG_CACHE_VALUES]) {
+  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) blended[i] = 0.0;
+  g_cacheFilterDimension = 0u;
+  uint count = cacheFilterEntryCount(site);
+  for (uint index = 0u; index < count; ++index) {
+    int m;
+    vec3 cell;
+    float weight;
+    cacheFilterEntry(site, index, m, cell, weight);
+    if (weight == 0.0) continue;  // the hit lies on the cell's far edge or a level exactly
+    float size = exp2(-float(m));
+    CacheKey key;
+    MaterialInputs keyInputs;
+#ifdef MG_CACHE_CUTS
+    if (site.dimensions == 3u) {
+      key = cacheVoxelKeyOf(info, objectWord, m, cell);
+      keyInputs = voxelKeyInputs(domain, inputs, object, (cell + 0.5) * size, size);
+    } else
+#endif
+    {
+      key = cacheKeyOf(info, m, cell.xy);
+      keyInputs = texelInputs(inputs, cell.xy * size, size);  // exact: 2^-m times an integer
+    }
+    float values[MG_CACHE_VALUES];
+    cacheReadOrFill(materialId, info, domain != kCacheCutNone, key, keyInputs, values);
+    for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) blended[i] += weight * values[i];
+  }
+}
+#endif  // MG_CACHE_FILTER
+
+#ifdef MG_CACHE_CUTS
 // A material keyed by its cut (thesis §7: memoize the part of the graph one key determines;
 // compiler/cut.h): the cache holds the cut's values under a key of its domain, and the rest
 // of the graph always runs with this hit's inputs. A miss evaluates the cut at the key's
 // centre with the key's footprint, always (not only with --snap-uv): the uv texel's centre
 // with one texel along u and v (eq. 5.16-5.17), or the voxel's centre with one voxel along
 // x and y of its space, so an entry holds its key's value whichever hit filled it, and a
-// cached value is a function of the key. `object` is (instance, mesh) of the hit. Returns
-// false, having done nothing, when the hit has no usable key (non-finite coordinates or a
-// voxel outside the fixed-point range): the caller evaluates the whole graph uncached.
+// cached value is a function of the key. With MG_CACHE_FILTER the rest runs with the filter's
+// blend (or pick) of such entries. `object` is (instance, mesh) of the hit. Returns false,
+// having done nothing, when the hit has no usable key (non-finite coordinates or a voxel
+// outside the fixed-point range): the caller evaluates the whole graph uncached.
 bool evaluateMaterialThroughCut(uint materialId, uvec4 cut, uvec2 object, MaterialInputs inputs,
                                 out MaterialOutputs outputs) {
   uvec4 info = cacheInfoOf(materialId);
+  float values[MG_CACHE_VALUES];
+#ifdef MG_CACHE_FILTER
+  CacheFilterSite site;
+  bool usable = false;
+  if (cut.x == kCacheCutUv) {
+    usable = cacheUvFilterSite(inputs, site);
+  } else if (cut.x == kCacheCutWorld) {
+    usable = cacheVoxelFilterSite(inputs.position.v, inputs.position.x, inputs.position.y, site);
+  }
+#ifndef MG_OMIT_OBJECT_INPUTS
+  else if (cut.x == kCacheCutObject) {
+    usable = cacheVoxelFilterSite(inputs.objectPosition.v, inputs.objectPosition.x,
+                                  inputs.objectPosition.y, site);
+  }
+#endif
+  if (!usable) return false;
+  cacheFilteredValues(materialId, info, cut.x, cutObjectWord(cut, object), object, inputs, site,
+                      values);
+#else
   CacheKey key;
   MaterialInputs keyInputs = inputs;
   bool usable = false;
@@ -761,34 +1008,20 @@ bool evaluateMaterialThroughCut(uint materialId, uvec4 cut, uvec2 object, Materi
     float size;
     usable = cacheVoxelKeyFor(info, 0u, inputs.position.v, inputs.position.x, inputs.position.y,
                               key, centre, size);
-    keyInputs.position.v = centre;
-    keyInputs.position.x = voxelAxis(0u, size);
-    keyInputs.position.y = voxelAxis(1u, size);
+    keyInputs = voxelKeyInputs(kCacheCutWorld, inputs, object, centre, size);
   }
-#ifndef MG_OMIT_OBJECT_INPUTS  // an object-space cut reads them, so they are there
+#ifndef MG_OMIT_OBJECT_INPUTS
   else if (cut.x == kCacheCutObject) {
-    // The instance where the graph reads Object Info's per-instance members, else the mesh:
-    // object-space values are the mesh's (Generated needs its texture space), shared by its
-    // instances. Materials sharing a graph share one choice, so the two never mix.
     vec3 centre;
     float size;
-    usable = cacheVoxelKeyFor(info, cut.z != 0u ? object.x : object.y, inputs.objectPosition.v,
+    usable = cacheVoxelKeyFor(info, cutObjectWord(cut, object), inputs.objectPosition.v,
                               inputs.objectPosition.x, inputs.objectPosition.y, key, centre,
                               size);
-    // Generated is affine in the object-space position (path_shading.glsl surfaceAt): moved
-    // with it to the centre, and its footprint the voxel's through the same scale.
-    vec3 toGenerated = 0.5 / meshes[object.y].textureSpaceSize.xyz;
-    keyInputs.objectPosition.v = centre;
-    keyInputs.objectPosition.x = voxelAxis(0u, size);
-    keyInputs.objectPosition.y = voxelAxis(1u, size);
-    keyInputs.generated.v = inputs.generated.v + (centre - inputs.objectPosition.v) * toGenerated;
-    keyInputs.generated.x = keyInputs.objectPosition.x * toGenerated;
-    keyInputs.generated.y = keyInputs.objectPosition.y * toGenerated;
+    keyInputs = voxelKeyInputs(kCacheCutObject, inputs, object, centre, size);
   }
 #endif
   if (!usable) return false;
   g_cacheLookups += 1u;
-  float values[MG_CACHE_VALUES];
   if (cacheRead(key, values)) {
     g_cacheHits += 1u;
   } else {
@@ -797,6 +1030,7 @@ bool evaluateMaterialThroughCut(uint materialId, uvec4 cut, uvec2 object, Materi
     evaluateMaterialCutSwitch(materialId, keyInputs, values);
     cacheWrite(key, values);
   }
+#endif  // MG_CACHE_FILTER
   evaluateMaterialRestSwitch(materialId, inputs, values, outputs);
   return true;
 }
@@ -811,6 +1045,18 @@ void evaluateMaterialCached(uint materialId, uvec2 object, MaterialInputs inputs
     return;
 #endif
   uvec4 info = cacheInfoOf(materialId);
+#ifdef MG_CACHE_FILTER
+  // A whole uv-only material, filtered: its packed outputs blended (or one entry's picked),
+  // then unpacked as a hit's values are.
+  CacheFilterSite site;
+  if (info.x == 0u || frame.cache.x == 0u || !cacheUvFilterSite(inputs, site)) {
+    evaluateMaterialDirect(materialId, inputs, outputs);
+    return;
+  }
+  float blended[MG_CACHE_VALUES];
+  cacheFilteredValues(materialId, info, kCacheCutNone, 0u, object, inputs, site, blended);
+  outputs = cacheUnpack(info.x, blended, inputs);
+#else
   CacheKey key;
   if (info.x == 0u || frame.cache.x == 0u || !cacheKeyFor(info, inputs, key)) {
     evaluateMaterialDirect(materialId, inputs, outputs);
@@ -832,6 +1078,7 @@ void evaluateMaterialCached(uint materialId, uvec2 object, MaterialInputs inputs
 #endif
   cachePack(info.x, outputs, values);
   cacheWrite(key, values);
+#endif  // MG_CACHE_FILTER
 }
 
 #endif  // MG_WAVEFRONT
