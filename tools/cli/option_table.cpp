@@ -344,6 +344,21 @@ const Option kOptions[] = {
      "trace its camera with the hitboxes it faces active",
      "8", kShown, S::Culling, kAdvanced, N::Lipac, kBoth,
      [](O& o, const Value& v) { o.renderer.culling.lookAppearing = v.whole; }},
+    {"--mesh-lods", ValueType::Choice, "on|off",
+     "culled: instances show the coarsest LOD of their mesh whose error stays\n"
+     "within --lod-pixel-error of the ray cones that reach them (or of a pixel at\n"
+     "their distance)",
+     "on", kShown, S::Culling, kAdvanced, N::Nothing, kBoth,
+     [](O& o, const Value& v) {
+       if (v.text != "on" && v.text != "off")
+         throw std::invalid_argument("--mesh-lods takes on or off, not '" + v.text + "'");
+       o.renderer.culling.meshLods = v.text == "on";
+     }},
+    {"--lod-pixel-error", ValueType::Real, "E",
+     "culled: a LOD's error may reach E footprints of the narrowest ray cone at\n"
+     "its instance",
+     "1", kShown, S::Culling, kAdvanced, N::Nothing, kBoth,
+     [](O& o, const Value& v) { o.renderer.culling.lodPixelError = float(v.real); }},
     {"--blas-budget", ValueType::Whole, "MB",
      "culled: evict unused BLASes, least recently used first, past MB mebibytes", "no limit",
      kShown, S::Culling, kAdvanced, N::Nothing, kBoth,
