@@ -1,8 +1,11 @@
 #include "runtime/scene/builtin/mesh_lods.h"
 
+#include <algorithm>
+#include <exception>
 #include <limits>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include <meshoptimizer.h>
 
@@ -122,15 +125,37 @@ std::vector<MeshLod> buildMeshLods(const Mesh& mesh, const MeshLodSettings& sett
   return lods;
 }
 
-void addMeshLods(Scene& scene, const std::vector<std::uint32_t>& meshes,
+void addMeshLods(Scene& scene, const std::vector<std::uint32_t>& listed,
                  const MeshLodSettings& settings) {
-  scene.meshLods.resize(scene.meshes.size());
-  for (const std::uint32_t m : meshes) {
+  // Each mesh once, so that no two threads write one mesh's LODs.
+  std::vector<std::uint32_t> meshes = listed;
+  std::sort(meshes.begin(), meshes.end());
+  meshes.erase(std::unique(meshes.begin(), meshes.end()), meshes.end());
+  for (const std::uint32_t m : meshes)
     if (m >= scene.meshes.size())
       throw std::invalid_argument("addMeshLods: mesh " + std::to_string(m) + " of " +
                                   std::to_string(scene.meshes.size()));
-    scene.meshLods[m] = buildMeshLods(scene.meshes[m], settings);
-  }
+  scene.meshLods.resize(scene.meshes.size());
+  // The meshes are independent, each simplified alone, so threads give the same LODs as one
+  // thread: the full city's 2,000 buildings took 6 s of one core.
+  const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1,
+                                                      std::max<std::size_t>(meshes.size(), 1));
+  std::vector<std::thread> workers;
+  std::vector<std::exception_ptr> failures(threads);
+  for (std::size_t t = 0; t < threads; ++t)
+    workers.emplace_back([&, t] {
+      try {
+        for (std::size_t k = t; k < meshes.size(); k += threads)
+          scene.meshLods[meshes[k]] = buildMeshLods(scene.meshes[meshes[k]], settings);
+      } catch (...) {
+        failures[t] = std::current_exception();
+      }
+    });
+  for (std::thread& worker : workers)
+    worker.join();
+  for (const std::exception_ptr& failure : failures)
+    if (failure)
+      std::rethrow_exception(failure);
 }
 
 }  // namespace memograph::runtime
