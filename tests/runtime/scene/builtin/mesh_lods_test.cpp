@@ -1,4 +1,4 @@
-// Mesh LODs (seeds/001 §3.2; runtime/scene/builtin/mesh_lods.h): each level has fewer
+// Mesh LODs (seeds/001 §3.3.1; runtime/scene/builtin/mesh_lods.h): each level has fewer
 // triangles than the one before within an error that grows, over the mesh's own vertices
 // and attributes; the same mesh gives the same LODs on every run; the city's buildings get
 // them and its shared props and moving flags do not; small or broken meshes get none.
