@@ -2,7 +2,7 @@
 // shows the TLAS's state): each instance's footprint in x and z coloured by its state
 // (larger footprints under smaller ones; none over half the view, i.e. the ground),
 // LiPaC's inactive hitboxes outlined, the camera as a dot with its view direction; with mesh
-// LODs an active instance's colour tells the LOD its BLAS has (seeds/001 §3.2).
+// LODs an active instance's colour tells the LOD its BLAS has (seeds/001 §3.3.1).
 #pragma once
 
 #include <cstdint>

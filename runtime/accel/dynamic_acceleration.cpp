@@ -185,8 +185,9 @@ void DynamicAccelerationStructures::prepareStructures(
     }
     const std::uint32_t wanted = lods_ ? lods_->wanted()[i] : 0;
     needed.push_back(lodMesh(i, wanted));
-    // A LOD switch waits for its BLAS under the build budgets (seeds/001 §3.2: "switches
-    // under a budget"): meanwhile the level shown keeps its BLAS, if it has one.
+    // A LOD switch waits for its BLAS under the build budgets (seeds/001 §3.3.1: "LOD change
+    // requests are only processed up to a certain number of BLAS builds or a number of
+    // processed primitives"): meanwhile the level shown keeps its BLAS, if it has one.
     const std::uint32_t shown = lodMesh(i, shownLods_[i]);
     if (shownLods_[i] != wanted && blasCache_.address(shown))
       needed.push_back(shown);

@@ -6,7 +6,7 @@
 // active instances plus LiPaC's counting boxes (one static unit-cube BLAS, transformed to
 // each omitted instance's or inactive hitbox's bounds). With mesh LODs (Scene::meshLods,
 // CullingOptions::meshLods) an instance shows the LOD InstanceLodChoice picks from the ray
-// cones that reached it, each (mesh, LOD) one BLAS of the cache (seeds/001 §3.2).
+// cones that reached it, each (mesh, LOD) one BLAS of the cache (seeds/001 §3.3.1).
 #pragma once
 
 #include <chrono>

@@ -59,6 +59,8 @@ InstanceLodChoice::InstanceLodChoice(const Scene& scene, const std::vector<Bound
   eligible_.resize(n);
   wanted_.assign(n, 0);
   fromFeedback_.assign(n, 0);
+  sinceFeedback_.assign(n, kFeedbackMemory);
+  chosen_.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const Instance& instance = scene.instances[i];
     instanceMesh_[i] = instance.mesh;
@@ -87,6 +89,10 @@ void InstanceLodChoice::update(const Camera& camera, float pixelSpreadAngle,
     if (!footprints.empty() && footprints[i] != kNoFootprint) {
       std::memcpy(&footprint, &footprints[i], sizeof footprint);
       fromFeedback_[i] = 1;
+      sinceFeedback_[i] = 0;
+    } else if (sinceFeedback_[i] < kFeedbackMemory) {
+      ++sinceFeedback_[i];
+      continue;  // keeps what the feedback chose
     } else {
       // A pixel's width at the nearest point of the instance (0 inside it: the finest).
       footprint = distanceTo(bounds_[i], camera.position) * pixelSpreadAngle;
@@ -95,11 +101,12 @@ void InstanceLodChoice::update(const Camera& camera, float pixelSpreadAngle,
     for (const float e : meshErrors_[instanceMesh_[i]])
       worldErrors_.push_back(e * instanceScale_[i]);
     const std::uint32_t level = lodForFootprint(worldErrors_, footprint, pixelError_);
-    if (level > wanted_[i])
+    if (level > wanted_[i] && chosen_[i])
       wanted_[i] = static_cast<std::uint8_t>(std::max<std::uint32_t>(
           wanted_[i], lodForFootprint(worldErrors_, footprint / kCoarserMargin, pixelError_)));
     else
       wanted_[i] = static_cast<std::uint8_t>(level);
+    chosen_[i] = 1;
   }
 }
 

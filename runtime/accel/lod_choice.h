@@ -1,11 +1,12 @@
-// Which LOD of its mesh each instance shows (seeds/001 §3.2): the coarsest whose
-// simplification error, in world units, stays within `pixelError` pixel footprints at the
-// instance. The footprint is the narrowest ray cone a counted ray brought to the instance in
-// the last counting frame (LiPaC's feedback, path_tracer.glsl bufferHitFootprint), or, for an
-// instance no counted ray hit, a pixel's width at its distance from the camera. Distance
-// alone fails under magnification (§3.2): a curved mirror or a lens narrows the cones that
-// reach a far object below its distance's pixel, and what the cone feedback measures there
-// keeps it detailed. Host-side state only, no Vulkan, so it is tested without a device.
+// Which LOD of its mesh each instance shows (seeds/001 §3.3.1: a BLAS per mesh LOD): the
+// coarsest whose simplification error, in world units, stays within `pixelError` footprints at
+// the instance. The footprint is the narrowest ray cone a counted ray brought to the instance
+// in the last counting frame (LiPaC's feedback, path_tracer.glsl bufferHitFootprint), or, for
+// an instance no counted ray hit, a pixel's width at its distance from the camera. Distance
+// alone fails under magnification (§3.1.1: "curved mirrors that can significantly magnify
+// objects in the distance"): a curved mirror narrows the cones that reach a far object below
+// its distance's pixel, and what the cone feedback measures there keeps it detailed.
+// Host-side state only, no Vulkan, so it is tested without a device.
 #pragma once
 
 #include <cstdint>
@@ -38,9 +39,13 @@ class InstanceLodChoice {
 
   // Before a frame: `footprints`, one per instance, a counted hit's narrowest cone width as
   // float bits (kNoFootprint: none), from the last counting frame (empty: no feedback, every
-  // instance by its distance). A coarser level than the one chosen last needs its error
-  // within the footprint by kCoarserMargin, so that a footprint that wavers near a level's
-  // edge does not switch (and build) back and forth; a finer one is taken at once.
+  // instance by its distance). An instance the feedback reached in one of the last
+  // kFeedbackMemory updates keeps the level it chose while no counted ray reaches it: sampled
+  // feedback (1 in N pixel blocks) counts an instance seen in a few blocks only now and then,
+  // and its distance, which may not be how it is seen (a mirror), would switch it between.
+  // After its first choice, a coarser level than the one chosen last needs its error within
+  // the footprint by kCoarserMargin, so that a footprint that wavers near a level's edge does
+  // not switch (and build) back and forth; a finer one is taken at once.
   void update(const Camera& camera, float pixelSpreadAngle,
               std::span<const std::uint32_t> footprints);
 
@@ -51,6 +56,7 @@ class InstanceLodChoice {
   bool fromFeedback(std::uint32_t instance) const { return fromFeedback_[instance] != 0; }
 
   static constexpr float kCoarserMargin = 1.25f;
+  static constexpr std::uint8_t kFeedbackMemory = 4;
 
  private:
   float pixelError_;
@@ -61,7 +67,9 @@ class InstanceLodChoice {
   std::vector<std::uint8_t> eligible_;
   std::vector<std::uint8_t> wanted_;
   std::vector<std::uint8_t> fromFeedback_;
-  std::vector<float> worldErrors_;  // scratch: one instance's levels in world units
+  std::vector<std::uint8_t> sinceFeedback_;  // updates since the feedback last reached it
+  std::vector<std::uint8_t> chosen_;         // a level was chosen (the margin holds from then on)
+  std::vector<float> worldErrors_;           // scratch: one instance's levels in world units
 };
 
 }  // namespace memograph::runtime

@@ -103,7 +103,7 @@ struct CullingOptions {
   // instance that appears large in the frustum, hidden ones too (the whole city from a path
   // that flies in or turns towards it).
   std::uint32_t lookAppearing = 8;
-  // Mesh LODs (seeds/001 §3.2; Scene::meshLods, docs/design/culling.md "Mesh LODs"): in a
+  // Mesh LODs (seeds/001 §3.1.1, §3.3.1; Scene::meshLods, docs/design/culling.md "Mesh LODs"): in a
   // culled render an instance in the TLAS shows the coarsest LOD of its mesh whose error stays
   // within `lodPixelError` footprints of the narrowest ray cone that reached it in the last
   // counting frame, or of a pixel at its distance where none did (InstanceLodChoice). Each

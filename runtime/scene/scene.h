@@ -56,7 +56,7 @@ struct Instance {
   bool castsShadow = true;  // false: a light's quad: only BSDF rays see it (as Cycles' lamps)
 };
 
-// A coarser version of a mesh (seeds/001 §3.2: a BLAS per mesh LOD, shared by the instances
+// A coarser version of a mesh (seeds/001 §3.3.1: a BLAS per mesh LOD, shared by the instances
 // that show that level): its own triangles over a subset of the mesh's vertices (their
 // attributes as the mesh has them), and the simplifier's object-space error, the farthest the
 // simplified surface may lie from the mesh's, which the LOD choice projects to pixels.

@@ -237,7 +237,7 @@ std::vector<Lot> addGroundAndLots(SceneBuilder& b, const CityLayout& layout,
   return lots;
 }
 
-// Returns the buildings' meshes (each its own: their LODs pay, seeds/001 §3.2).
+// Returns the buildings' meshes (each its own: their LODs pay, seeds/001 §3.3.1).
 std::vector<std::uint32_t> addBuildings(SceneBuilder& b, const CityLayout& layout,
                                         const CityCounts& counts, const std::vector<Lot>& lots,
                                         const CityMaterials& m) {

@@ -1,4 +1,4 @@
-// Mesh LODs for culled renders (seeds/001 §3.2: one BLAS per mesh LOD, shared by the
+// Mesh LODs for culled renders (seeds/001 §3.3.1: one BLAS per mesh LOD, shared by the
 // instances that show it; §3.3: LODs lower the memory of what stays in the TLAS far away).
 // meshoptimizer's edge-collapse simplifier builds a chain of coarser meshes at scene
 // creation, each bounded by an object-space error that the LOD choice projects to pixels

@@ -105,7 +105,7 @@ void bufferHitFeedback(uint slot, uint weight) {
   }
 }
 
-// Mesh LODs (seeds/001 §3.2): the narrowest ray cone that reached an instance in a counted
+// Mesh LODs (seeds/001 §3.1.1; like §3.2.5's feedback of the finest mip level a texture needs): the narrowest ray cone that reached an instance in a counted
 // ray, which the host's LOD choice compares with each level's error, so that what a mirror
 // magnifies keeps its detail where its distance alone would not. A run of hits on one
 // instance keeps its minimum here and writes it once.
