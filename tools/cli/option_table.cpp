@@ -348,7 +348,7 @@ const Option kOptions[] = {
      "culled: instances show the coarsest LOD of their mesh whose error stays\n"
      "within --lod-pixel-error of the ray cones that reach them (or of a pixel at\n"
      "their distance)",
-     "on", kShown, S::Culling, kAdvanced, N::Nothing, kBoth,
+     "off", kShown, S::Culling, kAdvanced, N::Nothing, kBoth,
      [](O& o, const Value& v) {
        if (v.text != "on" && v.text != "off")
          throw std::invalid_argument("--mesh-lods takes on or off, not '" + v.text + "'");

@@ -364,9 +364,9 @@ TEST(CulledRender, FeedbackPathsThatDoNotDivideThePathsAreRefused) {
 // 32 counting frames; the defaults wait 2, so their doubling waits (2, 4, 8, 16, 32) reach
 // further: they run 64 (measured on lavapipe: a hitbox still leaves for 2 counting frames at
 // the 27th of 32, at the 4th wait of 16). Each checks the last 16 counting frames.
-// Mesh LODs are on (the default) but for sampled blocks counted every frame: there a LOD switch
-// moves the few hits of instances at their thresholds' margin, and 9 states changed in the last
-// 16 counting frames with LODs against 7 without (the bound, the states' own, is 8).
+// Mesh LODs are on (their choice must settle too) but for sampled blocks counted every frame: there
+// a LOD switch moves the few hits of instances at their thresholds' margin, and 9 states changed in
+// the last 16 counting frames with LODs against 7 without (the bound, the states' own, is 8).
 struct FeedbackSampling {
   const char* name;
   std::uint32_t stride, every, lowFrames, paths, counted;  // paths: P, feedbackPaths of them count

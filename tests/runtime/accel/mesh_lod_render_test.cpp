@@ -92,6 +92,7 @@ TEST(MeshLodRender, BlasesAreSharedPerMeshLod) {
   scene.environment.constantRadiance = glm::vec3(1.0f);
   RendererOptions o = testing::testOptions(Backend::RayQuery);
   o.culling.mode = CullingMode::Frustum;
+  o.culling.meshLods = true;
   const RenderResult lods = render(o, scene, tiny(1));
   o.culling.meshLods = false;
   const RenderResult whole = render(o, scene, tiny(1));
