@@ -345,9 +345,8 @@ const Option kOptions[] = {
      "8", kShown, S::Culling, kAdvanced, N::Lipac, kBoth,
      [](O& o, const Value& v) { o.renderer.culling.lookAppearing = v.whole; }},
     {"--mesh-lods", ValueType::Choice, "on|off",
-     "culled: instances show the coarsest LOD of their mesh whose error stays\n"
-     "within --lod-pixel-error of the ray cones that reach them (or of a pixel at\n"
-     "their distance)",
+     "culled: each instance takes its mesh's coarsest LOD within\n"
+     "--lod-pixel-error footprints of its ray cones (or pixels at its distance)",
      "off", kShown, S::Culling, kAdvanced, N::Nothing, kBoth,
      [](O& o, const Value& v) {
        if (v.text != "on" && v.text != "off")
