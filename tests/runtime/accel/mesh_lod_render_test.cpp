@@ -19,6 +19,7 @@
 #include "runtime/scene/builtin/material_recipes.h"
 #include "runtime/scene/builtin/mesh_builder.h"
 #include "runtime/scene/builtin/mesh_lods.h"
+#include "runtime/scene/scene_upload.h"
 
 namespace memograph::runtime {
 namespace {
@@ -194,6 +195,42 @@ TEST(MeshLodRender, LodsLowerLipacsPeakAsMemoryOnTheSmallCitysPaths) {
                 peak(whole) / 1e6, double(peak(lods)) / double(peak(whole)));
     EXPECT_LT(peak(lods), peak(whole));
   }
+}
+
+// Bad LODs in a scene are named before anything is uploaded, never a device fault.
+TEST(MeshLodScene, BrokenLodsAreNamed) {
+  const auto message = [](const Scene& scene) {
+    try {
+      validateScene(scene);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  Scene scene = testing::greyQuadScene();
+  scene.meshLods.resize(scene.meshes.size());
+  scene.meshLods[0].push_back({testing::quad(2.0f), 0.1f});
+  EXPECT_EQ(message(scene), "accepted");
+
+  Scene wrongCount = scene;
+  wrongCount.meshLods.emplace_back();
+  EXPECT_NE(message(wrongCount).find("mesh LOD lists"), std::string::npos);
+  Scene pastVertices = scene;
+  pastVertices.meshLods[0][0].mesh.indices[1] = 99;
+  EXPECT_NE(message(pastVertices).find("LOD 1: index 1 is 99"), std::string::npos)
+      << message(pastVertices);
+  Scene finerError = scene;
+  finerError.meshLods[0].push_back({testing::quad(2.0f), 0.05f});
+  EXPECT_NE(message(finerError).find("LOD 2: error"), std::string::npos);
+  Scene nanError = scene;
+  nanError.meshLods[0][0].error = std::nanf("");
+  EXPECT_NE(message(nanError).find("LOD 1: error"), std::string::npos);
+  Scene animated = scene;
+  animated.animatedMeshes = {0};
+  EXPECT_NE(message(animated).find("is animated and has LODs"), std::string::npos);
+  Scene tooMany = scene;
+  tooMany.meshLods[0].assign(kMaxMeshLods + 1, {testing::quad(2.0f), 0.1f});
+  EXPECT_NE(message(tooMany).find("LODs; at most"), std::string::npos);
 }
 
 }  // namespace
