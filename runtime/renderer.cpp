@@ -81,8 +81,11 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
       uploadSceneResources(context, scene, materials.emissionKinds, materials.linked.texturePaths,
                            options_.textureLoader);
   result.stats.textureBytes = resources.textures->bytes();
-  RenderAcceleration acceleration(context, scene, resources.buffers, options_.culling,
-                                  shaderCacheDirectory, pathWeight, result.stats);
+  // The mesh LODs' distance choice needs a pixel's angle (CullingOptions::imageHeight).
+  CullingOptions culling = options_.culling;
+  culling.imageHeight = settings.height;
+  RenderAcceleration acceleration(context, scene, resources.buffers, culling, shaderCacheDirectory,
+                                  pathWeight, result.stats);
 
   PipelineInputs pipelineInputs;
   pipelineInputs.materials = &materials;

@@ -129,6 +129,8 @@ struct RenderResult {
   // Culled renders: each instance's state in the last frame, and its top view when asked
   // (RendererOptions::debugCullingSize).
   std::vector<InstanceState> instanceStates;
+  // With mesh LODs, each instance's LOD when last in the TLAS (docs/design/culling.md).
+  std::vector<std::uint8_t> instanceLods;
   HdrImage cullingView;
 };
 

@@ -28,9 +28,12 @@ mkdir -p "$bundle"
 cp "$build/tools/memograph" "$bundle/memograph"
 strip "$bundle/memograph"
 
-# The binary may need only system libraries and the Vulkan loader.
+# The binary may need only system libraries, the Vulkan loader and meshoptimizer (the city's
+# mesh LODs; Debian ships it shared only), which travel as .gl/*.deb. meshoptimizer brings
+# libstdc++ and libgcc_s, of which it needs only GLIBCXX_3.4 and CXXABI_1.3 (any libstdc++6):
+# the GPU machine's own serve it.
 unexpected=$(ldd "$bundle/memograph" | awk '{print $1}' |
-  grep -vE '^(linux-vdso\.so|/lib64/ld-linux-x86-64\.so|libc\.so|libm\.so|libpthread\.so|libdl\.so|librt\.so|libvulkan\.so\.1)' || true)
+  grep -vE '^(linux-vdso\.so|/lib64/ld-linux-x86-64\.so|libc\.so|libm\.so|libpthread\.so|libdl\.so|librt\.so|libvulkan\.so\.1|libmeshoptimizer\.so\.2d|libstdc\+\+\.so\.6|libgcc_s\.so\.1)' || true)
 if [ -n "$unexpected" ]; then
   echo "bundle_device: the binary needs libraries that will not be on the GPU machine:" >&2
   echo "$unexpected" >&2
@@ -40,11 +43,12 @@ fi
 
 # The Vulkan loader as Debian packages (device tool README); fetched once.
 # NVIDIA's ICD (libGLX_nvidia.so.0) needs libglvnd's dispatch libraries as well.
-if ! ls .gl/libvulkan1_*.deb .gl/libglvnd0_*.deb >/dev/null 2>&1; then
+if ! ls .gl/libvulkan1_*.deb .gl/libglvnd0_*.deb .gl/libmeshoptimizer2d_*.deb >/dev/null 2>&1; then
   mkdir -p .gl /tmp/amd64/partial
   o='-oAPT::Architecture=amd64 -oAPT::Architectures=amd64 -oDir::State::Lists=/tmp/amd64'
   apt-get $o update -qq
-  (cd .gl && apt-get $o download libvulkan1 libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2)
+  (cd .gl && apt-get $o download libvulkan1 libegl1 libglvnd0 libopengl0 libgl1 libglx0 libgles2 \
+    libmeshoptimizer2d)
 fi
 
 cp tools/device_env.sh "$bundle/device_env.sh"

@@ -1,6 +1,6 @@
 # Sourced on the GPU machine by the bundle's scripts (run_device.sh, memo_sweep.sh,
-# memo_quality.sh --gpu): installs the carried Vulkan loader and libglvnd (.gl/*.deb, see
-# tools/bundle_device.sh) and points the loader at NVIDIA's ICD where the image keeps it
+# memo_quality.sh --gpu): installs the carried Vulkan loader, libglvnd and meshoptimizer
+# (.gl/*.deb, see tools/bundle_device.sh) and points the loader at NVIDIA's ICD where the image keeps it
 # outside the standard folders. tools/bundle_device.sh copies it to bundle/device_env.sh.
 for f in .gl/*.deb; do dpkg -x "$f" /; done
 ldconfig

@@ -8,6 +8,7 @@ packages=(
   glslang-dev glslang-tools
   libvulkan-dev vulkan-tools vulkan-validationlayers spirv-tools
   libglm-dev libopenimageio-dev openimageio-tools libassimp-dev
+  libmeshoptimizer-dev  # the city's mesh LODs (runtime/scene/builtin/mesh_lods.cpp)
   libgtest-dev libgmock-dev libbenchmark-dev
   python3
   blender  # 3.4: the reference for the Blender node tests (tests/blender/) and the exporter

@@ -48,7 +48,8 @@ struct TopView {
 
 }  // namespace
 
-HdrImage cullingTopView(const SceneCulling& culling, const Camera& camera, std::uint32_t size) {
+HdrImage cullingTopView(const SceneCulling& culling, const Camera& camera, std::uint32_t size,
+                        std::span<const std::uint8_t> lods) {
   TopView view;
   view.image.width = view.image.height = size;
   view.image.rgba.assign(std::size_t(size) * size * 4, 0.0f);
@@ -82,6 +83,8 @@ HdrImage cullingTopView(const SceneCulling& culling, const Camera& camera, std::
     const float* colour = states[i] == InstanceState::Active    ? kViewActive
                           : states[i] == InstanceState::Omitted ? kViewOmitted
                                                                 : kViewInactive;
+    if (states[i] == InstanceState::Active && i < lods.size() && lods[i] > 0)
+      colour = kViewLods[std::min<std::size_t>(lods[i], std::size(kViewLods)) - 1];
     const float edge[3] = {0.5f * colour[0], 0.5f * colour[1], 0.5f * colour[2]};
     view.fill(bounds[i], colour);
     view.outline(bounds[i], edge);  // tells an instance from the slab it stands on

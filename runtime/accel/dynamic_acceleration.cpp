@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <cstddef>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -26,6 +27,16 @@ glm::mat4 boxTransform(const Bounds& box) {
   return glm::scale(glm::translate(glm::mat4(1.0f), box.lo), extent);
 }
 
+// The BLAS cache's meshes: the scene's, then with mesh LODs on their levels (SceneBuffers::
+// lodGeometry, level-major, so that the cache's lowest-index-first builds the finer first).
+std::vector<MeshGeometry> cacheGeometry(const SceneBuffers& buffers,
+                                        const CullingOptions& options) {
+  std::vector<MeshGeometry> geometry = buffers.geometry;
+  if (options.meshLods)
+    geometry.insert(geometry.end(), buffers.lodGeometry.begin(), buffers.lodGeometry.end());
+  return geometry;
+}
+
 }  // namespace
 
 DynamicAccelerationStructures::DynamicAccelerationStructures(
@@ -35,12 +46,23 @@ DynamicAccelerationStructures::DynamicAccelerationStructures(
     : context_(context),
       options_(options),
       culling_(scene, options),
-      blasCache_(context, buffers.vertices, sizeof(gpu::Vertex), buffers.indices, buffers.geometry,
-                 options.blasBudgetBytes, options.blasBuildTriangles, options.blasBuildMilliseconds,
-                 options.blasKeepFrames),
+      blasCache_(context, buffers.vertices, sizeof(gpu::Vertex), buffers.indices,
+                 cacheGeometry(buffers, options), options.blasBudgetBytes,
+                 options.blasBuildTriangles, options.blasBuildMilliseconds, options.blasKeepFrames),
       animated_(context, scene, buffers, options.blasRebuildEvery, shaderCacheDirectory),
       feedbackPathWeight_(feedbackPathWeight) {
   meshCount_ = static_cast<std::uint32_t>(scene.meshes.size());
+  shownLods_.assign(scene.instances.size(), 0);
+  if (options_.mode != CullingMode::None && options_.meshLods && !buffers.lodGeometry.empty()) {
+    lods_.emplace(scene, culling_.bounds(), options_.lodPixelError);
+    meshLodIds_ = buffers.meshLodIds;
+    for (const Instance& instance : scene.instances)
+      uploadedLodMeshes_.push_back(instance.mesh);
+    lodMeshStaging_ = hostBuffer(
+        context, std::max<VkDeviceSize>(16, scene.instances.size() * sizeof(std::uint32_t)),
+        VK_BUFFER_USAGE_TRANSFER_SRC_BIT);
+    instanceBuffer_ = &buffers.instances;
+  }
   // Each instance's TLAS record, made once: a frame copies it and fills in the BLAS address.
   for (std::uint32_t i = 0; i < scene.instances.size(); ++i) {
     const Instance& instance = scene.instances[i];
@@ -71,12 +93,15 @@ DynamicAccelerationStructures::DynamicAccelerationStructures(
   if (hitFeedbackOn())
     boxTlas_ = std::make_unique<TopLevelStructure>(context, culling_.counterCount());
   // The counters live on the device (the trace's atomics) and are copied to a host buffer
-  // after each frame. One more uint after them: the trace's own tally of the counts it made
-  // (path_tracer.glsl: the buffer's last uint), to check that the counts it buffers all
-  // arrive (FrameStats::feedbackCountsArrived); so the size is exact with feedback, and 16
-  // bytes without, only for the binding to be valid.
+  // after each frame. One more uint after them (and after the footprints): the trace's own tally of
+  // the counts it made (path_tracer.glsl: the buffer's last uint), to check that the counts it
+  // buffers all arrive (FrameStats::feedbackCountsArrived); so the size is exact with feedback, and
+  // 16 bytes without, only for the binding to be valid. The footprints (one per instance) sit
+  // between the counters and the tally.
   const VkDeviceSize counterBytes =
-      hitFeedbackOn() ? VkDeviceSize(culling_.counterCount() + 1) * sizeof(std::uint32_t) : 16;
+      hitFeedbackOn() ? VkDeviceSize(culling_.counterCount() + culling_.instanceCount() + 1) *
+                            sizeof(std::uint32_t)
+                      : 16;
   hitFeedback_ = GpuBuffer(context, counterBytes,
                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                                VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -95,6 +120,11 @@ bool DynamicAccelerationStructures::prepareLook(const Camera& camera, float aspe
     return false;
   }
   culling_.look(camera, aspect);
+  // The look's probe traces with the LODs the camera's distances choose (no feedback yet).
+  if (lods_ && !lodsChosen_) {
+    lods_->update(camera, pixelAngle(camera), {});
+    lodsChosen_ = true;
+  }
   lookCountsPending_ = true;
   prepareStructures(frame, seconds, stats, stateStart);
   stats.looks = 1;
@@ -109,18 +139,29 @@ void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float asp
   // The counters of the last trace, a look's just before or the last frame's (none before
   // frame 0 without a look). A quiet frame's (--feedback-every) are read too, for its tally,
   // which its pipeline leaves 0, but they are no counts to act on.
+  std::vector<std::uint32_t> footprints;
   if (hitFeedbackOn() && (frame > 0 || lookCountsPending_)) {
-    hits.resize(culling_.counterCount() + 1);
+    hits.resize(culling_.counterCount() + culling_.instanceCount() + 1);
     hitReadback_.read(hits.data(), hits.size() * sizeof(std::uint32_t));
     stats.feedbackCounts = hits.back();
     hits.pop_back();
+    footprints.assign(hits.begin() + culling_.counterCount(), hits.end());
+    hits.resize(culling_.counterCount());
     for (const std::uint32_t h : hits)
       stats.feedbackCountsArrived += h;
-    if (!lookCountsPending_ && !frameCounted_)
+    if (!lookCountsPending_ && !frameCounted_) {
       hits.clear();
+      footprints.clear();
+    }
   }
   culling_.update(camera, aspect, hits, previousRays,
                   lookCountsPending_ ? 1u : options_.feedbackStride * feedbackPathWeight_);
+  // The LODs from the counting frame's footprints; between counting frames the choice keeps
+  // them, and what has no feedback follows its distance.
+  if (lods_ && (!lodsChosen_ || !footprints.empty() || !hitFeedbackOn())) {
+    lods_->update(camera, pixelAngle(camera), footprints);
+    lodsChosen_ = true;
+  }
   lookCountsPending_ = false;
   frameCounted_ = hitFeedbackOn() && frame % options_.feedbackEvery == 0;
   prepareStructures(frame, seconds, stats, stateStart);
@@ -135,13 +176,21 @@ void DynamicAccelerationStructures::prepareStructures(
   const std::vector<InstanceState>& states = culling_.states();
   std::vector<std::uint32_t> needed;
   std::vector<std::uint8_t> animatedNeeded(meshCount_, 0);
-  for (std::size_t i = 0; i < states.size(); ++i) {
+  for (std::uint32_t i = 0; i < states.size(); ++i) {
     if (states[i] != InstanceState::Active)
       continue;
-    if (animated_.address(instanceMeshes_[i]))
+    if (animated_.address(instanceMeshes_[i])) {
       animatedNeeded[instanceMeshes_[i]] = 1;
-    else
-      needed.push_back(instanceMeshes_[i]);
+      continue;
+    }
+    const std::uint32_t wanted = lods_ ? lods_->wanted()[i] : 0;
+    needed.push_back(lodMesh(i, wanted));
+    // A LOD switch waits for its BLAS under the build budgets (seeds/001 §3.3.1: "LOD change
+    // requests are only processed up to a certain number of BLAS builds or a number of
+    // processed primitives"): meanwhile the level shown keeps its BLAS, if it has one.
+    const std::uint32_t shown = lodMesh(i, shownLods_[i]);
+    if (shownLods_[i] != wanted && blasCache_.address(shown))
+      needed.push_back(shown);
   }
   double hostMilliseconds =
       std::chrono::duration<double, std::milli>(Clock::now() - stateStart).count();
@@ -158,6 +207,33 @@ void DynamicAccelerationStructures::prepareStructures(
     if (!meshAddresses[m])
       meshAddresses[m] = blasCache_.address(m);
   }
+  // Each active instance's BLAS: its wanted LOD's, else (its build waits) the one it shows,
+  // else none (it waits); its ids.z follows what the TLAS holds.
+  lodMeshCopies_.clear();
+  auto* staging = lods_ ? static_cast<std::uint32_t*>(lodMeshStaging_.mapped()) : nullptr;
+  const auto blasOf = [&](std::uint32_t i) -> VkDeviceAddress {
+    if (!lods_ || animated_.address(instanceMeshes_[i]))
+      return meshAddresses[instanceMeshes_[i]];
+    std::uint32_t level = lods_->wanted()[i];
+    VkDeviceAddress blas = blasCache_.address(lodMesh(i, level));
+    if (!blas && blasCache_.address(lodMesh(i, shownLods_[i]))) {
+      level = shownLods_[i];
+      blas = blasCache_.address(lodMesh(i, level));
+    }
+    if (!blas)
+      return 0;
+    shownLods_[i] = static_cast<std::uint8_t>(level);
+    const std::uint32_t mesh = lodMesh(i, level);
+    if (uploadedLodMeshes_[i] != mesh) {
+      uploadedLodMeshes_[i] = mesh;
+      staging[i] = mesh;
+      lodMeshCopies_.push_back({VkDeviceSize(i) * sizeof(std::uint32_t),
+                                VkDeviceSize(i) * sizeof(gpu::Instance) +
+                                    offsetof(gpu::Instance, ids) + 2 * sizeof(std::uint32_t),
+                                sizeof(std::uint32_t)});
+    }
+    return blas;
+  };
   // Under LiPaC an inactive hitbox with instances stands in the boxes' TLAS.
   const auto boxed = [&](std::uint32_t h) {
     return hitFeedbackOn() && culling_.hitboxUsed(h) && !culling_.hitboxActive(h);
@@ -170,7 +246,7 @@ void DynamicAccelerationStructures::prepareStructures(
   std::uint32_t waitingInstances = 0;
   for (std::uint32_t i = 0; i < states.size(); ++i) {
     if (states[i] == InstanceState::Active) {
-      const VkDeviceAddress blas = meshAddresses[instanceMeshes_[i]];
+      const VkDeviceAddress blas = blasOf(i);
       if (!blas) {
         ++waitingInstances;
         continue;
@@ -215,9 +291,39 @@ void DynamicAccelerationStructures::prepareStructures(
   stats.blasBuildMilliseconds = work.gpuMilliseconds;
 }
 
+float DynamicAccelerationStructures::pixelAngle(const Camera& camera) const {
+  return pixelSpreadAngle(camera, options_.imageHeight ? options_.imageHeight : 1080u);
+}
+
+std::uint32_t DynamicAccelerationStructures::lodMesh(std::uint32_t instance,
+                                                     std::uint32_t level) const {
+  const std::uint32_t mesh = instanceMeshes_[instance];
+  if (level == 0 || mesh >= meshLodIds_.size() || level > meshLodIds_[mesh].size())
+    return mesh;
+  return meshLodIds_[mesh][level - 1];
+}
+
 void DynamicAccelerationStructures::recordClears(VkCommandBuffer commands) const {
-  if (hitFeedbackOn())
-    vkCmdFillBuffer(commands, hitFeedback_.buffer(), 0, VK_WHOLE_SIZE, 0);
+  if (!hitFeedbackOn())
+    return;
+  vkCmdFillBuffer(commands, hitFeedback_.buffer(), 0, VK_WHOLE_SIZE, 0);
+  // The footprints start at "none" (kNoFootprint), which any counted hit's atomicMin lowers.
+  vkCmdFillBuffer(commands, hitFeedback_.buffer(),
+                  VkDeviceSize(culling_.counterCount()) * sizeof(std::uint32_t),
+                  VkDeviceSize(culling_.instanceCount()) * sizeof(std::uint32_t), kNoFootprint);
+}
+
+void DynamicAccelerationStructures::recordLodMeshes(VkCommandBuffer commands) const {
+  if (lodMeshCopies_.empty())
+    return;
+  vkCmdCopyBuffer(commands, lodMeshStaging_.buffer(), instanceBuffer_->buffer(),
+                  static_cast<std::uint32_t>(lodMeshCopies_.size()), lodMeshCopies_.data());
+  // The trace reads ids.z after the TLAS build's barrier; this one orders the copy before it.
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+                       0, 1, &barrier, 0, nullptr, 0, nullptr);
 }
 
 void DynamicAccelerationStructures::recordTlasBuild(VkCommandBuffer commands,
@@ -225,6 +331,7 @@ void DynamicAccelerationStructures::recordTlasBuild(VkCommandBuffer commands,
                                                     std::uint32_t first) const {
   if (timestamps)
     vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, timestamps, first);
+  recordLodMeshes(commands);
   animated_.record(commands);
   if (timestamps)
     vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_ACCELERATION_STRUCTURE_BUILD_BIT_KHR,

@@ -4,18 +4,22 @@
 // hit feedback, the BlasCache builds and evicts their BLASes, the animated meshes the frame
 // uses are moved and their BLASes updated (AnimatedBlases), and the TLAS is rebuilt from the
 // active instances plus LiPaC's counting boxes (one static unit-cube BLAS, transformed to
-// each omitted instance's or inactive hitbox's bounds).
+// each omitted instance's or inactive hitbox's bounds). With mesh LODs (Scene::meshLods,
+// CullingOptions::meshLods) an instance shows the LOD InstanceLodChoice picks from the ray
+// cones that reached it, each (mesh, LOD) one BLAS of the cache (seeds/001 §3.3.1).
 #pragma once
 
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "runtime/accel/acceleration_structures.h"
 #include "runtime/accel/animated_blases.h"
 #include "runtime/accel/blas_cache.h"
+#include "runtime/accel/lod_choice.h"
 #include "runtime/accel/scene_culling.h"
 #include "runtime/scene/scene.h"
 #include "runtime/scene/scene_upload.h"
@@ -41,8 +45,9 @@ class DynamicAccelerationStructures {
   VkAccelerationStructureKHR countingBoxes() const {
     return boxTlas_ ? boxTlas_->handle() : VK_NULL_HANDLE;
   }
-  // LiPaC's counters (binding kBindingHitFeedback): SceneCulling::counterCount() uints, then
-  // the trace's tally of the counts it made.
+  // LiPaC's counters (binding kBindingHitFeedback): SceneCulling::counterCount() uints, one
+  // footprint per instance (hit_counters.glsl; the mesh LODs' choice), then the trace's tally
+  // of the counts it made.
   const GpuBuffer& hitFeedback() const { return hitFeedback_; }
   bool hitFeedbackOn() const { return options_.mode == CullingMode::Lipac; }
   // Whether the frame prepareFrame prepared counts (CullingOptions::feedbackEvery): the
@@ -50,6 +55,9 @@ class DynamicAccelerationStructures {
   // its counters.
   bool frameCounts() const { return frameCounted_; }
   const SceneCulling& culling() const { return culling_; }
+  // Each instance's LOD when last in the TLAS (0: its mesh, or never in it).
+  const std::vector<std::uint8_t>& shownLods() const { return shownLods_; }
+  bool meshLodsOn() const { return lods_.has_value(); }
 
   // Before frame `frame`'s submit: reads the last frame's counters (`previousRays`: the rays
   // it traced), updates the instance states, builds and evicts BLASes and writes the TLAS
@@ -70,10 +78,18 @@ class DynamicAccelerationStructures {
   // TLAS and makes it visible to the trace; with `timestamps`, writes queries `first`
   // (start), `first + 1` (after the animated BLASes) and `first + 2` (after the TLAS).
   void recordTlasBuild(VkCommandBuffer commands, VkQueryPool timestamps, std::uint32_t first) const;
+  // Before the TLAS build (recordTlasBuild does it): copies the LOD mesh of each instance
+  // whose LOD changed into its gpu::Instance::ids.z, which the shading reads the hit's
+  // triangle from.
+  void recordLodMeshes(VkCommandBuffer commands) const;
   // After the trace: copies the counters where prepareFrame reads them.
   void recordAfterTrace(VkCommandBuffer commands) const;
 
  private:
+  // A pixel's angle for the LODs' distance choice (CullingOptions::imageHeight).
+  float pixelAngle(const Camera& camera) const;
+  // The BLAS cache's mesh of an instance at `level` (its own mesh at 0).
+  std::uint32_t lodMesh(std::uint32_t instance, std::uint32_t level) const;
   // After the states: builds and evicts BLASes and writes the TLAS records (both prepares).
   void prepareStructures(std::uint32_t frame, float seconds, FrameStats& stats,
                          std::chrono::steady_clock::time_point stateStart);
@@ -83,6 +99,17 @@ class DynamicAccelerationStructures {
   SceneCulling culling_;
   std::uint32_t meshCount_ = 0;
   std::vector<std::uint32_t> instanceMeshes_;
+  // Mesh LODs: the choice (none without LODs), the BLAS cache's ids of each mesh's levels
+  // (SceneBuffers::meshLodIds), each instance's LOD in the TLAS and the mesh id its
+  // gpu::Instance::ids.z holds, and the copies that bring ids.z up to date this frame.
+  std::optional<InstanceLodChoice> lods_;
+  std::vector<std::vector<std::uint32_t>> meshLodIds_;
+  std::vector<std::uint8_t> shownLods_;
+  std::vector<std::uint32_t> uploadedLodMeshes_;
+  GpuBuffer lodMeshStaging_;  // one uint per instance, host-visible
+  std::vector<VkBufferCopy> lodMeshCopies_;
+  const GpuBuffer* instanceBuffer_ = nullptr;
+  bool lodsChosen_ = false;  // the choice has run (the first look's or frame's distances)
   // TLAS records made once: each instance's (BLAS address 0, filled in per frame) and, under
   // LiPaC, each instance's counting box then each hitbox's, copied into the TLAS's records
   // every frame.

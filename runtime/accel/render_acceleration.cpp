@@ -88,8 +88,13 @@ std::vector<InstanceState> RenderAcceleration::instanceStates() const {
   return dynamic_ ? dynamic_->culling().states() : std::vector<InstanceState>{};
 }
 
+std::vector<std::uint8_t> RenderAcceleration::instanceLods() const {
+  return dynamic_ && dynamic_->meshLodsOn() ? dynamic_->shownLods() : std::vector<std::uint8_t>{};
+}
+
 HdrImage RenderAcceleration::cullingView(const Camera& camera, std::uint32_t size) const {
-  return dynamic_ && size > 0 ? cullingTopView(dynamic_->culling(), camera, size) : HdrImage{};
+  return dynamic_ && size > 0 ? cullingTopView(dynamic_->culling(), camera, size, instanceLods())
+                              : HdrImage{};
 }
 
 }  // namespace memograph::runtime

@@ -67,6 +67,8 @@ class RenderAcceleration {
   // Culled renders: each instance's state in the last frame (empty otherwise), and its top
   // view from `camera`, `size` pixels a side (empty without culling or at size 0).
   std::vector<InstanceState> instanceStates() const;
+  // Culled renders with mesh LODs: each instance's LOD when last in the TLAS (empty otherwise).
+  std::vector<std::uint8_t> instanceLods() const;
   HdrImage cullingView(const Camera& camera, std::uint32_t size) const;
 
  private:

@@ -112,6 +112,9 @@ void validateCullingOptions(const CullingOptions& o) {
   within(o.feedbackPaths, 0, 64, "--feedback-paths");
   within(o.feedbackEvery, 1, 64, "--feedback-every");
   within(o.blasKeepFrames, 0, kMaxLowFrames, "--blas-keep-frames");
+  if (!(o.lodPixelError > 0.0f && o.lodPixelError <= 1e6f))
+    throw std::invalid_argument("--lod-pixel-error must be in (0, 1e6] pixels, not " +
+                                number(o.lodPixelError));
   if (!(o.blasBuildMilliseconds >= 0.0 && o.blasBuildMilliseconds <= 1e6))
     throw std::invalid_argument("--blas-build-ms must be in [0, 1e6] milliseconds");
   if (o.mode == CullingMode::None &&

@@ -56,6 +56,17 @@ struct Instance {
   bool castsShadow = true;  // false: a light's quad: only BSDF rays see it (as Cycles' lamps)
 };
 
+// A coarser version of a mesh (seeds/001 §3.3.1: a BLAS per mesh LOD, shared by the instances
+// that show that level): its own triangles over a subset of the mesh's vertices (their
+// attributes as the mesh has them), and the simplifier's object-space error, the farthest the
+// simplified surface may lie from the mesh's, which the LOD choice projects to pixels.
+struct MeshLod {
+  Mesh mesh;
+  float error = 0.0f;
+};
+// LOD levels a mesh may have besides itself (the level fits the culling's byte a instance).
+inline constexpr std::size_t kMaxMeshLods = 7;
+
 // A scene material is a name that maps to a material graph (a .mgraph file, or generated
 // graph text for the built-in scenes).
 struct MaterialRef {
@@ -124,6 +135,10 @@ struct Scene {
   // are drawn at rest; with them, one per animated mesh (validateScene checks).
   std::vector<std::uint32_t> animatedMeshes;
   std::vector<gpu::VertexMotion> animatedMotions;
+  // Each mesh's LODs, finest first, errors increasing (empty: no mesh has any; otherwise one
+  // list per mesh, empty for a mesh without LODs). Only a culled render with mesh LODs on
+  // traces them (docs/design/culling.md, Mesh LODs); they never replace a mesh elsewhere.
+  std::vector<std::vector<MeshLod>> meshLods;
 };
 
 }  // namespace memograph::runtime

@@ -1,5 +1,6 @@
 #include "runtime/scene/scene_upload.h"
 
+#include <cmath>
 #include <stdexcept>
 
 #include <glm/gtc/constants.hpp>
@@ -58,9 +59,7 @@ void validateScene(const Scene& scene) {
           std::to_string(kMaxWorkGroups * gpu::kVertexMotionWorkgroup) + " move");
     animated[mesh] = true;
   }
-  for (std::size_t i = 0; i < scene.meshes.size(); ++i) {
-    const Mesh& mesh = scene.meshes[i];
-    std::string label = meshLabel(mesh, i);
+  const auto checkMesh = [](const Mesh& mesh, const std::string& label) {
     if (mesh.positions.empty() || mesh.indices.empty())
       throw std::invalid_argument(label + " has no triangles");
     if (mesh.indices.size() % 3 != 0)
@@ -83,6 +82,33 @@ void validateScene(const Scene& scene) {
         throw std::invalid_argument(label + ": index " + std::to_string(k) + " is " +
                                     std::to_string(mesh.indices[k]) + ", past its " +
                                     std::to_string(mesh.positions.size()) + " vertices");
+    }
+  };
+  for (std::size_t i = 0; i < scene.meshes.size(); ++i)
+    checkMesh(scene.meshes[i], meshLabel(scene.meshes[i], i));
+  // LODs (Scene::meshLods): one list per mesh, each level a valid mesh whose error does not
+  // fall below the finer level's; an animated mesh has none (its BLAS is updated in place).
+  if (!scene.meshLods.empty() && scene.meshLods.size() != scene.meshes.size())
+    throw std::invalid_argument(std::to_string(scene.meshLods.size()) + " mesh LOD lists for " +
+                                std::to_string(scene.meshes.size()) + " meshes");
+  for (std::size_t i = 0; i < scene.meshLods.size(); ++i) {
+    if (scene.meshLods[i].empty())
+      continue;
+    const std::string label = meshLabel(scene.meshes[i], i);
+    if (animated[i])
+      throw std::invalid_argument(label + " is animated and has LODs");
+    if (scene.meshLods[i].size() > kMaxMeshLods)
+      throw std::invalid_argument(label + " has " + std::to_string(scene.meshLods[i].size()) +
+                                  " LODs; at most " + std::to_string(kMaxMeshLods));
+    float previous = 0.0f;
+    for (std::size_t l = 0; l < scene.meshLods[i].size(); ++l) {
+      const MeshLod& lod = scene.meshLods[i][l];
+      const std::string lodLabel = label + " LOD " + std::to_string(l + 1);
+      checkMesh(lod.mesh, lodLabel);
+      if (!(lod.error >= previous) || !std::isfinite(lod.error))
+        throw std::invalid_argument(lodLabel + ": error " + std::to_string(lod.error) +
+                                    " is below the finer level's or not finite");
+      previous = lod.error;
     }
   }
   for (std::size_t i = 0; i < scene.instances.size(); ++i) {
@@ -170,7 +196,9 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
   std::vector<gpu::Vertex> vertices;
   std::vector<std::uint32_t> indices;
   std::vector<gpu::Mesh> meshes;
-  for (const Mesh& mesh : scene.meshes) {
+  // A mesh's ranges in the buffers; `space`: its texture space (a LOD keeps its mesh's, so
+  // that Generated coordinates do not move when the level changes).
+  const auto append = [&](const Mesh& mesh, const TextureSpace& space) {
     MeshGeometry g;
     g.firstVertex = static_cast<std::uint32_t>(vertices.size());
     g.vertexCount = static_cast<std::uint32_t>(mesh.positions.size());
@@ -191,6 +219,13 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
     indices.insert(indices.end(), mesh.indices.begin(), mesh.indices.end());
     gpu::Mesh gm;
     gm.ranges = glm::uvec4(g.firstVertex, g.firstIndex, flags, g.triangleCount);
+    gm.textureSpaceLocation = glm::vec4(space.location, 0.0f);
+    gm.textureSpaceSize = glm::vec4(space.size, 0.0f);
+    meshes.push_back(gm);
+    return g;
+  };
+  std::vector<TextureSpace> spaces;
+  for (const Mesh& mesh : scene.meshes) {
     TextureSpace space = autoTextureSpace(mesh);
     if (mesh.hasTextureSpace) {
       space.location = mesh.textureSpaceLocation;
@@ -199,10 +234,19 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
         if (space.size[k] == 0.0f)
           space.size[k] = 1.0f;
     }
-    gm.textureSpaceLocation = glm::vec4(space.location, 0.0f);
-    gm.textureSpaceSize = glm::vec4(space.size, 0.0f);
-    meshes.push_back(gm);
-    out.geometry.push_back(g);
+    spaces.push_back(space);
+    out.geometry.push_back(append(mesh, space));
+  }
+  if (!scene.meshLods.empty()) {
+    out.meshLodIds.resize(scene.meshes.size());
+    for (std::size_t level = 0; level < kMaxMeshLods; ++level)
+      for (std::size_t m = 0; m < scene.meshLods.size(); ++m) {
+        if (level >= scene.meshLods[m].size())
+          continue;
+        out.meshLodIds[m].push_back(
+            static_cast<std::uint32_t>(out.geometry.size() + out.lodGeometry.size()));
+        out.lodGeometry.push_back(append(scene.meshLods[m][level].mesh, spaces[m]));
+      }
   }
   std::vector<gpu::Instance> instances;
   for (const Instance& instance : scene.instances) {
@@ -210,7 +254,9 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
     gi.objectToWorld = instance.objectToWorld;
     gi.worldToObject = glm::inverse(instance.objectToWorld);
     gi.normalToWorld = glm::transpose(gi.worldToObject);
-    gi.ids = glm::uvec4(instance.mesh, instance.material, 0, 0);
+    // z: the mesh whose triangles the TLAS holds for it, its own until a culled render
+    // picks one of its LODs (DynamicAccelerationStructures writes z then).
+    gi.ids = glm::uvec4(instance.mesh, instance.material, instance.mesh, 0);
     // Object Info's Random: 24 bits of a PCG hash of the instance index (Blender hashes
     // the object's name; the index is what a memograph scene has).
     const auto index = static_cast<std::uint32_t>(instances.size());
@@ -305,7 +351,9 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
   out.vertices = uploadBuffer<gpu::Vertex>(context, vertices, kGeometry);
   out.indices = uploadBuffer<std::uint32_t>(context, indices, kGeometry);
   out.meshes = uploadBuffer<gpu::Mesh>(context, meshes, kStorage);
-  out.instances = uploadBuffer<gpu::Instance>(context, instances, kStorage);
+  // A culled render with mesh LODs copies each instance's LOD mesh into ids.z.
+  out.instances =
+      uploadBuffer<gpu::Instance>(context, instances, kStorage | VK_BUFFER_USAGE_TRANSFER_DST_BIT);
   out.lights = uploadBuffer<gpu::Light>(context, lights, kStorage);
   out.environment = uploadBuffer<glm::vec4>(context, environment, kStorage);
   out.lightCount = static_cast<std::uint32_t>(lights.size());

@@ -23,6 +23,13 @@ struct SceneBuffers {
   GpuBuffer lights;       // gpu::Light
   GpuBuffer environment;  // vec4 texels of the environment image (one texel if none)
   std::vector<MeshGeometry> geometry;
+  // The LOD meshes (Scene::meshLods) follow the scene's meshes in the vertex, index and mesh
+  // buffers, level-major (every mesh's first LOD, then every second one, ...): lodGeometry[k]
+  // is gpu::Mesh geometry.size() + k. The BLAS cache takes geometry then lodGeometry as its
+  // meshes and builds the lowest index first, so under a build budget finer levels come first.
+  // meshLodIds[mesh][l]: that index of the mesh's LOD l + 1 (empty without LODs).
+  std::vector<MeshGeometry> lodGeometry;
+  std::vector<std::vector<std::uint32_t>> meshLodIds;
   std::vector<InstancePlacement> placements;
   std::uint32_t lightCount = 0;
   std::uint32_t environmentWidth = 0;  // 0: constant environment

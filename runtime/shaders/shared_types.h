@@ -363,9 +363,12 @@ struct Instance {
   mat4 objectToWorld;
   mat4 normalToWorld;  // inverse transpose of objectToWorld
   mat4 worldToObject;  // inverse of objectToWorld (Object coordinates)
-  uvec4 ids;           // x mesh, y material, z/w unused
-  vec4 objectInfo;     // x: random in [0, 1) (a hash of the instance index); y: emissive
-                       // NEE's area pdf of any point of this instance (0: not a light); zw unused
+  // x mesh, y material, z the mesh whose triangles the TLAS holds for it: x, or in a culled
+  // render one of x's LODs (seeds/001 §3.3.1; Scene::meshLods), whose primitive indices a hit
+  // reports; w unused.
+  uvec4 ids;
+  vec4 objectInfo;  // x: random in [0, 1) (a hash of the instance index); y: emissive
+                    // NEE's area pdf of any point of this instance (0: not a light); zw unused
 };
 
 struct Light {

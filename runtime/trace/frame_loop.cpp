@@ -335,6 +335,7 @@ void FrameLoop::run(RenderResult& result) {
       break;  // the image is the accumulation of the frames rendered so far
   }
   result.instanceStates = accel.instanceStates();
+  result.instanceLods = accel.instanceLods();
   result.cullingView = accel.cullingView(previousCamera, in_.cullingViewSize);
   result.image = readImage();
 }

@@ -349,6 +349,20 @@ const Option kOptions[] = {
      "trace its camera with the hitboxes it faces active",
      "8", kShown, S::Culling, kAdvanced, N::Lipac, kBoth,
      [](O& o, const Value& v) { o.renderer.culling.lookAppearing = v.whole; }},
+    {"--mesh-lods", ValueType::Choice, "on|off",
+     "culled: each instance takes its mesh's coarsest LOD within\n"
+     "--lod-pixel-error footprints of its ray cones (or pixels at its distance)",
+     "off", kShown, S::Culling, kAdvanced, N::Nothing, kBoth,
+     [](O& o, const Value& v) {
+       if (v.text != "on" && v.text != "off")
+         throw std::invalid_argument("--mesh-lods takes on or off, not '" + v.text + "'");
+       o.renderer.culling.meshLods = v.text == "on";
+     }},
+    {"--lod-pixel-error", ValueType::Real, "E",
+     "culled: a LOD's error may reach E footprints of the narrowest ray cone at\n"
+     "its instance",
+     "1", kShown, S::Culling, kAdvanced, N::Nothing, kBoth,
+     [](O& o, const Value& v) { o.renderer.culling.lodPixelError = float(v.real); }},
     {"--blas-budget", ValueType::Whole, "MB",
      "culled: evict unused BLASes, least recently used first, past MB mebibytes", "no limit",
      kShown, S::Culling, kAdvanced, N::Nothing, kBoth,

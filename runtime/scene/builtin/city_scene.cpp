@@ -15,6 +15,7 @@
 #include "runtime/scene/builtin/builtin_scenes.h"
 #include "runtime/scene/builtin/camera_path.h"
 #include "runtime/scene/builtin/material_recipes.h"
+#include "runtime/scene/builtin/mesh_lods.h"
 #include "runtime/scene/builtin/procedural.h"
 #include "runtime/scene/builtin/scene_builder.h"
 
@@ -236,8 +237,11 @@ std::vector<Lot> addGroundAndLots(SceneBuilder& b, const CityLayout& layout,
   return lots;
 }
 
-void addBuildings(SceneBuilder& b, const CityLayout& layout, const CityCounts& counts,
-                  const std::vector<Lot>& lots, const CityMaterials& m) {
+// Returns the buildings' meshes (each its own: their LODs pay, seeds/001 §3.3.1).
+std::vector<std::uint32_t> addBuildings(SceneBuilder& b, const CityLayout& layout,
+                                        const CityCounts& counts, const std::vector<Lot>& lots,
+                                        const CityMaterials& m) {
+  std::vector<std::uint32_t> meshes;
   const float half = layout.halfSize;
   const float lotSize = (kCityBlockSize - kCityStreetWidth) / 4.0f;  // 4 x 4 lots a block
   // Buildings: taller towards the centre; every one its own mesh. Lots are reused (with a
@@ -264,7 +268,9 @@ void addBuildings(SceneBuilder& b, const CityLayout& layout, const CityCounts& c
     const auto mesh = b.addMesh(buildingMesh(i, width, depth, floors, low, high, 71u));
     b.instance(mesh, m.facades[static_cast<int>(hash2(i, 13, 61u) * 6.0f) % 6],
                placed({lot.centre.x, y, lot.centre.y}, 0.0f, 1.0f));
+    meshes.push_back(mesh);
   }
+  return meshes;
 }
 
 void addProps(SceneBuilder& b, const CityLayout& layout, const CityCounts& counts,
@@ -362,7 +368,7 @@ Scene makeCityScene(const BuiltinSceneOptions& options) {
   SceneBuilder b(options.onGeometry);
   const CityMaterials m = addCityMaterials(b, options.materialCost);
   const std::vector<Lot> lots = addGroundAndLots(b, layout, m);
-  addBuildings(b, layout, counts, lots, m);
+  const std::vector<std::uint32_t> buildings = addBuildings(b, layout, counts, lots, m);
   addProps(b, layout, counts, m);
   addFlags(b, layout, counts, m);
 
@@ -378,6 +384,10 @@ Scene makeCityScene(const BuiltinSceneOptions& options) {
              placed({0.0f, cityTerrainHeight(0.0f, mirrorZ), mirrorZ}, 0.0f, 1.0f));
 
   Scene& scene = b.scene();
+  // LODs for the buildings, most of the city's triangles, each its own BLAS. The props are
+  // left whole: a shared mesh has one BLAS for all its instances, and a LOD would add a
+  // second beside it rather than replace it (docs/design/culling.md, Mesh LODs).
+  addMeshLods(scene, buildings);
   Light sun;
   sun.type = LightType::Directional;
   sun.direction = glm::normalize(glm::vec3(-0.35f, -0.8f, 0.45f));

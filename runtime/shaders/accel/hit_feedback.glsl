@@ -60,10 +60,38 @@ void bufferHitFeedback(uint slot, uint weight) {
   }
 }
 
+// Mesh LODs (seeds/001 §3.1.1; like §3.2.5's feedback of the finest mip level a texture
+// needs): the narrowest ray cone that reached an instance in a counted ray, which the host's
+// LOD choice compares with each level's error, so that what a mirror magnifies keeps its
+// detail where its distance alone would not. A run of hits on one instance keeps its minimum
+// here and writes it once. The megakernel writes them; the wavefront's trace pass, which
+// knows no cone width at the hit, writes none, so its LODs follow distance.
+uint g_footprintInstance = 0xFFFFFFFFu;
+float g_footprintWidth = 0.0;
+
+void writeHitFootprint() {
+  if (g_footprintInstance != 0xFFFFFFFFu)
+    atomicMin(hitCounts[hitFootprintSlot(g_footprintInstance)], floatBitsToUint(g_footprintWidth));
+}
+
+// A counted hit on `instance` whose cone was `width` wide there (negative past a focus).
+void bufferHitFootprint(uint instance, float width) {
+  float footprint = abs(width);
+  if (!(footprint < 3.0e38)) return;  // no NaN or infinity among the bits atomicMin orders
+  if (instance == g_footprintInstance) {
+    g_footprintWidth = min(g_footprintWidth, footprint);
+    return;
+  }
+  writeHitFootprint();
+  g_footprintInstance = instance;
+  g_footprintWidth = footprint;
+}
+
 // What is still buffered, once the invocation's rays are done.
 void flushHitFeedback() {
   writeFeedbackSlot(0u);
   writeFeedbackSlot(1u);
+  writeHitFootprint();
 }
 
 // `weight` 0: this ray does not count this frame (hitFeedbackWeight, pathFeedbackWeight).

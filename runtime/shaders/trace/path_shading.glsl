@@ -59,7 +59,8 @@ struct SurfaceHit {
 SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
   SurfaceHit s;
   Instance instance = instances[hit.instanceIndex];
-  Mesh mesh = meshes[instance.ids.x];
+  // The triangles the TLAS holds: the mesh's, or its LOD's (ids.z); object keys keep ids.x.
+  Mesh mesh = meshes[instance.ids.z];
   s.materialId = instance.ids.y;
   s.object = uvec2(hit.instanceIndex, instance.ids.x);
   s.lightAreaPdf = instance.objectInfo.y;

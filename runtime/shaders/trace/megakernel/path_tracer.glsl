@@ -249,6 +249,10 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
         } else {
           s = surfaceAt(hit, origin, direction, cone);
           setPathInputs(s.inputs, pathState, hit.t);
+#ifdef MG_HIT_FEEDBACK
+          if ((bounce == 0u && sharedPrimary ? feedbackWeight : pathWeight) != 0u)
+            bufferHitFootprint(hit.instanceIndex, s.coneWidth);
+#endif
         }
       }
       MaterialOutputs m;

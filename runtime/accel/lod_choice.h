@@ -1,0 +1,75 @@
+// Which LOD of its mesh each instance shows (seeds/001 §3.3.1: a BLAS per mesh LOD): the
+// coarsest whose simplification error, in world units, stays within `pixelError` footprints at
+// the instance. The footprint is the narrowest ray cone a counted ray brought to the instance
+// in the last counting frame (LiPaC's feedback, path_tracer.glsl bufferHitFootprint), or, for
+// an instance no counted ray hit, a pixel's width at its distance from the camera. Distance
+// alone fails under magnification (§3.1.1: "curved mirrors that can significantly magnify
+// objects in the distance"): a curved mirror narrows the cones that reach a far object below
+// its distance's pixel, and what the cone feedback measures there keeps it detailed.
+// Host-side state only, no Vulkan, so it is tested without a device.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "runtime/scene/scene.h"
+
+namespace memograph::runtime {
+
+// Footprint slots with no counted hit (the feedback buffer's clear value).
+inline constexpr std::uint32_t kNoFootprint = 0xFFFFFFFFu;
+
+// The angle one pixel spans at the image's centre (the primary cone's spread,
+// frame_loop.cpp's cameraPosition.w).
+float pixelSpreadAngle(const Camera& camera, std::uint32_t imageHeight);
+
+// The coarsest level whose error is at most pixelError * footprint: 0 (the mesh itself) or
+// l for levelErrors[l - 1] (world units, increasing). A footprint that is not a positive
+// finite number gets level 0.
+std::uint32_t lodForFootprint(std::span<const float> levelErrors, float footprint,
+                              float pixelError);
+
+class InstanceLodChoice {
+ public:
+  // `bounds`: each instance's world bounds (SceneCulling::bounds). Instances whose mesh has
+  // LODs (Scene::meshLods) and that cast shadows (a light's quad is never simplified) get a
+  // choice; the others stay at level 0.
+  InstanceLodChoice(const Scene& scene, const std::vector<Bounds>& bounds, float pixelError);
+
+  // Before a frame: `footprints`, one per instance, a counted hit's narrowest cone width as
+  // float bits (kNoFootprint: none), from the last counting frame (empty: no feedback, every
+  // instance by its distance). An instance the feedback reached in one of the last
+  // kFeedbackMemory updates keeps the level it chose while no counted ray reaches it: sampled
+  // feedback (1 in N pixel blocks) counts an instance seen in a few blocks only now and then,
+  // and its distance, which may not be how it is seen (a mirror), would switch it between.
+  // After its first choice, a coarser level than the one chosen last needs its error within
+  // the footprint by kCoarserMargin, so that a footprint that wavers near a level's edge does
+  // not switch (and build) back and forth; a finer one is taken at once.
+  void update(const Camera& camera, float pixelSpreadAngle,
+              std::span<const std::uint32_t> footprints);
+
+  // The level each instance wants (its BLAS may still be waiting for a build).
+  const std::vector<std::uint8_t>& wanted() const { return wanted_; }
+  std::uint32_t levelCount(std::uint32_t instance) const;
+  // Whether the last update took the instance's footprint from the feedback.
+  bool fromFeedback(std::uint32_t instance) const { return fromFeedback_[instance] != 0; }
+
+  static constexpr float kCoarserMargin = 1.25f;
+  static constexpr std::uint8_t kFeedbackMemory = 4;
+
+ private:
+  float pixelError_;
+  std::vector<Bounds> bounds_;
+  std::vector<std::vector<float>> meshErrors_;  // per mesh: its levels' object-space errors
+  std::vector<std::uint32_t> instanceMesh_;
+  std::vector<float> instanceScale_;  // the largest axis scale of the instance's transform
+  std::vector<std::uint8_t> eligible_;
+  std::vector<std::uint8_t> wanted_;
+  std::vector<std::uint8_t> fromFeedback_;
+  std::vector<std::uint8_t> sinceFeedback_;  // updates since the feedback last reached it
+  std::vector<std::uint8_t> chosen_;         // a level was chosen (the margin holds from then on)
+  std::vector<float> worldErrors_;           // scratch: one instance's levels in world units
+};
+
+}  // namespace memograph::runtime
