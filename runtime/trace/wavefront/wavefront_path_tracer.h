@@ -34,6 +34,10 @@ struct WavefrontSetup {
   bool cacheLookups = false;
   std::uint32_t tileQueueCapacity = 0;
   bool tileImage = false;  // the tile cache stores its texels in an image (a binding more)
+  // The texel cache keys materials by their cut (MG_CACHE_CUTS in the defines): the lookup
+  // pass reads a cut material's values, and its material pass evaluates the cut on a miss
+  // and the rest always, through the cut functions of its graph's include.
+  bool cutKeys = false;
   // The path state's capacity, paths in flight (0: every pixel, or as many as the device's
   // storage-buffer range and work-group count allow); a round over more pixels runs in
   // chunks of at most that many, one after another.
@@ -138,7 +142,7 @@ class WavefrontPathTracer final : public FrameTracer {
   // One shader per distinct graph (the material bins), from its include alone.
   std::vector<std::vector<std::uint32_t>> compileMaterialPasses(
       ShaderCompiler& compiler, const LinkedMaterials& materials,
-      const std::vector<std::string>& defines, std::uint32_t compileThreads);
+      const std::vector<std::string>& defines, bool cutKeys, std::uint32_t compileThreads);
   // The pipeline backend's trace and shadow raygens and the report-only shaders.
   void compileRayTracingPasses(ShaderCompiler& compiler, const std::vector<std::string>& defines,
                                PipelineShaders& shaders);
