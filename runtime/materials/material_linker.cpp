@@ -116,11 +116,11 @@ std::string readText(const std::filesystem::path& path) {
 }
 
 // The texel cache's cut keys (texel_cache.glsl, MG_CACHE_CUTS): per scene material its
-// cut's domain, width and whether an object-space key names the instance, and the two
-// switches that evaluate a material's cut into the cache's float array (MG_CACHE_VALUES,
-// at least every cut's width) and its rest from that array. Guarded: MG_CACHE_VALUES
-// exists only with a cache, and only the switch dispatch's texel cache keys cuts.
-std::string cutSwitches(const std::vector<LinkedMaterial>& materials) {
+// cut's domain, width and whether an object-space key names the instance. Both dispatches'
+// materials.glsl carry it: the megakernel's switch and the wavefront's lookup and material
+// passes (which see the prelude) key cuts alike (cacheCutKeyFor). Guarded: only a render
+// that keys cuts defines MG_CACHE_CUTS.
+std::string cutInfoTable(const std::vector<LinkedMaterial>& materials) {
   std::string out = "#ifdef MG_CACHE_CUTS\n";
   out += "// Cut keys: x gpu::kCacheCut* domain, y width (floats), z 1: keyed by instance.\n";
   out += "const uvec4 mg_materialCutInfo[" + std::to_string(materials.size()) + "] = uvec4[](\n";
@@ -130,6 +130,15 @@ std::string cutSwitches(const std::vector<LinkedMaterial>& materials) {
            (m.cutKeyedByInstance ? "1u" : "0u") + ", 0u)" +
            (i + 1 < materials.size() ? ",\n" : ");\n");
   }
+  return out + "#endif  // MG_CACHE_CUTS\n";
+}
+
+// The switch dispatch's two switches that evaluate a material's cut into the cache's float
+// array (MG_CACHE_VALUES, at least every cut's width) and its rest from that array. Guarded:
+// MG_CACHE_VALUES exists only with a cache. (The wavefront's material passes call their one
+// graph's cut and rest directly: MG_EVALUATE_MATERIAL_CUT, material_shaders.cpp.)
+std::string cutSwitches(const std::vector<LinkedMaterial>& materials) {
+  std::string out = "#ifdef MG_CACHE_CUTS\n";
   std::string cut =
       "// The cut's values of scene material `materialId` at `inputs` (a key's centre).\n"
       "void evaluateMaterialCutSwitch(uint materialId, MaterialInputs inputs, "
@@ -268,7 +277,7 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
     std::string include =
         "// ---- material " + name + " (" + graph.path + ")\n" + compiled->glsl + "\n";
     includes += include;
-    linked.distinct.push_back({name, std::move(include), entry.textureBase});
+    linked.distinct.push_back({name, std::move(include), entry.textureBase, entry.cutWidth});
     bySource.emplace(graph.text, entry);
     linked.materials.push_back(entry);
   }
@@ -316,8 +325,10 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
                  (i + 1 < linked.materials.size() ? ",\n" : ");\n");
   }
   out.insert(out.rfind("#endif"), cacheInfo);
+  out.insert(out.rfind("#endif"), cutInfoTable(linked.materials));
   out.insert(out.rfind("#endif"), cutSwitches(linked.materials));
   linked.preludeSource.insert(linked.preludeSource.rfind("#endif"), cacheInfo);
+  linked.preludeSource.insert(linked.preludeSource.rfind("#endif"), cutInfoTable(linked.materials));
   linked.compileMilliseconds =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return linked;

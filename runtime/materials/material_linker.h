@@ -48,6 +48,10 @@ struct DistinctMaterial {
   std::string name;     // EvaluateMaterial_<name>
   std::string include;  // the compiler's GLSL include (prelude, node functions, function)
   int textureBase = 0;
+  // Its cut's floats where the texel cache may key it by its cut (LinkedMaterial::cutWidth;
+  // 0: none): its include then has MaterialCut_<name>, EvaluateMaterialCut_<name> and
+  // EvaluateMaterialRest_<name>, which the wavefront's material pass calls.
+  std::uint32_t cutWidth = 0;
 };
 
 struct LinkedMaterials {
@@ -58,8 +62,9 @@ struct LinkedMaterials {
   std::vector<std::string> texturePaths;  // resolved paths, in descriptor-array order
   // Floats per texel-cache entry: the largest cacheValueCount (0: nothing is cacheable).
   std::uint32_t cacheValueCount = 0;
-  // The largest cutWidth (0: no material is keyed by its cut). Only the switch dispatch's
-  // texel cache keys cuts (MG_CACHE_CUTS): its entries then hold the larger of the two.
+  // The largest cutWidth (0: no material is keyed by its cut). The switch dispatch's and the
+  // wavefront's texel cache key cuts (MG_CACHE_CUTS): its entries then hold the larger of
+  // the two.
   std::uint32_t cutValueCount = 0;
   // Some material writes specularTint or cyclesPrincipled: the path tracer needs
   // MG_CYCLES_PRINCIPLED (brdf.glsl), which other scenes do without.

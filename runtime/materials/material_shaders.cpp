@@ -22,6 +22,12 @@ std::vector<std::vector<std::uint32_t>> compileMaterialShaders(const ShaderCompi
       std::vector<std::string> defines = request.defines;
       defines.push_back("MG_TEXTURE_BASE=" + std::to_string(material.textureBase));
       defines.push_back("MG_EVALUATE_MATERIAL=EvaluateMaterial_" + material.name);
+      if (request.cutFunctions && material.cutWidth > 0) {
+        defines.push_back("MG_MATERIAL_CUT=MaterialCut_" + material.name);
+        defines.push_back("MG_MATERIAL_CUT_WIDTH=" + std::to_string(material.cutWidth));
+        defines.push_back("MG_EVALUATE_MATERIAL_CUT=EvaluateMaterialCut_" + material.name);
+        defines.push_back("MG_EVALUATE_MATERIAL_REST=EvaluateMaterialRest_" + material.name);
+      }
       spirv[index] = compiler.compile({request.source, request.stage, defines});
     } catch (const std::exception& e) {
       throw std::runtime_error(request.what + " of material '" + material.name + "': " + e.what());

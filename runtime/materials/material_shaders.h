@@ -17,8 +17,13 @@ struct MaterialShaderRequest {
   std::string source;  // the entry file among `base`'s files
   ShaderStage stage = ShaderStage::Compute;
   // Defines every material's shader shares; each also gets MG_TEXTURE_BASE (its first
-  // texture slot) and MG_EVALUATE_MATERIAL (its EvaluateMaterial_<Name>).
+  // texture slot) and MG_EVALUATE_MATERIAL (its EvaluateMaterial_<Name>), and with
+  // cutFunctions its cut's.
   std::vector<std::string> defines;
+  // The texel cache keys cuts (MG_CACHE_CUTS; the wavefront's material passes): a material
+  // with a cut also gets MG_MATERIAL_CUT (its MaterialCut_<Name>), MG_MATERIAL_CUT_WIDTH,
+  // MG_EVALUATE_MATERIAL_CUT and MG_EVALUATE_MATERIAL_REST.
+  bool cutFunctions = false;
   std::uint32_t threads = 0;    // 0: one per hardware thread
   std::string what = "shader";  // names the shader in a compile error: "<what> of material 'X'"
 };

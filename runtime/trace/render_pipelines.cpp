@@ -37,17 +37,17 @@ struct ShaderBuild {
 };
 
 // Whether the texel cache keys the materials that are not cacheable as a whole by their cut
-// (uv texels, object-space or world-space voxels) in this render. Only in the megakernel's
-// switch dispatch, whose one shader holds every material's cut and rest functions
-// (materials.glsl). The callable dispatch would need each material's callable to run its cut
-// and rest apart, and the wavefront a lookup pass that knows the instance and a material pass
-// that runs the rest after a hit: both keep the whole-material uv cache. The tile cache keeps
-// it too: a tile is a square of texels of a 2D parameterisation of the surface (uv), which a
-// voxel key has none of; filling a tile around a hit from its derivatives (the thesis's
-// extrapolation, §5.4.3) for other domains is not done.
+// (uv texels, object-space or world-space voxels) in this render: in the megakernel's switch
+// dispatch, whose one shader holds every material's cut and rest functions (materials.glsl),
+// and in the wavefront, whose lookup pass reads a cut's values and whose material passes
+// (one graph each) evaluate the cut on a miss and the rest always. The callable dispatch
+// would need each material's callable to run its cut and rest apart: it keeps the
+// whole-material uv cache. The tile cache keeps it too: a tile is a square of texels of a 2D
+// parameterisation of the surface (uv), which a voxel key has none of; filling a tile around
+// a hit from its derivatives (the thesis's extrapolation, §5.4.3) for other domains is not
+// done.
 bool keysCuts(const RenderPlan& plan, bool callables, bool floor, const LinkedMaterials& m) {
-  return plan.cache.mode == CacheMode::Texel && !callables && !floor && !plan.wavefront &&
-         m.cutValueCount > 0;
+  return plan.cache.mode == CacheMode::Texel && !callables && !floor && m.cutValueCount > 0;
 }
 
 // The pipeline backend's callable material shaders, one per distinct material.
@@ -104,6 +104,7 @@ std::unique_ptr<FrameTracer> buildWavefront(const ShaderBuild& b, ShaderCompiler
   setup.tileImage = cache.tileImageView() != VK_NULL_HANDLE;
   setup.emitterGraphs = b.inputs.materials->neeEvaluatesEmission && !b.floor;
   setup.sharedPrimaryHits = b.settings.sharedPrimaryRay;
+  setup.cutKeys = b.cutKeys;
   setup.pathSlots = b.options.wavefrontPaths;
   setup.compileThreads = b.options.shaderCompileThreads;
   // LiPaC's hit feedback: one set of passes for every frame (a push constant says whether a

@@ -18,11 +18,12 @@
 //   MG_CACHE_FILTER          (optional; the megakernel only) kCacheFilter{Trilinear,
 //                            Stochastic}: how a lookup reads the key space (cacheFilterEntry);
 //                            unset, the nearest entry of the nearest level.
-//   MG_CACHE_CUTS            (optional; the megakernel's switch dispatch only) materials
-//                            that are not cacheable as a whole are keyed by their cut
-//                            (compiler/cut.h): uv texels, object-space or world-space voxels
-//                            (evaluateMaterialThroughCut); materials.glsl then provides
-//                            mg_materialCutInfo and the cut and rest switches.
+//   MG_CACHE_CUTS            (optional; the megakernel's switch dispatch and the wavefront)
+//                            materials that are not cacheable as a whole are keyed by their
+//                            cut (compiler/cut.h): uv texels, object-space or world-space
+//                            voxels (cacheCutKeyFor); materials.glsl then provides
+//                            mg_materialCutInfo, and in the megakernel the cut and rest
+//                            switches (evaluateMaterialThroughCut).
 // The entry count S, the frame clock and the mip bias come per frame in frame.cache. The
 // includer declares `counters` (gpu::Counters at kBindingRayCounter): the occupancy and the
 // counter clock live there.
@@ -734,16 +735,6 @@ void cacheWrite(CacheKey key, float values[MG_CACHE_VALUES]) {
   cacheUnlock(uint(entry), key);
 }
 
-// The wavefront splits this into its lookup pass and its material passes (wavefront.glsl).
-#ifndef MG_WAVEFRONT
-// Cacheable materials (mask != 0) read the cache and on a miss evaluate and insert; with
-// MG_CACHE_CUTS, a material with a cut is keyed by it (evaluateMaterialThroughCut); others
-// are evaluated directly and never touch the cache. With MG_CACHE_SNAP_UV a miss
-// evaluates at the texel centre (§6.1: "rounding the texture coordinates to the nearest
-// cache texel before evaluating") with the fictional derivatives of one texel along u and v
-// (eq. 5.16-5.17, as the tile cache computes its texels), so an entry holds its texel's
-// value, not that of whichever hit inside the texel came first (its footprint picks an image
-// texture's mip level); this hit then shades with that value too.
 #ifdef MG_CACHE_CUTS
 // Scene material `materialId`'s cut key (mg_materialCutInfo; none past the scene's).
 uvec4 cutInfoOf(uint materialId) {
@@ -785,7 +776,62 @@ MaterialInputs voxelKeyInputs(uint domain, MaterialInputs inputs, uvec2 object, 
 // object-space values are the mesh's (Generated needs its texture space), shared by its
 // instances. Materials sharing a graph share one choice, so the two never mix.
 uint cutObjectWord(uvec4 cut, uvec2 object) { return cut.z != 0u ? object.x : object.y; }
+
+// The key of a material's cut at a hit, and the inputs its cut is evaluated with on a miss
+// (thesis §7: memoize the part of the graph one key determines; compiler/cut.h; the voxel
+// keys of seed 002 §3.1-3.2): the uv texel's centre with one texel along u and v (eq.
+// 5.16-5.17), or the voxel's centre with one voxel along x and y of its space
+// (voxelKeyInputs), so an entry holds its key's value whichever hit filled it, and a cached
+// value is a function of the key. One function for both architectures (the megakernel's
+// evaluateMaterialThroughCut and the wavefront's lookup and material passes), so both key a
+// hit alike and fill the same values. `info` is the material's mg_materialCacheInfo (its
+// ids), `cut` its mg_materialCutInfo, `object` the hit's (instance, mesh). False when the hit
+// has no usable key (non-finite coordinates or a voxel outside the fixed-point range): the hit
+// then runs uncached.
+bool cacheCutKeyFor(uvec4 info, uvec4 cut, uvec2 object, MaterialInputs inputs,
+                    out CacheKey key, out MaterialInputs keyInputs) {
+  keyInputs = inputs;
+  bool usable = false;
+  if (cut.x == kCacheCutUv) {
+    usable = cacheKeyFor(info, inputs, key);
+    keyInputs = texelInputs(inputs, key.texelUv, key.texelSize);
+  } else if (cut.x == kCacheCutWorld) {
+    vec3 centre;
+    float size;
+    usable = cacheVoxelKeyFor(info, 0u, inputs.position.v, inputs.position.x, inputs.position.y,
+                              key, centre, size);
+    keyInputs = voxelKeyInputs(kCacheCutWorld, inputs, object, centre, size);
+  }
+#ifndef MG_OMIT_OBJECT_INPUTS
+  else if (cut.x == kCacheCutObject) {
+    vec3 centre;
+    float size;
+    usable = cacheVoxelKeyFor(info, cutObjectWord(cut, object), inputs.objectPosition.v,
+                              inputs.objectPosition.x, inputs.objectPosition.y, key, centre,
+                              size);
+    keyInputs = voxelKeyInputs(kCacheCutObject, inputs, object, centre, size);
+  }
+#endif
+  else {
+    key.base = 0u;
+    key.hash = 0u;
+    key.texelUv = vec2(0.0);
+    key.texelSize = 0.0;
+  }
+  return usable;
+}
 #endif  // MG_CACHE_CUTS
+
+// The wavefront splits this into its lookup pass and its material passes (wavefront.glsl).
+#ifndef MG_WAVEFRONT
+// Cacheable materials (mask != 0) read the cache and on a miss evaluate and insert; with
+// MG_CACHE_CUTS, a material with a cut is keyed by it (evaluateMaterialThroughCut); others
+// are evaluated directly and never touch the cache. With MG_CACHE_SNAP_UV a miss
+// evaluates at the texel centre (§6.1: "rounding the texture coordinates to the nearest
+// cache texel before evaluating") with the fictional derivatives of one texel along u and v
+// (eq. 5.16-5.17, as the tile cache computes its texels), so an entry holds its texel's
+// value, not that of whichever hit inside the texel came first (its footprint picks an image
+// texture's mip level); this hit then shades with that value too.
 
 #ifdef MG_CACHE_FILTER
 // Filtering (docs/design/memoization.md, "Filtering"). Nearest reads the one entry whose
@@ -965,13 +1011,10 @@ void cacheFilteredValues(uint materialId, uvec4 info, uint domain, uint objectWo
 #endif  // MG_CACHE_FILTER
 
 #ifdef MG_CACHE_CUTS
-// A material keyed by its cut (thesis §7: memoize the part of the graph one key determines;
-// compiler/cut.h): the cache holds the cut's values under a key of its domain, and the rest
-// of the graph always runs with this hit's inputs. A miss evaluates the cut at the key's
-// centre with the key's footprint, always (not only with --snap-uv): the uv texel's centre
-// with one texel along u and v (eq. 5.16-5.17), or the voxel's centre with one voxel along
-// x and y of its space, so an entry holds its key's value whichever hit filled it, and a
-// cached value is a function of the key. With MG_CACHE_FILTER the rest runs with the filter's
+// A material keyed by its cut (thesis §7): the cache holds the cut's values under the key
+// cacheCutKeyFor gives, and the rest of the graph always runs with this hit's inputs. A miss
+// evaluates the cut at the key's centre with the key's footprint, always (not only with
+// --snap-uv), so a cached value is a function of the key. With MG_CACHE_FILTER the rest runs with the filter's
 // blend (or pick) of such entries. `object` is (instance, mesh) of the hit. Returns false,
 // having done nothing, when the hit has no usable key (non-finite coordinates or a voxel
 // outside the fixed-point range): the caller evaluates the whole graph uncached.
@@ -998,29 +1041,8 @@ bool evaluateMaterialThroughCut(uint materialId, uvec4 cut, uvec2 object, Materi
                       values);
 #else
   CacheKey key;
-  MaterialInputs keyInputs = inputs;
-  bool usable = false;
-  if (cut.x == kCacheCutUv) {
-    usable = cacheKeyFor(info, inputs, key);
-    keyInputs = texelInputs(inputs, key.texelUv, key.texelSize);
-  } else if (cut.x == kCacheCutWorld) {
-    vec3 centre;
-    float size;
-    usable = cacheVoxelKeyFor(info, 0u, inputs.position.v, inputs.position.x, inputs.position.y,
-                              key, centre, size);
-    keyInputs = voxelKeyInputs(kCacheCutWorld, inputs, object, centre, size);
-  }
-#ifndef MG_OMIT_OBJECT_INPUTS
-  else if (cut.x == kCacheCutObject) {
-    vec3 centre;
-    float size;
-    usable = cacheVoxelKeyFor(info, cutObjectWord(cut, object), inputs.objectPosition.v,
-                              inputs.objectPosition.x, inputs.objectPosition.y, key, centre,
-                              size);
-    keyInputs = voxelKeyInputs(kCacheCutObject, inputs, object, centre, size);
-  }
-#endif
-  if (!usable) return false;
+  MaterialInputs keyInputs;
+  if (!cacheCutKeyFor(info, cut, object, inputs, key, keyInputs)) return false;
   g_cacheLookups += 1u;
   if (cacheRead(key, values)) {
     g_cacheHits += 1u;

@@ -200,7 +200,7 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   shaders.passSpirv = compiler.compileAll(requests, setup.compileThreads);
   if (materials)
     shaders.materialSpirv =
-        compileMaterialPasses(compiler, *materials, defines, setup.compileThreads);
+        compileMaterialPasses(compiler, *materials, defines, setup.cutKeys, setup.compileThreads);
   if (!query_)
     compileRayTracingPasses(compiler, defines, shaders);
   createPipelines(shaders, materials, setup.compileThreads);
@@ -212,8 +212,9 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
 // Compiled on several threads (glslang took 4.4 s for all of the classroom's, cold).
 std::vector<std::vector<std::uint32_t>> WavefrontPathTracer::compileMaterialPasses(
     ShaderCompiler& compiler, const LinkedMaterials& materials,
-    const std::vector<std::string>& defines, std::uint32_t compileThreads) {
+    const std::vector<std::string>& defines, bool cutKeys, std::uint32_t compileThreads) {
   MaterialShaderRequest request;
+  request.cutFunctions = cutKeys;
   request.source = "wavefront.glsl";
   request.stage = ShaderStage::Compute;
   request.defines = defines;

@@ -41,6 +41,10 @@ struct WavefrontSetup {
   // --shared-primary (RenderSettings::sharedPrimaryRay): round 0 traces each pixel's camera ray
   // and keeps its hit in two more fields, which the later rounds take instead of tracing it.
   bool sharedPrimaryHits = false;
+  // The texel cache keys materials by their cut (MG_CACHE_CUTS in the defines): the lookup
+  // pass reads a cut material's values, and its material pass evaluates the cut on a miss
+  // and the rest always, through the cut functions of its graph's include.
+  bool cutKeys = false;
   // The path state's capacity, paths in flight (0: every pixel, or as many as the device's
   // storage-buffer range and work-group count allow); a round over more pixels runs in
   // chunks of at most that many, one after another.
@@ -149,7 +153,7 @@ class WavefrontPathTracer final : public FrameTracer {
   // One shader per distinct graph (the material bins), from its include alone.
   std::vector<std::vector<std::uint32_t>> compileMaterialPasses(
       ShaderCompiler& compiler, const LinkedMaterials& materials,
-      const std::vector<std::string>& defines, std::uint32_t compileThreads);
+      const std::vector<std::string>& defines, bool cutKeys, std::uint32_t compileThreads);
   // The pipeline backend's trace and shadow raygens and the report-only shaders.
   void compileRayTracingPasses(ShaderCompiler& compiler, const std::vector<std::string>& defines,
                                PipelineShaders& shaders);

@@ -3,8 +3,9 @@
 // object-space and world-space voxels) the cached image is the uncached one up to the
 // centre evaluation of each key, two instances of one mesh that Object Info's Random tells
 // apart never share entries, a material without a cut never touches the cache, and an
-// object-space material's entries are found again in later frames. Graphs from the real
-// (embedded) node library, whose Noise, Layer Weight and Object Info the cuts need.
+// object-space material's entries are found again in later frames; each of these in the
+// megakernel and in the wavefront, and the two architectures' cached images agree. Graphs from the
+// real (embedded) node library, whose Noise, Layer Weight and Object Info the cuts need.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -72,9 +73,10 @@ const char* kViewOnlyGraph =
     "NoiseTexture Vector<1 Detail=2.0 Color>2;\n"
     "BaseColorOutput In<2;\n";
 
-RendererOptions options(CacheMode mode) {
+RendererOptions options(CacheMode mode, Shading shading = Shading::Auto) {
   RendererOptions o = testing::cacheOptions(mode, Backend::RayQuery);
   o.nodeLibraryDirectory.clear();  // the embedded (real) node library
+  o.shading = shading;             // auto: the megakernel on lavapipe
   return o;
 }
 
@@ -113,8 +115,12 @@ TEST(CutKeys, LinkerKeysOnlyMaterialsNotCacheableAsAWhole) {
   EXPECT_EQ(both.cutValueCount, 3u);
   EXPECT_NE(both.source.find("EvaluateMaterialCut_WorldTail(inputs, cut)"), std::string::npos);
   EXPECT_EQ(both.source.find("EvaluateMaterialCut_UvNoise(inputs, cut)"), std::string::npos);
-  // The callable and wavefront dispatches' prelude carries no cut switches.
-  EXPECT_EQ(both.preludeSource.find("mg_materialCutInfo"), std::string::npos);
+  // The callable and wavefront dispatches' prelude carries the cut keys (the wavefront's
+  // lookup and material passes key cuts as the switch does) but no cut switches.
+  EXPECT_NE(both.preludeSource.find("mg_materialCutInfo"), std::string::npos);
+  EXPECT_EQ(both.preludeSource.find("evaluateMaterialCutSwitch"), std::string::npos);
+  EXPECT_EQ(both.distinct.at(0).cutWidth, 0u);
+  EXPECT_EQ(both.distinct.at(1).cutWidth, 3u);
 }
 
 struct DomainCase {
@@ -160,6 +166,46 @@ TEST_P(CutKeyDomains, CachedImageMatchesUncachedAtOneSeed) {
   EXPECT_LT(flip, 0.1);
 }
 
+// The wavefront keys cuts too (its lookup pass reads the cut's values, its material pass
+// evaluates the cut at the key's centre on a miss and the rest always), with the key and
+// centre of the megakernel (cacheCutKeyFor): its cached image is its uncached one up to the
+// centre evaluation (bound 0.1, as above), and the megakernel's cached image up to the
+// order of inserts within a frame. Every entry is a function of its key in both, so the
+// two differ only where a key's value stored in fp32 differs in its last bits between
+// shaders (none seen); measured on lavapipe, mean LDR-FLIP between the two cached images:
+// 0 for every domain. Bound 0.01. Before the wavefront keyed cuts, it looked up none of
+// these hits (0 lookups a frame).
+TEST_P(CutKeyDomains, WavefrontCachedImageMatchesUncachedAndTheMegakernels) {
+  const DomainCase& c = GetParam();
+  const Scene scene = testing::wallScene(c.graph, false);
+  const RenderResult off =
+      Renderer(options(CacheMode::None, Shading::Wavefront)).render(scene, settings(4));
+  const RenderResult on =
+      Renderer(options(CacheMode::Texel, Shading::Wavefront)).render(scene, settings(4));
+  const RenderResult megakernel =
+      Renderer(options(CacheMode::Texel, Shading::Megakernel)).render(scene, settings(4));
+  ASSERT_EQ(on.stats.shading, "wavefront");
+  ASSERT_EQ(megakernel.stats.shading, "megakernel");
+  expectConsistentCounters(on.stats);
+  const double flip = meanFlip(off.image, on.image);
+  const double againstMegakernel = meanFlip(megakernel.image, on.image);
+  const FrameStats& last = on.stats.frames.back();
+  const FrameStats& megakernelLast = megakernel.stats.frames.back();
+  std::printf(
+      "wavefront cut key %s: mean LDR-FLIP cached vs uncached %.4f, vs the megakernel's "
+      "cached %.4f; last frame %llu lookups, %llu hits (%.2f %%; megakernel %llu, %.2f %%); "
+      "%u floats an entry\n",
+      c.name, flip, againstMegakernel, (unsigned long long)last.cacheLookups,
+      (unsigned long long)last.cacheHits, 100.0 * last.cacheHitRate(),
+      (unsigned long long)megakernelLast.cacheLookups, 100.0 * megakernelLast.cacheHitRate(),
+      on.stats.cacheValueCount);
+  EXPECT_EQ(last.cacheLookups, 32u * 32u);  // one lookup a pixel, as in the megakernel
+  EXPECT_GT(last.cacheHits, 0u);
+  EXPECT_EQ(on.stats.cacheValueCount, 3u);  // the cut's floats, not the outputs'
+  EXPECT_LT(flip, 0.1);
+  EXPECT_LT(againstMegakernel, 0.01);
+}
+
 INSTANTIATE_TEST_SUITE_P(, CutKeyDomains,
                          ::testing::Values(DomainCase{"uv", kUvGraph, gpu::kCacheCutUv},
                                            DomainCase{"object", kObjectGraph, gpu::kCacheCutObject},
@@ -177,7 +223,7 @@ INSTANTIATE_TEST_SUITE_P(, CutKeyDomains,
 // the cached image of the right instance is the uncached one up to the centre evaluation.
 // Keyed by the mesh (checked by hand), that frame's hit rate was 92 % and the right instance
 // showed the left one's hue (mean LDR-FLIP 0.22, against 0.033 keyed by the instance).
-TEST(CutKeys, InstancesOfOneMeshWithDifferentObjectRandomNeverShareEntries) {
+void expectInstancesNeverShareEntries(Shading shading) {
   const LinkedMaterial m = linked(kPerInstanceGraph);
   ASSERT_EQ(m.cutDomain, gpu::kCacheCutObject);
   EXPECT_TRUE(m.cutKeyedByInstance);
@@ -198,9 +244,10 @@ TEST(CutKeys, InstancesOfOneMeshWithDifferentObjectRandomNeverShareEntries) {
   }
   RenderSettings leftOnly = path;
   leftOnly.frames = 3;
-  const RenderResult left = Renderer(options(CacheMode::None)).render(scene, leftOnly);
-  const RenderResult off = Renderer(options(CacheMode::None)).render(scene, path);
-  const RenderResult on = Renderer(options(CacheMode::Texel)).render(scene, path);
+  const RenderResult left = Renderer(options(CacheMode::None, shading)).render(scene, leftOnly);
+  const RenderResult off = Renderer(options(CacheMode::None, shading)).render(scene, path);
+  const RenderResult on = Renderer(options(CacheMode::Texel, shading)).render(scene, path);
+  ASSERT_EQ(on.stats.shading, shadingName(shading));
   expectConsistentCounters(on.stats);
   auto mean = [](const RenderResult& r, int c) {
     return testing::meanChannel(r.image, c, 0, 0, int(r.image.width), int(r.image.height));
@@ -208,11 +255,12 @@ TEST(CutKeys, InstancesOfOneMeshWithDifferentObjectRandomNeverShareEntries) {
   const double flip = meanFlip(off.image, on.image);
   const FrameStats& firstOnRight = on.stats.frames.at(3);
   std::printf(
-      "two instances of one mesh: left instance red/blue %.4f/%.4f; right instance "
+      "two instances of one mesh (%s): left instance red/blue %.4f/%.4f; right instance "
       "uncached %.4f/%.4f, cached %.4f/%.4f, mean LDR-FLIP %.4f; hit rate of the first "
       "frame on the right instance %.2f %% (on the left: %.2f %%)\n",
-      mean(left, 0), mean(left, 2), mean(off, 0), mean(off, 2), mean(on, 0), mean(on, 2), flip,
-      100.0 * firstOnRight.cacheHitRate(), 100.0 * on.stats.frames.front().cacheHitRate());
+      shadingName(shading), mean(left, 0), mean(left, 2), mean(off, 0), mean(off, 2), mean(on, 0),
+      mean(on, 2), flip, 100.0 * firstOnRight.cacheHitRate(),
+      100.0 * on.stats.frames.front().cacheHitRate());
   // The scene tells the instances apart: the right one is redder without a cache.
   EXPECT_GT(mean(off, 0) / mean(off, 2), 1.5 * mean(left, 0) / mean(left, 2));
   EXPECT_GT(firstOnRight.cacheLookups, 0u);
@@ -220,6 +268,18 @@ TEST(CutKeys, InstancesOfOneMeshWithDifferentObjectRandomNeverShareEntries) {
   for (int c : {0, 2})
     EXPECT_NEAR(mean(on, c), mean(off, c), 0.05 * mean(off, c)) << "channel " << c;
   EXPECT_LT(flip, 0.1);
+  // The left instance's later frames found its own entries again: the cache is in use.
+  EXPECT_GT(on.stats.frames.at(2).cacheHits, 0u);
+}
+
+TEST(CutKeys, InstancesOfOneMeshWithDifferentObjectRandomNeverShareEntries) {
+  expectInstancesNeverShareEntries(Shading::Megakernel);
+}
+
+// The same in the wavefront, whose lookup pass names the hit's instance as the megakernel
+// does (SurfaceHit::object).
+TEST(CutKeys, WavefrontInstancesOfOneMeshWithDifferentObjectRandomNeverShareEntries) {
+  expectInstancesNeverShareEntries(Shading::Wavefront);
 }
 
 // A material whose cut is empty runs its whole graph uncached: no lookups, however many of
@@ -246,6 +306,28 @@ TEST(CutKeys, AMaterialWithoutACutNeverTouchesTheCache) {
       (unsigned long long)viewOnly.stats.frames.back().cacheLookups,
       (unsigned long long)objectWall.stats.frames.back().cacheLookups,
       meanFlip(uncached.image, viewOnly.image));
+  for (const FrameStats& f : viewOnly.stats.frames)
+    EXPECT_EQ(f.cacheLookups, 0u) << "frame " << f.frame;
+  for (const FrameStats& f : objectWall.stats.frames)
+    EXPECT_EQ(f.cacheLookups, 32u * 32u) << "frame " << f.frame;
+  EXPECT_EQ(meanFlip(uncached.image, viewOnly.image), 0.0);
+}
+
+// The same in the wavefront: no lookup for the material without a cut, and its image the
+// uncached wavefront's exactly; the cut material's wall looks up each of its hits.
+TEST(CutKeys, WavefrontMaterialWithoutACutNeverTouchesTheCache) {
+  auto scene = [](const char* wallGraph) {
+    Scene s = testing::wallScene(wallGraph, false);
+    s.meshes.push_back(testing::sphere(8));
+    s.materials.push_back({"Hidden", "", kObjectGraph});
+    s.instances.push_back({1, 1, glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 20))});
+    return s;
+  };
+  const RendererOptions cached = options(CacheMode::Texel, Shading::Wavefront);
+  const RenderResult viewOnly = Renderer(cached).render(scene(kViewOnlyGraph), settings(2));
+  const RenderResult uncached = Renderer(options(CacheMode::None, Shading::Wavefront))
+                                    .render(scene(kViewOnlyGraph), settings(2));
+  const RenderResult objectWall = Renderer(cached).render(scene(kObjectGraph), settings(2));
   for (const FrameStats& f : viewOnly.stats.frames)
     EXPECT_EQ(f.cacheLookups, 0u) << "frame " << f.frame;
   for (const FrameStats& f : objectWall.stats.frames)

@@ -17,7 +17,12 @@
 // - with the texel cache (MG_CACHE_TEXEL), MG_WAVEFRONT_LOOKUP first looks every live hit up
 //   (thesis §5.3): a hit's cached values become its material outputs and only the misses are
 //   binned; the material passes insert what they evaluate (lock, values, unlock, as the
-//   megakernel's evaluateMaterialCached does); with the tile cache (MG_CACHE_TILE, its
+//   megakernel's evaluateMaterialCached does); with MG_CACHE_CUTS a material that is not
+//   cacheable as a whole is keyed by its cut (thesis §7; texel_cache.glsl cacheCutKeyFor):
+//   the lookup pass reads the cut's values into the path state, and the hit is binned all
+//   the same, since the rest of its graph runs per hit in its material pass, which on a
+//   lookup miss evaluates the cut at the key's centre and inserts it first (as the
+//   megakernel's evaluateMaterialThroughCut does); with the tile cache (MG_CACHE_TILE, its
 //   deferred fill's queue) the lookup reads the hit's tile and queues a missing one, and each
 //   bin's material pass also computes its bin's queued tiles, one invocation a texel, so the
 //   next bounce finds them;
@@ -317,6 +322,10 @@ SurfaceHit surfaceOfPath(uint slot, out vec3 origin, out vec3 direction, out Ray
 // MG_MATERIAL_BIN_OF maps scene material ids to bins); kNoBin for a miss, or for a material
 // id past the scene's, which the shade pass gives the default outputs (as the switch does).
 const uint kNoBin = 0xffffffffu;
+// Set in the bin word the lookup pass leaves (kFieldMaterialRest.w, never on kNoBin): the
+// lookup found the hit's cut values, which it stored in the material fields
+// (storeCutValues), so the material pass runs only the rest (MG_CACHE_CUTS).
+const uint kBinCutValues = 0x80000000u;
 // A bin's records after WavefrontControl: its material pass's dispatch arguments (w: the
 // frame's hits), its hits (count, first place, scatter cursor, batch) and its queued tiles
 // (count, first place, scatter cursor, batch).
@@ -357,7 +366,8 @@ uint binToEvaluate(uint slot) {
   }
 #endif
 #ifdef MG_WAVEFRONT_CACHE
-  return floatBitsToUint(pathState[fieldIndex(kFieldMaterialRest, slot)].w);
+  uint word = floatBitsToUint(pathState[fieldIndex(kFieldMaterialRest, slot)].w);
+  return word == kNoBin ? kNoBin : word & ~kBinCutValues;
 #else
   return binOfPath(slot);
 #endif
@@ -404,6 +414,38 @@ MaterialOutputs loadMaterialOutputs(uint slot, SurfaceHit s) {
   m.cyclesPrincipled = rest.y;
   m.opacity = rest.z;
   return m;
+}
+#endif
+
+#if defined(MG_CACHE_CUTS) && (defined(MG_WAVEFRONT_LOOKUP) || defined(MG_WAVEFRONT_MATERIAL))
+// A cut's values found by the lookup pass travel to the material pass in the material
+// fields, which the material pass overwrites with the outputs only after reading them: 15
+// floats (kFieldMaterialRest.w holds the bin). The wavefront keys the cuts that fit (every
+// cut of the built-in and example scenes is at most a colour and a factor); a wider one runs
+// uncached, as a hit without a usable key does.
+const uint kWavefrontCutValues = 15u;
+
+bool wavefrontKeysCut(uvec4 cut) {
+  return cut.x != kCacheCutNone && cut.y <= kWavefrontCutValues;
+}
+
+float cutValueOrZero(float values[MG_CACHE_VALUES], uint i) {
+  return i < uint(MG_CACHE_VALUES) ? values[min(i, uint(MG_CACHE_VALUES) - 1u)] : 0.0;
+}
+
+void storeCutValues(uint slot, float values[MG_CACHE_VALUES]) {
+  for (uint f = 0u; f < 4u; ++f) {
+    vec4 field = vec4(cutValueOrZero(values, 4u * f), cutValueOrZero(values, 4u * f + 1u),
+                      cutValueOrZero(values, 4u * f + 2u), cutValueOrZero(values, 4u * f + 3u));
+    if (f < 3u) pathState[fieldIndex(kFieldMaterialBase + f, slot)] = field;
+    else pathState[fieldIndex(kFieldMaterialRest, slot)].xyz = field.xyz;  // w: the bin
+  }
+}
+
+void loadCutValues(uint slot, out float values[MG_CACHE_VALUES]) {
+  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;
+  for (uint i = 0u; i < min(uint(MG_CACHE_VALUES), kWavefrontCutValues); ++i)
+    values[i] = pathState[fieldIndex(kFieldMaterialBase + i / 4u, slot)][i % 4u];
 }
 #endif
 
@@ -562,6 +604,25 @@ void main() {
       RayCone cone;
       SurfaceHit s = surfaceOfPath(slot, origin, direction, cone);
       uvec4 info = cacheInfoOf(s.materialId);
+#ifdef MG_CACHE_CUTS
+      // A material keyed by its cut: its cut's key (the megakernel's, cacheCutKeyFor) and
+      // values; found, they go to the material pass, which then runs only the rest.
+      uvec4 cut = cutInfoOf(s.materialId);
+      CacheKey cutKey;
+      MaterialInputs keyInputs;
+      if (info.x == 0u && frame.cache.x != 0u && wavefrontKeysCut(cut) &&
+          cacheCutKeyFor(info, cut, s.object, s.inputs, cutKey, keyInputs)) {
+        g_cacheLookups += 1u;
+        float values[MG_CACHE_VALUES];
+        if (cacheRead(cutKey, values)) {
+          g_cacheHits += 1u;
+          storeCutValues(slot, values);
+          bin |= kBinCutValues;
+        } else {
+          g_cacheMisses += 1u;
+        }
+      }
+#endif
       // The texel's key, or (§5.4) the hit's tile, whose read filters its texels.
 #ifdef MG_WAVEFRONT_TILES
       TileRequest request;
@@ -715,9 +776,45 @@ void main() {
   s.inputs.textureBase = MG_TEXTURE_BASE;  // as the switch's case sets it
   MaterialOutputs m;
 #ifdef MG_CACHE_TEXEL
+  uvec4 info = cacheInfoOf(s.materialId);
+#if defined(MG_CACHE_CUTS) && defined(MG_EVALUATE_MATERIAL_CUT)
+#if MG_MATERIAL_CUT_WIDTH <= 15  // kWavefrontCutValues: wider cuts are not keyed
+  // Keyed by its cut, as the megakernel's evaluateMaterialThroughCut: the cut's values from
+  // the lookup pass, or on its miss the cut at the key's centre (the same key, recomputed),
+  // inserted unless another path of this bounce did first; then the rest with this hit's
+  // own inputs. A hit without a usable key, or a bounce the cache skips, runs its whole graph.
+  uvec4 cut = cutInfoOf(s.materialId);
+  if (info.x == 0u && wavefrontKeysCut(cut)) {
+    bool found = (floatBitsToUint(pathState[fieldIndex(kFieldMaterialRest, slot)].w) &
+                  kBinCutValues) != 0u;
+    CacheKey key;
+    MaterialInputs keyInputs;
+    bool keyed = found || (cacheTakesBounce(push.step.y) && frame.cache.x != 0u &&
+                           cacheCutKeyFor(info, cut, s.object, s.inputs, key, keyInputs));
+    if (keyed) {
+      float values[MG_CACHE_VALUES];
+      MG_MATERIAL_CUT cutValues;
+      if (found) {
+        loadCutValues(slot, values);
+      } else {
+        MG_EVALUATE_MATERIAL_CUT(keyInputs, cutValues);
+        for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;
+        for (uint i = 0u; i < uint(MG_MATERIAL_CUT_WIDTH); ++i) values[i] = cutValues.v[i];
+        if (cacheFind(key) < 0) cacheWrite(key, values);
+      }
+      for (uint i = 0u; i < uint(MG_MATERIAL_CUT_WIDTH); ++i) cutValues.v[i] = values[i];
+      MG_EVALUATE_MATERIAL_REST(s.inputs, cutValues, m);
+    } else {
+      MG_EVALUATE_MATERIAL(s.inputs, m);
+    }
+    cacheAddCounts();  // the insert's lock counts
+    storeMaterialOutputs(slot, m);
+    return;
+  }
+#endif
+#endif
   // A miss of the lookup pass: evaluated (at its texel's centre with MG_CACHE_SNAP_UV) and
   // inserted, as evaluateMaterialCached does after its read; the same key, recomputed.
-  uvec4 info = cacheInfoOf(s.materialId);
   CacheKey key;
   bool insert = cacheTakesBounce(push.step.y) && info.x != 0u && frame.cache.x != 0u &&
                 cacheKeyFor(info, s.inputs, key);
