@@ -48,7 +48,7 @@ run megakernel_lipac_lods --shading megakernel --culling lipac --mesh-lods on
 camera=$(grep -v '^#' examples/camera_paths/city.campath | grep . | sed -n 154p)
 for _ in $(seq 1 "${FRAMES_MIRROR:-32}"); do echo "$camera"; done >"$work/mirror.campath"
 for mode in none lipac; do
-  timeout 120 "$m" render "$scene" --shading wavefront --culling "$mode" --size 960x540 \
+  timeout 60 "$m" render "$scene" --shading wavefront --culling "$mode" --size 960x540 \
     --paths 6 --bounces 4 --frames "${FRAMES_MIRROR:-32}" --camera-path "$work/mirror.campath" \
     --seed 1 --shader-cache "$sc" --out "$work/mirror_$mode.pfm" >>"$OUT/city_log.txt" 2>&1
 done
