@@ -238,6 +238,20 @@ bool cacheMipLevel(MaterialInputs inputs, out int m) {
   return true;
 }
 
+// The key of hashes H0 and H1 (eq. 5.8-5.9): H1 is stored, kept off the empty and locked
+// values; eq. 5.10: the first probed entry is I = H0 mod (S - D) (the host guarantees S > D).
+// texelUv and texelSize are the caller's.
+CacheKey cacheKeyOfHashes(uint h0, uint h1) {
+  if (h1 == kCacheKeyEmpty) h1 = 1u;
+  if (h1 == kCacheKeyLock) h1 = kCacheKeyLock - 1u;
+  CacheKey key;
+  key.base = h0 % (frame.cache.x - uint(MG_CACHE_PROBE));
+  key.hash = h1;
+  key.texelUv = vec2(0.0);
+  key.texelSize = 0.0;
+  return key;
+}
+
 // Eq. 5.8-5.10 for the cell (texel or tile) `cell` of level m. Cells are hashed by their
 // float bits, which are exact for every magnitude (an int conversion would merge all cells
 // past 2^31); -0 and +0 only give the same cell two entries. texelUv is the caller's.
@@ -245,17 +259,8 @@ CacheKey cacheKeyOf(uvec4 info, int m, vec2 cell) {
   uint u = floatBitsToUint(cell.x);
   uint v = floatBitsToUint(cell.y);
   // Eq. 5.8-5.9: two nested PCG hashes from two independent material ids.
-  uint h0 = cachePcg(uint(m) ^ cachePcg(u ^ cachePcg(v ^ info.y)));
-  uint h1 = cachePcg(uint(m) ^ cachePcg(u ^ cachePcg(v ^ info.z)));
-  if (h1 == kCacheKeyEmpty) h1 = 1u;
-  if (h1 == kCacheKeyLock) h1 = kCacheKeyLock - 1u;
-  // Eq. 5.10: I = H0 mod (S - D); the host guarantees S > D.
-  CacheKey key;
-  key.base = h0 % (frame.cache.x - uint(MG_CACHE_PROBE));
-  key.hash = h1;
-  key.texelUv = vec2(0.0);
-  key.texelSize = 0.0;
-  return key;
+  return cacheKeyOfHashes(cachePcg(uint(m) ^ cachePcg(u ^ cachePcg(v ^ info.y))),
+                          cachePcg(uint(m) ^ cachePcg(u ^ cachePcg(v ^ info.z))));
 }
 
 // Voxel keys (MG_CACHE_CUTS) for cuts in object or world space, after seed 002 §3.1-3.2:
@@ -285,16 +290,8 @@ CacheKey cacheVoxelKeyOf(uvec4 info, uint objectWord, int m, vec3 voxel) {
   uint x = cacheFixedPoint(voxel.x), y = cacheFixedPoint(voxel.y), z = cacheFixedPoint(voxel.z);
   uint h0 = cachePcg(objectWord ^ info.y);
   uint h1 = cachePcg(objectWord ^ info.z);
-  h0 = cachePcg(uint(m) ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h0))));
-  h1 = cachePcg(uint(m) ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h1))));
-  if (h1 == kCacheKeyEmpty) h1 = 1u;
-  if (h1 == kCacheKeyLock) h1 = kCacheKeyLock - 1u;
-  CacheKey key;
-  key.base = h0 % (frame.cache.x - uint(MG_CACHE_PROBE));
-  key.hash = h1;
-  key.texelUv = vec2(0.0);
-  key.texelSize = 0.0;
-  return key;
+  return cacheKeyOfHashes(cachePcg(uint(m) ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h0)))),
+                          cachePcg(uint(m) ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h1)))));
 }
 
 // The voxel key of `p` with footprint axes `axis1`, `axis2`; `objectWord` the instance or mesh
