@@ -116,8 +116,9 @@ TEST(MeshLods, TheCitysBuildingsHaveThemAndItsPropsAndFlagsNot) {
   std::size_t withLods = 0;
   for (std::size_t m = 0; m < a.meshes.size(); ++m) {
     const bool building = a.meshes[m].name.rfind("building_", 0) == 0;
-    if (!building)
+    if (!building) {
       EXPECT_TRUE(a.meshLods[m].empty()) << a.meshes[m].name;
+    }
     withLods += !a.meshLods[m].empty();
     // Built at scene creation, the same on every run.
     ASSERT_EQ(a.meshLods[m].size(), b.meshLods[m].size());
