@@ -1,13 +1,13 @@
 #include "runtime/scene/builtin/mesh_lods.h"
 
 #include <algorithm>
-#include <exception>
 #include <limits>
 #include <stdexcept>
 #include <string>
-#include <thread>
 
 #include <meshoptimizer.h>
+
+#include "runtime/host/parallel_for.h"
 
 namespace memograph::runtime {
 namespace {
@@ -138,24 +138,9 @@ void addMeshLods(Scene& scene, const std::vector<std::uint32_t>& listed,
   scene.meshLods.resize(scene.meshes.size());
   // The meshes are independent, each simplified alone, so threads give the same LODs as one
   // thread: the full city's 2,000 buildings took 6 s of one core.
-  const std::size_t threads = std::clamp<std::size_t>(std::thread::hardware_concurrency(), 1,
-                                                      std::max<std::size_t>(meshes.size(), 1));
-  std::vector<std::thread> workers;
-  std::vector<std::exception_ptr> failures(threads);
-  for (std::size_t t = 0; t < threads; ++t)
-    workers.emplace_back([&, t] {
-      try {
-        for (std::size_t k = t; k < meshes.size(); k += threads)
-          scene.meshLods[meshes[k]] = buildMeshLods(scene.meshes[meshes[k]], settings);
-      } catch (...) {
-        failures[t] = std::current_exception();
-      }
-    });
-  for (std::thread& worker : workers)
-    worker.join();
-  for (const std::exception_ptr& failure : failures)
-    if (failure)
-      std::rethrow_exception(failure);
+  parallelFor(meshes.size(), 0, [&](std::size_t k, std::uint32_t) {
+    scene.meshLods[meshes[k]] = buildMeshLods(scene.meshes[meshes[k]], settings);
+  });
 }
 
 }  // namespace memograph::runtime
