@@ -53,7 +53,7 @@ DynamicAccelerationStructures::DynamicAccelerationStructures(
       feedbackPathWeight_(feedbackPathWeight) {
   meshCount_ = static_cast<std::uint32_t>(scene.meshes.size());
   shownLods_.assign(scene.instances.size(), 0);
-  if (options_.mode != CullingMode::None && options_.meshLods && !buffers.lodGeometry.empty()) {
+  if (options_.showsMeshLods() && !buffers.lodGeometry.empty()) {
     lods_.emplace(scene, culling_.bounds(), options_.lodPixelError);
     meshLodIds_ = buffers.meshLodIds;
     for (const Instance& instance : scene.instances)

@@ -115,6 +115,8 @@ struct CullingOptions {
   // scene without LODs.
   bool meshLods = false;
   float lodPixelError = 1.0f;
+  // Whether a render shows LODs: culled, with meshLods (what a built-in scene then builds).
+  bool showsMeshLods() const { return mode != CullingMode::None && meshLods; }
   // The render's image height, for a pixel's angle (the renderer sets it; 0: 1080).
   std::uint32_t imageHeight = 0;
 };

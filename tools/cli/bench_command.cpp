@@ -86,6 +86,7 @@ int checkPlanAndScenes(Bench& bench, const std::vector<std::string>& scenes) {
     std::string error;
     auto spec = runtime::parseBuiltinSceneSpec(std::string_view(sceneName).substr(8), error);
     spec->options.onGeometry = geometryCheck;
+    spec->options.meshLods = o.renderer.culling.showsMeshLods();
     runtime::Scene scene;
     try {
       scene = runtime::makeBuiltinScene(spec->name, spec->options);
@@ -345,7 +346,9 @@ void benchScene(Bench& bench, const std::string& sceneName) {
     scene = std::move(*bench.firstScene);
     bench.firstScene.reset();
   } else {
-    scene = runtime::makeBuiltinScene(spec->name, spec->options);  // checked already
+    runtime::BuiltinSceneOptions sceneOptions = spec->options;
+    sceneOptions.meshLods = o.renderer.culling.showsMeshLods();
+    scene = runtime::makeBuiltinScene(spec->name, sceneOptions);  // checked already
   }
   if (o.noEmissiveNee)
     scene.emissiveLightSampling = false;

@@ -196,6 +196,7 @@ int loadScene(const std::string& name, const TraceCommandOptions& options, runti
     if (!spec)
       return usageError("render", error);
     spec->options.onGeometry = runtime::deviceGeometryCheck(options.renderer.context);
+    spec->options.meshLods = options.renderer.culling.showsMeshLods();
     try {
       scene = runtime::makeBuiltinScene(spec->name, spec->options);
     } catch (const std::invalid_argument& e) {

@@ -46,6 +46,10 @@ struct BuiltinSceneOptions {
   // The city's default camera (the first frame of its path) and the path `memograph bench`
   // follows.
   CityCameraPath cityPath = CityCameraPath::Street;
+  // The city's buildings get mesh LODs (Scene::meshLods), which only a culled render with
+  // --mesh-lods on shows (CullingOptions::showsMeshLods): built only then, since they cost
+  // the full city about 6 s of one core and their geometry's upload.
+  bool meshLods = false;
   // Called after each mesh the scene adds, with the vertices and triangles of all its meshes
   // so far; it may throw to stop the build. The render and bench commands pass the device's
   // buffer check (checkGeometryBuffers), so that a scene the device cannot hold is refused

@@ -387,7 +387,8 @@ Scene makeCityScene(const BuiltinSceneOptions& options) {
   // LODs for the buildings, most of the city's triangles, each its own BLAS. The props are
   // left whole: a shared mesh has one BLAS for all its instances, and a LOD would add a
   // second beside it rather than replace it (docs/design/culling.md, Mesh LODs).
-  addMeshLods(scene, buildings);
+  if (options.meshLods)
+    addMeshLods(scene, buildings);
   Light sun;
   sun.type = LightType::Directional;
   sun.direction = glm::normalize(glm::vec3(-0.35f, -0.8f, 0.45f));

@@ -23,9 +23,11 @@ namespace {
 
 constexpr double kScale = 0.02;
 
+// With its buildings' LODs, which the tests' culling options show or not.
 Scene smallCity() {
   BuiltinSceneOptions options;
   options.cityScale = kScale;
+  options.meshLods = true;
   return makeBuiltinScene("city", options);
 }
 

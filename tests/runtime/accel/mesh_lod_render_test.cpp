@@ -178,6 +178,7 @@ TEST(MeshLodRender, LodsLowerLipacsPeakAsMemoryOnTheSmallCitysPaths) {
     BuiltinSceneOptions sceneOptions;
     sceneOptions.cityScale = kScale;
     sceneOptions.cityPath = which;
+    sceneOptions.meshLods = true;
     const Scene scene = makeBuiltinScene("city", sceneOptions);
     const CameraPath path = makeBuiltinCameraPath("city", 300, kScale, which);
     const std::vector<Camera> cameras(path.frames.begin(), path.frames.begin() + 12);

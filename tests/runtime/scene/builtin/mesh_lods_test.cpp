@@ -108,9 +108,12 @@ TEST(MeshLods, SmallOrBrokenMeshesGetNone) {
   EXPECT_THROW(addMeshLods(scene, {1}), std::invalid_argument);
 }
 
-TEST(MeshLods, TheCitysBuildingsHaveThemAndItsPropsAndFlagsNot) {
+TEST(MeshLods, TheCitysBuildingsHaveThemOnlyWhenAskedAndItsPropsAndFlagsNot) {
   BuiltinSceneOptions options;
   options.cityScale = 0.02;
+  // Not asked for (a render that shows none): none built.
+  EXPECT_TRUE(makeBuiltinScene("city", options).meshLods.empty());
+  options.meshLods = true;
   const Scene a = makeBuiltinScene("city", options), b = makeBuiltinScene("city", options);
   ASSERT_EQ(a.meshLods.size(), a.meshes.size());
   std::size_t withLods = 0;
