@@ -6,7 +6,8 @@
 # mesh LODs. One bench line each (city_bench.csv: median frame, peak and median AS bytes).
 # Then the mirror: camera 153 of the path (84 m from the mirror, facing it) accumulated over
 # FRAMES_MIRROR frames (default 32) at 960x540, seed 1, unculled and LiPaC in the wavefront,
-# and their mean LDR-FLIP (mirror.txt).
+# and their mean LDR-FLIP (mirror.txt). SCENE=builtin:city:path=aerial runs the aerial path, its
+# mirror camera 135.
 # After tools/bundle_device.sh, on the GPU machine (carry bundle and .gl):
 #   OUT=$OUT bash tools/bench/city_architectures_device.sh
 set -uo pipefail
@@ -45,7 +46,12 @@ run wavefront_lipac_floor --shading wavefront --culling lipac --floor-materials
 run wavefront_lipac_lods --shading wavefront --culling lipac --mesh-lods on
 run megakernel_lipac_lods --shading megakernel --culling lipac --mesh-lods on
 
-camera=$(grep -v '^#' examples/camera_paths/city.campath | grep . | sed -n 154p)
+campath=examples/camera_paths/city.campath
+mirror_camera=153
+case $scene in
+*path=aerial*) campath=examples/camera_paths/city_aerial.campath mirror_camera=135 ;;
+esac
+camera=$(grep -v '^#' "$campath" | grep . | sed -n "$((mirror_camera + 1))p")
 for _ in $(seq 1 "${FRAMES_MIRROR:-32}"); do echo "$camera"; done >"$work/mirror.campath"
 for mode in none lipac; do
   timeout 60 "$m" render "$scene" --shading wavefront --culling "$mode" --size 960x540 \
