@@ -10,25 +10,11 @@
 
 namespace memograph::compiler {
 
-inline constexpr std::array<std::string_view, 19> kMaterialInputNames = {"uv",
-                                                                         "position",
-                                                                         "normal",
-                                                                         "tangent",
-                                                                         "vertexColor",
-                                                                         "view",
-                                                                         "time",
-                                                                         "generated",
-                                                                         "objectPosition",
-                                                                         "geometricNormal",
-                                                                         "objectLocation",
-                                                                         "objectRandom",
-                                                                         "backfacing",
-                                                                         "rayFlags",
-                                                                         "rayLength",
-                                                                         "rayDepth",
-                                                                         "diffuseDepth",
-                                                                         "glossyDepth",
-                                                                         "transmissionDepth"};
+inline constexpr std::array<std::string_view, 20> kMaterialInputNames = {
+    "uv",           "position",       "normal",       "tangent",        "vertexColor",
+    "view",         "time",           "generated",    "objectPosition", "geometricNormal",
+    "objectNormal", "objectLocation", "objectRandom", "backfacing",     "rayFlags",
+    "rayLength",    "rayDepth",       "diffuseDepth", "glossyDepth",    "transmissionDepth"};
 
 // The object-space inputs (Blender's Texture Coordinate, Geometry and Object Info): the
 // members from `generated` up to the path state, which the prelude leaves out under
@@ -38,7 +24,7 @@ static_assert(kMaterialInputNames[kFirstObjectSpaceInput] == "generated");
 
 // The path-state inputs (Blender's Light Path node): the members from `rayFlags` on, which
 // the prelude leaves out under MG_OMIT_PATH_INPUTS.
-inline constexpr std::size_t kFirstPathInput = 13;
+inline constexpr std::size_t kFirstPathInput = 14;
 static_assert(kMaterialInputNames[kFirstPathInput] == "rayFlags");
 
 inline bool isObjectSpaceInput(std::string_view name) {

@@ -24,6 +24,8 @@ no clamping, no light threshold) and DIR/export/ (the memograph exporter with --
 - light_path_depth: (b) an emissive panel that emits only for Ray Depth 1 (black to the
   camera, lighting the floor and a wall directly, no bounced light). Both write
   DIR/tiles.json with their regions (panel, floor, wall) as the Principled scenes do.
+- object_normal: Texture Coordinate Normal as emission on a rotated, unevenly scaled sphere
+  and plane, black world (the object-space normal through the object's transform).
 """
 
 import argparse
@@ -288,6 +290,36 @@ def light_path_depth_scene():
                        for (y, z) in ((-0.15, -0.26), (0.15, 0.26))])]
 
 
+def object_normal_scene():
+    """Texture Coordinate Normal as emitted colour (N / 2 + 1/2) on a smooth sphere and a
+    plane, each rotated and scaled unevenly: the object-space normal, which Box projection's
+    weights read too."""
+    world()
+
+    def by_normal(nt, color, _strength):
+        tc = nt.nodes.new('ShaderNodeTexCoord')
+        half = nt.nodes.new('ShaderNodeVectorMath')
+        half.operation = 'MULTIPLY_ADD'
+        half.inputs[1].default_value = (0.5, 0.5, 0.5)
+        half.inputs[2].default_value = (0.5, 0.5, 0.5)
+        nt.links.new(tc.outputs['Normal'], half.inputs[0])
+        nt.links.new(half.outputs[0], color)
+
+    material = emission('ObjectNormal', color_node=by_normal)
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=0.6, location=(-0.7, 0, 0.6),
+                                         rotation=(math.radians(40), math.radians(-25),
+                                                   math.radians(60)))
+    sphere = bpy.context.object
+    sphere.scale = (1.0, 0.6, 1.4)
+    sphere.data.materials.append(material)
+    bpy.ops.object.shade_smooth()
+    tilted = plane('Tilted', 1.0, material, location=(0.8, 0, 0.6),
+                   rotation=(math.radians(60), math.radians(20), math.radians(30)))
+    tilted.scale = (1.5, 0.7, 1.0)
+    camera((0, -4, 0.6), rotation=(math.radians(90), 0, 0), lens=35)
+    return []
+
+
 def region_boxes(regions, size):
     """Pixel boxes of regions given by four world-space corners each: the box inside their
     projection, so no pixel sees an edge."""
@@ -329,6 +361,7 @@ SCENES = {
     'principled_retro': lambda: principled_scene('retro'),
     'light_path_camera': light_path_camera_scene,
     'light_path_depth': light_path_depth_scene,
+    'object_normal': object_normal_scene,
 }
 
 
