@@ -22,6 +22,7 @@ std::span<const Command> commands() {
       {"diff", "perceptual difference of two images (LDR-FLIP) and its error map", runDiff},
       {"import-blender", "export a .blend file's materials as graphs (runs Blender)",
        runImportBlender},
+      {"pack", "write an imported scene as one self-contained .mgpack file", runPack},
       {"selftest", "the material cache's concurrency stress test on this GPU", runSelftest},
   };
   return kCommands;
