@@ -234,6 +234,18 @@ struct BenchRun {
   }
 };
 
+// The cached share of the estimated material cost and, times the hit rate, the share served
+// from the cache (RenderStats::cachedCostShare).
+std::string cachedShareText(const runtime::RenderStats::CachedCostShare& share, double hitRate) {
+  std::ostringstream text;
+  text << "cached share " << 100.0 * share.total() << " % of the estimated material cost (whole "
+       << 100.0 * share.whole << " %, cuts uv " << 100.0 * share.uv << " %, object "
+       << 100.0 * share.object << " %, world " << 100.0 * share.world
+       << " %; instances weigh alike); served from the cache " << 100.0 * share.total() * hitRate
+       << " %";
+  return text.str();
+}
+
 void printCacheAndCulling(const BenchRun& run) {
   const runtime::RenderStats& stats = run.result.stats;
   if (stats.cache != "none")
@@ -245,7 +257,9 @@ void printCacheAndCulling(const BenchRun& run) {
               << (stats.cacheFilter != "nearest" ? ", filter " + stats.cacheFilter : "")
               << (stats.cacheSecondaryOnly ? ", secondary hits only" : "") << "): median hit rate "
               << 100.0 * run.summary.medianCacheHitRate << " %, total "
-              << 100.0 * run.summary.totalCacheHitRate << " %\n";
+              << 100.0 * run.summary.totalCacheHitRate << " %\n"
+              << "  " << cachedShareText(stats.cachedCostShare, run.summary.totalCacheHitRate)
+              << "\n";
   if (stats.culling != "none" && !run.timed.empty()) {
     std::uint64_t peakBytes = 0, builds = 0, evictions = 0;
     for (const auto& frame : run.timed) {

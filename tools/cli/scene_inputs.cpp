@@ -16,7 +16,8 @@
 
 namespace memograph::cli {
 
-int loadEnvironmentImage(std::string_view command, std::string environment, runtime::Scene& scene) {
+int loadEnvironmentImage([[maybe_unused]] std::string_view command, std::string environment,
+                         runtime::Scene& scene) {
   // Unused in builds without the io module, which read no environment image.
   [[maybe_unused]] float strength = 1.0f, uOffset = 0.0f;
   if (environment.empty() && !scene.environment.imagePath.empty() &&
