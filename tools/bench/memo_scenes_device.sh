@@ -12,20 +12,28 @@
 # --quality-size, P = 6, --quality-frames frames): the texel-cached render against the
 # uncached one at the same seed (mean LDR-FLIP; bias: the 8x8-block mean absolute error and
 # the image means), and the uncached render with another seed against it for scale
-# (seed-to-seed noise). Every step has its own time limit; the default run fits about
-# 500 s on an H100 (cold pipeline creation about 7 s a process, reused via --shader-cache).
+# (seed-to-seed noise). Every step has its own time limit, cut to what is left of --budget
+# seconds (default 540, under the device call's 600; a step with less than 15 s left is
+# skipped and its row says so); the default run takes about 300-400 s on an H100 (cold
+# pipeline creation about 7 s a process, reused via --shader-cache).
 #   bash tools/bench/memo_scenes_device.sh [--local] [--size WxH] [--frames N] [--warmup N]
 #        [--quality-size WxH] [--quality-frames N] [--scenes "pack classroom landscape"]
-#        [--pack FILE] [--camera FILE] [--limit-scale K]
+#        [--pack FILE] [--camera FILE] [--limit-scale K] [--budget S] [--runs "NAME..."]
+#        [--quality-shading megakernel|wavefront]
 # --local runs here (no carried Vulkan loader; MEMOGRAPH, default build/tools/memograph; every
 # time limit x 10 unless --limit-scale says), e.g. on lavapipe: --local --size 64x36
 # --frames 2 --quality-size 32x18 --quality-frames 2 --scenes "pack landscape"
-# --pack scene.mgpack --camera examples/blender/material_scene.camera.
+# --pack scene.mgpack --camera examples/blender/material_scene.camera. --runs: only these
+# bench runs (floor none-megakernel none-wavefront texel-wavefront texel-megakernel-switch
+# tile-megakernel; default all); --quality-shading: the architecture of the picture renders
+# (default wavefront; lavapipe compiles the wavefront's per-material passes slowly).
 # e.g. run(carry=["bundle", ".gl"], command="bash tools/bench/memo_scenes_device.sh").
-# Results in $OUT (default /tmp/out): memo_scenes_table.md (the table), memo_scenes_rows.csv
-# (one bench CSV line a run) and memo_scenes_log.txt (every command's output).
+# Results in $OUT (default /tmp/out), written row by row so that a run cut short keeps what
+# it finished: memo_scenes_table.md (the timing table), memo_scenes_quality.md (the picture
+# table), memo_scenes_rows.csv (one bench CSV line a run) and memo_scenes_log.txt (every
+# command's output).
 set -uo pipefail
-local=0 scale= size=1920x1080 frames=10 warmup=2 qsize=960x540 qframes=16
+local=0 scale= budget= size=1920x1080 runs= qshading=wavefront frames=10 warmup=2 qsize=960x540 qframes=16
 scenes="pack landscape classroom"
 pack=bundle/material_scene.mgpack camera=bundle/material_scene.camera
 while [ $# -gt 0 ]; do
@@ -40,12 +48,16 @@ while [ $# -gt 0 ]; do
   --pack) pack=$2; shift 2 ;;
   --camera) camera=$2; shift 2 ;;
   --limit-scale) scale=$2; shift 2 ;;
-  -h | --help) sed -n '2,29p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  --budget) budget=$2; shift 2 ;;
+  --runs) runs=$2; shift 2 ;;
+  --quality-shading) qshading=$2; shift 2 ;;
+  -h | --help) sed -n '2,34p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
   *) echo "memo_scenes_device.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
 [ $local = 1 ] && MEMOGRAPH=${MEMOGRAPH:-build/tools/memograph}
 scale=${scale:-$([ $local = 1 ] && echo 10 || echo 1)}
+budget=${budget:-$([ $local = 1 ] && echo 100000 || echo 540)}
 log_name=memo_scenes_log.txt rows_name=memo_scenes_rows.csv
 source tools/bench/wavefront_device_setup.sh  # OUT, m, $log, $rows, appendRow
 table="$OUT/memo_scenes_table.md"
@@ -56,16 +68,32 @@ shaders=/tmp/memo_scenes_shaders
 start=$(date +%s)
 spp=$((6 * qframes))
 
+# stepLimit LIMIT: LIMIT x the scale, cut to the budget's remainder; empty when under 15 s.
+stepLimit() {
+  local limit=$(($1 * scale)) left=$((budget - ($(date +%s) - start)))
+  [ $left -lt 15 ] && return
+  echo $((limit < left ? limit : left))
+}
+
 # sceneSpec NAME: what bench and render are given for it.
 sceneSpec() { [ "$1" = pack ] && echo "$pack" || echo "builtin:$1"; }
 
-# field LOG PATTERN: the number before " %"/" ms" in the first line matching PATTERN.
-field() { grep -o "$2" "$1" | head -1 | grep -o '[0-9.e+-]*' | head -1; }
+# field LOG PATTERN: the first number (a word starting with a digit) in the first match of
+# PATTERN in LOG.
+field() {
+  grep -o "$2" "$1" | head -1 | awk '{ for (i = 1; i <= NF; ++i) if ($i ~ /^[0-9]/) { print $i; exit } }'
+}
 
 # bench SCENE NAME LIMIT FLAGS...: one bench run, its line appended to the table.
 bench() {
-  local scene=$1 name=$2 limit=$(($3 * scale)) spec out csv ms hit share served
+  local scene=$1 name=$2 limit spec out csv ms hit share served
+  [ -z "$runs" ] || [[ " $runs " == *" $name "* ]] || return 0
+  limit=$(stepLimit "$3")
   shift 3
+  if [ -z "$limit" ]; then
+    echo "| $scene | $name | skipped: --budget spent | | | | |" >>"$table"
+    return
+  fi
   spec=$(sceneSpec "$scene")
   out="$work/${scene}_$name.txt" csv="$work/${scene}_$name.csv"
   echo "== $scene $name (limit $limit s, $(($(date +%s) - start)) s so far)" | tee -a "$log"
@@ -90,8 +118,10 @@ bench() {
 
 # render SCENE NAME LIMIT FLAGS...: a still render for the picture comparison.
 render() {
-  local scene=$1 name=$2 limit=$(($3 * scale)) spec
+  local scene=$1 name=$2 limit spec
+  limit=$(stepLimit "$3")
   shift 3
+  [ -n "$limit" ] || { echo "== $scene render $name skipped: --budget spent" | tee -a "$log"; return; }
   spec=$(sceneSpec "$scene")
   echo "== $scene render $name (limit $limit s, $(($(date +%s) - start)) s so far)" | tee -a "$log"
   timeout "$limit" "$m" render "$spec" --size "$qsize" --paths 6 --bounces 4 --frames "$qframes" \
@@ -111,7 +141,7 @@ compare() {
 }
 
 device=$("$m" render --list-devices 2>/dev/null | head -1 | sed 's/^\[0\] //')
-quality="$work/quality.md"
+quality="$OUT/memo_scenes_quality.md"
 {
   echo "# Memoization on the material scenes"
   echo
@@ -127,8 +157,7 @@ quality="$work/quality.md"
   echo "| --- | --- | --- | --- | --- | --- | --- |"
 } >"$table"
 {
-  echo
-  echo "## Converged picture"
+  echo "# Memoization on the material scenes: the converged picture"
   echo
   echo "Static camera, $qsize, P = 6, $qframes frames: $spp samples a pixel (not 1536: the"
   echo "device call's time limit). Against the uncached render at seed 0: mean LDR-FLIP, and"
@@ -163,12 +192,11 @@ for scene in $scenes; do
       >"$work/still.camera"
     still=(--camera-path "$work/still.camera")
   fi
-  render "$scene" none "$(l 25 40)" --shading wavefront "${still[@]}"
-  render "$scene" none-seed7 "$(l 25 40)" --shading wavefront --seed 7 "${still[@]}"
-  render "$scene" texel "$(l 25 40)" --shading wavefront --cache texel "${still[@]}"
+  render "$scene" none "$(l 25 40)" --shading "$qshading" "${still[@]}"
+  render "$scene" none-seed7 "$(l 25 40)" --shading "$qshading" --seed 7 "${still[@]}"
+  render "$scene" texel "$(l 25 40)" --shading "$qshading" --cache texel "${still[@]}"
   compare "$scene" none-seed7
   compare "$scene" texel
 done
-cat "$quality" >>"$table"
-echo "memo_scenes_device.sh: $(($(date +%s) - start)) s; wrote $table" | tee -a "$log"
-cat "$table"
+echo "memo_scenes_device.sh: $(($(date +%s) - start)) s; wrote $table and $quality" | tee -a "$log"
+cat "$table" "$quality"

@@ -1,15 +1,13 @@
 // The environment image and scene packs for render, bench and pack (scene_inputs.h).
 #include "scene_inputs.h"
 
+#ifdef MEMOGRAPH_HAVE_RUNTIME
 #include <cmath>
 #include <iostream>
 #include <memory>
 
 #include "cli_common.h"
-
-#ifdef MEMOGRAPH_HAVE_RUNTIME
 #include "runtime/scene/pack/scene_pack.h"
-#endif
 #ifdef MEMOGRAPH_HAVE_IO
 #include "tools/io/image_io.h"
 #endif
@@ -58,7 +56,6 @@ int loadEnvironmentImage([[maybe_unused]] std::string_view command, std::string 
 #endif
 }
 
-#ifdef MEMOGRAPH_HAVE_RUNTIME
 int loadScenePackFile(std::string_view command, const std::string& path,
                       TraceCommandOptions& options, runtime::Scene& scene,
                       std::vector<runtime::Camera>& cameraPath) {
@@ -80,6 +77,6 @@ int loadScenePackFile(std::string_view command, const std::string& path,
   };
   return kExitOk;
 }
-#endif
 
 }  // namespace memograph::cli
+#endif

@@ -2,15 +2,14 @@
 // scene pack with what it brings (its camera path, its textures).
 #pragma once
 
+// Only in builds with the renderer (MEMOGRAPH_HAVE_RUNTIME), whose scene types these use.
+#ifdef MEMOGRAPH_HAVE_RUNTIME
 #include <string>
 #include <string_view>
 #include <vector>
 
-#include "runtime/scene/scene.h"
-
-#ifdef MEMOGRAPH_HAVE_RUNTIME
 #include "option_table.h"
-#endif
+#include "runtime/scene/scene.h"
 
 namespace memograph::cli {
 
@@ -21,7 +20,6 @@ namespace memograph::cli {
 // build reads no images).
 int loadEnvironmentImage(std::string_view command, std::string environment, runtime::Scene& scene);
 
-#ifdef MEMOGRAPH_HAVE_RUNTIME
 // Reads the scene pack `path` into `scene` and points `options` at it: its textures become
 // the texture loader's, and its camera path `cameraPath` (empty when it has none). The
 // --materials note says the pack's own graphs are used. kExitFailure after printing the
@@ -29,6 +27,6 @@ int loadEnvironmentImage(std::string_view command, std::string environment, runt
 int loadScenePackFile(std::string_view command, const std::string& path,
                       TraceCommandOptions& options, runtime::Scene& scene,
                       std::vector<runtime::Camera>& cameraPath);
-#endif
 
 }  // namespace memograph::cli
+#endif
