@@ -50,10 +50,9 @@ constexpr std::string_view kIntro =
     "Path traces a scene (thesis §5.2) and writes the accumulated HDR image. SCENE is a\n"
     "glTF/OBJ file whose material names map to DIR/<name>.mgraph (--materials DIR), a scene\n"
     "pack (.mgpack, written by 'memograph pack'; its camera path is followed unless\n"
-    "--camera-path is given), or a built-in scene (classroom, landscape, city) with options "
-    "octaves, layers, terrain, nee,\n"
-    "scale, path (the city's camera: street or aerial), e.g.\n"
-    "builtin:classroom:octaves=10,layers=3 (docs/guide/scenes.md).\n";
+    "--camera-path is given), or a built-in scene (classroom, landscape, city) with\n"
+    "options octaves, layers, terrain, nee, scale, path (the city's camera: street or\n"
+    "aerial), e.g. builtin:classroom:octaves=10,layers=3 (docs/guide/scenes.md).\n";
 
 std::string imageExtension(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();
