@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# On the GPU machine, after tools/bundle_device.sh (carry bundle and .gl): the memoization
-# table of the material scenes (docs/results/memoization.md) for the packed Blender material
-# scene (bundle/material_scene.mgpack), builtin:classroom and builtin:landscape. Per scene,
+# On the GPU machine, after tools/bundle_memo_scenes.sh (carry bundle and .gl): the
+# memoization table of the material scenes for the packed Blender material scene
+# (bundle/material_scene.mgpack), builtin:landscape and builtin:classroom. Per scene,
 # along its camera path at 1920x1080, P = 6, L = 4: no cache on both architectures
 # (megakernel, wavefront), the free-material floor (--floor-materials), the texel cache
 # (its cuts keyed by the key domain the compiler chose per material: uv, object or world) on
@@ -52,7 +52,7 @@ while [ $# -gt 0 ]; do
   --budget) budget=$2; shift 2 ;;
   --runs) runs=$2; shift 2 ;;
   --quality-shading) qshading=$2; shift 2 ;;
-  -h | --help) sed -n '2,34p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  -h | --help) sed -n '2,35p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
   *) echo "memo_scenes_device.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
