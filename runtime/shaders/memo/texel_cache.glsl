@@ -821,8 +821,9 @@ bool cacheCutKeyFor(uvec4 info, uvec4 cut, uvec2 object, MaterialInputs inputs,
 
 // The wavefront splits this into its lookup pass and its material passes (wavefront.glsl);
 // its material passes run it in place for filtered reads and for cuts too wide for its path
-// state, with their own evaluateMaterialDirect and cut and rest functions.
-#if !defined(MG_WAVEFRONT) || defined(MG_WAVEFRONT_MATERIAL)
+// state, with their own evaluateMaterialDirect and cut and rest functions (the texel cache's
+// only: the tile cache includes this file for its entry protocol alone).
+#if !defined(MG_WAVEFRONT) || (defined(MG_WAVEFRONT_MATERIAL) && defined(MG_CACHE_TEXEL))
 // Cacheable materials (mask != 0) read the cache and on a miss evaluate and insert; with
 // MG_CACHE_CUTS, a material with a cut is keyed by it (evaluateMaterialThroughCut); others
 // are evaluated directly and never touch the cache. With MG_CACHE_SNAP_UV a miss
@@ -1102,6 +1103,6 @@ void evaluateMaterialCached(uint materialId, uvec2 object, MaterialInputs inputs
 #endif  // MG_CACHE_FILTER
 }
 
-#endif  // !MG_WAVEFRONT || MG_WAVEFRONT_MATERIAL
+#endif  // !MG_WAVEFRONT || (MG_WAVEFRONT_MATERIAL && MG_CACHE_TEXEL)
 
 #endif

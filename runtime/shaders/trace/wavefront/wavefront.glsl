@@ -830,6 +830,9 @@ void main() {
                                0x9E3779B9u);
 #endif
     evaluateMaterialCached(s.materialId, s.object, s.inputs, m);
+#ifdef MG_DEBUG_CACHE_MISSES
+    if (g_cacheMissed) pathState[fieldIndex(kFieldPixelSum, slot)].w = 1.0;  // as the lookup's
+#endif
   } else {
     MG_EVALUATE_MATERIAL(s.inputs, m);
   }
