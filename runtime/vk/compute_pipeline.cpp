@@ -51,7 +51,7 @@ const void* PipelineCreationFeedback::chain(const void* next) {
 }
 
 void PipelineCreationFeedback::count() const {
-  context_.pipelineCache().countCreated(pipeline_);
+  context_.pipelineCache().countCreated(pipeline_, std::chrono::steady_clock::now() - start_);
 }
 
 VulkanHandle<VkPipeline> createComputePipeline(const VulkanContext& context, VkShaderModule module,

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <mutex>
@@ -58,11 +59,13 @@ std::optional<std::string_view> decodePipelineCacheFile(std::string_view file,
 
 // Pipelines created through the cache and what the driver said of them
 // (VK_EXT_pipeline_creation_feedback): `reported` of them carried valid feedback, `hits` of
-// those were found in the application's pipeline cache.
+// those were found in the application's pipeline cache; `creationNanoseconds`: the time their
+// creation calls took, summed (calls on several threads overlap).
 struct PipelineCacheCounts {
   std::uint32_t created = 0;
   std::uint32_t reported = 0;
   std::uint32_t hits = 0;
+  std::uint64_t creationNanoseconds = 0;
 };
 
 // One device's pipeline cache. Thread-safe: the VkPipelineCache is internally synchronised,
@@ -90,8 +93,9 @@ class PipelineCache {
   bool save();
 
   // Counts a pipeline created with handle(): `feedback` is the pipeline's
-  // VkPipelineCreationFeedback (flags 0 when the driver gave none).
-  void countCreated(const VkPipelineCreationFeedback& feedback);
+  // VkPipelineCreationFeedback (flags 0 when the driver gave none), `took` its creation
+  // call's wall time.
+  void countCreated(const VkPipelineCreationFeedback& feedback, std::chrono::nanoseconds took);
   PipelineCacheCounts counts() const;
 
  private:
@@ -105,6 +109,7 @@ class PipelineCache {
   std::atomic<std::uint32_t> created_{0};
   std::atomic<std::uint32_t> reported_{0};
   std::atomic<std::uint32_t> hits_{0};
+  std::atomic<std::uint64_t> creationNanoseconds_{0};
 
   std::string driverData() const;
 };
