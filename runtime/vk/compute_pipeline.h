@@ -54,6 +54,10 @@ class PipelineCreationFeedback {
 // pipeline cache; `what` names it in errors.
 VulkanHandle<VkPipeline> createComputePipeline(const VulkanContext& context, VkShaderModule module,
                                                VkPipelineLayout layout, const char* what);
+// The same with `cache` instead of the context's (a thread's own, ThreadPipelineCaches).
+VulkanHandle<VkPipeline> createComputePipeline(const VulkanContext& context, VkShaderModule module,
+                                               VkPipelineLayout layout, const char* what,
+                                               VkPipelineCache cache);
 
 // A compute pass that reads and writes only through buffer device addresses in its push
 // constants (`pushBytes` of them), so it needs no descriptor set: the embedded shader `file`

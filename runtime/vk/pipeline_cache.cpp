@@ -253,6 +253,15 @@ bool PipelineCache::save() {
   return true;
 }
 
+void PipelineCache::mergeIn(const std::vector<VkPipelineCache>& others) {
+  if (cache_ == VK_NULL_HANDLE || others.empty())
+    return;
+  const std::lock_guard lock(saveMutex_);
+  checkVk(vkMergePipelineCaches(device_, cache_, static_cast<std::uint32_t>(others.size()),
+                                others.data()),
+          "vkMergePipelineCaches");
+}
+
 void PipelineCache::countCreated(const VkPipelineCreationFeedback& feedback,
                                  std::chrono::nanoseconds took) {
   ++created_;

@@ -24,6 +24,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -83,6 +84,7 @@ class PipelineCache {
   PipelineCache& operator=(const PipelineCache&) = delete;
 
   VkPipelineCache handle() const { return cache_; }
+  VkDevice device() const { return device_; }
   const std::filesystem::path& file() const { return file_; }
   // Bytes of driver data handed to the driver from the file (0: none, or it was ignored).
   std::uint64_t loadedBytes() const { return loadedBytes_; }
@@ -91,6 +93,11 @@ class PipelineCache {
   // written; first merges in a usable file another process wrote since. Returns whether
   // the file was written. A write that fails is a warning (once a process), never an error.
   bool save();
+
+  // Merges `others` (caches of this device that pipelines were created with instead of
+  // handle(), now idle) into this one, so that save() writes their pipelines too. Takes
+  // save()'s lock: the spec wants the destination externally synchronised.
+  void mergeIn(const std::vector<VkPipelineCache>& others);
 
   // Counts a pipeline created with handle(): `feedback` is the pipeline's
   // VkPipelineCreationFeedback (flags 0 when the driver gave none), `took` its creation

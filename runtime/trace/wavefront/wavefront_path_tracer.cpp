@@ -11,6 +11,7 @@
 #include "runtime/trace/megakernel/trace_pipelines.h"
 #include "runtime/trace/wavefront/wavefront_passes.h"
 #include "runtime/vk/compute_pipeline.h"
+#include "runtime/vk/thread_pipeline_caches.h"
 #include "runtime/vk/vulkan_error.h"
 
 namespace memograph::runtime {
@@ -248,7 +249,9 @@ void WavefrontPathTracer::appendRayTracingRequests(const std::vector<std::string
 // classroom's material pipelines took 33.9 s on one thread and 17.5 s on this 2-core
 // machine's two). So every pipeline is one job of a parallelFor; each job writes its own
 // slot, so the result does not depend on the order they finish in. The pipeline cache they
-// share is internally synchronised. The jobs go longest first (a greedy schedule's last job
+// share is internally synchronised; on a cold start each thread has a cache of its own
+// instead (ThreadPipelineCaches: no driver lock shared between the threads), merged into the
+// device's once every pipeline exists. The jobs go longest first (a greedy schedule's last job
 // to start then is a short one, so no core runs on alone at the end): the ray-tracing
 // pipeline (five shaders), then the material passes by their SPIR-V's size, the largest
 // first (a driver's compile grows with the code), then the small compute passes.
@@ -265,7 +268,8 @@ void WavefrontPathTracer::createPipelines(const PipelineShaders& shaders,
   });
   const std::size_t rayTracingJobs = shaders.rayTracingModules.empty() ? 0 : 1;
   const std::size_t jobs = rayTracingJobs + shaders.materialSpirv.size() + shaders.passes.size();
-  parallelFor(jobs, threads, [&](std::size_t job, std::uint32_t) {
+  ThreadPipelineCaches caches(context_.pipelineCache(), workerThreads(threads, jobs));
+  parallelFor(jobs, threads, [&](std::size_t job, std::uint32_t thread) {
     if (job < rayTracingJobs) {
       std::vector<VkShaderModule> moduleHandles;
       for (const auto& module : shaders.rayTracingModules)
@@ -280,15 +284,17 @@ void WavefrontPathTracer::createPipelines(const PipelineShaders& shaders,
       auto module = createShaderModule(device, shaders.materialSpirv[bin]);
       materialPasses_[bin] =
           createComputePipeline(context_, module.get(), layout_.get(),
-                                ("wavefront material " + materials->distinct[bin].name).c_str());
+                                ("wavefront material " + materials->distinct[bin].name).c_str(),
+                                caches.forThread(thread));
       return;
     }
     job -= binsBySize.size();
     const std::uint32_t pass = shaders.passes[job];
     auto module = createShaderModule(device, shaders.passSpirv[job]);
-    computePasses_[pass] =
-        createComputePipeline(context_, module.get(), layout_.get(), kPassNames[pass]);
+    computePasses_[pass] = createComputePipeline(context_, module.get(), layout_.get(),
+                                                 kPassNames[pass], caches.forThread(thread));
   });
+  caches.merge();
   if (rayTracingJobs == 0)
     return;
   // The table: [trace raygen][shadow raygen][miss, shadow miss][hit]; the pipeline keeps the
