@@ -3,6 +3,11 @@
 // frame"), so a pipeline more is a regression to see here, counted, never timed. A render
 // counts the pipelines it created (RenderStats::pipelinesCreated); the classroom's render is
 // pinned in wavefront_test.cpp (TheClassroomsGraphsGiveTheMegakernelsPictureAtOneSeed).
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
 #include <gtest/gtest.h>
 
 #include "render_test_support.h"
@@ -46,8 +51,13 @@ TEST(WavefrontPipelineCount, TheFloorBuildsNoBinningOrMaterialPasses) {
 }
 
 // What a render creates is what wavefrontPipelineCount says: the landscape's graphs on both
-// backends, counted by the pipeline cache as the driver creates them.
+// backends, counted by the pipeline cache as the driver creates them. Each a cold start with
+// a cache folder, so its threads create through caches of their own (ThreadPipelineCaches),
+// under the validation layer where it is installed.
 TEST(WavefrontPipelineCount, ARenderCreatesExactlyThePipelinesItsFrameUses) {
+  const std::filesystem::path folder =
+      std::filesystem::temp_directory_path() /
+      ("memograph-wavefront-pipelines-" + std::to_string(::getpid()));
   const Scene scene = makeBuiltinScene("landscape", {});
   const SceneMaterials materials = linkSceneMaterials(scene, {});
   RenderSettings settings;
@@ -59,12 +69,18 @@ TEST(WavefrontPipelineCount, ARenderCreatesExactlyThePipelinesItsFrameUses) {
     RendererOptions options = testing::testOptions(backend);
     options.nodeLibraryDirectory.clear();  // built-in scenes: the real node library
     options.shading = Shading::Wavefront;
-    const RenderStats stats = Renderer(options).render(scene, settings).stats;
+    std::filesystem::remove_all(folder);
+    options.shaderCacheDirectory = folder;
+    Renderer renderer(options);
+    const RenderStats stats = renderer.render(scene, settings).stats;
+    EXPECT_TRUE(stats.pipelineCacheWritten);
+    EXPECT_TRUE(renderer.context().validationErrors().empty());
     WavefrontPipelineChoice choice;
     choice.rayQuery = backend == Backend::RayQuery;
     choice.materialGraphs = static_cast<std::uint32_t>(materials.linked.distinct.size());
     EXPECT_EQ(stats.pipelinesCreated, wavefrontPipelineCount(choice)) << stats.backend;
   }
+  std::filesystem::remove_all(folder);
 }
 
 }  // namespace
