@@ -100,6 +100,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   result.stats.pipelinesCreated = countsAfter.created - countsBefore.created;
   result.stats.pipelineCacheHitsReported = countsAfter.reported > countsBefore.reported;
   result.stats.pipelineCacheHits = countsAfter.hits - countsBefore.hits;
+  result.stats.pipelineCreateCallMilliseconds =
+      double(countsAfter.creationNanoseconds - countsBefore.creationNanoseconds) / 1e6;
   result.stats.pipelineCacheLoadedBytes = pipelineCache.loadedBytes();
   result.stats.pipelineCacheWritten = pipelineCache.save();
 

@@ -1,6 +1,7 @@
 #include "runtime/trace/render_stats.h"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace memograph::runtime {
 
@@ -16,6 +17,15 @@ std::string pipelineCacheText(const RenderStats& stats) {
     text += std::to_string(stats.pipelineCacheHits) + " from the pipeline cache";
   else
     text += "the driver does not say how many from the pipeline cache";
+  // How many the driver compiled at a time, on average: the creation calls' summed time
+  // over the stage's wall time.
+  if (stats.pipelinesCreated > 0 && stats.pipelineCreateMilliseconds > 0.0) {
+    char calls[96];
+    std::snprintf(calls, sizeof calls, "; their creation calls %.0f ms summed, %.1f at a time",
+                  stats.pipelineCreateCallMilliseconds,
+                  stats.pipelineCreateCallMilliseconds / stats.pipelineCreateMilliseconds);
+    text += calls;
+  }
   return text;
 }
 

@@ -148,6 +148,10 @@ struct RenderStats {
   bool pipelineCacheHitsReported = false;
   std::uint64_t pipelineCacheLoadedBytes = 0;
   bool pipelineCacheWritten = false;
+  // The pipelines' creation calls' wall times summed: against pipelineCreateMilliseconds it
+  // says how many the driver compiled at a time (threads that wait on a lock in the driver
+  // add time here without shortening the wall time).
+  double pipelineCreateCallMilliseconds = 0.0;
   // Wall time from the start of Renderer::render (the device is open by then) to the end of
   // the first frame read back: every set-up stage (materials, upload, acceleration
   // structures, shaders, pipelines) and the first frame.

@@ -51,11 +51,17 @@ const void* PipelineCreationFeedback::chain(const void* next) {
 }
 
 void PipelineCreationFeedback::count() const {
-  context_.pipelineCache().countCreated(pipeline_);
+  context_.pipelineCache().countCreated(pipeline_, std::chrono::steady_clock::now() - start_);
 }
 
 VulkanHandle<VkPipeline> createComputePipeline(const VulkanContext& context, VkShaderModule module,
                                                VkPipelineLayout layout, const char* what) {
+  return createComputePipeline(context, module, layout, what, context.pipelineCache().handle());
+}
+
+VulkanHandle<VkPipeline> createComputePipeline(const VulkanContext& context, VkShaderModule module,
+                                               VkPipelineLayout layout, const char* what,
+                                               VkPipelineCache cache) {
   VkDevice device = context.device();
   VkComputePipelineCreateInfo info{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
   info.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
@@ -66,8 +72,7 @@ VulkanHandle<VkPipeline> createComputePipeline(const VulkanContext& context, VkS
   PipelineCreationFeedback feedback(context, 1);
   info.pNext = feedback.chain(info.pNext);
   VkPipeline pipeline = VK_NULL_HANDLE;
-  checkVk(vkCreateComputePipelines(device, context.pipelineCache().handle(), 1, &info, nullptr,
-                                   &pipeline),
+  checkVk(vkCreateComputePipelines(device, cache, 1, &info, nullptr, &pipeline),
           ("vkCreateComputePipelines (" + std::string(what) + ")").c_str());
   feedback.count();
   return VulkanHandle<VkPipeline>(

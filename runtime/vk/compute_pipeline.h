@@ -4,6 +4,7 @@
 // vertex pass).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -28,7 +29,10 @@ VulkanHandle<VkPipelineLayout> createPipelineLayout(VkDevice device, VkDescripto
 
 // What the driver says of one pipeline it creates (VK_EXT_pipeline_creation_feedback),
 // where the device has it: chain() puts the request into a create info's pNext chain, and
-// count() gives the answer to the context's pipeline cache, after the pipeline is created.
+// count() gives the answer to the context's pipeline cache, after the pipeline is created,
+// with the time since this object was made (just before the creation call): summed over the
+// pipelines created on several threads, against the wall time, it says whether creating
+// them in parallel paid.
 class PipelineCreationFeedback {
  public:
   PipelineCreationFeedback(const VulkanContext& context, std::uint32_t stageCount);
@@ -40,6 +44,7 @@ class PipelineCreationFeedback {
 
  private:
   const VulkanContext& context_;
+  std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
   VkPipelineCreationFeedback pipeline_{};
   std::vector<VkPipelineCreationFeedback> stages_;
   VkPipelineCreationFeedbackCreateInfo info_{};
@@ -49,6 +54,10 @@ class PipelineCreationFeedback {
 // pipeline cache; `what` names it in errors.
 VulkanHandle<VkPipeline> createComputePipeline(const VulkanContext& context, VkShaderModule module,
                                                VkPipelineLayout layout, const char* what);
+// The same with `cache` instead of the context's (a thread's own, ThreadPipelineCaches).
+VulkanHandle<VkPipeline> createComputePipeline(const VulkanContext& context, VkShaderModule module,
+                                               VkPipelineLayout layout, const char* what,
+                                               VkPipelineCache cache);
 
 // A compute pass that reads and writes only through buffer device addresses in its push
 // constants (`pushBytes` of them), so it needs no descriptor set: the embedded shader `file`

@@ -1,5 +1,6 @@
 #include "runtime/vk/pipeline_cache.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <cstring>
@@ -252,8 +253,19 @@ bool PipelineCache::save() {
   return true;
 }
 
-void PipelineCache::countCreated(const VkPipelineCreationFeedback& feedback) {
+void PipelineCache::mergeIn(const std::vector<VkPipelineCache>& others) {
+  if (cache_ == VK_NULL_HANDLE || others.empty())
+    return;
+  const std::lock_guard lock(saveMutex_);
+  checkVk(vkMergePipelineCaches(device_, cache_, static_cast<std::uint32_t>(others.size()),
+                                others.data()),
+          "vkMergePipelineCaches");
+}
+
+void PipelineCache::countCreated(const VkPipelineCreationFeedback& feedback,
+                                 std::chrono::nanoseconds took) {
   ++created_;
+  creationNanoseconds_ += static_cast<std::uint64_t>(std::max<std::int64_t>(0, took.count()));
   if (feedback.flags & VK_PIPELINE_CREATION_FEEDBACK_VALID_BIT) {
     ++reported_;
     if (feedback.flags & VK_PIPELINE_CREATION_FEEDBACK_APPLICATION_PIPELINE_CACHE_HIT_BIT)
@@ -262,7 +274,7 @@ void PipelineCache::countCreated(const VkPipelineCreationFeedback& feedback) {
 }
 
 PipelineCacheCounts PipelineCache::counts() const {
-  return {created_.load(), reported_.load(), hits_.load()};
+  return {created_.load(), reported_.load(), hits_.load(), creationNanoseconds_.load()};
 }
 
 }  // namespace memograph::runtime

@@ -17,12 +17,14 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <mutex>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <vulkan/vulkan.h>
 
@@ -58,11 +60,13 @@ std::optional<std::string_view> decodePipelineCacheFile(std::string_view file,
 
 // Pipelines created through the cache and what the driver said of them
 // (VK_EXT_pipeline_creation_feedback): `reported` of them carried valid feedback, `hits` of
-// those were found in the application's pipeline cache.
+// those were found in the application's pipeline cache; `creationNanoseconds`: the time their
+// creation calls took, summed (calls on several threads overlap).
 struct PipelineCacheCounts {
   std::uint32_t created = 0;
   std::uint32_t reported = 0;
   std::uint32_t hits = 0;
+  std::uint64_t creationNanoseconds = 0;
 };
 
 // One device's pipeline cache. Thread-safe: the VkPipelineCache is internally synchronised,
@@ -80,6 +84,7 @@ class PipelineCache {
   PipelineCache& operator=(const PipelineCache&) = delete;
 
   VkPipelineCache handle() const { return cache_; }
+  VkDevice device() const { return device_; }
   const std::filesystem::path& file() const { return file_; }
   // Bytes of driver data handed to the driver from the file (0: none, or it was ignored).
   std::uint64_t loadedBytes() const { return loadedBytes_; }
@@ -89,9 +94,15 @@ class PipelineCache {
   // the file was written. A write that fails is a warning (once a process), never an error.
   bool save();
 
+  // Merges `others` (caches of this device that pipelines were created with instead of
+  // handle(), now idle) into this one, so that save() writes their pipelines too. Takes
+  // save()'s lock: the spec wants the destination externally synchronised.
+  void mergeIn(const std::vector<VkPipelineCache>& others);
+
   // Counts a pipeline created with handle(): `feedback` is the pipeline's
-  // VkPipelineCreationFeedback (flags 0 when the driver gave none).
-  void countCreated(const VkPipelineCreationFeedback& feedback);
+  // VkPipelineCreationFeedback (flags 0 when the driver gave none), `took` its creation
+  // call's wall time.
+  void countCreated(const VkPipelineCreationFeedback& feedback, std::chrono::nanoseconds took);
   PipelineCacheCounts counts() const;
 
  private:
@@ -105,6 +116,7 @@ class PipelineCache {
   std::atomic<std::uint32_t> created_{0};
   std::atomic<std::uint32_t> reported_{0};
   std::atomic<std::uint32_t> hits_{0};
+  std::atomic<std::uint64_t> creationNanoseconds_{0};
 
   std::string driverData() const;
 };

@@ -5,7 +5,9 @@
 #   driver-cache-off  __GL_SHADER_DISK_CACHE=0 (the NVIDIA driver keeps no shaders of its own)
 #   driver-cache-on   __GL_SHADER_DISK_CACHE=1 with a fresh __GL_SHADER_DISK_CACHE_PATH
 # Prints a table (first_frame.txt): the process's wall time, and what render printed of its
-# pipelines (created, found in the pipeline cache, their time, the first frame's wall time).
+# pipelines (created, found in the pipeline cache, their time, their creation calls' time
+# summed and how many the driver compiled at a time, the first frame's wall time), after the
+# machine's CPU count (the threads that create pipelines: one a core).
 # After tools/bundle_device.sh, on the GPU machine (carry bundle and .gl):
 #   OUT=$OUT bash tools/bench/first_frame_device.sh
 set -uo pipefail
@@ -35,6 +37,7 @@ one_run() {
 }
 {
   nvidia-smi -L || true
+  echo "CPUs: $(nproc)"
   c=$(mktemp -d)
   export __GL_SHADER_DISK_CACHE=0
   one_run driver-cache-off cold "$c"

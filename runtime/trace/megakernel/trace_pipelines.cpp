@@ -64,17 +64,22 @@ VkPipeline createWithDeferredOperation(const VulkanContext& context,
 
 }  // namespace
 
+void appendReportingShaderRequests(std::vector<ShaderCompileRequest>& requests,
+                                   std::vector<VkShaderStageFlagBits>& stages) {
+  requests.push_back({"trace_miss.rmiss", ShaderStage::Miss, {}});
+  requests.push_back({"trace_shadow.rmiss", ShaderStage::Miss, {}});
+  requests.push_back({"trace_hit.rchit", ShaderStage::ClosestHit, {}});
+  stages.insert(stages.end(), {VK_SHADER_STAGE_MISS_BIT_KHR, VK_SHADER_STAGE_MISS_BIT_KHR,
+                               VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR});
+}
+
 void appendReportingShaders(VkDevice device, ShaderCompiler& compiler,
                             std::vector<VulkanHandle<VkShaderModule>>& modules,
                             std::vector<VkShaderStageFlagBits>& stages) {
-  modules.push_back(
-      createShaderModule(device, compiler.compile({"trace_miss.rmiss", ShaderStage::Miss, {}})));
-  modules.push_back(
-      createShaderModule(device, compiler.compile({"trace_shadow.rmiss", ShaderStage::Miss, {}})));
-  modules.push_back(createShaderModule(
-      device, compiler.compile({"trace_hit.rchit", ShaderStage::ClosestHit, {}})));
-  stages.insert(stages.end(), {VK_SHADER_STAGE_MISS_BIT_KHR, VK_SHADER_STAGE_MISS_BIT_KHR,
-                               VK_SHADER_STAGE_CLOSEST_HIT_BIT_KHR});
+  std::vector<ShaderCompileRequest> requests;
+  appendReportingShaderRequests(requests, stages);
+  for (const ShaderCompileRequest& request : requests)
+    modules.push_back(createShaderModule(device, compiler.compile(request)));
 }
 
 VulkanHandle<VkPipeline> createRayTracingPipeline(const VulkanContext& context,

@@ -27,6 +27,11 @@ VulkanHandle<VkDescriptorSetLayout> createTraceSetLayout(VkDevice device, VkShad
                                                          std::uint32_t textureCount, bool tileImage,
                                                          bool wavefront = false);
 
+// The report-only shaders' compile requests, in appendReportingShaders' order, with their
+// stages: for a caller that compiles them beside its other shaders on several threads.
+void appendReportingShaderRequests(std::vector<ShaderCompileRequest>& requests,
+                                   std::vector<VkShaderStageFlagBits>& stages);
+
 // Appends the report-only shaders (thesis §5.2) of every ray-tracing pipeline here, in this
 // order: the closest-hit rays' miss (trace_miss.rmiss), the shadow rays' miss
 // (trace_shadow.rmiss) and the closest hit (trace_hit.rchit), with their stages.

@@ -9,7 +9,9 @@
 #include "runtime/materials/material_shaders.h"
 #include "runtime/shaders/shared_types.h"
 #include "runtime/trace/megakernel/trace_pipelines.h"
+#include "runtime/trace/wavefront/wavefront_passes.h"
 #include "runtime/vk/compute_pipeline.h"
+#include "runtime/vk/thread_pipeline_caches.h"
 #include "runtime/vk/vulkan_error.h"
 
 namespace memograph::runtime {
@@ -81,8 +83,6 @@ std::vector<WavefrontPathTracer::FramePass> WavefrontPathTracer::framePasses(
   }
   return passes;
 }
-
-namespace {}  // namespace
 
 WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCompiler& compiler,
                                          std::uint32_t textureCount,
@@ -178,31 +178,37 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   }
   const bool computeSubgroups =
       (context.info().subgroupArithmeticStages & VK_SHADER_STAGE_COMPUTE_BIT) != 0;
-  // Every shader's SPIR-V first, then every pipeline at once (createPipelines).
-  std::vector<std::uint32_t> passes;  // the compute passes, gpu::kWavefront* indices
+  // Every shader's SPIR-V first, then every pipeline at once (createPipelines). The compute
+  // passes' and the ray-tracing pipeline's shaders compile together on the threads (the five
+  // ray-tracing shaders compiled one after another added their sum to a cold start), then
+  // the material passes'.
+  WavefrontPipelineChoice choice;
+  choice.rayQuery = query_;
+  choice.materialGraphs = materials ? static_cast<std::uint32_t>(materials->distinct.size()) : 0;
+  choice.cacheLookups = lookup_;
+  PipelineShaders shaders;
+  shaders.passes = wavefrontComputePasses(choice);
   std::vector<ShaderCompileRequest> requests;
-  for (std::uint32_t pass = 0; pass < gpu::kWavefrontPassCount; ++pass) {
-    const bool traces = pass == gpu::kWavefrontTrace || pass == gpu::kWavefrontShadow;
-    const bool binning = pass == gpu::kWavefrontBinCount || pass == gpu::kWavefrontBinOffsets ||
-                         pass == gpu::kWavefrontBinScatter;
-    if ((traces && !query_) || (binning && !materials) || pass == gpu::kWavefrontMaterial ||
-        (pass == gpu::kWavefrontLookup && !lookup_))
-      continue;
+  for (std::uint32_t pass : shaders.passes) {
     std::vector<std::string> passDefines = defines;
     passDefines.push_back(kPassDefines[pass]);
     if (computeSubgroups)
       passDefines.push_back("MG_SUBGROUP_RAY_COUNT=1");
-    passes.push_back(pass);
     requests.push_back({"wavefront.glsl", ShaderStage::Compute, std::move(passDefines)});
   }
-  PipelineShaders shaders;
-  shaders.passes = std::move(passes);
-  shaders.passSpirv = compiler.compileAll(requests, setup.compileThreads);
+  if (!query_)
+    appendRayTracingRequests(defines, requests, shaders.rayTracingStages);
+  std::vector<std::vector<std::uint32_t>> spirv =
+      compiler.compileAll(requests, setup.compileThreads);
+  for (std::size_t i = 0; i < spirv.size(); ++i) {
+    if (i < shaders.passes.size())
+      shaders.passSpirv.push_back(std::move(spirv[i]));
+    else
+      shaders.rayTracingModules.push_back(createShaderModule(device, spirv[i]));
+  }
   if (materials)
     shaders.materialSpirv =
         compileMaterialPasses(compiler, *materials, defines, setup.cutKeys, setup.compileThreads);
-  if (!query_)
-    compileRayTracingPasses(compiler, defines, shaders);
   createPipelines(shaders, materials, setup.compileThreads);
 }
 
@@ -224,40 +230,46 @@ std::vector<std::vector<std::uint32_t>> WavefrontPathTracer::compileMaterialPass
   return compileMaterialShaders(compiler, materials, request, materialShaderStats_);
 }
 
-// The ray-tracing pipeline's shaders: the trace and shadow raygens, then the megakernel's
-// miss and hit shaders (they only report the hit).
-void WavefrontPathTracer::compileRayTracingPasses(ShaderCompiler& compiler,
-                                                  const std::vector<std::string>& defines,
-                                                  PipelineShaders& shaders) {
-  VkDevice device = context_.device();
-  auto raygenDefines = [&](std::uint32_t pass) {
-    std::vector<std::string> d = defines;
-    d.push_back(kPassDefines[pass]);
-    return d;
-  };
+// The ray-tracing pipeline's shaders, as compile requests: the trace and shadow raygens, then
+// the megakernel's miss and hit shaders (they only report the hit).
+void WavefrontPathTracer::appendRayTracingRequests(const std::vector<std::string>& defines,
+                                                   std::vector<ShaderCompileRequest>& requests,
+                                                   std::vector<VkShaderStageFlagBits>& stages) {
   for (std::uint32_t pass : {gpu::kWavefrontTrace, gpu::kWavefrontShadow}) {
-    shaders.rayTracingModules.push_back(createShaderModule(
-        device, compiler.compile({"wavefront.glsl", ShaderStage::RayGen, raygenDefines(pass)})));
-    shaders.rayTracingStages.push_back(VK_SHADER_STAGE_RAYGEN_BIT_KHR);
+    std::vector<std::string> raygenDefines = defines;
+    raygenDefines.push_back(kPassDefines[pass]);
+    requests.push_back({"wavefront.glsl", ShaderStage::RayGen, std::move(raygenDefines)});
+    stages.push_back(VK_SHADER_STAGE_RAYGEN_BIT_KHR);
   }
-  appendReportingShaders(device, compiler, shaders.rayTracingModules, shaders.rayTracingStages);
+  appendReportingShaderRequests(requests, stages);
 }
 
 // The pipelines are independent, and the driver compiles each on the thread that creates
 // it: creating them one after another left all but one core idle (on lavapipe the
 // classroom's material pipelines took 33.9 s on one thread and 17.5 s on this 2-core
-// machine's two). So every pipeline is one job of a parallelFor, the ray-tracing pipeline
-// (five shaders) first, then the compute passes, then the material passes; each job writes
-// its own slot, so the result does not depend on the order they finish in. The pipeline
-// cache they share is internally synchronised.
+// machine's two). So every pipeline is one job of a parallelFor; each job writes its own
+// slot, so the result does not depend on the order they finish in. The pipeline cache they
+// share is internally synchronised; on a cold start each thread has a cache of its own
+// instead (ThreadPipelineCaches: no driver lock shared between the threads), merged into the
+// device's once every pipeline exists. The jobs go longest first (a greedy schedule's last job
+// to start then is a short one, so no core runs on alone at the end): the ray-tracing
+// pipeline (five shaders), then the material passes by their SPIR-V's size, the largest
+// first (a driver's compile grows with the code), then the small compute passes.
 void WavefrontPathTracer::createPipelines(const PipelineShaders& shaders,
                                           const LinkedMaterials* materials, std::uint32_t threads) {
   VkDevice device = context_.device();
   computePasses_.resize(gpu::kWavefrontPassCount);
   materialPasses_.resize(shaders.materialSpirv.size());
+  std::vector<std::size_t> binsBySize(shaders.materialSpirv.size());
+  for (std::size_t bin = 0; bin < binsBySize.size(); ++bin)
+    binsBySize[bin] = bin;
+  std::stable_sort(binsBySize.begin(), binsBySize.end(), [&](std::size_t a, std::size_t b) {
+    return shaders.materialSpirv[a].size() > shaders.materialSpirv[b].size();
+  });
   const std::size_t rayTracingJobs = shaders.rayTracingModules.empty() ? 0 : 1;
-  const std::size_t jobs = rayTracingJobs + shaders.passes.size() + shaders.materialSpirv.size();
-  parallelFor(jobs, threads, [&](std::size_t job, std::uint32_t) {
+  const std::size_t jobs = rayTracingJobs + shaders.materialSpirv.size() + shaders.passes.size();
+  ThreadPipelineCaches caches(context_.pipelineCache(), workerThreads(threads, jobs));
+  parallelFor(jobs, threads, [&](std::size_t job, std::uint32_t thread) {
     if (job < rayTracingJobs) {
       std::vector<VkShaderModule> moduleHandles;
       for (const auto& module : shaders.rayTracingModules)
@@ -267,19 +279,22 @@ void WavefrontPathTracer::createPipelines(const PipelineShaders& shaders,
       return;
     }
     job -= rayTracingJobs;
-    if (job < shaders.passes.size()) {
-      const std::uint32_t pass = shaders.passes[job];
-      auto module = createShaderModule(device, shaders.passSpirv[job]);
-      computePasses_[pass] =
-          createComputePipeline(context_, module.get(), layout_.get(), kPassNames[pass]);
+    if (job < binsBySize.size()) {
+      const std::size_t bin = binsBySize[job];
+      auto module = createShaderModule(device, shaders.materialSpirv[bin]);
+      materialPasses_[bin] =
+          createComputePipeline(context_, module.get(), layout_.get(),
+                                ("wavefront material " + materials->distinct[bin].name).c_str(),
+                                caches.forThread(thread));
       return;
     }
-    const std::size_t bin = job - shaders.passes.size();
-    auto module = createShaderModule(device, shaders.materialSpirv[bin]);
-    materialPasses_[bin] =
-        createComputePipeline(context_, module.get(), layout_.get(),
-                              ("wavefront material " + materials->distinct[bin].name).c_str());
+    job -= binsBySize.size();
+    const std::uint32_t pass = shaders.passes[job];
+    auto module = createShaderModule(device, shaders.passSpirv[job]);
+    computePasses_[pass] = createComputePipeline(context_, module.get(), layout_.get(),
+                                                 kPassNames[pass], caches.forThread(thread));
   });
+  caches.merge();
   if (rayTracingJobs == 0)
     return;
   // The table: [trace raygen][shadow raygen][miss, shadow miss][hit]; the pipeline keeps the

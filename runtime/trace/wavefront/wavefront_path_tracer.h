@@ -154,9 +154,11 @@ class WavefrontPathTracer final : public FrameTracer {
   std::vector<std::vector<std::uint32_t>> compileMaterialPasses(
       ShaderCompiler& compiler, const LinkedMaterials& materials,
       const std::vector<std::string>& defines, bool cutKeys, std::uint32_t compileThreads);
-  // The pipeline backend's trace and shadow raygens and the report-only shaders.
-  void compileRayTracingPasses(ShaderCompiler& compiler, const std::vector<std::string>& defines,
-                               PipelineShaders& shaders);
+  // The pipeline backend's trace and shadow raygens and the report-only shaders, as compile
+  // requests appended to `requests`, with their stages.
+  static void appendRayTracingRequests(const std::vector<std::string>& defines,
+                                       std::vector<ShaderCompileRequest>& requests,
+                                       std::vector<VkShaderStageFlagBits>& stages);
   // Every pipeline (compute passes, material passes, the ray-tracing pipeline and its
   // table) at once, on up to `threads` threads.
   void createPipelines(const PipelineShaders& shaders, const LinkedMaterials* materials,

@@ -21,6 +21,7 @@
 #include "runtime/vk/compute_pipeline.h"
 #include "runtime/vk/pipeline_cache.h"
 #include "runtime/vk/shader_compiler.h"
+#include "runtime/vk/thread_pipeline_caches.h"
 
 namespace memograph::runtime {
 namespace {
@@ -318,6 +319,39 @@ TEST(PipelineCache, IsWrittenAtomicallyLeavingNoTemporaries) {
   EXPECT_EQ(torn, 0) << "of " << reads << " reads";
   EXPECT_GT(saves, 0);
   EXPECT_EQ(folderNames(folder), std::vector<std::string>{file.filename().string()});
+  fs::remove_all(folder);
+}
+
+// A cold start's threads each create through a cache of their own, merged into the device's
+// afterwards, so the file keeps their pipelines; once the device's cache holds something (a
+// pipeline created, or data from the file) every thread shares it, to find what it holds.
+TEST(PipelineCache, ThreadCachesSplitOnlyAColdStartAndMergeBack) {
+  const fs::path folder = freshFolder("pipeline-cache-threads");
+  {
+    VulkanContext context(TinyPipeline::options(folder));
+    PipelineCache& cache = context.pipelineCache();
+    EXPECT_FALSE(ThreadPipelineCaches(cache, 1).split());  // one thread: nothing to contend
+    ThreadPipelineCaches caches(cache, 2);
+    ASSERT_TRUE(caches.split());
+    EXPECT_NE(caches.forThread(0), caches.forThread(1));
+    EXPECT_NE(caches.forThread(1), cache.handle());
+    ShaderCompiler compiler(
+        {{"tiny.comp", "#version 460\nlayout(local_size_x = 1) in;\nvoid main() {}\n"}}, {});
+    auto module = createShaderModule(context.device(),
+                                     compiler.compile({"tiny.comp", ShaderStage::Compute, {}}));
+    auto layout = createPipelineLayout(context.device(), VK_NULL_HANDLE);
+    auto pipeline =
+        createComputePipeline(context, module.get(), layout.get(), "tiny", caches.forThread(1));
+    EXPECT_EQ(cache.counts().created, 1u);  // counted on the device's cache all the same
+    caches.merge();
+    EXPECT_FALSE(caches.split());
+    EXPECT_EQ(caches.forThread(1), cache.handle());
+    EXPECT_FALSE(ThreadPipelineCaches(cache, 2).split());  // it holds a pipeline now
+    EXPECT_TRUE(cache.save());
+  }
+  VulkanContext warm(TinyPipeline::options(folder));
+  ASSERT_GT(warm.pipelineCache().loadedBytes(), 0u);
+  EXPECT_FALSE(ThreadPipelineCaches(warm.pipelineCache(), 2).split());
   fs::remove_all(folder);
 }
 

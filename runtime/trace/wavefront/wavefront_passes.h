@@ -1,0 +1,28 @@
+// Which of wavefront.glsl's passes a wavefront tracer builds a pipeline for, and how many
+// pipelines it creates in all: the passes a frame of its configuration records, no others
+// (no binning without material graphs, no lookup without a cache, no trace or shadow compute
+// pass where the ray-tracing pipeline's raygens trace). The first frame's cold start is
+// mostly these pipelines' creation (docs/design/path-tracer.md, "Pipeline cache").
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+namespace memograph::runtime {
+
+// What decides the wavefront's pipelines.
+struct WavefrontPipelineChoice {
+  bool rayQuery = true;              // the query backend: trace and shadow are compute passes
+  std::uint32_t materialGraphs = 0;  // distinct graphs (material bins); 0: the floor
+  bool cacheLookups = false;         // a cache's lookup pass (WavefrontSetup::cacheLookups)
+};
+
+// The compute passes (gpu::kWavefront* indices, ascending) that get a pipeline of their own;
+// kWavefrontMaterial never does: each graph has its material pipeline.
+std::vector<std::uint32_t> wavefrontComputePasses(const WavefrontPipelineChoice& choice);
+
+// Every pipeline the tracer creates: the compute passes, one material pass per graph, and on
+// the pipeline backend the one ray-tracing pipeline of the trace and shadow raygens.
+std::uint32_t wavefrontPipelineCount(const WavefrontPipelineChoice& choice);
+
+}  // namespace memograph::runtime
