@@ -68,7 +68,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   const auto renderStart = std::chrono::steady_clock::now();
   const VulkanContext& context = *context_;
   const std::uint32_t pathWeight = validateRender(options_, settings, scene, context);
-  const SceneMaterials materials = linkSceneMaterials(scene, options_.nodeLibraryDirectory);
+  const SceneMaterials materials =
+      linkSceneMaterials(scene, options_.nodeLibraryDirectory, options_.cache.keyDomains);
   const RenderPlan plan = planRender(options_, settings, context, materials, pathWeight);
   RenderResult result;
   result.stats = describeRender(options_, settings, scene, context, materials, plan);

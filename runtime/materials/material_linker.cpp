@@ -62,6 +62,15 @@ std::uint32_t cacheCutDomain(const std::string& cutDomain) {
   throw std::runtime_error("material cut domain '" + cutDomain + "' is unknown to the texel cache");
 }
 
+// The CacheOptions::keyDomains bit of a cut's domain (kCacheCut*).
+std::uint32_t cacheKeyDomainOf(std::uint32_t cutDomain) {
+  if (cutDomain == gpu::kCacheCutObject)
+    return kCacheKeyObject;
+  if (cutDomain == gpu::kCacheCutWorld)
+    return kCacheKeyWorld;
+  return kCacheKeyUv;
+}
+
 std::uint32_t cacheOutputMask(const std::vector<std::string>& outputsWritten,
                               std::uint32_t* valueCount) {
   struct Output {
@@ -248,6 +257,9 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
       if (output == "specularTint" || output == "cyclesPrincipled")
         linked.cyclesPrincipled = true;
     entry.textureCount = compiled->metadata.textures.size();
+    // A whole uv-only material's key is a uv texel: it is cached only with the uv domain.
+    if (!(options.cacheKeyDomains & kCacheKeyUv))
+      entry.cacheable = false;
     if (entry.cacheable) {
       entry.cacheOutputMask =
           cacheOutputMask(compiled->metadata.outputsWritten, &entry.cacheValueCount);
@@ -257,7 +269,8 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
       // the others are keyed by their cut where the texel cache can (MG_CACHE_CUTS).
       entry.cutDomain = cacheCutDomain(compiled->metadata.cutDomain);
       entry.cutWidth = static_cast<std::uint32_t>(compiled->metadata.cutWidth);
-      if (entry.cutDomain == gpu::kCacheCutNone || entry.cutWidth == 0) {
+      if (entry.cutDomain == gpu::kCacheCutNone || entry.cutWidth == 0 ||
+          !(options.cacheKeyDomains & cacheKeyDomainOf(entry.cutDomain))) {
         entry.cutDomain = gpu::kCacheCutNone;
         entry.cutWidth = 0;
       } else {

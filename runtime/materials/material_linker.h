@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "runtime/memo/cache_options.h"
 #include "runtime/scene/scene.h"
 
 namespace memograph::runtime {
@@ -107,6 +108,9 @@ std::uint32_t cacheOutputMask(const std::vector<std::string>& outputsWritten,
 struct MaterialLinkOptions {
   // A node-library folder that replaces the embedded one (for --nodes DIR); empty: embedded.
   std::filesystem::path nodeLibraryDirectory;
+  // The key domains the cache takes (kCacheKey* of cache_options.h): a material keyed in
+  // another is linked as uncacheable, with no cut, so it never touches the cache.
+  std::uint32_t cacheKeyDomains = kCacheKeysAll;
 };
 
 // Throws std::runtime_error with the compiler's diagnostics (file:line:col) when a graph is

@@ -5,9 +5,11 @@
 namespace memograph::runtime {
 
 SceneMaterials linkSceneMaterials(const Scene& scene,
-                                  const std::filesystem::path& nodeLibraryDirectory) {
+                                  const std::filesystem::path& nodeLibraryDirectory,
+                                  std::uint32_t cacheKeyDomains) {
   MaterialLinkOptions linkOptions;
   linkOptions.nodeLibraryDirectory = nodeLibraryDirectory;
+  linkOptions.cacheKeyDomains = cacheKeyDomains;
   SceneMaterials materials;
   materials.linked = linkMaterials(scene.materials, linkOptions);
   materials.emissionKinds = emissionKindsVerified(scene, materials.linked);

@@ -19,8 +19,10 @@ struct SceneMaterials {
   bool neeEvaluatesEmission = false;
 };
 
-// `nodeLibraryDirectory` empty: the embedded node library.
+// `nodeLibraryDirectory` empty: the embedded node library; `cacheKeyDomains` the key domains
+// the cache takes (CacheOptions::keyDomains).
 SceneMaterials linkSceneMaterials(const Scene& scene,
-                                  const std::filesystem::path& nodeLibraryDirectory);
+                                  const std::filesystem::path& nodeLibraryDirectory,
+                                  std::uint32_t cacheKeyDomains = kCacheKeysAll);
 
 }  // namespace memograph::runtime

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "runtime/shaders/shared_types.h"
 
@@ -70,6 +72,41 @@ CacheFilter parseCacheFilter(const std::string& text) {
     return CacheFilter::Stochastic;
   throw std::invalid_argument("unknown --cache-filter '" + text +
                               "' (choose nearest, trilinear or stochastic)");
+}
+
+std::string cacheKeyDomainsName(std::uint32_t domains) {
+  if ((domains & kCacheKeysAll) == kCacheKeysAll)
+    return "all";
+  std::string name;
+  for (const auto& [bit, word] :
+       {std::pair{kCacheKeyUv, "uv"}, std::pair{kCacheKeyObject, "object"},
+        std::pair{kCacheKeyWorld, "world"}})
+    if (domains & bit)
+      name += (name.empty() ? "" : ",") + std::string(word);
+  return name;
+}
+
+std::uint32_t parseCacheKeyDomains(const std::string& text) {
+  if (text == "all")
+    return kCacheKeysAll;
+  std::uint32_t domains = 0;
+  std::size_t begin = 0;
+  while (begin <= text.size()) {
+    const std::size_t end = std::min(text.find(',', begin), text.size());
+    const std::string word = text.substr(begin, end - begin);
+    const std::uint32_t bit = word == "uv"       ? kCacheKeyUv
+                              : word == "object" ? kCacheKeyObject
+                              : word == "world"  ? kCacheKeyWorld
+                                                 : 0u;
+    if (bit == 0u || (domains & bit))
+      throw std::invalid_argument(
+          "--cache-keys takes all, or uv, object and world separated by "
+          "commas, each once; not '" +
+          text + "'");
+    domains |= bit;
+    begin = end + 1;
+  }
+  return domains;
 }
 
 CacheMode parseCacheMode(const std::string& text) {

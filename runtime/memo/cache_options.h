@@ -43,6 +43,13 @@ enum class TileFill { Subgroup, Deferred };
 // §3.2), one lookup, the trilinear value in expectation. Values are the shader's
 // kCacheFilter*.
 enum class CacheFilter { Nearest = 0, Trilinear = 1, Stochastic = 2 };
+// The key domains the cache takes (docs/design/memoization.md, "Keys of the cut"), as bits: a
+// material whose key is in another domain runs uncached. uv holds the whole uv-only materials
+// too. Comparing the cache with one domain at a time shows what each domain serves.
+inline constexpr std::uint32_t kCacheKeyUv = 1u;
+inline constexpr std::uint32_t kCacheKeyObject = 2u;
+inline constexpr std::uint32_t kCacheKeyWorld = 4u;
+inline constexpr std::uint32_t kCacheKeysAll = kCacheKeyUv | kCacheKeyObject | kCacheKeyWorld;
 
 const char* cacheModeName(CacheMode mode);
 const char* cacheEvictionName(CacheEviction eviction);
@@ -52,6 +59,8 @@ const char* tileFilterName(TileFilter filter);
 const char* tileStorageName(TileStorage storage);
 const char* tileFillName(TileFill fill);
 const char* cacheFilterName(CacheFilter filter);
+// "uv,object,world" (the domains in that order, comma-separated), or "all".
+std::string cacheKeyDomainsName(std::uint32_t domains);
 // Parse "none"/"texel", "none"/"lru"/"lrw"/"random", "fp32"/"fp16" and "frame"/"counter";
 // throw std::invalid_argument naming the choices.
 CacheMode parseCacheMode(const std::string& text);
@@ -65,6 +74,8 @@ TileStorage parseTileStorage(const std::string& text);
 TileFill parseTileFill(const std::string& text);
 // "nearest"/"trilinear"/"stochastic".
 CacheFilter parseCacheFilter(const std::string& text);
+// "all", or a comma-separated list of uv, object and world (each at most once).
+std::uint32_t parseCacheKeyDomains(const std::string& text);
 
 // The entry count S when CacheOptions::entries is unset: the best rows measured on the GPU
 // machine, fitted to the device (material_cache.cpp: halved while over the storage-buffer
@@ -115,9 +126,11 @@ struct CacheOptions {
   // §6.1: evaluate a miss at its texel's centre, so an entry holds the texel's value.
   bool snapUv = false;
   // The texel cache's filter (docs/design/memoization.md, "Filtering"); a filtered miss is
-  // always evaluated at its entry's centre, with or without snapUv. Megakernel only (the
-  // wavefront's lookup pass reads one entry a hit).
+  // always evaluated at its entry's centre, with or without snapUv. The wavefront reads
+  // filtered entries in its material passes.
   CacheFilter filter = CacheFilter::Nearest;
+  // kCacheKey* bits: the key domains cached; the others' materials run uncached.
+  std::uint32_t keyDomains = kCacheKeysAll;
   // §6.1, Fig. 6.6: primary hits evaluate their graph directly; only bounces >= 1 cache.
   bool secondaryOnly = false;
   // Tile cache (§5.4): texels stored per tile (W x H <= the device's subgroup size; the

@@ -233,6 +233,7 @@ void MaterialCache::describe(RenderStats& stats) const {
   stats.cacheSnapUv = options_.snapUv;
   stats.cacheSecondaryOnly = options_.secondaryOnly;
   stats.cacheFilter = cacheFilterName(options_.filter);
+  stats.cacheKeyDomains = cacheKeyDomainsName(options_.keyDomains);
   if (options_.mode == CacheMode::Tile)
     stats.cacheTile =
         std::to_string(options_.tileWidth) + "x" + std::to_string(options_.tileHeight) + " " +

@@ -172,6 +172,7 @@ struct RenderStats {
   bool cacheSecondaryOnly = false;    // primary hits bypass the cache (Fig. 6.6)
   // The texel cache's --cache-filter: "nearest", "trilinear" or "stochastic".
   std::string cacheFilter = "nearest";
+  std::string cacheKeyDomains = "all";  // --cache-keys
   std::uint64_t cacheBytes = 0;
   std::string culling = "none";  // --culling: none, frustum or lipac
   // The share of the scene's estimated material cost (compiler/cut.h's per-node estimates,

@@ -38,7 +38,7 @@ TEST(LeanEmission, AnIncludeCarriesOnlyThePreludeFunctionsItReaches) {
     EXPECT_EQ(code.find("mg_pcg"), std::string::npos);
     EXPECT_EQ(code.find("mg_smoothstep"), std::string::npos);
     EXPECT_EQ(code.find("float3_D mg_mul("), std::string::npos);
-    EXPECT_LT(code.size(), 12'000u) << "the whole prelude is ~56 KB";
+    EXPECT_LT(code.size(), 12'500u) << "the whole prelude is ~56 KB";
   }
   EXPECT_NE(run.material->glsl.find("#define float3 vec3"), std::string::npos);
   EXPECT_EQ(run.material->hlsl.find("#define float3 vec3"), std::string::npos);

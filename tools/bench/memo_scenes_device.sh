@@ -4,8 +4,8 @@
 # (bundle/material_scene.mgpack), builtin:landscape and builtin:classroom. Per scene,
 # along its camera path at 1920x1080, P = 6, L = 4: no cache on both architectures
 # (megakernel, wavefront), the free-material floor (--floor-materials), the texel cache
-# (its cuts keyed by the key domain the compiler chose per material: uv, object or world) on
-# the wavefront and, for scenes of at most 16 graphs, on the megakernel's switch dispatch;
+# (its cuts keyed by the key domain the compiler chose per material: uv, object or world; on
+# the Blender scene also with one domain at a time) on the wavefront and, for scenes of at most 16 graphs, on the megakernel's switch dispatch;
 # and the tile cache (whole uv-only graphs). Each bench line gives the frame time, the hit
 # rate and the cached share of the estimated material cost by domain; served = cached share
 # x hit rate. Then the converged picture at a reduced, stated sample count (static camera,
@@ -24,8 +24,9 @@
 # time limit x 10 unless --limit-scale says), e.g. on lavapipe: --local --size 64x36
 # --frames 2 --quality-size 32x18 --quality-frames 2 --scenes "pack landscape"
 # --pack scene.mgpack --camera examples/blender/material_scene.camera. --runs: only these
-# bench runs (floor none-megakernel none-wavefront texel-wavefront texel-megakernel-switch
-# tile-megakernel; default all; --local's tile cache uses 4x2 tiles, lavapipe's subgroups
+# bench runs (floor none-megakernel none-wavefront texel-wavefront texel-wavefront-uv
+# texel-wavefront-object texel-wavefront-world (the pack only: one key domain each,
+# --cache-keys) texel-megakernel-switch tile-megakernel; default all; --local's tile cache uses 4x2 tiles, lavapipe's subgroups
 # having 8 lanes); --quality-shading: the architecture of the picture renders
 # (default wavefront; lavapipe compiles the wavefront's per-material passes slowly).
 # e.g. run(carry=["bundle", ".gl"], command="bash tools/bench/memo_scenes_device.sh").
@@ -183,6 +184,14 @@ for scene in $scenes; do
   bench "$scene" none-megakernel "$(l 30 70)" --shading megakernel "${fewer[@]}"
   bench "$scene" none-wavefront "$(l 30 50)" --shading wavefront "${fewer[@]}"
   bench "$scene" texel-wavefront "$(l 30 50)" --shading wavefront --cache texel "${fewer[@]}"
+  # One key domain at a time (--cache-keys): what each domain's materials serve on the
+  # Blender scene, whose graphs key all three (the built-ins' cached graphs are uv-only).
+  if [ "$scene" = pack ]; then
+    for keys in uv object world; do
+      bench "$scene" "texel-wavefront-$keys" 30 --shading wavefront --cache texel \
+        --cache-keys "$keys"
+    done
+  fi
   # The megakernel keys cuts with the switch dispatch only: one shader holding every graph,
   # too large for the classroom's 88.
   [ $big = 1 ] || bench "$scene" texel-megakernel-switch 40 --shading megakernel \

@@ -255,6 +255,7 @@ void printCacheAndCulling(const BenchRun& run) {
               << " B" << (stats.cacheTile.empty() ? "" : ", tiles " + stats.cacheTile)
               << (stats.cacheSnapUv ? ", snapped uv" : "")
               << (stats.cacheFilter != "nearest" ? ", filter " + stats.cacheFilter : "")
+              << (stats.cacheKeyDomains != "all" ? ", keys " + stats.cacheKeyDomains : "")
               << (stats.cacheSecondaryOnly ? ", secondary hits only" : "") << "): median hit rate "
               << 100.0 * run.summary.medianCacheHitRate << " %, total "
               << 100.0 * run.summary.totalCacheHitRate << " %\n"

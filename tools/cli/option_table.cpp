@@ -236,6 +236,13 @@ const Option kOptions[] = {
      "or one of them by weight",
      "nearest", kShown, S::Memoization, kAdvanced, N::Cache, kBoth,
      [](O& o, const Value& v) { o.renderer.cache.filter = runtime::parseCacheFilter(v.text); }},
+    {"--cache-keys", ValueType::Text, "all|uv,object,world",
+     "the key domains the cache takes; a material keyed in another runs\n"
+     "uncached (uv also holds the whole uv-only materials)",
+     "all", kShown, S::Memoization, kAdvanced, N::Cache, kBoth,
+     [](O& o, const Value& v) {
+       o.renderer.cache.keyDomains = runtime::parseCacheKeyDomains(v.text);
+     }},
     {"--floor-materials", ValueType::Flag, "",
      "every material replaced by constants (the cost of a free material); with\n"
      "--cache, the cache's own cost: the same lookups, misses that cost nothing",

@@ -293,19 +293,25 @@ def light_path_depth_scene():
 def object_normal_scene():
     """Texture Coordinate Normal as emitted colour (N / 2 + 1/2) on a smooth sphere and a
     plane, each rotated and scaled unevenly: the object-space normal, which Box projection's
-    weights read too."""
+    weights read too; and a third plane, as rotated, emitting Geometry Normal, which stays in
+    world space."""
     world()
 
-    def by_normal(nt, color, _strength):
-        tc = nt.nodes.new('ShaderNodeTexCoord')
-        half = nt.nodes.new('ShaderNodeVectorMath')
-        half.operation = 'MULTIPLY_ADD'
-        half.inputs[1].default_value = (0.5, 0.5, 0.5)
-        half.inputs[2].default_value = (0.5, 0.5, 0.5)
-        nt.links.new(tc.outputs['Normal'], half.inputs[0])
-        nt.links.new(half.outputs[0], color)
+    def normal_of(node_type, socket):
+        def by_normal(nt, color, _strength):
+            tc = nt.nodes.new(node_type)
+            half = nt.nodes.new('ShaderNodeVectorMath')
+            half.operation = 'MULTIPLY_ADD'
+            half.inputs[1].default_value = (0.5, 0.5, 0.5)
+            half.inputs[2].default_value = (0.5, 0.5, 0.5)
+            nt.links.new(tc.outputs[socket], half.inputs[0])
+            nt.links.new(half.outputs[0], color)
+        return by_normal
 
-    material = emission('ObjectNormal', color_node=by_normal)
+    material = emission('ObjectNormal', color_node=normal_of('ShaderNodeTexCoord', 'Normal'))
+    world_normal = emission('WorldNormal', color_node=normal_of('ShaderNodeNewGeometry', 'Normal'))
+    plane('Geometry', 0.8, world_normal, location=(0.1, 0, -0.8),
+          rotation=(math.radians(60), math.radians(20), math.radians(30)))
     bpy.ops.mesh.primitive_uv_sphere_add(radius=0.6, location=(-0.7, 0, 0.6),
                                          rotation=(math.radians(40), math.radians(-25),
                                                    math.radians(60)))

@@ -123,6 +123,38 @@ TEST(CutKeys, LinkerKeysOnlyMaterialsNotCacheableAsAWhole) {
   EXPECT_EQ(both.distinct.at(1).cutWidth, 3u);
 }
 
+// --cache-keys: a material keyed in a domain the cache does not take is linked uncacheable
+// with no cut (so it never touches the cache); uv holds the whole uv-only materials. Names
+// parse both ways, and a bad list is refused with the choices.
+TEST(CutKeys, KeyDomainsLeaveTheOtherDomainsMaterialsUncached) {
+  const char* uvNoise =
+      "material UvNoise;\nUVInput Out>1;\nNoiseTexture Vector<1 Detail=2.0 Color>2;\n"
+      "BaseColorOutput In<2;\n";
+  const std::vector<MaterialRef> refs = {{"Whole", "", uvNoise},
+                                         {"UvCut", "", kUvGraph},
+                                         {"ObjectCut", "", kObjectGraph},
+                                         {"WorldCut", "", kWorldGraph}};
+  auto keyed = [&](std::uint32_t domains) {
+    MaterialLinkOptions options;
+    options.cacheKeyDomains = domains;
+    const LinkedMaterials linked = linkMaterials(refs, options);
+    std::string keys;
+    for (const LinkedMaterial& m : linked.materials)
+      keys += m.cacheable ? 'W' : m.cutDomain == gpu::kCacheCutNone ? '-' : "?uow"[m.cutDomain];
+    return keys;
+  };
+  EXPECT_EQ(keyed(kCacheKeysAll), "Wuow");
+  EXPECT_EQ(keyed(kCacheKeyUv), "Wu--");
+  EXPECT_EQ(keyed(kCacheKeyObject), "--o-");
+  EXPECT_EQ(keyed(kCacheKeyWorld | kCacheKeyObject), "--ow");
+  EXPECT_EQ(parseCacheKeyDomains("all"), kCacheKeysAll);
+  EXPECT_EQ(parseCacheKeyDomains("world,uv"), kCacheKeyWorld | kCacheKeyUv);
+  EXPECT_EQ(cacheKeyDomainsName(kCacheKeyWorld | kCacheKeyUv), "uv,world");
+  EXPECT_EQ(cacheKeyDomainsName(kCacheKeysAll), "all");
+  for (const char* bad : {"", "uv,", "voxel", "uv,uv"})
+    EXPECT_THROW(parseCacheKeyDomains(bad), std::invalid_argument) << bad;
+}
+
 struct DomainCase {
   const char* name;
   const char* graph;
