@@ -10,7 +10,7 @@
 
 namespace memograph::compiler {
 
-inline constexpr std::array<std::string_view, 19> kMaterialInputNames = {"uv",
+inline constexpr std::array<std::string_view, 20> kMaterialInputNames = {"uv",
                                                                          "position",
                                                                          "normal",
                                                                          "tangent",
@@ -28,7 +28,8 @@ inline constexpr std::array<std::string_view, 19> kMaterialInputNames = {"uv",
                                                                          "rayDepth",
                                                                          "diffuseDepth",
                                                                          "glossyDepth",
-                                                                         "transmissionDepth"};
+                                                                         "transmissionDepth",
+                                                                         "ambientOcclusion"};
 
 // The object-space inputs (Blender's Texture Coordinate, Geometry and Object Info): the
 // members from `generated` up to the path state, which the prelude leaves out under
@@ -47,8 +48,20 @@ inline bool isObjectSpaceInput(std::string_view name) {
   return std::find(first, last, name) != last;
 }
 
+// The traced inputs (docs/design/traced-inputs.md: Ambient Occlusion): the members from
+// `ambientOcclusion` on, filled by rays the path tracer traces from the hit before the graph
+// runs; the prelude leaves them out under MG_OMIT_TRACED_INPUTS.
+inline constexpr std::size_t kFirstTracedInput = 19;
+static_assert(kMaterialInputNames[kFirstTracedInput] == "ambientOcclusion");
+
 inline bool isPathInput(std::string_view name) {
   const auto first = kMaterialInputNames.begin() + kFirstPathInput;
+  const auto last = kMaterialInputNames.begin() + kFirstTracedInput;
+  return std::find(first, last, name) != last;
+}
+
+inline bool isTracedInput(std::string_view name) {
+  const auto first = kMaterialInputNames.begin() + kFirstTracedInput;
   return std::find(first, kMaterialInputNames.end(), name) != kMaterialInputNames.end();
 }
 
