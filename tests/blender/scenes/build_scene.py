@@ -24,6 +24,8 @@ no clamping, no light threshold) and DIR/export/ (the memograph exporter with --
 - light_path_depth: (b) an emissive panel that emits only for Ray Depth 1 (black to the
   camera, lighting the floor and a wall directly, no bounced light). Both write
   DIR/tiles.json with their regions (panel, floor, wall) as the Principled scenes do.
+- ao, ao_local: a cube on a floor whose emission is their Ambient Occlusion node's Color
+  (ao: plain; ao_local: the floor Only Local, the cube Inside), regions in DIR/tiles.json.
 """
 
 import argparse
@@ -288,6 +290,48 @@ def light_path_depth_scene():
                        for (y, z) in ((-0.15, -0.26), (0.15, 0.26))])]
 
 
+def ao_emission(name, distance, inside=False, only_local=False, samples=16):
+    """Emission whose colour is Blender's Ambient Occlusion of the hit (strength 1), so a
+    pixel holds the node's fraction itself: no lights, a black world, no BSDF to reflect."""
+    def by_ao(nt, color, _strength):
+        ao = nt.nodes.new('ShaderNodeAmbientOcclusion')
+        ao.samples = samples
+        ao.inside = inside
+        ao.only_local = only_local
+        ao.inputs['Distance'].default_value = distance
+        ao.inputs['Color'].default_value = (1, 1, 1, 1)
+        nt.links.new(ao.outputs['Color'], color)
+    return emission(name, color_node=by_ao)
+
+
+def cube(name, size, material, location):
+    bpy.ops.mesh.primitive_cube_add(size=size, location=location)
+    obj = bpy.context.object
+    obj.name = name
+    obj.data.name = name
+    obj.data.materials.append(material)
+    return obj
+
+
+def ao_scene(local):
+    """The Ambient Occlusion node (traced inputs, docs/design/traced-inputs.md): a 1 m cube on
+    a floor, both emitting their AO (distance 0.6). ao: the floor darkens towards the cube,
+    the cube's sides towards the floor. ao_local: the floor with Only Local (the cube is
+    another object: no darkening), the cube with Inside (rays into the cube find its far
+    faces within 0.6 m near its edges)."""
+    world()
+    plane('Floor', 6.0, ao_emission('FloorAo', 0.6, only_local=local))
+    cube('Cube', 1.0, ao_emission('CubeAo', 0.6, inside=local), location=(0, 0, 0.5))
+    camera((0, -3.0, 2.2), rotation=(math.radians(53), 0, 0), lens=50)
+    # The floor just in front of the cube (0.05..0.25 m from it), the floor 0.6 m and more
+    # from it (nothing within the AO distance), and the cube's front face near the floor and
+    # 0.6 m and more above it.
+    return [('floor_near', [(x, y, 0.0) for x in (-0.35, 0.35) for y in (-0.75, -0.55)]),
+            ('floor_far', [(x, y, 0.0) for x in (-1.0, -0.7) for y in (-1.4, -1.15)]),
+            ('cube_low', [(x, -0.5, z) for x in (-0.35, 0.35) for z in (0.05, 0.3)]),
+            ('cube_high', [(x, -0.5, z) for x in (-0.35, 0.35) for z in (0.65, 0.9)])]
+
+
 def region_boxes(regions, size):
     """Pixel boxes of regions given by four world-space corners each: the box inside their
     projection, so no pixel sees an edge."""
@@ -329,6 +373,8 @@ SCENES = {
     'principled_retro': lambda: principled_scene('retro'),
     'light_path_camera': light_path_camera_scene,
     'light_path_depth': light_path_depth_scene,
+    'ao': lambda: ao_scene(local=False),
+    'ao_local': lambda: ao_scene(local=True),
 }
 
 
