@@ -22,6 +22,7 @@ struct Analysis {
   std::optional<std::vector<std::size_t>> order;
   std::optional<OverloadChoice> chosen;
   std::optional<AmbientOcclusionSettings> ambientOcclusion;
+  std::optional<BevelSettings> bevel;
 
   Analysis() = default;
   Analysis(const Analysis&) = delete;
@@ -43,6 +44,7 @@ struct Analysis {
       return false;
     const std::size_t errorsBeforeSettings = diagnostics.errorCount();
     ambientOcclusion = collectAmbientOcclusionSettings(*resolved, *order, file, diagnostics);
+    bevel = collectBevelSettings(*resolved, *order, file, diagnostics);
     return diagnostics.errorCount() == errorsBeforeSettings;
   }
 
@@ -63,6 +65,7 @@ std::optional<CompiledMaterial> compileMaterial(const SourceFile& file, const No
   const MaterialCut cut = findCut(*analysis.resolved, *analysis.order, *analysis.chosen);
   result.metadata = collectMetadata(*analysis.resolved, *analysis.order, *analysis.chosen, cut);
   result.metadata.ambientOcclusion = analysis.ambientOcclusion;
+  result.metadata.bevel = analysis.bevel;
   result.metadataJson = metadataToJson(result.metadata);
   const EmitInput emitInput{
       *analysis.resolved, *analysis.order, *analysis.chosen, library, result.metadata, cut,
@@ -84,6 +87,7 @@ std::optional<CheckReport> checkMaterial(const SourceFile& file, const NodeLibra
   report.metadata = collectMetadata(graph, *analysis.order, *analysis.chosen,
                                     findCut(graph, *analysis.order, *analysis.chosen));
   report.metadata.ambientOcclusion = analysis.ambientOcclusion;
+  report.metadata.bevel = analysis.bevel;
   for (const std::size_t node : *analysis.order) {
     const auto& resolved = graph.nodes[node];
     const auto& type = *resolved.type;

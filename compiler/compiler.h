@@ -29,6 +29,14 @@ struct AmbientOcclusionSettings {
   bool operator==(const AmbientOcclusionSettings&) const = default;
 };
 
+// Cycles' Bevel node settings (svm_node_bevel): `samples` disk rays within `radius` of the
+// hit (0: none traced, the input is the shading normal), whose hits' normals are averaged.
+struct BevelSettings {
+  double radius = 0.05;
+  std::uint32_t samples = 4;
+  bool operator==(const BevelSettings&) const = default;
+};
+
 // What the runtime needs to know about a material without reading its code.
 struct MaterialMetadata {
   std::string name;
@@ -50,6 +58,8 @@ struct MaterialMetadata {
   // The graph reads the traced input `ambientOcclusion` (compiler/traced_inputs.h): the
   // rays the path tracer traces for it before the graph runs. Nothing: no rays.
   std::optional<AmbientOcclusionSettings> ambientOcclusion;
+  // Likewise `bevelNormal` (Blender's Bevel node): its rays' settings.
+  std::optional<BevelSettings> bevel;
 };
 
 struct CompiledMaterial {

@@ -10,7 +10,7 @@
 
 namespace memograph::compiler {
 
-inline constexpr std::array<std::string_view, 20> kMaterialInputNames = {"uv",
+inline constexpr std::array<std::string_view, 21> kMaterialInputNames = {"uv",
                                                                          "position",
                                                                          "normal",
                                                                          "tangent",
@@ -29,7 +29,8 @@ inline constexpr std::array<std::string_view, 20> kMaterialInputNames = {"uv",
                                                                          "diffuseDepth",
                                                                          "glossyDepth",
                                                                          "transmissionDepth",
-                                                                         "ambientOcclusion"};
+                                                                         "ambientOcclusion",
+                                                                         "bevelNormal"};
 
 // The object-space inputs (Blender's Texture Coordinate, Geometry and Object Info): the
 // members from `generated` up to the path state, which the prelude leaves out under
@@ -48,8 +49,8 @@ inline bool isObjectSpaceInput(std::string_view name) {
   return std::find(first, last, name) != last;
 }
 
-// The traced inputs (docs/design/traced-inputs.md: Ambient Occlusion): the members from
-// `ambientOcclusion` on, filled by rays the path tracer traces from the hit before the graph
+// The traced inputs (docs/design/traced-inputs.md: Ambient Occlusion, Bevel): the members
+// from `ambientOcclusion` on, filled by rays the path tracer traces from the hit before the graph
 // runs; the prelude leaves them out under MG_OMIT_TRACED_INPUTS.
 inline constexpr std::size_t kFirstTracedInput = 19;
 static_assert(kMaterialInputNames[kFirstTracedInput] == "ambientOcclusion");

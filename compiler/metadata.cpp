@@ -118,6 +118,10 @@ std::string metadataToJson(const MaterialMetadata& meta) {
            ", \"inside\": " + (ao->inside ? "true" : "false") +
            ", \"onlyLocal\": " + (ao->onlyLocal ? "true" : "false") + "}";
   }
+  if (const auto& bevel = meta.bevel) {
+    out += ",\n  \"bevel\": {\"radius\": " + formatFloat(bevel->radius) +
+           ", \"samples\": " + std::to_string(bevel->samples) + "}";
+  }
   out += "\n";
   return out + "}\n";
 }

@@ -15,8 +15,10 @@
 
 namespace memograph::compiler {
 
-// The MaterialInputs member the AO node reads, and the node sockets that hold its settings.
+// The MaterialInputs members the AO and Bevel nodes read; their settings are sockets of the
+// nodes.
 inline constexpr std::string_view kAmbientOcclusionInput = "ambientOcclusion";
+inline constexpr std::string_view kBevelInput = "bevelNormal";
 
 // The settings of the graph's nodes (in `order`) that read kAmbientOcclusionInput: nothing
 // when none does. Reports an error (returning nothing) where a setting socket is linked
@@ -25,5 +27,15 @@ inline constexpr std::string_view kAmbientOcclusionInput = "ambientOcclusion";
 std::optional<AmbientOcclusionSettings> collectAmbientOcclusionSettings(
     const ResolvedGraph& graph, const std::vector<std::size_t>& order, const SourceFile& file,
     Diagnostics& diagnostics);
+
+}  // namespace memograph::compiler
+
+namespace memograph::compiler {
+
+// The settings of the graph's nodes that read kBevelInput (Radius >= 0, Samples 1..128), with
+// the same errors as collectAmbientOcclusionSettings.
+std::optional<BevelSettings> collectBevelSettings(const ResolvedGraph& graph,
+                                                  const std::vector<std::size_t>& order,
+                                                  const SourceFile& file, Diagnostics& diagnostics);
 
 }  // namespace memograph::compiler

@@ -118,8 +118,9 @@ std::string readText(const std::filesystem::path& path) {
 
 // The traced inputs' settings (ambient_occlusion.glsl setTracedInputs): per scene material
 // x its AO distance as float bits, y its samples (0: no AO rays, the input is 1), z its
-// kAmbientOcclusion* flags. Only in scenes with a traced input, whose shaders read it.
-std::string ambientOcclusionTable(const std::vector<LinkedMaterial>& materials) {
+// kAmbientOcclusion* flags; and its Bevel radius (float bits) and samples. Only in scenes
+// with a traced input, whose shaders read them.
+std::string tracedInputTables(const std::vector<LinkedMaterial>& materials) {
   std::string table =
       "// Ambient Occlusion rays: x distance (float bits), y samples (0: none), z flags.\n";
   table += "const uvec4 mg_materialAmbientOcclusion[" + std::to_string(materials.size()) +
@@ -131,6 +132,13 @@ std::string ambientOcclusionTable(const std::vector<LinkedMaterial>& materials) 
              std::to_string(m.ambientOcclusionSamples) + "u, " +
              std::to_string(m.ambientOcclusionFlags) + "u, 0u)" +
              (i + 1 < materials.size() ? ",\n" : ");\n");
+  }
+  table += "// Bevel rays: x radius (float bits), y samples (0: none).\n";
+  table += "const uvec2 mg_materialBevel[" + std::to_string(materials.size()) + "] = uvec2[](\n";
+  for (std::size_t i = 0; i < materials.size(); ++i) {
+    const LinkedMaterial& m = materials[i];
+    table += "    uvec2(" + std::to_string(std::bit_cast<std::uint32_t>(m.bevelRadius)) + "u, " +
+             std::to_string(m.bevelSamples) + "u)" + (i + 1 < materials.size() ? ",\n" : ");\n");
   }
   return table;
 }
@@ -271,6 +279,11 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
       entry.ambientOcclusionFlags = (ao->inside ? kAmbientOcclusionInside : 0u) |
                                     (ao->onlyLocal ? kAmbientOcclusionOnlyLocal : 0u);
     }
+    if (const auto& bevel = compiled->metadata.bevel) {
+      linked.tracedInputs = true;
+      entry.bevelRadius = static_cast<float>(bevel->radius);
+      entry.bevelSamples = bevel->samples;
+    }
     for (const std::string& output : compiled->metadata.outputsWritten)
       if (output == "specularTint" || output == "cyclesPrincipled")
         linked.cyclesPrincipled = true;
@@ -352,7 +365,7 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
                  (i + 1 < linked.materials.size() ? ",\n" : ");\n");
   }
   if (linked.tracedInputs) {
-    const std::string tracedInfo = ambientOcclusionTable(linked.materials);
+    const std::string tracedInfo = tracedInputTables(linked.materials);
     out.insert(out.rfind("#endif"), tracedInfo);
     linked.preludeSource.insert(linked.preludeSource.rfind("#endif"), tracedInfo);
   }

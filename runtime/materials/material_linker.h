@@ -46,6 +46,9 @@ struct LinkedMaterial {
   float ambientOcclusionDistance = 0.0f;
   std::uint32_t ambientOcclusionSamples = 0;
   std::uint32_t ambientOcclusionFlags = 0;  // kAmbientOcclusionInside | ...OnlyLocal bits
+  // Likewise the Bevel node's rays (samples 0: none; the input is the shading normal).
+  float bevelRadius = 0.0f;
+  std::uint32_t bevelSamples = 0;
 };
 
 // LinkedMaterial::ambientOcclusionFlags, as ambient_occlusion.glsl's kAmbientOcclusion*.
@@ -86,9 +89,10 @@ struct LinkedMaterials {
   // one the shaders define MG_OMIT_PATH_INPUTS, MaterialInputs carries none of it and the
   // path tracer tracks no path state.
   bool pathInputs = false;
-  // Some material reads a traced input (Ambient Occlusion): the megakernel traces its rays
-  // from each hit before the graph runs and materials.glsl holds mg_materialAmbientOcclusion,
-  // each scene material's settings; without one the shaders define MG_OMIT_TRACED_INPUTS.
+  // Some material reads a traced input (Ambient Occlusion, Bevel): the megakernel traces its
+  // rays from each hit before the graph runs and materials.glsl holds
+  // mg_materialAmbientOcclusion and mg_materialBevel, each scene material's settings; without
+  // one the shaders define MG_OMIT_TRACED_INPUTS.
   bool tracedInputs = false;
   double compileMilliseconds = 0.0;
 };

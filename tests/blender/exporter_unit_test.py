@@ -529,6 +529,23 @@ class AmbientOcclusionTest(unittest.TestCase):
         self.assertNotIn('Math', text)
 
 
+class BevelTest(unittest.TestCase):
+    """Bevel, traced like Ambient Occlusion: Radius and Samples written as constants."""
+
+    def test_settings_are_constants(self):
+        tree = Tree()
+        out = output_node(tree)
+        em = emission(tree)
+        bevel = tree.add(Node('ShaderNodeBevel', 'Bevel',
+                              [Sock('Radius', 'VALUE', 0.125), Sock('Normal', 'VECTOR', (0, 0, 0))],
+                              [Sock('Normal', 'VECTOR', (0, 0, 1))], samples=6))
+        tree.link(bevel.outputs[0], em.inputs[0])
+        tree.link(em.outputs[0], out.inputs[0])
+        result, (text,) = export([Material('Mat', tree)], writers.build_table(load_specs()))
+        self.assertEqual(result.warnings, [])
+        self.assertRegex(text, r'Bevel Samples=6 Radius=0\.125 Normal>\d+;')
+
+
 class Blender4Test(unittest.TestCase):
     def test_principled_v2(self):
         tree = Tree()

@@ -136,5 +136,53 @@ TEST(TracedInputs, SamplesOutOfRangeIsAnError) {
       << run.messages();
 }
 
+// A UV noise colours the surface and Bevel rounds its edges: the noise is the cut, Bevel the
+// rest.
+constexpr const char* kUvNoiseWithBevel =
+    "material RoundedNoise;\n"
+    "UVInput Out>1;\n"
+    "NoiseTexture Vector<1 Detail=2.0 Color>2;\n"
+    "Bevel Radius=0.1 Samples=8 Normal>3;\n"
+    "BaseColorOutput In<2;\n"
+    "NormalOutput In<3;\n";
+
+TEST(TracedInputs, BevelIsPerHitAndNeverInTheCut) {
+  EXPECT_EQ(inputVariation("bevelNormal"), Variation::PerHit);
+  const auto run = compileText(kUvNoiseWithBevel, realLibrary());
+  ASSERT_TRUE(run.material) << run.messages();
+  const CompiledMaterial& m = *run.material;
+  EXPECT_EQ(m.metadata.cutDomain, "uv");
+  const std::string cut = functionText(m.glsl, "EvaluateMaterialCut_RoundedNoise");
+  const std::string rest = functionText(m.glsl, "EvaluateMaterialRest_RoundedNoise");
+  EXPECT_NE(cut.find("NoiseTexture"), std::string::npos) << cut;
+  EXPECT_EQ(cut.find("Bevel"), std::string::npos) << cut;
+  EXPECT_EQ(cut.find("bevelNormal"), std::string::npos) << cut;
+  EXPECT_NE(rest.find("Bevel("), std::string::npos) << rest;
+  const auto& bevel = m.metadata.bevel;
+  ASSERT_TRUE(bevel.has_value());
+  EXPECT_DOUBLE_EQ(bevel->radius, 0.1);
+  EXPECT_EQ(bevel->samples, 8u);
+  EXPECT_FALSE(m.metadata.ambientOcclusion.has_value());
+  EXPECT_NE(m.metadataJson.find("\"bevel\": {\"radius\": 0.1, \"samples\": 8}"), std::string::npos)
+      << m.metadataJson;
+  const auto glsl = memograph::testing::compileGlslMaterials({m.glsl}, {"RoundedNoise"});
+  EXPECT_TRUE(glsl.ok) << glsl.log;
+  const auto hlsl = memograph::testing::compileHlslMaterials({m.hlsl}, {"RoundedNoise"});
+  EXPECT_TRUE(hlsl.ok) << hlsl.log;
+}
+
+TEST(TracedInputs, ALinkedBevelRadiusIsAnError) {
+  const auto run = compileText(
+      "material LinkedRadius;\n"
+      "UVInput Out>1;\n"
+      "SeparateXYZ Vector<1 X>2;\n"
+      "Bevel Radius<2 Normal>3;\n"
+      "NormalOutput In<3;\n",
+      realLibrary());
+  EXPECT_FALSE(run.material);
+  EXPECT_NE(run.messages().find("Bevel.Radius must be a constant"), std::string::npos)
+      << run.messages();
+}
+
 }  // namespace
 }  // namespace memograph::compiler

@@ -94,6 +94,7 @@ void main() {
 #ifndef MG_OMIT_TRACED_INPUTS
   // A bake traces nothing (Cycles' bake would trace AO against the scene; here no scene).
   inputs.ambientOcclusion = 1.0;
+  inputs.bevelNormal = inputs.normal;
 #endif
 
   MaterialOutputs outputs;

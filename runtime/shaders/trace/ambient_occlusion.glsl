@@ -68,15 +68,23 @@ float ambientOcclusion(vec3 position, vec3 normal, vec3 geometricNormal, uint in
 }
 
 #ifndef MG_OMIT_TRACED_INPUTS
-// Fills the traced inputs of hit `s` of scene material `materialId` before its graph runs:
-// the Ambient Occlusion node's fraction with the settings its material's metadata recorded
-// (mg_materialAmbientOcclusion, materials.glsl), about the interpolated shading normal, as
-// Cycles' svm_node_ao with its Normal socket unlinked. Materials without AO keep 1.
+#include "bevel.glsl"
+
+// Fills the traced inputs of hit `s` before its graph runs, with the settings its material's
+// metadata recorded (materials.glsl): the Ambient Occlusion node's fraction
+// (mg_materialAmbientOcclusion) about the interpolated shading normal, as Cycles' svm_node_ao
+// with its Normal socket unlinked, and the Bevel node's normal (mg_materialBevel). Materials
+// without them keep 1 and the shading normal.
 void setTracedInputs(inout SurfaceHit s, Rng rng, inout uint rays) {
   uvec4 ao = mg_materialAmbientOcclusion[s.materialId];
-  if (ao.y == 0u) return;
-  s.inputs.ambientOcclusion =
-      ambientOcclusion(s.inputs.position.v, s.inputs.normal, s.geometricNormal, s.object.x,
-                       uintBitsToFloat(ao.x), ao.y, ao.z, rng, rays);
+  if (ao.y != 0u)
+    s.inputs.ambientOcclusion =
+        ambientOcclusion(s.inputs.position.v, s.inputs.normal, s.geometricNormal, s.object.x,
+                         uintBitsToFloat(ao.x), ao.y, ao.z, rng, rays);
+  uvec2 bevel = mg_materialBevel[s.materialId];
+  if (bevel.y != 0u)
+    s.inputs.bevelNormal =
+        bevelNormal(s.inputs.position.v, s.inputs.normal, s.geometricNormal, s.object.x,
+                    uintBitsToFloat(bevel.x), bevel.y, rng, rays);
 }
 #endif

@@ -26,6 +26,8 @@ no clamping, no light threshold) and DIR/export/ (the memograph exporter with --
   DIR/tiles.json with their regions (panel, floor, wall) as the Principled scenes do.
 - ao, ao_local: a cube on a floor whose emission is their Ambient Occlusion node's Color
   (ao: plain; ao_local: the floor Only Local, the cube Inside), regions in DIR/tiles.json.
+- bevel: a cube emitting the tilt of its Bevel node's normal from the shading normal;
+  regions: the top and front faces' middles and the strips along the edge between them.
 """
 
 import argparse
@@ -332,6 +334,41 @@ def ao_scene(local):
             ('cube_high', [(x, -0.5, z) for x in (-0.35, 0.35) for z in (0.65, 0.9)])]
 
 
+def bevel_scene():
+    """The Bevel node (a traced input): a 1 m cube emitting how far its Bevel normal (radius
+    0.25) tilts from the shading normal, |Bevel x Geometry Normal| (the sine of the tilt), as
+    a grey, under a black world. A world vector itself would not compare: memograph renders
+    the export in its y-up world (docs/guide/blender.md, Scene export), the tilt is the same
+    in both. The faces' middles keep the face normal (0); strips along the top front edge
+    tilt towards the other face."""
+    world()
+    m = bpy.data.materials.new('Rounded')
+    m.use_nodes = True
+    nt = m.node_tree
+    nt.nodes.clear()
+    bevel = nt.nodes.new('ShaderNodeBevel')
+    bevel.samples = 16
+    bevel.inputs['Radius'].default_value = 0.25
+    geometry = nt.nodes.new('ShaderNodeNewGeometry')
+    cross = nt.nodes.new('ShaderNodeVectorMath')
+    cross.operation = 'CROSS_PRODUCT'
+    length = nt.nodes.new('ShaderNodeVectorMath')
+    length.operation = 'LENGTH'
+    e = nt.nodes.new('ShaderNodeEmission')
+    o = nt.nodes.new('ShaderNodeOutputMaterial')
+    nt.links.new(bevel.outputs['Normal'], cross.inputs[0])
+    nt.links.new(geometry.outputs['Normal'], cross.inputs[1])
+    nt.links.new(cross.outputs['Vector'], length.inputs[0])
+    nt.links.new(length.outputs['Value'], e.inputs['Color'])
+    nt.links.new(e.outputs[0], o.inputs['Surface'])
+    cube('Cube', 1.0, m, location=(0, 0, 0.5))
+    camera((0, -2.6, 2.3), rotation=(math.radians(55), 0, 0), lens=50)
+    return [('top_middle', [(x, y, 1.0) for x in (-0.2, 0.2) for y in (-0.2, 0.2)]),
+            ('top_edge', [(x, y, 1.0) for x in (-0.3, 0.3) for y in (-0.5, -0.32)]),
+            ('front_edge', [(x, -0.5, z) for x in (-0.3, 0.3) for z in (0.86, 1.0)]),
+            ('front_middle', [(x, -0.5, z) for x in (-0.2, 0.2) for z in (0.3, 0.7)])]
+
+
 def region_boxes(regions, size):
     """Pixel boxes of regions given by four world-space corners each: the box inside their
     projection, so no pixel sees an edge."""
@@ -375,6 +412,7 @@ SCENES = {
     'light_path_depth': light_path_depth_scene,
     'ao': lambda: ao_scene(local=False),
     'ao_local': lambda: ao_scene(local=True),
+    'bevel': bevel_scene,
 }
 
 

@@ -1,6 +1,6 @@
 """Specs for Blender's Vector menu nodes (Mapping, Vector Rotate, Vector Transform, Normal
 Map, Bump, Normal), the surface-relevant Input menu nodes (Texture Coordinate, UV Map,
-Geometry, Attribute, Color Attribute, Object Info, Light Path, Ambient Occlusion, Fresnel,
+Geometry, Attribute, Color Attribute, Object Info, Light Path, Ambient Occlusion, Bevel, Fresnel,
 Layer Weight, Value, RGB, Tangent) and the Checker, Gradient and Brick textures. The mgraph nodes live in
 nodes/vector.inc, normal.inc, inputs.inc, blender_inputs.inc and pattern.inc; their
 fidelity is documented in docs/guide/nodes.md.
@@ -136,6 +136,15 @@ NODES = {
         outputs={'Color': 'Out', 'AO': 'AO'},
         props={'samples': 'Samples', 'inside': 'Inside', 'only_local': 'OnlyLocal',
                'distance': ('Distance', lambda node: _ao_distance(node))}),
+    # Bevel, traced like Ambient Occlusion: Radius and Samples written as constants; a
+    # linked Radius or Normal is warned (not carried), the Radius's own value stands in.
+    'ShaderNodeBevel': NodeSpec(
+        mgraph='Bevel',
+        inputs={},
+        outputs={'Normal': 'Normal'},
+        props={'samples': 'Samples',
+               'radius': ('Radius', lambda node: float(
+                   next(s for s in node.inputs if s.identifier == 'Radius').default_value))}),
     'ShaderNodeFresnel': NodeSpec(
         mgraph='Fresnel', inputs={'IOR': 'IOR', 'Normal': 'Normal'}, outputs={'Fac': 'Fac'}),
     'ShaderNodeLayerWeight': NodeSpec(
