@@ -10,7 +10,7 @@
 
 namespace memograph::compiler {
 
-inline constexpr std::array<std::string_view, 21> kMaterialInputNames = {"uv",
+inline constexpr std::array<std::string_view, 22> kMaterialInputNames = {"uv",
                                                                          "position",
                                                                          "normal",
                                                                          "tangent",
@@ -20,6 +20,7 @@ inline constexpr std::array<std::string_view, 21> kMaterialInputNames = {"uv",
                                                                          "generated",
                                                                          "objectPosition",
                                                                          "geometricNormal",
+                                                                         "objectNormal",
                                                                          "objectLocation",
                                                                          "objectRandom",
                                                                          "backfacing",
@@ -40,7 +41,7 @@ static_assert(kMaterialInputNames[kFirstObjectSpaceInput] == "generated");
 
 // The path-state inputs (Blender's Light Path node): the members from `rayFlags` on, which
 // the prelude leaves out under MG_OMIT_PATH_INPUTS.
-inline constexpr std::size_t kFirstPathInput = 13;
+inline constexpr std::size_t kFirstPathInput = 14;
 static_assert(kMaterialInputNames[kFirstPathInput] == "rayFlags");
 
 inline bool isObjectSpaceInput(std::string_view name) {
@@ -52,7 +53,7 @@ inline bool isObjectSpaceInput(std::string_view name) {
 // The traced inputs (docs/design/traced-inputs.md: Ambient Occlusion, Bevel): the members
 // from `ambientOcclusion` on, filled by rays the path tracer traces from the hit before the graph
 // runs; the prelude leaves them out under MG_OMIT_TRACED_INPUTS.
-inline constexpr std::size_t kFirstTracedInput = 19;
+inline constexpr std::size_t kFirstTracedInput = 20;
 static_assert(kMaterialInputNames[kFirstTracedInput] == "ambientOcclusion");
 
 inline bool isPathInput(std::string_view name) {

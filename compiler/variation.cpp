@@ -86,7 +86,7 @@ Variation inputVariation(std::string_view member) {
   if (member == "time")
     return Variation::PerFrame;
   if (member == "normal" || member == "tangent" || member == "vertexColor" || member == "view" ||
-      member == "geometricNormal" || member == "backfacing")
+      member == "geometricNormal" || member == "objectNormal" || member == "backfacing")
     return Variation::PerHit;
   // The path state (Light Path) belongs to the ray, not to the surface: two rays reaching
   // one texel at different depths or by different lobes see different values, so no key

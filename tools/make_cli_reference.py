@@ -21,6 +21,7 @@ SECTIONS = {
     "## bake": ["bake", "--help"],
     "## diff": ["diff", "--help"],
     "## import-blender": ["import-blender", "--help"],
+    "## pack": ["pack", "--help"],
     "## selftest": ["selftest", "--help"],
 }
 

@@ -300,6 +300,8 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
       if (entry.cutDomain == gpu::kCacheCutNone || entry.cutWidth == 0) {
         entry.cutDomain = gpu::kCacheCutNone;
         entry.cutWidth = 0;
+      } else {
+        entry.cutCostShare = compiled->metadata.cutCostShare;
       }
       entry.cutKeyedByInstance = std::any_of(
           entry.inputsUsed.begin(), entry.inputsUsed.end(), [](const std::string& input) {

@@ -349,6 +349,35 @@ RenderPlan planRender(const RendererOptions& options, const RenderSettings& sett
   return plan;
 }
 
+RenderStats::CachedCostShare cachedCostShare(const RendererOptions& options, const Scene& scene,
+                                             const SceneMaterials& materials,
+                                             const RenderPlan& plan) {
+  RenderStats::CachedCostShare share;
+  if (options.cache.mode == CacheMode::None || options.floorMaterials || scene.instances.empty())
+    return share;
+  // Cuts are keyed by the texel cache where the material runs as cut and rest: the
+  // megakernel's switch and the wavefront (docs/design/memoization.md, "Keys of the cut").
+  const bool keysCuts = options.cache.mode == CacheMode::Texel &&
+                        (plan.wavefront || plan.dispatch == MaterialDispatch::Switch);
+  for (const Instance& instance : scene.instances) {
+    const LinkedMaterial& material = materials.linked.materials[instance.material];
+    if (material.cacheable)
+      share.whole += 1.0;
+    else if (keysCuts && material.cutDomain == gpu::kCacheCutUv)
+      share.uv += material.cutCostShare;
+    else if (keysCuts && material.cutDomain == gpu::kCacheCutObject)
+      share.object += material.cutCostShare;
+    else if (keysCuts && material.cutDomain == gpu::kCacheCutWorld)
+      share.world += material.cutCostShare;
+  }
+  const double n = double(scene.instances.size());
+  share.whole /= n;
+  share.uv /= n;
+  share.object /= n;
+  share.world /= n;
+  return share;
+}
+
 RenderStats describeRender(const RendererOptions& options, const RenderSettings& settings,
                            const Scene& scene, const VulkanContext& context,
                            const SceneMaterials& materials, const RenderPlan& plan) {
@@ -370,6 +399,7 @@ RenderStats describeRender(const RendererOptions& options, const RenderSettings&
                            : floor          ? "floor"
                            : plan.wavefront ? "batched"
                                             : materialDispatchName(plan.dispatch);
+  stats.cachedCostShare = cachedCostShare(options, scene, materials, plan);
   return stats;
 }
 

@@ -49,6 +49,12 @@ RenderPlan planRender(const RendererOptions& options, const RenderSettings& sett
                       const VulkanContext& context, const SceneMaterials& materials,
                       std::uint32_t feedbackPathWeight);
 
+// RenderStats::cachedCostShare: what the cache of `options` can serve of `scene`'s estimated
+// material cost in the architecture `plan` chose.
+RenderStats::CachedCostShare cachedCostShare(const RendererOptions& options, const Scene& scene,
+                                             const SceneMaterials& materials,
+                                             const RenderPlan& plan);
+
 // The statistics known before the upload: the device, the image, the architecture, the
 // materials and the culling mode.
 RenderStats describeRender(const RendererOptions& options, const RenderSettings& settings,

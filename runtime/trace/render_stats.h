@@ -175,6 +175,16 @@ struct RenderStats {
   std::string cacheFilter = "nearest";
   std::uint64_t cacheBytes = 0;
   std::string culling = "none";  // --culling: none, frustum or lipac
+  // The share of the scene's estimated material cost (compiler/cut.h's per-node estimates,
+  // uncalibrated) that this render's cache can serve: every instance's material weighs
+  // alike; a whole cacheable (uv-only) graph counts 1, a cut its cutCostShare where this
+  // render keys cuts (the texel cache of the switch megakernel or the wavefront), by key
+  // domain. Times the hit rate, it estimates the share of material cost served from the
+  // cache. All 0 without a cache.
+  struct CachedCostShare {
+    double whole = 0.0, uv = 0.0, object = 0.0, world = 0.0;
+    double total() const { return whole + uv + object + world; }
+  } cachedCostShare;
 
   double medianGpuMilliseconds() const;
   std::uint64_t totalRays() const;

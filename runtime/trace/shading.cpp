@@ -36,9 +36,6 @@ std::string wavefrontOptionGap(const RendererOptions& options) {
   if (cache.mode != CacheMode::None && options.floorMaterials)
     return "it fills the cache in its material passes, and the free-material floor has none "
            "(time the floor's lookups with --shading megakernel)";
-  if (cache.mode == CacheMode::Texel && cache.filter != CacheFilter::Nearest)
-    return "its lookup pass reads one entry a hit; --cache-filter trilinear and stochastic are "
-           "the megakernel's";
   if (cache.mode == CacheMode::Tile &&
       (cache.tileFill == TileFill::Subgroup || cache.groupByMaterial || cache.testRepacks))
     return "it computes missing tiles from the deferred fill's queue; --tile-fill subgroup and "

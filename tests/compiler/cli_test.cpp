@@ -85,7 +85,7 @@ TEST_F(CliTest, UsageErrorsExitWithTwo) {
 
 TEST_F(CliTest, EveryCommandHasHelp) {
   for (const char* command : {"compile", "check", "nodes", "bake", "render", "bench", "diff",
-                              "selftest", "import-blender"}) {
+                              "selftest", "import-blender", "pack"}) {
     for (const char* flag : {" --help", " -h"}) {
       const auto run = runCli(std::string(command) + flag);
       EXPECT_EQ(run.exitCode, 0) << command << flag << run.output;
@@ -425,7 +425,7 @@ TEST_F(CliTest, TheCliReferenceHoldsEveryCommandsHelp) {
   ASSERT_TRUE(file) << "docs/guide/cli.md";
   const std::string reference((std::istreambuf_iterator<char>(file)), {});
   for (const std::string command :
-       {"compile", "check", "nodes", "bake", "diff", "import-blender", "selftest"}) {
+       {"compile", "check", "nodes", "bake", "diff", "import-blender", "pack", "selftest"}) {
     const std::string help = runCli(command + " --help").output;
     EXPECT_NE(reference.find(help), std::string::npos)
         << "docs/guide/cli.md does not hold `memograph " << command

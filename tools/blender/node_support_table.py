@@ -29,13 +29,11 @@ APPROXIMATIONS = {
     'ShaderNodeBsdfGlossy': 'Principled metal (distribution dropped)',
     'ShaderNodeBsdfTransparent': 'opacity 0 (tint dropped)',
     'ShaderNodeAddShader': 'emissions summed, the surface of the non-emission side',
-    'ShaderNodeTexImage': 'Box projection weighs by the world normal (the object one in '
-                          'Cycles: exact for unrotated objects); Linear with Repeat '
-                          'mip-mapped, associated with alpha after filtering',
+    'ShaderNodeTexImage': 'Linear with Repeat mip-mapped, associated with alpha after '
+                          'filtering',
     'ShaderNodeVectorTransform': 'object space from the location only; camera = world',
     'ShaderNodeBump': 'heights differenced over memograph\'s footprint, not Cycles\' dP',
-    'ShaderNodeTexCoord': 'Normal in object space exact for unrotated objects; From '
-                          'Instancer not carried',
+    'ShaderNodeTexCoord': 'From Instancer not carried',
     'ShaderNodeNormalMap': 'tangent space from the active UV only',
     'ShaderNodeTangent': 'the active UV map only',
     'ShaderNodeAttribute': 'the mesh\'s colour attribute only',

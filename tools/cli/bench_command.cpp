@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <optional>
@@ -19,6 +20,8 @@
 #include "bench_summary.h"
 #include "option_table.h"
 #include "runtime/renderer.h"
+#include "runtime/scene/pack/scene_pack.h"
+#include "scene_inputs.h"
 #endif
 #ifdef MEMOGRAPH_HAVE_SCENES
 #include "runtime/scene/builtin/builtin_scenes.h"
@@ -39,13 +42,14 @@ int runBench(std::span<const std::string_view>) {
 namespace {
 
 constexpr std::string_view kIntro =
-    "usage: memograph bench [builtin:NAME[:KEY=VALUE,...] ...] [options]\n"
+    "usage: memograph bench [builtin:NAME[:KEY=VALUE,...]|FILE.mgpack ...] [options]\n"
     "\n"
     "Renders each scene at each size and prints the median GPU frame time, frames per\n"
     "second and rays per second over the timed frames (after warm-up frames). The camera\n"
-    "follows the scene's built-in camera path unless --static-camera is given. Scenes\n"
-    "default to builtin:classroom builtin:landscape; options as in 'render', e.g.\n"
-    "builtin:classroom:octaves=10,layers=3.\n";
+    "follows the scene's built-in camera path unless --static-camera is given; a scene pack\n"
+    "('memograph pack') follows its own path, spread over the path's cameras, or stays at\n"
+    "its camera when it has none. Scenes default to builtin:classroom builtin:landscape;\n"
+    "options as in 'render', e.g. builtin:classroom:octaves=10,layers=3.\n";
 
 using Clock = std::chrono::steady_clock;
 
@@ -74,9 +78,13 @@ int checkPlanAndScenes(Bench& bench, const std::vector<std::string>& scenes) {
     return usageError(
         "bench", "--frame-stride and --camera-frames need the camera path, not --static-camera");
   for (const auto& sceneName : scenes) {
+    if (runtime::isScenePackPath(sceneName))
+      continue;
     if (sceneName.rfind("builtin:", 0) != 0)
       return usageError("bench",
-                        "bench runs built-in scenes (builtin:NAME), not '" + sceneName + "'");
+                        "bench runs built-in scenes (builtin:NAME) and scene packs "
+                        "(.mgpack), not '" +
+                            sceneName + "'");
     std::string error;
     if (!runtime::parseBuiltinSceneSpec(std::string_view(sceneName).substr(8), error))
       return usageError("bench", error);
@@ -84,6 +92,14 @@ int checkPlanAndScenes(Bench& bench, const std::vector<std::string>& scenes) {
   const auto geometryCheck = runtime::deviceGeometryCheck(o.renderer.context);
   for (const auto& sceneName : scenes) {
     std::string error;
+    if (runtime::isScenePackPath(sceneName)) {
+      // Read here to be checked (a bad pack is found before any scene is measured).
+      if (!runtime::readScenePack(sceneName, error)) {
+        std::cerr << "memograph bench: " << error << "\n";
+        return kExitFailure;
+      }
+      continue;
+    }
     auto spec = runtime::parseBuiltinSceneSpec(std::string_view(sceneName).substr(8), error);
     spec->options.onGeometry = geometryCheck;
     spec->options.meshLods = o.renderer.culling.showsMeshLods();
@@ -141,7 +157,8 @@ struct RunNames {
 
 RunNames runNames(const std::string& sceneName, const std::string& runLabel) {
   RunNames names;
-  names.csv = sceneName.substr(8);
+  names.csv = runtime::isScenePackPath(sceneName) ? std::filesystem::path(sceneName).stem().string()
+                                                  : sceneName.substr(8);
   std::replace(names.csv.begin(), names.csv.end(), ',', ';');
   names.file = names.csv;
   std::replace_if(
@@ -217,6 +234,18 @@ struct BenchRun {
   }
 };
 
+// The cached share of the estimated material cost and, times the hit rate, the share served
+// from the cache (RenderStats::cachedCostShare).
+std::string cachedShareText(const runtime::RenderStats::CachedCostShare& share, double hitRate) {
+  std::ostringstream text;
+  text << "cached share " << 100.0 * share.total() << " % of the estimated material cost (whole "
+       << 100.0 * share.whole << " %, cuts uv " << 100.0 * share.uv << " %, object "
+       << 100.0 * share.object << " %, world " << 100.0 * share.world
+       << " %; instances weigh alike); served from the cache " << 100.0 * share.total() * hitRate
+       << " %";
+  return text.str();
+}
+
 void printCacheAndCulling(const BenchRun& run) {
   const runtime::RenderStats& stats = run.result.stats;
   if (stats.cache != "none")
@@ -228,7 +257,9 @@ void printCacheAndCulling(const BenchRun& run) {
               << (stats.cacheFilter != "nearest" ? ", filter " + stats.cacheFilter : "")
               << (stats.cacheSecondaryOnly ? ", secondary hits only" : "") << "): median hit rate "
               << 100.0 * run.summary.medianCacheHitRate << " %, total "
-              << 100.0 * run.summary.totalCacheHitRate << " %\n";
+              << 100.0 * run.summary.totalCacheHitRate << " %\n"
+              << "  " << cachedShareText(stats.cachedCostShare, run.summary.totalCacheHitRate)
+              << "\n";
   if (stats.culling != "none" && !run.timed.empty()) {
     std::uint64_t peakBytes = 0, builds = 0, evictions = 0;
     for (const auto& frame : run.timed) {
@@ -340,9 +371,45 @@ void benchSize(Bench& bench, runtime::Renderer& renderer, const runtime::Scene& 
   }
 }
 
+// The cameras of a pack's own path for each rendered frame: the path's cameras spread over
+// the bench's camera positions (bench.plan.pathCameras), so that the timed frames cover the
+// whole path whatever its length; none (its own camera) when the pack has no path.
+std::vector<runtime::Camera> packCameras(const Bench& bench,
+                                         const std::vector<runtime::Camera>& path) {
+  const TraceCommandOptions& o = bench.options;
+  std::vector<runtime::Camera> cameras;
+  if (o.staticCamera || path.empty())
+    return cameras;
+  for (std::uint32_t frame = 0; frame < o.warmup + o.settings.frames; ++frame) {
+    const std::uint64_t index = benchCameraIndex(bench.plan, frame);
+    cameras.push_back(path[index * path.size() / bench.plan.pathCameras]);
+  }
+  return cameras;
+}
+
+// Renders a scene pack at every size (read once already by checkPlanAndScenes).
+void benchPack(Bench& bench, const std::string& sceneName) {
+  TraceCommandOptions o = bench.options;  // its own texture loader
+  runtime::Scene scene;
+  std::vector<runtime::Camera> path;
+  if (loadScenePackFile("bench", sceneName, o, scene, path) != kExitOk)
+    throw std::runtime_error("scene pack " + sceneName + " could not be read again");
+  if (o.noEmissiveNee)
+    scene.emissiveLightSampling = false;
+  o.renderer.context.autoPrefersPipeline =
+      runtime::countDistinctMaterialGraphs(scene) > runtime::kManyMaterialGraphs;
+  runtime::Renderer renderer(o.renderer);
+  printDevice(renderer);
+  const RunNames names = runNames(sceneName, o.label);
+  for (const ImageSize size : o.sizes)
+    benchSize(bench, renderer, scene, names, size, packCameras(bench, path));
+}
+
 // Renders one scene at every size (checked by checkPlanAndScenes).
 void benchScene(Bench& bench, const std::string& sceneName) {
   TraceCommandOptions& o = bench.options;
+  if (runtime::isScenePackPath(sceneName))
+    return benchPack(bench, sceneName);
   std::string error;
   const auto spec = runtime::parseBuiltinSceneSpec(std::string_view(sceneName).substr(8), error);
   runtime::Scene scene;

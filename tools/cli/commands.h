@@ -21,6 +21,7 @@ int runBench(std::span<const std::string_view> args);
 int runDiff(std::span<const std::string_view> args);
 int runBake(std::span<const std::string_view> args);
 int runImportBlender(std::span<const std::string_view> args);
+int runPack(std::span<const std::string_view> args);
 int runSelftest(std::span<const std::string_view> args);
 
 // Every command, in the order `memograph --help` lists them.

@@ -15,6 +15,7 @@
 #include "commands.h"
 #include "tools/io/pfm.h"
 #include "tools/quality/flip.h"
+#include "tools/quality/image_bias.h"
 
 #ifdef MEMOGRAPH_HAVE_IO
 #include "tools/io/image_io.h"
@@ -43,6 +44,10 @@ constexpr std::string_view kHelp =
     "  --encoding E              auto (default: .exr/.hdr/.pfm linear, others sRGB), srgb\n"
     "                            or linear, for both images; linear values are clamped to\n"
     "                            [0, 1] (LDR-FLIP: tonemap HDR renders first)\n"
+    "  --bias-block N            also print both images' means and their mean absolute\n"
+    "                            difference after averaging NxN pixel blocks (linear\n"
+    "                            values, unclamped): noise shrinks with N, a bias stays\n"
+    "                            (default: not printed)\n"
     "\n"
     "PFM files (the renderer's --out) are read and written by every build; other formats\n"
     "need the io module (OpenImageIO), which the GPU bundle is built without.\n"
@@ -107,6 +112,7 @@ float srgbToLinear(float c) {
 
 int runDiff(std::span<const std::string_view> args) {
   std::string out, ppdText, distanceText, widthText, resolutionText, encoding = "auto";
+  std::string biasBlockText;
   ArgumentScanner scanner("diff", args);
   scanner.option("--out", &out);
   scanner.option("-o", &out);
@@ -115,12 +121,18 @@ int runDiff(std::span<const std::string_view> args) {
   scanner.option("--monitor-width", &widthText);
   scanner.option("--monitor-resolution", &resolutionText);
   scanner.option("--encoding", &encoding);
+  scanner.option("--bias-block", &biasBlockText);
   scanner.help(kHelp);
   std::vector<std::string> positional;
   if (const auto exitCode = scanner.scan(positional))
     return *exitCode;
   if (positional.size() != 2)
     return usageError("diff", "expected two images, REFERENCE and TEST");
+  std::uint32_t biasBlock = 0;
+  if (!biasBlockText.empty() &&
+      (!parseNumber(biasBlockText, biasBlock) || biasBlock == 0 || biasBlock > kMaxImageSide))
+    return usageError("diff", "--bias-block must be a whole number of pixels from 1 to " +
+                                  std::to_string(kMaxImageSide) + ", not '" + biasBlockText + "'");
 
   double ppd = runtime::defaultPixelsPerDegree();
   const bool monitor = !distanceText.empty() || !widthText.empty() || !resolutionText.empty();
@@ -220,6 +232,14 @@ int runDiff(std::span<const std::string_view> args) {
   const std::vector<float> percentiles = runtime::flipPercentiles(result.error, kFractions);
   for (std::size_t i = 0; i < percentiles.size(); ++i)
     std::printf("%-5s %.6f\n", kLabels[i], percentiles[i]);
+  if (biasBlock > 0) {
+    const runtime::BiasResult bias =
+        runtime::measureBias({reference->rgba, reference->width, reference->height},
+                             {test->rgba, test->width, test->height}, biasBlock);
+    std::printf("image mean  reference %.6f  test %.6f\n", bias.referenceMean, bias.testMean);
+    std::printf("block MAE   %.6f (%ux%u blocks)\n", bias.blockMeanAbsoluteError, biasBlock,
+                biasBlock);
+  }
   std::fflush(stdout);
 
   if (!out.empty()) {

@@ -17,11 +17,12 @@ std::span<const Command> commands() {
       {"check", "type-check a graph and print each link's inferred type", runCheck},
       {"nodes", "list the node library with its overloads", runNodes},
       {"render", "path trace a scene to an HDR image", runRender},
-      {"bench", "frames and rays per second on the built-in scenes", runBench},
+      {"bench", "frames and rays per second on built-in scenes and scene packs", runBench},
       {"bake", "evaluate materials over their UV square into one image per output", runBake},
       {"diff", "perceptual difference of two images (LDR-FLIP) and its error map", runDiff},
       {"import-blender", "export a .blend file's materials as graphs (runs Blender)",
        runImportBlender},
+      {"pack", "write an imported scene as one self-contained .mgpack file", runPack},
       {"selftest", "the material cache's concurrency stress test on this GPU", runSelftest},
   };
   return kCommands;

@@ -14,10 +14,12 @@
 #include "commands.h"
 #include "frame_files.h"
 #include "runtime/host/atomic_file.h"
+#include "scene_inputs.h"
 
 #ifdef MEMOGRAPH_HAVE_RUNTIME
 #include "option_table.h"
 #include "runtime/renderer.h"
+#include "runtime/scene/pack/scene_pack.h"
 #endif
 #ifdef MEMOGRAPH_HAVE_SCENES
 #include "runtime/scene/builtin/builtin_scenes.h"
@@ -46,10 +48,11 @@ constexpr std::string_view kIntro =
     "usage: memograph render SCENE|builtin:NAME[:KEY=VALUE,...] --out FILE [options]\n"
     "\n"
     "Path traces a scene (thesis §5.2) and writes the accumulated HDR image. SCENE is a\n"
-    "glTF/OBJ file whose material names map to DIR/<name>.mgraph (--materials DIR), or a\n"
-    "built-in scene (classroom, landscape, city) with options octaves, layers, terrain, nee,\n"
-    "scale, path (the city's camera: street or aerial), e.g.\n"
-    "builtin:classroom:octaves=10,layers=3 (docs/guide/scenes.md).\n";
+    "glTF/OBJ file whose material names map to DIR/<name>.mgraph (--materials DIR), a scene\n"
+    "pack (.mgpack, written by 'memograph pack'; its camera path is followed unless\n"
+    "--camera-path is given), or a built-in scene (classroom, landscape, city) with\n"
+    "options octaves, layers, terrain, nee, scale, path (the city's camera: street or\n"
+    "aerial), e.g. builtin:classroom:octaves=10,layers=3 (docs/guide/scenes.md).\n";
 
 std::string imageExtension(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();
@@ -187,9 +190,15 @@ int checkRangeOnPath(const TraceCommandOptions& options) {
                                   std::to_string(cameras - 1) + ")");
 }
 
-// The scene: built-in, or a file through the io module.
-int loadScene(const std::string& name, const TraceCommandOptions& options, runtime::Scene& scene) {
-  if (name.rfind("builtin:", 0) == 0) {
+// The scene: built-in, a scene pack (which sets the camera path and the texture loader), or
+// a file through the io module.
+int loadScene(const std::string& name, TraceCommandOptions& options, runtime::Scene& scene) {
+  if (runtime::isScenePackPath(name)) {
+    if (const int code =
+            loadScenePackFile("render", name, options, scene, options.settings.cameraPath);
+        code != kExitOk)
+      return code;
+  } else if (name.rfind("builtin:", 0) == 0) {
 #ifdef MEMOGRAPH_HAVE_SCENES
     std::string error;
     auto spec = runtime::parseBuiltinSceneSpec(std::string_view(name).substr(8), error);
@@ -221,56 +230,13 @@ int loadScene(const std::string& name, const TraceCommandOptions& options, runti
     scene = std::move(*imported);
 #else
     std::cerr << "memograph render: this build reads no scene files (no assimp); use a "
-                 "builtin: scene\n";
+                 "builtin: scene or a scene pack (.mgpack, 'memograph pack')\n";
     return kExitFailure;
 #endif
   }
   if (options.noEmissiveNee)
     scene.emissiveLightSampling = false;
   return kExitOk;
-}
-
-// The environment image: --environment, or the one the scene names (the Blender export's
-// world), which --environment replaces.
-int loadEnvironment(std::string environment, runtime::Scene& scene) {
-  // Unused in builds without the io module, which read no environment image.
-  [[maybe_unused]] float strength = 1.0f, uOffset = 0.0f;
-  if (environment.empty() && !scene.environment.imagePath.empty() &&
-      scene.environment.imageRgb.empty()) {
-    environment = scene.environment.imagePath;
-    strength = scene.environment.imageStrength;
-    uOffset = scene.environment.imageUOffset;
-  }
-  if (environment.empty())
-    return kExitOk;
-#ifdef MEMOGRAPH_HAVE_IO
-  compiler::Diagnostics diagnostics;
-  auto image = io::readImageFloat(environment, diagnostics);
-  if (!image) {
-    printDiagnostics(diagnostics);
-    return kExitFailure;
-  }
-  auto& env = scene.environment;
-  env.imagePath = environment;
-  env.imageWidth = static_cast<std::uint32_t>(image->width);
-  env.imageHeight = static_cast<std::uint32_t>(image->height);
-  env.imageRgb.clear();
-  env.imageRgb.reserve(std::size_t(image->width) * image->height * 3);
-  const std::size_t w = image->width,
-                    shift = std::size_t(std::lround(uOffset * float(w))) % (w ? w : 1);
-  for (std::size_t y = 0; y < std::size_t(image->height); ++y) {
-    for (std::size_t x = 0; x < w; ++x) {
-      const std::size_t i = 4 * (y * w + (x + shift) % w);
-      env.imageRgb.insert(env.imageRgb.end(),
-                          {strength * image->rgba[i], strength * image->rgba[i + 1],
-                           strength * image->rgba[i + 2]});
-    }
-  }
-  return kExitOk;
-#else
-  std::cerr << "memograph render: this build reads no images (no OpenImageIO)\n";
-  return kExitFailure;
-#endif
 }
 
 int loadCameraPath(const std::string& file, runtime::RenderSettings& settings) {
@@ -548,13 +514,14 @@ int runRender(std::span<const std::string_view> args) {
     return code;
   if (const int code = checkOutputFolders(options); code != kExitOk)
     return code;
-  if (const int code = loadEnvironment(options.environment, scene); code != kExitOk)
+  if (const int code = loadEnvironmentImage("render", options.environment, scene); code != kExitOk)
     return code;
   if (const int code = loadCameraPath(options.cameraPath, options.settings); code != kExitOk)
     return code;
   if (const int code = checkRangeOnPath(options); code != kExitOk)
     return code;
-  useTextureLoader(options.renderer);
+  if (!runtime::isScenePackPath(positional[0]))
+    useTextureLoader(options.renderer);
   if (options.frameRange)
     return renderFrameRange(options, scene, pattern);
   showProgress(options.settings);

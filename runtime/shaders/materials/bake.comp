@@ -80,6 +80,7 @@ void main() {
   inputs.generated.y = dPdy * toGenerated;
   inputs.objectPosition = inputs.position;
   inputs.geometricNormal = vec3(0.0, 0.0, 1.0);
+  inputs.objectNormal = inputs.normal;  // the bake's object is untransformed
   inputs.objectLocation = vec3(0.0);
   inputs.objectRandom = 0.0;
   inputs.backfacing = 0.0;

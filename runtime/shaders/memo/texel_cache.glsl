@@ -15,7 +15,7 @@
 //                            of reads, one clock atomic per subgroup (cacheStampReads),
 //   MG_CACHE_QUIESCENT_READS (optional) no invocation of the including dispatch writes a
 //                            value: reads skip §5.3.4's check (MG_CACHE_COHERENT).
-//   MG_CACHE_FILTER          (optional; the megakernel only) kCacheFilter{Trilinear,
+//   MG_CACHE_FILTER          (optional) kCacheFilter{Trilinear,
 //                            Stochastic}: how a lookup reads the key space (cacheFilterEntry);
 //                            unset, the nearest entry of the nearest level.
 //   MG_CACHE_CUTS            (optional; the megakernel's switch dispatch and the wavefront)
@@ -819,8 +819,10 @@ bool cacheCutKeyFor(uvec4 info, uvec4 cut, uvec2 object, MaterialInputs inputs,
 }
 #endif  // MG_CACHE_CUTS
 
-// The wavefront splits this into its lookup pass and its material passes (wavefront.glsl).
-#ifndef MG_WAVEFRONT
+// The wavefront splits this into its lookup pass and its material passes (wavefront.glsl);
+// its material passes run it in place for filtered reads and for cuts too wide for its path
+// state, with their own evaluateMaterialDirect and cut and rest functions.
+#if !defined(MG_WAVEFRONT) || defined(MG_WAVEFRONT_MATERIAL)
 // Cacheable materials (mask != 0) read the cache and on a miss evaluate and insert; with
 // MG_CACHE_CUTS, a material with a cut is keyed by it (evaluateMaterialThroughCut); others
 // are evaluated directly and never touch the cache. With MG_CACHE_SNAP_UV a miss
@@ -1100,6 +1102,6 @@ void evaluateMaterialCached(uint materialId, uvec2 object, MaterialInputs inputs
 #endif  // MG_CACHE_FILTER
 }
 
-#endif  // MG_WAVEFRONT
+#endif  // !MG_WAVEFRONT || MG_WAVEFRONT_MATERIAL
 
 #endif

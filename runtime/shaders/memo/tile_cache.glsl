@@ -319,6 +319,7 @@ MaterialInputs tileFillInputs(TileFillItem item, uint texel) {
   inputs.generated = inputs.position;
   inputs.objectPosition = inputs.position;
   inputs.geometricNormal = vec3(0.0, 0.0, 1.0);
+  inputs.objectNormal = inputs.normal;
   inputs.objectLocation = vec3(0.0);
   inputs.objectRandom = 0.0;
   inputs.backfacing = 0.0;

@@ -169,6 +169,11 @@ SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
   s.inputs.generated.x = s.inputs.objectPosition.x * toGenerated;
   s.inputs.generated.y = s.inputs.objectPosition.y * toGenerated;
   s.inputs.geometricNormal = ng;
+  // A normal maps to world space by the inverse transpose of the object's linear part, so
+  // back by its transpose (Cycles 3.4 object_inverse_normal_transform, then safe_normalize).
+  vec3 objectNormal = transpose(mat3(toWorld)) * s.inputs.normal;
+  s.inputs.objectNormal = dot(objectNormal, objectNormal) > 1e-30 ? normalize(objectNormal)
+                                                                  : vec3(0.0);
   s.inputs.objectLocation = toWorld[3].xyz;
   s.inputs.objectRandom = instance.objectInfo.x;
   s.inputs.backfacing = backfacing ? 1.0 : 0.0;

@@ -28,6 +28,8 @@ no clamping, no light threshold) and DIR/export/ (the memograph exporter with --
   (ao: plain; ao_local: the floor Only Local, the cube Inside), regions in DIR/tiles.json.
 - bevel: a cube emitting the tilt of its Bevel node's normal from the shading normal;
   regions: the top and front faces' middles and the strips along the edge between them.
+- object_normal: Texture Coordinate Normal as emission on a rotated, unevenly scaled sphere
+  and plane, black world (the object-space normal through the object's transform).
 """
 
 import argparse
@@ -367,6 +369,34 @@ def bevel_scene():
             ('top_edge', [(x, y, 1.0) for x in (-0.3, 0.3) for y in (-0.5, -0.32)]),
             ('front_edge', [(x, -0.5, z) for x in (-0.3, 0.3) for z in (0.86, 1.0)]),
             ('front_middle', [(x, -0.5, z) for x in (-0.2, 0.2) for z in (0.3, 0.7)])]
+def object_normal_scene():
+    """Texture Coordinate Normal as emitted colour (N / 2 + 1/2) on a smooth sphere and a
+    plane, each rotated and scaled unevenly: the object-space normal, which Box projection's
+    weights read too."""
+    world()
+
+    def by_normal(nt, color, _strength):
+        tc = nt.nodes.new('ShaderNodeTexCoord')
+        half = nt.nodes.new('ShaderNodeVectorMath')
+        half.operation = 'MULTIPLY_ADD'
+        half.inputs[1].default_value = (0.5, 0.5, 0.5)
+        half.inputs[2].default_value = (0.5, 0.5, 0.5)
+        nt.links.new(tc.outputs['Normal'], half.inputs[0])
+        nt.links.new(half.outputs[0], color)
+
+    material = emission('ObjectNormal', color_node=by_normal)
+    bpy.ops.mesh.primitive_uv_sphere_add(radius=0.6, location=(-0.7, 0, 0.6),
+                                         rotation=(math.radians(40), math.radians(-25),
+                                                   math.radians(60)))
+    sphere = bpy.context.object
+    sphere.scale = (1.0, 0.6, 1.4)
+    sphere.data.materials.append(material)
+    bpy.ops.object.shade_smooth()
+    tilted = plane('Tilted', 1.0, material, location=(0.8, 0, 0.6),
+                   rotation=(math.radians(60), math.radians(20), math.radians(30)))
+    tilted.scale = (1.5, 0.7, 1.0)
+    camera((0, -4, 0.6), rotation=(math.radians(90), 0, 0), lens=35)
+    return []
 
 
 def region_boxes(regions, size):
@@ -413,6 +443,7 @@ SCENES = {
     'ao': lambda: ao_scene(local=False),
     'ao_local': lambda: ao_scene(local=True),
     'bevel': bevel_scene,
+    'object_normal': object_normal_scene,
 }
 
 

@@ -10,7 +10,7 @@ scene export), compared. One scene per run:
 3. The check per scene (CHECKS below):
    - units_*: the mean of each channel (the irradiance on the plane times albedo/pi)
      within 2 % of Cycles';
-   - emission: mean absolute error <= 0.01;
+   - emission, object_normal: mean absolute error <= 0.01;
    - room: mean LDR-FLIP (`memograph diff`, linear values clamped to [0, 1]) <= 0.05;
    - principled, principled_retro: per tile (DIR/tiles.json: the middle of each Principled BSDF tile), the
      mean of each channel within LIMIT of Cycles', relative (|m - c| / max(c, 0.01)); the
@@ -67,6 +67,8 @@ CHECKS = {
     # face's strip along the edge 0.4 %, the top face's 7.4 % (memograph tilts more there;
     # not explained yet: docs/design/traced-inputs.md), the image's mean 0.8 %.
     'bevel': (64, 256, 4, 16, 1, 'regions', BEVEL_LIMIT),
+    # Texture Coordinate Normal of rotated, scaled objects, emitted (as emission).
+    'object_normal': (32, 16, 4, 4, 1, 'mae', 0.01),
 }
 
 

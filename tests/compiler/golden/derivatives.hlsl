@@ -23,6 +23,7 @@ struct MaterialInputs {
   float3_D generated;
   float3_D objectPosition;
   float3 geometricNormal;
+  float3 objectNormal;
   float3 objectLocation;
   float objectRandom;
   float backfacing;

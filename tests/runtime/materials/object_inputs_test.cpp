@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "render_test_support.h"
 #include "runtime/materials/material_linker.h"
@@ -39,6 +40,11 @@ void TestObject(in MaterialInputs inputs, out float3 Out) { Out = inputs.objectP
 void TestInfo(in MaterialInputs inputs, out float3 Out) {
   Out = float3(inputs.backfacing + inputs.objectRandom, inputs.objectLocation.x,
                inputs.geometricNormal.y);
+}
+
+/// @input objectNormal
+void TestObjectNormal(in MaterialInputs inputs, out float3 Out) {
+  Out = inputs.objectNormal * 0.5 + 0.5;
 }
 )";
   return dir;
@@ -113,6 +119,51 @@ TEST(ObjectInputs, PathTracerFillsGeneratedObjectInfoAndFaceNormal) {
   }
   EXPECT_GT(genPixels, 50);
   EXPECT_GT(infoPixels, 50);
+  EXPECT_TRUE(renderer.context().validationErrors().empty());
+}
+
+// The object-space normal (Texture Coordinate Normal, Box projection's weights) goes through
+// the inverse of the instance's rotation and uneven scale, as Cycles'
+// object_inverse_normal_transform: a quad whose object-space normal is +z, turned and
+// stretched so that it faces the camera above (+y), reads +z, not the world's +y.
+TEST(ObjectInputs, ObjectNormalUndoesTheInstancesRotationAndScale) {
+  const fs::path nodes = objectNodes();
+  Scene scene;
+  Mesh mesh = testing::quad(2.0f);  // in y = 0, normal +y: turned to z = 0, normal +z
+  const glm::mat3 toXy = glm::mat3(glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), {1, 0, 0}));
+  for (auto& p : mesh.positions)
+    p = toXy * p;
+  for (auto& n : mesh.normals)
+    n = toXy * n;
+  ASSERT_NEAR(mesh.normals[0].z, 1.0f, 1e-6f);
+  scene.meshes.push_back(mesh);
+  scene.materials.push_back({"ObjectNormal", "",
+                             "material ObjectNormal;\nTestObjectNormal Out>0;\n"
+                             "EmissionOutput Color<0;\nBaseColorOutput (0.0, 0.0, 0.0);\n"});
+  // Back to y = 0 facing +y, turned 30 degrees about y and stretched unevenly in the plane.
+  glm::mat4 toWorld = glm::rotate(glm::mat4(1.0f), glm::radians(30.0f), {0, 1, 0}) *
+                      glm::rotate(glm::mat4(1.0f), glm::radians(-90.0f), {1, 0, 0}) *
+                      glm::scale(glm::mat4(1.0f), {3.0f, 1.5f, 0.5f});
+  scene.instances.push_back({0, 0, toWorld});
+  scene.camera.position = {0.0f, 12.0f, 0.0f};
+  scene.camera.target = {0.0f, 0.0f, 0.0f};
+  scene.camera.up = {0.0f, 0.0f, -1.0f};
+  scene.camera.verticalFovDegrees = 40.0f;
+
+  RendererOptions options = testing::testOptions();
+  options.nodeLibraryDirectory = nodes;
+  Renderer renderer(options);
+  RenderSettings settings;
+  settings.width = settings.height = 16;
+  settings.raysPerPath = 1;
+  settings.sharedPrimaryRay = true;
+  const RenderResult result = renderer.render(scene, settings);
+  fs::remove_all(nodes);
+
+  const float* centre = result.image.pixel(8, 8);
+  EXPECT_NEAR(centre[0], 0.5f, 1e-4);
+  EXPECT_NEAR(centre[1], 0.5f, 1e-4);
+  EXPECT_NEAR(centre[2], 1.0f, 1e-4);
   EXPECT_TRUE(renderer.context().validationErrors().empty());
 }
 

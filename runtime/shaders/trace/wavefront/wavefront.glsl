@@ -88,6 +88,38 @@
 // MG_EVALUATE_MATERIAL, its first texture slot MG_TEXTURE_BASE), as a material callable has.
 #include "material.glsl"
 #include "material_textures.glsl"
+#ifdef MG_CACHE_TEXEL
+// The megakernel's names for evaluating a material, for texel_cache.glsl's in-place
+// read-or-fill (evaluateMaterialCached, evaluateMaterialThroughCut), which this pass runs
+// where a hit reads more entries than one (--cache-filter) or a cut is wider than the path
+// state carries: a material pass has one graph, so the scene material id is its own.
+void evaluateMaterialDirect(uint materialId, MaterialInputs inputs,
+                            out MaterialOutputs outputs) {
+  MG_EVALUATE_MATERIAL(inputs, outputs);
+}
+#ifdef MG_CACHE_CUTS
+void evaluateMaterialCutSwitch(uint materialId, MaterialInputs inputs,
+                               out float values[MG_CACHE_VALUES]) {
+  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;
+#ifdef MG_EVALUATE_MATERIAL_CUT
+  MG_MATERIAL_CUT cut;
+  MG_EVALUATE_MATERIAL_CUT(inputs, cut);
+  for (uint i = 0u; i < uint(MG_MATERIAL_CUT_WIDTH); ++i) values[i] = cut.v[i];
+#endif
+}
+
+void evaluateMaterialRestSwitch(uint materialId, MaterialInputs inputs,
+                                float values[MG_CACHE_VALUES], out MaterialOutputs outputs) {
+#ifdef MG_EVALUATE_MATERIAL_CUT
+  MG_MATERIAL_CUT cut;
+  for (uint i = 0u; i < uint(MG_MATERIAL_CUT_WIDTH); ++i) cut.v[i] = values[i];
+  MG_EVALUATE_MATERIAL_REST(inputs, cut, outputs);
+#else
+  MG_EVALUATE_MATERIAL(inputs, outputs);
+#endif
+}
+#endif  // MG_CACHE_CUTS
+#endif  // MG_CACHE_TEXEL
 #endif
 #include "path_shading.glsl"
 // The texel cache where it is read (the lookup pass) and written (the material passes); the
@@ -599,7 +631,13 @@ void main() {
   if (i < control.counts.x) {
     uint slot = pathQueues[queueIndex(push.step.z, i)];
     uint bin = binOfPath(slot);
+    // A filtered read blends (or picks among) several entries and fills the missing ones:
+    // the material pass does all of it in place (the megakernel's evaluateMaterialCached).
+#ifndef MG_CACHE_FILTER
     if (bin != kNoBin && cacheTakesBounce(push.step.y)) {
+#else
+    if (false) {
+#endif
       vec3 origin, direction;
       RayCone cone;
       SurfaceHit s = surfaceOfPath(slot, origin, direction, cone);
@@ -776,9 +814,32 @@ void main() {
   s.inputs.textureBase = MG_TEXTURE_BASE;  // as the switch's case sets it
   MaterialOutputs m;
 #ifdef MG_CACHE_TEXEL
+#if defined(MG_CACHE_FILTER) || \
+    (defined(MG_EVALUATE_MATERIAL_CUT) && MG_MATERIAL_CUT_WIDTH > 15)  // kWavefrontCutValues
+  // In place, as the megakernel's evaluateMaterialCached: a filtered read of the entries
+  // around the hit, each missing one evaluated at its centre and inserted (the lookup pass
+  // left every hit to this pass), or a cut too wide for the path state's material fields
+  // (the lookup pass keys none of those) read, or evaluated and inserted, here. The entries
+  // are read under §5.3.4's check, since this pass inserts.
+  if (cacheTakesBounce(push.step.y)) {
+#ifdef MG_CACHE_FILTER
+    // The stochastic filter's picks, as the megakernel seeds them for this path vertex.
+    g_cacheFilterKey = pcgHash(rngForPathVertex(pixelOfSlot(slot), sampleIndexOf(push.step.x),
+                                                push.step.y + 1u, frame.image.w)
+                                   .key ^
+                               0x9E3779B9u);
+#endif
+    evaluateMaterialCached(s.materialId, s.object, s.inputs, m);
+  } else {
+    MG_EVALUATE_MATERIAL(s.inputs, m);
+  }
+  cacheAddCounts();
+  storeMaterialOutputs(slot, m);
+  return;
+#endif
   uvec4 info = cacheInfoOf(s.materialId);
 #if defined(MG_CACHE_CUTS) && defined(MG_EVALUATE_MATERIAL_CUT)
-#if MG_MATERIAL_CUT_WIDTH <= 15  // kWavefrontCutValues: wider cuts are not keyed
+#if MG_MATERIAL_CUT_WIDTH <= 15  // kWavefrontCutValues: wider cuts are keyed in place above
   // Keyed by its cut, as the megakernel's evaluateMaterialThroughCut: the cut's values from
   // the lookup pass, or on its miss the cut at the key's centre (the same key, recomputed),
   // inserted unless another path of this bounce did first; then the rest with this hit's
