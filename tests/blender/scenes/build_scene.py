@@ -338,8 +338,9 @@ def ao_scene(local):
 
 def bevel_scene():
     """The Bevel node (a traced input): a 1 m cube emitting how far its Bevel normal (radius
-    0.25) tilts from the shading normal, |Bevel x Geometry Normal| (the sine of the tilt), as
-    a grey, under a black world. A world vector itself would not compare: memograph renders
+    0.25) tilts from the face's normal, |Bevel x Geometry True Normal| (the sine of the tilt;
+    a flat cube's true normal is its shading normal, both world-space), as a grey, under a
+    black world. A world vector itself would not compare: memograph renders
     the export in its y-up world (docs/guide/blender.md, Scene export), the tilt is the same
     in both. The faces' middles keep the face normal (0); strips along the top front edge
     tilt towards the other face."""
@@ -359,7 +360,7 @@ def bevel_scene():
     e = nt.nodes.new('ShaderNodeEmission')
     o = nt.nodes.new('ShaderNodeOutputMaterial')
     nt.links.new(bevel.outputs['Normal'], cross.inputs[0])
-    nt.links.new(geometry.outputs['Normal'], cross.inputs[1])
+    nt.links.new(geometry.outputs['True Normal'], cross.inputs[1])
     nt.links.new(cross.outputs['Vector'], length.inputs[0])
     nt.links.new(length.outputs['Value'], e.inputs['Color'])
     nt.links.new(e.outputs[0], o.inputs['Surface'])
