@@ -7,6 +7,7 @@
 #include "compiler/parser.h"
 #include "compiler/resolved_graph.h"
 #include "compiler/schedule.h"
+#include "compiler/traced_inputs.h"
 #include "compiler/type_inference.h"
 
 namespace memograph::compiler {
@@ -20,6 +21,8 @@ struct Analysis {
   std::optional<ResolvedGraph> resolved;
   std::optional<std::vector<std::size_t>> order;
   std::optional<OverloadChoice> chosen;
+  std::optional<AmbientOcclusionSettings> ambientOcclusion;
+  std::optional<BevelSettings> bevel;
 
   Analysis() = default;
   Analysis(const Analysis&) = delete;
@@ -37,7 +40,12 @@ struct Analysis {
     if (!order)
       return false;
     chosen = inferTypes(*resolved, *order, file, diagnostics);
-    return chosen.has_value();
+    if (!chosen)
+      return false;
+    const std::size_t errorsBeforeSettings = diagnostics.errorCount();
+    ambientOcclusion = collectAmbientOcclusionSettings(*resolved, *order, file, diagnostics);
+    bevel = collectBevelSettings(*resolved, *order, file, diagnostics);
+    return diagnostics.errorCount() == errorsBeforeSettings;
   }
 
   Type outputType(std::size_t node, std::size_t socket) const {
@@ -56,6 +64,8 @@ std::optional<CompiledMaterial> compileMaterial(const SourceFile& file, const No
   CompiledMaterial result;
   const MaterialCut cut = findCut(*analysis.resolved, *analysis.order, *analysis.chosen);
   result.metadata = collectMetadata(*analysis.resolved, *analysis.order, *analysis.chosen, cut);
+  result.metadata.ambientOcclusion = analysis.ambientOcclusion;
+  result.metadata.bevel = analysis.bevel;
   result.metadataJson = metadataToJson(result.metadata);
   const EmitInput emitInput{
       *analysis.resolved, *analysis.order, *analysis.chosen, library, result.metadata, cut,
@@ -76,6 +86,8 @@ std::optional<CheckReport> checkMaterial(const SourceFile& file, const NodeLibra
   CheckReport report;
   report.metadata = collectMetadata(graph, *analysis.order, *analysis.chosen,
                                     findCut(graph, *analysis.order, *analysis.chosen));
+  report.metadata.ambientOcclusion = analysis.ambientOcclusion;
+  report.metadata.bevel = analysis.bevel;
   for (const std::size_t node : *analysis.order) {
     const auto& resolved = graph.nodes[node];
     const auto& type = *resolved.type;

@@ -2,6 +2,7 @@
 // Runs the passes of thesis §5.1 in order: parse → resolve → prune/order → infer → emit.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,6 +16,25 @@ namespace memograph::compiler {
 struct CompileOptions {
   bool emitGlsl = true;
   bool emitHlsl = true;
+};
+
+// Cycles' AO node settings (svm_node_ao): rays of length `distance` (0: none traced, the
+// input is 1) about the shading normal, `samples` of them; `inside` traces into the object
+// (the normal flipped), `onlyLocal` lets only the hit's own object occlude.
+struct AmbientOcclusionSettings {
+  double distance = 1.0;
+  std::uint32_t samples = 16;
+  bool inside = false;
+  bool onlyLocal = false;
+  bool operator==(const AmbientOcclusionSettings&) const = default;
+};
+
+// Cycles' Bevel node settings (svm_node_bevel): `samples` disk rays within `radius` of the
+// hit (0: none traced, the input is the shading normal), whose hits' normals are averaged.
+struct BevelSettings {
+  double radius = 0.05;
+  std::uint32_t samples = 4;
+  bool operator==(const BevelSettings&) const = default;
 };
 
 // What the runtime needs to know about a material without reading its code.
@@ -35,6 +55,11 @@ struct MaterialMetadata {
   std::string cutDomain = "none";
   std::size_t cutWidth = 0;
   double cutCostShare = 0.0;
+  // The graph reads the traced input `ambientOcclusion` (compiler/traced_inputs.h): the
+  // rays the path tracer traces for it before the graph runs. Nothing: no rays.
+  std::optional<AmbientOcclusionSettings> ambientOcclusion;
+  // Likewise `bevelNormal` (Blender's Bevel node): its rays' settings.
+  std::optional<BevelSettings> bevel;
 };
 
 struct CompiledMaterial {

@@ -10,11 +10,28 @@
 
 namespace memograph::compiler {
 
-inline constexpr std::array<std::string_view, 20> kMaterialInputNames = {
-    "uv",           "position",       "normal",       "tangent",        "vertexColor",
-    "view",         "time",           "generated",    "objectPosition", "geometricNormal",
-    "objectNormal", "objectLocation", "objectRandom", "backfacing",     "rayFlags",
-    "rayLength",    "rayDepth",       "diffuseDepth", "glossyDepth",    "transmissionDepth"};
+inline constexpr std::array<std::string_view, 22> kMaterialInputNames = {"uv",
+                                                                         "position",
+                                                                         "normal",
+                                                                         "tangent",
+                                                                         "vertexColor",
+                                                                         "view",
+                                                                         "time",
+                                                                         "generated",
+                                                                         "objectPosition",
+                                                                         "geometricNormal",
+                                                                         "objectNormal",
+                                                                         "objectLocation",
+                                                                         "objectRandom",
+                                                                         "backfacing",
+                                                                         "rayFlags",
+                                                                         "rayLength",
+                                                                         "rayDepth",
+                                                                         "diffuseDepth",
+                                                                         "glossyDepth",
+                                                                         "transmissionDepth",
+                                                                         "ambientOcclusion",
+                                                                         "bevelNormal"};
 
 // The object-space inputs (Blender's Texture Coordinate, Geometry and Object Info): the
 // members from `generated` up to the path state, which the prelude leaves out under
@@ -33,8 +50,20 @@ inline bool isObjectSpaceInput(std::string_view name) {
   return std::find(first, last, name) != last;
 }
 
+// The traced inputs (docs/design/traced-inputs.md: Ambient Occlusion, Bevel): the members
+// from `ambientOcclusion` on, filled by rays the path tracer traces from the hit before the graph
+// runs; the prelude leaves them out under MG_OMIT_TRACED_INPUTS.
+inline constexpr std::size_t kFirstTracedInput = 20;
+static_assert(kMaterialInputNames[kFirstTracedInput] == "ambientOcclusion");
+
 inline bool isPathInput(std::string_view name) {
   const auto first = kMaterialInputNames.begin() + kFirstPathInput;
+  const auto last = kMaterialInputNames.begin() + kFirstTracedInput;
+  return std::find(first, last, name) != last;
+}
+
+inline bool isTracedInput(std::string_view name) {
+  const auto first = kMaterialInputNames.begin() + kFirstTracedInput;
   return std::find(first, kMaterialInputNames.end(), name) != kMaterialInputNames.end();
 }
 

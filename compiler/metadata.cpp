@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "compiler/literal.h"
 #include "compiler/material_interface.h"
 
 namespace memograph::compiler {
@@ -109,7 +110,19 @@ std::string metadataToJson(const MaterialMetadata& meta) {
   out += "  \"textures\": " + jsonList(meta.textures) + ",\n";
   out += "  \"cutDomain\": " + jsonString(meta.cutDomain) + ",\n";
   out += "  \"cutWidth\": " + std::to_string(meta.cutWidth) + ",\n";
-  out += "  \"cutCostShare\": " + formatShare(meta.cutCostShare) + "\n";
+  out += "  \"cutCostShare\": " + formatShare(meta.cutCostShare);
+  // Only for graphs with the traced input, so every other material's file stays as it was.
+  if (const auto& ao = meta.ambientOcclusion) {
+    out += ",\n  \"ambientOcclusion\": {\"distance\": " + formatFloat(ao->distance) +
+           ", \"samples\": " + std::to_string(ao->samples) +
+           ", \"inside\": " + (ao->inside ? "true" : "false") +
+           ", \"onlyLocal\": " + (ao->onlyLocal ? "true" : "false") + "}";
+  }
+  if (const auto& bevel = meta.bevel) {
+    out += ",\n  \"bevel\": {\"radius\": " + formatFloat(bevel->radius) +
+           ", \"samples\": " + std::to_string(bevel->samples) + "}";
+  }
+  out += "\n";
   return out + "}\n";
 }
 

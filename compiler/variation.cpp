@@ -93,6 +93,11 @@ Variation inputVariation(std::string_view member) {
   // domain determines it and it never enters a cut.
   if (isPathInput(member))
     return Variation::PerHit;
+  // Traced inputs (Ambient Occlusion) depend on the geometry around the hit, which no key
+  // domain's texel or voxel determines (two hits of one texel see different occluders, and
+  // each hit's value is a fresh Monte Carlo estimate): per hit, never in a cut.
+  if (isTracedInput(member))
+    return Variation::PerHit;
   return Variation::Constant;
 }
 

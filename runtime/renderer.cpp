@@ -93,6 +93,12 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   pipelineInputs.scene = &resources;
   pipelineInputs.hitFeedback = acceleration.hitFeedbackOn();
   pipelineInputs.shaderCacheDirectory = shaderCacheDirectory;
+  pipelineInputs.ambientOcclusionDistance =
+      resolveAmbientOcclusionDistance(options_.ambientOcclusion, scene);
+  if (options_.integrator == Integrator::AmbientOcclusion) {
+    result.stats.ambientOcclusionSamples = options_.ambientOcclusion.samples;
+    result.stats.ambientOcclusionDistance = pipelineInputs.ambientOcclusionDistance;
+  }
   const RenderPipelines pipelines =
       buildPipelines(context, options_, settings, plan, pipelineInputs, result.stats);
   // Every pipeline of the render exists now (the animated meshes' pass too): the driver's

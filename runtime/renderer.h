@@ -15,6 +15,7 @@
 #include "runtime/materials/material_linker.h"
 #include "runtime/memo/cache_options.h"
 #include "runtime/scene/scene.h"
+#include "runtime/trace/integrator.h"
 #include "runtime/trace/render_stats.h"
 #include "runtime/trace/shading.h"
 #include "runtime/vk/vulkan_context.h"
@@ -85,6 +86,10 @@ struct RendererOptions {
   // Culled renders: also draw cullingTopView of the last frame, this many pixels a side
   // (RenderResult::cullingView; 0: none).
   std::uint32_t debugCullingSize = 0;
+  // What a pixel holds: the path tracer's radiance, or the ray-traced AO workload's
+  // unoccluded fraction (seeds/004 §3; runtime/trace/integrator.h, megakernel only).
+  Integrator integrator = Integrator::Path;
+  AmbientOcclusionOptions ambientOcclusion;  // Integrator::AmbientOcclusion's rays
 };
 
 // Materials that share a graph (same file or same text) count once.

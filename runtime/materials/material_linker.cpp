@@ -1,6 +1,7 @@
 #include "runtime/materials/material_linker.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <fstream>
 #include <map>
@@ -122,6 +123,33 @@ std::string readText(const std::filesystem::path& path) {
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();
+}
+
+// The traced inputs' settings (ambient_occlusion.glsl setTracedInputs): per scene material
+// x its AO distance as float bits, y its samples (0: no AO rays, the input is 1), z its
+// kAmbientOcclusion* flags; and its Bevel radius (float bits) and samples. Only in scenes
+// with a traced input, whose shaders read them.
+std::string tracedInputTables(const std::vector<LinkedMaterial>& materials) {
+  std::string table =
+      "// Ambient Occlusion rays: x distance (float bits), y samples (0: none), z flags.\n";
+  table += "const uvec4 mg_materialAmbientOcclusion[" + std::to_string(materials.size()) +
+           "] = uvec4[](\n";
+  for (std::size_t i = 0; i < materials.size(); ++i) {
+    const LinkedMaterial& m = materials[i];
+    table += "    uvec4(" +
+             std::to_string(std::bit_cast<std::uint32_t>(m.ambientOcclusionDistance)) + "u, " +
+             std::to_string(m.ambientOcclusionSamples) + "u, " +
+             std::to_string(m.ambientOcclusionFlags) + "u, 0u)" +
+             (i + 1 < materials.size() ? ",\n" : ");\n");
+  }
+  table += "// Bevel rays: x radius (float bits), y samples (0: none).\n";
+  table += "const uvec2 mg_materialBevel[" + std::to_string(materials.size()) + "] = uvec2[](\n";
+  for (std::size_t i = 0; i < materials.size(); ++i) {
+    const LinkedMaterial& m = materials[i];
+    table += "    uvec2(" + std::to_string(std::bit_cast<std::uint32_t>(m.bevelRadius)) + "u, " +
+             std::to_string(m.bevelSamples) + "u)" + (i + 1 < materials.size() ? ",\n" : ");\n");
+  }
+  return table;
 }
 
 // The texel cache's cut keys (texel_cache.glsl, MG_CACHE_CUTS): per scene material its
@@ -253,6 +281,18 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
     if (std::any_of(entry.inputsUsed.begin(), entry.inputsUsed.end(),
                     [](const std::string& input) { return compiler::isPathInput(input); }))
       linked.pathInputs = true;
+    if (const auto& ao = compiled->metadata.ambientOcclusion) {
+      linked.tracedInputs = true;
+      entry.ambientOcclusionDistance = static_cast<float>(ao->distance);
+      entry.ambientOcclusionSamples = ao->samples;
+      entry.ambientOcclusionFlags = (ao->inside ? kAmbientOcclusionInside : 0u) |
+                                    (ao->onlyLocal ? kAmbientOcclusionOnlyLocal : 0u);
+    }
+    if (const auto& bevel = compiled->metadata.bevel) {
+      linked.tracedInputs = true;
+      entry.bevelRadius = static_cast<float>(bevel->radius);
+      entry.bevelSamples = bevel->samples;
+    }
     for (const std::string& output : compiled->metadata.outputsWritten)
       if (output == "specularTint" || output == "cyclesPrincipled")
         linked.cyclesPrincipled = true;
@@ -338,6 +378,11 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
     cacheInfo += "    uvec4(" + std::to_string(m.cacheOutputMask) + "u, " + std::to_string(id0) +
                  "u, " + std::to_string(id1) + "u, 0u)" +
                  (i + 1 < linked.materials.size() ? ",\n" : ");\n");
+  }
+  if (linked.tracedInputs) {
+    const std::string tracedInfo = tracedInputTables(linked.materials);
+    out.insert(out.rfind("#endif"), tracedInfo);
+    linked.preludeSource.insert(linked.preludeSource.rfind("#endif"), tracedInfo);
   }
   out.insert(out.rfind("#endif"), cacheInfo);
   out.insert(out.rfind("#endif"), cutInfoTable(linked.materials));

@@ -45,7 +45,19 @@ struct LinkedMaterial {
   // metadata): none of either means every output is a constant.
   std::vector<std::string> inputsUsed;
   std::size_t textureCount = 0;
+  // The rays the path tracer traces for the graph's Ambient Occlusion node before it runs
+  // (compiler metadata; docs/design/traced-inputs.md): as Cycles' settings. Samples 0: none.
+  float ambientOcclusionDistance = 0.0f;
+  std::uint32_t ambientOcclusionSamples = 0;
+  std::uint32_t ambientOcclusionFlags = 0;  // kAmbientOcclusionInside | ...OnlyLocal bits
+  // Likewise the Bevel node's rays (samples 0: none; the input is the shading normal).
+  float bevelRadius = 0.0f;
+  std::uint32_t bevelSamples = 0;
 };
+
+// LinkedMaterial::ambientOcclusionFlags, as ambient_occlusion.glsl's kAmbientOcclusion*.
+constexpr std::uint32_t kAmbientOcclusionInside = 1;
+constexpr std::uint32_t kAmbientOcclusionOnlyLocal = 2;
 
 // One distinct compiled graph: what a callable shader of its own needs.
 struct DistinctMaterial {
@@ -81,6 +93,11 @@ struct LinkedMaterials {
   // one the shaders define MG_OMIT_PATH_INPUTS, MaterialInputs carries none of it and the
   // path tracer tracks no path state.
   bool pathInputs = false;
+  // Some material reads a traced input (Ambient Occlusion, Bevel): the megakernel traces its
+  // rays from each hit before the graph runs and materials.glsl holds
+  // mg_materialAmbientOcclusion and mg_materialBevel, each scene material's settings; without
+  // one the shaders define MG_OMIT_TRACED_INPUTS.
+  bool tracedInputs = false;
   double compileMilliseconds = 0.0;
 };
 

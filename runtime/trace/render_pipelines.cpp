@@ -31,6 +31,9 @@ struct ShaderBuild {
   // Likewise without the path state when no graph reads it (Light Path): the path tracer
   // then tracks none, so such scenes trace as before it existed.
   bool omitPathInputs = false;
+  // Likewise without the traced inputs (Ambient Occlusion) when no graph reads them: the
+  // megakernel then traces no rays for them.
+  bool omitTracedInputs = false;
   // The texel cache keys materials by their cut (MG_CACHE_CUTS, texel_cache.glsl): see
   // cutKeys.
   bool cutKeys = false;
@@ -59,6 +62,8 @@ MaterialCallables compileCallables(const ShaderBuild& b,
     callableOptions.defines.push_back("MG_OMIT_OBJECT_INPUTS=1");
   if (b.omitPathInputs)
     callableOptions.defines.push_back("MG_OMIT_PATH_INPUTS=1");
+  if (b.omitTracedInputs)
+    callableOptions.defines.push_back("MG_OMIT_TRACED_INPUTS=1");
   callableOptions.files = files;
   callableOptions.cacheDirectory = b.inputs.shaderCacheDirectory;
   callableOptions.textureCount = b.inputs.scene->textures->count();
@@ -71,10 +76,16 @@ std::vector<std::string> pathTracerDefines(const ShaderBuild& b, const MaterialC
   std::vector<std::string> defines = cache.defines();
   if (b.floor)
     defines.push_back("MG_MATERIAL_FLOOR=1");
+  if (b.options.integrator == Integrator::AmbientOcclusion)
+    for (std::string& define : ambientOcclusionDefines(b.options.ambientOcclusion.samples,
+                                                       b.inputs.ambientOcclusionDistance))
+      defines.push_back(std::move(define));
   if (b.omitObjectInputs)
     defines.push_back("MG_OMIT_OBJECT_INPUTS=1");
   if (b.omitPathInputs)
     defines.push_back("MG_OMIT_PATH_INPUTS=1");
+  if (b.omitTracedInputs)
+    defines.push_back("MG_OMIT_TRACED_INPUTS=1");
   if (b.cutKeys)
     defines.push_back("MG_CACHE_CUTS=1");
   if (b.options.debugCacheMisses)
@@ -169,9 +180,11 @@ RenderPipelines buildPipelines(const VulkanContext& context, const RendererOptio
                                const RenderSettings& settings, const RenderPlan& plan,
                                const PipelineInputs& inputs, RenderStats& stats) {
   ShaderBuild b{context, options, settings, plan, inputs};
-  b.floor = options.floorMaterials;
+  // The AO integrator evaluates no graph: it compiles like the floor (the prelude only).
+  b.floor = options.floorMaterials || options.integrator == Integrator::AmbientOcclusion;
   b.omitObjectInputs = b.floor || !inputs.materials->linked.objectInputs;
   b.omitPathInputs = b.floor || !inputs.materials->linked.pathInputs;
+  b.omitTracedInputs = b.floor || !inputs.materials->linked.tracedInputs;
   const LinkedMaterials& materials = inputs.materials->linked;
   // Shaders: the embedded sources plus the generated materials.glsl; with callables, also
   // one callable shader per distinct material. The wavefront evaluates graphs in material

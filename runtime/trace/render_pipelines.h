@@ -27,6 +27,8 @@ struct PipelineInputs {
   const SceneResources* scene = nullptr;
   bool hitFeedback = false;  // LiPaC counts: the feedback's pipeline (MG_HIT_FEEDBACK)
   std::filesystem::path shaderCacheDirectory;  // empty: compiled shaders are not kept
+  // Integrator::AmbientOcclusion: its rays' length, resolved for the scene.
+  float ambientOcclusionDistance = 0.0f;
 };
 
 // Compiles and creates everything; fills `stats`'s shader, cache and architecture figures.

@@ -195,12 +195,27 @@ MaterialDispatch resolveMaterialDispatch(MaterialDispatch requested, Backend bac
 }
 
 // The architecture the render runs, refused where the options ask what it cannot do.
-ShadingChoice chooseShading(const RendererOptions& options, const VulkanContext& context) {
+ShadingChoice chooseShading(const RendererOptions& options, const VulkanContext& context,
+                            const SceneMaterials& materials) {
   ShadingDevice device;
   device.type = context.info().type;
   device.wavefrontTraces =
       context.backend() == Backend::RayQuery || context.info().traceRaysIndirect;
-  const ShadingChoice shading = resolveShading(options, device);
+  ShadingChoice shading = resolveShading(options, device);
+  // A traced input's rays (Ambient Occlusion) are traced from the hit before the graph runs,
+  // which the megakernel does in place; the wavefront would need a pass of its own between
+  // its trace and material passes (docs/design/traced-inputs.md), which it does not have yet.
+  if (materials.linked.tracedInputs && !options.floorMaterials &&
+      options.integrator == Integrator::Path) {
+    const char* gap =
+        "the scene's materials read a traced input (Ambient Occlusion), whose rays only the "
+        "megakernel traces";
+    if (options.shading == Shading::Wavefront)
+      throw std::invalid_argument(std::string("--shading wavefront is a prototype: ") + gap +
+                                  " (--shading megakernel or auto)");
+    if (shading.shading == Shading::Wavefront)
+      shading = {Shading::Megakernel, gap};
+  }
   if (options.wavefrontPaths > 0 && shading.shading != Shading::Wavefront)
     throw std::invalid_argument(
         "--wavefront-paths sets the wavefront's paths in flight; it needs the wavefront, which "
@@ -249,7 +264,8 @@ CacheOptions resolveRenderCache(const RendererOptions& options, const RenderSett
 // pipeline of its own: no switch to outgrow.
 void checkCpuSwitchLimit(const RendererOptions& options, const VulkanContext& context,
                          const RenderPlan& plan, std::size_t distinctMaterials) {
-  if (plan.dispatch != MaterialDispatch::Switch || options.floorMaterials || plan.wavefront ||
+  if (plan.dispatch != MaterialDispatch::Switch || options.floorMaterials ||
+      options.integrator == Integrator::AmbientOcclusion || plan.wavefront ||
       context.info().type != VK_PHYSICAL_DEVICE_TYPE_CPU || options.cpuSwitchMaterialLimit == 0 ||
       distinctMaterials <= options.cpuSwitchMaterialLimit)
     return;
@@ -289,6 +305,7 @@ std::uint32_t validateRender(const RendererOptions& options, const RenderSetting
           ? feedbackPathWeight(options.culling.feedbackPaths, settings.pathsPerPixel)
           : 1;
   validateWavefrontOptions(options);
+  validateIntegratorOptions(options);
   if (options.debugCullingSize > 0 && options.culling.mode == CullingMode::None)
     throw std::invalid_argument(
         "--debug-culling shows which instances culling keeps; it needs --culling frustum or "
@@ -305,7 +322,7 @@ RenderPlan planRender(const RendererOptions& options, const RenderSettings& sett
                       std::uint32_t feedbackPathWeight) {
   RenderPlan plan;
   plan.feedbackPathWeight = feedbackPathWeight;
-  plan.shading = chooseShading(options, context);
+  plan.shading = chooseShading(options, context, materials);
   plan.wavefront = plan.shading.shading == Shading::Wavefront;
   // The image is one storage buffer of 4 floats a pixel: refused before anything compiles
   // when the device cannot bind it whole.
@@ -376,7 +393,10 @@ RenderStats describeRender(const RendererOptions& options, const RenderSettings&
   stats.culling = std::string(cullingModeName(options.culling.mode));
   stats.shading = shadingName(plan.shading.shading);
   const bool floor = options.floorMaterials;
-  stats.materialDispatch = floor            ? "floor"
+  // The AO integrator evaluates no graph either: its stats name it in the dispatch's place.
+  const bool ambientOcclusion = options.integrator == Integrator::AmbientOcclusion;
+  stats.materialDispatch = ambientOcclusion ? "ao"
+                           : floor          ? "floor"
                            : plan.wavefront ? "batched"
                                             : materialDispatchName(plan.dispatch);
   stats.cachedCostShare = cachedCostShare(options, scene, materials, plan);

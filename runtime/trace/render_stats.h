@@ -130,7 +130,12 @@ struct RenderStats {
   double shaderCompileMilliseconds = 0.0;    // GLSL → SPIR-V (0 when all came from the cache)
   std::uint32_t shaderCacheHits = 0;
   std::uint32_t shadersCompiled = 0;
-  std::string materialDispatch;        // "switch", "callable" or "floor" (no graph evaluated)
+  // "switch", "callable", "floor" (no graph evaluated) or "ao" (--integrator ao: none either)
+  std::string materialDispatch;
+  // --integrator ao: the AO rays from each primary hit and their length (the scene's default
+  // resolved); 0 for the path tracer.
+  std::uint32_t ambientOcclusionSamples = 0;
+  float ambientOcclusionDistance = 0.0f;
   std::string shading = "megakernel";  // "megakernel" or "wavefront" (--shading)
   // The wavefront's paths in flight (its path state's slots, --wavefront-paths) and the
   // chunks a round of the image ran in (1 when every pixel has a slot); 0 for the megakernel.

@@ -30,6 +30,9 @@ Shading parseShading(const std::string& text) {
 
 std::string wavefrontOptionGap(const RendererOptions& options) {
   const CacheOptions& cache = options.cache;
+  if (options.integrator == Integrator::AmbientOcclusion)
+    return "the AO integrator (--integrator ao) is one megakernel kernel: a primary ray, then "
+           "its AO rays (use --shading megakernel or auto)";
   if (cache.mode != CacheMode::None && options.floorMaterials)
     return "it fills the cache in its material passes, and the free-material floor has none "
            "(time the floor's lookups with --shading megakernel)";

@@ -492,6 +492,60 @@ class LightPathTest(unittest.TestCase):
         self.assertIn('Strength=0', text)
 
 
+def ao_material(link_normal=False, distance=0.5):
+    """Emission whose Color is Blender's Ambient Occlusion Color (Only Local on)."""
+    tree = Tree()
+    out = output_node(tree)
+    em = emission(tree)
+    ao = tree.add(Node('ShaderNodeAmbientOcclusion', 'Ambient Occlusion',
+                       [Sock('Color', 'RGBA', (0.5, 0.5, 0.5, 1)),
+                        Sock('Distance', 'VALUE', distance), Sock('Normal', 'VECTOR', (0, 0, 0))],
+                       [Sock('Color', 'RGBA', (1, 1, 1, 1)), Sock('AO', 'VALUE', 1.0)],
+                       samples=8, inside=False, only_local=True))
+    if link_normal:
+        src = tree.add(math_node('Src'))
+        tree.link(src.outputs[0], ao.inputs[2])
+    tree.link(ao.outputs[0], em.inputs[0])
+    tree.link(em.outputs[0], out.inputs[0])
+    return Material('Mat', tree)
+
+
+class AmbientOcclusionTest(unittest.TestCase):
+    """The Ambient Occlusion node is a traced input (docs/design/traced-inputs.md): its
+    settings are written as constants; a linked Normal, which the tracer cannot know, is
+    warned."""
+
+    def test_settings_are_constants(self):
+        result, (text,) = export([ao_material()], writers.build_table(load_specs()))
+        self.assertEqual(result.warnings, [])
+        self.assertRegex(text, r'AmbientOcclusion Color=\(0\.5, 0\.5, 0\.5\) Samples=8 '
+                               r'Inside=0 OnlyLocal=1 Distance=0\.5 Out>\d+;')
+
+    def test_linked_normal_is_warned(self):
+        result, (text,) = export([ao_material(link_normal=True)],
+                                 writers.build_table(load_specs()))
+        msgs = ' | '.join(w[2] for w in result.warnings)
+        self.assertIn("input 'Normal' is linked but the exporter does not carry it", msgs)
+        self.assertNotIn('Math', text)
+
+
+class BevelTest(unittest.TestCase):
+    """Bevel, traced like Ambient Occlusion: Radius and Samples written as constants."""
+
+    def test_settings_are_constants(self):
+        tree = Tree()
+        out = output_node(tree)
+        em = emission(tree)
+        bevel = tree.add(Node('ShaderNodeBevel', 'Bevel',
+                              [Sock('Radius', 'VALUE', 0.125), Sock('Normal', 'VECTOR', (0, 0, 0))],
+                              [Sock('Normal', 'VECTOR', (0, 0, 1))], samples=6))
+        tree.link(bevel.outputs[0], em.inputs[0])
+        tree.link(em.outputs[0], out.inputs[0])
+        result, (text,) = export([Material('Mat', tree)], writers.build_table(load_specs()))
+        self.assertEqual(result.warnings, [])
+        self.assertRegex(text, r'Bevel Samples=6 Radius=0\.125 Normal>\d+;')
+
+
 class Blender4Test(unittest.TestCase):
     def test_principled_v2(self):
         tree = Tree()

@@ -37,6 +37,12 @@ APPROXIMATIONS = {
     'ShaderNodeNormalMap': 'tangent space from the active UV only',
     'ShaderNodeTangent': 'the active UV map only',
     'ShaderNodeAttribute': 'the mesh\'s colour attribute only',
+    'ShaderNodeAmbientOcclusion': 'rays about the interpolated normal (a linked Normal '
+                                  'is warned and ignored); Distance and the settings must be '
+                                  'constants; the megakernel traces them',
+    'ShaderNodeBevel': 'a linked Normal is warned and ignored; Radius and Samples must be '
+                       'constants; the megakernel traces them (the first 4 hits of a disk ray, '
+                       'not a random 4)',
     'ShaderNodeLightPath': 'memograph has no transparent bounces (a linked Transparent '
                            'Depth is 0); shadow rays evaluate no material (Is Shadow Ray 0); '
                            'diffuse or glossy as memograph\'s BSDF picks its lobe',
@@ -50,8 +56,6 @@ NOT_SUPPORTED = {
     'ShaderNodeOutputWorld': 'the world is exported as a constant or an image (sidecar)',
     'ShaderNodeOutputAOV': 'memograph renders no AOVs',
     'ShaderNodeHoldout': 'memograph renders no holdouts',
-    'ShaderNodeAmbientOcclusion': 'needs rays inside the material',
-    'ShaderNodeBevel': 'needs rays inside the material',
     'ShaderNodeWireframe': 'needs the triangle\'s edges',
     'ShaderNodeTexIES': 'a light texture',
     'ShaderNodeTexPointDensity': 'needs particle or volume data',

@@ -293,6 +293,10 @@ void printRun(const Bench& bench, const RunNames& names, const BenchRun& run) {
             << stats.shading << "; pipeline " << stats.pipelineCreateMilliseconds << " ms ("
             << runtime::pipelineCacheText(stats) << "); BLAS " << as.blasBytes << " B, TLAS "
             << as.tlasBytes << " B)\n";
+  if (stats.ambientOcclusionSamples > 0)
+    std::cout << "  ambient occlusion (seeds/004 §3): " << stats.ambientOcclusionSamples
+              << " rays of length " << stats.ambientOcclusionDistance
+              << " from each path's primary hit; Mrays/s counts them and the primary rays\n";
   if (const auto& stack = stats.rayTracingStack; stack.driverDefault > 0)
     std::cout << "  ray-tracing stack " << stack.pipeline << " B an invocation (the spec's "
               << "default " << stack.driverDefault << " B; raygen " << stack.raygen << ", hit "

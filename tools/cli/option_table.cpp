@@ -28,7 +28,7 @@ constexpr std::string_view kSectionTitles[] = {"Input and output", "Image and fr
                                                "Culling (seeds/001 §3.3)", "Device and shading"};
 
 // The mode an option needs; given without it, the option is named as ignored.
-enum class Needs { Nothing, Cache, TileCache, Frustum, Lipac, Megakernel };
+enum class Needs { Nothing, Cache, TileCache, Frustum, Lipac, Megakernel, AmbientOcclusion };
 
 constexpr unsigned kRender = 1, kBench = 2, kBoth = kRender | kBench;
 
@@ -207,6 +207,22 @@ const Option kOptions[] = {
      "the current frame; the summary and CSV say it stopped early",
      "none", kShown, S::Image, kCommon, N::Nothing, kBench,
      [](O& o, const Value& v) { o.timeLimitSeconds = v.real; }, "seconds (a number >= 0)", 0},
+    {"--integrator", ValueType::Choice, "path|ao",
+     "path-traced radiance, or ao: the unoccluded fraction of --ao-samples\n"
+     "cosine-weighted rays from the primary hit (seeds/004 §3)",
+     "path", kShown, S::Image, kCommon, N::Nothing, kBoth,
+     [](O& o, const Value& v) { o.renderer.integrator = runtime::parseIntegrator(v.text); }},
+    {"--ao-distance", ValueType::Real, "D",
+     "--integrator ao: an AO ray's length (world units); 0: a tenth of the\n"
+     "diagonal of the scene's bounds",
+     "0", kShown, S::Image, kCommon, N::AmbientOcclusion, kBoth,
+     [](O& o, const Value& v) { o.renderer.ambientOcclusion.distance = float(v.real); },
+     "a distance (a number >= 0)", 0, 3.0e38},
+    {"--ao-samples", ValueType::Whole, "N",
+     "--integrator ao: AO rays from each path's primary hit", "16", kShown, S::Image, kCommon,
+     N::AmbientOcclusion, kBoth,
+     [](O& o, const Value& v) { o.renderer.ambientOcclusion.samples = v.whole; },
+     "a number of rays (1..4096)", 1, 4096},
     {"--shared-primary", ValueType::Flag, "",
      "one primary ray through the pixel centre for all P paths of a pixel (§5.1)", "", kShown,
      S::Image, kCommon, N::Nothing, kBoth,
@@ -685,6 +701,7 @@ void validateTraceOptions(TraceCommandOptions& options) {
   runtime::validateCacheOptions(renderer.cache);  // the renderer's own ranges and messages
   runtime::validateCullingOptions(renderer.culling);
   runtime::validateWavefrontOptions(renderer);
+  runtime::validateIntegratorOptions(renderer);
   if (renderer.shading == runtime::Shading::Wavefront &&
       renderer.cache.tileFill == runtime::TileFill::Subgroup)
     throw std::invalid_argument(
@@ -721,6 +738,10 @@ std::vector<std::string> ignoredOptionNotes(const TraceCommandOptions& options) 
       case Needs::Megakernel:
         if (options.renderer.shading == runtime::Shading::Wavefront)
           notes.push_back(ignoredOptionNote(option.name, "the megakernel"));
+        break;
+      case Needs::AmbientOcclusion:
+        if (options.renderer.integrator != runtime::Integrator::AmbientOcclusion)
+          notes.push_back(ignoredOptionNote(option.name, "--integrator ao"));
         break;
     }
   }

@@ -344,6 +344,10 @@ void printSummary(const std::string& out, const runtime::RenderStats& stats) {
             << stats.pipelineCreateMilliseconds << " ms (" << runtime::pipelineCacheText(stats)
             << "); first frame done " << stats.firstFrameMilliseconds
             << " ms after the render began\n";
+  if (stats.ambientOcclusionSamples > 0)
+    std::cerr << "ambient occlusion (seeds/004 §3): " << stats.ambientOcclusionSamples
+              << " rays of length " << stats.ambientOcclusionDistance
+              << " from each path's primary hit\n";
   if (stats.cache != "none" && !stats.frames.empty()) {
     const auto& last = stats.frames.back();
     std::cerr << stats.cache << " cache"

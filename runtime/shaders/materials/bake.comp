@@ -92,6 +92,11 @@ void main() {
   inputs.diffuseDepth = 0;
   inputs.glossyDepth = 0;
   inputs.transmissionDepth = 0;
+#ifndef MG_OMIT_TRACED_INPUTS
+  // A bake traces nothing (Cycles' bake would trace AO against the scene; here no scene).
+  inputs.ambientOcclusion = 1.0;
+  inputs.bevelNormal = inputs.normal;
+#endif
 
   MaterialOutputs outputs;
   MG_BAKE_EVALUATE(inputs, outputs);

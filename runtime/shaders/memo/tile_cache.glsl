@@ -332,6 +332,10 @@ MaterialInputs tileFillInputs(TileFillItem item, uint texel) {
   inputs.glossyDepth = 0;
   inputs.transmissionDepth = 0;
 #endif
+#ifndef MG_OMIT_TRACED_INPUTS
+  inputs.ambientOcclusion = 1.0;  // never read: a graph with a traced input is not cacheable
+  inputs.bevelNormal = inputs.normal;
+#endif
   vec2 tile = vec2(uintBitsToFloat(item.tileX), uintBitsToFloat(item.tileY));
   return tileTexelInputs(inputs, int(item.level), tile, texel);
 }

@@ -123,6 +123,10 @@ SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
   s.inputs.position.x = axis1;
   s.inputs.position.y = axis2;
   s.inputs.normal = n;
+#ifndef MG_OMIT_TRACED_INPUTS
+  s.inputs.ambientOcclusion = 1.0;  // nothing traced yet: the megakernel's setTracedInputs
+  s.inputs.bevelNormal = n;
+#endif
 
   vec3 tangent;
   float handedness = 1.0;

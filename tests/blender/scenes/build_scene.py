@@ -24,6 +24,10 @@ no clamping, no light threshold) and DIR/export/ (the memograph exporter with --
 - light_path_depth: (b) an emissive panel that emits only for Ray Depth 1 (black to the
   camera, lighting the floor and a wall directly, no bounced light). Both write
   DIR/tiles.json with their regions (panel, floor, wall) as the Principled scenes do.
+- ao, ao_local: a cube on a floor whose emission is their Ambient Occlusion node's Color
+  (ao: plain; ao_local: the floor Only Local, the cube Inside), regions in DIR/tiles.json.
+- bevel: a cube emitting the tilt of its Bevel node's normal from the shading normal;
+  regions: the top and front faces' middles and the strips along the edge between them.
 - object_normal: Texture Coordinate Normal as emission on a rotated, unevenly scaled sphere
   and plane, black world (the object-space normal through the object's transform).
 """
@@ -290,6 +294,82 @@ def light_path_depth_scene():
                        for (y, z) in ((-0.15, -0.26), (0.15, 0.26))])]
 
 
+def ao_emission(name, distance, inside=False, only_local=False, samples=16):
+    """Emission whose colour is Blender's Ambient Occlusion of the hit (strength 1), so a
+    pixel holds the node's fraction itself: no lights, a black world, no BSDF to reflect."""
+    def by_ao(nt, color, _strength):
+        ao = nt.nodes.new('ShaderNodeAmbientOcclusion')
+        ao.samples = samples
+        ao.inside = inside
+        ao.only_local = only_local
+        ao.inputs['Distance'].default_value = distance
+        ao.inputs['Color'].default_value = (1, 1, 1, 1)
+        nt.links.new(ao.outputs['Color'], color)
+    return emission(name, color_node=by_ao)
+
+
+def cube(name, size, material, location):
+    bpy.ops.mesh.primitive_cube_add(size=size, location=location)
+    obj = bpy.context.object
+    obj.name = name
+    obj.data.name = name
+    obj.data.materials.append(material)
+    return obj
+
+
+def ao_scene(local):
+    """The Ambient Occlusion node (traced inputs, docs/design/traced-inputs.md): a 1 m cube on
+    a floor, both emitting their AO (distance 0.6). ao: the floor darkens towards the cube,
+    the cube's sides towards the floor. ao_local: the floor with Only Local (the cube is
+    another object: no darkening), the cube with Inside (rays into the cube find its far
+    faces within 0.6 m near its edges)."""
+    world()
+    plane('Floor', 6.0, ao_emission('FloorAo', 0.6, only_local=local))
+    cube('Cube', 1.0, ao_emission('CubeAo', 0.6, inside=local), location=(0, 0, 0.5))
+    camera((0, -3.0, 2.2), rotation=(math.radians(53), 0, 0), lens=50)
+    # The floor just in front of the cube (0.05..0.25 m from it), the floor 0.6 m and more
+    # from it (nothing within the AO distance), and the cube's front face near the floor and
+    # 0.6 m and more above it.
+    return [('floor_near', [(x, y, 0.0) for x in (-0.35, 0.35) for y in (-0.75, -0.55)]),
+            ('floor_far', [(x, y, 0.0) for x in (-1.0, -0.7) for y in (-1.4, -1.15)]),
+            ('cube_low', [(x, -0.5, z) for x in (-0.35, 0.35) for z in (0.05, 0.3)]),
+            ('cube_high', [(x, -0.5, z) for x in (-0.35, 0.35) for z in (0.65, 0.9)])]
+
+
+def bevel_scene():
+    """The Bevel node (a traced input): a 1 m cube emitting how far its Bevel normal (radius
+    0.25) tilts from the face's normal, |Bevel x Geometry True Normal| (the sine of the tilt;
+    a flat cube's true normal is its shading normal, both world-space), as a grey, under a
+    black world. A world vector itself would not compare: memograph renders
+    the export in its y-up world (docs/guide/blender.md, Scene export), the tilt is the same
+    in both. The faces' middles keep the face normal (0); strips along the top front edge
+    tilt towards the other face."""
+    world()
+    m = bpy.data.materials.new('Rounded')
+    m.use_nodes = True
+    nt = m.node_tree
+    nt.nodes.clear()
+    bevel = nt.nodes.new('ShaderNodeBevel')
+    bevel.samples = 16
+    bevel.inputs['Radius'].default_value = 0.25
+    geometry = nt.nodes.new('ShaderNodeNewGeometry')
+    cross = nt.nodes.new('ShaderNodeVectorMath')
+    cross.operation = 'CROSS_PRODUCT'
+    length = nt.nodes.new('ShaderNodeVectorMath')
+    length.operation = 'LENGTH'
+    e = nt.nodes.new('ShaderNodeEmission')
+    o = nt.nodes.new('ShaderNodeOutputMaterial')
+    nt.links.new(bevel.outputs['Normal'], cross.inputs[0])
+    nt.links.new(geometry.outputs['True Normal'], cross.inputs[1])
+    nt.links.new(cross.outputs['Vector'], length.inputs[0])
+    nt.links.new(length.outputs['Value'], e.inputs['Color'])
+    nt.links.new(e.outputs[0], o.inputs['Surface'])
+    cube('Cube', 1.0, m, location=(0, 0, 0.5))
+    camera((0, -2.6, 2.3), rotation=(math.radians(55), 0, 0), lens=50)
+    return [('top_middle', [(x, y, 1.0) for x in (-0.2, 0.2) for y in (-0.2, 0.2)]),
+            ('top_edge', [(x, y, 1.0) for x in (-0.3, 0.3) for y in (-0.5, -0.32)]),
+            ('front_edge', [(x, -0.5, z) for x in (-0.3, 0.3) for z in (0.86, 1.0)]),
+            ('front_middle', [(x, -0.5, z) for x in (-0.2, 0.2) for z in (0.3, 0.7)])]
 def object_normal_scene():
     """Texture Coordinate Normal as emitted colour (N / 2 + 1/2) on a smooth sphere and a
     plane, each rotated and scaled unevenly: the object-space normal, which Box projection's
@@ -367,6 +447,9 @@ SCENES = {
     'principled_retro': lambda: principled_scene('retro'),
     'light_path_camera': light_path_camera_scene,
     'light_path_depth': light_path_depth_scene,
+    'ao': lambda: ao_scene(local=False),
+    'ao_local': lambda: ao_scene(local=True),
+    'bevel': bevel_scene,
     'object_normal': object_normal_scene,
 }
 

@@ -15,8 +15,9 @@ scene export), compared. One scene per run:
    - principled, principled_retro: per tile (DIR/tiles.json: the middle of each Principled BSDF tile), the
      mean of each channel within LIMIT of Cycles', relative (|m - c| / max(c, 0.01)); the
      largest over tiles and channels is the figure.
-   - light_path_camera, light_path_depth: as the tiles, over the scene's regions
-     (DIR/tiles.json: panel, floor, wall), and the whole image's mean too.
+   - light_path_camera, light_path_depth, ao, ao_local: as the tiles, over the scene's
+     regions (DIR/tiles.json: panel, floor, wall; floor and cube parts), and the whole
+     image's mean too.
 Exit 0 pass, 1 fail (a clear message; also when Blender is missing: it never skips).
 """
 
@@ -35,6 +36,8 @@ sys.dont_write_bytecode = True
 from compare_nodes import read_pfm  # noqa: E402
 
 LIGHT_PATH_LIMIT = 0.05
+AO_LIMIT = 0.03
+BEVEL_LIMIT = 0.10
 # scene: (size, Cycles samples, memograph --frames, --paths, --bounces, check, limit)
 CHECKS = {
     'units_point': (16, 64, 4, 4, 1, 'mean', 0.02),
@@ -52,6 +55,18 @@ CHECKS = {
     # the tiles.
     'light_path_camera': (32, 256, 8, 16, 3, 'regions', LIGHT_PATH_LIMIT),
     'light_path_depth': (32, 256, 8, 16, 3, 'regions', LIGHT_PATH_LIMIT),
+    # The Ambient Occlusion node (rays the path tracer traces from the hit before the graph
+    # runs): each pixel is the node's fraction (an emission, L = 1: no light reflects). Each
+    # region's mean and the image's within AO_LIMIT, relative: 16 AO rays a hit, 128 hits a
+    # pixel in memograph, 256 Cycles samples. Measured on lavapipe: 1.46 % (ao: the floor
+    # next to the cube) and 0.52 % (ao_local).
+    'ao': (48, 256, 8, 16, 1, 'regions', AO_LIMIT),
+    'ao_local': (48, 256, 8, 16, 1, 'regions', AO_LIMIT),
+    # The Bevel node: the emitted tilt |Bevel x Normal| of its normal, per region as above
+    # (the faces' middles: 0 in both). Measured on lavapipe: the middles exact, the front
+    # face's strip along the edge 0.4 %, the top face's 7.4 % (memograph tilts more there;
+    # not explained yet: docs/design/traced-inputs.md), the image's mean 0.8 %.
+    'bevel': (64, 256, 4, 16, 1, 'regions', BEVEL_LIMIT),
     # Texture Coordinate Normal of rotated, scaled objects, emitted (as emission).
     'object_normal': (32, 16, 4, 4, 1, 'mae', 0.01),
 }

@@ -134,6 +134,12 @@ void evaluateMaterial(bool hasHit, uint materialId, uvec2 object, MaterialInputs
 }
 
 #include "path_shading.glsl"
+#if defined(MG_INTEGRATOR_AO) || !defined(MG_OMIT_TRACED_INPUTS)
+#include "ambient_occlusion.glsl"
+#endif
+#ifdef MG_INTEGRATOR_AO
+#include "ao_integrator.glsl"
+#endif
 
 // Direct light (thesis §5.2): one light sample through one shadow ray, traced here; an
 // emissive sample is MIS-weighted when `mis` (path_shading.glsl); an emitter's graph sees
@@ -249,6 +255,13 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
         } else {
           s = surfaceAt(hit, origin, direction, cone);
           setPathInputs(s.inputs, pathState, hit.t);
+#ifndef MG_OMIT_TRACED_INPUTS
+          // The AO node's rays, before the graph runs: their own stream of numbers (the
+          // vertex's key, hashed apart), so the path's own numbers stay as without them.
+          Rng tracedRng = rngForPathVertex(pixelIndex, sampleIndex, bounce + 1u, frame.image.w);
+          tracedRng.key = pcgHash(tracedRng.key ^ 0x6A09E667u);
+          setTracedInputs(s, tracedRng, rays);
+#endif
 #ifdef MG_HIT_FEEDBACK
           if ((bounce == 0u && sharedPrimary ? feedbackWeight : pathWeight) != 0u)
             bufferHitFootprint(hit.instanceIndex, s.coneWidth);
@@ -304,7 +317,11 @@ void renderPixel(uvec2 pixel, bool inside) {
 #ifdef MG_CACHE_TILE
   g_invocationId = index;
 #endif
+#ifdef MG_INTEGRATOR_AO
+  vec3 radiance = vec3(ambientOcclusionPixel(pixel, inside, rays));
+#else
   vec3 radiance = tracePixel(pixel, inside, rays);
+#endif
   if (inside) {
 #ifdef MG_DEBUG_CACHE_MISSES
     // Thesis Fig. 6.9: red where a path of this pixel missed the cache in this frame. The

@@ -1,7 +1,7 @@
 """Specs for Blender's Vector menu nodes (Mapping, Vector Rotate, Vector Transform, Normal
 Map, Bump, Normal), the surface-relevant Input menu nodes (Texture Coordinate, UV Map,
-Geometry, Attribute, Color Attribute, Object Info, Fresnel, Layer Weight, Value, RGB,
-Tangent) and the Checker, Gradient and Brick textures. The mgraph nodes live in
+Geometry, Attribute, Color Attribute, Object Info, Light Path, Ambient Occlusion, Bevel, Fresnel,
+Layer Weight, Value, RGB, Tangent) and the Checker, Gradient and Brick textures. The mgraph nodes live in
 nodes/vector.inc, normal.inc, inputs.inc, blender_inputs.inc and pattern.inc; their
 fidelity is documented in docs/guide/nodes.md.
 
@@ -29,6 +29,23 @@ def _tex_coord_node(node):
 
 def _rgb(values):
     return tuple(float(v) for v in tuple(values)[:3])
+
+
+def _ao_distance(node):
+    # Cycles' svm_node_ao: Distance 0 with the socket unlinked takes the world's AO distance
+    # (NODE_AO_GLOBAL_RADIUS: World > Light Paths > Fast GI > AO Distance); a linked socket
+    # is not carried (warned), its own value stands in.
+    socket = next(s for s in node.inputs if s.identifier == 'Distance')
+    distance = float(socket.default_value)
+    if distance == 0.0 and not getattr(socket, 'is_linked', False):
+        try:
+            import bpy
+            world = bpy.context.scene.world
+            if world is not None:
+                distance = float(world.light_settings.distance)
+        except (ImportError, AttributeError):
+            pass
+    return distance
 
 
 # Texture Coordinate: the exporter's custom writer (writers.write_tex_coord) uses this spec
@@ -108,6 +125,26 @@ NODES = {
                  'Is Transmission Ray': 'IsTransmissionRay', 'Ray Length': 'RayLength',
                  'Ray Depth': 'RayDepth', 'Diffuse Depth': 'DiffuseDepth',
                  'Glossy Depth': 'GlossyDepth', 'Transmission Depth': 'TransmissionDepth'}),
+    # The path tracer traces the AO rays from the hit before the graph runs
+    # (docs/design/traced-inputs.md), so Distance and the settings must be constants: they
+    # are written as such. A linked Distance or Normal gets the exporter's "linked but not
+    # carried" warning (the rays leave about the interpolated normal; a linked Distance's
+    # unlinked value is used).
+    'ShaderNodeAmbientOcclusion': NodeSpec(
+        mgraph='AmbientOcclusion',
+        inputs={'Color': 'Color'},
+        outputs={'Color': 'Out', 'AO': 'AO'},
+        props={'samples': 'Samples', 'inside': 'Inside', 'only_local': 'OnlyLocal',
+               'distance': ('Distance', lambda node: _ao_distance(node))}),
+    # Bevel, traced like Ambient Occlusion: Radius and Samples written as constants; a
+    # linked Radius or Normal is warned (not carried), the Radius's own value stands in.
+    'ShaderNodeBevel': NodeSpec(
+        mgraph='Bevel',
+        inputs={},
+        outputs={'Normal': 'Normal'},
+        props={'samples': 'Samples',
+               'radius': ('Radius', lambda node: float(
+                   next(s for s in node.inputs if s.identifier == 'Radius').default_value))}),
     'ShaderNodeFresnel': NodeSpec(
         mgraph='Fresnel', inputs={'IOR': 'IOR', 'Normal': 'Normal'}, outputs={'Fac': 'Fac'}),
     'ShaderNodeLayerWeight': NodeSpec(
