@@ -11,8 +11,9 @@ namespace {
 // Estimated cost per node name, in units of about one arithmetic node (Add, Mul, Mix: 1,
 // the default). `perOctave` applies per fBm octave of the node's Detail socket (Cycles:
 // floor(Detail) + 1 octaves, one more blended in when Detail has a fraction). Derived from
-// the operation counts of nodes/*.inc, not timed: calibrate on the GPU before trusting a
-// share to more than a rough ranking.
+// the operation counts of nodes/*.inc, not timed: tools/bench/node_costs_device.sh times
+// every row on the GPU and prints the measured rows (docs/design/memoization.md, "Measuring
+// the node costs"); until they replace these, trust a share only as a rough ranking.
 struct NodeCost {
   std::string_view node;
   double base = 0;

@@ -6,19 +6,21 @@ costs"):
 
   node_cost_graphs.py write --memograph M --out DIR [--copies K]
       writes DIR/<Node>.mgraph for every node with a nonzero estimate in kNodeCosts (an fBm
-      node twice, at Detail 2 and 8, for its octave term), Add and Mul (the unit), and two
-      baselines; DIR/plan.json says which graph times what.
+      node twice, at Detail 2 and 8, for its octave term), Add and Mul (the unit), and a
+      baseline per output type and K; DIR/plan.json says which graph times what.
   node_cost_graphs.py table --plan DIR/plan.json --times BAKE_OUTPUT
       reads `memograph bake --time`'s lines and prints, per node: ns per evaluation, its
       cost in Add units, kNodeCosts' estimate and measured / estimate.
 
-Each graph evaluates its node K times per pixel. Copy i reads inputs that vary with uv
-(u, v scaled into the socket's useful range and shifted by i), so that no copy equals
-another and none folds to a constant. Every graph sums all its inputs into the emission
-(so the driver computes the same inputs in every graph) and the copies' first float,
-float2 or float3 output into the base colour (so that no copy is dead code). A baseline
-graph of the same output type sums the inputs themselves instead of the node's outputs: the node's
-time is the graph's time minus its baseline's, divided by K.
+Each graph evaluates its node K times per pixel (K = --copies for a node estimated at 8 Add
+units or more, 4 K below, 16 K for a one-operation node, so that a cheap node's time stands
+out of its baseline's). Copy i reads inputs that vary with uv (u, v scaled into the
+socket's useful range and shifted by i), so that no copy equals another and none folds to
+a constant. Every graph sums all its inputs into the emission (so the driver computes the
+same inputs in every graph) and the copies' first float, float2 or float3 output into the
+base colour (so that no copy is dead code). A baseline graph of the same output type and K
+sums the inputs themselves instead of the node's outputs: the node's time is the graph's
+time minus its baseline's, divided by K.
 """
 
 import argparse
@@ -254,16 +256,25 @@ def baseline_graph(material, copies, output_kind):
     return graph.text()
 
 
+def copies_factor(base, per_octave):
+    """How many times --copies a node is evaluated: more for cheap nodes, so that their
+    time stands out of the baseline's (which makes and sums the inputs) at any size."""
+    estimate = base + per_octave * octaves(DETAILS[0])
+    if estimate <= 1:
+        return 16
+    return 4 if estimate < 8 else 1
+
+
+def baseline_name(output_kind, copies):
+    return f"baseline_{output_kind}_{copies}"
+
+
 def write_graphs(args):
     costs = parse_cost_table(args.costs)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     write_texture(out / TEXTURE)
     plan = {"copies": args.copies, "graphs": {}, "skipped": {}, "estimates": costs}
-    for kind in OUTPUT_KINDS:
-        material = f"baseline_{kind}"
-        (out / f"{material}.mgraph").write_text(baseline_graph(material, args.copies, kind))
-        plan["graphs"][material] = {"node": None, "output": kind}
     measured = ["Add", "Mul"] + sorted(n for n, (b, p) in costs.items() if b > 0 or p > 0)
     for node in measured:
         inputs, outputs = node_signature(args.memograph, node)
@@ -275,7 +286,8 @@ def write_graphs(args):
             variants = [({"Detail": d, **distortion}, d) for d in DETAILS]
         for extra, detail in variants:
             material = node if detail is None else f"{node}_detail{detail}"
-            graph = timed_node_graph(material, node, inputs, outputs, args.copies, extra)
+            copies = args.copies * copies_factor(*costs.get(node, (1.0, 0.0)))
+            graph = timed_node_graph(material, node, inputs, outputs, copies, extra)
             if graph is None:
                 plan["skipped"][node] = (
                     "an output node: one a material"
@@ -287,7 +299,17 @@ def write_graphs(args):
                 break
             text, output_kind = graph
             (out / f"{material}.mgraph").write_text(text)
-            plan["graphs"][material] = {"node": node, "output": output_kind, "detail": detail}
+            plan["graphs"][material] = {
+                "node": node,
+                "output": output_kind,
+                "detail": detail,
+                "copies": copies,
+                "baseline": baseline_name(output_kind, copies),
+            }
+    for kind, copies in sorted({(g["output"], g["copies"]) for g in plan["graphs"].values()}):
+        material = baseline_name(kind, copies)
+        (out / f"{material}.mgraph").write_text(baseline_graph(material, copies, kind))
+        plan["graphs"][material] = {"node": None, "output": kind, "copies": copies}
     (out / "plan.json").write_text(json.dumps(plan, indent=1) + "\n")
     print(f"wrote {len(plan['graphs'])} graphs to {out} ({len(plan['skipped'])} nodes skipped)")
 
@@ -310,22 +332,21 @@ def read_times(path):
 def print_table(args):
     plan = json.loads(Path(args.plan).read_text())
     times = read_times(args.times)
-    copies = plan["copies"]
     missing = [m for m in plan["graphs"] if m not in times]
     if missing:
         print(f"node_cost_graphs.py: no time for {', '.join(missing)}", file=sys.stderr)
-    if any(f"baseline_{k}" not in times for k in OUTPUT_KINDS) or "Add" not in times:
-        sys.exit("node_cost_graphs.py: the baselines and Add must be timed")
+    if "Add" not in times or plan["graphs"]["Add"]["baseline"] not in times:
+        sys.exit("node_cost_graphs.py: Add and its baseline must be timed")
 
     def per_evaluation(material):
         graph = plan["graphs"][material]
-        return (times[material] - times[f"baseline_{graph['output']}"]) / copies
+        return (times[material] - times[graph["baseline"]]) / graph["copies"]
 
     unit = per_evaluation("Add")
     rows = []  # (label, ns, estimate)
     by_node = {}
     for material, graph in plan["graphs"].items():
-        if graph["node"] and material in times:
+        if graph["node"] and material in times and graph["baseline"] in times:
             by_node.setdefault(graph["node"], {})[graph.get("detail")] = per_evaluation(material)
     for node, measured in sorted(by_node.items()):
         base, per_octave = plan["estimates"].get(node, (1.0, 0.0))
@@ -338,7 +359,11 @@ def print_table(args):
         octave_ns = (measured[high] - measured[low]) / (octaves(high) - octaves(low))
         rows.append((node, measured[low] - octave_ns * octaves(low), base))
         rows.append((f"{node} per octave", octave_ns, per_octave))
-    print(f"# {copies} evaluations a pixel; 1 Add unit = {unit:.4f} ns per evaluation")
+    copies = plan["copies"]
+    print(
+        f"# {copies}, {4 * copies} or {16 * copies} evaluations a pixel (costlier nodes fewer); "
+        f"1 Add unit = {unit:.4f} ns per evaluation"
+    )
     print(f"{'node':34} {'ns/eval':>9} {'Add units':>10} {'estimate':>9} {'ratio':>7}")
     for label, ns, estimate in rows:
         units = ns / unit if unit > 0 else float("nan")
@@ -375,7 +400,13 @@ def main():
     write = sub.add_parser("write", help="write the timing graphs and plan.json")
     write.add_argument("--memograph", required=True, help="the memograph binary")
     write.add_argument("--out", required=True, help="folder for the graphs")
-    write.add_argument("--copies", type=int, default=16, help="evaluations a pixel (16)")
+    write.add_argument(
+        "--copies",
+        type=int,
+        default=16,
+        help="evaluations a pixel of a node estimated at 8 units or more; 4x that below 8, "
+        "16x at 1 (16)",
+    )
     write.add_argument(
         "--costs",
         default=str(Path(__file__).resolve().parents[2] / "compiler" / "cut.cpp"),
