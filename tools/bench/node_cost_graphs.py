@@ -70,17 +70,28 @@ def parse_cost_table(cut_cpp):
     return costs
 
 
-def node_signature(memograph, node):
-    """The node's inputs [(name, type, has_default)] and outputs [(name, type)] from
-    `memograph nodes NODE`, its first overload's types (the one without derivatives)."""
+def node_signatures(memograph, nodes):
+    """Each node's inputs [(name, type, has_default)] and outputs [(name, type)] from one
+    `memograph nodes NODE...`, its first overload's types (the one without derivatives)."""
     listing = subprocess.run(
-        [memograph, "nodes", node], capture_output=True, text=True, check=False
+        [memograph, "nodes", *nodes], capture_output=True, text=True, check=False
     )
     if listing.returncode != 0:
-        sys.exit(f"node_cost_graphs.py: `memograph nodes {node}` failed:\n{listing.stderr}")
+        sys.exit(f"node_cost_graphs.py: `memograph nodes` failed:\n{listing.stderr}")
+    blocks = {}  # node: its lines; a block starts at an unindented "Name  (file.inc)"
+    current = None
+    for line in listing.stdout.splitlines():
+        if line and not line[0].isspace():
+            current = blocks.setdefault(line.split()[0], [])
+        elif current is not None:
+            current.append(line)
+    return {node: parse_signature(node, blocks.get(node, [])) for node in nodes}
+
+
+def parse_signature(node, lines):
     defaults = {}
     overload = None
-    for line in listing.stdout.splitlines():
+    for line in lines:
         match = re.match(r"^  in  (\w+)( = .*)?$", line)
         if match:
             defaults[match.group(1)] = match.group(2) is not None
@@ -276,8 +287,9 @@ def write_graphs(args):
     write_texture(out / TEXTURE)
     plan = {"copies": args.copies, "graphs": {}, "skipped": {}, "estimates": costs}
     measured = ["Add", "Mul"] + sorted(n for n, (b, p) in costs.items() if b > 0 or p > 0)
+    signatures = node_signatures(args.memograph, measured)
     for node in measured:
-        inputs, outputs = node_signature(args.memograph, node)
+        inputs, outputs = signatures[node]
         input_names = {name for name, _, _ in inputs}
         variants = [({}, None)]
         if costs.get(node, (0, 0))[1] > 0 and "Detail" in input_names:
