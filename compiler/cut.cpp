@@ -11,8 +11,9 @@ namespace {
 // Estimated cost per node name, in units of about one arithmetic node (Add, Mul, Mix: 1,
 // the default). `perOctave` applies per fBm octave of the node's Detail socket (Cycles:
 // floor(Detail) + 1 octaves, one more blended in when Detail has a fraction). Derived from
-// the operation counts of nodes/*.inc, not timed: calibrate on the GPU before trusting a
-// share to more than a rough ranking.
+// the operation counts of nodes/*.inc, not timed: tools/bench/node_costs_device.sh times
+// every row on the GPU and prints the measured rows (docs/design/memoization.md, "Measuring
+// the node costs"); until they replace these, trust a share only as a rough ranking.
 struct NodeCost {
   std::string_view node;
   double base = 0;
@@ -34,6 +35,7 @@ const NodeCost kNodeCosts[] = {
     {"Geometry", 1},
     {"Attribute", 0},
     {"ObjectInfo", 0},
+    {"LightPath", 1},  // comparisons of the path state
     {"Float1Constant", 0},
     {"Float2Constant", 0},
     {"Float3Constant", 0},
@@ -67,6 +69,19 @@ const NodeCost kNodeCosts[] = {
     {"GradientTexture", 2},
     // A filtered fetch with explicit gradients; more when it misses the texture cache.
     {"ImageTexture", 8},
+    // Cycles' filters over the full-resolution texels: 1, 4 and 16 fetches with their
+    // weights; Box is three Linear lookups blended by the normal.
+    {"ImageTextureClosest", 5},
+    {"ImageTextureBilinear", 10},
+    {"ImageTextureBicubic", 30},
+    {"ImageTextureBox", 36},
+    {"ImageProjection", 6},  // an atan2 and an acos
+    {"BrightnessContrast", 2},
+    {"Gamma", 3},
+    {"Invert", 2},
+    {"LinearToSRGB", 4},
+    {"SRGBToLinear", 4},
+    {"MixColor", 1},  // one blend type (a constant): a lerp for Mix; the HSV ones cost more
     {"ColorRamp", 4},
     {"ColorRamp4", 3},
     {"FloatCurve", 4},
@@ -84,6 +99,7 @@ const NodeCost kNodeCosts[] = {
     {"Bump", 12},
     {"NormalMap", 6},
     {"NormalFromPosition", 4},
+    {"Normal", 2},
 };
 
 // fBm octaves for a Detail input: its constant, or Blender's default of 2 when it is linked.
@@ -113,6 +129,13 @@ bool scheduled(const OverloadChoice& chosen, std::size_t node) {
 }
 
 }  // namespace
+
+std::vector<std::string_view> nodesWithCostEstimates() {
+  std::vector<std::string_view> names;
+  for (const auto& entry : kNodeCosts)
+    names.push_back(entry.node);
+  return names;
+}
 
 double estimatedNodeCost(const ResolvedNode& node) {
   for (const auto& entry : kNodeCosts) {

@@ -22,6 +22,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string_view>
 #include <vector>
 
 #include "compiler/resolved_graph.h"
@@ -52,10 +53,14 @@ struct MaterialCut {
   double cachedShare() const { return totalCost > 0 ? cachedCost / totalCost : 0.0; }
 };
 
-// The estimated cost of evaluating one node, in units of about one arithmetic node.
-// Estimates, not measurements: they rank domains and report a share, and are meant to be
-// calibrated against GPU timings per node (not done yet).
+// The estimated cost of evaluating one node, in units of about one arithmetic node: its
+// row of the cost table, or 1 for a node without one. Estimates until the table holds GPU
+// timings (tools/bench/node_costs_device.sh; docs/design/memoization.md, "Measuring the node
+// costs"); they rank domains and report a share.
 double estimatedNodeCost(const ResolvedNode& node);
+
+// The nodes the cost table names (every other node costs 1), in table order.
+std::vector<std::string_view> nodesWithCostEstimates();
 
 // The cut for one key domain (Uv, Object or World); empty when nothing with an estimated
 // cost lies in it.

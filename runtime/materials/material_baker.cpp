@@ -49,121 +49,154 @@ MaterialBaker::MaterialBaker(const ContextOptions& options,
 
 MaterialBaker::~MaterialBaker() = default;
 
-BakeOutputs MaterialBaker::bake(const BakeMaterial& material, const BakeSettings& settings) {
-  const VulkanContext& context = *context_;
-  VkDevice device = context.device();
+namespace {
+
+// The bytes of the values buffer of a bake of `settings`' size, refused (std::invalid_argument)
+// when the device cannot hold them.
+std::uint64_t bakeValueBytes(const VulkanContext& context, const BakeSettings& settings) {
   if (settings.width == 0 || settings.height == 0)
     throw std::invalid_argument("the bake size must be at least 1x1");
-  const std::size_t pixels = std::size_t(settings.width) * settings.height;
-  const std::uint64_t valueBytes = std::uint64_t(pixels) * kBakeVec4PerPixel * 16;
+  const std::uint64_t valueBytes =
+      std::uint64_t(settings.width) * settings.height * kBakeVec4PerPixel * 16;
   checkBufferSize(context, valueBytes,
                   "a " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
                       " bake (64 bytes a pixel)",
                   true);
+  return valueBytes;
+}
 
-  // The shader: the embedded sources plus this material's include, entered through a
-  // define so one bake.comp serves every material (and the SPIR-V cache keys on both).
-  std::map<std::string, std::string> files = embeddedShaderFiles();
-  files["bake_material.glsl"] = material.glsl;
-  GpuTextures textures(context, material.textures);
-  ShaderCompiler compiler(std::move(files), shaderCacheDirectory_);
-  const std::vector<std::uint32_t> spirv =
-      compiler.compile({"bake.comp",
-                        ShaderStage::Compute,
-                        {"MG_TEXTURE_COUNT=" + std::to_string(textures.count()),
-                         "MG_BAKE_EVALUATE=EvaluateMaterial_" + material.name}});
+}  // namespace
 
-  VulkanHandle<VkShaderModule> module = createShaderModule(device, spirv);
+// One material's bake shader, ready to dispatch into a values buffer: its textures, pipeline
+// and descriptor set. Baking and timing record the same dispatch, so that a timing measures
+// what a bake runs.
+class MaterialBaker::BakeProgram {
+ public:
+  BakeProgram(const VulkanContext& context, const std::filesystem::path& shaderCacheDirectory,
+              const BakeMaterial& material, VkBuffer values)
+      : textures_(context, material.textures) {
+    VkDevice device = context.device();
+    // The shader: the embedded sources plus this material's include, entered through a
+    // define so one bake.comp serves every material (and the SPIR-V cache keys on both).
+    std::map<std::string, std::string> files = embeddedShaderFiles();
+    files["bake_material.glsl"] = material.glsl;
+    ShaderCompiler compiler(std::move(files), shaderCacheDirectory);
+    const std::vector<std::uint32_t> spirv =
+        compiler.compile({"bake.comp",
+                          ShaderStage::Compute,
+                          {"MG_TEXTURE_COUNT=" + std::to_string(textures_.count()),
+                           "MG_BAKE_EVALUATE=EvaluateMaterial_" + material.name}});
 
-  VkDescriptorSetLayoutBinding bindings[2] = {};
-  bindings[0].binding = 0;
-  bindings[0].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  bindings[0].descriptorCount = 1;
-  bindings[0].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
-  bindings[1].binding = gpu::kBindingTextures;
-  bindings[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  bindings[1].descriptorCount = textures.count();
-  bindings[1].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
-  VkDescriptorSetLayoutCreateInfo setLayoutInfo{
-      VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
-  setLayoutInfo.bindingCount = 2;
-  setLayoutInfo.pBindings = bindings;
-  VkDescriptorSetLayout rawSetLayout = VK_NULL_HANDLE;
-  checkVk(vkCreateDescriptorSetLayout(device, &setLayoutInfo, nullptr, &rawSetLayout),
-          "vkCreateDescriptorSetLayout");
-  VulkanHandle<VkDescriptorSetLayout> setLayout(rawSetLayout, [device](VkDescriptorSetLayout l) {
-    vkDestroyDescriptorSetLayout(device, l, nullptr);
-  });
+    VulkanHandle<VkShaderModule> module = createShaderModule(device, spirv);
 
-  VkPushConstantRange pushRange{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(BakePush)};
-  VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
-  layoutInfo.setLayoutCount = 1;
-  layoutInfo.pSetLayouts = &rawSetLayout;
-  layoutInfo.pushConstantRangeCount = 1;
-  layoutInfo.pPushConstantRanges = &pushRange;
-  VkPipelineLayout rawLayout = VK_NULL_HANDLE;
-  checkVk(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &rawLayout),
-          "vkCreatePipelineLayout");
-  VulkanHandle<VkPipelineLayout> layout(
-      rawLayout, [device](VkPipelineLayout l) { vkDestroyPipelineLayout(device, l, nullptr); });
+    VkDescriptorSetLayoutBinding bindings[2] = {};
+    bindings[0].binding = 0;
+    bindings[0].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    bindings[0].descriptorCount = 1;
+    bindings[0].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    bindings[1].binding = gpu::kBindingTextures;
+    bindings[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    bindings[1].descriptorCount = textures_.count();
+    bindings[1].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
+    VkDescriptorSetLayoutCreateInfo setLayoutInfo{
+        VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    setLayoutInfo.bindingCount = 2;
+    setLayoutInfo.pBindings = bindings;
+    VkDescriptorSetLayout rawSetLayout = VK_NULL_HANDLE;
+    checkVk(vkCreateDescriptorSetLayout(device, &setLayoutInfo, nullptr, &rawSetLayout),
+            "vkCreateDescriptorSetLayout");
+    setLayout_ = VulkanHandle<VkDescriptorSetLayout>(
+        rawSetLayout,
+        [device](VkDescriptorSetLayout l) { vkDestroyDescriptorSetLayout(device, l, nullptr); });
 
-  VulkanHandle<VkPipeline> pipeline =
-      createComputePipeline(context, module.get(), rawLayout, "bake");
-  context.pipelineCache().save();
+    VkPushConstantRange pushRange{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(BakePush)};
+    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layoutInfo.setLayoutCount = 1;
+    layoutInfo.pSetLayouts = &rawSetLayout;
+    layoutInfo.pushConstantRangeCount = 1;
+    layoutInfo.pPushConstantRanges = &pushRange;
+    VkPipelineLayout rawLayout = VK_NULL_HANDLE;
+    checkVk(vkCreatePipelineLayout(device, &layoutInfo, nullptr, &rawLayout),
+            "vkCreatePipelineLayout");
+    layout_ = VulkanHandle<VkPipelineLayout>(
+        rawLayout, [device](VkPipelineLayout l) { vkDestroyPipelineLayout(device, l, nullptr); });
 
-  VkDescriptorPoolSize poolSizes[2] = {
-      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
-      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textures.count()}};
-  VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-  poolInfo.maxSets = 1;
-  poolInfo.poolSizeCount = 2;
-  poolInfo.pPoolSizes = poolSizes;
-  VkDescriptorPool rawPool = VK_NULL_HANDLE;
-  checkVk(vkCreateDescriptorPool(device, &poolInfo, nullptr, &rawPool), "vkCreateDescriptorPool");
-  VulkanHandle<VkDescriptorPool> pool(
-      rawPool, [device](VkDescriptorPool p) { vkDestroyDescriptorPool(device, p, nullptr); });
-  VkDescriptorSetAllocateInfo allocateInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-  allocateInfo.descriptorPool = rawPool;
-  allocateInfo.descriptorSetCount = 1;
-  allocateInfo.pSetLayouts = &rawSetLayout;
-  VkDescriptorSet set = VK_NULL_HANDLE;
-  checkVk(vkAllocateDescriptorSets(device, &allocateInfo, &set), "vkAllocateDescriptorSets");
+    pipeline_ = createComputePipeline(context, module.get(), rawLayout, "bake");
+    context.pipelineCache().save();
 
-  GpuBuffer values = hostBuffer(context, valueBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  VkDescriptorBufferInfo bufferInfo{values.buffer(), 0, VK_WHOLE_SIZE};
-  std::vector<VkDescriptorImageInfo> imageInfos;
-  for (std::uint32_t i = 0; i < textures.count(); ++i)
-    imageInfos.push_back(
-        {textures.sampler(), textures.view(i), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
-  VkWriteDescriptorSet writes[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET},
-                                    {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
-  writes[0].dstSet = set;
-  writes[0].dstBinding = 0;
-  writes[0].descriptorCount = 1;
-  writes[0].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-  writes[0].pBufferInfo = &bufferInfo;
-  writes[1].dstSet = set;
-  writes[1].dstBinding = gpu::kBindingTextures;
-  writes[1].descriptorCount = textures.count();
-  writes[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-  writes[1].pImageInfo = imageInfos.data();
-  vkUpdateDescriptorSets(device, 2, writes, 0, nullptr);
+    VkDescriptorPoolSize poolSizes[2] = {
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1},
+        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, textures_.count()}};
+    VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    poolInfo.maxSets = 1;
+    poolInfo.poolSizeCount = 2;
+    poolInfo.pPoolSizes = poolSizes;
+    VkDescriptorPool rawPool = VK_NULL_HANDLE;
+    checkVk(vkCreateDescriptorPool(device, &poolInfo, nullptr, &rawPool), "vkCreateDescriptorPool");
+    pool_ = VulkanHandle<VkDescriptorPool>(
+        rawPool, [device](VkDescriptorPool p) { vkDestroyDescriptorPool(device, p, nullptr); });
+    VkDescriptorSetAllocateInfo allocateInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    allocateInfo.descriptorPool = rawPool;
+    allocateInfo.descriptorSetCount = 1;
+    allocateInfo.pSetLayouts = &rawSetLayout;
+    checkVk(vkAllocateDescriptorSets(device, &allocateInfo, &set_), "vkAllocateDescriptorSets");
 
-  BakePush push{};
-  for (int k = 0; k < 3; ++k) {
-    push.boundsMin[k] = settings.boundsMin[k];
-    push.boundsMax[k] = settings.boundsMax[k];
-    push.normal[k] = settings.normal[k];
+    VkDescriptorBufferInfo bufferInfo{values, 0, VK_WHOLE_SIZE};
+    std::vector<VkDescriptorImageInfo> imageInfos;
+    for (std::uint32_t i = 0; i < textures_.count(); ++i)
+      imageInfos.push_back(
+          {textures_.sampler(), textures_.view(i), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+    VkWriteDescriptorSet writes[2] = {{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET},
+                                      {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET}};
+    writes[0].dstSet = set_;
+    writes[0].dstBinding = 0;
+    writes[0].descriptorCount = 1;
+    writes[0].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    writes[0].pBufferInfo = &bufferInfo;
+    writes[1].dstSet = set_;
+    writes[1].dstBinding = gpu::kBindingTextures;
+    writes[1].descriptorCount = textures_.count();
+    writes[1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    writes[1].pImageInfo = imageInfos.data();
+    vkUpdateDescriptorSets(device, 2, writes, 0, nullptr);
   }
-  push.size[0] = settings.width;
-  push.size[1] = settings.height;
-  context.submitAndWait([&](VkCommandBuffer commands) {
-    vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline.get());
-    vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, rawLayout, 0, 1, &set, 0,
+
+  // Records the evaluation of every pixel of `settings`' size into the values buffer.
+  void recordDispatch(VkCommandBuffer commands, const BakeSettings& settings) const {
+    BakePush push{};
+    for (int k = 0; k < 3; ++k) {
+      push.boundsMin[k] = settings.boundsMin[k];
+      push.boundsMax[k] = settings.boundsMax[k];
+      push.normal[k] = settings.normal[k];
+    }
+    push.size[0] = settings.width;
+    push.size[1] = settings.height;
+    vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline_.get());
+    vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set_, 0,
                             nullptr);
-    vkCmdPushConstants(commands, rawLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdPushConstants(commands, layout_.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push),
+                       &push);
     vkCmdDispatch(commands, (settings.width + kBakeWorkgroup - 1) / kBakeWorkgroup,
                   (settings.height + kBakeWorkgroup - 1) / kBakeWorkgroup, 1);
+  }
+
+ private:
+  GpuTextures textures_;
+  VulkanHandle<VkDescriptorSetLayout> setLayout_;
+  VulkanHandle<VkPipelineLayout> layout_;
+  VulkanHandle<VkPipeline> pipeline_;
+  VulkanHandle<VkDescriptorPool> pool_;
+  VkDescriptorSet set_ = VK_NULL_HANDLE;  // freed with pool_
+};
+
+BakeOutputs MaterialBaker::bake(const BakeMaterial& material, const BakeSettings& settings) {
+  const VulkanContext& context = *context_;
+  const std::uint64_t valueBytes = bakeValueBytes(context, settings);
+  const std::size_t pixels = std::size_t(settings.width) * settings.height;
+  GpuBuffer values = hostBuffer(context, valueBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  const BakeProgram program(context, shaderCacheDirectory_, material, values.buffer());
+  context.submitAndWait([&](VkCommandBuffer commands) {
+    program.recordDispatch(commands, settings);
     // The host reads the values after the wait: make the shader's writes visible to it.
     VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
@@ -199,6 +232,63 @@ BakeOutputs MaterialBaker::bake(const BakeMaterial& material, const BakeSettings
     out.cyclesPrincipled[p] = v[14];
   }
   return out;
+}
+
+}  // namespace memograph::runtime
+
+namespace memograph::runtime {
+
+std::vector<double> MaterialBaker::timeDispatches(const BakeMaterial& material,
+                                                  const BakeSettings& settings,
+                                                  std::uint32_t dispatches) {
+  const VulkanContext& context = *context_;
+  VkDevice device = context.device();
+  if (dispatches == 0)
+    throw std::invalid_argument("time at least one dispatch");
+  if (!context.info().timestamps)
+    throw std::runtime_error("the device's compute queue has no timestamps");
+  // Device-local values, never read back: a host-visible buffer would put the bus's write
+  // bandwidth into every dispatch's time.
+  const std::uint64_t valueBytes = bakeValueBytes(context, settings);
+  GpuBuffer values(context, valueBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                   VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  const BakeProgram program(context, shaderCacheDirectory_, material, values.buffer());
+
+  const std::uint32_t queryCount = 2 * dispatches;
+  VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+  queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
+  queryInfo.queryCount = queryCount;
+  VkQueryPool rawQueries = VK_NULL_HANDLE;
+  checkVk(vkCreateQueryPool(device, &queryInfo, nullptr, &rawQueries), "vkCreateQueryPool");
+  VulkanHandle<VkQueryPool> queries(
+      rawQueries, [device](VkQueryPool p) { vkDestroyQueryPool(device, p, nullptr); });
+
+  context.submitAndWait([&](VkCommandBuffer commands) {
+    vkCmdResetQueryPool(commands, rawQueries, 0, queryCount);
+    for (std::uint32_t d = 0; d < dispatches; ++d) {
+      // Each dispatch waits for the one before (they write the same buffer), and both
+      // timestamps wait for the compute work recorded before them (a top-of-pipe one would
+      // not), so that one pair brackets one dispatch alone.
+      VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+      barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+      barrier.dstAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+      vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &barrier, 0, nullptr, 0,
+                           nullptr);
+      vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, rawQueries, 2 * d);
+      program.recordDispatch(commands, settings);
+      vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, rawQueries, 2 * d + 1);
+    }
+  });
+  std::vector<std::uint64_t> ticks(queryCount);
+  checkVk(vkGetQueryPoolResults(
+              device, rawQueries, 0, queryCount, ticks.size() * sizeof(std::uint64_t), ticks.data(),
+              sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+          "vkGetQueryPoolResults (bake timestamps)");
+  std::vector<double> nanoseconds(dispatches);
+  for (std::uint32_t d = 0; d < dispatches; ++d)
+    nanoseconds[d] = double(ticks[2 * d + 1] - ticks[2 * d]) * context.info().timestampPeriodNs;
+  return nanoseconds;
 }
 
 }  // namespace memograph::runtime

@@ -69,7 +69,15 @@ class MaterialBaker {
   // std::invalid_argument (a size the device cannot hold).
   BakeOutputs bake(const BakeMaterial& material, const BakeSettings& settings);
 
+  // Runs the bake's evaluation `dispatches` times into device memory, one dispatch after
+  // the other, and returns each dispatch's GPU time in nanoseconds (timestamp queries);
+  // nothing is read back. Throws as bake() does, and std::runtime_error on a device
+  // without timestamps.
+  std::vector<double> timeDispatches(const BakeMaterial& material, const BakeSettings& settings,
+                                     std::uint32_t dispatches);
+
  private:
+  class BakeProgram;
   std::unique_ptr<VulkanContext> context_;
   std::filesystem::path shaderCacheDirectory_;
 };

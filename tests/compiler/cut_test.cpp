@@ -5,10 +5,12 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <regex>
 #include <set>
 
+#include "compiler/cut.h"
 #include "compiler/variation.h"
 #include "glslang_check.h"
 #include "test_support.h"
@@ -133,6 +135,28 @@ TEST(Variation, SourceSocketTableMatchesTheLibrary) {
           sourceSocketClasses().begin(), sourceSocketClasses().end(),
           [&](const auto& e) { return e.node == type.name && e.socket == socket.name; });
       EXPECT_TRUE(listed) << type.name << "." << socket.name << " has no class in the table";
+    }
+  }
+}
+
+// The cost table names only library nodes (a misspelt row would leave its node at the
+// default cost 1), and every node outside the one-operation families (arithmetic,
+// conversions, vectors) has a row: a texture, ramp or colour node at cost 1 would make the
+// cut's cached share and its choice of domain wrong without a sign.
+TEST(Cut, TheCostTableCoversEveryNodeWithMoreThanOneOperation) {
+  const std::set<std::string> oneOperationFamilies = {
+      "math.inc", "blender_math.inc", "converter.inc", "blender_conversions.inc", "vector.inc"};
+  std::set<std::string> estimated;
+  for (const auto name : nodesWithCostEstimates()) {
+    EXPECT_NE(realLibrary().find(name), nullptr)
+        << name << " is in the cost table, not the library";
+    EXPECT_TRUE(estimated.insert(std::string(name)).second) << name << " has two rows";
+  }
+  for (const auto& type : realLibrary().nodeTypes()) {
+    const std::string family = std::filesystem::path(type.file).filename().string();
+    if (oneOperationFamilies.count(family) == 0) {
+      EXPECT_EQ(estimated.count(type.name), 1u)
+          << type.name << " (" << family << ") has no row in compiler/cut.cpp's kNodeCosts";
     }
   }
 }

@@ -32,6 +32,7 @@ namespace fs = std::filesystem;
 
 constexpr std::string_view kHelp =
     "usage: memograph bake GRAPH|DIR... --size WxH --out DIR [options]\n"
+    "       memograph bake GRAPH|DIR... --size WxH --time R [options]\n"
     "\n"
     "Evaluates each material graph (a DIR means every .mgraph in it) at the pixel centres\n"
     "of its UV square and writes one image per output the material writes:\n"
@@ -55,7 +56,7 @@ constexpr std::string_view kHelp =
     "\n"
     "options:\n"
     "  --size WxH        image size in pixels (required)\n"
-    "  --out DIR         output directory, created if missing (required)\n"
+    "  --out DIR         output directory, created if missing (required without --time)\n"
     "  --format F        exr, png or pfm (default exr; pfm in builds without OpenImageIO)\n"
     "  --bounds X0,Y0,Z0,X1,Y1,Z1\n"
     "                    the object's bounding box (default -1,-1,0,1,1,0)\n"
@@ -66,6 +67,9 @@ constexpr std::string_view kHelp =
     "  --shard I/N       bake only shard I of N (0 <= I < N): the graphs whose index in the\n"
     "                    list above (folders in name order) is I modulo N, so that N jobs\n"
     "                    with the same arguments bake each graph once (docs/guide/slurm.md)\n"
+    "  --time R          write no image: evaluate each material R times on the device and\n"
+    "                    print the median GPU time of one evaluation, in ns per pixel\n"
+    "                    (timestamp queries around each dispatch; default: off)\n"
     "  --quiet           print only errors\n";
 
 // Reads --bounds; false with `error` saying which number is wrong and why.
@@ -149,6 +153,22 @@ bool checkOutputFolder(const std::string& outDir, std::string& error) {
   }
   if (fs::exists(status) && !fs::is_directory(status)) {
     error = "is a file, not a folder";
+    return false;
+  }
+  return true;
+}
+
+// Checks --out and creates it; false (reported) when it is not a folder or cannot be made.
+bool prepareOutputFolder(const std::string& outDir) {
+  if (std::string error; !checkOutputFolder(outDir, error)) {
+    std::cerr << "memograph bake: --out " << outDir << ": " << error << "\n";
+    return false;
+  }
+  std::error_code ec;
+  fs::create_directories(outDir, ec);
+  if (ec || !fs::is_directory(outDir)) {
+    std::cerr << "memograph bake: " << outDir << ": cannot create the folder"
+              << (ec ? " (" + ec.message() + ")" : std::string()) << "\n";
     return false;
   }
   return true;
@@ -339,6 +359,7 @@ runtime::TextureImage loadTexture(const std::string& path) {
 struct BakeRun {
   runtime::BakeSettings settings;
   std::string outDir, format;
+  std::uint32_t timedDispatches = 0;  // --time: 0 bakes images
   int deviceIndex = -1;
   bool quiet = false;
   const compiler::NodeLibrary* library = nullptr;
@@ -363,6 +384,22 @@ runtime::MaterialBaker& bakerFor(BakeRun& run) {
   return *run.baker;
 }
 
+// --time's line for one material on stdout, which tools/bench/node_costs_device.sh reads:
+// "time NAME NS_PER_PIXEL ns/pixel (median of R dispatches of WxH)". The median, so that a
+// first dispatch that warms caches or clocks does not count.
+void printMedianTime(const std::string& name, const BakeRun& run, std::vector<double> dispatchNs) {
+  std::sort(dispatchNs.begin(), dispatchNs.end());
+  const std::size_t n = dispatchNs.size();
+  const double median =
+      n % 2 == 1 ? dispatchNs[n / 2] : 0.5 * (dispatchNs[n / 2 - 1] + dispatchNs[n / 2]);
+  const double pixels = double(run.settings.width) * run.settings.height;
+  std::ostringstream line;
+  line.precision(4);
+  line << std::fixed << "time " << name << " " << median / pixels << " ns/pixel (median of " << n
+       << " dispatches of " << run.settings.width << "x" << run.settings.height << ")";
+  std::cout << line.str() << std::endl;
+}
+
 // Bakes the material compiled from `path` and writes its images; `written` receives their
 // paths. False with `diagnostics` (or the returned `message`) saying why.
 bool bakeCompiled(BakeRun& run, const std::string& path, const compiler::CompiledMaterial& material,
@@ -379,6 +416,11 @@ bool bakeCompiled(BakeRun& run, const std::string& path, const compiler::Compile
       if (texturePath.is_relative() && !base.empty())
         texturePath = base / texturePath;
       bakeMaterial.textures.push_back(loadTexture(texturePath.string()));
+    }
+    if (run.timedDispatches > 0) {
+      printMedianTime(material.metadata.name, run,
+                      baker.timeDispatches(bakeMaterial, run.settings, run.timedDispatches));
+      return true;
     }
     const runtime::BakeOutputs baked = baker.bake(bakeMaterial, run.settings);
     const auto images = outputImages(baked, material.metadata.outputsWritten);
@@ -429,7 +471,7 @@ bool bakeOne(BakeRun& run, const std::string& path, const std::string& prefix) {
   printDiagnostics(diagnostics);  // warnings
   if (!run.quiet) {
     std::cerr << prefix << name << " ... ok";
-    if (written.empty())
+    if (written.empty() && run.timedDispatches == 0)
       std::cerr << " (writes no output)";
     std::cerr << "\n";
     for (const auto& file : written)
@@ -441,7 +483,7 @@ bool bakeOne(BakeRun& run, const std::string& path, const std::string& prefix) {
 #endif  // MEMOGRAPH_HAVE_RUNTIME
 
 struct BakeArguments {
-  std::string size, outDir, format, bounds, normal, nodesDir, device = "-1", shard;
+  std::string size, outDir, format, bounds, normal, nodesDir, device = "-1", shard, time;
   std::uint32_t shardIndex = 0, shardCount = 1;
   bool quiet = false;
   std::vector<std::string> inputs;
@@ -459,14 +501,15 @@ std::optional<int> scanBakeArguments(std::span<const std::string_view> args, Bak
   scanner.option("--nodes", &a.nodesDir);
   scanner.option("--device", &a.device);
   scanner.option("--shard", &a.shard);
+  scanner.option("--time", &a.time);
   scanner.flag("--quiet", &a.quiet);
   scanner.help(kHelp);
   if (const auto exitCode = scanner.scan(a.inputs))
     return exitCode;
   if (a.inputs.empty())
     return usageError("bake", "no graph files or folders given");
-  if (a.outDir.empty())
-    return usageError("bake", "--out DIR is required");
+  if (a.outDir.empty() && a.time.empty())
+    return usageError("bake", "--out DIR is required (or --time R, which writes no image)");
   if (a.size.empty())
     return usageError("bake", "--size WxH is required");
   if (!a.shard.empty()) {
@@ -496,7 +539,10 @@ std::optional<int> scanBakeArguments(std::span<const std::string_view> args, Bak
 }
 
 #ifdef MEMOGRAPH_HAVE_RUNTIME
-// The size, bounds and device as the bake's settings.
+// --time's bound: all dispatches go in one command buffer, which must finish in seconds.
+constexpr std::uint32_t kMaxTimedDispatches = 1000;
+
+// The size, bounds, device and timing as the bake's settings.
 std::optional<int> readBakeSettings(const BakeArguments& a, BakeRun& run) {
   if (std::string error; !parseImageSize(a.size, run.settings.width, run.settings.height, error))
     return usageError("bake", "--size: " + error);
@@ -512,6 +558,10 @@ std::optional<int> readBakeSettings(const BakeArguments& a, BakeRun& run) {
   run.deviceIndex = a.device == "-1" ? -1 : int(deviceIndex);
   if (const int code = checkDeviceIndex("bake", run.deviceIndex); code != kExitOk)
     return code;
+  if (!a.time.empty() && (!parseNumber(a.time, run.timedDispatches) || run.timedDispatches == 0 ||
+                          run.timedDispatches > kMaxTimedDispatches))
+    return usageError("bake", "--time takes a number of dispatches from 1 to " +
+                                  std::to_string(kMaxTimedDispatches) + ", not '" + a.time + "'");
   run.outDir = a.outDir;
   run.format = a.format;
   run.quiet = a.quiet;
@@ -552,17 +602,9 @@ int runBake(std::span<const std::string_view> args) {
                 << files.size() << " graphs\n";
     files = std::move(shard);
   }
-  if (std::string error; !checkOutputFolder(a.outDir, error)) {
-    std::cerr << "memograph bake: --out " << a.outDir << ": " << error << "\n";
+  // A timing writes no file: it needs no folder.
+  if (run.timedDispatches == 0 && !prepareOutputFolder(a.outDir))
     return kExitFailure;
-  }
-  std::error_code ec;
-  fs::create_directories(a.outDir, ec);
-  if (ec || !fs::is_directory(a.outDir)) {
-    std::cerr << "memograph bake: " << a.outDir << ": cannot create the folder"
-              << (ec ? " (" + ec.message() + ")" : std::string()) << "\n";
-    return kExitFailure;
-  }
   const std::size_t total = files.size();
   std::size_t failed = 0;
   for (std::size_t index = 0; index < total; ++index) {

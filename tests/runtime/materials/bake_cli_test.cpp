@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -428,6 +429,9 @@ TEST_F(BakeCli, UsageErrorsExitTwoAndWriteNothing) {
       g + " --size 2x2 --normal 1,2" + o,          // too few numbers
       g + " --size 2x2 --normal 1,x,0" + o,        // not a number
       g + " --size 2x2 --frobnicate" + o,          // unknown option
+      g + " --size 2x2 --time 0" + o,              // no dispatch to time
+      g + " --size 2x2 --time x" + o,              // not a number
+      g + " --size 2x2 --time 1001" + o,           // past the bound
   };
   for (const auto& arguments : bad) {
     const auto run = runCli("bake " + arguments);
@@ -435,6 +439,31 @@ TEST_F(BakeCli, UsageErrorsExitTwoAndWriteNothing) {
   }
   EXPECT_FALSE(fs::exists(dir_ / "out"));
   EXPECT_EQ(runCli("bake --help").exitCode, 0);
+}
+
+// --time prints one line per material, the median of R dispatches in ns a pixel, which
+// tools/bench/node_cost_graphs.py parses; it needs no --out and writes no file.
+TEST_F(BakeCli, TimeReportsEachMaterialsMedianAndWritesNothing) {
+  graph("Flat", "BaseColorOutput (1.0, 0.5, 0.25);\n");
+  graph("Noisy",
+        "UVInput Out>0;\n"
+        "Separate2 Vector<0 X>1 Y>2;\n"
+        "Combine3 X<1 Y<2 Z=0.5 Vector>3;\n"
+        "NoiseTexture Vector<3 Detail=4 Color>4;\n"
+        "BaseColorOutput In<4;\n");
+  const auto run = runCli("bake " + (dir_ / "graphs").string() + " --size 8x8 --time 3");
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  for (const std::string name : {"Flat", "Noisy"}) {
+    const std::string prefix = "time " + name + " ";
+    const std::size_t at = run.output.find(prefix);
+    ASSERT_NE(at, std::string::npos) << run.output;
+    const double nsPerPixel = std::strtod(run.output.c_str() + at + prefix.size(), nullptr);
+    EXPECT_GT(nsPerPixel, 0.0) << run.output;
+    EXPECT_NE(run.output.find(" ns/pixel (median of 3 dispatches of 8x8)", at), std::string::npos)
+        << run.output;
+  }
+  EXPECT_EQ(run.output.find("wrote "), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
 TEST_F(BakeCli, BoundsOutOfRangeAreNamedAsSuchNotAsMinOverMax) {
