@@ -1,7 +1,7 @@
 // Which LOD of its mesh each instance shows (seeds/001 §3.3.1: a BLAS per mesh LOD): the
 // coarsest whose simplification error, in world units, stays within `pixelError` footprints at
 // the instance. The footprint is the narrowest ray cone a counted ray brought to the instance
-// in the last counting frame (LiPaC's feedback, path_tracer.glsl bufferHitFootprint), or, for
+// in the last counting frame (LiPaC's feedback, hit_feedback.glsl bufferHitFootprint), or, for
 // an instance no counted ray hit, a pixel's width at its distance from the camera. Distance
 // alone fails under magnification (§3.1.1: "curved mirrors that can significantly magnify
 // objects in the distance"): a curved mirror narrows the cones that reach a far object below
