@@ -52,7 +52,8 @@ InstanceLodChoice::InstanceLodChoice(const Scene& scene, const std::vector<Bound
   meshErrors_.resize(scene.meshes.size());
   for (std::size_t m = 0; m < scene.meshLods.size() && m < scene.meshes.size(); ++m)
     for (const MeshLod& lod : scene.meshLods[m])
-      meshErrors_[m].push_back(lod.error);
+      // What a viewer may see change: the surface moved, or a part gone whole (its length).
+      meshErrors_[m].push_back(std::max(lod.error, lod.removedPart));
   const std::size_t n = scene.instances.size();
   instanceMesh_.resize(n);
   instanceScale_.resize(n);

@@ -1,12 +1,13 @@
 // Which LOD of its mesh each instance shows (seeds/001 §3.3.1: a BLAS per mesh LOD): the
-// coarsest whose simplification error, in world units, stays within `pixelError` footprints at
-// the instance. The footprint is the narrowest ray cone a counted ray brought to the instance
-// in the last counting frames (LiPaC's feedback, hit_feedback.glsl bufferHitFootprint), at most
-// a pixel's width at its distance from the camera (all there is for one no counted ray hit).
-// Distance alone fails under magnification (§3.1.1: "curved mirrors that can significantly magnify
-// objects in the distance"): a curved mirror narrows the cones that reach a far object below
-// its distance's pixel, and what the cone feedback measures there keeps it detailed.
-// Host-side state only, no Vulkan, so it is tested without a device.
+// coarsest whose error, in world units, stays within `pixelError` footprints at the instance:
+// the simplifier's, or the length of a part the level removes whole where that is more. The
+// footprint is the narrowest ray cone a counted ray brought to the instance in the last counting
+// frames (LiPaC's feedback, hit_feedback.glsl bufferHitFootprint), at most a pixel's width at its
+// distance from the camera (all there is for one no counted ray hit). Distance alone fails under
+// magnification (§3.1.1: "curved mirrors that can significantly magnify objects in the distance"):
+// a curved mirror narrows the cones that reach a far object below its distance's pixel, and what
+// the cone feedback measures there keeps it detailed. Host-side state only, no Vulkan, so it is
+// tested without a device.
 #pragma once
 
 #include <cstdint>

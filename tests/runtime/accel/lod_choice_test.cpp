@@ -3,8 +3,8 @@
 // no feedback, a pixel at its distance; a narrow cone from a magnifying mirror keeps a far
 // instance at its finest where distance alone would simplify it; a wide one (a diffuse
 // bounce's) never takes an instance coarser than its distance; the narrowest cone of recent
-// counting frames decides; switching coarser needs a margin; a
-// light's quad and meshes without LODs stay whole; bad input is refused.
+// counting frames decides; a part removed whole counts its length; switching coarser needs a
+// margin; a light's quad and meshes without LODs stay whole; bad input is refused.
 #include <cstring>
 
 #include <gtest/gtest.h>
@@ -173,6 +173,18 @@ TEST(LodChoice, WhatTheFeedbackMissesForAFewFramesKeepsItsLevel) {
   choice.update(origin(), 0.01f, none);
   // Then its distance: a footprint of 1 fits the 0.9 level, but not by the coarser margin.
   EXPECT_EQ(choice.wanted()[0], 2u) << "then its distance";
+}
+
+// A level that removes a part whole counts the part's length, what a viewer sees go, where it
+// exceeds the simplifier's error (a window frame 1.5 m long that stood 0.2 m out).
+TEST(LodChoice, APartRemovedWholeCountsItsLength) {
+  Scene scene = lodScene();
+  scene.meshLods[0][1].removedPart = 0.9f;  // level 2: error 0.3, but a part 0.9 long gone
+  InstanceLodChoice choice(scene, instanceBounds(scene), 1.0f);
+  std::vector<std::uint32_t> footprints(scene.instances.size(), kNoFootprint);
+  footprints[0] = bits(0.5f);
+  choice.update(origin(), 0.01f, footprints);
+  EXPECT_EQ(choice.wanted()[0], 1u) << "0.5 fits the 0.3 error, not the 0.9 part";
 }
 
 TEST(LodChoice, BadInputIsRefused) {
