@@ -18,7 +18,7 @@ struct SimplifiedMesh {
   float removedPart = 0.0f;  // the longest side of a part it removed whole (MeshLod)
 };
 
-// The longest side of the largest connected part of the welded mesh (`indices` over
+// The longest side of the bounds of any connected part of the welded mesh (`indices` over
 // `positions`) of which `kept` (the simplified indices) holds no triangle. The simplifier
 // bounds how far the surface moves, which for a part it collapses whole is its thickness; but
 // what a viewer sees go is its width and length (seeds/001 §3.1.1: the LOD must keep what is

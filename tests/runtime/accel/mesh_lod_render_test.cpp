@@ -1,7 +1,7 @@
 // Mesh LODs in culled renders on lavapipe (seeds/001 §3.1.1, §3.3.1; docs/design/culling.md, "Mesh
 // LODs"): BLASes are shared per (mesh, LOD); what a curved mirror magnifies keeps its finest
-// level though its distance alone would take the coarsest; on the small city's paths the
-// peak AS memory falls with LODs, and the picture stays within a stated FLIP.
+// level though its distance alone would take the coarsest, and the wavefront chooses as the
+// megakernel does there; on the small city's paths the peak AS memory falls with LODs.
 #include <cmath>
 #include <cstdio>
 #include <set>
