@@ -52,14 +52,16 @@ InstanceLodChoice::InstanceLodChoice(const Scene& scene, const std::vector<Bound
   meshErrors_.resize(scene.meshes.size());
   for (std::size_t m = 0; m < scene.meshLods.size() && m < scene.meshes.size(); ++m)
     for (const MeshLod& lod : scene.meshLods[m])
-      meshErrors_[m].push_back(lod.error);
+      // What a viewer may see change: the surface moved, or a part gone whole (its length).
+      meshErrors_[m].push_back(std::max(lod.error, lod.removedPart));
   const std::size_t n = scene.instances.size();
   instanceMesh_.resize(n);
   instanceScale_.resize(n);
   eligible_.resize(n);
   wanted_.assign(n, 0);
   fromFeedback_.assign(n, 0);
-  sinceFeedback_.assign(n, kFeedbackMemory);
+  feedbackFootprint_.assign(n, 0.0f);
+  feedbackAge_.assign(n, kFeedbackMemory + 1);  // nothing remembered
   chosen_.assign(n, 0);
   for (std::size_t i = 0; i < n; ++i) {
     const Instance& instance = scene.instances[i];
@@ -85,17 +87,28 @@ void InstanceLodChoice::update(const Camera& camera, float pixelSpreadAngle,
     fromFeedback_[i] = 0;
     if (!eligible_[i])
       continue;
-    float footprint = 0.0f;
+    // The narrowest cone of this and the last kFeedbackMemory updates: sampled feedback (1 of
+    // P paths, 1 in N pixel blocks) brings the narrowest cones, a mirror's, only now and then.
+    if (feedbackAge_[i] <= kFeedbackMemory)
+      ++feedbackAge_[i];
     if (!footprints.empty() && footprints[i] != kNoFootprint) {
-      std::memcpy(&footprint, &footprints[i], sizeof footprint);
+      float counted = 0.0f;
+      std::memcpy(&counted, &footprints[i], sizeof counted);
+      if (!(counted >= 0.0f) || !std::isfinite(counted))
+        counted = 0.0f;  // bits the shader never writes: the finest level, to be safe
+      if (feedbackAge_[i] > kFeedbackMemory || counted < feedbackFootprint_[i]) {
+        feedbackFootprint_[i] = counted;
+        feedbackAge_[i] = 0;
+      }
+    }
+    // A pixel's width at the nearest point of the instance (0 inside it: the finest), which
+    // also bounds what the feedback brings: a wide cone (a diffuse bounce's) reaches what the
+    // camera sees beside it, and what casts the shadows the camera sees, whose outlines are
+    // seen at the camera's pixels, not the bounce's.
+    float footprint = distanceTo(bounds_[i], camera.position) * pixelSpreadAngle;
+    if (feedbackAge_[i] <= kFeedbackMemory && feedbackFootprint_[i] < footprint) {
+      footprint = feedbackFootprint_[i];
       fromFeedback_[i] = 1;
-      sinceFeedback_[i] = 0;
-    } else if (sinceFeedback_[i] < kFeedbackMemory) {
-      ++sinceFeedback_[i];
-      continue;  // keeps what the feedback chose
-    } else {
-      // A pixel's width at the nearest point of the instance (0 inside it: the finest).
-      footprint = distanceTo(bounds_[i], camera.position) * pixelSpreadAngle;
     }
     worldErrors_.clear();
     for (const float e : meshErrors_[instanceMesh_[i]])

@@ -106,13 +106,13 @@ struct CullingOptions {
   // Mesh LODs (seeds/001 §3.1.1, §3.3.1; Scene::meshLods, docs/design/culling.md "Mesh LODs"):
   // in a culled render an instance in the TLAS shows the coarsest LOD of its mesh whose error
   // stays within `lodPixelError` footprints of the narrowest ray cone that reached it in the
-  // last counting frame, or of a pixel at its distance where none did (InstanceLodChoice).
-  // Each (mesh, LOD) has one BLAS, shared, built under the build budgets like any other. Off
-  // by default: on lavapipe (the small city, 480x270) LiPaC's peak AS memory fell to 0.29x the
-  // unculled scene's with them (0.99x without), but a mirror view differed from the unculled
-  // one by a mean LDR-FLIP of 0.037 (0.0085 at lodPixelError 0.1), past the 0.005 it must
-  // keep; the GPU run (docs/design/culling.md) decides. No effect without culling, nor on a
-  // scene without LODs.
+  // recent counting frames, at most a pixel at its distance (InstanceLodChoice). Each (mesh,
+  // LOD) has one BLAS, shared, built under the build budgets like any other. Off by default:
+  // on lavapipe (the small city) no setting met both targets: at lodPixelError 1 LiPaC's peak
+  // AS memory was 0.80x the unculled scene's (street path) and the mirror view (32 frames) differed
+  // from the unculled one by a mean LDR-FLIP of 0.0065; at 0.25 the FLIP was 0.0049 at 1.01x. The
+  // GPU run (docs/design/culling.md) decides. No effect without culling, nor on a scene without
+  // LODs.
   bool meshLods = false;
   float lodPixelError = 1.0f;
   // Whether a render shows LODs: culled, with meshLods (what a built-in scene then builds).

@@ -62,7 +62,11 @@ struct Instance {
 // simplified surface may lie from the mesh's, which the LOD choice projects to pixels.
 struct MeshLod {
   Mesh mesh;
-  float error = 0.0f;
+  float error = 0.0f;  // a bound on the distance from the mesh's surface, in its units
+  // The longest side of the bounds of any connected part of the mesh (or of a finer level)
+  // that this level removes whole, in the mesh's units: what a viewer sees vanish, which may be
+  // far wider than `error` (a window's frame stands 0.2 m out but spans 1.5 m).
+  float removedPart = 0.0f;
 };
 // LOD levels a mesh may have besides itself (the level fits the culling's byte a instance).
 inline constexpr std::size_t kMaxMeshLods = 7;

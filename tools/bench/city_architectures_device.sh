@@ -11,6 +11,7 @@
 # mirror camera 135.
 # After tools/bundle_device.sh, on the GPU machine (carry bundle and .gl):
 #   OUT=$OUT bash tools/bench/city_architectures_device.sh
+# LOD_FLAGS (for example "--lod-pixel-error 0.25") go to every run with mesh LODs.
 # STEPS="bench" or STEPS="mirror" runs one step; MIRROR_SIZE sets the mirror's size. To check
 # the script here on lavapipe (figures meaningless), with the small city and its own path:
 #   build/tests/runtime/scene/builtin/scenes_write_camera_paths /tmp/paths 360 0.02
@@ -56,8 +57,10 @@ for arch in wavefront megakernel; do
   done
 done
 run wavefront_lipac_floor --shading wavefront --culling lipac --floor-materials
-run wavefront_lipac_lods --shading wavefront --culling lipac --mesh-lods on
-run megakernel_lipac_lods --shading megakernel --culling lipac --mesh-lods on
+# shellcheck disable=SC2086 # LOD_FLAGS is a list of flags
+run wavefront_lipac_lods --shading wavefront --culling lipac --mesh-lods on ${LOD_FLAGS:-}
+# shellcheck disable=SC2086
+run megakernel_lipac_lods --shading megakernel --culling lipac --mesh-lods on ${LOD_FLAGS:-}
 fi
 [[ $steps == *" mirror "* ]] || exit 0
 
@@ -82,7 +85,8 @@ mirror_run() {
 }
 mirror_run none --culling none
 mirror_run lipac --culling lipac
-mirror_run lipac_lods --culling lipac --mesh-lods on
+# shellcheck disable=SC2086 # LOD_FLAGS is a list of flags
+mirror_run lipac_lods --culling lipac --mesh-lods on ${LOD_FLAGS:-}
 for label in lipac lipac_lods; do
   echo "== mirror camera $mirror_camera: $label against none" >>"$OUT/mirror.txt"
   "$m" diff "$work/mirror_none.pfm" "$work/mirror_$label.pfm" >>"$OUT/mirror.txt" 2>&1

@@ -7,7 +7,8 @@
 #   pictures   each mode at three cameras of the street path, two in the main street facing
 #              the mirror (120: 336 m from it, 153: 84 m; what they see in it is behind them)
 #              and one flying in (8): the 8 cameras before it, then 4 frames at it (the image
-#              is those 4), seed 1; LDR-FLIP of frustum and lipac against none (pictures.txt,
+#              is those 4; PICTURE_FRAMES=32 accumulates 32), seed 1; LDR-FLIP of frustum and
+#              lipac against none (pictures.txt,
 #              each camera's role in its header). With SCENE=builtin:city:path=aerial, the
 #              aerial path's cameras (city_aerial.campath): 120 and 135 facing the mirror, 60
 #              flying in, as the culling results picture them
@@ -34,6 +35,9 @@
 # and here, from the returned files (unpack culling_run.tar.gz into RUN_FOLDER first):
 #   tools/results/make_culling_report RUN_FOLDER
 #   (tools/results/make_culling_report writes the report and its plots).
+# SHADING=wavefront measures the wavefront instead of the megakernel; BOUNCES (default 4) the
+# rays a path; PICTURE_LIMIT (default 150) the seconds a picture's render may take;
+# KEEP_PICTURES=1 keeps the pictures' renders (<camera>_<label>.pfm) in OUT.
 # EXTRA="--cache texel" adds flags to every run; MODES="none lipac" runs only those modes (the
 # pictures compare each with none, so keep none there); CAMERAS="120 153" pictures only those. Results under $OUT, each step under its own
 # time limit (LIMIT seconds a bench run, default 170). Here, to check the script on lavapipe
@@ -47,6 +51,9 @@ OUT=${OUT:-/tmp/out}
 mkdir -p "$OUT"
 m=${MEMOGRAPH:-bundle/memograph}
 source tools/bench/megakernel_flags.sh  # shadingFlags
+[ -z "${SHADING:-}" ] || shadingFlags=(--shading "$SHADING")
+bounces=${BOUNCES:-4}
+picture_frames=${PICTURE_FRAMES:-4}
 stride=${STRIDE:-1}
 scene=${SCENE:-builtin:city}
 size=${SIZE:-1920x1080}
@@ -86,7 +93,7 @@ bench_run() {
   shift 2
   echo "== bench $label" | tee -a "$OUT/log.txt"
   # shellcheck disable=SC2086 # EXTRA is a list of flags
-  timeout "$limit" "$m" bench "$scene" "${shadingFlags[@]}" --sizes "$size" --paths "$paths" --bounces 4 \
+  timeout "$limit" "$m" bench "$scene" "${shadingFlags[@]}" --sizes "$size" --paths "$paths" --bounces "$bounces" \
     --warmup 0 --frames $((360 / stride)) --camera-frames 360 --frame-stride "$stride" \
     --time-limit $((limit - 10)) --label "$label" --shader-cache "$work/sc" \
     --csv "$work/bench_$label.csv" --frames-csv "$work/$label." "$@" ${EXTRA:-} 2>&1 |
@@ -205,13 +212,14 @@ pictures() {
   done
   for k in $picture_cameras; do
     printf '%s\n' "${cameras[@]:k-8:8}" >"$work/path_$k.campath"
-    for _ in 1 2 3 4; do echo "${cameras[k]}" >>"$work/path_$k.campath"; done
+    for _ in $(seq 1 "$picture_frames"); do echo "${cameras[k]}" >>"$work/path_$k.campath"; done
     for i in "${!labels[@]}"; do
       label=${labels[i]}
       flags=${settings[i]}
       echo "== picture $k $label" | tee -a "$OUT/log.txt"
       # shellcheck disable=SC2086 # flags and EXTRA are lists of flags
-      timeout 150 "$m" render "$scene" "${shadingFlags[@]}" --size "$size" --paths "$paths" --bounces 4 --frames 12 \
+      timeout "${PICTURE_LIMIT:-150}" "$m" render "$scene" "${shadingFlags[@]}" --size "$size" \
+        --paths "$paths" --bounces "$bounces" --frames $((8 + picture_frames)) \
         --camera-path "$work/path_$k.campath" --seed 1 $flags \
         --shader-cache "$work/sc" --out "$work/${k}_$label.pfm" --stats "$work/${k}_$label.csv" \
         ${EXTRA:-} >>"$OUT/log.txt" 2>&1
@@ -220,9 +228,10 @@ pictures() {
     done
     for label in "${labels[@]}"; do
       [ "$label" != none ] || continue
-      echo "== camera $k (${role[$k]}): $label against none" >>"$OUT/pictures.txt"
+      echo "== camera $k (${role[$k]:-}): $label against none" >>"$OUT/pictures.txt"
       "$m" diff "$work/${k}_none.pfm" "$work/${k}_$label.pfm" >>"$OUT/pictures.txt" 2>&1
     done
+    [ -z "${KEEP_PICTURES:-}" ] || cp "$work/${k}_"*.pfm "$OUT/" 2>/dev/null
   done
   head -1 "$work/${k}_none.csv" >"$OUT/pictures_stats_header.csv" 2>/dev/null
 }

@@ -14,8 +14,47 @@ namespace {
 
 struct SimplifiedMesh {
   Mesh mesh;
-  float error = 0.0f;  // this pass's, in the mesh's units
+  float error = 0.0f;        // this pass's, in the mesh's units
+  float removedPart = 0.0f;  // the longest side of a part it removed whole (MeshLod)
 };
+
+// The longest side of the bounds of any connected part of the welded mesh (`indices` over
+// `positions`) of which `kept` (the simplified indices) holds no triangle. The simplifier
+// bounds how far the surface moves, which for a part it collapses whole is its thickness; but
+// what a viewer sees go is its width and length (seeds/001 §3.1.1: the LOD must keep what is
+// seen).
+float longestRemovedPart(const std::vector<glm::vec3>& positions,
+                         const std::vector<unsigned int>& indices,
+                         const std::vector<unsigned int>& kept) {
+  std::vector<std::uint32_t> part(positions.size());
+  for (std::uint32_t v = 0; v < part.size(); ++v)
+    part[v] = v;
+  const auto root = [&](std::uint32_t v) {
+    while (part[v] != v)
+      v = part[v] = part[part[v]];
+    return v;
+  };
+  for (std::size_t t = 0; t + 2 < indices.size(); t += 3)
+    for (int k = 1; k < 3; ++k)
+      part[root(indices[t + k])] = root(indices[t]);
+  std::vector<std::uint8_t> survives(positions.size(), 0);
+  for (const unsigned int v : kept)
+    survives[root(v)] = 1;
+  std::vector<glm::vec3> lo(positions.size(), glm::vec3(std::numeric_limits<float>::max()));
+  std::vector<glm::vec3> hi(positions.size(), glm::vec3(std::numeric_limits<float>::lowest()));
+  for (const unsigned int v : indices) {
+    const std::uint32_t r = root(v);
+    lo[r] = glm::min(lo[r], positions[v]);
+    hi[r] = glm::max(hi[r], positions[v]);
+  }
+  float longest = 0.0f;
+  for (std::uint32_t r = 0; r < positions.size(); ++r)
+    if (part[r] == r && !survives[r] && hi[r].x >= lo[r].x) {
+      const glm::vec3 side = hi[r] - lo[r];
+      longest = std::max({longest, side.x, side.y, side.z});
+    }
+  return longest;
+}
 
 // One pass of the simplifier over `source` within `targetError` (the mesh's units).
 SimplifiedMesh simplifyOnce(const Mesh& source, float targetError) {
@@ -48,6 +87,7 @@ SimplifiedMesh simplifyOnce(const Mesh& source, float targetError) {
       weldedCount, sizeof(glm::vec3), 0, targetError / scale, 0, &relativeError);
   simplified.resize(indexCount);
   out.error = relativeError * scale;
+  out.removedPart = longestRemovedPart(weldedPositions, weldedIndices, simplified);
 
   // Each corner takes the source vertex at its position whose normal is nearest the
   // triangle's own (the first of equals): a flat face keeps its normal and uvs.
@@ -118,7 +158,9 @@ std::vector<MeshLod> buildMeshLods(const Mesh& mesh, const MeshLodSettings& sett
     const std::size_t finerTriangles = finer->indices.size() / 3;
     if (kept == 0 || double(kept) > settings.maxTriangleFraction * double(finerTriangles))
       break;
-    lods.push_back({std::move(pass.mesh), finerError + pass.error});
+    const float removedPart =
+        lods.empty() ? pass.removedPart : std::max(lods.back().removedPart, pass.removedPart);
+    lods.push_back({std::move(pass.mesh), finerError + pass.error, removedPart});
     finer = &lods.back().mesh;
     finerError = lods.back().error;
   }

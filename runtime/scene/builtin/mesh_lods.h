@@ -33,7 +33,11 @@ struct MeshLodSettings {
 // The LODs of `mesh`, finest first (empty when none pays). Each level simplifies the one
 // before it (welded by position, so that the faces of a box, split for their normals,
 // collapse together), so its error is the sum of the passes' errors: a bound on the
-// distance from the mesh's surface, in the mesh's units. A level's corners take the
+// distance from the mesh's surface, in the mesh's units; and it records the longest part it
+// (or a finer level) removed whole (MeshLod::removedPart), which the LOD choice counts as
+// well: a window frame collapses within its thickness, 0.2 m, but what goes is 1.5 m long
+// (on lavapipe, counting it took the small city's mirror view from an LDR-FLIP of 0.036 to
+// 0.0065 against unculled at --lod-pixel-error 1). A level's corners take the
 // attributes of the mesh's vertex at that position whose normal is nearest the simplified
 // triangle's own, so flat faces keep their normals and uvs.
 std::vector<MeshLod> buildMeshLods(const Mesh& mesh, const MeshLodSettings& settings = {});

@@ -64,8 +64,8 @@ void bufferHitFeedback(uint slot, uint weight) {
 // needs): the narrowest ray cone that reached an instance in a counted ray, which the host's
 // LOD choice compares with each level's error, so that what a mirror magnifies keeps its
 // detail where its distance alone would not. A run of hits on one instance keeps its minimum
-// here and writes it once. The megakernel writes them; the wavefront's trace pass, which
-// knows no cone width at the hit, writes none, so its LODs follow distance.
+// here and writes it once. Both architectures write them: the megakernel from surfaceAt's
+// cone width, the wavefront's trace pass from the cone its path state carries.
 uint g_footprintInstance = 0xFFFFFFFFu;
 float g_footprintWidth = 0.0;
 

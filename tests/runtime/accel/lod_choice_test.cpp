@@ -1,9 +1,10 @@
 // The mesh LODs' choice on the host (runtime/accel/lod_choice.h; seeds/001 §3.1.1, §3.3.1) with
 // made-up feedback: an instance takes the coarsest level whose world error fits its footprint; with
 // no feedback, a pixel at its distance; a narrow cone from a magnifying mirror keeps a far
-// instance at its finest where distance alone would simplify it; a wide one (seen only
-// through diffuse bounces) lets a near one go coarse; switching coarser needs a margin; a
-// light's quad and meshes without LODs stay whole; bad input is refused.
+// instance at its finest where distance alone would simplify it; a wide one (a diffuse
+// bounce's) never takes an instance coarser than its distance; the narrowest cone of recent
+// counting frames decides; a part removed whole counts its length; switching coarser needs a
+// margin; a light's quad and meshes without LODs stay whole; bad input is refused.
 #include <cstring>
 
 #include <gtest/gtest.h>
@@ -102,19 +103,44 @@ TEST(LodChoice, WhatAMirrorMagnifiesStaysDetailed) {
   EXPECT_EQ(byCones.wanted()[1], 0u) << "no feedback: its distance";
   EXPECT_FALSE(byCones.fromFeedback(1));
 
-  // And the other way: the near instance seen only through a diffuse bounce's wide cone.
+  // But not the other way: a diffuse bounce's wide cone reaches the near instance, which the
+  // camera sees beside it (or whose shadow it sees) at its distance's pixel (0.04).
   footprints[1] = bits(0.5f);
   byCones.update(origin(), 0.01f, footprints);
-  EXPECT_EQ(byCones.wanted()[1], 2u) << "its distance's pixel (0.04) would keep it whole";
+  EXPECT_EQ(byCones.wanted()[1], 0u) << "a wide cone is no coarser than its distance";
+  EXPECT_FALSE(byCones.fromFeedback(1));
 }
 
-TEST(LodChoice, ACoarserLevelNeedsTheMarginAFinerOneNone) {
+// Sampled feedback counts 1 of a pixel's P paths a counting frame, so a mirror's narrow cone
+// reaches an instance only in some: the narrowest of the recent ones holds.
+TEST(LodChoice, TheNarrowestRecentConeDecides) {
   const Scene scene = lodScene();
   InstanceLodChoice choice(scene, instanceBounds(scene), 1.0f);
   std::vector<std::uint32_t> footprints(scene.instances.size(), kNoFootprint);
-  const auto wantedAt = [&](float footprint) {
-    footprints[0] = bits(footprint);
+  footprints[0] = bits(0.02f);
+  choice.update(origin(), 0.01f, footprints);
+  ASSERT_EQ(choice.wanted()[0], 0u);
+  footprints[0] = bits(0.5f);  // a diffuse bounce's, narrower than the distance's pixel (1)
+  for (int k = 0; k < InstanceLodChoice::kFeedbackMemory; ++k) {
     choice.update(origin(), 0.01f, footprints);
+    EXPECT_EQ(choice.wanted()[0], 0u) << "update " << k + 1 << " with a wider cone";
+  }
+  choice.update(origin(), 0.01f, footprints);
+  // Then the wide cone: 0.5 / 1.25 fits the 0.3 level.
+  EXPECT_EQ(choice.wanted()[0], 2u) << "the narrow cone forgotten";
+  EXPECT_TRUE(choice.fromFeedback(0));
+}
+
+// The margin, with the footprint a pixel at the instance's distance (0.01 rad a pixel): the
+// camera moves along z towards instance 0 at z = -100.
+TEST(LodChoice, ACoarserLevelNeedsTheMarginAFinerOneNone) {
+  const Scene scene = lodScene();
+  InstanceLodChoice choice(scene, instanceBounds(scene), 1.0f);
+  const auto wantedAt = [&](float footprint) {
+    Camera camera = origin();
+    camera.position.z = -100.0f + footprint / 0.01f;
+    camera.target = camera.position + glm::vec3(0.0f, 0.0f, -1.0f);
+    choice.update(camera, 0.01f, {});
     return choice.wanted()[0];
   };
   ASSERT_EQ(wantedAt(0.05f), 0u);
@@ -147,6 +173,18 @@ TEST(LodChoice, WhatTheFeedbackMissesForAFewFramesKeepsItsLevel) {
   choice.update(origin(), 0.01f, none);
   // Then its distance: a footprint of 1 fits the 0.9 level, but not by the coarser margin.
   EXPECT_EQ(choice.wanted()[0], 2u) << "then its distance";
+}
+
+// A level that removes a part whole counts the part's length, what a viewer sees go, where it
+// exceeds the simplifier's error (a window frame 1.5 m long that stood 0.2 m out).
+TEST(LodChoice, APartRemovedWholeCountsItsLength) {
+  Scene scene = lodScene();
+  scene.meshLods[0][1].removedPart = 0.9f;  // level 2: error 0.3, but a part 0.9 long gone
+  InstanceLodChoice choice(scene, instanceBounds(scene), 1.0f);
+  std::vector<std::uint32_t> footprints(scene.instances.size(), kNoFootprint);
+  footprints[0] = bits(0.5f);
+  choice.update(origin(), 0.01f, footprints);
+  EXPECT_EQ(choice.wanted()[0], 1u) << "0.5 fits the 0.3 error, not the 0.9 part";
 }
 
 TEST(LodChoice, BadInputIsRefused) {

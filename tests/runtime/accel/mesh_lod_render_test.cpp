@@ -1,7 +1,7 @@
 // Mesh LODs in culled renders on lavapipe (seeds/001 §3.1.1, §3.3.1; docs/design/culling.md, "Mesh
 // LODs"): BLASes are shared per (mesh, LOD); what a curved mirror magnifies keeps its finest
-// level though its distance alone would take the coarsest; on the small city's paths the
-// peak AS memory falls with LODs, and the picture stays within a stated FLIP.
+// level though its distance alone would take the coarsest, and the wavefront chooses as the
+// megakernel does there; on the small city's paths the peak AS memory falls with LODs.
 #include <cmath>
 #include <cstdio>
 #include <set>
@@ -137,38 +137,67 @@ Mesh concaveMirror(glm::vec3 centre, float radius, float halfAngleDegrees, int c
   return mesh;
 }
 
-TEST(MeshLodRender, WhatACurvedMirrorMagnifiesKeepsItsFinestLod) {
+// The mirror and the wall behind the camera, and the camera looking into the mirror.
+struct MirroredWall {
   Scene scene;
+  Camera camera;
+};
+
+MirroredWall mirroredWall() {
+  MirroredWall m;
+  Scene& scene = m.scene;
   const glm::vec3 centre{0.0f, 5.0f, 0.0f};
   scene.meshes.push_back(concaveMirror(centre, 20.0f, 20.0f, 24));
   scene.meshes.push_back(windowedWall());
   addMeshLods(scene, {1});
-  ASSERT_GE(scene.meshLods[1].size(), 2u);
   scene.materials.push_back({"Mirror", "", mirrorGraph("Mirror")});
   // The wall's windows face the mirror (+z) 130 m out from it (z = 20 - 130), centred on its
   // axis (y = 5).
   const glm::mat4 wallPlace = glm::translate(glm::mat4(1.0f), {0.0f, -8.0f, -110.0f});
   scene.instances = {{0, 0, glm::mat4(1.0f)}, {1, 0, wallPlace}};
-  Camera camera;
-  camera.position = {0.0f, 5.0f, 9.0f};
-  camera.target = {0.0f, 5.0f, 20.0f};
-  camera.verticalFovDegrees = 40.0f;
-  scene.camera = camera;
+  m.camera.position = {0.0f, 5.0f, 9.0f};
+  m.camera.target = {0.0f, 5.0f, 20.0f};
+  m.camera.verticalFovDegrees = 40.0f;
+  scene.camera = m.camera;
   scene.environment.constantRadiance = glm::vec3(0.5f, 0.6f, 0.8f);
+  return m;
+}
 
+RenderResult renderMirroredWall(const MirroredWall& m, Shading shading) {
   RendererOptions o = lodOptions(CullingMode::Lipac, true, false);
+  o.shading = shading;
   o.culling.feedbackEvery = 1;  // the wall comes in a few frames: hitbox, box, instance
-  const RenderSettings s = tiny(8, {camera});
-  const RenderResult r = render(o, scene, s);
+  return render(o, m.scene, tiny(8, {m.camera}));
+}
+
+TEST(MeshLodRender, WhatACurvedMirrorMagnifiesKeepsItsFinestLod) {
+  const MirroredWall m = mirroredWall();
+  ASSERT_GE(m.scene.meshLods[1].size(), 2u);
+  const RenderResult r = renderMirroredWall(m, Shading::Megakernel);
   ASSERT_EQ(r.instanceStates.size(), 2u);
   ASSERT_EQ(r.instanceStates[1], InstanceState::Active) << "the mirror shows the wall";
   ASSERT_EQ(r.instanceLods.size(), 2u);
   EXPECT_EQ(r.instanceLods[1], 0u) << "the magnified wall keeps its finest LOD";
 
   // Distance alone, at the same camera and pixel, would take the wall's coarsest level.
-  InstanceLodChoice byDistance(scene, instanceBounds(scene), o.culling.lodPixelError);
-  byDistance.update(camera, pixelSpreadAngle(camera, s.height), {});
-  EXPECT_EQ(byDistance.wanted()[1], scene.meshLods[1].size());
+  InstanceLodChoice byDistance(m.scene, instanceBounds(m.scene), CullingOptions{}.lodPixelError);
+  byDistance.update(m.camera, pixelSpreadAngle(m.camera, tiny(1).height), {});
+  EXPECT_EQ(byDistance.wanted()[1], m.scene.meshLods[1].size());
+}
+
+// The wavefront's trace pass writes the same footprints (the cone its path state carries,
+// at the hit), so it chooses the megakernel's LODs: the magnified wall keeps its finest level
+// there too, where without footprints its distance would take the coarsest.
+TEST(MeshLodRender, TheWavefrontChoosesTheMegakernelsLodsForAMirroredWall) {
+  const MirroredWall m = mirroredWall();
+  const RenderResult megakernel = renderMirroredWall(m, Shading::Megakernel);
+  const RenderResult wavefront = renderMirroredWall(m, Shading::Wavefront);
+  EXPECT_EQ(wavefront.stats.shading, "wavefront");
+  ASSERT_EQ(wavefront.instanceStates.size(), 2u);
+  ASSERT_EQ(wavefront.instanceStates[1], InstanceState::Active) << "the mirror shows the wall";
+  ASSERT_EQ(wavefront.instanceLods.size(), 2u);
+  EXPECT_EQ(wavefront.instanceLods[1], 0u) << "the magnified wall keeps its finest LOD";
+  EXPECT_EQ(wavefront.instanceLods, megakernel.instanceLods);
 }
 
 // The small city's street path (its first 12 cameras, flying in) and its aerial path (the

@@ -582,8 +582,10 @@ void main() {
   uint i = invocationIndex();
   if (i < control.counts.x) {
     uint slot = pathQueues[queueIndex(push.step.z, i)];
-    vec3 origin = pathState[fieldIndex(kFieldOrigin, slot)].xyz;
-    vec3 direction = pathState[fieldIndex(kFieldDirection, slot)].xyz;
+    vec4 originField = pathState[fieldIndex(kFieldOrigin, slot)];  // w: the ray cone's width
+    vec4 directionField = pathState[fieldIndex(kFieldDirection, slot)];  // w: its spread
+    vec3 origin = originField.xyz;
+    vec3 direction = directionField.xyz;
     HitInfo hit;
 #ifdef MG_WAVEFRONT_PRIMARY_FIELD
     bool sharedCameraRay = push.step.y == 0u && (frame.path.z & kFlagSharedPrimaryRay) != 0u;
@@ -610,7 +612,17 @@ void main() {
     }
 #endif
 #ifdef MG_HIT_FEEDBACK
-    countHitFeedback(origin, direction, hit, traceFeedbackWeight(slot));
+    uint weight = traceFeedbackWeight(slot);
+    countHitFeedback(origin, direction, hit, weight);
+    // The mesh LODs' footprint (seeds/001 §3.1.1): the cone's width at the hit, as the
+    // megakernel's surfaceAt measures it (eq. 2.10), from the cone the path state carries, so
+    // both architectures choose the same LODs.
+    if (weight != 0u && hit.t >= 0.0) {
+      RayCone cone;
+      cone.width = originField.w;
+      cone.spread = directionField.w;
+      bufferHitFootprint(hit.instanceIndex, rayConeWidthAt(cone, hit.t));
+    }
     flushHitFeedback();
 #endif
   }

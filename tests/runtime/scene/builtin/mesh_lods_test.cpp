@@ -1,8 +1,10 @@
 // Mesh LODs (seeds/001 §3.3.1; runtime/scene/builtin/mesh_lods.h): each level has fewer
 // triangles than the one before within an error that grows, over the mesh's own vertices
-// and attributes; the same mesh gives the same LODs on every run; the city's buildings get
-// them and its shared props and moving flags do not; small or broken meshes get none.
+// and attributes; a level records the longest part it removes whole; the same mesh gives the
+// same LODs on every run; the city's buildings get them and its shared props and moving flags
+// do not; small or broken meshes get none.
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <set>
 #include <tuple>
@@ -81,6 +83,30 @@ TEST(MeshLods, EachLevelShrinksWithinAGrowingErrorOverTheMeshsOwnVertices) {
   }
   // The coarsest level has lost the window frames: a few percent of the wall's triangles.
   EXPECT_LT(lods.back().mesh.indices.size(), wall.indices.size() / 10);
+}
+
+// A level that collapses a part whole records the part's longest side, which a viewer sees
+// go, beside the simplifier's error, its thickness: the wall's window frames (1.4 to 1.8 m
+// long, at most 0.23 m out) are gone by the coarsest level, and no level removes more than a
+// window's height (a jamb welded to its lintel, 1.8 m).
+TEST(MeshLods, ALevelRecordsTheLongestPartItRemovesWhole) {
+  const std::vector<MeshLod> lods = buildMeshLods(windowedWall());
+  ASSERT_FALSE(lods.empty());
+  float finer = 0.0f;
+  for (std::size_t l = 0; l < lods.size(); ++l) {
+    std::printf("level %zu: %zu triangles, error %.3f m, removed part %.3f m\n", l + 1,
+                lods[l].mesh.indices.size() / 3, lods[l].error, lods[l].removedPart);
+    EXPECT_GE(lods[l].removedPart, finer) << "level " << l + 1;
+    EXPECT_LE(lods[l].removedPart, 1.8f + 1e-4f) << "level " << l + 1;
+    finer = lods[l].removedPart;
+  }
+  // The first level that removes a window's parts (their frames stand 0.23 m out at most)
+  // records their length, many times the simplifier's error.
+  const auto first = std::find_if(lods.begin(), lods.end(),
+                                  [](const MeshLod& lod) { return lod.removedPart > 0.0f; });
+  ASSERT_NE(first, lods.end());
+  EXPECT_GE(first->removedPart, 1.5f - 1e-4f);
+  EXPECT_GT(first->removedPart, 4.0f * first->error);
 }
 
 TEST(MeshLods, TheSameMeshGivesTheSameLods) {
