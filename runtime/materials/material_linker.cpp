@@ -77,7 +77,8 @@ std::uint32_t cacheOutputMask(const std::vector<std::string>& outputsWritten,
                                     {"opacity", gpu::kCacheOutputOpacity, 1},
                                     {"specular", gpu::kCacheOutputSpecular, 1},
                                     {"specularTint", gpu::kCacheOutputSpecularTint, 1},
-                                    {"cyclesPrincipled", gpu::kCacheOutputCyclesPrincipled, 1}};
+                                    {"cyclesPrincipled", gpu::kCacheOutputCyclesPrincipled, 1},
+                                    {"lobes", gpu::kCacheOutputLobes, gpu::kCacheLobeValues}};
   std::uint32_t mask = 0, floats = 0;
   for (const std::string& name : outputsWritten) {
     bool known = false;
@@ -244,9 +245,12 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
     if (std::any_of(entry.inputsUsed.begin(), entry.inputsUsed.end(),
                     [](const std::string& input) { return compiler::isPathInput(input); }))
       linked.pathInputs = true;
-    for (const std::string& output : compiled->metadata.outputsWritten)
+    for (const std::string& output : compiled->metadata.outputsWritten) {
       if (output == "specularTint" || output == "cyclesPrincipled")
         linked.cyclesPrincipled = true;
+      if (output == "lobes")
+        linked.bsdfLobes = true;
+    }
     entry.textureCount = compiled->metadata.textures.size();
     if (entry.cacheable) {
       entry.cacheOutputMask =
