@@ -6,7 +6,8 @@
 Runs compare_scene.py for every bsdf_* scene (each BSDF tree on a sphere, and the room) into
 DIR/<scene>, reads each one's result.json and prints a Markdown table: the mean LDR-FLIP and
 the mean brightness difference (memograph - Cycles, relative), and whether both meet the
-targets. Exit 1 if a scene could not be rendered or missed a target.
+targets (0.05 and 2 %; the room's ctest allows more FLIP, compare_scene.BSDF_FLIP_LIMITS).
+Exit 1 if a scene could not be rendered or failed its ctest's limits.
 """
 
 import argparse
@@ -41,8 +42,9 @@ def main(argv=None):
             r = json.load(f)
         if code != 0:
             failed.append(scene)
+        meets = r['flip'] <= compare_scene.BSDF_FLIP_LIMIT and abs(r['brightness']) <= 0.02
         rows.append('| %s | %.4f | %+.2f %% | %s |' % (
-            scene, r['flip'], 100 * r['brightness'], 'yes' if code == 0 else 'no'))
+            scene, r['flip'], 100 * r['brightness'], 'yes' if meets else 'no'))
     print('| scene | mean LDR-FLIP (<= %.2f) | mean brightness vs Cycles (within 2 %%) | '
           'meets both |' % compare_scene.BSDF_FLIP_LIMIT)
     print('| --- | --- | --- | --- |')
