@@ -308,8 +308,16 @@ def sphere(name, material, location, radius):
     return obj
 
 
+def unbiased_glossy():
+    """Cycles' Filter Glossy off: its default (1) widens glossy lobes after a diffuse bounce, a
+    biased shortcut memograph does not take (with it, light that the room's Glossy ball
+    reflects onto the floor comes 3-5 % darker in Cycles)."""
+    bpy.context.scene.cycles.blur_glossy = 0.0
+
+
 def bsdf_scene(tree):
     """A sphere of one BSDF tree on a grey checker floor, under a blue-grey sky and a sun."""
+    unbiased_glossy()
     world(color=(0.3, 0.35, 0.45))
     plane('Floor', 6.0, diffuse('Floor', albedo_node=lambda nt, c: checker(
         nt, c, (0.7, 0.7, 0.7), (0.25, 0.25, 0.25), 6.0)))
@@ -322,6 +330,7 @@ def bsdf_scene(tree):
 def bsdf_room_scene():
     """A lit room of several BSDFs: a Mix-Shader floor (checker between Diffuse and Glossy),
     Oren-Nayar walls, a Velvet ball and a Glossy GGX ball; a point light and a panel."""
+    unbiased_glossy()
     world()
     floor = bpy.data.materials.new('Floor')
     floor.use_nodes = True
