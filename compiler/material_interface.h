@@ -67,8 +67,9 @@ inline bool isTracedInput(std::string_view name) {
   return std::find(first, kMaterialInputNames.end(), name) != kMaterialInputNames.end();
 }
 
-inline constexpr std::array<std::string_view, 9> kMaterialOutputNames = {
+// `lobes`: the BSDF lobes that the BSDF sinks add (nodes/bsdf.inc; docs/design/closures.md).
+inline constexpr std::array<std::string_view, 10> kMaterialOutputNames = {
     "baseColor",        "metallic", "roughness", "specular", "specularTint",
-    "cyclesPrincipled", "normal",   "emission",  "opacity"};
+    "cyclesPrincipled", "normal",   "emission",  "opacity",  "lobes"};
 
 }  // namespace memograph::compiler

@@ -87,7 +87,8 @@ std::uint32_t cacheOutputMask(const std::vector<std::string>& outputsWritten,
                                     {"opacity", gpu::kCacheOutputOpacity, 1},
                                     {"specular", gpu::kCacheOutputSpecular, 1},
                                     {"specularTint", gpu::kCacheOutputSpecularTint, 1},
-                                    {"cyclesPrincipled", gpu::kCacheOutputCyclesPrincipled, 1}};
+                                    {"cyclesPrincipled", gpu::kCacheOutputCyclesPrincipled, 1},
+                                    {"lobes", gpu::kCacheOutputLobes, gpu::kCacheLobeValues}};
   std::uint32_t mask = 0, floats = 0;
   for (const std::string& name : outputsWritten) {
     bool known = false;
@@ -293,9 +294,12 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
       entry.bevelRadius = static_cast<float>(bevel->radius);
       entry.bevelSamples = bevel->samples;
     }
-    for (const std::string& output : compiled->metadata.outputsWritten)
+    for (const std::string& output : compiled->metadata.outputsWritten) {
       if (output == "specularTint" || output == "cyclesPrincipled")
         linked.cyclesPrincipled = true;
+      if (output == "lobes")
+        linked.bsdfLobes = true;
+    }
     entry.textureCount = compiled->metadata.textures.size();
     // A whole uv-only material's key is a uv texel: it is cached only with the uv domain.
     if (!(options.cacheKeyDomains & kCacheKeyUv))

@@ -85,6 +85,9 @@ struct LinkedMaterials {
   // Some material writes specularTint or cyclesPrincipled: the path tracer needs
   // MG_CYCLES_PRINCIPLED (brdf.glsl), which other scenes do without.
   bool cyclesPrincipled = false;
+  // Some material writes BSDF lobes (nodes/bsdf.inc): the path tracer needs MG_BSDF_LOBES
+  // (bsdf_lobes.glsl), which other scenes do without, so their kernels stay as they were.
+  bool bsdfLobes = false;
   // Some material reads an object-space input (generated, objectPosition, geometricNormal,
   // objectLocation, objectRandom, backfacing); without one the shaders define
   // MG_OMIT_OBJECT_INPUTS and MaterialInputs carries none of them.

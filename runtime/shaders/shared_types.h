@@ -140,6 +140,9 @@ MG_CONSTANT(uint, kPathStateFieldsForPathInputs, 1);
 // point (its hit, and the shading point it is seen from), for the material pass after the
 // shadow pass.
 MG_CONSTANT(uint, kPathStateFieldsForLightPoints, 2);
+// With materials of BSDF lobes (MG_BSDF_LOBES), two per lobe after those: its weight and kind,
+// its parameters (MaterialOutputs::lobeWeight, lobeParameters; MG_MAX_LOBES of them).
+MG_CONSTANT(uint, kPathStateFieldsForLobes, 8);
 
 // The wavefront's queue counts and indirect arguments (binding kBindingWavefrontControl).
 // Each launch block is a VkDispatchIndirectCommand (work groups) or a
@@ -221,6 +224,10 @@ MG_CONSTANT(uint, kCacheOutputOpacity, 32);
 MG_CONSTANT(uint, kCacheOutputSpecular, 64);
 MG_CONSTANT(uint, kCacheOutputSpecularTint, 128);
 MG_CONSTANT(uint, kCacheOutputCyclesPrincipled, 256);
+// The BSDF lobes (MaterialOutputs::lobeCount, lobeWeight, lobeParameters; nodes/bsdf.inc):
+// the count, then per lobe of MG_MAX_LOBES its weight, kind and roughness.
+MG_CONSTANT(uint, kCacheOutputLobes, 512);
+MG_CONSTANT(uint, kCacheLobeValues, 21);  // 1 + MG_MAX_LOBES (4) x 5
 // The key domain of a material's cut (compiler/cut.h) as the texel cache keys it
 // (mg_materialCutInfo.x, MG_CACHE_CUTS): none runs the whole graph uncached; uv keys the
 // cut's values by (material, uv texel, mip level) as §5.3.2 keys whole outputs; object by

@@ -34,6 +34,9 @@ struct ShaderBuild {
   // Likewise without the traced inputs (Ambient Occlusion) when no graph reads them: the
   // megakernel then traces no rays for them.
   bool omitTracedInputs = false;
+  // Likewise MaterialOutputs without the BSDF lobes when no graph writes them
+  // (MG_OMIT_BSDF_LOBES): the callable payload keeps its size and the tracer its BRDF alone.
+  bool omitBsdfLobes = false;
   // The texel cache keys materials by their cut (MG_CACHE_CUTS, texel_cache.glsl): see
   // cutKeys.
   bool cutKeys = false;
@@ -64,6 +67,8 @@ MaterialCallables compileCallables(const ShaderBuild& b,
     callableOptions.defines.push_back("MG_OMIT_PATH_INPUTS=1");
   if (b.omitTracedInputs)
     callableOptions.defines.push_back("MG_OMIT_TRACED_INPUTS=1");
+  if (b.omitBsdfLobes)
+    callableOptions.defines.push_back("MG_OMIT_BSDF_LOBES=1");
   callableOptions.files = files;
   callableOptions.cacheDirectory = b.inputs.shaderCacheDirectory;
   callableOptions.textureCount = b.inputs.scene->textures->count();
@@ -93,6 +98,9 @@ std::vector<std::string> pathTracerDefines(const ShaderBuild& b, const MaterialC
   // Cycles' Principled weighting, only for scenes whose materials write it (brdf.glsl).
   if (b.inputs.materials->linked.cyclesPrincipled && !b.floor)
     defines.push_back("MG_CYCLES_PRINCIPLED=1");
+  // BSDF lobes (Diffuse, Glossy, Velvet BSDF, Mix Shader), only for scenes whose materials
+  // write them (bsdf_lobes.glsl); the others' MaterialOutputs carry none.
+  defines.push_back(b.omitBsdfLobes ? "MG_OMIT_BSDF_LOBES=1" : "MG_BSDF_LOBES=1");
   // Emissive-triangle NEE and its MIS, only for scenes with emissive triangles; with free
   // materials too, so the floor traces the same rays. NEE evaluates emitters whose emission
   // is not a known constant: a second material call site, compiled only for scenes that
@@ -185,6 +193,7 @@ RenderPipelines buildPipelines(const VulkanContext& context, const RendererOptio
   b.omitObjectInputs = b.floor || !inputs.materials->linked.objectInputs;
   b.omitPathInputs = b.floor || !inputs.materials->linked.pathInputs;
   b.omitTracedInputs = b.floor || !inputs.materials->linked.tracedInputs;
+  b.omitBsdfLobes = b.floor || !inputs.materials->linked.bsdfLobes;
   const LinkedMaterials& materials = inputs.materials->linked;
   // Shaders: the embedded sources plus the generated materials.glsl; with callables, also
   // one callable shader per distinct material. The wavefront evaluates graphs in material

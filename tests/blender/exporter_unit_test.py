@@ -628,13 +628,26 @@ class ShaderTest(unittest.TestCase):
         tree.link(mix.outputs[0], add.inputs[0])
         tree.link(em.outputs[0], add.inputs[1])
         tree.link(add.outputs[0], out.inputs[0])
+        # Diffuse, Glossy, Emission, Mix and Add only: written exactly as lobes (lobes.py).
         result, (text,) = export([Material('Mat', tree)])
+        self.assertIn('MixShader Fac=0.25 Weight=1 WeightA>0 WeightB>1;', text)
+        self.assertIn('DiffuseBsdf Color=(0.5, 0.100000001, 0.100000001) Roughness=0 '
+                      'Weight<0;', text)
+        self.assertIn('GlossyBsdf Color=(0.899999976, 0.899999976, 0.899999976) '
+                      'Roughness=0.200000003 Distribution=0 Weight<1;', text)
+        self.assertIn('EmissionOutput Color=(1, 1, 1) Strength=1;', text)
+        self.assertNotIn('PrincipledOutput', text)
+        self.assertEqual(result.warnings, [])
+        # A shader that is not a lobe in the tree (here a Holdout in the Mix): the whole
+        # surface falls back to the Principled approximation, with its warnings.
+        tree.links[1] = NLink(holdout.outputs[0], mix.inputs[2])
+        result, (text,) = export([Material('Mat1', tree)])
         self.assertIn('Saturate In=0.25 Out>0;', text)
-        self.assertIn('Mix A=(0.5, 0.100000001, 0.100000001) B=(0.899999976, 0.899999976, '
-                      '0.899999976) Factor<0 Out>1;', text)
+        self.assertIn('Mix A=(0.5, 0.100000001, 0.100000001) B=(0.800000012, 0.800000012, '
+                      '0.800000012) Factor<0 Out>1;', text)
         self.assertIn('PrincipledOutput', text)
         msgs = ' | '.join(w[2] for w in result.warnings)
-        for what in ('Diffuse BSDF approximated', 'Glossy BSDF approximated',
+        for what in ('Diffuse BSDF approximated', 'ShaderNodeHoldout is not supported',
                      'Mix Shader approximated', 'Add Shader approximated'):
             self.assertIn(what, msgs)
         # An unsupported shader: a warning and the defaults.

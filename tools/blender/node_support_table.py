@@ -71,6 +71,20 @@ NOT_SUPPORTED = {
     'ShaderNodeVolumePrincipled': 'no volumes',
     'ShaderNodeOutputLineStyle': 'Freestyle',
 }
+# Shaders written exactly as BSDF lobes (memograph_export/lobes.py, nodes/bsdf.inc) when the
+# surface's tree holds only these, Emission and at most lobes.MAX_LOBES BSDFs; in a tree with
+# any other shader (Principled, Glass, Transparent, ...) APPROXIMATIONS' Principled fallback.
+LOBE_SHADERS = {
+    'ShaderNodeBsdfDiffuse': 'lobe `DiffuseBsdf` (Lambert; Oren-Nayar at Roughness > 0)',
+    'ShaderNodeBsdfGlossy': 'lobe `GlossyBsdf` (GGX, Beckmann, Sharp; Multiscatter GGX and '
+                            'Ashikhmin-Shirley as single-scatter GGX, warned)',
+    'ShaderNodeBsdfVelvet': 'lobe `VelvetBsdf` (Ashikhmin velvet)',
+    'ShaderNodeMixShader': '`MixShader` splits the weight by Fac (textured Fac too)',
+    'ShaderNodeAddShader': 'both shaders at its weight',
+}
+LOBE_CONDITION = ('in a tree of Diffuse, Glossy, Velvet, Emission, Mix and Add Shader only '
+                  '(at most 4 BSDFs); else ')
+
 HANDLED_BY_WALK = {
     'ShaderNodeOutputMaterial': 'the walk starts here (Surface carried; Volume, '
                                 'Displacement warned)',
@@ -87,6 +101,12 @@ def rows(categories, table, shader_writers, node_outputs):
             spec = getattr(writer, 'spec', None)
             if bl_idname in HANDLED_BY_WALK:
                 status, how = 'supported', HANDLED_BY_WALK[bl_idname]
+            elif bl_idname in LOBE_SHADERS:
+                fallback = APPROXIMATIONS.get(bl_idname) or (
+                    'parameters blended by Fac' if bl_idname == 'ShaderNodeMixShader' else
+                    'a default Principled with its Color, Roughness and Normal')
+                status = 'supported'
+                how = '%s %s%s (warned)' % (LOBE_SHADERS[bl_idname], LOBE_CONDITION, fallback)
             elif bl_idname in shader_writers:
                 note = APPROXIMATIONS.get(bl_idname)
                 if bl_idname == 'ShaderNodeBsdfPrincipled':

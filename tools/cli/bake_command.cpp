@@ -238,6 +238,10 @@ std::vector<OutputImage> outputImages(const runtime::BakeOutputs& baked,
       scalar = &baked.cyclesPrincipled;
     } else if (name == "opacity") {
       scalar = &baked.opacity;
+    } else if (name == "lobes") {
+      throw std::runtime_error(
+          "the material writes BSDF lobes (Diffuse, Glossy or Velvet BSDF), "
+          "which a bake cannot store in textures: bake a Principled BSDF");
     } else {
       throw std::runtime_error("the material writes '" + name +
                                "', an output this bake does not know");

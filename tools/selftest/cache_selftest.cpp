@@ -33,6 +33,8 @@ layout(set = 0, binding = kBindingRayCounter, std430) buffer ResultBlock {
 };
 struct float2_D { vec2 v; vec2 x; vec2 y; };
 struct MaterialInputs { float2_D uv; };
+// No BSDF lobes in this stub (the prelude's MG_OMIT_BSDF_LOBES layout).
+#define MG_OMIT_BSDF_LOBES 1
 struct MaterialOutputs {
   vec3 baseColor; float metallic; float roughness; vec3 normal; vec3 emission; float opacity;
   float specular; float specularTint; float cyclesPrincipled;

@@ -452,6 +452,18 @@ void cachePack(uint mask, MaterialOutputs o, out float values[MG_CACHE_VALUES]) 
     values[n] = o.cyclesPrincipled;
     n += 1u;
   }
+#ifndef MG_OMIT_BSDF_LOBES
+  if ((mask & kCacheOutputLobes) != 0u) {
+    values[n] = float(o.lobeCount);
+    for (uint i = 0u; i < uint(MG_MAX_LOBES); ++i) {
+      uint at = n + 1u + 5u * i;
+      values[at] = o.lobeWeight[i].x; values[at + 1u] = o.lobeWeight[i].y;
+      values[at + 2u] = o.lobeWeight[i].z; values[at + 3u] = o.lobeWeight[i].w;
+      values[at + 4u] = o.lobeParameters[i].x;
+    }
+    n += kCacheLobeValues;
+  }
+#endif
 }
 
 // Outputs from cached values: the members the graph writes from the entry, the rest as the
@@ -483,6 +495,19 @@ MaterialOutputs cacheUnpack(uint mask, float values[MG_CACHE_VALUES], MaterialIn
     o.cyclesPrincipled = values[n];
     n += 1u;
   }
+#ifndef MG_OMIT_BSDF_LOBES
+  // A filtered entry blends several entries' lobes: the same kinds in the same order
+  // (mg_addLobe), so the count and kinds come back whole; rounded against float error.
+  if ((mask & kCacheOutputLobes) != 0u) {
+    o.lobeCount = int(round(values[n]));
+    for (uint i = 0u; i < uint(MG_MAX_LOBES); ++i) {
+      uint at = n + 1u + 5u * i;
+      o.lobeWeight[i] = vec4(values[at], values[at + 1u], values[at + 2u], round(values[at + 3u]));
+      o.lobeParameters[i] = vec4(values[at + 4u], 0.0, 0.0, 0.0);
+    }
+    n += kCacheLobeValues;
+  }
+#endif
   return o;
 }
 

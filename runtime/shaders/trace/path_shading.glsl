@@ -380,6 +380,9 @@ struct ShadingPoint {
   mat3 toLocal;
   vec3 wo;
   BrdfParameters brdf;
+#ifdef MG_BSDF_LOBES
+  BsdfLobes lobes;  // with count > 0 the BSDF (bsdf_lobes.glsl); brdf is then unused
+#endif
 };
 
 ShadingPoint shadingPointAt(SurfaceHit s, MaterialOutputs m, vec3 direction) {
@@ -394,7 +397,26 @@ ShadingPoint shadingPointAt(SurfaceHit s, MaterialOutputs m, vec3 direction) {
                             m.cyclesPrincipled);
   p.position = s.inputs.position.v;
   p.geometricNormal = s.geometricNormal;
+#ifdef MG_BSDF_LOBES
+  p.lobes = bsdfLobesFromMaterial(m);
+#endif
   return p;
+}
+
+// The shading point's BSDF times the cosine (local frame): its lobes, or the Principled BRDF.
+vec3 bsdfEvaluateCos(ShadingPoint p, vec3 wo, vec3 wi) {
+#ifdef MG_BSDF_LOBES
+  if (p.lobes.count > 0) return bsdfLobesEvaluateCos(p.lobes, wo, wi);
+#endif
+  return brdfEvaluateCos(p.brdf, wo, wi);
+}
+
+// The density with which continuePath samples wi (local frame).
+float bsdfPdf(ShadingPoint p, vec3 wo, vec3 wi) {
+#ifdef MG_BSDF_LOBES
+  if (p.lobes.count > 0) return bsdfLobesPdf(p.lobes, wo, wi);
+#endif
+  return brdfPdf(p.brdf, wo, wi);
 }
 
 // The MIS weight of emission found by a BSDF ray of pdf `previousBsdfPdf` (0: a camera ray)
@@ -438,7 +460,7 @@ bool sampleLightBeforeShadowRay(ShadingPoint p, inout Rng rng, out LightSample s
   bool found = samplePunctualLight(p.position, lightCount, u, s);
 #endif
   if (!found || dot(s.wi, p.geometricNormal) <= 0.0) return false;
-  fCos = brdfEvaluateCos(p.brdf, p.toLocal * p.wo, p.toLocal * s.wi);
+  fCos = bsdfEvaluateCos(p, p.toLocal * p.wo, p.toLocal * s.wi);
   if (all(equal(fCos, vec3(0.0)))) return false;
   return true;
 }
@@ -449,10 +471,40 @@ bool sampleLightBeforeShadowRay(ShadingPoint p, inout Rng rng, out LightSample s
 float lightSampleMisWeight(LightSample s, ShadingPoint p, bool mis) {
 #ifdef MG_EMISSIVE_NEE
   if (s.lightPdf > 0.0 && mis)
-    return misWeight(s.lightPdf, brdfPdf(p.brdf, p.toLocal * p.wo, p.toLocal * s.wi));
+    return misWeight(s.lightPdf, bsdfPdf(p, p.toLocal * p.wo, p.toLocal * s.wi));
 #endif
   return 1.0;
 }
+
+#ifdef MG_BSDF_LOBES
+// continuePath for a material of BSDF lobes (bsdf_lobes.glsl): one lobe picked by uLobe, a
+// direction drawn from it, the throughput weighted by the whole BSDF over the mixture's pdf.
+bool continuePathThroughLobes(ShadingPoint p, SurfaceHit s, vec3 woLocal, float uLobe,
+                              inout Rng rng, inout vec3 throughput, inout float previousBsdfPdf,
+                              inout RayCone cone, inout vec3 origin, inout vec3 direction,
+                              inout PathState path) {
+  vec2 u = rngNext2(rng);
+  int picked = bsdfLobesPick(p.lobes, uLobe);
+  if (picked < 0) return false;
+  int kind = p.lobes.kind[picked];
+  float roughness = p.lobes.roughness[picked];
+  vec3 wiLocal = lobeSample(kind, roughness, woLocal, u);
+  float pdf = bsdfLobesPdf(p.lobes, woLocal, wiLocal);
+  vec3 wi = transpose(p.toLocal) * wiLocal;
+  if (!(pdf > 0.0) || dot(wi, s.geometricNormal) <= 0.0) return false;
+  throughput *= bsdfLobesEvaluateCos(p.lobes, woLocal, wiLocal) / pdf;
+  previousBsdfPdf = pdf;
+  bool glossy = kind == MG_LOBE_GLOSSY_GGX || kind == MG_LOBE_GLOSSY_BECKMANN;
+  cone.spread += rayConeRoughnessSpread(glossy ? lobeAlpha(roughness) : 1.0) +
+                 rayConeCurvatureSpread(s.curvature, s.coneWidth, s.geometricNormal, direction);
+  cone.spread = min(cone.spread, kRayConeMaxSpread);
+  cone.width = s.coneWidth;
+  origin = offsetRayOrigin(p.position, s.geometricNormal);
+  direction = wi;
+  pathStateAfterReflection(path, glossy, roughness);
+  return true;
+}
+#endif
 
 // BRDF importance sampling of the next direction (eq. 2.9 with the lobe mixture): the
 // throughput, the pdf (for the next hit's MIS), the ray cone (eq. 2.11, 2.12), the ray and
@@ -463,6 +515,11 @@ bool continuePath(ShadingPoint p, SurfaceHit s, inout Rng rng, inout vec3 throug
                   inout vec3 direction, inout PathState path) {
   vec3 woLocal = p.toLocal * p.wo;
   float uLobe = rngNext(rng);
+#ifdef MG_BSDF_LOBES
+  if (p.lobes.count > 0)
+    return continuePathThroughLobes(p, s, woLocal, uLobe, rng, throughput, previousBsdfPdf, cone,
+                                    origin, direction, path);
+#endif
   vec3 wiLocal = brdfSample(p.brdf, woLocal, uLobe, rngNext2(rng));
   float pdf = brdfPdf(p.brdf, woLocal, wiLocal);
   vec3 wi = transpose(p.toLocal) * wiLocal;

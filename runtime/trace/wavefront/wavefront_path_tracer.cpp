@@ -110,11 +110,15 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   const std::uint32_t bins = materials ? static_cast<std::uint32_t>(materials->distinct.size()) : 0;
   // With --shared-primary two more after the others keep the camera ray's hit for the later
   // rounds (wavefront.glsl, MG_WAVEFRONT_PRIMARY_FIELD).
-  const std::uint32_t fieldsBeforePrimary =
+  // With BSDF lobes, their fields come before those (MG_WAVEFRONT_LOBE_FIELD).
+  const std::uint32_t fieldsBeforeLobes =
       !materials ? gpu::kPathStateFields
                  : gpu::kPathStateFieldsWithMaterials +
                        (materials->pathInputs ? gpu::kPathStateFieldsForPathInputs : 0u) +
                        (lightPoints_ ? gpu::kPathStateFieldsForLightPoints : 0u);
+  const bool lobes = materials && materials->bsdfLobes;
+  const std::uint32_t fieldsBeforePrimary =
+      fieldsBeforeLobes + (lobes ? gpu::kPathStateFieldsForLobes : 0u);
   const std::uint32_t fields = fieldsBeforePrimary + (setup.sharedPrimaryHits ? 2u : 0u);
   // Paths in flight: as asked, else every pixel, or as many as one storage binding of path
   // state, a row of work groups and the largest allocation hold (lavapipe's 128 MiB range:
@@ -167,6 +171,8 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   defines.insert(defines.end(), extraDefines.begin(), extraDefines.end());
   if (setup.sharedPrimaryHits)
     defines.push_back("MG_WAVEFRONT_PRIMARY_FIELD=" + std::to_string(fieldsBeforePrimary));
+  if (lobes)
+    defines.push_back("MG_WAVEFRONT_LOBE_FIELD=" + std::to_string(fieldsBeforeLobes));
   if (materials) {
     // Scene material id -> bin (its distinct graph), for the binning passes' lookup.
     std::string binOf = "uint[](";

@@ -377,9 +377,23 @@ def build_warnings():
     exp[mat.name] = [('P', 'Clearcoat/Coat = 0.5 is not carried'),
                      ('P', 'Transmission is linked but not carried')]
 
-    shaders = [('W_diffuse', 'ShaderNodeBsdfDiffuse', 'Diffuse BSDF approximated'),
-               ('W_glossy', 'ShaderNodeBsdfGlossy', 'Glossy BSDF approximated'),
-               ('W_transparent', 'ShaderNodeBsdfTransparent', 'Transparent BSDF approximated'),
+    # Diffuse and Glossy alone are written exactly as lobes (memograph_export/lobes.py): no
+    # warning; a Multiscatter GGX Glossy is written as GGX, warned.
+    for name, idname in (('W_diffuse', 'ShaderNodeBsdfDiffuse'),
+                         ('W_glossy', 'ShaderNodeBsdfGlossy')):
+        mat, nt, out = new_material(name)
+        s = nt.nodes.new(idname)
+        s.name = 'S'
+        nt.links.new(s.outputs[0], out.inputs['Surface'])
+        exp[name] = []
+    mat, nt, out = new_material('W_glossy_multiscatter')
+    s = nt.nodes.new('ShaderNodeBsdfGlossy')
+    s.name = 'S'
+    s.distribution = 'MULTI_GGX'
+    nt.links.new(s.outputs[0], out.inputs['Surface'])
+    exp['W_glossy_multiscatter'] = [('S', 'Multiscatter GGX is written as single-scatter GGX')]
+
+    shaders = [('W_transparent', 'ShaderNodeBsdfTransparent', 'Transparent BSDF approximated'),
                ('W_other_shader', 'ShaderNodeBsdfToon', 'ShaderNodeBsdfToon is not supported')]
     for name, idname, msg in shaders:
         mat, nt, out = new_material(name)
@@ -390,16 +404,18 @@ def build_warnings():
 
     for name, idname, msg in (('W_mix_shader', 'ShaderNodeMixShader', 'Mix Shader approximated'),
                               ('W_add_shader', 'ShaderNodeAddShader', 'Add Shader approximated')):
+        # With a Diffuse and an Emission the tree is exact (lobes); with a Toon BSDF, which is
+        # not a lobe, the whole surface falls back to the Principled approximation.
         mat, nt, out = new_material(name)
         s = nt.nodes.new(idname)
         s.name = 'S'
-        d = nt.nodes.new('ShaderNodeBsdfDiffuse')
+        d = nt.nodes.new('ShaderNodeBsdfToon')
         d.name = 'D'
         e = nt.nodes.new('ShaderNodeEmission')
         nt.links.new(d.outputs[0], s.inputs[-2])
         nt.links.new(e.outputs[0], s.inputs[-1])
         nt.links.new(s.outputs[0], out.inputs['Surface'])
-        exp[name] = [('S', msg), ('D', 'Diffuse BSDF approximated')]
+        exp[name] = [('S', msg), ('D', 'ShaderNodeBsdfToon is not supported')]
 
     mat, nt, out = new_material('W_image_modes')
     tex = nt.nodes.new('ShaderNodeTexImage')

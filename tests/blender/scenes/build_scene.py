@@ -21,6 +21,9 @@ no clamping, no light threshold) and DIR/export/ (the memograph exporter with --
   in PFM) of its middle, which compare_scene.py averages per tile.
 - light_path_camera: (a) an emissive panel whose colour Light Path's Is Camera Ray picks
   (red to the camera, blue to every other ray) over a grey floor, which it lights blue.
+- bsdf_<tree> (BSDF_TREES: diffuse, oren_nayar, glossy_ggx, glossy_beckmann, velvet, mix,
+  add): a smooth sphere of that BSDF (or Mix/Add Shader of BSDFs) on a checker floor under a
+  sky and a sun; bsdf_room: a room of several of them (docs/design/closures.md).
 - light_path_depth: (b) an emissive panel that emits only for Ray Depth 1 (black to the
   camera, lighting the floor and a wall directly, no bounced light). Both write
   DIR/tiles.json with their regions (panel, floor, wall) as the Principled scenes do.
@@ -237,6 +240,123 @@ def principled_scene(view='mirror'):
     return tiles
 
 
+def bsdf_node(nt, kind, **inputs):
+    n = nt.nodes.new(kind)
+    for name, value in inputs.items():
+        if name == 'distribution':
+            n.distribution = value
+        else:
+            n.inputs[name].default_value = (*value, 1) if isinstance(value, tuple) else value
+    return n
+
+
+# One BSDF (or Mix/Add Shader of BSDFs) per scene, nodes/bsdf.inc's lobes: the node tree's
+# root shader, built in a new material's tree.
+BSDF_TREES = {
+    'diffuse': lambda nt: bsdf_node(nt, 'ShaderNodeBsdfDiffuse', Color=(0.8, 0.3, 0.1),
+                                    Roughness=0.0),
+    'oren_nayar': lambda nt: bsdf_node(nt, 'ShaderNodeBsdfDiffuse', Color=(0.2, 0.4, 0.8),
+                                       Roughness=1.0),
+    'glossy_ggx': lambda nt: bsdf_node(nt, 'ShaderNodeBsdfGlossy', Color=(0.9, 0.7, 0.3),
+                                       Roughness=0.3, distribution='GGX'),
+    'glossy_beckmann': lambda nt: bsdf_node(nt, 'ShaderNodeBsdfGlossy', Color=(0.9, 0.7, 0.3),
+                                            Roughness=0.3, distribution='BECKMANN'),
+    'velvet': lambda nt: bsdf_node(nt, 'ShaderNodeBsdfVelvet', Color=(0.8, 0.2, 0.5),
+                                   Sigma=0.5),
+    'mix': lambda nt: mix_tree(nt),
+    'add': lambda nt: add_tree(nt),
+}
+
+
+def mix_tree(nt):
+    """Mix Shader with a textured factor (a checker) between Diffuse and Glossy GGX."""
+    mix = nt.nodes.new('ShaderNodeMixShader')
+    t = nt.nodes.new('ShaderNodeTexChecker')
+    t.inputs['Scale'].default_value = 3.0
+    t.inputs['Color1'].default_value = (0.8, 0.8, 0.8, 1)
+    t.inputs['Color2'].default_value = (0.2, 0.2, 0.2, 1)
+    nt.links.new(t.outputs['Fac'], mix.inputs['Fac'])
+    nt.links.new(bsdf_node(nt, 'ShaderNodeBsdfDiffuse', Color=(0.2, 0.6, 0.2)).outputs[0],
+                 mix.inputs[1])
+    nt.links.new(bsdf_node(nt, 'ShaderNodeBsdfGlossy', Color=(0.9, 0.9, 0.9), Roughness=0.2,
+                           distribution='GGX').outputs[0], mix.inputs[2])
+    return mix
+
+
+def add_tree(nt):
+    """Add Shader of a dark red Diffuse and a grey Glossy Beckmann."""
+    add = nt.nodes.new('ShaderNodeAddShader')
+    nt.links.new(bsdf_node(nt, 'ShaderNodeBsdfDiffuse', Color=(0.4, 0.1, 0.1)).outputs[0],
+                 add.inputs[0])
+    nt.links.new(bsdf_node(nt, 'ShaderNodeBsdfGlossy', Color=(0.5, 0.5, 0.5), Roughness=0.4,
+                           distribution='BECKMANN').outputs[0], add.inputs[1])
+    return add
+
+
+def bsdf_material(name, tree):
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    nt = m.node_tree
+    nt.nodes.clear()
+    o = nt.nodes.new('ShaderNodeOutputMaterial')
+    nt.links.new(BSDF_TREES[tree](nt).outputs[0], o.inputs['Surface'])
+    return m
+
+
+def sphere(name, material, location, radius):
+    bpy.ops.mesh.primitive_uv_sphere_add(segments=48, ring_count=24, radius=radius,
+                                         location=location)
+    obj = bpy.context.object
+    obj.name = name
+    obj.data.name = name
+    bpy.ops.object.shade_smooth()
+    obj.data.materials.append(material)
+    return obj
+
+
+def unbiased_glossy():
+    """Cycles' Filter Glossy off: its default (1) widens glossy lobes after a diffuse bounce, a
+    biased shortcut memograph does not take (with it, light that the room's Glossy ball
+    reflects onto the floor comes 3-5 % darker in Cycles)."""
+    bpy.context.scene.cycles.blur_glossy = 0.0
+
+
+def bsdf_scene(tree):
+    """A sphere of one BSDF tree on a grey checker floor, under a blue-grey sky and a sun."""
+    unbiased_glossy()
+    world(color=(0.3, 0.35, 0.45))
+    plane('Floor', 6.0, diffuse('Floor', albedo_node=lambda nt, c: checker(
+        nt, c, (0.7, 0.7, 0.7), (0.25, 0.25, 0.25), 6.0)))
+    sphere('Ball', bsdf_material('Ball', tree), (0, 0, 0.8), 0.8)
+    light('SUN', 'Sun', (0, 0, 5), rotation=(math.radians(35), 0, math.radians(-40)),
+          energy=3.0, angle=0.0)
+    camera((0, -3.6, 1.6), rotation=(math.radians(80), 0, 0), lens=40)
+
+
+def bsdf_room_scene():
+    """A lit room of several BSDFs: a Mix-Shader floor (checker between Diffuse and Glossy),
+    Oren-Nayar walls, a Velvet ball and a Glossy GGX ball; a point light and a panel."""
+    unbiased_glossy()
+    world()
+    floor = bpy.data.materials.new('Floor')
+    floor.use_nodes = True
+    nt = floor.node_tree
+    nt.nodes.clear()
+    nt.links.new(mix_tree(nt).outputs[0], nt.nodes.new('ShaderNodeOutputMaterial').inputs[0])
+    plane('Floor', 4.0, floor)
+    plane('BackWall', 4.0, bsdf_material('Wall', 'oren_nayar'), location=(0, 2, 2),
+          rotation=(math.radians(90), 0, 0))
+    plane('SideWall', 4.0, diffuse('SideWall', color=(0.6, 0.55, 0.4)), location=(-2, 0, 2),
+          rotation=(0, math.radians(90), 0))
+    sphere('Velvet', bsdf_material('Velvet', 'velvet'), (-0.7, 0.6, 0.5), 0.5)
+    sphere('Gold', bsdf_material('Gold', 'glossy_ggx'), (0.7, 0.3, 0.5), 0.5)
+    panel = plane('Panel', 1.0, emission('Panel', color=(1.0, 0.9, 0.7), strength=4.0),
+                  location=(1.2, 1.98, 1.8), rotation=(math.radians(90), 0, 0))
+    panel.scale = (1.0, 0.5, 1.0)
+    light('POINT', 'Bulb', (0.3, -0.5, 2.5), energy=150.0, shadow_soft_size=0.0)
+    camera((0.6, -4.0, 1.6), rotation=(math.radians(82), 0, math.radians(8)), lens=28)
+
+
 def light_path_emission(name, camera_color, other_color, strength):
     """Emission whose colour Blender's Light Path picks: `camera_color` for camera rays
     (Is Camera Ray 1), `other_color` for every other ray and for light samples."""
@@ -451,7 +571,9 @@ SCENES = {
     'ao_local': lambda: ao_scene(local=True),
     'bevel': bevel_scene,
     'object_normal': object_normal_scene,
+    'bsdf_room': bsdf_room_scene,
 }
+SCENES.update({'bsdf_' + tree: (lambda tree=tree: bsdf_scene(tree)) for tree in BSDF_TREES})
 
 
 def main(argv):

@@ -15,7 +15,7 @@ import json
 import os
 import shutil
 
-from . import compat, graph, shaders, writers
+from . import compat, graph, lobes, shaders, writers
 from .graph import Const, Convert, Out, ExportError, FLOAT, VECTOR, COLOR, SHADER
 from .mgraph import GraphBuilder, Link, Literal, sanitize_identifier
 
@@ -277,6 +277,9 @@ class MaterialWriter:
         surface = root.input('Surface')
         if surface is None or isinstance(surface, Const):
             self.warn(root, 'Surface is not linked: Cycles renders black, which is written')
+        if lobes.writes_lobes(self, surface):  # Diffuse/Glossy/Velvet, Mix/Add: exact
+            lobes.write(self, surface)
+            return self.builder.text()
         params = shaders.evaluate(self, surface)
         shaders.write_outputs(self, params)
         return self.builder.text()

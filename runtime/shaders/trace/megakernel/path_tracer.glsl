@@ -28,6 +28,7 @@
 #include "materials.glsl"
 #include "rng.glsl"
 #include "brdf.glsl"
+#include "bsdf_lobes.glsl"
 #include "ray_cone.glsl"
 
 #ifdef MG_BACKEND_QUERY

@@ -63,6 +63,7 @@
 #include "materials.glsl"
 #include "rng.glsl"
 #include "brdf.glsl"
+#include "bsdf_lobes.glsl"
 #include "ray_cone.glsl"
 
 #if defined(MG_WAVEFRONT_TRACE) || defined(MG_WAVEFRONT_SHADOW)
@@ -209,6 +210,12 @@ const uint kFieldLightHit = 14u;           // instance, primitive, barycentrics 
 const uint kFieldLightHit = 13u;
 #endif
 const uint kFieldLightOrigin = kFieldLightHit + 1u;  // xyz the shading point, w its t along wi
+#ifdef MG_WAVEFRONT_LOBE_FIELD
+// With materials of BSDF lobes (MG_BSDF_LOBES), after the fields above: lobe i's weight and
+// kind (MaterialOutputs::lobeWeight) in field MG_WAVEFRONT_LOBE_FIELD + 2 i, its parameters
+// in the next.
+const uint kFieldLobes = uint(MG_WAVEFRONT_LOBE_FIELD);
+#endif
 #ifdef MG_WAVEFRONT_PRIMARY_FIELD
 // With --shared-primary, after the fields above (the host's count of them): the pixel's
 // camera-ray hit, traced in round 0 and read by the later rounds' trace passes.
@@ -427,6 +434,14 @@ void storeMaterialOutputs(uint slot, MaterialOutputs m) {
   pathState[fieldIndex(kFieldMaterialEmission, slot)] = vec4(m.emission, m.specular);
   pathState[fieldIndex(kFieldMaterialRest, slot)] =
       vec4(m.specularTint, m.cyclesPrincipled, m.opacity, 0.0);
+#ifdef MG_WAVEFRONT_LOBE_FIELD
+  // Lobes past the count are stored with kind 0, which loadMaterialOutputs counts to.
+  for (int i = 0; i < MG_MAX_LOBES; ++i) {
+    vec4 weight = i < m.lobeCount ? m.lobeWeight[i] : vec4(0.0);
+    pathState[fieldIndex(kFieldLobes + 2u * uint(i), slot)] = weight;
+    pathState[fieldIndex(kFieldLobes + 2u * uint(i) + 1u, slot)] = m.lobeParameters[i];
+  }
+#endif
 }
 
 MaterialOutputs loadMaterialOutputs(uint slot, SurfaceHit s) {
@@ -445,6 +460,14 @@ MaterialOutputs loadMaterialOutputs(uint slot, SurfaceHit s) {
   m.specularTint = rest.x;
   m.cyclesPrincipled = rest.y;
   m.opacity = rest.z;
+#ifdef MG_WAVEFRONT_LOBE_FIELD
+  m.lobeCount = 0;
+  for (int i = 0; i < MG_MAX_LOBES; ++i) {
+    m.lobeWeight[i] = pathState[fieldIndex(kFieldLobes + 2u * uint(i), slot)];
+    m.lobeParameters[i] = pathState[fieldIndex(kFieldLobes + 2u * uint(i) + 1u, slot)];
+    if (m.lobeWeight[i].w != 0.0) m.lobeCount = i + 1;
+  }
+#endif
   return m;
 }
 #endif

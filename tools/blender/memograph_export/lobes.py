@@ -1,0 +1,148 @@
+"""Shader trees of BSDF lobes -> memograph's BSDF sinks (nodes/bsdf.inc).
+
+A surface whose shader tree holds only Diffuse, Glossy and Velvet BSDFs, Emission, and Mix
+and Add Shaders between them is written exactly: each BSDF becomes a sink that adds one lobe
+(DiffuseBsdf, GlossyBsdf, VelvetBsdf) with a weight, Mix Shader becomes a MixShader node
+that splits its weight by Fac, Add Shader gives both its shaders its weight, and the
+emissions, weighted likewise, are summed into one EmissionOutput. This is Cycles' own
+closure weighting (svm_node_mix_closure, svm_node_closure_bsdf), so the runtime samples
+the same BSDF (docs/design/closures.md). Any other shader in the tree (Principled, Glass,
+Transparent, ...) keeps the Principled approximation of shaders.py.
+"""
+
+from .graph import Const, Out
+from .mgraph import Literal
+
+MAX_LOBES = 4  # MG_MAX_LOBES of nodes/prelude/common.inc
+
+LOBE_NODES = ('ShaderNodeBsdfDiffuse', 'ShaderNodeBsdfGlossy', 'ShaderNodeBsdfVelvet')
+TREE_NODES = LOBE_NODES + ('ShaderNodeEmission', 'ShaderNodeMixShader',
+                           'ShaderNodeAddShader')
+
+
+def _shader_node(source):
+    """The FlatNode a shader Source comes from, or None (unlinked, a value)."""
+    return source.node if isinstance(source, Out) else None
+
+
+def count_lobes(source):
+    """The number of BSDF lobes of the tree at source, or None when some shader of it is not
+    one that lobes express (then shaders.py approximates the whole surface)."""
+    if source is None or isinstance(source, Const):
+        return 0  # an unlinked shader socket: no closure
+    flat = _shader_node(source)
+    if flat is None or flat.bl_idname not in TREE_NODES:
+        return None
+    if flat.bl_idname in LOBE_NODES:
+        return 1
+    if flat.bl_idname == 'ShaderNodeEmission':
+        return 0
+    counts = [count_lobes(flat.input(name)) for name in ('Shader', 'Shader_001')]
+    return None if None in counts else sum(counts)
+
+
+def writes_lobes(mw, surface):
+    """Whether the surface is written as lobes (it holds one at least, all expressible); a
+    tree of more than MAX_LOBES is refused with a warning and approximated instead."""
+    n = count_lobes(surface)
+    if not n:
+        return False
+    if n > MAX_LOBES:
+        mw.warn('', 'the surface mixes %d BSDFs, more than memograph\'s %d lobes: '
+                'approximated as one Principled BSDF' % (n, MAX_LOBES))
+        return False
+    return True
+
+
+class _Writer:
+    def __init__(self, mw):
+        self.mw = mw
+        self.emissions = []  # weighted emission operands
+        self.normal = None   # the first linked Normal of a BSDF
+
+    def _weighted(self, operand, weight, comment):
+        if isinstance(weight, Literal) and float(weight.value) == 1.0:
+            return operand
+        link = self.mw.builder.new_link()
+        self.mw.builder.add('Mul', [('A', operand), ('B', weight)], [('Out', link)],
+                            comment=comment)
+        return link
+
+    def _operand(self, flat, name, default):
+        value = self.mw.input_operand(flat, name)
+        return default if value is None else value
+
+    def _take_normal(self, flat):
+        if not flat.is_linked('Normal'):
+            return
+        normal = self.mw.input_operand(flat, 'Normal')
+        if self.normal is None:
+            self.normal = normal
+        else:
+            self.mw.warn(flat, 'memograph\'s lobes share one normal: this BSDF\'s Normal is '
+                         'replaced by the first linked one')
+
+    def write(self, source, weight):
+        flat = _shader_node(source)
+        if flat is None:
+            return
+        kind = flat.bl_idname
+        b = self.mw.builder
+        if kind == 'ShaderNodeMixShader':
+            fac = self._operand(flat, 'Fac', Literal(0.5))
+            wa, wb = b.new_link(), b.new_link()
+            b.add('MixShader', [('Fac', fac), ('Weight', weight)],
+                  [('WeightA', wa), ('WeightB', wb)], comment=flat.label)
+            self.write(flat.input('Shader'), wa)
+            self.write(flat.input('Shader_001'), wb)
+        elif kind == 'ShaderNodeAddShader':
+            self.write(flat.input('Shader'), weight)
+            self.write(flat.input('Shader_001'), weight)
+        elif kind == 'ShaderNodeEmission':
+            color = self._operand(flat, 'Color', Literal((1.0, 1.0, 1.0)))
+            strength = self._operand(flat, 'Strength', Literal(1.0))
+            emitted = self._weighted(color, strength, flat.label + ' emission x strength')
+            self.emissions.append(self._weighted(emitted, weight, flat.label + ' weight'))
+        elif kind == 'ShaderNodeBsdfDiffuse':
+            self._take_normal(flat)
+            b.add('DiffuseBsdf', [('Color', self._operand(flat, 'Color', Literal((0.8,) * 3))),
+                                  ('Roughness', self._operand(flat, 'Roughness', Literal(0.0))),
+                                  ('Weight', weight)], [], comment=flat.label)
+        elif kind == 'ShaderNodeBsdfGlossy':
+            self._take_normal(flat)
+            distribution = getattr(flat.node, 'distribution', 'GGX')
+            roughness = self._operand(flat, 'Roughness', Literal(0.5))
+            if distribution == 'SHARP':
+                roughness = Literal(0.0)
+            elif distribution == 'MULTI_GGX':
+                self.mw.warn(flat, 'Multiscatter GGX is written as single-scatter GGX: the '
+                             'energy that multiple scattering adds back at high Roughness '
+                             'is missing')
+            elif distribution not in ('GGX', 'BECKMANN'):
+                self.mw.warn(flat, 'distribution %s is written as GGX' % distribution)
+            b.add('GlossyBsdf', [('Color', self._operand(flat, 'Color', Literal((0.8,) * 3))),
+                                 ('Roughness', roughness),
+                                 ('Distribution', Literal(1 if distribution == 'BECKMANN' else 0,
+                                                          form='int')),
+                                 ('Weight', weight)], [], comment=flat.label)
+        elif kind == 'ShaderNodeBsdfVelvet':
+            self._take_normal(flat)
+            b.add('VelvetBsdf', [('Color', self._operand(flat, 'Color', Literal((0.8,) * 3))),
+                                 ('Sigma', self._operand(flat, 'Sigma', Literal(1.0))),
+                                 ('Weight', weight)], [], comment=flat.label)
+
+
+def write(mw, surface):
+    """Writes the surface's lobes, emission and normal (writes_lobes(surface) holds)."""
+    w = _Writer(mw)
+    w.write(surface, Literal(1.0))
+    b = mw.builder
+    if w.emissions:
+        total = w.emissions[0]
+        for e in w.emissions[1:]:
+            link = b.new_link()
+            b.add('Add', [('A', total), ('B', e)], [('Out', link)], comment='emission sum')
+            total = link
+        b.add('EmissionOutput', [('Color', total), ('Strength', Literal(1.0))], [])
+    if w.normal is not None:
+        b.add('NormalOutput', [('In', w.normal)], [])
