@@ -14,15 +14,15 @@
 //   indirect arguments, MG_WAVEFRONT_BIN_SCATTER writes the hits' slots into the
 //   material-sorted queue, and MG_WAVEFRONT_MATERIAL (compiled once per distinct graph with
 //   only its include, "material.glsl") evaluates its bin's hits into the path state;
-// - with the texel cache (MG_CACHE_TEXEL), MG_WAVEFRONT_LOOKUP first looks every live hit up
-//   (thesis §5.3): a hit's cached values become its material outputs and only the misses are
-//   binned; the material passes insert what they evaluate (lock, values, unlock, as the
-//   megakernel's evaluateMaterialCached does); with MG_CACHE_CUTS a material that is not
-//   cacheable as a whole is keyed by its cut (thesis §7; texel_cache.glsl cacheCutKeyFor):
-//   the lookup pass reads the cut's values into the path state, and the hit is binned all
-//   the same, since the rest of its graph runs per hit in its material pass, which on a
-//   lookup miss evaluates the cut at the key's centre and inserts it first (as the
-//   megakernel's evaluateMaterialThroughCut does); with the tile cache (MG_CACHE_TILE, its
+// - with the texel cache (MG_CACHE_TEXEL), MG_WAVEFRONT_LOOKUP first looks up every live hit
+//   of a whole uv-only material (thesis §5.3): a hit's cached values become its material
+//   outputs and only the misses are binned; the material passes insert what they evaluate
+//   (lock, values, unlock, as the megakernel's evaluateMaterialCached does); with
+//   MG_CACHE_CUTS a material that is not cacheable as a whole is keyed by its cut (thesis §7;
+//   texel_cache.glsl cacheCutKeyFor): its hits are always binned, since the rest of its graph
+//   runs per hit, and its material pass reads the cut's entry, or evaluates the cut at the
+//   key's centre and inserts it, in place (the megakernel's evaluateMaterialThroughCut), as
+//   it does every read with a filter (MG_CACHE_FILTER); with the tile cache (MG_CACHE_TILE, its
 //   deferred fill's queue) the lookup reads the hit's tile and queues a missing one, and each
 //   bin's material pass also computes its bin's queued tiles, one invocation a texel, so the
 //   next bounce finds them;
@@ -361,10 +361,6 @@ SurfaceHit surfaceOfPath(uint slot, out vec3 origin, out vec3 direction, out Ray
 // MG_MATERIAL_BIN_OF maps scene material ids to bins); kNoBin for a miss, or for a material
 // id past the scene's, which the shade pass gives the default outputs (as the switch does).
 const uint kNoBin = 0xffffffffu;
-// Set in the bin word the lookup pass leaves (kFieldMaterialRest.w, never on kNoBin): the
-// lookup found the hit's cut values, which it stored in the material fields
-// (storeCutValues), so the material pass runs only the rest (MG_CACHE_CUTS).
-const uint kBinCutValues = 0x80000000u;
 // A bin's records after WavefrontControl: its material pass's dispatch arguments (w: the
 // frame's hits), its hits (count, first place, scatter cursor, batch) and its queued tiles
 // (count, first place, scatter cursor, batch).
@@ -405,8 +401,7 @@ uint binToEvaluate(uint slot) {
   }
 #endif
 #ifdef MG_WAVEFRONT_CACHE
-  uint word = floatBitsToUint(pathState[fieldIndex(kFieldMaterialRest, slot)].w);
-  return word == kNoBin ? kNoBin : word & ~kBinCutValues;
+  return floatBitsToUint(pathState[fieldIndex(kFieldMaterialRest, slot)].w);
 #else
   return binOfPath(slot);
 #endif
@@ -469,38 +464,6 @@ MaterialOutputs loadMaterialOutputs(uint slot, SurfaceHit s) {
   }
 #endif
   return m;
-}
-#endif
-
-#if defined(MG_CACHE_CUTS) && (defined(MG_WAVEFRONT_LOOKUP) || defined(MG_WAVEFRONT_MATERIAL))
-// A cut's values found by the lookup pass travel to the material pass in the material
-// fields, which the material pass overwrites with the outputs only after reading them: 15
-// floats (kFieldMaterialRest.w holds the bin). The wavefront keys the cuts that fit (every
-// cut of the built-in and example scenes is at most a colour and a factor); a wider one runs
-// uncached, as a hit without a usable key does.
-const uint kWavefrontCutValues = 15u;
-
-bool wavefrontKeysCut(uvec4 cut) {
-  return cut.x != kCacheCutNone && cut.y <= kWavefrontCutValues;
-}
-
-float cutValueOrZero(float values[MG_CACHE_VALUES], uint i) {
-  return i < uint(MG_CACHE_VALUES) ? values[min(i, uint(MG_CACHE_VALUES) - 1u)] : 0.0;
-}
-
-void storeCutValues(uint slot, float values[MG_CACHE_VALUES]) {
-  for (uint f = 0u; f < 4u; ++f) {
-    vec4 field = vec4(cutValueOrZero(values, 4u * f), cutValueOrZero(values, 4u * f + 1u),
-                      cutValueOrZero(values, 4u * f + 2u), cutValueOrZero(values, 4u * f + 3u));
-    if (f < 3u) pathState[fieldIndex(kFieldMaterialBase + f, slot)] = field;
-    else pathState[fieldIndex(kFieldMaterialRest, slot)].xyz = field.xyz;  // w: the bin
-  }
-}
-
-void loadCutValues(uint slot, out float values[MG_CACHE_VALUES]) {
-  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;
-  for (uint i = 0u; i < min(uint(MG_CACHE_VALUES), kWavefrontCutValues); ++i)
-    values[i] = pathState[fieldIndex(kFieldMaterialBase + i / 4u, slot)][i % 4u];
 }
 #endif
 
@@ -666,43 +629,27 @@ void main() {
   if (i < control.counts.x) {
     uint slot = pathQueues[queueIndex(push.step.z, i)];
     uint bin = binOfPath(slot);
-    // A filtered read blends (or picks among) several entries and fills the missing ones:
-    // the material pass does all of it in place (the megakernel's evaluateMaterialCached).
+    // Only whole uv-only materials are looked up here, whose found hits then need no material
+    // pass; the material id comes from the hit's instance, so the surface is built for those
+    // alone. A material keyed by its cut runs its material pass for the rest of its graph in
+    // any case, and reads (or fills) the cut's entry there, in place; so does every material
+    // with a filtered read, which blends (or picks among) several entries.
+    uvec4 info = uvec4(0u);
 #ifndef MG_CACHE_FILTER
-    if (bin != kNoBin && cacheTakesBounce(push.step.y)) {
-#else
-    if (false) {
+    if (bin != kNoBin)
+      info = cacheInfoOf(instances[floatBitsToUint(pathState[fieldIndex(kFieldHit, slot)].x)].ids.y);
 #endif
+    if (info.x != 0u && frame.cache.x != 0u && cacheTakesBounce(push.step.y)) {
       vec3 origin, direction;
       RayCone cone;
       SurfaceHit s = surfaceOfPath(slot, origin, direction, cone);
-      uvec4 info = cacheInfoOf(s.materialId);
-#ifdef MG_CACHE_CUTS
-      // A material keyed by its cut: its cut's key (the megakernel's, cacheCutKeyFor) and
-      // values; found, they go to the material pass, which then runs only the rest.
-      uvec4 cut = cutInfoOf(s.materialId);
-      CacheKey cutKey;
-      MaterialInputs keyInputs;
-      if (info.x == 0u && frame.cache.x != 0u && wavefrontKeysCut(cut) &&
-          cacheCutKeyFor(info, cut, s.object, s.inputs, cutKey, keyInputs)) {
-        g_cacheLookups += 1u;
-        float values[MG_CACHE_VALUES];
-        if (cacheRead(cutKey, values)) {
-          g_cacheHits += 1u;
-          storeCutValues(slot, values);
-          bin |= kBinCutValues;
-        } else {
-          g_cacheMisses += 1u;
-        }
-      }
-#endif
       // The texel's key, or (§5.4) the hit's tile, whose read filters its texels.
 #ifdef MG_WAVEFRONT_TILES
       TileRequest request;
-      bool cached = info.x != 0u && frame.cache.x != 0u && tileRequestFor(info, s.inputs, request);
+      bool cached = tileRequestFor(info, s.inputs, request);
 #else
       CacheKey request;
-      bool cached = info.x != 0u && frame.cache.x != 0u && cacheKeyFor(info, s.inputs, request);
+      bool cached = cacheKeyFor(info, s.inputs, request);
 #endif
       if (cached) {
         g_cacheLookups += 1u;
@@ -849,13 +796,12 @@ void main() {
   s.inputs.textureBase = MG_TEXTURE_BASE;  // as the switch's case sets it
   MaterialOutputs m;
 #ifdef MG_CACHE_TEXEL
-#if defined(MG_CACHE_FILTER) || \
-    (defined(MG_EVALUATE_MATERIAL_CUT) && MG_MATERIAL_CUT_WIDTH > 15)  // kWavefrontCutValues
+#if defined(MG_CACHE_FILTER) || defined(MG_EVALUATE_MATERIAL_CUT)
   // In place, as the megakernel's evaluateMaterialCached: a filtered read of the entries
-  // around the hit, each missing one evaluated at its centre and inserted (the lookup pass
-  // left every hit to this pass), or a cut too wide for the path state's material fields
-  // (the lookup pass keys none of those) read, or evaluated and inserted, here. The entries
-  // are read under §5.3.4's check, since this pass inserts.
+  // around the hit, each missing one evaluated at its centre and inserted, or the cut's
+  // entry read, or evaluated at its key's centre and inserted, then the rest of the graph
+  // with the hit's own inputs (the lookup pass left every such hit to this pass). The
+  // entries are read under §5.3.4's check, since this pass inserts.
   if (cacheTakesBounce(push.step.y)) {
 #ifdef MG_CACHE_FILTER
     // The stochastic filter's picks, as the megakernel seeds them for this path vertex.
@@ -876,42 +822,6 @@ void main() {
   return;
 #endif
   uvec4 info = cacheInfoOf(s.materialId);
-#if defined(MG_CACHE_CUTS) && defined(MG_EVALUATE_MATERIAL_CUT)
-#if MG_MATERIAL_CUT_WIDTH <= 15  // kWavefrontCutValues: wider cuts are keyed in place above
-  // Keyed by its cut, as the megakernel's evaluateMaterialThroughCut: the cut's values from
-  // the lookup pass, or on its miss the cut at the key's centre (the same key, recomputed),
-  // inserted unless another path of this bounce did first; then the rest with this hit's
-  // own inputs. A hit without a usable key, or a bounce the cache skips, runs its whole graph.
-  uvec4 cut = cutInfoOf(s.materialId);
-  if (info.x == 0u && wavefrontKeysCut(cut)) {
-    bool found = (floatBitsToUint(pathState[fieldIndex(kFieldMaterialRest, slot)].w) &
-                  kBinCutValues) != 0u;
-    CacheKey key;
-    MaterialInputs keyInputs;
-    bool keyed = found || (cacheTakesBounce(push.step.y) && frame.cache.x != 0u &&
-                           cacheCutKeyFor(info, cut, s.object, s.inputs, key, keyInputs));
-    if (keyed) {
-      float values[MG_CACHE_VALUES];
-      MG_MATERIAL_CUT cutValues;
-      if (found) {
-        loadCutValues(slot, values);
-      } else {
-        MG_EVALUATE_MATERIAL_CUT(keyInputs, cutValues);
-        for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;
-        for (uint i = 0u; i < uint(MG_MATERIAL_CUT_WIDTH); ++i) values[i] = cutValues.v[i];
-        if (cacheFind(key) < 0) cacheWrite(key, values);
-      }
-      for (uint i = 0u; i < uint(MG_MATERIAL_CUT_WIDTH); ++i) cutValues.v[i] = values[i];
-      MG_EVALUATE_MATERIAL_REST(s.inputs, cutValues, m);
-    } else {
-      MG_EVALUATE_MATERIAL(s.inputs, m);
-    }
-    cacheAddCounts();  // the insert's lock counts
-    storeMaterialOutputs(slot, m);
-    return;
-  }
-#endif
-#endif
   // A miss of the lookup pass: evaluated (at its texel's centre with MG_CACHE_SNAP_UV) and
   // inserted, as evaluateMaterialCached does after its read; the same key, recomputed.
   CacheKey key;
