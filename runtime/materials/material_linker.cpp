@@ -336,7 +336,8 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
     std::string include =
         "// ---- material " + name + " (" + graph.path + ")\n" + compiled->glsl + "\n";
     includes += include;
-    linked.distinct.push_back({name, std::move(include), entry.textureBase, entry.cutWidth});
+    linked.distinct.push_back(
+        {name, std::move(include), entry.textureBase, entry.cutWidth, entry.cacheable});
     bySource.emplace(graph.text, entry);
     linked.materials.push_back(entry);
   }

@@ -68,6 +68,9 @@ struct DistinctMaterial {
   // 0: none): its include then has MaterialCut_<name>, EvaluateMaterialCut_<name> and
   // EvaluateMaterialRest_<name>, which the wavefront's material pass calls.
   std::uint32_t cutWidth = 0;
+  // Cacheable as a whole (LinkedMaterial::cacheable): the wavefront's material pass compiles
+  // its insert only then (MG_MATERIAL_CACHEABLE).
+  bool cacheable = false;
 };
 
 struct LinkedMaterials {

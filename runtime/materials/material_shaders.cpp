@@ -22,6 +22,8 @@ std::vector<std::vector<std::uint32_t>> compileMaterialShaders(const ShaderCompi
       std::vector<std::string> defines = request.defines;
       defines.push_back("MG_TEXTURE_BASE=" + std::to_string(material.textureBase));
       defines.push_back("MG_EVALUATE_MATERIAL=EvaluateMaterial_" + material.name);
+      if (material.cacheable)
+        defines.push_back("MG_MATERIAL_CACHEABLE=1");
       if (request.cutFunctions && material.cutWidth > 0) {
         defines.push_back("MG_MATERIAL_CUT=MaterialCut_" + material.name);
         defines.push_back("MG_MATERIAL_CUT_WIDTH=" + std::to_string(material.cutWidth));

@@ -796,7 +796,8 @@ void main() {
   s.inputs.textureBase = MG_TEXTURE_BASE;  // as the switch's case sets it
   MaterialOutputs m;
 #ifdef MG_CACHE_TEXEL
-#if defined(MG_CACHE_FILTER) || defined(MG_EVALUATE_MATERIAL_CUT)
+#if (defined(MG_CACHE_FILTER) && defined(MG_MATERIAL_CACHEABLE)) || \
+    defined(MG_EVALUATE_MATERIAL_CUT)
   // In place, as the megakernel's evaluateMaterialCached: a filtered read of the entries
   // around the hit, each missing one evaluated at its centre and inserted, or the cut's
   // entry read, or evaluated at its key's centre and inserted, then the rest of the graph
@@ -821,6 +822,7 @@ void main() {
   storeMaterialOutputs(slot, m);
   return;
 #endif
+#ifdef MG_MATERIAL_CACHEABLE
   uvec4 info = cacheInfoOf(s.materialId);
   // A miss of the lookup pass: evaluated (at its texel's centre with MG_CACHE_SNAP_UV) and
   // inserted, as evaluateMaterialCached does after its read; the same key, recomputed.
@@ -840,6 +842,12 @@ void main() {
     cacheWrite(key, values);
   }
   cacheAddCounts();  // the insert's lock counts (no subgroup arithmetic in this pass)
+#else
+  // A graph the cache does not take (MG_MATERIAL_CACHEABLE is the host's, per graph): no
+  // insert compiled in. On an H100 that code alone, never run, doubled the Blender scene's
+  // material passes (20.4 to 41.4 ms a frame with no material keyed).
+  MG_EVALUATE_MATERIAL(s.inputs, m);
+#endif
 #else
   MG_EVALUATE_MATERIAL(s.inputs, m);
 #endif
