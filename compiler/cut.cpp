@@ -54,6 +54,15 @@ const NodeCost kNodeCosts[] = {
     {"SpecularTintOutput", 0},
     {"CyclesPrincipledOutput", 0},
     {"PrincipledOutput", 1},
+    // BSDF sinks append a lobe (a colour times a weight); Mix Shader splits a weight.
+    {"DiffuseBsdf", 1},
+    {"GlossyBsdf", 1},
+    {"VelvetBsdf", 1},
+    {"MixShader", 1},
+    // Traced inputs: the tracer casts their rays before the graph runs, outside its cost
+    // (and never in a cut); in the graph Ambient Occlusion scales a colour, Bevel reads.
+    {"AmbientOcclusion", 1},
+    {"Bevel", 0},
     // Procedural textures: a 3D Perlin octave is 8 gradient hashes and a trilinear blend.
     {"NoiseTexture", 2, 10},
     {"MusgraveTexture", 2, 10},
