@@ -312,18 +312,16 @@ TEST_F(CliTest, RenderAndBenchRefuseBadCacheOptionValues) {
         filter.output.find("--cache-filter takes nearest, trilinear or stochastic, not 'bilinear'"),
         std::string::npos)
         << filter.output;
-    // The tile cache filters with --filter; the wavefront's lookup pass reads one entry.
+    // The tile cache filters with --filter.
     const auto tileFilter = runCli(command + " --cache tile --cache-filter trilinear");
     EXPECT_EQ(tileFilter.exitCode, 2) << tileFilter.output;
     EXPECT_NE(tileFilter.output.find("is the texel cache's"), std::string::npos)
         << tileFilter.output;
-    const auto wavefrontFilter =
-        runCli(command + " --shading wavefront --cache texel --cache-filter stochastic");
-    EXPECT_EQ(wavefrontFilter.exitCode, 2) << wavefrontFilter.output;
-    EXPECT_NE(wavefrontFilter.output.find("--cache-filter trilinear and stochastic are the "
-                                          "megakernel's"),
+    const auto keys = runCli(command + " --cache texel --cache-keys uv,voxel");
+    EXPECT_EQ(keys.exitCode, 2) << keys.output;
+    EXPECT_NE(keys.output.find("--cache-keys takes all, or uv, object and world"),
               std::string::npos)
-        << wavefrontFilter.output;
+        << keys.output;
     const auto probe = runCli(command + " --floor-materials --cache texel --probe 17");
     EXPECT_EQ(probe.exitCode, 2) << probe.output;
     const auto device = runCli(command + " --device x");  // shared renderer options

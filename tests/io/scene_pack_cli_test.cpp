@@ -1,6 +1,8 @@
 // `memograph pack` through the CLI: a glTF scene with a textured graph and an environment
 // image renders the same from its pack as from its files (one seed, lavapipe, a tiny size);
 // bench measures a pack; damaged packs are refused with the file and offset, exit 1.
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -29,7 +31,8 @@ std::string readAll(const fs::path& path) {
 class ScenePackCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / "memograph_scene_pack_cli";
+    // One folder a process: ctest runs these tests in parallel processes.
+    dir_ = fs::temp_directory_path() / ("memograph_scene_pack_cli_" + std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_ / "materials" / "textures");
     const fs::path graphs = MEMOGRAPH_EXAMPLES_DIR;

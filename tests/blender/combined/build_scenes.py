@@ -360,11 +360,11 @@ def build_warnings():
     exp = {}
 
     mat, nt, out = new_material('W_unsupported_node')
-    ao = nt.nodes.new('ShaderNodeAmbientOcclusion')
-    ao.name = 'AO'
-    emit(nt, out, ao.outputs['AO'])
-    exp[mat.name] = [('AO', 'ShaderNodeAmbientOcclusion (Ambient Occlusion) is not supported:'
-                      ' its output \'AO\' is replaced by the default value 0')]
+    ies = nt.nodes.new('ShaderNodeTexIES')
+    ies.name = 'IES'
+    emit(nt, out, ies.outputs['Fac'])
+    exp[mat.name] = [('IES', 'ShaderNodeTexIES (IES Texture) is not supported:'
+                      ' its output \'Fac\' is replaced by the default value 0')]
 
     mat, nt, out = new_material('W_principled_uncarried')
     p = nt.nodes.new('ShaderNodeBsdfPrincipled')
