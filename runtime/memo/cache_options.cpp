@@ -81,8 +81,11 @@ std::string cacheKeyDomainsName(std::uint32_t domains) {
   for (const auto& [bit, word] :
        {std::pair{kCacheKeyUv, "uv"}, std::pair{kCacheKeyObject, "object"},
         std::pair{kCacheKeyWorld, "world"}})
-    if (domains & bit)
-      name += (name.empty() ? "" : ",") + std::string(word);
+    if (domains & bit) {
+      if (!name.empty())
+        name += ',';
+      name += word;
+    }
   return name;
 }
 
