@@ -879,6 +879,14 @@ bool cacheCutKeyFor(uvec4 info, uvec4 cut, uvec2 object, MaterialInputs inputs,
 uint g_cacheFilterKey = 0u;
 uint g_cacheFilterDimension = 0u;
 
+// Seeds the stochastic picks of path vertex `vertex` (bounce + 1 for the bounce-th hit, the
+// shading key of rng.glsl) of sample `sampleIndex` of pixel `pixelIndex`: both architectures
+// call it before a material evaluation, so at one seed they pick the same entries.
+void cacheSeedFilterPicks(uint pixelIndex, uint sampleIndex, uint vertex, uint seed) {
+  g_cacheFilterKey = pcgHash(rngForPathVertex(pixelIndex, sampleIndex, vertex, seed).key ^
+                             0x9E3779B9u);
+}
+
 float cacheFilterRandom() {
   uint word = cachePcg(g_cacheFilterKey ^ cachePcg(g_cacheFilterDimension));
   g_cacheFilterDimension += 1u;

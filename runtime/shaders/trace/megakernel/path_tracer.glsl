@@ -274,11 +274,8 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
         m = primaryOutputs;
       } else {
 #ifdef MG_CACHE_FILTER
-        // The stochastic cache filter's picks: a function of this path vertex and the seed
-        // (texel_cache.glsl cacheFilterRandom), hashed apart from its shading numbers.
-        g_cacheFilterKey =
-            pcgHash(rngForPathVertex(pixelIndex, sampleIndex, bounce + 1u, frame.image.w).key ^
-                    0x9E3779B9u);
+        // The stochastic cache filter's picks: a function of this path vertex and the seed.
+        cacheSeedFilterPicks(pixelIndex, sampleIndex, bounce + 1u, frame.image.w);
 #endif
         evaluateMaterial(alive, s.materialId, s.object, s.inputs, bounce, m);
         if (sharedPrimary && bounce == 0u) {

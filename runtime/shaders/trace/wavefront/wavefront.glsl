@@ -367,10 +367,14 @@ const uint kNoBin = 0xffffffffu;
 const uint kBinRecords = 3u;
 const uint kBinOfMaterial[MG_MATERIAL_COUNT] = MG_MATERIAL_BIN_OF;
 
+// The scene material of a live path's hit, from its instance (no surface built).
+uint materialOfPath(uint slot) {
+  return instances[floatBitsToUint(pathState[fieldIndex(kFieldHit, slot)].x)].ids.y;
+}
+
 uint binOfPath(uint slot) {
   if (pathState[fieldIndex(kFieldRadiance, slot)].w < 0.0) return kNoBin;
-  uint instance = floatBitsToUint(pathState[fieldIndex(kFieldHit, slot)].x);
-  uint materialId = instances[instance].ids.y;
+  uint materialId = materialOfPath(slot);
   return materialId < uint(MG_MATERIAL_COUNT) ? kBinOfMaterial[materialId] : kNoBin;
 }
 
@@ -636,8 +640,7 @@ void main() {
     // with a filtered read, which blends (or picks among) several entries.
     uvec4 info = uvec4(0u);
 #ifndef MG_CACHE_FILTER
-    if (bin != kNoBin)
-      info = cacheInfoOf(instances[floatBitsToUint(pathState[fieldIndex(kFieldHit, slot)].x)].ids.y);
+    if (bin != kNoBin) info = cacheInfoOf(materialOfPath(slot));
 #endif
     if (info.x != 0u && frame.cache.x != 0u && cacheTakesBounce(push.step.y)) {
       vec3 origin, direction;
@@ -806,10 +809,8 @@ void main() {
   if (cacheTakesBounce(push.step.y)) {
 #ifdef MG_CACHE_FILTER
     // The stochastic filter's picks, as the megakernel seeds them for this path vertex.
-    g_cacheFilterKey = pcgHash(rngForPathVertex(pixelOfSlot(slot), sampleIndexOf(push.step.x),
-                                                push.step.y + 1u, frame.image.w)
-                                   .key ^
-                               0x9E3779B9u);
+    cacheSeedFilterPicks(pixelOfSlot(slot), sampleIndexOf(push.step.x), push.step.y + 1u,
+                         frame.image.w);
 #endif
     evaluateMaterialCached(s.materialId, s.object, s.inputs, m);
 #ifdef MG_DEBUG_CACHE_MISSES
@@ -844,8 +845,10 @@ void main() {
   cacheAddCounts();  // the insert's lock counts (no subgroup arithmetic in this pass)
 #else
   // A graph the cache does not take (MG_MATERIAL_CACHEABLE is the host's, per graph): no
-  // insert compiled in. On an H100 that code alone, never run, doubled the Blender scene's
-  // material passes (20.4 to 41.4 ms a frame with no material keyed).
+  // insert compiled in. On an H100, with --cache texel keying none of the Blender scene's
+  // graphs, its material passes took 41.4 ms a frame against 20.4 uncached; this insert,
+  // never run there, was the only live code they had gained (its removal is not yet
+  // measured on a GPU).
   MG_EVALUATE_MATERIAL(s.inputs, m);
 #endif
 #else
