@@ -24,6 +24,10 @@
 //                            voxels (cacheCutKeyFor); materials.glsl then provides
 //                            mg_materialCutInfo, and in the megakernel the cut and rest
 //                            switches (evaluateMaterialThroughCut).
+//   MG_CACHE_CUT_PASS        (optional; a wavefront material pass of a graph keyed by its
+//                            cut) every read or fill goes through the cut, so the whole
+//                            graph's fill (evaluateMaterialDirect, cachePack) is not compiled
+//                            in: the pass holds one copy of its graph.
 // The entry count S, the frame clock and the mip bias come per frame in frame.cache. The
 // includer declares `counters` (gpu::Counters at kBindingRayCounter): the occupancy and the
 // counter clock live there.
@@ -1002,9 +1006,11 @@ void cacheReadOrFill(uint materialId, uvec4 info, bool throughCut, CacheKey key,
   } else
 #endif
   {
+#ifndef MG_CACHE_CUT_PASS  // a wavefront cut pass fills cut entries only
     MaterialOutputs outputs;
     evaluateMaterialDirect(materialId, keyInputs, outputs);
     cachePack(info.x, outputs, values);
+#endif
   }
   cacheWrite(key, values);
 }
@@ -1047,18 +1053,22 @@ void cacheFilteredValues(uint materialId, uvec4 info, uint domain, uint objectWo
 // A material keyed by its cut (thesis §7): the cache holds the cut's values under the key
 // cacheCutKeyFor gives, and the rest of the graph always runs with this hit's inputs. A miss
 // evaluates the cut at the key's centre with the key's footprint, always (not only with
-// --snap-uv), so a cached value is a function of the key. With MG_CACHE_FILTER the rest runs with the filter's
-// blend (or pick) of such entries. `object` is (instance, mesh) of the hit. Returns false,
-// having done nothing, when the hit has no usable key (non-finite coordinates or a voxel
-// outside the fixed-point range): the caller evaluates the whole graph uncached.
-bool evaluateMaterialThroughCut(uint materialId, uvec4 cut, uvec2 object, MaterialInputs inputs,
-                                out MaterialOutputs outputs) {
+// --snap-uv), so a cached value is a function of the key. With MG_CACHE_FILTER the rest runs
+// with the filter's blend (or pick) of such entries. `object` is (instance, mesh) of the hit.
+// Where the hit takes no key (`keyed` false: the cache is off for this frame or bounce) or
+// has no usable one (non-finite coordinates, a voxel outside the fixed-point range), the cut
+// runs at the hit's own inputs: the rest of the cut's values is the whole graph's result, so
+// the pass holds one copy of the graph (cut and rest), not a second whole graph for that case,
+// which the GPU's compiler would inline beside it.
+void evaluateMaterialThroughCut(uint materialId, uvec4 cut, uvec2 object, MaterialInputs inputs,
+                                bool keyed, out MaterialOutputs outputs) {
   uvec4 info = cacheInfoOf(materialId);
   float values[MG_CACHE_VALUES];
+  bool usable = keyed && frame.cache.x != 0u;
 #ifdef MG_CACHE_FILTER
   CacheFilterSite site;
-  bool usable = false;
-  if (cut.x == kCacheCutUv) {
+  if (!usable) {
+  } else if (cut.x == kCacheCutUv) {
     usable = cacheUvFilterSite(inputs, site);
   } else if (cut.x == kCacheCutWorld) {
     usable = cacheVoxelFilterSite(inputs.position.v, inputs.position.x, inputs.position.y, site);
@@ -1069,25 +1079,36 @@ bool evaluateMaterialThroughCut(uint materialId, uvec4 cut, uvec2 object, Materi
                                   inputs.objectPosition.y, site);
   }
 #endif
-  if (!usable) return false;
-  cacheFilteredValues(materialId, info, cut.x, cutObjectWord(cut, object), object, inputs, site,
-                      values);
+  else {
+    usable = false;
+  }
+  if (usable) {
+    cacheFilteredValues(materialId, info, cut.x, cutObjectWord(cut, object), object, inputs,
+                        site, values);
+  } else {
+    evaluateMaterialCutSwitch(materialId, inputs, values);
+  }
 #else
   CacheKey key;
   MaterialInputs keyInputs;
-  if (!cacheCutKeyFor(info, cut, object, inputs, key, keyInputs)) return false;
-  g_cacheLookups += 1u;
-  if (cacheRead(key, values)) {
-    g_cacheHits += 1u;
-  } else {
-    g_cacheMisses += 1u;
-    g_cacheMissed = true;
-    evaluateMaterialCutSwitch(materialId, keyInputs, values);
-    cacheWrite(key, values);
+  usable = usable && cacheCutKeyFor(info, cut, object, inputs, key, keyInputs);
+  bool hit = false;
+  if (usable) {
+    g_cacheLookups += 1u;
+    hit = cacheRead(key, values);
+    if (hit) {
+      g_cacheHits += 1u;
+    } else {
+      g_cacheMisses += 1u;
+      g_cacheMissed = true;
+    }
+  }
+  if (!hit) {
+    evaluateMaterialCutSwitch(materialId, usable ? keyInputs : inputs, values);
+    if (usable) cacheWrite(key, values);
   }
 #endif  // MG_CACHE_FILTER
   evaluateMaterialRestSwitch(materialId, inputs, values, outputs);
-  return true;
 }
 #endif  // MG_CACHE_CUTS
 
@@ -1095,9 +1116,14 @@ void evaluateMaterialCached(uint materialId, uvec2 object, MaterialInputs inputs
                             out MaterialOutputs outputs) {
 #ifdef MG_CACHE_CUTS
   uvec4 cut = cutInfoOf(materialId);
-  if (cut.x != kCacheCutNone && frame.cache.x != 0u &&
-      evaluateMaterialThroughCut(materialId, cut, object, inputs, outputs))
+  // (A wavefront pass of a graph without a cut never takes this branch: nothing compiled.)
+#if defined(MG_WAVEFRONT) && !defined(MG_CACHE_CUT_PASS)
+  cut.x = kCacheCutNone;
+#endif
+  if (cut.x != kCacheCutNone) {
+    evaluateMaterialThroughCut(materialId, cut, object, inputs, true, outputs);
     return;
+  }
 #endif
   uvec4 info = cacheInfoOf(materialId);
 #ifdef MG_CACHE_FILTER

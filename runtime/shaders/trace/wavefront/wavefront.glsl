@@ -133,6 +133,9 @@ void evaluateMaterialRestSwitch(uint materialId, MaterialInputs inputs,
 #define MG_CACHE_QUIESCENT_READS 1
 #endif
 #if defined(MG_CACHE_TEXEL) && (defined(MG_WAVEFRONT_LOOKUP) || defined(MG_WAVEFRONT_MATERIAL))
+#if defined(MG_WAVEFRONT_MATERIAL) && defined(MG_EVALUATE_MATERIAL_CUT)
+#define MG_CACHE_CUT_PASS 1  // this pass's graph is keyed by its cut: no whole-graph fill
+#endif
 #include "texel_cache.glsl"
 #endif
 #if defined(MG_CACHE_TILE) &&                                                    \
@@ -799,19 +802,36 @@ void main() {
   s.inputs.textureBase = MG_TEXTURE_BASE;  // as the switch's case sets it
   MaterialOutputs m;
 #ifdef MG_CACHE_TEXEL
-#if (defined(MG_CACHE_FILTER) && defined(MG_MATERIAL_CACHEABLE)) || \
-    defined(MG_EVALUATE_MATERIAL_CUT)
-  // In place, as the megakernel's evaluateMaterialCached: a filtered read of the entries
-  // around the hit, each missing one evaluated at its centre and inserted, or the cut's
-  // entry read, or evaluated at its key's centre and inserted, then the rest of the graph
-  // with the hit's own inputs (the lookup pass left every such hit to this pass). The
-  // entries are read under §5.3.4's check, since this pass inserts.
-  if (cacheTakesBounce(push.step.y)) {
+#if defined(MG_EVALUATE_MATERIAL_CUT)
+  // A graph keyed by its cut, in place as the megakernel's evaluateMaterialThroughCut (the
+  // lookup pass left every such hit to this pass): the cut's entry read (or, filtered, the
+  // entries around the hit), a missing one evaluated at its key's centre and inserted, then
+  // the rest of the graph with the hit's own inputs. The entries are read under §5.3.4's
+  // check, since this pass inserts. A bounce the cache does not take runs the cut at the
+  // hit's own inputs: the pass holds one copy of its graph either way (MG_CACHE_CUT_PASS).
+  bool keyed = cacheTakesBounce(push.step.y);
 #ifdef MG_CACHE_FILTER
-    // The stochastic filter's picks, as the megakernel seeds them for this path vertex.
+  // The stochastic filter's picks, as the megakernel seeds them for this path vertex.
+  if (keyed)
     cacheSeedFilterPicks(pixelOfSlot(slot), sampleIndexOf(push.step.x), push.step.y + 1u,
                          frame.image.w);
 #endif
+  evaluateMaterialThroughCut(s.materialId, cutInfoOf(s.materialId), s.object, s.inputs, keyed,
+                             m);
+#ifdef MG_DEBUG_CACHE_MISSES
+  if (g_cacheMissed) pathState[fieldIndex(kFieldPixelSum, slot)].w = 1.0;  // as the lookup's
+#endif
+  cacheAddCounts();
+  storeMaterialOutputs(slot, m);
+  return;
+#elif defined(MG_CACHE_FILTER) && defined(MG_MATERIAL_CACHEABLE)
+  // A whole uv-only graph read with a filter, in place as the megakernel's
+  // evaluateMaterialCached: the entries around the hit, each missing one evaluated at its
+  // centre and inserted (the lookup pass reads only unfiltered).
+  if (cacheTakesBounce(push.step.y)) {
+    // The stochastic filter's picks, as the megakernel seeds them for this path vertex.
+    cacheSeedFilterPicks(pixelOfSlot(slot), sampleIndexOf(push.step.x), push.step.y + 1u,
+                         frame.image.w);
     evaluateMaterialCached(s.materialId, s.object, s.inputs, m);
 #ifdef MG_DEBUG_CACHE_MISSES
     if (g_cacheMissed) pathState[fieldIndex(kFieldPixelSum, slot)].w = 1.0;  // as the lookup's
@@ -845,10 +865,7 @@ void main() {
   cacheAddCounts();  // the insert's lock counts (no subgroup arithmetic in this pass)
 #else
   // A graph the cache does not take (MG_MATERIAL_CACHEABLE is the host's, per graph): no
-  // insert compiled in. On an H100, with --cache texel keying none of the Blender scene's
-  // graphs, its material passes took 41.4 ms a frame against 20.4 uncached; this insert,
-  // never run there, was the only live code they had gained (its removal is not yet
-  // measured on a GPU).
+  // cache code compiled in.
   MG_EVALUATE_MATERIAL(s.inputs, m);
 #endif
 #else
