@@ -125,6 +125,10 @@ MG_CONSTANT(uint, kWavefrontLookup, 10);
 MG_CONSTANT(uint, kWavefrontPassCount, 11);
 // Compute work-group size of the wavefront passes (one invocation per queued path).
 MG_CONSTANT(uint, kWavefrontWorkgroupSize, 64);
+// The material passes' work-group size: a graph keyed by its cut gathers the misses of a
+// work group and evaluates them together (wavefront.glsl materialPassThroughCut), which pays
+// where a group spans many subgroups: with 64 invocations nearly every subgroup held a miss.
+MG_CONSTANT(uint, kWavefrontMaterialWorkgroupSize, 256);
 // vec4 fields of a path's state: origin and cone width, direction and cone spread,
 // throughput and the last BSDF pdf, radiance and the hit's t, the hit (instance, primitive,
 // barycentrics as bits), the shadow ray's origin and length, its direction, the contribution

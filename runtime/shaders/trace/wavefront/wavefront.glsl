@@ -252,6 +252,11 @@ uint workgroupsFor(uint invocations) {
   return (invocations + kWavefrontWorkgroupSize - 1u) / kWavefrontWorkgroupSize;
 }
 
+// A material pass's work groups for `invocations` (kWavefrontMaterialWorkgroupSize).
+uint materialWorkgroupsFor(uint invocations) {
+  return (invocations + kWavefrontMaterialWorkgroupSize - 1u) / kWavefrontMaterialWorkgroupSize;
+}
+
 // The pixel's sample index over frames: frame * P + the round's path.
 uint sampleIndexOf(uint round) {
   return rngSampleIndex(frame.image.z, frame.path.x, round);
@@ -268,6 +273,11 @@ uint invocationIndex() {
   return gl_LaunchIDEXT.x;
 }
 #endif
+#elif defined(MG_WAVEFRONT_MATERIAL)
+layout(local_size_x = kWavefrontMaterialWorkgroupSize) in;
+uint invocationIndex() {
+  return gl_GlobalInvocationID.x;
+}
 #else
 layout(local_size_x = kWavefrontWorkgroupSize) in;
 uint invocationIndex() {
@@ -716,7 +726,7 @@ void main() {
     uint tiles = materialBins[kBinRecords * bin + 2u].x;
     uint frameHits = materialBins[kBinRecords * bin].w + count;
     materialBins[kBinRecords * bin] =
-        uvec4(workgroupsFor(count + tiles * kTileTexelsOrZero), 1u, 1u, frameHits);
+        uvec4(materialWorkgroupsFor(count + tiles * kTileTexelsOrZero), 1u, 1u, frameHits);
     materialBins[kBinRecords * bin + 1u] = uvec4(0u, offset, offset, count);
     materialBins[kBinRecords * bin + 2u] = uvec4(0u, tileOffset, tileOffset, tiles);
     offset += count;
@@ -742,6 +752,110 @@ void main() {
 }
 
 #elif defined(MG_WAVEFRONT_MATERIAL)
+#if defined(MG_CACHE_CUT_PASS) && !defined(MG_CACHE_FILTER)
+// A graph keyed by its cut, with its misses gathered per work group. A hit whose entry is
+// missing evaluates the cut; in SIMT every subgroup with one such lane pays the cut's whole
+// time while its other lanes wait, and at a few percent of misses most subgroups hold one
+// (at 3.5 %, 68 % of 32-lane subgroups). So the work group's misses (and hits without a usable
+// key) go into a list in shared memory, the first invocations of the group evaluate them
+// side by side, a miss's entry is inserted by the invocation that evaluated it, and every
+// invocation takes its values back: at that rate one subgroup of the 8 in a group of 256
+// evaluates cuts instead of 5 or 6. kCompactedCuts a round; more run in further rounds.
+const uint kCompactedCuts = 32u;
+const uint kNoCompactedPlace = 0xffffffffu;
+shared uint s_cutCount;
+shared MaterialInputs s_cutInputs[kCompactedCuts];
+shared CacheKey s_cutKeys[kCompactedCuts];
+shared uint s_cutInserts[kCompactedCuts];
+shared float s_cutValues[kCompactedCuts * uint(MG_MATERIAL_CUT_WIDTH)];
+
+// The barrier between the rounds' steps: the list in shared memory, ordered under the
+// Vulkan memory model (workgroup scope, acquire-release on workgroup storage).
+void compactionBarrier() {
+  controlBarrier(gl_ScopeWorkgroup, gl_ScopeWorkgroup, gl_StorageSemanticsShared,
+                 gl_SemanticsAcquireRelease);
+}
+
+// The material pass of a graph keyed by its cut: every invocation of the work group calls it
+// (the barriers need them all); `live` those with a hit of the bin, `slot` its path. The
+// cut's entry is read (under §5.3.4's check: this pass inserts), a missing one evaluated at
+// its key's centre by the group's list and inserted; a hit without a key (a bounce the cache
+// does not take, or no usable key) evaluates the cut at its own inputs the same way. Then the
+// rest of the graph with the hit's own inputs. One copy of the graph: the list's cut, then the
+// rest.
+void materialPassThroughCut(bool live, uint slot) {
+  vec3 origin, direction;
+  RayCone cone;
+  SurfaceHit s;
+  float values[MG_CACHE_VALUES];
+  for (uint k = 0u; k < uint(MG_CACHE_VALUES); ++k) values[k] = 0.0;
+  bool pending = false;  // its cut's values are still to be evaluated
+  bool keyed = false;
+  CacheKey key;
+  MaterialInputs keyInputs;
+  if (live) {
+    s = surfaceOfPath(slot, origin, direction, cone);
+    s.inputs.textureBase = MG_TEXTURE_BASE;  // as the switch's case sets it
+    keyInputs = s.inputs;
+    keyed = cacheTakesBounce(push.step.y) && frame.cache.x != 0u &&
+            cacheCutKeyFor(cacheInfoOf(s.materialId), cutInfoOf(s.materialId), s.object,
+                           s.inputs, key, keyInputs);
+    if (!keyed) keyInputs = s.inputs;
+    pending = true;
+    if (keyed) {
+      g_cacheLookups += 1u;
+      if (cacheRead(key, values)) {
+        g_cacheHits += 1u;
+        pending = false;
+      } else {
+        g_cacheMisses += 1u;
+        g_cacheMissed = true;
+      }
+    }
+  }
+  uint me = gl_LocalInvocationIndex;
+  for (;;) {
+    if (me == 0u) s_cutCount = 0u;
+    compactionBarrier();
+    uint place = kNoCompactedPlace;
+    if (pending) {
+      place = atomicAdd(s_cutCount, 1u);
+      if (place < kCompactedCuts) {
+        s_cutInputs[place] = keyInputs;
+        s_cutKeys[place] = key;
+        s_cutInserts[place] = keyed ? 1u : 0u;
+      } else {
+        place = kNoCompactedPlace;  // the next round's
+      }
+    }
+    compactionBarrier();
+    uint listed = s_cutCount;
+    if (me < min(listed, kCompactedCuts)) {
+      float filled[MG_CACHE_VALUES];
+      evaluateMaterialCutSwitch(0u, s_cutInputs[me], filled);
+      if (s_cutInserts[me] != 0u) cacheWrite(s_cutKeys[me], filled);
+      for (uint k = 0u; k < uint(MG_MATERIAL_CUT_WIDTH); ++k)
+        s_cutValues[me * uint(MG_MATERIAL_CUT_WIDTH) + k] = filled[k];
+    }
+    compactionBarrier();
+    if (place != kNoCompactedPlace) {
+      for (uint k = 0u; k < uint(MG_MATERIAL_CUT_WIDTH); ++k)
+        values[k] = s_cutValues[place * uint(MG_MATERIAL_CUT_WIDTH) + k];
+      pending = false;
+    }
+    if (listed <= kCompactedCuts) break;  // the same for every invocation: uniform
+    compactionBarrier();  // every invocation has read s_cutCount before it is reset
+  }
+  if (!live) return;
+  MaterialOutputs m;
+  evaluateMaterialRestSwitch(s.materialId, s.inputs, values, m);
+#ifdef MG_DEBUG_CACHE_MISSES
+  if (g_cacheMissed) pathState[fieldIndex(kFieldPixelSum, slot)].w = 1.0;  // as the lookup's
+#endif
+  storeMaterialOutputs(slot, m);
+}
+#endif
+
 // One distinct graph over its bin's batch (bin push.step.w) of the material-sorted queue:
 // the material inputs built from the hit as the megakernel builds them, the graph's outputs
 // into the path state for the shade pass.
@@ -764,6 +878,16 @@ void main() {
     MaterialOutputs m;
     MG_EVALUATE_MATERIAL(inputs, m);
     tileFillStore(queueSlot, item, texel, m);
+    return;
+  }
+#endif
+#if defined(MG_CACHE_CUT_PASS) && !defined(MG_CACHE_FILTER)
+  // Every invocation of the group, past the bin's hits too, for the list's barriers (the
+  // light points' dispatch, which evaluates no cut, is uniform: push constants).
+  if (!binsLightPoints()) {
+    bool live = i < bin.w;
+    materialPassThroughCut(live, live ? pathQueues[queueIndex(3u, bin.y + i)] : 0u);
+    cacheAddCounts();
     return;
   }
 #endif
@@ -802,20 +926,20 @@ void main() {
   s.inputs.textureBase = MG_TEXTURE_BASE;  // as the switch's case sets it
   MaterialOutputs m;
 #ifdef MG_CACHE_TEXEL
-#if defined(MG_EVALUATE_MATERIAL_CUT)
-  // A graph keyed by its cut, in place as the megakernel's evaluateMaterialThroughCut (the
-  // lookup pass left every such hit to this pass): the cut's entry read (or, filtered, the
-  // entries around the hit), a missing one evaluated at its key's centre and inserted, then
+#if defined(MG_EVALUATE_MATERIAL_CUT) && !defined(MG_CACHE_FILTER)
+  return;  // materialPassThroughCut evaluated the bin's hits
+#elif defined(MG_EVALUATE_MATERIAL_CUT)
+  // A graph keyed by its cut and read with a filter, in place as the megakernel's
+  // evaluateMaterialThroughCut (the lookup pass left every such hit to this pass): the
+  // entries around the hit, a missing one evaluated at its key's centre and inserted, then
   // the rest of the graph with the hit's own inputs. The entries are read under §5.3.4's
   // check, since this pass inserts. A bounce the cache does not take runs the cut at the
   // hit's own inputs: the pass holds one copy of its graph either way (MG_CACHE_CUT_PASS).
   bool keyed = cacheTakesBounce(push.step.y);
-#ifdef MG_CACHE_FILTER
   // The stochastic filter's picks, as the megakernel seeds them for this path vertex.
   if (keyed)
     cacheSeedFilterPicks(pixelOfSlot(slot), sampleIndexOf(push.step.x), push.step.y + 1u,
                          frame.image.w);
-#endif
   evaluateMaterialThroughCut(s.materialId, cutInfoOf(s.materialId), s.object, s.inputs, keyed,
                              m);
 #ifdef MG_DEBUG_CACHE_MISSES
