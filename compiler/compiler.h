@@ -55,6 +55,9 @@ struct MaterialMetadata {
   std::string cutDomain = "none";
   std::size_t cutWidth = 0;
   double cutCostShare = 0.0;
+  // The whole graph's estimated cost in the same units (cut.h's per-node estimates, an
+  // overload with derivatives three times its plain one): weighs the material among others.
+  double estimatedCost = 0.0;
   // The graph reads the traced input `ambientOcclusion` (compiler/traced_inputs.h): the
   // rays the path tracer traces for it before the graph runs. Nothing: no rays.
   std::optional<AmbientOcclusionSettings> ambientOcclusion;

@@ -154,6 +154,28 @@ double estimatedNodeCost(const ResolvedNode& node) {
   return 1.0;
 }
 
+namespace {
+
+// A node's estimated cost as the graph runs it: an overload whose outputs carry derivatives
+// evaluates its value and its change along both footprint axes (a noise node evaluates its
+// fBm at the point and at the two offset points, as Cycles' Bump does; dual-number arithmetic
+// carries three values), so it costs about three times the plain overload.
+double scheduledNodeCost(const ResolvedGraph& graph, const OverloadChoice& chosen,
+                         std::size_t node) {
+  const auto& resolved = graph.nodes[node];
+  double cost = estimatedNodeCost(resolved);
+  if (!scheduled(chosen, node))
+    return cost;
+  const auto& types = resolved.type->overloads[*chosen[node]].socketTypes;
+  for (std::size_t s = 0; s < resolved.type->sockets.size(); ++s) {
+    if (resolved.type->sockets[s].direction != Direction::In && types[s].derivatives)
+      return 3.0 * cost;
+  }
+  return cost;
+}
+
+}  // namespace
+
 MaterialCut cutForDomain(const ResolvedGraph& graph, const std::vector<std::size_t>& order,
                          const OverloadChoice& chosen, const SocketVariation& variation,
                          Variation domain) {
@@ -240,7 +262,7 @@ MaterialCut cutForDomain(const ResolvedGraph& graph, const std::vector<std::size
   cut.domain = domain;
   std::vector<char> inCut(count, 0);
   for (const std::size_t node : order) {
-    cut.totalCost += estimatedNodeCost(graph.nodes[node]);
+    cut.totalCost += scheduledNodeCost(graph, chosen, node);
     // A source node the rest runs anyway gives its values there; caching them saves nothing.
     if (inRest[node])
       continue;
@@ -268,7 +290,7 @@ MaterialCut cutForDomain(const ResolvedGraph& graph, const std::vector<std::size
     if (inCut[node]) {
       cut.cutNodes.push_back(node);
       if (!inRest[node])
-        cut.cachedCost += estimatedNodeCost(graph.nodes[node]);
+        cut.cachedCost += scheduledNodeCost(graph, chosen, node);
     }
     if (inRest[node])
       cut.restNodes.push_back(node);

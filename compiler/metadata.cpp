@@ -91,6 +91,7 @@ MaterialMetadata collectMetadata(const ResolvedGraph& graph, const std::vector<s
   // texture coordinates varies across the surface.
   meta.cacheable = std::all_of(meta.inputsUsed.begin(), meta.inputsUsed.end(),
                                [](const std::string& input) { return input == "uv"; });
+  meta.estimatedCost = cut.totalCost;
   if (!cut.empty()) {
     meta.cutDomain = std::string(variationName(cut.domain));
     meta.cutWidth = cut.width;

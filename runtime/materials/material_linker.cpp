@@ -301,6 +301,7 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
         linked.bsdfLobes = true;
     }
     entry.textureCount = compiled->metadata.textures.size();
+    entry.estimatedCost = compiled->metadata.estimatedCost;
     // A whole uv-only material's key is a uv texel: it is cached only with the uv domain.
     if (!(options.cacheKeyDomains & kCacheKeyUv))
       entry.cacheable = false;

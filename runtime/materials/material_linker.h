@@ -38,6 +38,9 @@ struct LinkedMaterial {
   // The cut's share of the graph's estimated cost (compiler metadata cutCostShare; 0 without
   // a cut): what a cached cut saves, for the cached-share statistic (RenderStats).
   double cutCostShare = 0.0;
+  // The graph's estimated cost (compiler metadata estimatedCost): its weight in that
+  // statistic.
+  double estimatedCost = 0.0;
   // Index into LinkedMaterials::distinct: scene materials sharing a graph share one
   // compiled include (and one callable shader).
   std::uint32_t distinctIndex = 0;

@@ -359,22 +359,27 @@ RenderStats::CachedCostShare cachedCostShare(const RendererOptions& options, con
   // megakernel's switch and the wavefront (docs/design/memoization.md, "Keys of the cut").
   const bool keysCuts = options.cache.mode == CacheMode::Texel &&
                         (plan.wavefront || plan.dispatch == MaterialDispatch::Switch);
+  // Every instance weighs by its graph's estimated cost: the share is of the scene's cost.
+  double total = 0.0;
   for (const Instance& instance : scene.instances) {
     const LinkedMaterial& material = materials.linked.materials[instance.material];
+    const double cost = material.estimatedCost;
+    total += cost;
     if (material.cacheable)
-      share.whole += 1.0;
+      share.whole += cost;
     else if (keysCuts && material.cutDomain == gpu::kCacheCutUv)
-      share.uv += material.cutCostShare;
+      share.uv += cost * material.cutCostShare;
     else if (keysCuts && material.cutDomain == gpu::kCacheCutObject)
-      share.object += material.cutCostShare;
+      share.object += cost * material.cutCostShare;
     else if (keysCuts && material.cutDomain == gpu::kCacheCutWorld)
-      share.world += material.cutCostShare;
+      share.world += cost * material.cutCostShare;
   }
-  const double n = double(scene.instances.size());
-  share.whole /= n;
-  share.uv /= n;
-  share.object /= n;
-  share.world /= n;
+  if (total <= 0.0)
+    return RenderStats::CachedCostShare{};
+  share.whole /= total;
+  share.uv /= total;
+  share.object /= total;
+  share.world /= total;
   return share;
 }
 

@@ -181,9 +181,9 @@ struct RenderStats {
   std::uint64_t cacheBytes = 0;
   std::string culling = "none";  // --culling: none, frustum or lipac
   // The share of the scene's estimated material cost (compiler/cut.h's per-node estimates,
-  // uncalibrated) that this render's cache can serve: every instance's material weighs
-  // alike; a whole cacheable (uv-only) graph counts 1, a cut its cutCostShare where this
-  // render keys cuts (the texel cache of the switch megakernel or the wavefront), by key
+  // uncalibrated) that this render's cache can serve: every instance weighs by its graph's
+  // estimated cost; a whole cacheable (uv-only) graph counts whole, a cut its cutCostShare where
+  // this render keys cuts (the texel cache of the switch megakernel or the wavefront), by key
   // domain. Times the hit rate, it estimates the share of material cost served from the
   // cache. All 0 without a cache.
   struct CachedCostShare {

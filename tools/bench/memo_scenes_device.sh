@@ -154,7 +154,7 @@ quality="$OUT/memo_scenes_quality.md"
   echo "P = 6, L = 4, $warmup warm-up and $frames timed frames (a cached frame depends on the ones"
   echo "before it, so every frame of the path is rendered). Time: median GPU ms a frame; x floor:"
   echo "against --floor-materials on the wavefront. Hit rate: over the timed frames. Cached"
-  echo "share: of the estimated material cost (compiler cost estimates, every instance alike),"
+  echo "share: of the estimated material cost (compiler cost estimates, each instance weighted by its graph's cost),"
   echo "by what is cached (whole uv-only graphs; cuts by key domain); served = cached share x"
   echo "hit rate."
   echo

@@ -39,11 +39,21 @@ class CachedCostShare : public ::testing::Test {
 
 TEST_F(CachedCostShare, TheWavefrontTexelCacheServesWholeGraphsAndCutsByDomain) {
   const auto s = share(CacheMode::Texel, true, MaterialDispatch::Callable);
-  EXPECT_NEAR(s.whole, 1.0 / 3.0, 1e-9);
-  EXPECT_NEAR(s.world, 1.0 / 3.0, 1e-3);
-  EXPECT_NEAR(s.uv, 0.849 / 3.0, 1e-3);
+  // Each instance weighs by its graph's estimated cost: the share is of the scene's cost.
+  const auto& m = materials_.linked.materials;
+  const double checker = m.at(0).estimatedCost;
+  const double marble = m.at(1).estimatedCost;
+  const double carPaint = m.at(2).estimatedCost;
+  ASSERT_GT(checker, 0.0);
+  ASSERT_NE(marble, checker);  // else the weighting would not show
+  const double total = checker + marble + carPaint;
+  EXPECT_NEAR(m.at(1).cutCostShare, 1.0, 1e-3);
+  EXPECT_NEAR(m.at(2).cutCostShare, 0.849, 1e-3);
+  EXPECT_NEAR(s.whole, checker / total, 1e-9);
+  EXPECT_NEAR(s.world, marble / total, 1e-3);
+  EXPECT_NEAR(s.uv, 0.849 * carPaint / total, 1e-3);
   EXPECT_EQ(s.object, 0.0);
-  EXPECT_NEAR(s.total(), (2.0 + 0.849) / 3.0, 1e-3);
+  EXPECT_NEAR(s.total(), (checker + marble + 0.849 * carPaint) / total, 1e-3);
   const auto megakernelSwitch = share(CacheMode::Texel, false, MaterialDispatch::Switch);
   EXPECT_NEAR(megakernelSwitch.total(), s.total(), 1e-12);
 }
@@ -51,7 +61,11 @@ TEST_F(CachedCostShare, TheWavefrontTexelCacheServesWholeGraphsAndCutsByDomain) 
 TEST_F(CachedCostShare, CallablesAndTheTileCacheServeWholeGraphsOnly) {
   for (const auto& s : {share(CacheMode::Texel, false, MaterialDispatch::Callable),
                         share(CacheMode::Tile, true, MaterialDispatch::Callable)}) {
-    EXPECT_NEAR(s.whole, 1.0 / 3.0, 1e-9);
+    const auto& m = materials_.linked.materials;
+    EXPECT_NEAR(s.whole,
+                m.at(0).estimatedCost /
+                    (m.at(0).estimatedCost + m.at(1).estimatedCost + m.at(2).estimatedCost),
+                1e-9);
     EXPECT_EQ(s.uv + s.object + s.world, 0.0);
   }
   EXPECT_EQ(share(CacheMode::None, true, MaterialDispatch::Callable).total(), 0.0);
