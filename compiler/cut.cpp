@@ -8,12 +8,14 @@ namespace memograph::compiler {
 
 namespace {
 
-// Estimated cost per node name, in units of about one arithmetic node (Add, Mul, Mix: 1,
-// the default). `perOctave` applies per fBm octave of the node's Detail socket (Cycles:
-// floor(Detail) + 1 octaves, one more blended in when Detail has a fraction). Derived from
-// the operation counts of nodes/*.inc, not timed: tools/bench/node_costs_device.sh times
-// every row on the GPU and prints the measured rows (docs/design/memoization.md, "Measuring
-// the node costs"); until they replace these, trust a share only as a rough ranking.
+// Cost per node name, in units of one arithmetic node (Add: 1, the default). `perOctave`
+// applies per fBm octave of the node's Detail socket (Cycles: floor(Detail) + 1 octaves, one
+// more blended in when Detail has a fraction). The values come from the operation counts of
+// nodes/*.inc until `tools/bench/node_cost_graphs.py calibrate --write` sets the rows a
+// committed GPU timing table covers (tools/bench/node_costs_device.sh times each node as a
+// dependent chain against a baseline: docs/design/memoization.md, "Measuring the node
+// costs"); the rows it cannot time (the inputs, outputs and BSDF sinks, Bump) stay
+// estimates. Trust a share as a ranking of a cut's parts, not as a prediction of its time.
 struct NodeCost {
   std::string_view node;
   double base = 0;

@@ -28,6 +28,12 @@ static_assert(sizeof(BakePush) == 64);
 
 constexpr std::uint32_t kBakeWorkgroup = 8;     // bake.comp's local size
 constexpr std::uint32_t kBakeVec4PerPixel = 4;  // bake.comp's BakeValues layout
+// bake.comp's BakeSums layout (MG_BAKE_TIMING): one float a pixel.
+constexpr std::uint32_t kTimedBytesPerPixel = 4;
+
+// Which values buffer a BakeProgram writes: the bake's outputs, or the timing's one sum a
+// pixel.
+enum class BakeStores { Outputs, TimingSum };
 
 }  // namespace
 
@@ -53,14 +59,16 @@ namespace {
 
 // The bytes of the values buffer of a bake of `settings`' size, refused (std::invalid_argument)
 // when the device cannot hold them.
-std::uint64_t bakeValueBytes(const VulkanContext& context, const BakeSettings& settings) {
+std::uint64_t bakeValueBytes(const VulkanContext& context, const BakeSettings& settings,
+                             BakeStores stores) {
   if (settings.width == 0 || settings.height == 0)
     throw std::invalid_argument("the bake size must be at least 1x1");
-  const std::uint64_t valueBytes =
-      std::uint64_t(settings.width) * settings.height * kBakeVec4PerPixel * 16;
+  const std::uint64_t bytesPerPixel =
+      stores == BakeStores::Outputs ? kBakeVec4PerPixel * 16 : kTimedBytesPerPixel;
+  const std::uint64_t valueBytes = std::uint64_t(settings.width) * settings.height * bytesPerPixel;
   checkBufferSize(context, valueBytes,
                   "a " + std::to_string(settings.width) + "x" + std::to_string(settings.height) +
-                      " bake (64 bytes a pixel)",
+                      " bake (" + std::to_string(bytesPerPixel) + " bytes a pixel)",
                   true);
   return valueBytes;
 }
@@ -68,12 +76,12 @@ std::uint64_t bakeValueBytes(const VulkanContext& context, const BakeSettings& s
 }  // namespace
 
 // One material's bake shader, ready to dispatch into a values buffer: its textures, pipeline
-// and descriptor set. Baking and timing record the same dispatch, so that a timing measures
-// what a bake runs.
+// and descriptor set. Baking and timing record the same dispatch and evaluation, so that a
+// timing measures what a bake runs; a timing stores one sum a pixel instead of the outputs.
 class MaterialBaker::BakeProgram {
  public:
   BakeProgram(const VulkanContext& context, const std::filesystem::path& shaderCacheDirectory,
-              const BakeMaterial& material, VkBuffer values)
+              const BakeMaterial& material, VkBuffer values, BakeStores stores)
       : textures_(context, material.textures) {
     VkDevice device = context.device();
     // The shader: the embedded sources plus this material's include, entered through a
@@ -81,11 +89,12 @@ class MaterialBaker::BakeProgram {
     std::map<std::string, std::string> files = embeddedShaderFiles();
     files["bake_material.glsl"] = material.glsl;
     ShaderCompiler compiler(std::move(files), shaderCacheDirectory);
+    std::vector<std::string> defines = {"MG_TEXTURE_COUNT=" + std::to_string(textures_.count()),
+                                        "MG_BAKE_EVALUATE=EvaluateMaterial_" + material.name};
+    if (stores == BakeStores::TimingSum)
+      defines.push_back("MG_BAKE_TIMING");
     const std::vector<std::uint32_t> spirv =
-        compiler.compile({"bake.comp",
-                          ShaderStage::Compute,
-                          {"MG_TEXTURE_COUNT=" + std::to_string(textures_.count()),
-                           "MG_BAKE_EVALUATE=EvaluateMaterial_" + material.name}});
+        compiler.compile({"bake.comp", ShaderStage::Compute, std::move(defines)});
 
     VulkanHandle<VkShaderModule> module = createShaderModule(device, spirv);
 
@@ -191,10 +200,11 @@ class MaterialBaker::BakeProgram {
 
 BakeOutputs MaterialBaker::bake(const BakeMaterial& material, const BakeSettings& settings) {
   const VulkanContext& context = *context_;
-  const std::uint64_t valueBytes = bakeValueBytes(context, settings);
+  const std::uint64_t valueBytes = bakeValueBytes(context, settings, BakeStores::Outputs);
   const std::size_t pixels = std::size_t(settings.width) * settings.height;
   GpuBuffer values = hostBuffer(context, valueBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
-  const BakeProgram program(context, shaderCacheDirectory_, material, values.buffer());
+  const BakeProgram program(context, shaderCacheDirectory_, material, values.buffer(),
+                            BakeStores::Outputs);
   context.submitAndWait([&](VkCommandBuffer commands) {
     program.recordDispatch(commands, settings);
     // The host reads the values after the wait: make the shader's writes visible to it.
@@ -249,10 +259,11 @@ std::vector<double> MaterialBaker::timeDispatches(const BakeMaterial& material,
     throw std::runtime_error("the device's compute queue has no timestamps");
   // Device-local values, never read back: a host-visible buffer would put the bus's write
   // bandwidth into every dispatch's time.
-  const std::uint64_t valueBytes = bakeValueBytes(context, settings);
+  const std::uint64_t valueBytes = bakeValueBytes(context, settings, BakeStores::TimingSum);
   GpuBuffer values(context, valueBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                    VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  const BakeProgram program(context, shaderCacheDirectory_, material, values.buffer());
+  const BakeProgram program(context, shaderCacheDirectory_, material, values.buffer(),
+                            BakeStores::TimingSum);
 
   const std::uint32_t queryCount = 2 * dispatches;
   VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};

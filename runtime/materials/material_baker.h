@@ -71,8 +71,9 @@ class MaterialBaker {
 
   // Runs the bake's evaluation `dispatches` times into device memory, one dispatch after
   // the other, and returns each dispatch's GPU time in nanoseconds (timestamp queries);
-  // nothing is read back. Throws as bake() does, and std::runtime_error on a device
-  // without timestamps.
+  // nothing is read back. Each pixel stores one float, the sum of every output component
+  // (bake.comp's MG_BAKE_TIMING), so that the stores do not bound a cheap evaluation. Throws as
+  // bake() does, and std::runtime_error on a device without timestamps.
   std::vector<double> timeDispatches(const BakeMaterial& material, const BakeSettings& settings,
                                      std::uint32_t dispatches);
 

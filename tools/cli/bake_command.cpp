@@ -69,7 +69,8 @@ constexpr std::string_view kHelp =
     "                    with the same arguments bake each graph once (docs/guide/slurm.md)\n"
     "  --time R          write no image: evaluate each material R times on the device and\n"
     "                    print the median GPU time of one evaluation, in ns per pixel\n"
-    "                    (timestamp queries around each dispatch; default: off)\n"
+    "                    (timestamp queries around each dispatch; a pixel stores one float,\n"
+    "                    the sum of its outputs; default: off)\n"
     "  --quiet           print only errors\n";
 
 // Reads --bounds; false with `error` saying which number is wrong and why.
@@ -398,7 +399,7 @@ void printMedianTime(const std::string& name, const BakeRun& run, std::vector<do
       n % 2 == 1 ? dispatchNs[n / 2] : 0.5 * (dispatchNs[n / 2 - 1] + dispatchNs[n / 2]);
   const double pixels = double(run.settings.width) * run.settings.height;
   std::ostringstream line;
-  line.precision(4);
+  line.precision(6);  // a cheap evaluation is a few thousandths of a ns a pixel
   line << std::fixed << "time " << name << " " << median / pixels << " ns/pixel (median of " << n
        << " dispatches of " << run.settings.width << "x" << run.settings.height << ")";
   std::cout << line.str() << std::endl;

@@ -17,11 +17,20 @@
 
 layout(local_size_x = 8, local_size_y = 8) in;
 
+#ifdef MG_BAKE_TIMING
+// `bake --time`: one float a pixel, the sum of every output component, so that no output is
+// dead code while the stores stay a small fixed part of the time (four vec4 a pixel made an
+// evaluation of a few arithmetic nodes bound by its memory traffic).
+layout(set = 0, binding = 0, std430) writeonly buffer BakeSums {
+  float bakeSums[];
+};
+#else
 // Four vec4 a pixel: (baseColor, metallic), (normal, roughness), (emission, opacity),
 // (specular, specularTint, cyclesPrincipled, 0).
 layout(set = 0, binding = 0, std430) writeonly buffer BakeValues {
   vec4 bakeValues[];
 };
+#endif
 
 layout(push_constant) uniform BakePush {
   vec4 boundsMin;  // xyz: the object's bounding box (object = world space here)
@@ -101,10 +110,17 @@ void main() {
   MaterialOutputs outputs;
   MG_BAKE_EVALUATE(inputs, outputs);
 
+#ifdef MG_BAKE_TIMING
+  bakeSums[pixel.y * size.x + pixel.x] =
+      dot(outputs.baseColor + outputs.normal + outputs.emission, vec3(1.0)) + outputs.metallic +
+      outputs.roughness + outputs.opacity + outputs.specular + outputs.specularTint +
+      outputs.cyclesPrincipled;
+#else
   uint base = 4u * (pixel.y * size.x + pixel.x);
   bakeValues[base + 0u] = vec4(outputs.baseColor, outputs.metallic);
   bakeValues[base + 1u] = vec4(outputs.normal, outputs.roughness);
   bakeValues[base + 2u] = vec4(outputs.emission, outputs.opacity);
   bakeValues[base + 3u] =
       vec4(outputs.specular, outputs.specularTint, outputs.cyclesPrincipled, 0.0);
+#endif
 }
