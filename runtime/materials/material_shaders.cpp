@@ -24,6 +24,9 @@ std::vector<std::vector<std::uint32_t>> compileMaterialShaders(const ShaderCompi
       defines.push_back("MG_EVALUATE_MATERIAL=EvaluateMaterial_" + material.name);
       if (material.cacheable)
         defines.push_back("MG_MATERIAL_CACHEABLE=1");
+      if (index < request.materialDefines.size())
+        defines.insert(defines.end(), request.materialDefines[index].begin(),
+                       request.materialDefines[index].end());
       if (request.cutFunctions && material.cutWidth > 0) {
         defines.push_back("MG_MATERIAL_CUT=MaterialCut_" + material.name);
         defines.push_back("MG_MATERIAL_CUT_WIDTH=" + std::to_string(material.cutWidth));

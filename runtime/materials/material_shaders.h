@@ -24,6 +24,8 @@ struct MaterialShaderRequest {
   // with a cut also gets MG_MATERIAL_CUT (its MaterialCut_<Name>), MG_MATERIAL_CUT_WIDTH,
   // MG_EVALUATE_MATERIAL_CUT and MG_EVALUATE_MATERIAL_REST.
   bool cutFunctions = false;
+  // Per distinct material (empty: none), defines of that material's shader alone.
+  std::vector<std::vector<std::string>> materialDefines;
   std::uint32_t threads = 0;    // 0: one per hardware thread
   std::string what = "shader";  // names the shader in a compile error: "<what> of material 'X'"
 };

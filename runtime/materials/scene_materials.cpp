@@ -14,6 +14,11 @@ SceneMaterials linkSceneMaterials(const Scene& scene,
   materials.linked = linkMaterials(scene.materials, linkOptions);
   materials.emissionKinds = emissionKindsVerified(scene, materials.linked);
   materials.neeEvaluatesEmission = sceneNeeEvaluatesEmission(scene, materials.emissionKinds);
+  materials.neeEvaluatedGraphs.assign(materials.linked.distinct.size(), false);
+  const std::vector<bool> evaluated = neeEvaluatedMaterials(scene, materials.emissionKinds);
+  for (std::size_t i = 0; i < evaluated.size() && i < materials.linked.materials.size(); ++i)
+    if (evaluated[i])
+      materials.neeEvaluatedGraphs[materials.linked.materials[i].distinctIndex] = true;
   return materials;
 }
 

@@ -17,6 +17,9 @@ struct SceneMaterials {
   // Some emitter's emission NEE must take from its graph: the megakernel's second material
   // call site (MG_NEE_EVALUATES_EMISSION), which the wavefront does not have.
   bool neeEvaluatesEmission = false;
+  // Per distinct graph (LinkedMaterials::distinct), whether NEE evaluates it at an emitter's
+  // light samples: only those graphs' wavefront material passes evaluate light points.
+  std::vector<bool> neeEvaluatedGraphs;
 };
 
 // `nodeLibraryDirectory` empty: the embedded node library; `cacheKeyDomains` the key domains

@@ -175,18 +175,33 @@ static float emissionLuminance(const Scene& scene, const Instance& instance) {
   return 0.2126f * e.r + 0.7152f * e.g + 0.0722f * e.b;
 }
 
+// An instance whose light samples NEE evaluates its material at: light sampling on, an
+// emitting instance with triangles, its material's emission kind Graph (as uploadScene's
+// emissive triangles with w = 0).
+static bool neeEvaluatesInstance(const Scene& scene, const Instance& instance,
+                                 const std::vector<MaterialRef::EmissionKind>& emissionKinds) {
+  const bool graph = instance.material >= emissionKinds.size() ||
+                     emissionKinds[instance.material] == MaterialRef::EmissionKind::Graph;
+  return scene.emissiveLightSampling && graph && emissionLuminance(scene, instance) > 0.0f &&
+         scene.meshes[instance.mesh].indices.size() >= 3;
+}
+
 bool sceneNeeEvaluatesEmission(const Scene& scene,
                                const std::vector<MaterialRef::EmissionKind>& emissionKinds) {
-  if (!scene.emissiveLightSampling)
-    return false;
-  for (const Instance& instance : scene.instances) {
-    const bool graph = instance.material >= emissionKinds.size() ||
-                       emissionKinds[instance.material] == MaterialRef::EmissionKind::Graph;
-    if (graph && emissionLuminance(scene, instance) > 0.0f &&
-        scene.meshes[instance.mesh].indices.size() >= 3)
+  for (const Instance& instance : scene.instances)
+    if (neeEvaluatesInstance(scene, instance, emissionKinds))
       return true;
-  }
   return false;
+}
+
+std::vector<bool> neeEvaluatedMaterials(
+    const Scene& scene, const std::vector<MaterialRef::EmissionKind>& emissionKinds) {
+  std::vector<bool> evaluated(scene.materials.size(), false);
+  for (const Instance& instance : scene.instances)
+    if (instance.material < evaluated.size() &&
+        neeEvaluatesInstance(scene, instance, emissionKinds))
+      evaluated[instance.material] = true;
+  return evaluated;
 }
 
 SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,

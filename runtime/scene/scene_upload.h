@@ -55,6 +55,12 @@ std::vector<MaterialRef::EmissionKind> emissionKindsVerified(const Scene& scene,
 bool sceneNeeEvaluatesEmission(const Scene& scene,
                                const std::vector<MaterialRef::EmissionKind>& emissionKinds);
 
+// Per scene material, whether NEE evaluates it at some emitter's light samples (the
+// instances sceneNeeEvaluatesEmission looks for, by their material): the wavefront compiles
+// the evaluation of light points only into those materials' graphs' passes.
+std::vector<bool> neeEvaluatedMaterials(
+    const Scene& scene, const std::vector<MaterialRef::EmissionKind>& emissionKinds);
+
 // `emissionKinds`: per scene material, the emission NEE may take as known (see
 // MaterialRef::EmissionKind and emissionKindsVerified); empty: every material Graph.
 SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,

@@ -122,6 +122,7 @@ std::unique_ptr<FrameTracer> buildWavefront(const ShaderBuild& b, ShaderCompiler
   setup.tileQueueCapacity = b.plan.cache.mode == CacheMode::Tile ? b.plan.cache.tileQueue : 0;
   setup.tileImage = cache.tileImageView() != VK_NULL_HANDLE;
   setup.emitterGraphs = b.inputs.materials->neeEvaluatesEmission && !b.floor;
+  setup.lightPointGraphs = b.inputs.materials->neeEvaluatedGraphs;
   setup.sharedPrimaryHits = b.settings.sharedPrimaryRay;
   setup.cutKeys = b.cutKeys;
   setup.pathSlots = b.options.wavefrontPaths;
@@ -137,6 +138,13 @@ std::unique_ptr<FrameTracer> buildWavefront(const ShaderBuild& b, ShaderCompiler
       b.settings.height, setup);
   stats.wavefrontPathSlots = tracer->pathSlots();
   stats.wavefrontChunks = tracer->chunks();
+  for (const WavefrontPathTracer::MaterialPassSize& size : tracer->materialPassSizes()) {
+    ++stats.wavefrontMaterialPasses;
+    stats.wavefrontMaterialInlinedInstructions += size.pass.inlinedInstructions;
+    stats.wavefrontMaterialGraphInstructions += size.graph.inlinedInstructions;
+    stats.wavefrontMaterialGraphCopiesMax =
+        std::max(stats.wavefrontMaterialGraphCopiesMax, size.graph.copies);
+  }
   // The wavefront has no callables: its material pipelines' compiles count in their place.
   callableStats = tracer->materialShaderStats();
   return tracer;

@@ -141,6 +141,14 @@ struct RenderStats {
   // chunks a round of the image ran in (1 when every pixel has a slot); 0 for the megakernel.
   std::uint32_t wavefrontPathSlots = 0;
   std::uint32_t wavefrontChunks = 0;
+  // The wavefront's material passes (one a distinct graph; 0 for the megakernel or the
+  // floor) as a driver that inlines every call compiles them (vk/spirv_size.h), summed over
+  // the passes: their instructions, and their graphs' (EvaluateMaterial_<name>, one copy
+  // each); and the most copies of its graph one pass holds.
+  std::uint32_t wavefrontMaterialPasses = 0;
+  std::uint64_t wavefrontMaterialInlinedInstructions = 0;
+  std::uint64_t wavefrontMaterialGraphInstructions = 0;
+  std::uint64_t wavefrontMaterialGraphCopiesMax = 0;
   // Shader modules and pipeline (the driver's own compile), excluding GLSL → SPIR-V.
   double pipelineCreateMilliseconds = 0.0;
   // The pipelines created for the render (the animated meshes' pass included) and, where

@@ -344,6 +344,13 @@ void printSummary(const std::string& out, const runtime::RenderStats& stats) {
             << stats.pipelineCreateMilliseconds << " ms (" << runtime::pipelineCacheText(stats)
             << "); first frame done " << stats.firstFrameMilliseconds
             << " ms after the render began\n";
+  if (stats.wavefrontMaterialPasses > 0)
+    std::cerr << "wavefront material passes: " << stats.wavefrontMaterialPasses << ", "
+              << stats.wavefrontMaterialInlinedInstructions
+              << " SPIR-V instructions with every call inlined, "
+              << stats.wavefrontMaterialGraphInstructions << " of them one copy of each graph; "
+              << "at most " << stats.wavefrontMaterialGraphCopiesMax
+              << " copies of a graph a pass\n";
   if (stats.ambientOcclusionSamples > 0)
     std::cerr << "ambient occlusion (seeds/004 §3): " << stats.ambientOcclusionSamples
               << " rays of length " << stats.ambientOcclusionDistance

@@ -213,8 +213,12 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
       shaders.rayTracingModules.push_back(createShaderModule(device, spirv[i]));
   }
   if (materials)
-    shaders.materialSpirv =
-        compileMaterialPasses(compiler, *materials, defines, setup.cutKeys, setup.compileThreads);
+    shaders.materialSpirv = compileMaterialPasses(compiler, *materials, defines, setup);
+  for (std::size_t bin = 0; bin < shaders.materialSpirv.size(); ++bin)
+    materialPassSizes_.push_back(
+        {spirvSize(shaders.materialSpirv[bin]),
+         spirvFunctionCopies(shaders.materialSpirv[bin],
+                             "EvaluateMaterial_" + materials->distinct[bin].name)});
   createPipelines(shaders, materials, setup.compileThreads);
 }
 
@@ -224,14 +228,24 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
 // Compiled on several threads (glslang took 4.4 s for all of the classroom's, cold).
 std::vector<std::vector<std::uint32_t>> WavefrontPathTracer::compileMaterialPasses(
     ShaderCompiler& compiler, const LinkedMaterials& materials,
-    const std::vector<std::string>& defines, bool cutKeys, std::uint32_t compileThreads) {
+    const std::vector<std::string>& defines, const WavefrontSetup& setup) {
   MaterialShaderRequest request;
-  request.cutFunctions = cutKeys;
+  request.cutFunctions = setup.cutKeys;
   request.source = "wavefront.glsl";
   request.stage = ShaderStage::Compute;
   request.defines = defines;
   request.defines.push_back(kPassDefines[gpu::kWavefrontMaterial]);
-  request.threads = compileThreads;
+  // The evaluation of light points only in the passes of graphs that emitters' light samples
+  // evaluate: the others' bins never hold a point, and each pass compiled is a driver's
+  // compile at a cold start.
+  if (lightPoints_) {
+    request.materialDefines.resize(materials.distinct.size());
+    for (std::size_t bin = 0; bin < materials.distinct.size(); ++bin)
+      if (setup.lightPointGraphs.empty() ||
+          (bin < setup.lightPointGraphs.size() && setup.lightPointGraphs[bin]))
+        request.materialDefines[bin].push_back("MG_MATERIAL_LIGHT_POINTS=1");
+  }
+  request.threads = setup.compileThreads;
   request.what = "wavefront material pass";
   return compileMaterialShaders(compiler, materials, request, materialShaderStats_);
 }

@@ -17,6 +17,7 @@
 #include "runtime/trace/render_stats.h"
 #include "runtime/vk/gpu_buffer.h"
 #include "runtime/vk/shader_compiler.h"
+#include "runtime/vk/spirv_size.h"
 #include "runtime/vk/vulkan_context.h"
 #include "runtime/vk/vulkan_handle.h"
 
@@ -38,6 +39,10 @@ struct WavefrontSetup {
   // (MG_NEE_EVALUATES_EMISSION in the defines): after each bounce's shadow pass its unblocked
   // samples' points are binned and their emitters' graphs evaluated by the material passes.
   bool emitterGraphs = false;
+  // With emitterGraphs, per distinct graph whether some emitter's light samples evaluate it
+  // (SceneMaterials::neeEvaluatedGraphs; empty: every graph): only those graphs' material
+  // passes compile the evaluation of light points (MG_MATERIAL_LIGHT_POINTS).
+  std::vector<bool> lightPointGraphs;
   // --shared-primary (RenderSettings::sharedPrimaryRay): round 0 traces each pixel's camera ray
   // and keeps its hit in two more fields, which the later rounds take instead of tracing it.
   bool sharedPrimaryHits = false;
@@ -88,6 +93,13 @@ class WavefrontPathTracer final : public FrameTracer {
   std::vector<std::uint32_t> binHits() const;
   // The material pipelines' GLSL compiles (they have compilers of their own).
   const ShaderCacheStats& materialShaderStats() const { return materialShaderStats_; }
+  // Per material pass (bin), its SPIR-V as a driver that inlines every call compiles it
+  // (spirv_size.h): the pass, and its graph (EvaluateMaterial_<name>) within it.
+  struct MaterialPassSize {
+    SpirvSize pass;
+    SpirvFunctionCopies graph;
+  };
+  const std::vector<MaterialPassSize>& materialPassSizes() const { return materialPassSizes_; }
 
   // Records one frame: per chunk of pixels, P rounds of one path a pixel, each generate, L x
   // (trace, [[lookup,] bin count, bin offsets, bin scatter, material passes,] shade, queue,
@@ -130,6 +142,7 @@ class WavefrontPathTracer final : public FrameTracer {
   // One a distinct material graph (material bin), indexed by bin; empty with the floor.
   std::vector<VulkanHandle<VkPipeline>> materialPasses_;
   ShaderCacheStats materialShaderStats_;
+  std::vector<MaterialPassSize> materialPassSizes_;
   VulkanHandle<VkPipeline> rayTracing_;  // pipeline backend: the trace and shadow raygens
   GpuBuffer shaderBindingTable_;
   VkStridedDeviceAddressRegionKHR traceRaygenRegion_{};
@@ -153,7 +166,7 @@ class WavefrontPathTracer final : public FrameTracer {
   // One shader per distinct graph (the material bins), from its include alone.
   std::vector<std::vector<std::uint32_t>> compileMaterialPasses(
       ShaderCompiler& compiler, const LinkedMaterials& materials,
-      const std::vector<std::string>& defines, bool cutKeys, std::uint32_t compileThreads);
+      const std::vector<std::string>& defines, const WavefrontSetup& setup);
   // The pipeline backend's trace and shadow raygens and the report-only shaders, as compile
   // requests appended to `requests`, with their stages.
   static void appendRayTracingRequests(const std::vector<std::string>& defines,

@@ -752,6 +752,84 @@ void main() {
 }
 
 #elif defined(MG_WAVEFRONT_MATERIAL)
+
+// One distinct graph over its bin's batch (bin push.step.w) of the material-sorted queue:
+// the material inputs built from the hit as the megakernel builds them, the graph's outputs
+// into the path state for the shade pass.
+// With the tile cache the invocations past the bin's hits compute its queued tiles, one
+// texel each (the deferred fill's tileFillTexel, with this graph): the last of a tile's
+// texels to be stored publishes it, so the next bounce's lookups find it.
+// The graph is called at one place in the pass (with a filtered or cut read of the texel
+// cache, evaluateMaterialCached's own calls besides): a driver inlines every call, so each
+// call site would be a whole copy of the graph in the pipeline, and a cold start compiles
+// one such pass per distinct graph. So an invocation first chooses what it evaluates (a
+// queued tile's texel, a light point or its hit), then calls the graph, then chooses where
+// the outputs go (docs/design/wavefront.md, "What a material pass holds").
+
+// Whether this dispatch evaluates light points: compiled only into the passes of graphs that
+// some emitter's light samples evaluate (MG_MATERIAL_LIGHT_POINTS, the host's, per graph);
+// the other graphs' bins never hold a point.
+bool evaluatesLightPoints() {
+#ifdef MG_MATERIAL_LIGHT_POINTS
+  return binsLightPoints();
+#else
+  return false;
+#endif
+}
+
+// The surface a binned path's graph is evaluated at: its traced hit (surfaceOfPath's), or for
+// a light point the sampled emitter point seen from its shading point along the shadow ray,
+// with a zero cone, as the megakernel's sampleDirectLight evaluates it once its shadow ray is
+// unblocked. One surfaceAt for both, so that the pass holds one copy of it.
+SurfaceHit surfaceToEvaluate(uint slot, bool lightPoint) {
+  vec4 hitField, originField, directionField;
+  float t;
+  PathState vertex;
+#ifdef MG_MATERIAL_LIGHT_POINTS
+  if (lightPoint) {
+    hitField = pathState[fieldIndex(kFieldLightHit, slot)];
+    vec4 lightOrigin = pathState[fieldIndex(kFieldLightOrigin, slot)];
+    vec4 shadowDirection = pathState[fieldIndex(kFieldShadowDirection, slot)];
+    originField = vec4(lightOrigin.xyz, 0.0);
+    directionField = vec4(shadowDirection.xyz, 0.0);
+    t = lightOrigin.w;
+    vertex = unpackLightPathState(floatBitsToUint(shadowDirection.w));
+  } else
+#endif
+  {
+    hitField = pathState[fieldIndex(kFieldHit, slot)];
+    originField = pathState[fieldIndex(kFieldOrigin, slot)];
+    directionField = pathState[fieldIndex(kFieldDirection, slot)];
+    t = pathState[fieldIndex(kFieldRadiance, slot)].w;
+    vertex = loadPathState(slot);
+  }
+  uvec4 hitBits = floatBitsToUint(hitField);
+  HitInfo hit;
+  hit.instanceIndex = hitBits.x;
+  hit.primitiveIndex = hitBits.y;
+  hit.barycentrics = uintBitsToFloat(hitBits.zw);
+  hit.t = t;
+  RayCone cone;
+  cone.width = originField.w;
+  cone.spread = directionField.w;
+  SurfaceHit s = surfaceAt(hit, originField.xyz, directionField.xyz, cone);
+  setPathInputs(s.inputs, vertex, t);
+  return s;
+}
+
+// Where an evaluation's outputs go: a hit's into the path state for the shade pass; a light
+// point's emission scales its sample's contribution, added to the path's radiance.
+void storeEvaluated(uint slot, bool lightPoint, MaterialOutputs m) {
+#ifdef MG_MATERIAL_LIGHT_POINTS
+  if (lightPoint) {
+    vec3 contribution = pathState[fieldIndex(kFieldShadowContribution, slot)].rgb;
+    pathState[fieldIndex(kFieldRadiance, slot)].rgb += contribution * m.emission;
+    return;
+  }
+#endif
+  storeMaterialOutputs(slot, m);
+}
+
 #if defined(MG_CACHE_CUT_PASS) && !defined(MG_CACHE_FILTER)
 // A graph keyed by its cut, with its misses gathered per work group. A hit whose entry is
 // missing evaluates the cut; in SIMT every subgroup with one such lane pays the cut's whole
@@ -777,15 +855,15 @@ void compactionBarrier() {
 }
 
 // The material pass of a graph keyed by its cut: every invocation of the work group calls it
-// (the barriers need them all); `live` those with a hit of the bin, `slot` its path. The
+// (the barriers need them all); `live` those with a path of the bin, `slot` its path, whose
+// hit (or, with `lightPoint`, light point: evaluated without the cache, as the megakernel's)
+// it evaluates. The
 // cut's entry is read (under §5.3.4's check: this pass inserts), a missing one evaluated at
 // its key's centre by the group's list and inserted; a hit without a key (a bounce the cache
 // does not take, or no usable key) evaluates the cut at its own inputs the same way. Then the
 // rest of the graph with the hit's own inputs. One copy of the graph: the list's cut, then the
 // rest.
-void materialPassThroughCut(bool live, uint slot) {
-  vec3 origin, direction;
-  RayCone cone;
+void materialPassThroughCut(bool live, uint slot, bool lightPoint) {
   SurfaceHit s;
   float values[MG_CACHE_VALUES];
   for (uint k = 0u; k < uint(MG_CACHE_VALUES); ++k) values[k] = 0.0;
@@ -794,10 +872,10 @@ void materialPassThroughCut(bool live, uint slot) {
   CacheKey key;
   MaterialInputs keyInputs;
   if (live) {
-    s = surfaceOfPath(slot, origin, direction, cone);
+    s = surfaceToEvaluate(slot, lightPoint);
     s.inputs.textureBase = MG_TEXTURE_BASE;  // as the switch's case sets it
     keyInputs = s.inputs;
-    keyed = cacheTakesBounce(push.step.y) && frame.cache.x != 0u &&
+    keyed = !lightPoint && cacheTakesBounce(push.step.y) && frame.cache.x != 0u &&
             cacheCutKeyFor(cacheInfoOf(s.materialId), cutInfoOf(s.materialId), s.object,
                            s.inputs, key, keyInputs);
     if (!keyed) keyInputs = s.inputs;
@@ -852,90 +930,65 @@ void materialPassThroughCut(bool live, uint slot) {
 #ifdef MG_DEBUG_CACHE_MISSES
   if (g_cacheMissed) pathState[fieldIndex(kFieldPixelSum, slot)].w = 1.0;  // as the lookup's
 #endif
-  storeMaterialOutputs(slot, m);
+  storeEvaluated(slot, lightPoint, m);
 }
 #endif
 
-// One distinct graph over its bin's batch (bin push.step.w) of the material-sorted queue:
-// the material inputs built from the hit as the megakernel builds them, the graph's outputs
-// into the path state for the shade pass.
-// With the tile cache the invocations past the bin's hits compute its queued tiles, one
-// texel each (the deferred fill's tileFillTexel, with this graph): the last of a tile's
-// texels to be stored publishes it, so the next bounce's lookups find it.
 void main() {
   uvec4 bin = materialBins[kBinRecords * push.step.w + 1u];
   uint i = invocationIndex();
+  const bool lightPoint = evaluatesLightPoints();
+#if defined(MG_CACHE_CUT_PASS) && !defined(MG_CACHE_FILTER)
+  // Every invocation of the group, past the bin's hits too, for the list's barriers (whether
+  // the dispatch evaluates light points is uniform: push constants).
+#if defined(MG_NEE_EVALUATES_EMISSION) && !defined(MG_MATERIAL_LIGHT_POINTS)
+  if (binsLightPoints()) return;  // no emitter's light samples evaluate this graph
+#endif
+  bool live = i < bin.w;
+  materialPassThroughCut(live, live ? pathQueues[queueIndex(3u, bin.y + i)] : 0u, lightPoint);
+  cacheAddCounts();
+  return;
+#endif
+  uint slot = 0u;
+  SurfaceHit s;
 #ifdef MG_WAVEFRONT_TILES
-  if (i >= bin.w) {
+  bool tileTexel = i >= bin.w;
+  uint queueSlot = 0u;
+  uint texel = 0u;
+  TileFillItem item;
+  if (tileTexel) {
     uvec4 tiles = materialBins[kBinRecords * push.step.w + 2u];
     uint tile = (i - bin.w) / kTileTexels;
     if (tile >= tiles.w) return;
-    uint texel = (i - bin.w) % kTileTexels;
-    uint queueSlot = pathQueues[queueIndex(4u, tiles.y + tile)];
-    TileFillItem item = tileQueue[queueSlot];
-    MaterialInputs inputs = tileFillInputs(item, texel);
-    inputs.textureBase = MG_TEXTURE_BASE;
-    MaterialOutputs m;
-    MG_EVALUATE_MATERIAL(inputs, m);
-    tileFillStore(queueSlot, item, texel, m);
-    return;
-  }
-#endif
-#if defined(MG_CACHE_CUT_PASS) && !defined(MG_CACHE_FILTER)
-  // Every invocation of the group, past the bin's hits too, for the list's barriers (the
-  // light points' dispatch, which evaluates no cut, is uniform: push constants).
-  if (!binsLightPoints()) {
-    bool live = i < bin.w;
-    materialPassThroughCut(live, live ? pathQueues[queueIndex(3u, bin.y + i)] : 0u);
-    cacheAddCounts();
-    return;
-  }
-#endif
+    texel = (i - bin.w) % kTileTexels;
+    queueSlot = pathQueues[queueIndex(4u, tiles.y + tile)];
+    item = tileQueue[queueSlot];
+    s.inputs = tileFillInputs(item, texel);
+  } else
+#else
   if (i >= bin.w) return;
-  uint slot = pathQueues[queueIndex(3u, bin.y + i)];
-#ifdef MG_NEE_EVALUATES_EMISSION
-  if (binsLightPoints()) {
-    // The light sample's point, as the megakernel's sampleDirectLight evaluates it once its
-    // shadow ray is unblocked: the surface seen from the shading point along wi, a zero cone,
-    // the graph without the cache; its emission scales the sample's contribution.
-    uvec4 hitBits = floatBitsToUint(pathState[fieldIndex(kFieldLightHit, slot)]);
-    vec4 lightOrigin = pathState[fieldIndex(kFieldLightOrigin, slot)];
-    HitInfo lightHit;
-    lightHit.instanceIndex = hitBits.x;
-    lightHit.primitiveIndex = hitBits.y;
-    lightHit.barycentrics = uintBitsToFloat(hitBits.zw);
-    lightHit.t = lightOrigin.w;
-    RayCone pointCone;
-    pointCone.width = 0.0;
-    pointCone.spread = 0.0;
-    vec4 shadowDirection = pathState[fieldIndex(kFieldShadowDirection, slot)];
-    SurfaceHit light = surfaceAt(lightHit, lightOrigin.xyz, shadowDirection.xyz, pointCone);
-    setPathInputs(light.inputs, unpackLightPathState(floatBitsToUint(shadowDirection.w)),
-                  lightHit.t);
-    light.inputs.textureBase = MG_TEXTURE_BASE;
-    MaterialOutputs emitter;
-    MG_EVALUATE_MATERIAL(light.inputs, emitter);
-    vec3 contribution = pathState[fieldIndex(kFieldShadowContribution, slot)].rgb;
-    pathState[fieldIndex(kFieldRadiance, slot)].rgb += contribution * emitter.emission;
-    return;
-  }
 #endif
-  vec3 origin, direction;
-  RayCone cone;
-  SurfaceHit s = surfaceOfPath(slot, origin, direction, cone);
+  {
+#if defined(MG_NEE_EVALUATES_EMISSION) && !defined(MG_MATERIAL_LIGHT_POINTS)
+    if (binsLightPoints()) return;  // no emitter's light samples evaluate this graph
+#endif
+    slot = pathQueues[queueIndex(3u, bin.y + i)];
+    s = surfaceToEvaluate(slot, lightPoint);
+  }
   s.inputs.textureBase = MG_TEXTURE_BASE;  // as the switch's case sets it
   MaterialOutputs m;
 #ifdef MG_CACHE_TEXEL
 #if defined(MG_EVALUATE_MATERIAL_CUT) && !defined(MG_CACHE_FILTER)
-  return;  // materialPassThroughCut evaluated the bin's hits
+  return;  // not reached: materialPassThroughCut evaluated the bin
 #elif defined(MG_EVALUATE_MATERIAL_CUT)
   // A graph keyed by its cut and read with a filter, in place as the megakernel's
   // evaluateMaterialThroughCut (the lookup pass left every such hit to this pass): the
   // entries around the hit, a missing one evaluated at its key's centre and inserted, then
   // the rest of the graph with the hit's own inputs. The entries are read under §5.3.4's
-  // check, since this pass inserts. A bounce the cache does not take runs the cut at the
-  // hit's own inputs: the pass holds one copy of its graph either way (MG_CACHE_CUT_PASS).
-  bool keyed = cacheTakesBounce(push.step.y);
+  // check, since this pass inserts. A bounce the cache does not take, and a light point (as
+  // the megakernel's, without the cache), run the cut at their own inputs: the pass holds
+  // one copy of its graph either way (MG_CACHE_CUT_PASS).
+  bool keyed = !lightPoint && cacheTakesBounce(push.step.y);
   // The stochastic filter's picks, as the megakernel seeds them for this path vertex.
   if (keyed)
     cacheSeedFilterPicks(pixelOfSlot(slot), sampleIndexOf(push.step.x), push.step.y + 1u,
@@ -946,13 +999,14 @@ void main() {
   if (g_cacheMissed) pathState[fieldIndex(kFieldPixelSum, slot)].w = 1.0;  // as the lookup's
 #endif
   cacheAddCounts();
-  storeMaterialOutputs(slot, m);
+  storeEvaluated(slot, lightPoint, m);
   return;
 #elif defined(MG_CACHE_FILTER) && defined(MG_MATERIAL_CACHEABLE)
   // A whole uv-only graph read with a filter, in place as the megakernel's
   // evaluateMaterialCached: the entries around the hit, each missing one evaluated at its
-  // centre and inserted (the lookup pass reads only unfiltered).
-  if (cacheTakesBounce(push.step.y)) {
+  // centre and inserted (the lookup pass reads only unfiltered). A light point is evaluated
+  // without the cache, as the megakernel's.
+  if (!lightPoint && cacheTakesBounce(push.step.y)) {
     // The stochastic filter's picks, as the megakernel seeds them for this path vertex.
     cacheSeedFilterPicks(pixelOfSlot(slot), sampleIndexOf(push.step.x), push.step.y + 1u,
                          frame.image.w);
@@ -964,16 +1018,17 @@ void main() {
     MG_EVALUATE_MATERIAL(s.inputs, m);
   }
   cacheAddCounts();
-  storeMaterialOutputs(slot, m);
+  storeEvaluated(slot, lightPoint, m);
   return;
 #endif
 #ifdef MG_MATERIAL_CACHEABLE
   uvec4 info = cacheInfoOf(s.materialId);
   // A miss of the lookup pass: evaluated (at its texel's centre with MG_CACHE_SNAP_UV) and
-  // inserted, as evaluateMaterialCached does after its read; the same key, recomputed.
+  // inserted, as evaluateMaterialCached does after its read; the same key, recomputed. A
+  // light point is evaluated without the cache, as the megakernel's.
   CacheKey key;
-  bool insert = cacheTakesBounce(push.step.y) && info.x != 0u && frame.cache.x != 0u &&
-                cacheKeyFor(info, s.inputs, key);
+  bool insert = !lightPoint && cacheTakesBounce(push.step.y) && info.x != 0u &&
+                frame.cache.x != 0u && cacheKeyFor(info, s.inputs, key);
   MaterialInputs inputs = s.inputs;
 #ifdef MG_CACHE_SNAP_UV
   if (insert) inputs = texelInputs(inputs, key.texelUv, key.texelSize);
@@ -995,7 +1050,13 @@ void main() {
 #else
   MG_EVALUATE_MATERIAL(s.inputs, m);
 #endif
-  storeMaterialOutputs(slot, m);
+#ifdef MG_WAVEFRONT_TILES
+  if (tileTexel) {
+    tileFillStore(queueSlot, item, texel, m);
+    return;
+  }
+#endif
+  storeEvaluated(slot, lightPoint, m);
 }
 
 #elif defined(MG_WAVEFRONT_SHADE)

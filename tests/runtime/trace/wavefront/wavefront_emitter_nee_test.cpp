@@ -118,6 +118,10 @@ TEST(WavefrontEmitterNee, EmittersGraphsAtLightSamplesGiveTheMegakernelsPicture)
       }
       EXPECT_LT(difference, 1e-4);
       EXPECT_EQ(wavefront.stats.frames.back().rays, megakernel.stats.frames.back().rays);
+      // One copy of its graph a material pass: the panel's pass evaluates its hits and its
+      // light points through one call (two copies before), the floor's no points at all.
+      EXPECT_EQ(wavefront.stats.wavefrontMaterialPasses, 2u);
+      EXPECT_EQ(wavefront.stats.wavefrontMaterialGraphCopiesMax, 1u);
     }
   }
 }

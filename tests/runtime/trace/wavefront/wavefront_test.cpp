@@ -216,6 +216,18 @@ TEST(Wavefront, TheClassroomsGraphsGiveTheMegakernelsPictureAtOneSeed) {
   EXPECT_EQ(wavefront.stats.shading, "wavefront");
   // Counted, not timed: a cold start waits for every one (wavefront_pipeline_count_test.cpp).
   EXPECT_EQ(wavefront.stats.pipelinesCreated, 96u);
+  // A driver inlines every call, so each call site of a graph in its pass is a copy of it to
+  // compile at a cold start: one a pass, and besides it at most 2,000 instructions of the
+  // hit's surface, the outputs' store and the binning's bookkeeping (about 1,600 measured).
+  EXPECT_EQ(wavefront.stats.wavefrontMaterialPasses, 88u);
+  EXPECT_EQ(wavefront.stats.wavefrontMaterialGraphCopiesMax, 1u);
+  EXPECT_LT(wavefront.stats.wavefrontMaterialInlinedInstructions,
+            wavefront.stats.wavefrontMaterialGraphInstructions + 88u * 2000u);
+  std::printf(
+      "classroom material passes: %llu SPIR-V instructions inlined, %llu of them its "
+      "graphs'\n",
+      static_cast<unsigned long long>(wavefront.stats.wavefrontMaterialInlinedInstructions),
+      static_cast<unsigned long long>(wavefront.stats.wavefrontMaterialGraphInstructions));
   const BinTally bins = tallyBins(wavefront.stats.frames.front());
   EXPECT_GE(bins.binsHit, 8u) << "the view should reach many of the classroom's graphs";
   EXPECT_GT(bins.hits, 0u);
