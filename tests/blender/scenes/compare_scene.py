@@ -83,6 +83,10 @@ BSDF_FLIP_LIMITS = {'bsdf_room': 0.065}
 for _tree in ('diffuse', 'oren_nayar', 'glossy_ggx', 'glossy_beckmann', 'velvet', 'mix', 'add',
               'room'):
     CHECKS['bsdf_' + _tree] = (32, 256, 16, 16, 5, 'bsdf', 0.02)
+# The transmission lobes: 9 rays a path (Cycles' 8 bounces after the camera's hit), since a
+# path through the ball takes two of them before it finds the floor or the sky.
+for _tree in ('glass', 'glass_rough', 'refraction', 'transparent', 'translucent'):
+    CHECKS['bsdf_' + _tree] = (32, 256, 16, 16, 9, 'bsdf', 0.02)
 
 
 def fail(msg):
