@@ -211,7 +211,7 @@ def main(argv=None):
             json.dump({'scene': args.scene, 'flip': flip, 'brightness': brightness,
                        'cycles_samples': samples, 'memograph_spp': frames * paths}, f)
         flip_limit = BSDF_FLIP_LIMITS.get(args.scene, BSDF_FLIP_LIMIT)
-        print('  mean LDR-FLIP: %.4f (limit %.3f); mean brightness: %+.2f %% (limit %.0f %%)'
+        print('  mean LDR-FLIP: %.4f (limit %.3f); mean brightness: %+.2f %% (limit %.1f %%)'
               % (flip, flip_limit, 100 * brightness, 100 * limit))
         if not flip <= flip_limit:
             return fail('%s: mean LDR-FLIP %.4f exceeds %.3f (images in %s)'
