@@ -60,6 +60,10 @@ const NodeCost kNodeCosts[] = {
     {"DiffuseBsdf", 1},
     {"GlossyBsdf", 1},
     {"VelvetBsdf", 1},
+    {"RefractionBsdf", 1},
+    {"GlassBsdf", 1},
+    {"TransparentBsdf", 1},
+    {"TranslucentBsdf", 1},
     {"MixShader", 1},
     // Traced inputs: the tracer casts their rays before the graph runs, outside its cost
     // (and never in a cut); in the graph Ambient Occlusion scales a colour, Bevel reads.

@@ -229,9 +229,9 @@ MG_CONSTANT(uint, kCacheOutputSpecular, 64);
 MG_CONSTANT(uint, kCacheOutputSpecularTint, 128);
 MG_CONSTANT(uint, kCacheOutputCyclesPrincipled, 256);
 // The BSDF lobes (MaterialOutputs::lobeCount, lobeWeight, lobeParameters; nodes/bsdf.inc):
-// the count, then per lobe of MG_MAX_LOBES its weight, kind and roughness.
+// the count, then per lobe of MG_MAX_LOBES its weight, kind, roughness and IOR.
 MG_CONSTANT(uint, kCacheOutputLobes, 512);
-MG_CONSTANT(uint, kCacheLobeValues, 21);  // 1 + MG_MAX_LOBES (4) x 5
+MG_CONSTANT(uint, kCacheLobeValues, 25);  // 1 + MG_MAX_LOBES (4) x 6
 // The key domain of a material's cut (compiler/cut.h) as the texel cache keys it
 // (mg_materialCutInfo.x, MG_CACHE_CUTS): none runs the whole graph uncached; uv keys the
 // cut's values by (material, uv texel, mip level) as §5.3.2 keys whole outputs; object by

@@ -657,6 +657,60 @@ class ShaderTest(unittest.TestCase):
         self.assertIn('PrincipledOutput BaseColor=(0.800000012, 0.800000012, 0.800000012)',
                       text)
 
+    def test_transmission_shaders_are_lobes_without_warnings(self):
+        # Glass, Refraction, Transparent and Translucent are lobes now (lobes.py): written as
+        # their sinks with IOR and distribution, no Principled approximation and no warning.
+        tree = Tree()
+        out = output_node(tree)
+        glass = tree.add(Node('ShaderNodeBsdfGlass', 'Glass',
+                              [Sock('Color', 'RGBA', (0.9, 0.9, 1.0, 1)),
+                               Sock('Roughness', 'VALUE', 0.1), Sock('IOR', 'VALUE', 1.5),
+                               Sock('Normal', 'VECTOR', (0, 0, 0))], [Sock('BSDF', 'SHADER')],
+                              distribution='BECKMANN'))
+        refraction = tree.add(Node('ShaderNodeBsdfRefraction', 'Refraction',
+                                   [Sock('Color', 'RGBA', (1.0, 1.0, 1.0, 1)),
+                                    Sock('Roughness', 'VALUE', 0.3), Sock('IOR', 'VALUE', 1.33),
+                                    Sock('Normal', 'VECTOR', (0, 0, 0))],
+                                   [Sock('BSDF', 'SHADER')], distribution='SHARP'))
+        transparent = tree.add(Node('ShaderNodeBsdfTransparent', 'Transparent',
+                                    [Sock('Color', 'RGBA', (0.5, 0.25, 1.0, 1))],
+                                    [Sock('BSDF', 'SHADER')]))
+        translucent = tree.add(Node('ShaderNodeBsdfTranslucent', 'Translucent',
+                                    [Sock('Color', 'RGBA', (0.25, 0.5, 0.25, 1)),
+                                     Sock('Normal', 'VECTOR', (0, 0, 0))],
+                                    [Sock('BSDF', 'SHADER')]))
+        adds = []
+        for i in range(3):
+            adds.append(tree.add(Node('ShaderNodeAddShader', 'Add%d' % i,
+                                      [Sock('Shader', 'SHADER'), Sock('Shader_001', 'SHADER')],
+                                      [Sock('Shader', 'SHADER')])))
+        tree.link(glass.outputs[0], adds[0].inputs[0])
+        tree.link(refraction.outputs[0], adds[0].inputs[1])
+        tree.link(transparent.outputs[0], adds[1].inputs[0])
+        tree.link(translucent.outputs[0], adds[1].inputs[1])
+        tree.link(adds[0].outputs[0], adds[2].inputs[0])
+        tree.link(adds[1].outputs[0], adds[2].inputs[1])
+        tree.link(adds[2].outputs[0], out.inputs[0])
+        result, (text,) = export([Material('Glassy', tree)])
+        self.assertIn('GlassBsdf Color=(0.899999976, 0.899999976, 1) Roughness=0.100000001 '
+                      'IOR=1.5 Distribution=1 Weight=1;', text)
+        # Sharp: Roughness 0 (the lobe is then singular, as Cycles' sharp refraction).
+        self.assertIn('RefractionBsdf Color=(1, 1, 1) Roughness=0 IOR=1.33000004 '
+                      'Distribution=0 Weight=1;', text)
+        self.assertIn('TransparentBsdf Color=(0.5, 0.25, 1) Weight=1;', text)
+        self.assertIn('TranslucentBsdf Color=(0.25, 0.5, 0.25) Weight=1;', text)
+        self.assertNotIn('PrincipledOutput', text)
+        self.assertNotIn('OpacityOutput', text)
+        self.assertEqual(result.warnings, [])
+        # Multiscatter GGX glass is written as GGX, warned.
+        glass.distribution = 'MULTI_GGX'
+        result, (text,) = export([Material('Glassy1', tree)])
+        self.assertIn('GlassBsdf Color=(0.899999976, 0.899999976, 1) Roughness=0.100000001 '
+                      'IOR=1.5 Distribution=0 Weight=1;', text)
+        self.assertEqual(len(result.warnings), 1)
+        self.assertIn('Multiscatter GGX is written as single-scatter GGX glass',
+                      result.warnings[0][2])
+
 
 if __name__ == '__main__':
     unittest.main()

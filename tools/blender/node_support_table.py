@@ -43,8 +43,9 @@ APPROXIMATIONS = {
     'ShaderNodeBevel': 'a linked Normal is warned and ignored; Radius and Samples must be '
                        'constants; the megakernel traces them (the first 4 hits of a disk ray, '
                        'not a random 4)',
-    'ShaderNodeLightPath': 'memograph has no transparent bounces (a linked Transparent '
-                           'Depth is 0); shadow rays evaluate no material (Is Shadow Ray 0); '
+    'ShaderNodeLightPath': 'a Transparent BSDF\'s ray keeps the state it came with (a linked '
+                           'Transparent Depth is 0); shadow rays evaluate no material (Is '
+                           'Shadow Ray 0); '
                            'diffuse or glossy as memograph\'s BSDF picks its lobe',
 }
 
@@ -73,16 +74,24 @@ NOT_SUPPORTED = {
 }
 # Shaders written exactly as BSDF lobes (memograph_export/lobes.py, nodes/bsdf.inc) when the
 # surface's tree holds only these, Emission and at most lobes.MAX_LOBES BSDFs; in a tree with
-# any other shader (Principled, Glass, Transparent, ...) APPROXIMATIONS' Principled fallback.
+# any other shader (Principled, Subsurface, ...) APPROXIMATIONS' Principled fallback.
 LOBE_SHADERS = {
     'ShaderNodeBsdfDiffuse': 'lobe `DiffuseBsdf` (Lambert; Oren-Nayar at Roughness > 0)',
     'ShaderNodeBsdfGlossy': 'lobe `GlossyBsdf` (GGX, Beckmann, Sharp; Multiscatter GGX and '
                             'Ashikhmin-Shirley as single-scatter GGX, warned)',
     'ShaderNodeBsdfVelvet': 'lobe `VelvetBsdf` (Ashikhmin velvet)',
+    'ShaderNodeBsdfRefraction': 'lobe `RefractionBsdf` (GGX, Beckmann, Sharp; the path goes '
+                                'through)',
+    'ShaderNodeBsdfGlass': 'lobe `GlassBsdf` (GGX, Beckmann, Sharp, split by Fresnel as Cycles '
+                           '3.4; Multiscatter GGX as GGX, warned)',
+    'ShaderNodeBsdfTransparent': 'lobe `TransparentBsdf` (straight through, tinted; shadow '
+                                 'rays stop at it)',
+    'ShaderNodeBsdfTranslucent': 'lobe `TranslucentBsdf` (Lambert on the far side)',
     'ShaderNodeMixShader': '`MixShader` splits the weight by Fac (textured Fac too)',
     'ShaderNodeAddShader': 'both shaders at its weight',
 }
-LOBE_CONDITION = ('in a tree of Diffuse, Glossy, Velvet, Emission, Mix and Add Shader only '
+LOBE_CONDITION = ('in a tree of Diffuse, Glossy, Velvet, Refraction, Glass, Transparent, '
+                  'Translucent, Emission, Mix and Add Shader only '
                   '(at most 4 BSDFs); else ')
 
 HANDLED_BY_WALK = {

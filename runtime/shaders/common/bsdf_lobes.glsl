@@ -1,9 +1,14 @@
 // The BSDF lobes of Cycles 3.4's BSDF nodes other than the Principled BSDF
 // (MaterialOutputs::lobeWeight, nodes/bsdf.inc; docs/design/closures.md), in a local frame
-// where the shading normal is +z and wo.z > 0. Each lobe's `evaluate` is f(wo, wi) |wi.z|
+// where the shading normal is +z and wo.z > 0 (wi.z < 0: through the surface). Each lobe's
+// `evaluate` is f(wo, wi) |wi.z|
 // per unit weight; its colour and the Mix/Add Shader weights are the lobe's weight. Formulas
 // follow intern/cycles/kernel/closure/ (Blender 3.4): bsdf_diffuse.h, bsdf_oren_nayar.h,
-// bsdf_microfacet.h, bsdf_microfacet_beckmann.h, bsdf_ashikhmin_velvet.h. The material's
+// bsdf_microfacet.h, bsdf_microfacet_beckmann.h, bsdf_ashikhmin_velvet.h, bsdf_refraction.h,
+// bsdf_transparent.h, bsdf_translucent.h. Singular lobes (Transparent, and Refraction and
+// Glass where Cycles' microfacet is a perfect one: alpha^2 <= 1e-7) have no density: they
+// evaluate to 0 (light sampling cannot find their direction) and are sampled apart. The
+// material's
 // BSDF is the lobes' sum; sampling picks one lobe with probability proportional to its
 // weight's luminance (every lobe's albedo is taken as 1) and the pdf is the mixture's, so
 // that light sampling's MIS sees the density that BSDF sampling really has.
@@ -17,10 +22,13 @@ struct BsdfLobes {
   vec3 weight[MG_MAX_LOBES];
   int kind[MG_MAX_LOBES];
   float roughness[MG_MAX_LOBES];
+  float eta[MG_MAX_LOBES];   // relative IOR across the surface: the far side's over the ray's
   float pick[MG_MAX_LOBES];  // probability that BSDF sampling samples lobe i
 };
 
-BsdfLobes bsdfLobesFromMaterial(MaterialOutputs m) {
+// `entering`: the ray hit the front face (by the geometric normal), so a transmission lobe's
+// relative IOR is its IOR, else 1 / IOR (Cycles' svm_node_closure_bsdf: SD_BACKFACING).
+BsdfLobes bsdfLobesFromMaterial(MaterialOutputs m, bool entering) {
   BsdfLobes lobes;
   lobes.count = min(m.lobeCount, MG_MAX_LOBES);
   float total = 0.0;
@@ -28,6 +36,8 @@ BsdfLobes bsdfLobesFromMaterial(MaterialOutputs m) {
     lobes.weight[i] = max(m.lobeWeight[i].rgb, vec3(0.0));
     lobes.kind[i] = int(m.lobeWeight[i].w);
     lobes.roughness[i] = clamp(m.lobeParameters[i].x, 0.0, 1.0);
+    float ior = max(m.lobeParameters[i].y, 1e-5);
+    lobes.eta[i] = entering ? ior : 1.0 / ior;
     lobes.pick[i] = i < lobes.count ? dot(lobes.weight[i], vec3(0.2126, 0.7152, 0.0722)) : 0.0;
     total += lobes.pick[i];
   }
@@ -96,56 +106,173 @@ float velvetCos(float sigma, vec3 wo, vec3 wi) {
   return 0.25 * d * g / wo.z;
 }
 
-// f(wo, wi) |wi.z| of one lobe per unit weight.
-float lobeEvaluateCos(int kind, float roughness, vec3 wo, vec3 wi) {
-  if (wo.z <= 0.0 || wi.z <= 0.0) return 0.0;  // every lobe here reflects
+bool lobeIsRefraction(int kind) {
+  return kind == MG_LOBE_REFRACTION_GGX || kind == MG_LOBE_REFRACTION_BECKMANN;
+}
+bool lobeIsGlass(int kind) {
+  return kind == MG_LOBE_GLASS_GGX || kind == MG_LOBE_GLASS_BECKMANN;
+}
+bool lobeIsBeckmann(int kind) {
+  return kind == MG_LOBE_GLOSSY_BECKMANN || kind == MG_LOBE_REFRACTION_BECKMANN ||
+         kind == MG_LOBE_GLASS_BECKMANN;
+}
+// Whether a lobe sends light through the surface (its directions may have wi.z < 0).
+bool lobeTransmits(int kind) {
+  return kind == MG_LOBE_TRANSLUCENT || kind == MG_LOBE_TRANSPARENT || lobeIsRefraction(kind) ||
+         lobeIsGlass(kind);
+}
+
+// A lobe without density: Transparent, and a Refraction or Glass lobe where Cycles takes the
+// microfacet as perfectly smooth (alpha_x alpha_y <= 1e-7, bsdf_microfacet.h; alpha =
+// roughness^2). The Glossy lobe is never singular here: it keeps brdf.glsl's clamp (0.02).
+bool lobeIsSingular(int kind, float roughness) {
+  if (kind == MG_LOBE_TRANSPARENT) return true;
+  float alpha = roughness * roughness;
+  return (lobeIsRefraction(kind) || lobeIsGlass(kind)) && alpha * alpha <= 1e-7;
+}
+
+float microfacetD(bool beckmann, float cosThetaH, float alpha) {
+  return beckmann ? beckmannD(cosThetaH, alpha) : ggxD(cosThetaH, alpha);
+}
+float microfacetG1(bool beckmann, float cosTheta, float alpha) {
+  return beckmann ? beckmannG1(cosTheta, alpha) : smithG1(cosTheta, alpha);
+}
+
+// The density of the microfacet normal h that lobeSample draws: GGX's visible normals
+// G1(o) D(h) o.h / n.o (Heitz 2018), Beckmann's D(h) n.h (Walter et al. 2007, eq. 28).
+float microfacetNormalPdf(bool beckmann, vec3 wo, vec3 h, float alpha) {
+  if (beckmann) return beckmannD(h.z, alpha) * h.z;
+  return smithG1(wo.z, alpha) * ggxD(h.z, alpha) * max(dot(wo, h), 0.0) / wo.z;
+}
+
+vec3 microfacetSampleNormal(bool beckmann, vec3 wo, float alpha, vec2 u) {
+  if (!beckmann) return ggxSampleVisibleNormal(wo, alpha, u);
+  float tan2 = -alpha * alpha * log(max(1.0 - u.x, 1e-12));
+  float cosTheta = inversesqrt(1.0 + tan2);
+  float sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
+  float phi = 2.0 * kPi * u.y;
+  return vec3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta);
+}
+
+// Microfacet reflection without Fresnel, f |wi.z| = D G1(o) G1(i) / (4 n.o) (Cycles'
+// separable Smith term), and its density (the normal's over the reflection's 4 o.h).
+float microfacetReflectionCos(bool beckmann, float alpha, vec3 wo, vec3 wi) {
+  if (wi.z <= 0.0) return 0.0;
+  vec3 h = normalize(wo + wi);
+  return microfacetD(beckmann, h.z, alpha) * microfacetG1(beckmann, wo.z, alpha) *
+         microfacetG1(beckmann, wi.z, alpha) / (4.0 * wo.z);
+}
+float microfacetReflectionPdf(bool beckmann, float alpha, vec3 wo, vec3 wi) {
+  if (wi.z <= 0.0) return 0.0;
+  vec3 h = normalize(wo + wi);
+  return microfacetNormalPdf(beckmann, wo, h, alpha) / (4.0 * max(dot(wo, h), 1e-8));
+}
+
+// The refraction half vector of wo (on the ray's side) and wi (through, relative IOR eta):
+// h ~ wo + eta wi, turned to the normal's side (Walter et al. 2007, eq. 16). False: wo and
+// wi are not on opposite sides of it, so no microfacet refracts one into the other.
+bool refractionHalfVector(vec3 wo, vec3 wi, float eta, out vec3 h) {
+  h = wo + eta * wi;
+  if (!(dot(h, h) > 1e-20)) return false;
+  h = normalize(h);
+  if (h.z < 0.0) h = -h;
+  return dot(wo, h) > 0.0 && dot(wi, h) < 0.0;
+}
+
+// Microfacet refraction without Fresnel (Walter et al. 2007, eq. 21, as Cycles 3.4's
+// bsdf_microfacet_ggx_eval_transmit): f |wi.z| = D G1(o) G1(i) |o.h| |i.h| eta^2 /
+// (n.o (o.h + eta i.h)^2); its density is the normal's times the Jacobian eta^2 |i.h| /
+// (o.h + eta i.h)^2 (eq. 17), so that f |wi.z| / pdf = G1(i): no eta^2 radiance scaling, as
+// in Cycles.
+float microfacetRefractionCos(bool beckmann, float alpha, float eta, vec3 wo, vec3 wi) {
+  vec3 h;
+  if (wi.z >= 0.0 || !refractionHalfVector(wo, wi, eta, h)) return 0.0;
+  float oh = dot(wo, h);
+  float ih = dot(wi, h);
+  float denominator = oh + eta * ih;
+  return microfacetD(beckmann, h.z, alpha) * microfacetG1(beckmann, wo.z, alpha) *
+         microfacetG1(beckmann, wi.z, alpha) * oh * abs(ih) * eta * eta /
+         (wo.z * denominator * denominator);
+}
+float microfacetRefractionPdf(bool beckmann, float alpha, float eta, vec3 wo, vec3 wi) {
+  vec3 h;
+  if (wi.z >= 0.0 || !refractionHalfVector(wo, wi, eta, h)) return 0.0;
+  float denominator = dot(wo, h) + eta * dot(wi, h);
+  return microfacetNormalPdf(beckmann, wo, h, alpha) * eta * eta * abs(dot(wi, h)) /
+         (denominator * denominator);
+}
+
+// The direction that refracts wo through a surface of normal m and relative IOR eta; the
+// zero vector under total internal reflection (GLSL refract takes the inverse ratio).
+vec3 refractDirection(vec3 wo, vec3 m, float eta) {
+  return refract(-wo, m, 1.0 / eta);
+}
+
+// f(wo, wi) |wi.z| of one lobe per unit weight; 0 for a singular lobe.
+float lobeEvaluateCos(int kind, float roughness, float eta, vec3 wo, vec3 wi) {
+  if (wo.z <= 0.0 || lobeIsSingular(kind, roughness)) return 0.0;
+  if (kind == MG_LOBE_TRANSLUCENT) return wi.z < 0.0 ? -wi.z / kPi : 0.0;
+  bool beckmann = lobeIsBeckmann(kind);
+  float alpha = lobeAlpha(roughness);
+  if (lobeIsRefraction(kind)) return microfacetRefractionCos(beckmann, alpha, eta, wo, wi);
+  if (lobeIsGlass(kind)) {
+    // Cycles 3.4 weights the glass's reflection by the Fresnel of the shading normal and
+    // its refraction by the rest (svm_node_closure_bsdf, CLOSURE_BSDF_*_GLASS_ID).
+    float fresnel = fresnelDielectric(wo.z, eta);
+    return wi.z > 0.0 ? fresnel * microfacetReflectionCos(beckmann, alpha, wo, wi)
+                      : (1.0 - fresnel) * microfacetRefractionCos(beckmann, alpha, eta, wo, wi);
+  }
+  if (wi.z <= 0.0) return 0.0;  // the other lobes reflect
   if (kind == MG_LOBE_DIFFUSE)
     return roughness > 0.0 ? orenNayarCos(roughness, wo, wi) : wi.z / kPi;
   if (kind == MG_LOBE_VELVET) return velvetCos(max(roughness, 0.01), wo, wi);
-  vec3 h = normalize(wo + wi);
-  float alpha = lobeAlpha(roughness);
-  // Microfacet reflection without Fresnel: D G / (4 n.o), G = G1(o) G1(i) (Cycles'
-  // separable Smith term).
-  if (kind == MG_LOBE_GLOSSY_BECKMANN)
-    return beckmannD(h.z, alpha) * beckmannG1(wo.z, alpha) * beckmannG1(wi.z, alpha) /
-           (4.0 * wo.z);
-  return ggxD(h.z, alpha) * smithG1(wo.z, alpha) * smithG1(wi.z, alpha) / (4.0 * wo.z);
+  return microfacetReflectionCos(beckmann, alpha, wo, wi);
 }
 
-// The density with which lobeSample draws wi.
-float lobePdf(int kind, float roughness, vec3 wo, vec3 wi) {
-  if (wo.z <= 0.0 || wi.z <= 0.0) return 0.0;
-  if (kind == MG_LOBE_DIFFUSE || kind == MG_LOBE_VELVET) return wi.z / kPi;
-  vec3 h = normalize(wo + wi);
+// The density with which lobeSample draws wi; 0 for a singular lobe.
+float lobePdf(int kind, float roughness, float eta, vec3 wo, vec3 wi) {
+  if (wo.z <= 0.0 || lobeIsSingular(kind, roughness)) return 0.0;
+  if (kind == MG_LOBE_TRANSLUCENT) return wi.z < 0.0 ? -wi.z / kPi : 0.0;
+  bool beckmann = lobeIsBeckmann(kind);
   float alpha = lobeAlpha(roughness);
-  if (kind == MG_LOBE_GLOSSY_BECKMANN)  // D(h) n.h over the reflection's Jacobian 4 o.h
-    return beckmannD(h.z, alpha) * h.z / (4.0 * max(dot(wo, h), 1e-8));
-  return smithG1(wo.z, alpha) * ggxD(h.z, alpha) / (4.0 * wo.z);  // visible normals
-}
-
-// A direction drawn from one lobe: cosine-weighted for the diffuse ones, GGX's visible
-// normals (Heitz 2018), Beckmann's D(h) n.h (Walter et al. 2007, eq. 28-29).
-vec3 lobeSample(int kind, float roughness, vec3 wo, vec2 u) {
-  if (kind == MG_LOBE_DIFFUSE || kind == MG_LOBE_VELVET) return sampleCosineHemisphere(u);
-  float alpha = lobeAlpha(roughness);
-  vec3 h;
-  if (kind == MG_LOBE_GLOSSY_BECKMANN) {
-    float tan2 = -alpha * alpha * log(max(1.0 - u.x, 1e-12));
-    float cosTheta = inversesqrt(1.0 + tan2);
-    float sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
-    float phi = 2.0 * kPi * u.y;
-    h = vec3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta);
-  } else {
-    h = ggxSampleVisibleNormal(wo, alpha, u);
+  if (lobeIsRefraction(kind)) return microfacetRefractionPdf(beckmann, alpha, eta, wo, wi);
+  if (lobeIsGlass(kind)) {
+    float fresnel = fresnelDielectric(wo.z, eta);  // the probability of reflecting
+    return wi.z > 0.0 ? fresnel * microfacetReflectionPdf(beckmann, alpha, wo, wi)
+                      : (1.0 - fresnel) * microfacetRefractionPdf(beckmann, alpha, eta, wo, wi);
   }
-  return reflect(-wo, h);
+  if (wi.z <= 0.0) return 0.0;
+  if (kind == MG_LOBE_DIFFUSE || kind == MG_LOBE_VELVET) return wi.z / kPi;
+  return microfacetReflectionPdf(beckmann, alpha, wo, wi);
+}
+
+// A direction drawn from one lobe: cosine-weighted for the diffuse ones (on the far side for
+// Translucent), a microfacet normal (microfacetSampleNormal) reflected or refracted, the
+// Glass lobe reflecting with probability F (uChoice). A singular lobe's direction is exact,
+// and `singularWeight` is its f |wi.z| / pdf per unit weight (1 for each of these lobes:
+// Cycles' bsdf_refraction, bsdf_transparent and the sharp glass's Fresnel-chosen branch);
+// the zero vector: no direction (total internal reflection of a Refraction lobe).
+vec3 lobeSample(int kind, float roughness, float eta, vec3 wo, vec2 u, float uChoice,
+                out float singularWeight) {
+  singularWeight = 1.0;
+  if (kind == MG_LOBE_DIFFUSE || kind == MG_LOBE_VELVET) return sampleCosineHemisphere(u);
+  if (kind == MG_LOBE_TRANSLUCENT) return sampleCosineHemisphere(u) * vec3(1.0, 1.0, -1.0);
+  if (kind == MG_LOBE_TRANSPARENT) return -wo;
+  vec3 m = vec3(0.0, 0.0, 1.0);
+  if (!lobeIsSingular(kind, roughness))
+    m = microfacetSampleNormal(lobeIsBeckmann(kind), wo, lobeAlpha(roughness), u);
+  if (lobeIsRefraction(kind)) return refractDirection(wo, m, eta);
+  if (lobeIsGlass(kind) && uChoice >= fresnelDielectric(wo.z, eta))
+    return refractDirection(wo, m, eta);
+  return reflect(-wo, m);
 }
 
 // The material's f(wo, wi) |wi.z|: every lobe's, weighted.
 vec3 bsdfLobesEvaluateCos(BsdfLobes lobes, vec3 wo, vec3 wi) {
   vec3 sum = vec3(0.0);
   for (int i = 0; i < lobes.count; ++i)
-    sum += lobes.weight[i] * lobeEvaluateCos(lobes.kind[i], lobes.roughness[i], wo, wi);
+    sum += lobes.weight[i] *
+           lobeEvaluateCos(lobes.kind[i], lobes.roughness[i], lobes.eta[i], wo, wi);
   return sum;
 }
 
@@ -154,21 +281,60 @@ float bsdfLobesPdf(BsdfLobes lobes, vec3 wo, vec3 wi) {
   float pdf = 0.0;
   for (int i = 0; i < lobes.count; ++i)
     if (lobes.pick[i] > 0.0)
-      pdf += lobes.pick[i] * lobePdf(lobes.kind[i], lobes.roughness[i], wo, wi);
+      pdf += lobes.pick[i] * lobePdf(lobes.kind[i], lobes.roughness[i], lobes.eta[i], wo, wi);
   return pdf;
 }
 
-// The lobe that uLobe in [0, 1) picks by the pick probabilities (-1: none has weight).
-int bsdfLobesPick(BsdfLobes lobes, float uLobe) {
+// The lobe that uLobe in [0, 1) picks by the pick probabilities (-1: none has weight), and
+// uLobe's place within the lobe's share, again uniform in [0, 1) (`uWithin`).
+int bsdfLobesPick(BsdfLobes lobes, float uLobe, out float uWithin) {
   int picked = -1;
   float cumulative = 0.0;
+  uWithin = 0.0;
   for (int i = 0; i < lobes.count; ++i) {
     if (lobes.pick[i] <= 0.0) continue;
     picked = i;  // the last one with weight also takes uLobe's float round-off above the sum
+    uWithin = clamp((uLobe - cumulative) / lobes.pick[i], 0.0, 0.99999994);
     cumulative += lobes.pick[i];
     if (uLobe < cumulative) break;
   }
   return picked;
+}
+
+// Whether some lobe sends light through the surface: light sampling then looks on both sides.
+bool bsdfLobesTransmit(BsdfLobes lobes) {
+  for (int i = 0; i < lobes.count; ++i)
+    if (lobes.pick[i] > 0.0 && lobeTransmits(lobes.kind[i])) return true;
+  return false;
+}
+
+// One direction drawn from the lobes (the one-sample mixture model): `weight` is the
+// throughput factor f |wi.z| / pdf. A singular lobe's sample is that lobe's alone (weight
+// its weight x singularWeight over its pick probability; `pdf` 0, as the other lobes and
+// light sampling cannot draw it); any other's is weighted by the whole BSDF over the
+// mixture's density (`pdf`). False: no direction.
+bool bsdfLobesSample(BsdfLobes lobes, vec3 wo, float uLobe, vec2 u, out vec3 wi,
+                     out vec3 weight, out float pdf, out int picked) {
+  float uChoice;
+  picked = bsdfLobesPick(lobes, uLobe, uChoice);
+  weight = vec3(0.0);
+  pdf = 0.0;
+  wi = vec3(0.0, 0.0, 1.0);
+  if (picked < 0) return false;
+  int kind = lobes.kind[picked];
+  float roughness = lobes.roughness[picked];
+  float singularWeight;
+  wi = lobeSample(kind, roughness, lobes.eta[picked], wo, u, uChoice, singularWeight);
+  if (!(dot(wi, wi) > 0.0)) return false;
+  wi = normalize(wi);
+  if (lobeIsSingular(kind, roughness)) {
+    weight = lobes.weight[picked] * (singularWeight / lobes.pick[picked]);
+    return true;
+  }
+  pdf = bsdfLobesPdf(lobes, wo, wi);
+  if (!(pdf > 0.0)) return false;
+  weight = bsdfLobesEvaluateCos(lobes, wo, wi) / pdf;
+  return true;
 }
 
 #endif  // MG_BSDF_LOBES

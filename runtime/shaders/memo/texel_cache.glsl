@@ -460,10 +460,10 @@ void cachePack(uint mask, MaterialOutputs o, out float values[MG_CACHE_VALUES]) 
   if ((mask & kCacheOutputLobes) != 0u) {
     values[n] = float(o.lobeCount);
     for (uint i = 0u; i < uint(MG_MAX_LOBES); ++i) {
-      uint at = n + 1u + 5u * i;
+      uint at = n + 1u + 6u * i;
       values[at] = o.lobeWeight[i].x; values[at + 1u] = o.lobeWeight[i].y;
       values[at + 2u] = o.lobeWeight[i].z; values[at + 3u] = o.lobeWeight[i].w;
-      values[at + 4u] = o.lobeParameters[i].x;
+      values[at + 4u] = o.lobeParameters[i].x; values[at + 5u] = o.lobeParameters[i].y;
     }
     n += kCacheLobeValues;
   }
@@ -505,9 +505,9 @@ MaterialOutputs cacheUnpack(uint mask, float values[MG_CACHE_VALUES], MaterialIn
   if ((mask & kCacheOutputLobes) != 0u) {
     o.lobeCount = int(round(values[n]));
     for (uint i = 0u; i < uint(MG_MAX_LOBES); ++i) {
-      uint at = n + 1u + 5u * i;
+      uint at = n + 1u + 6u * i;
       o.lobeWeight[i] = vec4(values[at], values[at + 1u], values[at + 2u], round(values[at + 3u]));
-      o.lobeParameters[i] = vec4(values[at + 4u], 0.0, 0.0, 0.0);
+      o.lobeParameters[i] = vec4(values[at + 4u], values[at + 5u], 0.0, 0.0);
     }
     n += kCacheLobeValues;
   }

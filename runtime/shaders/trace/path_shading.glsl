@@ -54,6 +54,7 @@ struct SurfaceHit {
   float curvature;
   float coneWidth;
   float lightAreaPdf;  // emissive NEE's area pdf of this point (0: not a sampled light)
+  bool entering;       // the ray hit the front face: a transmission lobe's IOR is entered
 };
 
 SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
@@ -93,6 +94,7 @@ SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
   // Geometry Backfacing).
   vec3 front = determinant(mat3(toWorld)) < 0.0 ? -ng : ng;
   bool backfacing = dot(front, direction) > 0.0;
+  s.entering = !backfacing;
   // Two-sided surfaces: both normals face the ray.
   if (dot(ng, direction) > 0.0) ng = -ng;
   bool flipped = dot(n, ng) < 0.0;
@@ -184,9 +186,9 @@ SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
 // The path state that Blender's Light Path node reads (MaterialInputs rayFlags and the
 // depths), kept as Cycles 3.4 keeps it (kernel/integrator/path_state.h path_state_init_integrator
 // and path_state_next): how the ray left the last vertex and the bounces so far, overall and
-// by lobe. memograph's BSDF only reflects and its shadow rays are opaque, so no ray is a
-// transmission one and no material is evaluated for a shadow ray: MG_RAY_TRANSMIT,
-// MG_RAY_SHADOW and the transmission depth are never set. The ray's kind is the tracer's own
+// by lobe. Shadow rays are opaque, so no material is evaluated for one: MG_RAY_SHADOW is
+// never set. A Transparent lobe's ray keeps the state it came with (Cycles counts it as a
+// transparent bounce, which Light Path's depths leave out). The ray's kind is the tracer's own
 // (kPathRay*), turned into the prelude's MG_RAY_* bits only where MaterialInputs has the path
 // state, so that the tracer compiles with a node library whose prelude has none of it. Scenes
 // whose graphs read none of it (MG_OMIT_PATH_INPUTS) carry it along unread, and the compilers
@@ -196,12 +198,16 @@ const int kPathRayDiffuse = 1;      // reflected by the diffuse lobe
 const int kPathRayGlossy = 2;       // reflected by the GGX lobe
 const int kPathRaySingular = 3;     // reflected by a GGX lobe Cycles takes as a perfect mirror
 const int kPathRayLightSample = 4;  // a light sample's ray to an emitter
+const int kPathRayTransmitGlossy = 5;    // refracted by a rough Refraction or Glass lobe
+const int kPathRayTransmitSingular = 6;  // refracted by a smooth one
+const int kPathRayTransmitDiffuse = 7;   // sent through by the Translucent lobe
 
 struct PathState {
   int ray;  // kPathRay*
   int depth;
   int diffuseDepth;
   int glossyDepth;
+  int transmissionDepth;
 };
 
 // A camera ray's state: the path's start (Cycles' PATH_RAY_CAMERA, every depth 0).
@@ -211,6 +217,7 @@ PathState cameraPathState() {
   path.depth = 0;
   path.diffuseDepth = 0;
   path.glossyDepth = 0;
+  path.transmissionDepth = 0;
   return path;
 }
 
@@ -228,6 +235,16 @@ void pathStateAfterReflection(inout PathState path, bool specularLobe, float rou
     path.diffuseDepth += 1;
     path.ray = kPathRayDiffuse;
   }
+}
+
+// A transmission through the surface by a lobe of bsdf_lobes.glsl: Cycles' path_state_next
+// counts it as a transmission bounce (not a diffuse or glossy one) and labels the ray
+// transmit, and diffuse (Translucent), glossy, or glossy and singular (smooth refraction).
+void pathStateAfterTransmission(inout PathState path, bool diffuse, bool singular) {
+  path.depth += 1;
+  path.transmissionDepth += 1;
+  path.ray = diffuse ? kPathRayTransmitDiffuse
+                     : (singular ? kPathRayTransmitSingular : kPathRayTransmitGlossy);
 }
 
 // The state an emitter's graph sees when it is evaluated for a light sample of the vertex
@@ -248,12 +265,16 @@ void setPathInputs(inout MaterialInputs inputs, PathState path, float rayLength)
   else if (path.ray == kPathRayDiffuse) flags = MG_RAY_REFLECT | MG_RAY_DIFFUSE;
   else if (path.ray == kPathRayGlossy) flags = MG_RAY_REFLECT | MG_RAY_GLOSSY;
   else if (path.ray == kPathRaySingular) flags = MG_RAY_REFLECT | MG_RAY_GLOSSY | MG_RAY_SINGULAR;
+  else if (path.ray == kPathRayTransmitGlossy) flags = MG_RAY_TRANSMIT | MG_RAY_GLOSSY;
+  else if (path.ray == kPathRayTransmitSingular)
+    flags = MG_RAY_TRANSMIT | MG_RAY_GLOSSY | MG_RAY_SINGULAR;
+  else if (path.ray == kPathRayTransmitDiffuse) flags = MG_RAY_TRANSMIT | MG_RAY_DIFFUSE;
   inputs.rayFlags = flags;
   inputs.rayLength = rayLength;
   inputs.rayDepth = path.depth;
   inputs.diffuseDepth = path.diffuseDepth;
   inputs.glossyDepth = path.glossyDepth;
-  inputs.transmissionDepth = 0;
+  inputs.transmissionDepth = path.transmissionDepth;
 #endif
 }
 
@@ -383,6 +404,7 @@ struct ShadingPoint {
 #ifdef MG_BSDF_LOBES
   BsdfLobes lobes;  // with count > 0 the BSDF (bsdf_lobes.glsl); brdf is then unused
 #endif
+  bool transmits;  // some lobe sends light through: light sampling looks on both sides
 };
 
 ShadingPoint shadingPointAt(SurfaceHit s, MaterialOutputs m, vec3 direction) {
@@ -398,7 +420,10 @@ ShadingPoint shadingPointAt(SurfaceHit s, MaterialOutputs m, vec3 direction) {
   p.position = s.inputs.position.v;
   p.geometricNormal = s.geometricNormal;
 #ifdef MG_BSDF_LOBES
-  p.lobes = bsdfLobesFromMaterial(m);
+  p.lobes = bsdfLobesFromMaterial(m, s.entering);
+  p.transmits = p.lobes.count > 0 && bsdfLobesTransmit(p.lobes);
+#else
+  p.transmits = false;
 #endif
   return p;
 }
@@ -434,11 +459,30 @@ float emissionMisWeight(SurfaceHit s, vec3 origin, vec3 direction, float previou
   return emissionWeight;
 }
 
+// Where a ray towards wi leaves the shading point: off the surface on wi's side of the
+// geometric normal (the far side for a transmitted direction), so that it does not find the
+// surface it leaves.
+vec3 rayOriginTowards(ShadingPoint p, vec3 wi) {
+  return offsetRayOrigin(p.position,
+                         dot(wi, p.geometricNormal) >= 0.0 ? p.geometricNormal : -p.geometricNormal);
+}
+
+// Whether wi lies on the same side of the geometric normal as of the shading normal (local
+// wi.z): a direction between the two planes would leak light through the surface or hide it.
+bool sameSideOfBothNormals(ShadingPoint p, vec3 wi, float wiLocalZ) {
+  float g = dot(wi, p.geometricNormal);
+  return wiLocalZ > 0.0 ? g > 0.0 : g < 0.0;
+}
+
 // Direct light (thesis §5.2), up to its shadow ray: one light sample, with emissive triangles
 // (MG_EMISSIVE_NEE) half the samples going to them and half to the point, spot and
 // directional lights. False: no contribution, no shadow ray. `fCos`: the BSDF times the
-// cosine towards the light; the caller traces the shadow ray from offsetRayOrigin(position,
-// geometric normal) along s.wi up to s.tMax, then weights with lightSampleMisWeight.
+// cosine towards the light; the caller traces the shadow ray from rayOriginTowards(p, s.wi)
+// along s.wi up to s.tMax, then weights with lightSampleMisWeight. A light behind the
+// surface is sampled only for a BSDF that transmits (Translucent, rough Refraction and
+// Glass); singular lobes evaluate to 0, so a light is never seen through smooth glass or a
+// Transparent lobe by light sampling (Cycles' light sampling cannot either), and a shadow ray
+// stops at any surface, Transparent ones too (docs/design/closures.md).
 bool sampleLightBeforeShadowRay(ShadingPoint p, inout Rng rng, out LightSample s, out vec3 fCos) {
   fCos = vec3(0.0);
   uint lightCount = frame.path.w;
@@ -459,8 +503,11 @@ bool sampleLightBeforeShadowRay(ShadingPoint p, inout Rng rng, out LightSample s
 #else
   bool found = samplePunctualLight(p.position, lightCount, u, s);
 #endif
-  if (!found || dot(s.wi, p.geometricNormal) <= 0.0) return false;
-  fCos = bsdfEvaluateCos(p, p.toLocal * p.wo, p.toLocal * s.wi);
+  if (!found) return false;
+  vec3 wiLocal = p.toLocal * s.wi;
+  if (!p.transmits && dot(s.wi, p.geometricNormal) <= 0.0) return false;
+  if (!sameSideOfBothNormals(p, s.wi, wiLocal.z)) return false;
+  fCos = bsdfEvaluateCos(p, p.toLocal * p.wo, wiLocal);
   if (all(equal(fCos, vec3(0.0)))) return false;
   return true;
 }
@@ -477,31 +524,41 @@ float lightSampleMisWeight(LightSample s, ShadingPoint p, bool mis) {
 }
 
 #ifdef MG_BSDF_LOBES
-// continuePath for a material of BSDF lobes (bsdf_lobes.glsl): one lobe picked by uLobe, a
-// direction drawn from it, the throughput weighted by the whole BSDF over the mixture's pdf.
+// continuePath for a material of BSDF lobes (bsdf_lobes.glsl bsdfLobesSample): one lobe
+// picked by uLobe, a direction drawn from it, the throughput weighted by the whole BSDF over
+// the mixture's pdf (a singular lobe's by its own weight). A direction through the surface
+// leaves from its far side; a singular one leaves previousBsdfPdf 0, so that the emission it
+// finds is taken whole (light sampling could not find it), as Cycles' MIS skips it.
 bool continuePathThroughLobes(ShadingPoint p, SurfaceHit s, vec3 woLocal, float uLobe,
                               inout Rng rng, inout vec3 throughput, inout float previousBsdfPdf,
                               inout RayCone cone, inout vec3 origin, inout vec3 direction,
                               inout PathState path) {
   vec2 u = rngNext2(rng);
-  int picked = bsdfLobesPick(p.lobes, uLobe);
-  if (picked < 0) return false;
+  vec3 wiLocal, weight;
+  float pdf;
+  int picked;
+  if (!bsdfLobesSample(p.lobes, woLocal, uLobe, u, wiLocal, weight, pdf, picked)) return false;
+  vec3 wi = transpose(p.toLocal) * wiLocal;
+  if (!sameSideOfBothNormals(p, wi, wiLocal.z)) return false;
+  throughput *= weight;
+  previousBsdfPdf = pdf;
   int kind = p.lobes.kind[picked];
   float roughness = p.lobes.roughness[picked];
-  vec3 wiLocal = lobeSample(kind, roughness, woLocal, u);
-  float pdf = bsdfLobesPdf(p.lobes, woLocal, wiLocal);
-  vec3 wi = transpose(p.toLocal) * wiLocal;
-  if (!(pdf > 0.0) || dot(wi, s.geometricNormal) <= 0.0) return false;
-  throughput *= bsdfLobesEvaluateCos(p.lobes, woLocal, wiLocal) / pdf;
-  previousBsdfPdf = pdf;
-  bool glossy = kind == MG_LOBE_GLOSSY_GGX || kind == MG_LOBE_GLOSSY_BECKMANN;
-  cone.spread += rayConeRoughnessSpread(glossy ? lobeAlpha(roughness) : 1.0) +
-                 rayConeCurvatureSpread(s.curvature, s.coneWidth, s.geometricNormal, direction);
-  cone.spread = min(cone.spread, kRayConeMaxSpread);
+  bool transmitted = wiLocal.z < 0.0;
+  bool diffuse = kind == MG_LOBE_DIFFUSE || kind == MG_LOBE_VELVET || kind == MG_LOBE_TRANSLUCENT;
+  if (kind != MG_LOBE_TRANSPARENT) {  // a straight-through ray keeps its cone's spread
+    cone.spread += rayConeRoughnessSpread(diffuse ? 1.0 : lobeAlpha(roughness)) +
+                   rayConeCurvatureSpread(s.curvature, s.coneWidth, s.geometricNormal, direction);
+    cone.spread = min(cone.spread, kRayConeMaxSpread);
+  }
   cone.width = s.coneWidth;
-  origin = offsetRayOrigin(p.position, s.geometricNormal);
+  origin = rayOriginTowards(p, wi);
   direction = wi;
-  pathStateAfterReflection(path, glossy, roughness);
+  if (kind == MG_LOBE_TRANSPARENT) return true;  // Cycles' transparent bounce: no depth
+  if (transmitted)
+    pathStateAfterTransmission(path, diffuse, lobeIsSingular(kind, roughness));
+  else
+    pathStateAfterReflection(path, !diffuse, roughness);
   return true;
 }
 #endif

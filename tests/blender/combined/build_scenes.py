@@ -377,10 +377,15 @@ def build_warnings():
     exp[mat.name] = [('P', 'Clearcoat/Coat = 0.5 is not carried'),
                      ('P', 'Transmission is linked but not carried')]
 
-    # Diffuse and Glossy alone are written exactly as lobes (memograph_export/lobes.py): no
-    # warning; a Multiscatter GGX Glossy is written as GGX, warned.
+    # Diffuse, Glossy and the transmission BSDFs alone are written exactly as lobes
+    # (memograph_export/lobes.py): no warning; a Multiscatter GGX Glossy is written as GGX,
+    # warned.
     for name, idname in (('W_diffuse', 'ShaderNodeBsdfDiffuse'),
-                         ('W_glossy', 'ShaderNodeBsdfGlossy')):
+                         ('W_glossy', 'ShaderNodeBsdfGlossy'),
+                         ('W_glass', 'ShaderNodeBsdfGlass'),
+                         ('W_refraction', 'ShaderNodeBsdfRefraction'),
+                         ('W_transparent', 'ShaderNodeBsdfTransparent'),
+                         ('W_translucent', 'ShaderNodeBsdfTranslucent')):
         mat, nt, out = new_material(name)
         s = nt.nodes.new(idname)
         s.name = 'S'
@@ -393,8 +398,7 @@ def build_warnings():
     nt.links.new(s.outputs[0], out.inputs['Surface'])
     exp['W_glossy_multiscatter'] = [('S', 'Multiscatter GGX is written as single-scatter GGX')]
 
-    shaders = [('W_transparent', 'ShaderNodeBsdfTransparent', 'Transparent BSDF approximated'),
-               ('W_other_shader', 'ShaderNodeBsdfToon', 'ShaderNodeBsdfToon is not supported')]
+    shaders = [('W_other_shader', 'ShaderNodeBsdfToon', 'ShaderNodeBsdfToon is not supported')]
     for name, idname, msg in shaders:
         mat, nt, out = new_material(name)
         s = nt.nodes.new(idname)
@@ -416,6 +420,20 @@ def build_warnings():
         nt.links.new(e.outputs[0], s.inputs[-1])
         nt.links.new(s.outputs[0], out.inputs['Surface'])
         exp[name] = [('S', msg), ('D', 'ShaderNodeBsdfToon is not supported')]
+    # A Transparent BSDF beside a shader that is not a lobe keeps the Principled fallback
+    # (opacity 0), warned.
+    mat, nt, out = new_material('W_transparent_with_toon')
+    s = nt.nodes.new('ShaderNodeAddShader')
+    s.name = 'S'
+    t = nt.nodes.new('ShaderNodeBsdfTransparent')
+    t.name = 'T'
+    d = nt.nodes.new('ShaderNodeBsdfToon')
+    d.name = 'D'
+    nt.links.new(t.outputs[0], s.inputs[0])
+    nt.links.new(d.outputs[0], s.inputs[1])
+    nt.links.new(s.outputs[0], out.inputs['Surface'])
+    exp[mat.name] = [('S', 'Add Shader approximated'), ('T', 'Transparent BSDF approximated'),
+                     ('D', 'ShaderNodeBsdfToon is not supported')]
 
     mat, nt, out = new_material('W_image_modes')
     tex = nt.nodes.new('ShaderNodeTexImage')

@@ -22,7 +22,7 @@ no clamping, no light threshold) and DIR/export/ (the memograph exporter with --
 - light_path_camera: (a) an emissive panel whose colour Light Path's Is Camera Ray picks
   (red to the camera, blue to every other ray) over a grey floor, which it lights blue.
 - bsdf_<tree> (BSDF_TREES: diffuse, oren_nayar, glossy_ggx, glossy_beckmann, velvet, mix,
-  add): a smooth sphere of that BSDF (or Mix/Add Shader of BSDFs) on a checker floor under a
+  add, glass, glass_rough, refraction, transparent, translucent): a smooth sphere of that BSDF (or Mix/Add Shader of BSDFs) on a checker floor under a
   sky and a sun; bsdf_room: a room of several of them (docs/design/closures.md).
 - light_path_depth: (b) an emissive panel that emits only for Ray Depth 1 (black to the
   camera, lighting the floor and a wall directly, no bounced light). Both write
@@ -265,6 +265,18 @@ BSDF_TREES = {
                                    Sigma=0.5),
     'mix': lambda nt: mix_tree(nt),
     'add': lambda nt: add_tree(nt),
+    # Transmission: the path goes through the ball (docs/design/closures.md).
+    'glass': lambda nt: bsdf_node(nt, 'ShaderNodeBsdfGlass', Color=(0.95, 0.95, 0.95),
+                                  Roughness=0.0, IOR=1.45, distribution='GGX'),
+    'glass_rough': lambda nt: bsdf_node(nt, 'ShaderNodeBsdfGlass', Color=(0.9, 0.95, 1.0),
+                                        Roughness=0.3, IOR=1.5, distribution='BECKMANN'),
+    'refraction': lambda nt: bsdf_node(nt, 'ShaderNodeBsdfRefraction',
+                                       Color=(0.9, 0.9, 0.7), Roughness=0.2, IOR=1.33,
+                                       distribution='GGX'),
+    'transparent': lambda nt: bsdf_node(nt, 'ShaderNodeBsdfTransparent',
+                                        Color=(0.9, 0.6, 0.3)),
+    'translucent': lambda nt: bsdf_node(nt, 'ShaderNodeBsdfTranslucent',
+                                        Color=(0.3, 0.7, 0.4)),
 }
 
 

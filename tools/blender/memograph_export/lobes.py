@@ -1,13 +1,14 @@
 """Shader trees of BSDF lobes -> memograph's BSDF sinks (nodes/bsdf.inc).
 
-A surface whose shader tree holds only Diffuse, Glossy and Velvet BSDFs, Emission, and Mix
-and Add Shaders between them is written exactly: each BSDF becomes a sink that adds one lobe
-(DiffuseBsdf, GlossyBsdf, VelvetBsdf) with a weight, Mix Shader becomes a MixShader node
+A surface whose shader tree holds only Diffuse, Glossy, Velvet, Refraction, Glass,
+Transparent and Translucent BSDFs, Emission, and Mix and Add Shaders between them is written
+exactly: each BSDF becomes a sink that adds one lobe (DiffuseBsdf, GlossyBsdf, VelvetBsdf,
+RefractionBsdf, GlassBsdf, TransparentBsdf, TranslucentBsdf) with a weight, Mix Shader becomes a MixShader node
 that splits its weight by Fac, Add Shader gives both its shaders its weight, and the
 emissions, weighted likewise, are summed into one EmissionOutput. This is Cycles' own
 closure weighting (svm_node_mix_closure, svm_node_closure_bsdf), so the runtime samples
-the same BSDF (docs/design/closures.md). Any other shader in the tree (Principled, Glass,
-Transparent, ...) keeps the Principled approximation of shaders.py.
+the same BSDF (docs/design/closures.md). Any other shader in the tree (Principled,
+Subsurface, ...) keeps the Principled approximation of shaders.py.
 """
 
 from .graph import Const, Out
@@ -15,7 +16,9 @@ from .mgraph import Literal
 
 MAX_LOBES = 4  # MG_MAX_LOBES of nodes/prelude/common.inc
 
-LOBE_NODES = ('ShaderNodeBsdfDiffuse', 'ShaderNodeBsdfGlossy', 'ShaderNodeBsdfVelvet')
+LOBE_NODES = ('ShaderNodeBsdfDiffuse', 'ShaderNodeBsdfGlossy', 'ShaderNodeBsdfVelvet',
+              'ShaderNodeBsdfRefraction', 'ShaderNodeBsdfGlass', 'ShaderNodeBsdfTransparent',
+              'ShaderNodeBsdfTranslucent')
 TREE_NODES = LOBE_NODES + ('ShaderNodeEmission', 'ShaderNodeMixShader',
                            'ShaderNodeAddShader')
 
@@ -125,6 +128,35 @@ class _Writer:
                                  ('Distribution', Literal(1 if distribution == 'BECKMANN' else 0,
                                                           form='int')),
                                  ('Weight', weight)], [], comment=flat.label)
+        elif kind in ('ShaderNodeBsdfRefraction', 'ShaderNodeBsdfGlass'):
+            self._take_normal(flat)
+            distribution = getattr(flat.node, 'distribution', 'GGX')
+            roughness = self._operand(flat, 'Roughness', Literal(0.0))
+            if distribution == 'SHARP':
+                roughness = Literal(0.0)
+            elif distribution == 'MULTI_GGX':
+                self.mw.warn(flat, 'Multiscatter GGX is written as single-scatter GGX glass '
+                             '(reflection and refraction split by the Fresnel of the shading '
+                             'normal): the energy that multiple scattering adds back at high '
+                             'Roughness is missing')
+            elif distribution not in ('GGX', 'BECKMANN'):
+                self.mw.warn(flat, 'distribution %s is written as GGX' % distribution)
+            node = 'GlassBsdf' if kind == 'ShaderNodeBsdfGlass' else 'RefractionBsdf'
+            b.add(node, [('Color', self._operand(flat, 'Color', Literal((1.0,) * 3))),
+                         ('Roughness', roughness),
+                         ('IOR', self._operand(flat, 'IOR', Literal(1.45))),
+                         ('Distribution', Literal(1 if distribution == 'BECKMANN' else 0,
+                                                  form='int')),
+                         ('Weight', weight)], [], comment=flat.label)
+        elif kind == 'ShaderNodeBsdfTransparent':
+            b.add('TransparentBsdf', [('Color', self._operand(flat, 'Color',
+                                                              Literal((1.0,) * 3))),
+                                      ('Weight', weight)], [], comment=flat.label)
+        elif kind == 'ShaderNodeBsdfTranslucent':
+            self._take_normal(flat)
+            b.add('TranslucentBsdf', [('Color', self._operand(flat, 'Color',
+                                                              Literal((0.8,) * 3))),
+                                      ('Weight', weight)], [], comment=flat.label)
         elif kind == 'ShaderNodeBsdfVelvet':
             self._take_normal(flat)
             b.add('VelvetBsdf', [('Color', self._operand(flat, 'Color', Literal((0.8,) * 3))),

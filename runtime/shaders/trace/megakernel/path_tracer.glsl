@@ -151,7 +151,7 @@ vec3 sampleDirectLight(ShadingPoint p, PathState path, bool mis, inout Rng rng,
   vec3 fCos;
   if (!sampleLightBeforeShadowRay(p, rng, s, fCos)) return vec3(0.0);
   rays += 1u;
-  if (traceShadow(offsetRayOrigin(p.position, p.geometricNormal), s.wi, s.tMax)) return vec3(0.0);
+  if (traceShadow(rayOriginTowards(p, s.wi), s.wi, s.tMax)) return vec3(0.0);
 #ifdef MG_NEE_EVALUATES_EMISSION
   if (s.evaluate) {
     RayCone cone;

@@ -313,7 +313,8 @@ PathState loadPathState(uint slot) {
 #ifndef MG_OMIT_PATH_INPUTS
   ivec4 bits = floatBitsToInt(pathState[fieldIndex(kFieldPathState, slot)]);
   PathState path;
-  path.ray = bits.x;
+  path.ray = bits.x & 15;  // the ray's kind, and above it the transmission depth
+  path.transmissionDepth = bits.x >> 4;
   path.depth = bits.y;
   path.diffuseDepth = bits.z;
   path.glossyDepth = bits.w;
@@ -325,18 +326,21 @@ PathState loadPathState(uint slot) {
 
 // The state a light point's emitter sees (lightSamplePathState of the vertex's), in one word
 // beside the shadow ray's direction: the shade pass has stored the next ray's state in
-// kFieldPathState by the time the light points' material pass runs. Depths stay below 2^10
-// (--bounces is far smaller).
+// kFieldPathState by the time the light points' material pass runs. Each depth takes 8 bits
+// and stops at 255 (the megakernel's does not: a difference past --bounces 255 only).
 uint packLightPathState(PathState vertex) {
   PathState light = lightSamplePathState(vertex);
-  return uint(light.depth) | (uint(light.diffuseDepth) << 10u) | (uint(light.glossyDepth) << 20u);
+  return uint(min(light.depth, 255)) | (uint(min(light.diffuseDepth, 255)) << 8u) |
+         (uint(min(light.glossyDepth, 255)) << 16u) |
+         (uint(min(light.transmissionDepth, 255)) << 24u);
 }
 PathState unpackLightPathState(uint bits) {
   PathState light;
   light.ray = kPathRayLightSample;
-  light.depth = int(bits & 0x3FFu);
-  light.diffuseDepth = int((bits >> 10u) & 0x3FFu);
-  light.glossyDepth = int((bits >> 20u) & 0x3FFu);
+  light.depth = int(bits & 0xFFu);
+  light.diffuseDepth = int((bits >> 8u) & 0xFFu);
+  light.glossyDepth = int((bits >> 16u) & 0xFFu);
+  light.transmissionDepth = int(bits >> 24u);
   return light;
 }
 
@@ -344,7 +348,8 @@ PathState unpackLightPathState(uint bits) {
 void storePathState(uint slot, PathState path) {
 #ifndef MG_OMIT_PATH_INPUTS
   pathState[fieldIndex(kFieldPathState, slot)] =
-      intBitsToFloat(ivec4(path.ray, path.depth, path.diffuseDepth, path.glossyDepth));
+      intBitsToFloat(ivec4(path.ray | (path.transmissionDepth << 4), path.depth,
+                           path.diffuseDepth, path.glossyDepth));
 #endif
 }
 
@@ -1125,7 +1130,7 @@ void main() {
         light.incident *= lightSampleMisWeight(light, p, continues);
 #endif
         pathState[fieldIndex(kFieldShadowOrigin, slot)] =
-            vec4(offsetRayOrigin(p.position, p.geometricNormal), light.tMax);
+            vec4(rayOriginTowards(p, light.wi), light.tMax);
         pathState[fieldIndex(kFieldShadowDirection, slot)] =
             vec4(light.wi, uintBitsToFloat(packLightPathState(path)));
         pathState[fieldIndex(kFieldShadowContribution, slot)] =
