@@ -241,8 +241,8 @@ std::string cachedShareText(const runtime::RenderStats::CachedCostShare& share, 
   text << "cached share " << 100.0 * share.total() << " % of the estimated material cost (whole "
        << 100.0 * share.whole << " %, cuts uv " << 100.0 * share.uv << " %, object "
        << 100.0 * share.object << " %, world " << 100.0 * share.world
-       << " %; each instance weighted by its graph's estimated cost); served from the cache " << 100.0 * share.total() * hitRate
-       << " %";
+       << " %; each instance weighted by its graph's estimated cost); served from the cache "
+       << 100.0 * share.total() * hitRate << " %";
   return text.str();
 }
 
