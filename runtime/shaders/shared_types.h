@@ -127,7 +127,8 @@ MG_CONSTANT(uint, kWavefrontPassCount, 11);
 MG_CONSTANT(uint, kWavefrontWorkgroupSize, 64);
 // The material passes' work-group size: a graph keyed by its cut gathers the misses of a
 // work group and evaluates them together (wavefront.glsl materialPassThroughCut), which pays
-// where a group spans many subgroups: with 64 invocations nearly every subgroup held a miss.
+// where a group spans many subgroups: at a few percent of misses most 32-lane subgroups hold
+// one, and a group of 64 has only two.
 MG_CONSTANT(uint, kWavefrontMaterialWorkgroupSize, 256);
 // vec4 fields of a path's state: origin and cone width, direction and cone spread,
 // throughput and the last BSDF pdf, radiance and the hit's t, the hit (instance, primitive,
