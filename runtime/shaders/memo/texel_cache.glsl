@@ -1050,6 +1050,30 @@ void cacheFilteredValues(uint materialId, uvec4 info, uint domain, uint objectWo
 #endif  // MG_CACHE_FILTER
 
 #ifdef MG_CACHE_CUTS
+// The unfiltered read of a cut's entry at a hit, counted as one lookup: true with `values`
+// read. `keyed` comes in as whether the hit may take a key (the cache on for this frame and
+// bounce) and goes out as whether it has one (cacheCutKeyFor); `keyInputs` are then the
+// key's centre, where a miss evaluates the cut, or else the hit's own inputs. One function
+// for the megakernel's evaluateMaterialThroughCut and the wavefront's cut passes.
+bool cacheReadCut(uvec4 info, uvec4 cut, uvec2 object, MaterialInputs inputs, inout bool keyed,
+                  out CacheKey key, out MaterialInputs keyInputs,
+                  out float values[MG_CACHE_VALUES]) {
+  for (uint i = 0u; i < uint(MG_CACHE_VALUES); ++i) values[i] = 0.0;
+  keyed = keyed && cacheCutKeyFor(info, cut, object, inputs, key, keyInputs);
+  if (!keyed) {
+    keyInputs = inputs;
+    return false;
+  }
+  g_cacheLookups += 1u;
+  if (cacheRead(key, values)) {
+    g_cacheHits += 1u;
+    return true;
+  }
+  g_cacheMisses += 1u;
+  g_cacheMissed = true;
+  return false;
+}
+
 // A material keyed by its cut (thesis §7): the cache holds the cut's values under the key
 // cacheCutKeyFor gives, and the rest of the graph always runs with this hit's inputs. A miss
 // evaluates the cut at the key's centre with the key's footprint, always (not only with
@@ -1091,20 +1115,8 @@ void evaluateMaterialThroughCut(uint materialId, uvec4 cut, uvec2 object, Materi
 #else
   CacheKey key;
   MaterialInputs keyInputs;
-  usable = usable && cacheCutKeyFor(info, cut, object, inputs, key, keyInputs);
-  bool hit = false;
-  if (usable) {
-    g_cacheLookups += 1u;
-    hit = cacheRead(key, values);
-    if (hit) {
-      g_cacheHits += 1u;
-    } else {
-      g_cacheMisses += 1u;
-      g_cacheMissed = true;
-    }
-  }
-  if (!hit) {
-    evaluateMaterialCutSwitch(materialId, usable ? keyInputs : inputs, values);
+  if (!cacheReadCut(info, cut, object, inputs, usable, key, keyInputs, values)) {
+    evaluateMaterialCutSwitch(materialId, keyInputs, values);
     if (usable) cacheWrite(key, values);
   }
 #endif  // MG_CACHE_FILTER

@@ -871,7 +871,6 @@ void compactionBarrier() {
 void materialPassThroughCut(bool live, uint slot, bool lightPoint) {
   SurfaceHit s;
   float values[MG_CACHE_VALUES];
-  for (uint k = 0u; k < uint(MG_CACHE_VALUES); ++k) values[k] = 0.0;
   bool pending = false;  // its cut's values are still to be evaluated
   bool keyed = false;
   CacheKey key;
@@ -879,22 +878,9 @@ void materialPassThroughCut(bool live, uint slot, bool lightPoint) {
   if (live) {
     s = surfaceToEvaluate(slot, lightPoint);
     s.inputs.textureBase = MG_TEXTURE_BASE;  // as the switch's case sets it
-    keyInputs = s.inputs;
-    keyed = !lightPoint && cacheTakesBounce(push.step.y) && frame.cache.x != 0u &&
-            cacheCutKeyFor(cacheInfoOf(s.materialId), cutInfoOf(s.materialId), s.object,
-                           s.inputs, key, keyInputs);
-    if (!keyed) keyInputs = s.inputs;
-    pending = true;
-    if (keyed) {
-      g_cacheLookups += 1u;
-      if (cacheRead(key, values)) {
-        g_cacheHits += 1u;
-        pending = false;
-      } else {
-        g_cacheMisses += 1u;
-        g_cacheMissed = true;
-      }
-    }
+    keyed = !lightPoint && cacheTakesBounce(push.step.y) && frame.cache.x != 0u;
+    pending = !cacheReadCut(cacheInfoOf(s.materialId), cutInfoOf(s.materialId), s.object,
+                            s.inputs, keyed, key, keyInputs, values);
   }
   uint me = gl_LocalInvocationIndex;
   for (;;) {
