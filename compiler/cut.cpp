@@ -145,6 +145,10 @@ bool scheduled(const OverloadChoice& chosen, std::size_t node) {
 
 }  // namespace
 
+std::size_t keySpaceAxes(Variation domain) {
+  return domain == Variation::Uv ? 2 : 3;
+}
+
 std::vector<std::string_view> nodesWithCostEstimates() {
   std::vector<std::string_view> names;
   for (const auto& entry : kNodeCosts)
@@ -231,11 +235,13 @@ MaterialCut cutForDomain(const ResolvedGraph& graph, const std::vector<std::size
         if (!leaves)
           continue;
         const Type type = outputType(node, s);
-        if (type.derivatives || type.width() == 0) {
-          // A source node (it reads only MaterialInputs) runs in both functions instead: it
-          // costs less than anything a cut could save, and its other readers stay in the part.
-          if (isSource(resolved))
-            continue;
+        // A source node (it reads only MaterialInputs) runs in both functions instead of
+        // handing over a value it cannot (no floats) or a gradient that costs more floats than
+        // reading the inputs again: it costs less than anything a cut could save, and its
+        // other readers stay in the part.
+        if ((type.derivatives || type.width() == 0) && isSource(resolved))
+          continue;
+        if (type.width() == 0) {
           excluded[node] = 1;
           changed = true;
         }
@@ -275,9 +281,10 @@ MaterialCut cutForDomain(const ResolvedGraph& graph, const std::vector<std::size
     for (std::size_t s = 0; s < crossing[node].size(); ++s) {
       if (!crossing[node][s])
         continue;
-      const Type type = outputType(node, s);
-      cut.values.push_back({node, s, type, cut.width});
-      cut.width += static_cast<std::size_t>(type.width());
+      CutValue value{node, s, outputType(node, s), cut.width};
+      value.gradientAxes = value.type.derivatives ? keySpaceAxes(domain) : 0;
+      cut.values.push_back(value);
+      cut.width += value.width();
       inCut[node] = 1;
     }
   }

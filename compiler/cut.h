@@ -10,15 +10,16 @@
 // (EvaluateMaterialRest_<Name>) recomputes what the part's constants and source nodes give
 // it, which costs less than storing it, and reads the cut's values.
 //
-// Derivatives do not cross the cut. A `_D` value's two derivatives are along the axes of the
-// hit's own footprint (the ray cone's ellipse, thesis §2.2), so a cached value's derivatives
-// would be the filling ray's axes, wrong for every other ray: a producer whose `_D` output a
-// node outside the part reads (a noise height under a Bump) is left out of the part, and so,
-// in turn, are producers of its `_D` inputs. Inside the part, derivatives are as correct as
-// the whole-graph cache's: the part runs with the key's footprint (the cache level's texel).
-// Caching a height with its gradient along the key's axes, from which the rest would rebuild
-// the hit's derivatives by the chain rule, would keep such producers in; it needs a second
-// derivative seeding of the part and is not done.
+// A value with derivatives (a `_D` noise height under a Bump) crosses the cut as its value and
+// its gradient along the key space's axes (u, v; or x, y, z of object or world space): its two
+// derivatives are along the axes of the hit's own footprint (the ray cone's ellipse, thesis
+// §2.2), so the filling ray's derivatives would be wrong for every other ray, but the gradient
+// is the key's. The cut function evaluates its part with the footprint seeded along the key
+// space's axes, one key step (the texel's or voxel's size) long, and once more along z in a
+// 3D key space; the rest rebuilds the hit's derivatives by the chain rule from the hit's own
+// key-space derivatives (dh/dx = grad h . dkey/dx). As Cycles' Bump takes its height's change
+// over the footprint, the gradient is a finite difference over one key step, filtered at the
+// key's level as the value is.
 #pragma once
 
 #include <cstddef>
@@ -37,7 +38,16 @@ struct CutValue {
   std::size_t socket = 0;
   Type type;
   std::size_t offset = 0;  // in floats, into the cut's packed values
+  // Key-space axes the value's gradient follows (2 for uv, 3 for object and world space), 0
+  // for a value without derivatives. Packed as the value, then its change per unit along
+  // each axis, each as wide as the value.
+  std::size_t gradientAxes = 0;
+
+  std::size_t width() const { return static_cast<std::size_t>(type.width()) * (1 + gradientAxes); }
 };
+
+// Key-space axes of a key domain: 2 for uv, 3 for object and world space.
+std::size_t keySpaceAxes(Variation domain);
 
 struct MaterialCut {
   // The key domain; Constant when the material has no cut.
@@ -50,6 +60,13 @@ struct MaterialCut {
   double totalCost = 0;   // estimated cost of the whole graph
 
   bool empty() const { return values.empty(); }
+  bool hasGradients() const {
+    for (const auto& value : values) {
+      if (value.gradientAxes > 0)
+        return true;
+    }
+    return false;
+  }
   double cachedShare() const { return totalCost > 0 ? cachedCost / totalCost : 0.0; }
 };
 

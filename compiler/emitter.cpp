@@ -216,11 +216,124 @@ std::string component(const std::string& variable, int width, int i) {
   return width == 1 ? variable : variable + kSwizzle[i];
 }
 
+// The MaterialInputs member whose derivatives a key domain's gradients follow: the key
+// space's coordinates at the hit.
+std::string keySpaceMember(Variation domain) {
+  switch (domain) {
+    case Variation::Uv:
+      return "uv";
+    case Variation::Object:
+      return "objectPosition";
+    default:
+      return "position";
+  }
+}
+
+// Statements indented by two more spaces (a loop's body).
+std::string indented(const std::string& statements) {
+  std::string text;
+  std::size_t begin = 0;
+  while (begin < statements.size()) {
+    const std::size_t end = statements.find('\n', begin);
+    const std::size_t next = end == std::string::npos ? statements.size() : end + 1;
+    if (next - begin > 1)
+      text += "  ";
+    text += statements.substr(begin, next - begin);
+    begin = next;
+  }
+  return text;
+}
+
+// The packing of one cut value into cut.v: its value, or with `axisRun` its change per key
+// unit along the run's key axes (cut.h, CutValue): run 0 packs the value and axes 0 and 1
+// (the footprint's x and y), run 1 axis 2 (the footprint's x along z).
+std::string packedValue(const EmitInput& in, const CutValue& value, int axisRun,
+                        const std::string& indent) {
+  const std::string variable = variableName(in.graph, value.node, value.socket);
+  const int width = value.type.width();
+  std::string text;
+  auto store = [&](std::size_t slot, const std::string& expression) {
+    text += indent + "cut.v[" + std::to_string(value.offset + slot) + "] = " + expression + ";\n";
+  };
+  for (int i = 0; i < width; ++i) {
+    const auto component_i = static_cast<std::size_t>(i);
+    if (value.gradientAxes == 0) {
+      store(component_i, component(variable, width, i));
+      continue;
+    }
+    const std::size_t w = static_cast<std::size_t>(width);
+    if (axisRun == 0) {
+      store(component_i, component(variable + ".v", width, i));
+      store(w + component_i, component(variable + ".x", width, i) + " / keyStep");
+      store(2 * w + component_i, component(variable + ".y", width, i) + " / keyStep");
+    } else {
+      store(3 * w + component_i, component(variable + ".x", width, i) + " / keyStep");
+    }
+  }
+  return text;
+}
+
+// `float3(cut.v[a], cut.v[a + 1], cut.v[a + 2])`, or `cut.v[a]` for one float.
+std::string packedVector(std::size_t first, int width) {
+  std::string packed;
+  for (int i = 0; i < width; ++i) {
+    packed += std::string(i ? ", " : "") + "cut.v[" +
+              std::to_string(first + static_cast<std::size_t>(i)) + "]";
+  }
+  return width == 1 ? packed : Type::floatOfWidth(width, false).name() + "(" + packed + ")";
+}
+
+// The rest's unpacking of one cut value: as packed, or for a gradient value its derivatives
+// along the hit's footprint axes by the chain rule, d/dx = sum_k grad_k (d key_k / dx).
+std::string unpackedValue(const EmitInput& in, const CutValue& value) {
+  const std::string variable = variableName(in.graph, value.node, value.socket);
+  const int width = value.type.width();
+  if (value.gradientAxes == 0)
+    return "  " + value.type.name() + " " + variable + " = " + packedVector(value.offset, width) +
+           ";\n";
+  static const char* const kAxis[] = {".x", ".y", ".z"};
+  const std::string key = "inputs." + keySpaceMember(in.cut.domain);
+  const auto w = static_cast<std::size_t>(width);
+  auto along = [&](const char* footprintAxis) {
+    std::string sum;
+    for (std::size_t k = 0; k < value.gradientAxes; ++k) {
+      sum += std::string(k ? " + " : "") + packedVector(value.offset + (k + 1) * w, width) + " * " +
+             key + footprintAxis + kAxis[k];
+    }
+    return sum;
+  };
+  return "  " + value.type.name() + " " + variable + " = mg_make_" + value.type.name() + "(" +
+         packedVector(value.offset, width) + ",\n      " + along(".x") + ",\n      " + along(".y") +
+         ");\n";
+}
+
+// The key-space footprint a gradient cut's part runs with (cut.h): `inputs` is `keyInputs`
+// with the key member's derivatives one key step along the run's axes (run 0: x and y; run 1:
+// z, in a 3D key space), and Generated's following the object-space position's.
+std::string keyAxesSeeding(Variation domain) {
+  const std::string key = "inputs." + keySpaceMember(domain);
+  if (domain == Variation::Uv) {
+    return "  MaterialInputs inputs = keyInputs;\n  " + key + ".x = float2(keyStep, 0.0);\n  " +
+           key + ".y = float2(0.0, keyStep);\n";
+  }
+  std::string text = "    MaterialInputs inputs = keyInputs;\n    " + key +
+                     ".x = float3(axisRun == 0 ? keyStep : 0.0, 0.0, axisRun == 1 ? keyStep : "
+                     "0.0);\n    " +
+                     key + ".y = float3(0.0, axisRun == 0 ? keyStep : 0.0, 0.0);\n";
+  if (domain == Variation::Object) {
+    text +=
+        "    inputs.generated.x = inputs.objectPosition.x * inputs.generatedScale;\n"
+        "    inputs.generated.y = inputs.objectPosition.y * inputs.generatedScale;\n";
+  }
+  return text;
+}
+
 // MaterialCut_<Name>, EvaluateMaterialCut_<Name> and EvaluateMaterialRest_<Name> (cut.h):
 // the cut function runs the part that the key determines and packs the values that leave it
 // into floats; the rest unpacks them into the variables EvaluateMaterial_<Name> gives them
 // and runs everything else, so that rest(inputs, cut(inputs)) computes what
-// EvaluateMaterial_<Name>(inputs) does.
+// EvaluateMaterial_<Name>(inputs) does (for gradient values, up to the gradient's finite
+// difference over one key step against the hit's over its footprint).
 std::string cutFunctions(const EmitInput& in, const std::vector<NodeCall>& calls) {
   const MaterialCut& cut = in.cut;
   const std::string& name = in.metadata.name;
@@ -233,31 +346,48 @@ std::string cutFunctions(const EmitInput& in, const std::vector<NodeCall>& calls
   text += "\n// Only the " + domain +
           "-space members of inputs reach the packed values; the others may hold\n"
           "// placeholders.\n";
-  text += "void EvaluateMaterialCut_" + name + "(in MaterialInputs inputs, out MaterialCut_" +
-          name + " cut) {\n";
-  text += nodeStatements(in, calls, cut.cutNodes);
-  for (const CutValue& value : cut.values) {
-    const std::string variable = variableName(in.graph, value.node, value.socket);
-    const int width = value.type.width();
-    for (int i = 0; i < width; ++i) {
-      text += "  cut.v[" + std::to_string(value.offset + static_cast<std::size_t>(i)) +
-              "] = " + component(variable, width, i) + ";\n";
+  if (!cut.hasGradients()) {
+    text += "void EvaluateMaterialCut_" + name + "(in MaterialInputs inputs, out MaterialCut_" +
+            name + " cut) {\n";
+    text += nodeStatements(in, calls, cut.cutNodes);
+    for (const CutValue& value : cut.values)
+      text += packedValue(in, value, 0, "  ");
+    text += "}\n";
+  } else {
+    const std::string key = "keyInputs." + keySpaceMember(cut.domain);
+    text +=
+        "// Values with derivatives are packed with their gradient along the key space's axes,\n"
+        "// a finite difference over one key step: the footprint's shorter axis, which at a\n"
+        "// key is its texel's or voxel's size.\n";
+    text += "void EvaluateMaterialCut_" + name + "(in MaterialInputs keyInputs, out MaterialCut_" +
+            name + " cut) {\n";
+    text += "  float keyStep = max(min(length(" + key + ".x), length(" + key + ".y)), 1.0e-5);\n";
+    std::string packing0;
+    std::string packing1;
+    const bool threeAxes = keySpaceAxes(cut.domain) == 3;
+    for (const CutValue& value : cut.values) {
+      packing0 += packedValue(in, value, 0, threeAxes ? "      " : "  ");
+      if (value.gradientAxes == 3)
+        packing1 += packedValue(in, value, 1, "      ");
     }
+    if (!threeAxes) {
+      text += keyAxesSeeding(cut.domain);
+      text += nodeStatements(in, calls, cut.cutNodes);
+      text += packing0;
+    } else {
+      text += "  for (int axisRun = 0; axisRun < 2; ++axisRun) {\n";
+      text += keyAxesSeeding(cut.domain);
+      text += indented(nodeStatements(in, calls, cut.cutNodes));
+      text += "    if (axisRun == 0) {\n" + packing0 + "    } else {\n" + packing1 + "    }\n";
+      text += "  }\n";
+    }
+    text += "}\n";
   }
-  text += "}\n";
   text += "\nvoid EvaluateMaterialRest_" + name + "(in MaterialInputs inputs, in MaterialCut_" +
           name + " cut, out MaterialOutputs outputs) {\n";
   text += "  outputs = mg_defaultMaterialOutputs(inputs);\n";
-  for (const CutValue& value : cut.values) {
-    const int width = value.type.width();
-    std::string packed;
-    for (int i = 0; i < width; ++i) {
-      packed += std::string(i ? ", " : "") + "cut.v[" +
-                std::to_string(value.offset + static_cast<std::size_t>(i)) + "]";
-    }
-    text += "  " + value.type.name() + " " + variableName(in.graph, value.node, value.socket) +
-            " = " + (width == 1 ? packed : value.type.name() + "(" + packed + ")") + ";\n";
-  }
+  for (const CutValue& value : cut.values)
+    text += unpackedValue(in, value);
   text += nodeStatements(in, calls, cut.restNodes);
   return text + "}\n";
 }

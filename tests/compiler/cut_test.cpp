@@ -186,25 +186,66 @@ TEST(Cut, GeneratedNoiseUnderALayerWeightMixIsAnObjectSpaceCut) {
   EXPECT_NE(c.rest.find("MixColor"), std::string::npos);
 }
 
-// Bump reads its height's derivatives along the hit's own footprint axes, which a cached value
-// cannot carry (cut.h), so the noise under it stays in the rest and nothing is left to cache.
-TEST(Cut, BumpOverANoiseHeightLeavesTheNoiseUncached) {
-  const auto c = compileReal(
-      "material BumpOverNoise;\n"
-      "TextureCoordinate Generated>1;\n"
-      "NoiseTexture Vector<1 Detail=3.0 Fac>2;\n"
-      "Bump Height<2 Normal>3;\n"
-      "NormalOutput In<3;\n");
+// A Generated-coordinate noise height under a Bump (Blender's usual bump).
+constexpr const char* kBumpOverGeneratedNoise =
+    "material BumpOverNoise;\n"
+    "TextureCoordinate Generated>1;\n"
+    "NoiseTexture Vector<1 Detail=3.0 Fac>2;\n"
+    "Bump Height<2 Normal>3;\n"
+    "NormalOutput In<3;\n";
+
+// A uv noise height under a Bump: a 2D key space, one run.
+constexpr const char* kBumpOverUvNoise =
+    "material BumpOverUvNoise;\n"
+    "UVInput Out>1;\n"
+    "NoiseTexture Vector<1 Detail=2.0 Color>2;\n"
+    "Bump Height<2 Normal>3;\n"
+    "NormalOutput In<3;\n"
+    "RoughnessOutput In=0.4;\n";
+
+// Bump reads its height's derivatives along the hit's own footprint axes; the cut carries the
+// height with its gradient along object space's x, y and z (cut.h), so the noise, evaluated
+// with derivatives at three points, is cached, and the rest rebuilds the hit's derivatives from
+// its own object-space footprint.
+TEST(Cut, BumpOverANoiseHeightCachesTheHeightWithItsGradient) {
+  const auto c = compileReal(kBumpOverGeneratedNoise);
   EXPECT_TRUE(c.metadata.needsDerivatives);
-  EXPECT_EQ(c.metadata.cutDomain, "none");
-  EXPECT_EQ(c.metadata.cutWidth, 0u);
-  EXPECT_EQ(c.metadata.cutCostShare, 0.0);
-  EXPECT_EQ(c.glsl.find("EvaluateMaterialCut_"), std::string::npos);
-  EXPECT_EQ(c.glsl.find("EvaluateMaterialRest_"), std::string::npos);
+  EXPECT_EQ(c.metadata.cutDomain, "object");
+  EXPECT_EQ(c.metadata.cutWidth, 4u);  // the height and its gradient's three components
+  // The noise's derivative overload: (2 + 10 * 4 octaves) * 3 = 126; Bump 12.
+  EXPECT_NEAR(c.metadata.cutCostShare, 126.0 / 138.0, 1e-9);
+  EXPECT_NE(c.cut.find("NoiseTexture"), std::string::npos) << c.cut;
+  EXPECT_EQ(c.rest.find("NoiseTexture"), std::string::npos) << c.rest;
+  EXPECT_NE(c.rest.find("Bump("), std::string::npos) << c.rest;
+  // Two runs: x and y, then z, one key step long; the gradient per unit of the step.
+  EXPECT_NE(c.cut.find("for (int axisRun = 0; axisRun < 2; ++axisRun)"), std::string::npos)
+      << c.cut;
+  EXPECT_NE(c.cut.find("inputs.generated.x = inputs.objectPosition.x * inputs.generatedScale;"),
+            std::string::npos)
+      << c.cut;
+  EXPECT_NE(c.cut.find("cut.v[3] = link2.x / keyStep;"), std::string::npos) << c.cut;
+  // The chain rule along the hit's footprint: d/dx = grad . d(objectPosition)/dx.
+  EXPECT_NE(c.rest.find("cut.v[1] * inputs.objectPosition.x.x + cut.v[2] * "
+                        "inputs.objectPosition.x.y + cut.v[3] * inputs.objectPosition.x.z"),
+            std::string::npos)
+      << c.rest;
 }
 
-// A plain branch beside the Bump still caches: only the derivative-carrying value is refused.
-TEST(Cut, BumpLeavesAPlainSiblingBranchCached) {
+// In uv space the gradient has two axes, and one run of the part gives both.
+TEST(Cut, BumpOverAUvNoiseCachesItsUvGradientInOneRun) {
+  const auto c = compileReal(kBumpOverUvNoise);
+  EXPECT_EQ(c.metadata.cutDomain, "uv");
+  EXPECT_EQ(c.metadata.cutWidth, 9u);  // a colour and its two gradient vectors
+  EXPECT_EQ(c.cut.find("axisRun"), std::string::npos) << c.cut;
+  EXPECT_NE(c.cut.find("inputs.uv.x = float2(keyStep, 0.0);"), std::string::npos) << c.cut;
+  EXPECT_NE(c.rest.find("float3(cut.v[3], cut.v[4], cut.v[5]) * inputs.uv.x.x + "
+                        "float3(cut.v[6], cut.v[7], cut.v[8]) * inputs.uv.x.y"),
+            std::string::npos)
+      << c.rest;
+}
+
+// A plain branch beside the Bump caches in the same entry, without a gradient.
+TEST(Cut, BumpBesideAPlainBranchCachesBoth) {
   const auto c = compileReal(
       "material BumpBesideColor;\n"
       "TextureCoordinate Generated>1;\n"
@@ -214,10 +255,10 @@ TEST(Cut, BumpLeavesAPlainSiblingBranchCached) {
       "VoronoiTexture Vector<1 Color>4;\n"
       "BaseColorOutput In<4;\n");
   EXPECT_EQ(c.metadata.cutDomain, "object");
-  EXPECT_EQ(c.metadata.cutWidth, 3u);
+  EXPECT_EQ(c.metadata.cutWidth, 7u);
   EXPECT_NE(c.cut.find("VoronoiTexture"), std::string::npos) << c.cut;
-  EXPECT_EQ(c.cut.find("NoiseTexture"), std::string::npos) << c.cut;
-  EXPECT_NE(c.rest.find("NoiseTexture"), std::string::npos) << c.rest;
+  EXPECT_NE(c.cut.find("NoiseTexture"), std::string::npos) << c.cut;
+  EXPECT_EQ(c.rest.find("NoiseTexture"), std::string::npos) << c.rest;
   EXPECT_NE(c.rest.find("Bump("), std::string::npos) << c.rest;
 }
 
@@ -357,8 +398,8 @@ std::string hostCall(const std::string& name) {
 }
 
 TEST(Cut, CutAndRestCompileWithGlslangForBothTargets) {
-  for (const char* graph :
-       {kUvPrefixViewTail, kGeneratedUnderLayerWeight, kUvNoiseUnderLightPath}) {
+  for (const char* graph : {kUvPrefixViewTail, kGeneratedUnderLayerWeight, kUvNoiseUnderLightPath,
+                            kBumpOverGeneratedNoise, kBumpOverUvNoise}) {
     const auto run = compileText(graph, realLibrary());
     ASSERT_TRUE(run.material) << run.messages();
     const auto& m = *run.material;
@@ -417,6 +458,11 @@ void expectGoldenCutAndRest(const char* graph, const std::string& stem) {
 
 TEST(Cut, GoldenCutAndRestFunctions) {
   expectGoldenCutAndRest(kGeneratedUnderLayerWeight, "cut_generated_under_layer_weight");
+}
+
+// A height with its object-space gradient: the two runs and the chain rule.
+TEST(Cut, GoldenGradientCut) {
+  expectGoldenCutAndRest(kBumpOverGeneratedNoise, "cut_bump_over_generated_noise");
 }
 
 // Light Path's per-ray inputs read in the rest, never in the cut.

@@ -87,6 +87,7 @@ void main() {
   inputs.generated.v = (position - loc) * toGenerated + 0.5;
   inputs.generated.x = dPdx * toGenerated;
   inputs.generated.y = dPdy * toGenerated;
+  inputs.generatedScale = toGenerated;
   inputs.objectPosition = inputs.position;
   inputs.geometricNormal = vec3(0.0, 0.0, 1.0);
   inputs.objectNormal = inputs.normal;  // the bake's object is untransformed

@@ -793,6 +793,7 @@ MaterialInputs voxelKeyInputs(uint domain, MaterialInputs inputs, uvec2 object, 
         (centre - meshes[object.y].textureSpaceLocation.xyz) * toGenerated + 0.5;
     keyInputs.generated.x = keyInputs.objectPosition.x * toGenerated;
     keyInputs.generated.y = keyInputs.objectPosition.y * toGenerated;
+    keyInputs.generatedScale = toGenerated;
   }
 #endif
   return keyInputs;

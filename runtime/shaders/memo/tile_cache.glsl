@@ -317,6 +317,7 @@ MaterialInputs tileFillInputs(TileFillItem item, uint texel) {
   inputs.textureBase = 0;
 #ifndef MG_OMIT_OBJECT_INPUTS
   inputs.generated = inputs.position;
+  inputs.generatedScale = vec3(1.0);
   inputs.objectPosition = inputs.position;
   inputs.geometricNormal = vec3(0.0, 0.0, 1.0);
   inputs.objectNormal = inputs.normal;

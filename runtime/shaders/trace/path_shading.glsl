@@ -170,6 +170,7 @@ SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
       (s.inputs.objectPosition.v - mesh.textureSpaceLocation.xyz) * toGenerated + 0.5;
   s.inputs.generated.x = s.inputs.objectPosition.x * toGenerated;
   s.inputs.generated.y = s.inputs.objectPosition.y * toGenerated;
+  s.inputs.generatedScale = toGenerated;
   s.inputs.geometricNormal = ng;
   // A normal maps to world space by the inverse transpose of the object's linear part, so
   // back by its transpose (Cycles 3.4 object_inverse_normal_transform, then safe_normalize).

@@ -21,6 +21,7 @@ struct MaterialInputs {
   float time;
   int textureBase;
   float3_D generated;
+  float3 generatedScale;
   float3_D objectPosition;
   float3 geometricNormal;
   float3 objectNormal;
