@@ -77,8 +77,13 @@ struct DistinctMaterial {
 };
 
 struct LinkedMaterials {
-  std::string source;                     // materials.glsl for the switch dispatch
-  std::string preludeSource;              // materials.glsl for the callable dispatch
+  std::string source;         // materials.glsl for the switch dispatch
+  std::string preludeSource;  // materials.glsl for the callable dispatch
+  // material_rests.glsl for the wavefront's lookup pass: the graphs keyed by their cut, with
+  // materialRestInLookup and evaluateMaterialRestInLookup, so that a hit whose cut's entry
+  // is found runs the rest of its graph there and needs no material pass (docs/design/
+  // wavefront.md, "Cut hits finish in the lookup"). Guarded by MG_CACHE_CUTS.
+  std::string lookupRestSource;
   std::vector<LinkedMaterial> materials;  // parallel to Scene::materials
   std::vector<DistinctMaterial> distinct;
   std::vector<std::string> texturePaths;  // resolved paths, in descriptor-array order

@@ -215,6 +215,7 @@ RenderPipelines buildPipelines(const VulkanContext& context, const RendererOptio
   b.cutKeys = keysCuts(plan, callables, b.floor, materials);
   files["materials.glsl"] =
       callables || b.floor || plan.wavefront ? materials.preludeSource : materials.source;
+  files["material_rests.glsl"] = plan.wavefront && !b.floor ? materials.lookupRestSource : "";
   ShaderCompiler compiler(std::move(files), inputs.shaderCacheDirectory);
   const auto pipelineStart = std::chrono::steady_clock::now();
   static_assert(static_cast<std::uint32_t>(CacheEviction::Lru) == gpu::kCacheEvictionLru &&

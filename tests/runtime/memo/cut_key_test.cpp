@@ -126,6 +126,30 @@ TEST(CutKeys, LinkerKeysOnlyMaterialsNotCacheableAsAWhole) {
 // --cache-keys: a material keyed in a domain the cache does not take is linked uncacheable
 // with no cut (so it never touches the cache); uv holds the whole uv-only materials. Names
 // parse both ways, and a bad list is refused with the choices.
+// The wavefront's lookup pass gets the rests of the graphs keyed by their cut, so that a hit
+// whose entry it finds needs no material pass; a graph with a traced input is left out (its
+// material pass has the traced values), and so is a whole uv-only graph (no rest).
+TEST(CutKeys, TheLookupPassGetsTheRestsOfCutGraphsOnly) {
+  const char* uvNoise =
+      "material UvNoise;\nUVInput Out>1;\nNoiseTexture Vector<1 Detail=2.0 Color>2;\n"
+      "BaseColorOutput In<2;\n";
+  const char* occluded =
+      "material Occluded;\nTextureCoordinate Generated>1;\n"
+      "NoiseTexture Vector<1 Detail=2.0 Color>2;\n"
+      "AmbientOcclusion Color<2 Out>3;\nBaseColorOutput In<3;\n";
+  const LinkedMaterials linked =
+      linkMaterials({{"Whole", "", uvNoise}, {"Cut", "", kObjectGraph}, {"AO", "", occluded}});
+  ASSERT_EQ(linked.materials.at(1).cutDomain, gpu::kCacheCutObject);
+  ASSERT_EQ(linked.materials.at(2).cutDomain, gpu::kCacheCutObject);
+  const std::string& rests = linked.lookupRestSource;
+  EXPECT_NE(rests.find("EvaluateMaterialRest_ObjectTail(inputs, cut, outputs)"), std::string::npos)
+      << rests;
+  EXPECT_NE(rests.find("case 1u:\n      return true;"), std::string::npos) << rests;
+  EXPECT_EQ(rests.find("EvaluateMaterialRest_Occluded(inputs"), std::string::npos);
+  EXPECT_EQ(rests.find("case 2u"), std::string::npos);
+  EXPECT_EQ(rests.find("EvaluateMaterial_UvNoise"), std::string::npos);
+}
+
 TEST(CutKeys, KeyDomainsLeaveTheOtherDomainsMaterialsUncached) {
   const char* uvNoise =
       "material UvNoise;\nUVInput Out>1;\nNoiseTexture Vector<1 Detail=2.0 Color>2;\n"

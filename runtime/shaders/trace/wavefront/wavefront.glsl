@@ -49,7 +49,7 @@
 #ifdef MG_SUBGROUP_RAY_COUNT
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #endif
-#ifdef MG_WAVEFRONT_MATERIAL
+#if defined(MG_WAVEFRONT_MATERIAL) || (defined(MG_WAVEFRONT_LOOKUP) && defined(MG_CACHE_CUTS))
 #extension GL_EXT_nonuniform_qualifier : require  // material_textures.glsl
 #endif
 #ifdef MG_CACHE_CLOCK_COUNTER
@@ -137,6 +137,13 @@ void evaluateMaterialRestSwitch(uint materialId, MaterialInputs inputs,
 #define MG_CACHE_CUT_PASS 1  // this pass's graph is keyed by its cut: no whole-graph fill
 #endif
 #include "texel_cache.glsl"
+#if defined(MG_WAVEFRONT_LOOKUP) && defined(MG_CACHE_CUTS) && !defined(MG_CACHE_FILTER)
+// The rests of the graphs keyed by their cut (the host's material_rests.glsl): a hit whose
+// cut's entry the lookup finds runs the rest of its graph here and needs no material pass.
+#include "material_rests.glsl"
+#include "material_textures.glsl"
+#define MG_LOOKUP_FINISHES_CUTS 1
+#endif
 #endif
 #if defined(MG_CACHE_TILE) &&                                                    \
     (defined(MG_WAVEFRONT_LOOKUP) || defined(MG_WAVEFRONT_BIN_COUNT) ||          \
@@ -651,43 +658,68 @@ void main() {
   if (i < control.counts.x) {
     uint slot = pathQueues[queueIndex(push.step.z, i)];
     uint bin = binOfPath(slot);
-    // Only whole uv-only materials are looked up here, whose found hits then need no material
+    // Whole uv-only materials are looked up here, whose found hits then need no material
     // pass; the material id comes from the hit's instance, so the surface is built for those
-    // alone. A material keyed by its cut runs its material pass for the rest of its graph in
-    // any case, and reads (or fills) the cut's entry there, in place; so does every material
-    // with a filtered read, which blends (or picks among) several entries.
+    // alone. So are materials keyed by their cut (MG_LOOKUP_FINISHES_CUTS): a found entry's
+    // hit runs the rest of its graph here; a missing one is left to its material pass, which
+    // reads the entry again (and counts that lookup), evaluates the cut and inserts it. Every
+    // material with a filtered read, which blends (or picks among) several entries, reads in
+    // its material pass.
     uvec4 info = uvec4(0u);
+    bool cutRest = false;
 #ifndef MG_CACHE_FILTER
     if (bin != kNoBin) info = cacheInfoOf(materialOfPath(slot));
+#ifdef MG_LOOKUP_FINISHES_CUTS
+    cutRest = bin != kNoBin && info.x == 0u && materialRestInLookup(materialOfPath(slot));
 #endif
-    if (info.x != 0u && frame.cache.x != 0u && cacheTakesBounce(push.step.y)) {
+#endif
+    if ((info.x != 0u || cutRest) && frame.cache.x != 0u && cacheTakesBounce(push.step.y)) {
       vec3 origin, direction;
       RayCone cone;
       SurfaceHit s = surfaceOfPath(slot, origin, direction, cone);
-      // The texel's key, or (§5.4) the hit's tile, whose read filters its texels.
-#ifdef MG_WAVEFRONT_TILES
-      TileRequest request;
-      bool cached = tileRequestFor(info, s.inputs, request);
-#else
-      CacheKey request;
-      bool cached = cacheKeyFor(info, s.inputs, request);
-#endif
-      if (cached) {
+#ifdef MG_LOOKUP_FINISHES_CUTS
+      CacheKey cutKey;
+      MaterialInputs keyInputs;
+      float cutValues[MG_CACHE_VALUES];
+      if (!cutRest) {
+      } else if (cacheCutKeyFor(info, cutInfoOf(s.materialId), s.object, s.inputs, cutKey,
+                                keyInputs) &&
+                 cacheRead(cutKey, cutValues)) {
         g_cacheLookups += 1u;
-        float values[MG_CACHE_VALUES];
-        if (cacheRead(request, values)) {
-          g_cacheHits += 1u;
-          storeMaterialOutputs(slot, cacheUnpack(info.x, values, s.inputs));
-          bin = kNoBin;
-        } else {
-          g_cacheMisses += 1u;
+        g_cacheHits += 1u;
+        MaterialOutputs m;
+        evaluateMaterialRestInLookup(s.materialId, s.inputs, cutValues, m);
+        storeMaterialOutputs(slot, m);
+        bin = kNoBin;
+      }
+      if (!cutRest)
+#endif
+      {
+        // The texel's key, or (§5.4) the hit's tile, whose read filters its texels.
+#ifdef MG_WAVEFRONT_TILES
+        TileRequest request;
+        bool cached = tileRequestFor(info, s.inputs, request);
+#else
+        CacheKey request;
+        bool cached = cacheKeyFor(info, s.inputs, request);
+#endif
+        if (cached) {
+          g_cacheLookups += 1u;
+          float values[MG_CACHE_VALUES];
+          if (cacheRead(request, values)) {
+            g_cacheHits += 1u;
+            storeMaterialOutputs(slot, cacheUnpack(info.x, values, s.inputs));
+            bin = kNoBin;
+          } else {
+            g_cacheMisses += 1u;
 #ifdef MG_DEBUG_CACHE_MISSES
-          pathState[fieldIndex(kFieldPixelSum, slot)].w = 1.0;  // the pixel's flag (finish)
+            pathState[fieldIndex(kFieldPixelSum, slot)].w = 1.0;  // the pixel's flag (finish)
 #endif
 #ifdef MG_WAVEFRONT_TILES
-          // Queued once a frame (the tile log) for its bin's material pass to compute.
-          tileEnqueue(s.materialId, request);
+            // Queued once a frame (the tile log) for its bin's material pass to compute.
+            tileEnqueue(s.materialId, request);
 #endif
+          }
         }
       }
     }
