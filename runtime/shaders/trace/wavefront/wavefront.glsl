@@ -868,86 +868,29 @@ void storeEvaluated(uint slot, bool lightPoint, MaterialOutputs m) {
 }
 
 #if defined(MG_CACHE_CUT_PASS) && !defined(MG_CACHE_FILTER)
-// A graph keyed by its cut, with its misses gathered per work group. A hit whose entry is
-// missing evaluates the cut; in SIMT every subgroup with one such lane pays the cut's whole
-// time while its other lanes wait, and at a few percent of misses most subgroups hold one
-// (at 3.5 %, 68 % of 32-lane subgroups). So the work group's misses (and hits without a usable
-// key) go into a list in shared memory, the first invocations of the group evaluate them
-// side by side, a miss's entry is inserted by the invocation that evaluated it, and every
-// invocation takes its values back: at that rate one subgroup of the 8 in a group of 256
-// evaluates cuts instead of 5 or 6. kCompactedCuts a round; more run in further rounds.
-const uint kCompactedCuts = 32u;
-const uint kNoCompactedPlace = 0xffffffffu;
-shared uint s_cutCount;
-shared MaterialInputs s_cutInputs[kCompactedCuts];
-shared CacheKey s_cutKeys[kCompactedCuts];
-shared uint s_cutInserts[kCompactedCuts];
-shared float s_cutValues[kCompactedCuts * uint(MG_MATERIAL_CUT_WIDTH)];
-
-// The barrier between the rounds' steps: the list in shared memory, ordered under the
-// Vulkan memory model (workgroup scope, acquire-release on workgroup storage).
-void compactionBarrier() {
-  controlBarrier(gl_ScopeWorkgroup, gl_ScopeWorkgroup, gl_StorageSemanticsShared,
-                 gl_SemanticsAcquireRelease);
-}
-
-// The material pass of a graph keyed by its cut: every invocation of the work group calls it
-// (the barriers need them all); `live` those with a path of the bin, `slot` its path, whose
-// hit (or, with `lightPoint`, light point: evaluated without the cache, as the megakernel's)
-// it evaluates. The
-// cut's entry is read (under §5.3.4's check: this pass inserts), a missing one evaluated at
-// its key's centre by the group's list and inserted; a hit without a key (a bounce the cache
-// does not take, or no usable key) evaluates the cut at its own inputs the same way. Then the
-// rest of the graph with the hit's own inputs. One copy of the graph: the list's cut, then the
+// The material pass of a graph keyed by its cut. The lookup pass finished the hits whose
+// entry it found (MG_LOOKUP_FINISHES_CUTS), so this pass sees the misses, the hits without a
+// key (a bounce the cache does not take, no usable key) and light points: nearly every
+// invocation evaluates the cut, side by side with its subgroup's others. (Gathering them in
+// shared memory, as this pass did when it saw every hit, ran a work group's misses 32 at a
+// time while its other subgroups waited.) The cut's entry is read again under §5.3.4's check
+// (an earlier work group of this pass may have inserted it), a missing one evaluated at its
+// key's centre and inserted; a hit without a key (or, with `lightPoint`, a light point:
+// evaluated without the cache, as the megakernel's) evaluates the cut at its own inputs. Then
+// the rest of the graph with the hit's own inputs. One copy of the graph: the cut, then the
 // rest.
-void materialPassThroughCut(bool live, uint slot, bool lightPoint) {
-  SurfaceHit s;
-  float values[MG_CACHE_VALUES];
-  bool pending = false;  // its cut's values are still to be evaluated
-  bool keyed = false;
+void materialPassThroughCut(uint slot, bool lightPoint) {
+  SurfaceHit s = surfaceToEvaluate(slot, lightPoint);
+  s.inputs.textureBase = MG_TEXTURE_BASE;  // as the switch's case sets it
+  bool keyed = !lightPoint && cacheTakesBounce(push.step.y) && frame.cache.x != 0u;
   CacheKey key;
   MaterialInputs keyInputs;
-  if (live) {
-    s = surfaceToEvaluate(slot, lightPoint);
-    s.inputs.textureBase = MG_TEXTURE_BASE;  // as the switch's case sets it
-    keyed = !lightPoint && cacheTakesBounce(push.step.y) && frame.cache.x != 0u;
-    pending = !cacheReadCut(cacheInfoOf(s.materialId), cutInfoOf(s.materialId), s.object,
-                            s.inputs, keyed, key, keyInputs, values);
+  float values[MG_CACHE_VALUES];
+  if (!cacheReadCut(cacheInfoOf(s.materialId), cutInfoOf(s.materialId), s.object, s.inputs,
+                    keyed, key, keyInputs, values)) {
+    evaluateMaterialCutSwitch(0u, keyInputs, values);
+    if (keyed) cacheWrite(key, values);
   }
-  uint me = gl_LocalInvocationIndex;
-  for (;;) {
-    if (me == 0u) s_cutCount = 0u;
-    compactionBarrier();
-    uint place = kNoCompactedPlace;
-    if (pending) {
-      place = atomicAdd(s_cutCount, 1u);
-      if (place < kCompactedCuts) {
-        s_cutInputs[place] = keyInputs;
-        s_cutKeys[place] = key;
-        s_cutInserts[place] = keyed ? 1u : 0u;
-      } else {
-        place = kNoCompactedPlace;  // the next round's
-      }
-    }
-    compactionBarrier();
-    uint listed = s_cutCount;
-    if (me < min(listed, kCompactedCuts)) {
-      float filled[MG_CACHE_VALUES];
-      evaluateMaterialCutSwitch(0u, s_cutInputs[me], filled);
-      if (s_cutInserts[me] != 0u) cacheWrite(s_cutKeys[me], filled);
-      for (uint k = 0u; k < uint(MG_MATERIAL_CUT_WIDTH); ++k)
-        s_cutValues[me * uint(MG_MATERIAL_CUT_WIDTH) + k] = filled[k];
-    }
-    compactionBarrier();
-    if (place != kNoCompactedPlace) {
-      for (uint k = 0u; k < uint(MG_MATERIAL_CUT_WIDTH); ++k)
-        values[k] = s_cutValues[place * uint(MG_MATERIAL_CUT_WIDTH) + k];
-      pending = false;
-    }
-    if (listed <= kCompactedCuts) break;  // the same for every invocation: uniform
-    compactionBarrier();  // every invocation has read s_cutCount before it is reset
-  }
-  if (!live) return;
   MaterialOutputs m;
   evaluateMaterialRestSwitch(s.materialId, s.inputs, values, m);
 #ifdef MG_DEBUG_CACHE_MISSES
@@ -962,13 +905,10 @@ void main() {
   uint i = invocationIndex();
   const bool lightPoint = evaluatesLightPoints();
 #if defined(MG_CACHE_CUT_PASS) && !defined(MG_CACHE_FILTER)
-  // Every invocation of the group, past the bin's hits too, for the list's barriers (whether
-  // the dispatch evaluates light points is uniform: push constants).
 #if defined(MG_NEE_EVALUATES_EMISSION) && !defined(MG_MATERIAL_LIGHT_POINTS)
   if (binsLightPoints()) return;  // no emitter's light samples evaluate this graph
 #endif
-  bool live = i < bin.w;
-  materialPassThroughCut(live, live ? pathQueues[queueIndex(3u, bin.y + i)] : 0u, lightPoint);
+  if (i < bin.w) materialPassThroughCut(pathQueues[queueIndex(3u, bin.y + i)], lightPoint);
   cacheAddCounts();
   return;
 #endif
