@@ -19,7 +19,7 @@
 #   bash tools/bench/memo_scenes_device.sh [--local] [--size WxH] [--frames N] [--warmup N]
 #        [--quality-size WxH] [--quality-frames N] [--scenes "pack classroom landscape"]
 #        [--pack FILE] [--camera FILE] [--limit-scale K] [--budget S] [--runs "NAME..."]
-#        [--quality-shading megakernel|wavefront]
+#        [--quality-shading megakernel|wavefront] [--variants "NAME..."] [--keep-pictures]
 # --local runs here (no carried Vulkan loader; MEMOGRAPH, default build/tools/memograph; every
 # time limit x 10 unless --limit-scale says), e.g. on lavapipe: --local --size 64x36
 # --frames 2 --quality-size 32x18 --quality-frames 2 --scenes "pack landscape"
@@ -28,14 +28,18 @@
 # texel-wavefront-object texel-wavefront-world (the pack only: one key domain each,
 # --cache-keys) texel-megakernel-switch tile-megakernel; default all; --local's tile cache uses 4x2 tiles, lavapipe's subgroups
 # having 8 lanes); --quality-shading: the architecture of the picture renders
-# (default wavefront; lavapipe compiles the wavefront's per-material passes slowly).
+# (default wavefront; lavapipe compiles the wavefront's per-material passes slowly);
+# --variants: texel-cache settings measured beside the default, each a bench run
+# texel-wavefront-NAME and a picture texel-NAME: trilinear and stochastic (--cache-filter),
+# finer (--mip-bias 1: keys of half the size) (default none); --keep-pictures: the uncached
+# and texel pictures (PFM) come back in $OUT too, as SCENE_none.pfm and SCENE_texel.pfm.
 # e.g. run(carry=["bundle", ".gl"], command="bash tools/bench/memo_scenes_device.sh").
 # Results in $OUT (default /tmp/out), written row by row so that a run cut short keeps what
 # it finished: memo_scenes_table.md (the timing table), memo_scenes_quality.md (the picture
 # table), memo_scenes_rows.csv (one bench CSV line a run) and memo_scenes_log.txt (every
 # command's output).
 set -uo pipefail
-local=0 scale= budget= size=1920x1080 runs= qshading=wavefront frames=10 warmup=2 qsize=960x540 qframes=16
+local=0 scale= budget= size=1920x1080 runs= variants= keep=0 qshading=wavefront frames=10 warmup=2 qsize=960x540 qframes=16
 scenes="pack landscape classroom"
 pack=bundle/material_scene.mgpack camera=bundle/material_scene.camera
 while [ $# -gt 0 ]; do
@@ -53,6 +57,8 @@ while [ $# -gt 0 ]; do
   --budget) budget=$2; shift 2 ;;
   --runs) runs=$2; shift 2 ;;
   --quality-shading) qshading=$2; shift 2 ;;
+  --variants) variants=$2; shift 2 ;;
+  --keep-pictures) keep=1; shift ;;
   -h | --help) sed -n '2,35p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
   *) echo "memo_scenes_device.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
@@ -87,6 +93,15 @@ sceneSpec() { [ "$1" = pack ] && echo "$pack" || echo "builtin:$1"; }
 # PATTERN in LOG.
 field() {
   grep -o "$2" "$1" | head -1 | awk '{ for (i = 1; i <= NF; ++i) if ($i ~ /^[0-9]/) { print $i; exit } }'
+}
+
+# variantFlags NAME: the texel cache's flags of a --variants name.
+variantFlags() {
+  case $1 in
+    trilinear | stochastic) echo "--cache-filter $1" ;;
+    finer) echo "--mip-bias 1" ;;
+    *) echo "memo_scenes_device.sh: unknown variant $1" >&2; exit 2 ;;
+  esac
 }
 
 # bench SCENE NAME LIMIT FLAGS...: one bench run, its line appended to the table.
@@ -184,6 +199,11 @@ for scene in $scenes; do
   bench "$scene" none-megakernel "$(l 30 70)" --shading megakernel "${fewer[@]}"
   bench "$scene" none-wavefront "$(l 30 50)" --shading wavefront "${fewer[@]}"
   bench "$scene" texel-wavefront "$(l 30 50)" --shading wavefront --cache texel "${fewer[@]}"
+  for v in $variants; do
+    # shellcheck disable=SC2046  # the variant's flags are words
+    bench "$scene" "texel-wavefront-$v" "$(l 30 50)" --shading wavefront --cache texel \
+      $(variantFlags "$v") "${fewer[@]}"
+  done
   # One key domain at a time (--cache-keys): what each domain's materials serve on the
   # Blender scene, whose graphs key all three (the built-ins' cached graphs are uv-only).
   if [ "$scene" = pack ]; then
@@ -209,8 +229,19 @@ for scene in $scenes; do
   render "$scene" none "$(l 25 40)" --shading "$qshading" "${still[@]}"
   render "$scene" none-seed7 "$(l 25 40)" --shading "$qshading" --seed 7 "${still[@]}"
   render "$scene" texel "$(l 25 40)" --shading "$qshading" --cache texel "${still[@]}"
+  for v in $variants; do
+    # shellcheck disable=SC2046
+    render "$scene" "texel-$v" "$(l 25 40)" --shading "$qshading" --cache texel \
+      $(variantFlags "$v") "${still[@]}"
+  done
   compare "$scene" none-seed7
   compare "$scene" texel
+  for v in $variants; do compare "$scene" "texel-$v"; done
+  if [ $keep = 1 ]; then
+    for name in none texel; do
+      [ -f "$work/${scene}_$name.pfm" ] && cp "$work/${scene}_$name.pfm" "$OUT/"
+    done
+  fi
 done
 echo "memo_scenes_device.sh: $(($(date +%s) - start)) s; wrote $table and $quality" | tee -a "$log"
 cat "$table" "$quality"
