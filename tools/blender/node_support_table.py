@@ -23,7 +23,9 @@ CATEGORIES = ('Shader', 'Texture', 'Color', 'Vector', 'Converter', 'Input', 'Out
 
 # What differs from Cycles for nodes that have a writer (docs/guide/blender.md, nodes.md).
 APPROXIMATIONS = {
-    'ShaderNodeBsdfPrincipled': 'Sheen, Clearcoat, Subsurface, Transmission, Anisotropic, '
+    'ShaderNodeBsdfPrincipled': '3.x Sheen, Sheen Tint, Clearcoat, Clearcoat Roughness as '
+                                'lobes `PrincipledLayers` (not under a Mix/Add Shader, warned); '
+                                'Clearcoat Normal, Subsurface, Transmission, Anisotropic, '
                                 'Multiscatter GGX not carried (warned)',
     'ShaderNodeBsdfDiffuse': 'Principled with Specular 0, Roughness 1 (Oren-Nayar dropped)',
     'ShaderNodeBsdfGlossy': 'Principled metal (distribution dropped)',
