@@ -1,12 +1,13 @@
 // The BSDF lobes of Cycles 3.4's BSDF nodes other than the Principled BSDF, and of the
-// Principled BSDF v1 with its sheen and clearcoat layers (MaterialOutputs::lobeWeight,
-// nodes/bsdf.inc; docs/design/closures.md), in a local frame where the shading normal is +z
-// and wo.z > 0 (wi.z < 0: through the surface). Each lobe's `evaluate` is f(wo, wi) |wi.z|
+// Principled BSDF v1 with its sheen, clearcoat and transmission layers
+// (MaterialOutputs::lobeWeight, nodes/bsdf.inc; docs/design/closures.md), in a local frame
+// where the shading normal is +z and wo.z > 0 (wi.z < 0: through the surface). Each lobe's `evaluate` is f(wo, wi) |wi.z|
 // per unit weight; its colour and the Mix/Add Shader weights are the lobe's weight. Formulas
 // follow intern/cycles/kernel/closure/ (Blender 3.4): bsdf_diffuse.h, bsdf_oren_nayar.h,
 // bsdf_microfacet.h, bsdf_microfacet_beckmann.h, bsdf_ashikhmin_velvet.h, bsdf_refraction.h,
 // bsdf_transparent.h, bsdf_translucent.h, bsdf_principled_sheen.h; the Principled lobe is
-// brdf.glsl's BRDF of the material's Principled outputs. Singular lobes (Transparent, and
+// brdf.glsl's BRDF of the material's Principled outputs, the Principled transmission a Glass
+// lobe with svm/closure.h's Principled weights. Singular lobes (Transparent, and
 // Refraction and Glass where Cycles' microfacet is a perfect one: alpha^2 <= 1e-7) have no
 // density: they evaluate to 0 (light sampling cannot find their direction) and are sampled
 // apart. The material's BSDF is the lobes' sum; sampling picks one lobe with probability
@@ -26,6 +27,12 @@ struct BsdfLobes {
   float eta[MG_MAX_LOBES];   // relative IOR across the surface: the far side's over the ray's
   float pick[MG_MAX_LOBES];  // probability that BSDF sampling samples lobe i
   BrdfParameters principled;  // the MG_LOBE_PRINCIPLED lobe's BRDF (per unit weight)
+  // The MG_LOBE_PRINCIPLED_GLASS lobe's refraction tint (the base colour), its reflection's F0
+  // colour (Cycles' cspec0: white mixed by the specular tint towards the base colour) and
+  // its reflection's roughness (the material's; the lobe's own roughness is the refraction's).
+  vec3 glassRefractionColor;
+  vec3 glassReflectionF0;
+  float glassReflectionRoughness;
 };
 
 // `entering`: the ray hit the front face (by the geometric normal), so a transmission lobe's
@@ -35,14 +42,25 @@ struct BsdfLobes {
 BsdfLobes bsdfLobesFromMaterial(MaterialOutputs m, bool entering, BrdfParameters principled) {
   BsdfLobes lobes;
   lobes.principled = principled;
+  vec3 baseColor = clamp(m.baseColor, 0.0, 1.0);
+  lobes.glassRefractionColor = max(m.baseColor, vec3(0.0));
+  float tint = clamp(m.specularTint, 0.0, 1.0);
+  lobes.glassReflectionF0 = baseColor * tint + vec3(1.0 - tint);
+  lobes.glassReflectionRoughness = clamp(m.roughness, 0.0, 1.0);
   lobes.count = min(m.lobeCount, MG_MAX_LOBES);
   float total = 0.0;
   for (int i = 0; i < MG_MAX_LOBES; ++i) {
     lobes.weight[i] = max(m.lobeWeight[i].rgb, vec3(0.0));
     lobes.kind[i] = int(m.lobeWeight[i].w);
     lobes.roughness[i] = clamp(m.lobeParameters[i].x, 0.0, 1.0);
-    // The Principled lobe's roughness (ray cones, Light Path) is its BRDF's.
-    if (lobes.kind[i] == MG_LOBE_PRINCIPLED) lobes.roughness[i] = principled.roughness;
+    if (lobes.kind[i] == MG_LOBE_PRINCIPLED) {
+      // Its roughness (ray cones, Light Path) is its BRDF's; its IOR slot holds the diffuse's
+      // share of its weight (the transmission takes the rest: PrincipledLayers).
+      lobes.roughness[i] = principled.roughness;
+      float diffuseShare = max(m.lobeParameters[i].y, 0.0);
+      lobes.principled.diffuse *= diffuseShare;
+      lobes.principled.diffuseBurley *= diffuseShare;
+    }
     float ior = max(m.lobeParameters[i].y, 1e-5);
     lobes.eta[i] = entering ? ior : 1.0 / ior;
     lobes.pick[i] = i < lobes.count ? dot(lobes.weight[i], vec3(0.2126, 0.7152, 0.0722)) : 0.0;
@@ -185,7 +203,7 @@ bool lobeIsBeckmann(int kind) {
 // Whether a lobe sends light through the surface (its directions may have wi.z < 0).
 bool lobeTransmits(int kind) {
   return kind == MG_LOBE_TRANSLUCENT || kind == MG_LOBE_TRANSPARENT || lobeIsRefraction(kind) ||
-         lobeIsGlass(kind);
+         lobeIsGlass(kind) || kind == MG_LOBE_PRINCIPLED_GLASS;
 }
 
 // A lobe without density: Transparent, and a Refraction or Glass lobe where Cycles takes the
@@ -194,7 +212,8 @@ bool lobeTransmits(int kind) {
 bool lobeIsSingular(int kind, float roughness) {
   if (kind == MG_LOBE_TRANSPARENT) return true;
   float alpha = roughness * roughness;
-  return (lobeIsRefraction(kind) || lobeIsGlass(kind)) && alpha * alpha <= 1e-7;
+  return (lobeIsRefraction(kind) || lobeIsGlass(kind) || kind == MG_LOBE_PRINCIPLED_GLASS) &&
+         alpha * alpha <= 1e-7;
 }
 
 float microfacetD(bool beckmann, float cosThetaH, float alpha) {
@@ -342,13 +361,79 @@ vec3 lobeSample(int kind, float roughness, float eta, vec3 wo, vec2 u, float uCh
   return reflect(-wo, m);
 }
 
+// Cycles' interpolate_fresnel_color (bsdf_util.h): F0 blended to white by the dielectric
+// Fresnel of relative IOR eta at `cosine`, normalised to run from 0 at normal incidence to 1.
+vec3 fresnelInterpolated(vec3 f0, float cosine, float eta) {
+  float normal = fresnelDielectric(1.0, eta);
+  float fh = (fresnelDielectric(cosine, eta) - normal) / max(1.0 - normal, 1e-6);
+  return f0 * (1.0 - fh) + vec3(fh);
+}
+
+// The Principled transmission (Cycles 3.4's svm_node_closure_principled, its single-scatter
+// GGX glass): a reflection weighted by the Fresnel F of the shading normal, coloured by
+// interpolate_fresnel_color of cspec0, of the material's roughness; a refraction weighted by
+// max(1 - F, 1e-4), tinted by the base colour, of the lobe's roughness. f |wi.z| per unit
+// weight; 0 where the lobe is singular (lobeIsSingular: its refraction's roughness, never
+// below its reflection's).
+vec3 principledGlassCos(BsdfLobes lobes, int i, vec3 wo, vec3 wi) {
+  if (wo.z <= 0.0 || lobeIsSingular(MG_LOBE_PRINCIPLED_GLASS, lobes.roughness[i])) return vec3(0.0);
+  float eta = lobes.eta[i];
+  float fresnel = fresnelDielectric(wo.z, eta);
+  if (wi.z > 0.0) {
+    vec3 h = normalize(wo + wi);
+    return fresnel * fresnelInterpolated(lobes.glassReflectionF0, dot(wi, h), eta) *
+           microfacetReflectionCos(false, lobeAlpha(lobes.glassReflectionRoughness), wo, wi);
+  }
+  return lobes.glassRefractionColor * max(1.0 - fresnel, 1e-4) *
+         microfacetRefractionCos(false, lobeAlpha(lobes.roughness[i]), eta, wo, wi);
+}
+
+// Its density: reflection with probability F, refraction with 1 - F (as the Glass lobe).
+float principledGlassPdf(BsdfLobes lobes, int i, vec3 wo, vec3 wi) {
+  if (wo.z <= 0.0 || lobeIsSingular(MG_LOBE_PRINCIPLED_GLASS, lobes.roughness[i])) return 0.0;
+  float eta = lobes.eta[i];
+  float fresnel = fresnelDielectric(wo.z, eta);
+  if (wi.z > 0.0)
+    return fresnel *
+           microfacetReflectionPdf(false, lobeAlpha(lobes.glassReflectionRoughness), wo, wi);
+  return (1.0 - fresnel) *
+         microfacetRefractionPdf(false, lobeAlpha(lobes.roughness[i]), eta, wo, wi);
+}
+
+// A direction from it: reflected below F (uChoice), else refracted, about a GGX visible
+// normal of the part's roughness, or about the shading normal where the lobe is singular;
+// then `singularWeight` is the part's weight over its probability (per unit weight): the
+// reflection's Fresnel colour, the refraction's tint. The zero vector: total internal
+// reflection of a microfacet.
+vec3 principledGlassSample(BsdfLobes lobes, int i, vec3 wo, vec2 u, float uChoice,
+                           out vec3 singularWeight) {
+  float eta = lobes.eta[i];
+  float fresnel = fresnelDielectric(wo.z, eta);
+  bool singular = lobeIsSingular(MG_LOBE_PRINCIPLED_GLASS, lobes.roughness[i]);
+  bool reflects = uChoice < fresnel;
+  if (singular) {
+    singularWeight = reflects ? fresnelInterpolated(lobes.glassReflectionF0, wo.z, eta)
+                              : lobes.glassRefractionColor * (max(1.0 - fresnel, 1e-4) /
+                                                              max(1.0 - fresnel, 1e-8));
+    return reflects ? reflect(-wo, vec3(0.0, 0.0, 1.0))
+                    : refractDirection(wo, vec3(0.0, 0.0, 1.0), eta);
+  }
+  singularWeight = vec3(0.0);
+  float roughness = reflects ? lobes.glassReflectionRoughness : lobes.roughness[i];
+  vec3 m = ggxSampleVisibleNormal(wo, lobeAlpha(roughness), u);
+  return reflects ? reflect(-wo, m) : refractDirection(wo, m, eta);
+}
+
 // The material's f(wo, wi) |wi.z|: every lobe's, weighted (the Principled lobe's BRDF is
 // coloured by the material's outputs).
 vec3 bsdfLobesEvaluateCos(BsdfLobes lobes, vec3 wo, vec3 wi) {
   vec3 sum = vec3(0.0);
   for (int i = 0; i < lobes.count; ++i) {
+    if (lobes.pick[i] <= 0.0) continue;  // no weight: nothing to add (a PrincipledLayers slot)
     if (lobes.kind[i] == MG_LOBE_PRINCIPLED)
       sum += lobes.weight[i] * brdfEvaluateCos(lobes.principled, wo, wi);
+    else if (lobes.kind[i] == MG_LOBE_PRINCIPLED_GLASS)
+      sum += lobes.weight[i] * principledGlassCos(lobes, i, wo, wi);
     else
       sum += lobes.weight[i] *
              lobeEvaluateCos(lobes.kind[i], lobes.roughness[i], lobes.eta[i], wo, wi);
@@ -362,8 +447,9 @@ float bsdfLobesPdf(BsdfLobes lobes, vec3 wo, vec3 wi) {
   for (int i = 0; i < lobes.count; ++i)
     if (lobes.pick[i] > 0.0)
       pdf += lobes.pick[i] *
-             (lobes.kind[i] == MG_LOBE_PRINCIPLED
-                  ? brdfPdf(lobes.principled, wo, wi)
+             (lobes.kind[i] == MG_LOBE_PRINCIPLED ? brdfPdf(lobes.principled, wo, wi)
+              : lobes.kind[i] == MG_LOBE_PRINCIPLED_GLASS
+                  ? principledGlassPdf(lobes, i, wo, wi)
                   : lobePdf(lobes.kind[i], lobes.roughness[i], lobes.eta[i], wo, wi));
   return pdf;
 }
@@ -410,19 +496,22 @@ bool bsdfLobesSample(BsdfLobes lobes, vec3 wo, float uLobe, vec2 u, out vec3 wi,
   int kind = lobes.kind[picked];
   float roughness = lobes.roughness[picked];
   float singularWeight = 1.0;
+  vec3 singularColor = vec3(1.0);
   diffuse = kind == MG_LOBE_DIFFUSE || kind == MG_LOBE_VELVET || kind == MG_LOBE_TRANSLUCENT ||
             kind == MG_LOBE_PRINCIPLED_SHEEN;
   if (kind == MG_LOBE_PRINCIPLED) {
     // brdfSample picks its specular part below the specular probability, its diffuse above.
     wi = brdfSample(lobes.principled, wo, uChoice, u);
     diffuse = uChoice >= brdfSpecularProbability(lobes.principled, wo);
+  } else if (kind == MG_LOBE_PRINCIPLED_GLASS) {
+    wi = principledGlassSample(lobes, picked, wo, u, uChoice, singularColor);
   } else {
     wi = lobeSample(kind, roughness, lobes.eta[picked], wo, u, uChoice, singularWeight);
   }
   if (!(dot(wi, wi) > 0.0)) return false;
   wi = normalize(wi);
   if (lobeIsSingular(kind, roughness)) {
-    weight = lobes.weight[picked] * (singularWeight / lobes.pick[picked]);
+    weight = lobes.weight[picked] * singularColor * (singularWeight / lobes.pick[picked]);
     return true;
   }
   pdf = bsdfLobesPdf(lobes, wo, wi);

@@ -23,7 +23,7 @@ no clamping, no light threshold) and DIR/export/ (the memograph exporter with --
   (red to the camera, blue to every other ray) over a grey floor, which it lights blue.
 - bsdf_<tree> (BSDF_TREES: diffuse, oren_nayar, glossy_ggx, glossy_beckmann, velvet, mix,
   add, glass, glass_rough, refraction, transparent, translucent, principled_sheen,
-  principled_clearcoat): a smooth sphere of that BSDF (or Mix/Add Shader of BSDFs) on a
+  principled_clearcoat, principled_transmission): a smooth sphere of that BSDF (or Mix/Add Shader of BSDFs) on a
   checker floor under a sky and a sun; bsdf_room: a room of several of them
   (docs/design/closures.md). The principled_* scenes also write DIR/tiles.json with the
   ball's box.
@@ -291,6 +291,11 @@ BSDF_TREES = {
         nt, 'ShaderNodeBsdfPrincipled', distribution='GGX',
         **{'Base Color': (0.05, 0.01, 0.01), 'Roughness': 0.6, 'Clearcoat': 1.0,
            'Clearcoat Roughness': 0.1}),
+    # A tinted glass ball whose refraction is rougher than its reflection.
+    'principled_transmission': lambda nt: bsdf_node(
+        nt, 'ShaderNodeBsdfPrincipled', distribution='GGX',
+        **{'Base Color': (0.8, 0.9, 1.0), 'Roughness': 0.1, 'Transmission': 1.0,
+           'Transmission Roughness': 0.2, 'IOR': 1.45}),
 }
 
 

@@ -90,7 +90,8 @@ for _tree in ('diffuse', 'oren_nayar', 'glossy_ggx', 'glossy_beckmann', 'velvet'
     CHECKS['bsdf_' + _tree] = (32, 256, 16, 16, 5, 'bsdf', 0.02)
 # The transmission lobes: 9 rays a path (Cycles' 8 bounces after the camera's hit), since a
 # path through the ball takes two of them before it finds the floor or the sky.
-for _tree in ('glass', 'glass_rough', 'refraction', 'transparent', 'translucent'):
+for _tree in ('glass', 'glass_rough', 'refraction', 'transparent', 'translucent',
+              'principled_transmission'):
     CHECKS['bsdf_' + _tree] = (32, 256, 16, 16, 9, 'bsdf', 0.02)
 CHECKS['bsdf_transparent'] = (32, 256, 16, 16, 9, 'bsdf', 0.027)
 

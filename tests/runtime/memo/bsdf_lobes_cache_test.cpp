@@ -3,9 +3,9 @@
 // cachePack / cacheUnpack (kCacheOutputLobes) and, in the wavefront, the path state's lobe
 // fields. The cached image must differ from the uncached one no more than the same checker
 // through the Principled outputs does (the cache's texel quantisation of the checker's
-// edges), and keep the sphere's colour. The same for a Principled BSDF with its sheen and
-// clearcoat layers (PrincipledLayers: three lobes over the Principled outputs), the checker
-// driving its base colour, sheen and clearcoat.
+// edges), and keep the sphere's colour. The same for a Principled BSDF with its sheen,
+// clearcoat and transmission layers (PrincipledLayers: four lobes over the Principled
+// outputs), the checker driving its base colour, sheen, clearcoat and transmission.
 #include <cstdio>
 #include <string>
 
@@ -34,7 +34,8 @@ const char* const kPrincipledLayersGraph =
     "CheckerTexture Vector<0 Scale=4 Fac>1;\n"
     "Mix A=(0.9, 0.2, 0.1) B=(0.2, 0.9, 0.3) Factor<1 Out>2;\n"
     "PrincipledOutput BaseColor<2 Roughness=0.3 CyclesPrincipled=1;\n"
-    "PrincipledLayers BaseColor<2 Sheen<1 SheenTint=1 Clearcoat<1 ClearcoatRoughness=0.1;\n";
+    "PrincipledLayers BaseColor<2 Roughness=0.3 Sheen<1 SheenTint=1 Clearcoat<1 "
+    "ClearcoatRoughness=0.1 Transmission<1 TransmissionRoughness=0.2 IOR=1.5;\n";
 
 // The same checker through the Principled outputs: the cache's own difference, for scale.
 const char* const kPrincipledGraph =

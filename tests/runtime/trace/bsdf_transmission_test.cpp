@@ -44,7 +44,11 @@ layout(push_constant) uniform Push { Results results; } push;
 #define MG_LOBE_PRINCIPLED 11
 #define MG_LOBE_PRINCIPLED_SHEEN 12
 #define MG_LOBE_PRINCIPLED_CLEARCOAT 13
+#define MG_LOBE_PRINCIPLED_GLASS 14
 struct MaterialOutputs {
+  vec3 baseColor;
+  float roughness;
+  float specularTint;
   int lobeCount;
   vec4 lobeWeight[MG_MAX_LOBES];
   vec4 lobeParameters[MG_MAX_LOBES];

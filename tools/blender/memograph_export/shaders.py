@@ -9,9 +9,10 @@ approximation and says so in a warning naming the material, the node and what wa
 A Blender 3.x Principled BSDF (v1) also sets cycles_principled = 1: memograph's BRDF then
 weights and shapes its diffuse and specular as Cycles 3.4 does (runtime/shaders/common/brdf.glsl,
 docs/guide/blender.md "Principled BSDF"); every other shader, and 4.x's v2, keeps memograph's
-own energy-conserving weighting (0). A v1 Principled BSDF whose Sheen or Clearcoat is in use
-also writes PrincipledLayers (nodes/bsdf.inc): the BRDF, its sheen and its clearcoat as lobes,
-when it is the surface shader itself (in a Mix or Add Shader they are dropped, warned).
+own energy-conserving weighting (0). A v1 Principled BSDF whose Sheen, Clearcoat or
+Transmission is in use also writes PrincipledLayers (nodes/bsdf.inc): the BRDF, its sheen, its
+clearcoat and its transmission as lobes, when it is the surface shader itself (under a Mix
+Shader, or an Add Shader with another BSDF, they are dropped, warned).
 """
 
 from . import compat
@@ -38,8 +39,8 @@ class Params:
         self.alpha = kw.get('alpha', Literal(1.0))
         self.normal = kw.get('normal')  # operand or None (geometric normal)
         self.pure_emission = kw.get('pure_emission', False)
-        # A v1 Principled BSDF's sheen and clearcoat: a dict of PrincipledLayers' operands
-        # (Sheen, SheenTint, Clearcoat, ClearcoatRoughness), or None (none in use).
+        # A v1 Principled BSDF's sheen, clearcoat and transmission: a dict of PrincipledLayers'
+        # operands by socket, or None (none in use).
         self.layers = kw.get('layers')
 
     def emission_product(self, mw):
@@ -97,24 +98,34 @@ def _in_use(mw, flat, name):
     return src is not None and (not isinstance(src, Const) or src.value != 0.0)
 
 
-def _principled_layers(mw, flat):
-    """The PrincipledLayers operands of a v1 Principled BSDF whose Sheen or Clearcoat is in
-    use, or None."""
-    if not (_in_use(mw, flat, 'Sheen') or _in_use(mw, flat, 'Clearcoat')):
+# PrincipledLayers' sockets: (socket, Blender 3.4's input, its default).
+_LAYER_SOCKETS = (('Sheen', 'Sheen', 0.0), ('SheenTint', 'Sheen Tint', 0.5),
+                  ('Clearcoat', 'Clearcoat', 0.0),
+                  ('ClearcoatRoughness', 'Clearcoat Roughness', 0.03),
+                  ('Transmission', 'Transmission', 0.0),
+                  ('TransmissionRoughness', 'Transmission Roughness', 0.0), ('IOR', 'IOR', 1.45))
+
+
+def _principled_layers(mw, flat, multiscatter):
+    """The PrincipledLayers operands of a v1 Principled BSDF whose Sheen, Clearcoat or
+    Transmission is in use, or None. multiscatter: Multiscatter GGX, whose glass Cycles
+    takes of the one roughness (Transmission Roughness unused)."""
+    if not any(_in_use(mw, flat, name) for name in ('Sheen', 'Clearcoat', 'Transmission')):
         return None
     # Blender 3.4's defaults where a socket is missing (a hand-made node group's stand-in).
-    return {'Sheen': _in(mw, flat, 'Sheen') or Literal(0.0),
-            'SheenTint': _in(mw, flat, 'Sheen Tint') or Literal(0.5),
-            'Clearcoat': _in(mw, flat, 'Clearcoat') or Literal(0.0),
-            'ClearcoatRoughness': _in(mw, flat, 'Clearcoat Roughness') or Literal(0.03)}
+    layers = {socket: _in(mw, flat, name) or Literal(default)
+              for socket, name, default in _LAYER_SOCKETS}
+    if multiscatter:
+        layers['TransmissionRoughness'] = Literal(0.0)
+    return layers
 
 
 def _warn_layers_dropped(mw, flat, *params):
     """A mixed Principled BSDF's sheen and clearcoat are not carried: says so."""
     if any(p.layers is not None for p in params):
-        mw.warn(flat, 'the Sheen and Clearcoat of a Principled BSDF under a %s are not '
-                'carried (only a Principled BSDF that is the surface shader itself has them): '
-                'ignored' % flat.node.bl_idname.replace('ShaderNode', ''))
+        mw.warn(flat, 'the Sheen, Clearcoat and Transmission of a Principled BSDF under a %s '
+                'are not carried (only a Principled BSDF that is the surface shader itself has '
+                'them): ignored' % flat.node.bl_idname.replace('ShaderNode', ''))
 
 
 def _fmt(v):
@@ -149,17 +160,18 @@ def principled(mw, flat):
     p.alpha = _in(mw, flat, 'Alpha') or Literal(1.0)
     p.normal = _normal(mw, flat)
     checks = compat.PRINCIPLED_UNCARRIED
+    distribution = getattr(node, 'distribution', 'GGX')
     if v1:
-        p.layers = _principled_layers(mw, flat)
+        p.layers = _principled_layers(mw, flat, distribution == 'MULTI_GGX')
     else:
         checks = checks + compat.PRINCIPLED_V2_LAYERS
     if tint_socket is not None and tint_socket.type != 'VALUE':
         checks = checks + (compat.PRINCIPLED_V2_SPECULAR_TINT,)
     _warn_unused(mw, flat, checks)
-    distribution = getattr(node, 'distribution', 'GGX')
     if v1 and distribution == 'MULTI_GGX':
         mw.warn(flat, 'Multiscatter GGX is written as single-scatter GGX (Cycles uses '
-                'multiscatter above Roughness 0.075: rough speculars are brighter there)')
+                'multiscatter above Roughness 0.075, and for Transmission above 0.05: rough '
+                'speculars are brighter there)')
     return p
 
 
@@ -325,9 +337,9 @@ def write_outputs(mw, params):
     if params.layers is not None:
         # The sheen's weight and tint come from the same base colour and metallic.
         b.add('PrincipledLayers', [('BaseColor', params.base_color),
-                                   ('Metallic', params.metallic)] +
-              [(name, params.layers[name]) for name in ('Sheen', 'SheenTint', 'Clearcoat',
-                                                        'ClearcoatRoughness')], [],
-              comment='Principled sheen and clearcoat')
+                                   ('Metallic', params.metallic),
+                                   ('Roughness', params.roughness)] +
+              [(socket, params.layers[socket]) for socket, _, _ in _LAYER_SOCKETS], [],
+              comment='Principled sheen, clearcoat and transmission')
     if params.normal is not None:
         b.add('NormalOutput', [('In', params.normal)], [])
