@@ -1,19 +1,19 @@
 // The BSDF lobes of Cycles 3.4's BSDF nodes other than the Principled BSDF, and of the
 // Principled BSDF v1 with its sheen, clearcoat and transmission layers
 // (MaterialOutputs::lobeWeight, nodes/bsdf.inc; docs/design/closures.md), in a local frame
-// where the shading normal is +z and wo.z > 0 (wi.z < 0: through the surface). Each lobe's `evaluate` is f(wo, wi) |wi.z|
-// per unit weight; its colour and the Mix/Add Shader weights are the lobe's weight. Formulas
-// follow intern/cycles/kernel/closure/ (Blender 3.4): bsdf_diffuse.h, bsdf_oren_nayar.h,
-// bsdf_microfacet.h, bsdf_microfacet_beckmann.h, bsdf_ashikhmin_velvet.h, bsdf_refraction.h,
-// bsdf_transparent.h, bsdf_translucent.h, bsdf_principled_sheen.h; the Principled lobe is
-// brdf.glsl's BRDF of the material's Principled outputs, the Principled transmission a Glass
-// lobe with svm/closure.h's Principled weights. Singular lobes (Transparent, and
-// Refraction and Glass where Cycles' microfacet is a perfect one: alpha^2 <= 1e-7) have no
-// density: they evaluate to 0 (light sampling cannot find their direction) and are sampled
-// apart. The material's BSDF is the lobes' sum; sampling picks one lobe with probability
-// proportional to its weight's luminance (every lobe's albedo is taken as 1) and the pdf is
-// the mixture's, so
-// that light sampling's MIS sees the density that BSDF sampling really has.
+// where the shading normal is +z and wo.z > 0 (wi.z < 0: through the surface). Each lobe's
+// `evaluate` is f(wo, wi) |wi.z| per unit weight; its colour and the Mix/Add Shader weights
+// are the lobe's weight. Formulas follow intern/cycles/kernel/closure/ (Blender 3.4):
+// bsdf_diffuse.h, bsdf_oren_nayar.h, bsdf_microfacet.h, bsdf_microfacet_beckmann.h,
+// bsdf_ashikhmin_velvet.h, bsdf_refraction.h, bsdf_transparent.h, bsdf_translucent.h,
+// bsdf_principled_sheen.h; the Principled lobe is brdf.glsl's BRDF of the material's
+// Principled outputs, the Principled transmission a Glass lobe with svm/closure.h's
+// Principled weights. Singular lobes (Transparent, and Refraction and Glass where Cycles'
+// microfacet is a perfect one: alpha^2 <= 1e-7) have no density: they evaluate to 0 (light
+// sampling cannot find their direction) and are sampled apart. The material's BSDF is the
+// lobes' sum; sampling picks one lobe with probability proportional to its weight's
+// luminance (every lobe's albedo is taken as 1) and the pdf is the mixture's, so that light
+// sampling's MIS sees the density that BSDF sampling really has.
 // Needs brdf.glsl (kPi, smithG1, ggxD, ggxSampleVisibleNormal) and the prelude (MG_LOBE_*).
 
 #ifdef MG_BSDF_LOBES
@@ -376,7 +376,8 @@ vec3 fresnelInterpolated(vec3 f0, float cosine, float eta) {
 // weight; 0 where the lobe is singular (lobeIsSingular: its refraction's roughness, never
 // below its reflection's).
 vec3 principledGlassCos(BsdfLobes lobes, int i, vec3 wo, vec3 wi) {
-  if (wo.z <= 0.0 || lobeIsSingular(MG_LOBE_PRINCIPLED_GLASS, lobes.roughness[i])) return vec3(0.0);
+  if (wo.z <= 0.0 || lobeIsSingular(MG_LOBE_PRINCIPLED_GLASS, lobes.roughness[i]))
+    return vec3(0.0);
   float eta = lobes.eta[i];
   float fresnel = fresnelDielectric(wo.z, eta);
   if (wi.z > 0.0) {

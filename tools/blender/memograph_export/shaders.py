@@ -89,7 +89,7 @@ def _warn_unused(mw, flat, checks):
             mw.warn(flat, '%s = %s is not carried: ignored' % (what, _fmt(src.value)))
 
 
-def _in_use(mw, flat, name):
+def _in_use(flat, name):
     """Whether input name is linked or set off 0 (its operand would change the result)."""
     ident = compat.find_input(flat.node, name)
     if ident is None:
@@ -110,7 +110,7 @@ def _principled_layers(mw, flat, multiscatter):
     """The PrincipledLayers operands of a v1 Principled BSDF whose Sheen, Clearcoat or
     Transmission is in use, or None. multiscatter: Multiscatter GGX, whose glass Cycles
     takes of the one roughness (Transmission Roughness unused)."""
-    if not any(_in_use(mw, flat, name) for name in ('Sheen', 'Clearcoat', 'Transmission')):
+    if not any(_in_use(flat, name) for name in ('Sheen', 'Clearcoat', 'Transmission')):
         return None
     # Blender 3.4's defaults where a socket is missing (a hand-made node group's stand-in).
     layers = {socket: _in(mw, flat, name) or Literal(default)
@@ -121,7 +121,8 @@ def _principled_layers(mw, flat, multiscatter):
 
 
 def _warn_layers_dropped(mw, flat, *params):
-    """A mixed Principled BSDF's sheen and clearcoat are not carried: says so."""
+    """A mixed Principled BSDF's layers (sheen, clearcoat, transmission) are not carried:
+    says so."""
     if any(p.layers is not None for p in params):
         mw.warn(flat, 'the Sheen, Clearcoat and Transmission of a Principled BSDF under a %s '
                 'are not carried (only a Principled BSDF that is the surface shader itself has '
