@@ -5,7 +5,9 @@
 // through the Principled outputs does (the cache's texel quantisation of the checker's
 // edges), and keep the sphere's colour. The same for a Principled BSDF with its sheen,
 // clearcoat and transmission layers (PrincipledLayers: four lobes over the Principled
-// outputs), the checker driving its base colour, sheen, clearcoat and transmission.
+// outputs), the checker driving its base colour, sheen, clearcoat and transmission, in the
+// wavefront (its entries go through cachePack / cacheUnpack and the path state's lobe
+// fields).
 #include <cstdio>
 #include <string>
 
@@ -98,10 +100,6 @@ TEST(BsdfLobesCache, CachedLobesRenderLikeUncachedWithCallables) {
 
 TEST(BsdfLobesCache, CachedLobesRenderLikeUncachedInTheWavefront) {
   expectCachedLikeUncached(Backend::RayQuery, Shading::Wavefront);
-}
-
-TEST(BsdfLobesCache, CachedPrincipledLayersRenderLikeUncachedInTheMegakernel) {
-  expectCachedLikeUncached(Backend::RayQuery, Shading::Megakernel, kPrincipledLayersGraph);
 }
 
 TEST(BsdfLobesCache, CachedPrincipledLayersRenderLikeUncachedInTheWavefront) {
