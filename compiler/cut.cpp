@@ -64,6 +64,8 @@ const NodeCost kNodeCosts[] = {
     {"GlassBsdf", 1},
     {"TransparentBsdf", 1},
     {"TranslucentBsdf", 1},
+    // Three lobes, the sheen colour from the base colour's hue.
+    {"PrincipledLayers", 2},
     {"MixShader", 1},
     // Traced inputs: the tracer casts their rays before the graph runs, outside its cost
     // (and never in a cut); in the graph Ambient Occlusion scales a colour, Bevel reads.

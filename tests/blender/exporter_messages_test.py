@@ -11,7 +11,10 @@ it and checks the exit status, the warnings and the summary line:
   - a material that fails makes the summary say the export failed, not "wrote N material(s)
     to DIR" (import-blender then leaves DIR unchanged);
   - the summary's warning count is the number of warning lines printed, scene warnings
-    included.
+    included;
+  - a Principled BSDF's Sheen, Clearcoat and Transmission (with their tint, roughness and IOR
+    sockets, a linked one too) export as PrincipledLayers without a warning (a linked
+    Clearcoat Normal, still warned, is in combined/build_scenes.py).
 
 Fails (never skips) without Blender 3.4. Plain python3, standard library only.
 """
@@ -67,6 +70,15 @@ elif kind == 'scene_warnings':
     sun = bpy.data.lights.new('Sun', 'SUN')
     sun.angle = 0.2  # a sun angle: another scene warning
     bpy.context.scene.collection.objects.link(bpy.data.objects.new('Sun', sun))
+elif kind == 'layers':
+    m = emission('Layered')
+    p = m.node_tree.nodes['Principled BSDF']
+    for name, value in (('Sheen', 0.5), ('Sheen Tint', 0.25), ('Clearcoat', 0.75),
+                        ('Transmission', 0.6), ('Transmission Roughness', 0.2), ('IOR', 1.33)):
+        p.inputs[name].default_value = value
+    v = m.node_tree.nodes.new('ShaderNodeValue')
+    v.outputs[0].default_value = 0.125
+    m.node_tree.links.new(v.outputs[0], p.inputs['Clearcoat Roughness'])
 bpy.ops.wm.save_as_mainfile(filepath=out, compress=False)
 '''
 
@@ -165,6 +177,18 @@ class ExporterMessages(unittest.TestCase):
         m = re.search(r'(\d+) warning\(s\)', self.summary(out))
         self.assertIsNotNone(m, out)
         self.assertEqual(int(m.group(1)), printed, out + err)
+
+    def test_principled_layers_export_without_a_warning(self):
+        blend = self.build('layers')
+        code, out, err = self.export(blend)
+        self.assertEqual(code, 0, err)
+        self.assertNotIn('warning:', err)
+        with open(os.path.join(self.tmp, 'out_layers.blend', 'Layered.mgraph')) as f:
+            text = f.read()
+        self.assertRegex(text, r'PrincipledLayers BaseColor=\([^)]*\) Metallic=0 '
+                               r'Roughness=0\.5 Sheen=0\.5 SheenTint=0\.25 Clearcoat=0\.75 '
+                               r'ClearcoatRoughness<\d+ Transmission=0\.6\d* '
+                               r'TransmissionRoughness=0\.2\d* IOR=1\.33')
 
 
 if __name__ == '__main__':

@@ -371,9 +371,11 @@ def principled_v1(tree, tint=0.0, distribution='GGX'):
              ('Specular Tint', 'VALUE', tint), ('Roughness', 'VALUE', 0.4),
              ('Anisotropic', 'VALUE', 0.0), ('Sheen', 'VALUE', 0.0),
              ('Clearcoat', 'VALUE', 0.0), ('Transmission', 'VALUE', 0.0),
+             ('Sheen Tint', 'VALUE', 0.5), ('Clearcoat Roughness', 'VALUE', 0.03),
              ('Emission', 'RGBA', (0, 0, 0, 1)), ('Emission Strength', 'VALUE', 1.0),
              ('Alpha', 'VALUE', 1.0), ('Normal', 'VECTOR', (0, 0, 0)),
-             ('Clearcoat Normal', 'VECTOR', (0, 0, 0)), ('Tangent', 'VECTOR', (0, 0, 0))]
+             ('Clearcoat Normal', 'VECTOR', (0, 0, 0)), ('Tangent', 'VECTOR', (0, 0, 0)),
+             ('IOR', 'VALUE', 1.45), ('Transmission Roughness', 'VALUE', 0.0)]
     return tree.add(Node('ShaderNodeBsdfPrincipled', 'Principled BSDF',
                          [Sock(n, t, d) for n, t, d in names], [Sock('BSDF', 'SHADER')],
                          distribution=distribution))
@@ -398,15 +400,90 @@ class PrincipledTest(unittest.TestCase):
         p = principled_v1(tree, distribution='MULTI_GGX')
         m = tree.add(math_node('M'))
         tree.link(m.outputs[0], p.inputs[4])  # Specular Tint
-        p.inputs[7].default_value = 0.5  # Sheen
+        p.inputs[6].default_value = 0.5  # Anisotropic
         tree.link(p.outputs[0], out.inputs[0])
         result, (text,) = export([Material('Mat', tree)])
         self.assertIn('Math A=0.5 B=0.5 Operation=2 Value>0;', text)
         self.assertIn('SpecularTint<0 CyclesPrincipled=1;', text)
         msgs = ' | '.join(w[2] for w in result.warnings)
         self.assertNotIn('Specular Tint', msgs)
-        self.assertIn('Sheen = 0.5 is not carried', msgs)
+        self.assertIn('Anisotropic = 0.5 is not carried', msgs)
         self.assertIn('Multiscatter GGX is written as single-scatter GGX', msgs)
+        self.assertNotIn('PrincipledLayers', text)  # no sheen, clearcoat, transmission: no lobes
+
+    def test_v1_sheen_and_clearcoat_are_carried_as_layers(self):
+        tree = Tree()
+        out = output_node(tree)
+        p = principled_v1(tree)
+        p.inputs[7].default_value = 0.5  # Sheen
+        p.inputs[8].default_value = 0.75  # Clearcoat
+        p.inputs[10].default_value = 0.25  # Sheen Tint
+        m = tree.add(math_node('M'))
+        tree.link(m.outputs[0], p.inputs[11])  # Clearcoat Roughness
+        tree.link(p.outputs[0], out.inputs[0])
+        result, (text,) = export([Material('Mat', tree)])
+        self.assertIn('PrincipledLayers BaseColor=(0.800000012, 0.300000012, 0.100000001) '
+                      'Metallic=0.25 Roughness=0.400000006 Sheen=0.5 SheenTint=0.25 '
+                      'Clearcoat=0.75 ClearcoatRoughness<0 Transmission=0 '
+                      'TransmissionRoughness=0 IOR=1.45000005;', text)
+        self.assertEqual(result.warnings, [])  # Sheen, Clearcoat and their sockets: carried
+
+    def test_v1_transmission_is_carried_as_a_layer(self):
+        tree = Tree()
+        out = output_node(tree)
+        p = principled_v1(tree)
+        p.inputs[9].default_value = 0.9  # Transmission
+        p.inputs[18].default_value = 1.33  # IOR
+        p.inputs[19].default_value = 0.2  # Transmission Roughness
+        tree.link(p.outputs[0], out.inputs[0])
+        result, (text,) = export([Material('Mat', tree)])
+        self.assertIn('PrincipledLayers BaseColor=(0.800000012, 0.300000012, 0.100000001) '
+                      'Metallic=0.25 Roughness=0.400000006 Sheen=0 SheenTint=0.5 '
+                      'Clearcoat=0 ClearcoatRoughness=0.0299999993 Transmission=0.899999976 '
+                      'TransmissionRoughness=0.200000003 IOR=1.33000004;', text)
+        self.assertEqual(result.warnings, [])
+        # Multiscatter GGX: Cycles' glass takes the one roughness; warned as a whole.
+        p.distribution = 'MULTI_GGX'
+        result, (text,) = export([Material('Mat', tree)])
+        self.assertIn('TransmissionRoughness=0 IOR=1.33000004;', text)
+        msgs = ' | '.join(w[2] for w in result.warnings)
+        self.assertIn('Multiscatter GGX is written as single-scatter GGX', msgs)
+
+    def test_v1_layers_under_a_mix_shader_are_dropped_and_warned(self):
+        tree = Tree()
+        out = output_node(tree)
+        p = principled_v1(tree)
+        p.inputs[8].default_value = 1.0  # Clearcoat
+        em = emission(tree)
+        mix = tree.add(Node('ShaderNodeMixShader', 'Mix',
+                            [Sock('Fac', 'VALUE', 0.5), Sock('Shader', 'SHADER'),
+                             Sock('Shader_001', 'SHADER')], [Sock('Shader', 'SHADER')]))
+        tree.link(p.outputs[0], mix.inputs[1])
+        tree.link(em.outputs[0], mix.inputs[2])
+        tree.link(mix.outputs[0], out.inputs[0])
+        result, (text,) = export([Material('Mat', tree)])
+        self.assertNotIn('PrincipledLayers', text)
+        msgs = ' | '.join(w[2] for w in result.warnings)
+        self.assertIn('the Sheen, Clearcoat and Transmission of a Principled BSDF under a '
+                      'MixShader are not carried', msgs)
+        # Added to an emission, the sum is exact: the layers stay, and nothing is warned
+        # of them.
+        tree = Tree()
+        out = output_node(tree)
+        p = principled_v1(tree)
+        p.inputs[8].default_value = 1.0  # Clearcoat
+        em = emission(tree)
+        add = tree.add(Node('ShaderNodeAddShader', 'Add',
+                            [Sock('Shader', 'SHADER'), Sock('Shader_001', 'SHADER')],
+                            [Sock('Shader', 'SHADER')]))
+        tree.link(em.outputs[0], add.inputs[0])
+        tree.link(p.outputs[0], add.inputs[1])
+        tree.link(add.outputs[0], out.inputs[0])
+        result, (text,) = export([Material('Mat', tree)])
+        self.assertIn('Metallic=0.25 Roughness=0.400000006 Sheen=0 SheenTint=0.5 Clearcoat=1 '
+                      'ClearcoatRoughness=0.0299999993 Transmission=0', text)
+        msgs = ' | '.join(w[2] for w in result.warnings)
+        self.assertNotIn('Sheen, Clearcoat', msgs)
 
     def test_mix_blends_the_cycles_weighting_with_a_diffuse(self):
         tree = Tree()
@@ -559,7 +636,12 @@ class Blender4Test(unittest.TestCase):
                       'EmissionStrength=2 Alpha=1 SpecularTint=0 CyclesPrincipled=0;', text)
         msgs = ' | '.join(w[2] for w in result.warnings)
         self.assertIn('Specular IOR Level', msgs)
-        self.assertIn('Clearcoat/Coat = 0.3 is not carried', msgs)
+        self.assertIn('Coat = 0.3 is not carried', msgs)
+        self.assertNotIn('PrincipledLayers', text)  # v2's coat is another model
+        p.inputs[13].default_value = 0.5  # Transmission Weight
+        result, (text,) = export([Material('Mat', tree)])
+        msgs = ' | '.join(w[2] for w in result.warnings)
+        self.assertIn('Transmission = 0.5 is not carried', msgs)
         self.assertNotIn('Specular Tint', msgs)  # white tint = off in 4.x
         # A coloured 4.x tint is not carried, and says so.
         p.inputs[8].default_value = (1, 0.5, 0.5, 1)

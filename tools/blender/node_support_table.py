@@ -23,8 +23,11 @@ CATEGORIES = ('Shader', 'Texture', 'Color', 'Vector', 'Converter', 'Input', 'Out
 
 # What differs from Cycles for nodes that have a writer (docs/guide/blender.md, nodes.md).
 APPROXIMATIONS = {
-    'ShaderNodeBsdfPrincipled': 'Sheen, Clearcoat, Subsurface, Transmission, Anisotropic, '
-                                'Multiscatter GGX not carried (warned)',
+    'ShaderNodeBsdfPrincipled': '3.x Sheen, Clearcoat, Transmission (and their tint, '
+                                'roughness, IOR sockets) as lobes `PrincipledLayers` (dropped, '
+                                'warned, under a Mix Shader or added to another BSDF); '
+                                'Clearcoat Normal, Subsurface, '
+                                'Anisotropic, Multiscatter GGX not carried (warned)',
     'ShaderNodeBsdfDiffuse': 'Principled with Specular 0, Roughness 1 (Oren-Nayar dropped)',
     'ShaderNodeBsdfGlossy': 'Principled metal (distribution dropped)',
     'ShaderNodeBsdfTransparent': 'opacity 0 (tint dropped)',

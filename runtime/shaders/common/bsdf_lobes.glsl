@@ -1,17 +1,19 @@
-// The BSDF lobes of Cycles 3.4's BSDF nodes other than the Principled BSDF
+// The BSDF lobes of Cycles 3.4's BSDF nodes other than the Principled BSDF, and of the
+// Principled BSDF v1 with its sheen, clearcoat and transmission layers
 // (MaterialOutputs::lobeWeight, nodes/bsdf.inc; docs/design/closures.md), in a local frame
 // where the shading normal is +z and wo.z > 0 (wi.z < 0: through the surface). Each lobe's
-// `evaluate` is f(wo, wi) |wi.z|
-// per unit weight; its colour and the Mix/Add Shader weights are the lobe's weight. Formulas
-// follow intern/cycles/kernel/closure/ (Blender 3.4): bsdf_diffuse.h, bsdf_oren_nayar.h,
-// bsdf_microfacet.h, bsdf_microfacet_beckmann.h, bsdf_ashikhmin_velvet.h, bsdf_refraction.h,
-// bsdf_transparent.h, bsdf_translucent.h. Singular lobes (Transparent, and Refraction and
-// Glass where Cycles' microfacet is a perfect one: alpha^2 <= 1e-7) have no density: they
-// evaluate to 0 (light sampling cannot find their direction) and are sampled apart. The
-// material's
-// BSDF is the lobes' sum; sampling picks one lobe with probability proportional to its
-// weight's luminance (every lobe's albedo is taken as 1) and the pdf is the mixture's, so
-// that light sampling's MIS sees the density that BSDF sampling really has.
+// `evaluate` is f(wo, wi) |wi.z| per unit weight; its colour and the Mix/Add Shader weights
+// are the lobe's weight. Formulas follow intern/cycles/kernel/closure/ (Blender 3.4):
+// bsdf_diffuse.h, bsdf_oren_nayar.h, bsdf_microfacet.h, bsdf_microfacet_beckmann.h,
+// bsdf_ashikhmin_velvet.h, bsdf_refraction.h, bsdf_transparent.h, bsdf_translucent.h,
+// bsdf_principled_sheen.h; the Principled lobe is brdf.glsl's BRDF of the material's
+// Principled outputs, the Principled transmission a Glass lobe with svm/closure.h's
+// Principled weights. Singular lobes (Transparent, and Refraction and Glass where Cycles'
+// microfacet is a perfect one: alpha^2 <= 1e-7) have no density: they evaluate to 0 (light
+// sampling cannot find their direction) and are sampled apart. The material's BSDF is the
+// lobes' sum; sampling picks one lobe with probability proportional to its weight's
+// luminance (every lobe's albedo is taken as 1) and the pdf is the mixture's, so that light
+// sampling's MIS sees the density that BSDF sampling really has.
 // Needs brdf.glsl (kPi, smithG1, ggxD, ggxSampleVisibleNormal) and the prelude (MG_LOBE_*).
 
 #ifdef MG_BSDF_LOBES
@@ -24,18 +26,41 @@ struct BsdfLobes {
   float roughness[MG_MAX_LOBES];
   float eta[MG_MAX_LOBES];   // relative IOR across the surface: the far side's over the ray's
   float pick[MG_MAX_LOBES];  // probability that BSDF sampling samples lobe i
+  BrdfParameters principled;  // the MG_LOBE_PRINCIPLED lobe's BRDF (per unit weight)
+  // The MG_LOBE_PRINCIPLED_GLASS lobe's refraction tint (the base colour), its reflection's F0
+  // colour (Cycles' cspec0: white mixed by the specular tint towards the base colour) and
+  // its reflection's roughness (the material's; the lobe's own roughness is the refraction's).
+  vec3 glassRefractionColor;
+  vec3 glassReflectionF0;
+  float glassReflectionRoughness;
 };
 
 // `entering`: the ray hit the front face (by the geometric normal), so a transmission lobe's
 // relative IOR is its IOR, else 1 / IOR (Cycles' svm_node_closure_bsdf: SD_BACKFACING).
-BsdfLobes bsdfLobesFromMaterial(MaterialOutputs m, bool entering) {
+// `principled`: the BRDF of the material's Principled outputs, which a MG_LOBE_PRINCIPLED lobe
+// weights.
+BsdfLobes bsdfLobesFromMaterial(MaterialOutputs m, bool entering, BrdfParameters principled) {
   BsdfLobes lobes;
+  lobes.principled = principled;
+  vec3 baseColor = clamp(m.baseColor, 0.0, 1.0);
+  lobes.glassRefractionColor = max(m.baseColor, vec3(0.0));
+  float tint = clamp(m.specularTint, 0.0, 1.0);
+  lobes.glassReflectionF0 = baseColor * tint + vec3(1.0 - tint);
+  lobes.glassReflectionRoughness = clamp(m.roughness, 0.0, 1.0);
   lobes.count = min(m.lobeCount, MG_MAX_LOBES);
   float total = 0.0;
   for (int i = 0; i < MG_MAX_LOBES; ++i) {
     lobes.weight[i] = max(m.lobeWeight[i].rgb, vec3(0.0));
     lobes.kind[i] = int(m.lobeWeight[i].w);
     lobes.roughness[i] = clamp(m.lobeParameters[i].x, 0.0, 1.0);
+    if (lobes.kind[i] == MG_LOBE_PRINCIPLED) {
+      // Its roughness (ray cones, Light Path) is its BRDF's; its IOR slot holds the diffuse's
+      // share of its weight (the transmission takes the rest: PrincipledLayers).
+      lobes.roughness[i] = principled.roughness;
+      float diffuseShare = max(m.lobeParameters[i].y, 0.0);
+      lobes.principled.diffuse *= diffuseShare;
+      lobes.principled.diffuseBurley *= diffuseShare;
+    }
     float ior = max(m.lobeParameters[i].y, 1e-5);
     lobes.eta[i] = entering ? ior : 1.0 / ior;
     lobes.pick[i] = i < lobes.count ? dot(lobes.weight[i], vec3(0.2126, 0.7152, 0.0722)) : 0.0;
@@ -106,6 +131,65 @@ float velvetCos(float sigma, vec3 wo, vec3 wi) {
   return 0.25 * d * g / wo.z;
 }
 
+// Cycles 3.4's Principled sheen (bsdf_principled_sheen.h, Burley 2012's sheen): f |wi.z| =
+// (1 - wi.h)^5 wi.z, no 1/pi, on the view's side only.
+float principledSheenCos(vec3 wo, vec3 wi) {
+  if (wo.z <= 0.0 || wi.z <= 0.0) return 0.0;
+  vec3 h = normalize(wo + wi);
+  float m = clamp(1.0 - dot(wi, h), 0.0, 1.0);
+  float m2 = m * m;
+  return m2 * m2 * m * wi.z;
+}
+
+// Berry's distribution (Burley 2012's GTR1) of alpha^2 = alpha2, as Cycles' microfacet_GTR1_D:
+// (alpha^2 - 1) / (pi ln(alpha^2) (1 + (alpha^2 - 1) cos^2)), normalised so that its
+// projected area is 1.
+float gtr1D(float cosThetaH, float alpha2) {
+  if (alpha2 >= 1.0) return 1.0 / kPi;
+  float t = 1.0 + (alpha2 - 1.0) * cosThetaH * cosThetaH;
+  return (alpha2 - 1.0) / (kPi * log(alpha2) * t);
+}
+
+// A GTR1 normal drawn with density D(h) cos(theta_h) (Burley 2012, appendix B).
+vec3 gtr1SampleNormal(float alpha2, vec2 u) {
+  float cos2 = alpha2 >= 1.0 ? 1.0 - u.x : (1.0 - pow(alpha2, 1.0 - u.x)) / (1.0 - alpha2);
+  float cosTheta = sqrt(clamp(cos2, 0.0, 1.0));
+  float sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
+  float phi = 2.0 * kPi * u.y;
+  return vec3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta);
+}
+
+// Smith's GGX Lambda (Heitz 2014, eq. 72): G1 = 1 / (1 + Lambda).
+float ggxLambda(float cosTheta, float alpha) {
+  float c2 = cosTheta * cosTheta;
+  float tan2 = max(1.0 - c2, 0.0) / max(c2, 1e-12);
+  return 0.5 * (sqrt(1.0 + alpha * alpha * tan2) - 1.0);
+}
+
+// Cycles 3.4's Principled clearcoat (bsdf_microfacet.h, the GGX clearcoat closure):
+// f |wi.z| = F D G / (4 wo.z) with D GTR1 of alpha = roughness^2 (clamped as lobeAlpha), the
+// height-correlated GGX shadowing G = 1 / (1 + Lambda(o) + Lambda(i)) of Cycles' fixed alpha
+// 0.25, and F the dielectric Fresnel of IOR 1.5 at wi.h (Cycles' interpolate_fresnel_color of
+// cspec0 0.04, which is that Fresnel's own value at normal incidence).
+const float kClearcoatShadowingAlpha = 0.25;
+const float kClearcoatIor = 1.5;
+float principledClearcoatCos(float roughness, vec3 wo, vec3 wi) {
+  if (wo.z <= 0.0 || wi.z <= 0.0) return 0.0;
+  vec3 h = normalize(wo + wi);
+  float alpha = lobeAlpha(roughness);
+  float g = 1.0 / (1.0 + ggxLambda(wo.z, kClearcoatShadowingAlpha) +
+                   ggxLambda(wi.z, kClearcoatShadowingAlpha));
+  return fresnelDielectric(dot(wi, h), kClearcoatIor) * gtr1D(h.z, alpha * alpha) * g /
+         (4.0 * wo.z);
+}
+// The density of the clearcoat's sampling: a GTR1 normal reflected, D cos(theta_h) / (4 o.h).
+float principledClearcoatPdf(float roughness, vec3 wo, vec3 wi) {
+  if (wo.z <= 0.0 || wi.z <= 0.0) return 0.0;
+  vec3 h = normalize(wo + wi);
+  float alpha = lobeAlpha(roughness);
+  return gtr1D(h.z, alpha * alpha) * h.z / (4.0 * max(dot(wo, h), 1e-8));
+}
+
 bool lobeIsRefraction(int kind) {
   return kind == MG_LOBE_REFRACTION_GGX || kind == MG_LOBE_REFRACTION_BECKMANN;
 }
@@ -119,7 +203,7 @@ bool lobeIsBeckmann(int kind) {
 // Whether a lobe sends light through the surface (its directions may have wi.z < 0).
 bool lobeTransmits(int kind) {
   return kind == MG_LOBE_TRANSLUCENT || kind == MG_LOBE_TRANSPARENT || lobeIsRefraction(kind) ||
-         lobeIsGlass(kind);
+         lobeIsGlass(kind) || kind == MG_LOBE_PRINCIPLED_GLASS;
 }
 
 // A lobe without density: Transparent, and a Refraction or Glass lobe where Cycles takes the
@@ -128,7 +212,8 @@ bool lobeTransmits(int kind) {
 bool lobeIsSingular(int kind, float roughness) {
   if (kind == MG_LOBE_TRANSPARENT) return true;
   float alpha = roughness * roughness;
-  return (lobeIsRefraction(kind) || lobeIsGlass(kind)) && alpha * alpha <= 1e-7;
+  return (lobeIsRefraction(kind) || lobeIsGlass(kind) || kind == MG_LOBE_PRINCIPLED_GLASS) &&
+         alpha * alpha <= 1e-7;
 }
 
 float microfacetD(bool beckmann, float cosThetaH, float alpha) {
@@ -226,6 +311,8 @@ float lobeEvaluateCos(int kind, float roughness, float eta, vec3 wo, vec3 wi) {
   if (kind == MG_LOBE_DIFFUSE)
     return roughness > 0.0 ? orenNayarCos(roughness, wo, wi) : wi.z / kPi;
   if (kind == MG_LOBE_VELVET) return velvetCos(max(roughness, 0.01), wo, wi);
+  if (kind == MG_LOBE_PRINCIPLED_SHEEN) return principledSheenCos(wo, wi);
+  if (kind == MG_LOBE_PRINCIPLED_CLEARCOAT) return principledClearcoatCos(roughness, wo, wi);
   return microfacetReflectionCos(beckmann, alpha, wo, wi);
 }
 
@@ -242,7 +329,9 @@ float lobePdf(int kind, float roughness, float eta, vec3 wo, vec3 wi) {
                       : (1.0 - fresnel) * microfacetRefractionPdf(beckmann, alpha, eta, wo, wi);
   }
   if (wi.z <= 0.0) return 0.0;
-  if (kind == MG_LOBE_DIFFUSE || kind == MG_LOBE_VELVET) return wi.z / kPi;
+  if (kind == MG_LOBE_DIFFUSE || kind == MG_LOBE_VELVET || kind == MG_LOBE_PRINCIPLED_SHEEN)
+    return wi.z / kPi;
+  if (kind == MG_LOBE_PRINCIPLED_CLEARCOAT) return principledClearcoatPdf(roughness, wo, wi);
   return microfacetReflectionPdf(beckmann, alpha, wo, wi);
 }
 
@@ -255,7 +344,12 @@ float lobePdf(int kind, float roughness, float eta, vec3 wo, vec3 wi) {
 vec3 lobeSample(int kind, float roughness, float eta, vec3 wo, vec2 u, float uChoice,
                 out float singularWeight) {
   singularWeight = 1.0;
-  if (kind == MG_LOBE_DIFFUSE || kind == MG_LOBE_VELVET) return sampleCosineHemisphere(u);
+  if (kind == MG_LOBE_DIFFUSE || kind == MG_LOBE_VELVET || kind == MG_LOBE_PRINCIPLED_SHEEN)
+    return sampleCosineHemisphere(u);
+  if (kind == MG_LOBE_PRINCIPLED_CLEARCOAT) {
+    float alpha = lobeAlpha(roughness);
+    return reflect(-wo, gtr1SampleNormal(alpha * alpha, u));
+  }
   if (kind == MG_LOBE_TRANSLUCENT) return sampleCosineHemisphere(u) * vec3(1.0, 1.0, -1.0);
   if (kind == MG_LOBE_TRANSPARENT) return -wo;
   vec3 m = vec3(0.0, 0.0, 1.0);
@@ -267,12 +361,84 @@ vec3 lobeSample(int kind, float roughness, float eta, vec3 wo, vec2 u, float uCh
   return reflect(-wo, m);
 }
 
-// The material's f(wo, wi) |wi.z|: every lobe's, weighted.
+// Cycles' interpolate_fresnel_color (bsdf_util.h): F0 blended to white by the dielectric
+// Fresnel of relative IOR eta at `cosine`, normalised to run from 0 at normal incidence to 1.
+vec3 fresnelInterpolated(vec3 f0, float cosine, float eta) {
+  float normal = fresnelDielectric(1.0, eta);
+  float fh = (fresnelDielectric(cosine, eta) - normal) / max(1.0 - normal, 1e-6);
+  return f0 * (1.0 - fh) + vec3(fh);
+}
+
+// The Principled transmission (Cycles 3.4's svm_node_closure_principled, its single-scatter
+// GGX glass): a reflection weighted by the Fresnel F of the shading normal, coloured by
+// interpolate_fresnel_color of cspec0, of the material's roughness; a refraction weighted by
+// max(1 - F, 1e-4), tinted by the base colour, of the lobe's roughness. f |wi.z| per unit
+// weight; 0 where the lobe is singular (lobeIsSingular: its refraction's roughness, never
+// below its reflection's).
+vec3 principledGlassCos(BsdfLobes lobes, int i, vec3 wo, vec3 wi) {
+  if (wo.z <= 0.0 || lobeIsSingular(MG_LOBE_PRINCIPLED_GLASS, lobes.roughness[i]))
+    return vec3(0.0);
+  float eta = lobes.eta[i];
+  float fresnel = fresnelDielectric(wo.z, eta);
+  if (wi.z > 0.0) {
+    vec3 h = normalize(wo + wi);
+    return fresnel * fresnelInterpolated(lobes.glassReflectionF0, dot(wi, h), eta) *
+           microfacetReflectionCos(false, lobeAlpha(lobes.glassReflectionRoughness), wo, wi);
+  }
+  return lobes.glassRefractionColor * max(1.0 - fresnel, 1e-4) *
+         microfacetRefractionCos(false, lobeAlpha(lobes.roughness[i]), eta, wo, wi);
+}
+
+// Its density: reflection with probability F, refraction with 1 - F (as the Glass lobe).
+float principledGlassPdf(BsdfLobes lobes, int i, vec3 wo, vec3 wi) {
+  if (wo.z <= 0.0 || lobeIsSingular(MG_LOBE_PRINCIPLED_GLASS, lobes.roughness[i])) return 0.0;
+  float eta = lobes.eta[i];
+  float fresnel = fresnelDielectric(wo.z, eta);
+  if (wi.z > 0.0)
+    return fresnel *
+           microfacetReflectionPdf(false, lobeAlpha(lobes.glassReflectionRoughness), wo, wi);
+  return (1.0 - fresnel) *
+         microfacetRefractionPdf(false, lobeAlpha(lobes.roughness[i]), eta, wo, wi);
+}
+
+// A direction from it: reflected below F (uChoice), else refracted, about a GGX visible
+// normal of the part's roughness, or about the shading normal where the lobe is singular;
+// then `singularWeight` is the part's weight over its probability (per unit weight): the
+// reflection's Fresnel colour, the refraction's tint. The zero vector: total internal
+// reflection of a microfacet.
+vec3 principledGlassSample(BsdfLobes lobes, int i, vec3 wo, vec2 u, float uChoice,
+                           out vec3 singularWeight) {
+  float eta = lobes.eta[i];
+  float fresnel = fresnelDielectric(wo.z, eta);
+  bool singular = lobeIsSingular(MG_LOBE_PRINCIPLED_GLASS, lobes.roughness[i]);
+  bool reflects = uChoice < fresnel;
+  if (singular) {
+    singularWeight = reflects ? fresnelInterpolated(lobes.glassReflectionF0, wo.z, eta)
+                              : lobes.glassRefractionColor * (max(1.0 - fresnel, 1e-4) /
+                                                              max(1.0 - fresnel, 1e-8));
+    return reflects ? reflect(-wo, vec3(0.0, 0.0, 1.0))
+                    : refractDirection(wo, vec3(0.0, 0.0, 1.0), eta);
+  }
+  singularWeight = vec3(0.0);
+  float roughness = reflects ? lobes.glassReflectionRoughness : lobes.roughness[i];
+  vec3 m = ggxSampleVisibleNormal(wo, lobeAlpha(roughness), u);
+  return reflects ? reflect(-wo, m) : refractDirection(wo, m, eta);
+}
+
+// The material's f(wo, wi) |wi.z|: every lobe's, weighted (the Principled lobe's BRDF is
+// coloured by the material's outputs).
 vec3 bsdfLobesEvaluateCos(BsdfLobes lobes, vec3 wo, vec3 wi) {
   vec3 sum = vec3(0.0);
-  for (int i = 0; i < lobes.count; ++i)
-    sum += lobes.weight[i] *
-           lobeEvaluateCos(lobes.kind[i], lobes.roughness[i], lobes.eta[i], wo, wi);
+  for (int i = 0; i < lobes.count; ++i) {
+    if (lobes.pick[i] <= 0.0) continue;  // no weight: nothing to add (a PrincipledLayers slot)
+    if (lobes.kind[i] == MG_LOBE_PRINCIPLED)
+      sum += lobes.weight[i] * brdfEvaluateCos(lobes.principled, wo, wi);
+    else if (lobes.kind[i] == MG_LOBE_PRINCIPLED_GLASS)
+      sum += lobes.weight[i] * principledGlassCos(lobes, i, wo, wi);
+    else
+      sum += lobes.weight[i] *
+             lobeEvaluateCos(lobes.kind[i], lobes.roughness[i], lobes.eta[i], wo, wi);
+  }
   return sum;
 }
 
@@ -281,7 +447,11 @@ float bsdfLobesPdf(BsdfLobes lobes, vec3 wo, vec3 wi) {
   float pdf = 0.0;
   for (int i = 0; i < lobes.count; ++i)
     if (lobes.pick[i] > 0.0)
-      pdf += lobes.pick[i] * lobePdf(lobes.kind[i], lobes.roughness[i], lobes.eta[i], wo, wi);
+      pdf += lobes.pick[i] *
+             (lobes.kind[i] == MG_LOBE_PRINCIPLED ? brdfPdf(lobes.principled, wo, wi)
+              : lobes.kind[i] == MG_LOBE_PRINCIPLED_GLASS
+                  ? principledGlassPdf(lobes, i, wo, wi)
+                  : lobePdf(lobes.kind[i], lobes.roughness[i], lobes.eta[i], wo, wi));
   return pdf;
 }
 
@@ -312,23 +482,37 @@ bool bsdfLobesTransmit(BsdfLobes lobes) {
 // throughput factor f |wi.z| / pdf. A singular lobe's sample is that lobe's alone (weight
 // its weight x singularWeight over its pick probability; `pdf` 0, as the other lobes and
 // light sampling cannot draw it); any other's is weighted by the whole BSDF over the
-// mixture's density (`pdf`). False: no direction.
+// mixture's density (`pdf`). `diffuse`: the direction came from a diffuse closure (Diffuse,
+// Velvet, Translucent, the sheen, the Principled lobe's diffuse part), as Cycles labels a
+// bounce. False: no direction.
 bool bsdfLobesSample(BsdfLobes lobes, vec3 wo, float uLobe, vec2 u, out vec3 wi,
-                     out vec3 weight, out float pdf, out int picked) {
+                     out vec3 weight, out float pdf, out int picked, out bool diffuse) {
   float uChoice;
   picked = bsdfLobesPick(lobes, uLobe, uChoice);
   weight = vec3(0.0);
   pdf = 0.0;
   wi = vec3(0.0, 0.0, 1.0);
+  diffuse = false;
   if (picked < 0) return false;
   int kind = lobes.kind[picked];
   float roughness = lobes.roughness[picked];
-  float singularWeight;
-  wi = lobeSample(kind, roughness, lobes.eta[picked], wo, u, uChoice, singularWeight);
+  float singularWeight = 1.0;
+  vec3 singularColor = vec3(1.0);
+  diffuse = kind == MG_LOBE_DIFFUSE || kind == MG_LOBE_VELVET || kind == MG_LOBE_TRANSLUCENT ||
+            kind == MG_LOBE_PRINCIPLED_SHEEN;
+  if (kind == MG_LOBE_PRINCIPLED) {
+    // brdfSample picks its specular part below the specular probability, its diffuse above.
+    wi = brdfSample(lobes.principled, wo, uChoice, u);
+    diffuse = uChoice >= brdfSpecularProbability(lobes.principled, wo);
+  } else if (kind == MG_LOBE_PRINCIPLED_GLASS) {
+    wi = principledGlassSample(lobes, picked, wo, u, uChoice, singularColor);
+  } else {
+    wi = lobeSample(kind, roughness, lobes.eta[picked], wo, u, uChoice, singularWeight);
+  }
   if (!(dot(wi, wi) > 0.0)) return false;
   wi = normalize(wi);
   if (lobeIsSingular(kind, roughness)) {
-    weight = lobes.weight[picked] * (singularWeight / lobes.pick[picked]);
+    weight = lobes.weight[picked] * singularColor * (singularWeight / lobes.pick[picked]);
     return true;
   }
   pdf = bsdfLobesPdf(lobes, wo, wi);

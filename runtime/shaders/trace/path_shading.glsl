@@ -421,7 +421,7 @@ ShadingPoint shadingPointAt(SurfaceHit s, MaterialOutputs m, vec3 direction) {
   p.position = s.inputs.position.v;
   p.geometricNormal = s.geometricNormal;
 #ifdef MG_BSDF_LOBES
-  p.lobes = bsdfLobesFromMaterial(m, s.entering);
+  p.lobes = bsdfLobesFromMaterial(m, s.entering, p.brdf);
   p.transmits = p.lobes.count > 0 && bsdfLobesTransmit(p.lobes);
 #else
   p.transmits = false;
@@ -538,7 +538,9 @@ bool continuePathThroughLobes(ShadingPoint p, SurfaceHit s, vec3 woLocal, float 
   vec3 wiLocal, weight;
   float pdf;
   int picked;
-  if (!bsdfLobesSample(p.lobes, woLocal, uLobe, u, wiLocal, weight, pdf, picked)) return false;
+  bool diffuse;
+  if (!bsdfLobesSample(p.lobes, woLocal, uLobe, u, wiLocal, weight, pdf, picked, diffuse))
+    return false;
   vec3 wi = transpose(p.toLocal) * wiLocal;
   if (!sameSideOfBothNormals(p, wi, wiLocal.z)) return false;
   throughput *= weight;
@@ -546,7 +548,6 @@ bool continuePathThroughLobes(ShadingPoint p, SurfaceHit s, vec3 woLocal, float 
   int kind = p.lobes.kind[picked];
   float roughness = p.lobes.roughness[picked];
   bool transmitted = wiLocal.z < 0.0;
-  bool diffuse = kind == MG_LOBE_DIFFUSE || kind == MG_LOBE_VELVET || kind == MG_LOBE_TRANSLUCENT;
   if (kind != MG_LOBE_TRANSPARENT) {  // a straight-through ray keeps its cone's spread
     cone.spread += rayConeRoughnessSpread(diffuse ? 1.0 : lobeAlpha(roughness)) +
                    rayConeCurvatureSpread(s.curvature, s.coneWidth, s.geometricNormal, direction);

@@ -22,8 +22,11 @@ no clamping, no light threshold) and DIR/export/ (the memograph exporter with --
 - light_path_camera: (a) an emissive panel whose colour Light Path's Is Camera Ray picks
   (red to the camera, blue to every other ray) over a grey floor, which it lights blue.
 - bsdf_<tree> (BSDF_TREES: diffuse, oren_nayar, glossy_ggx, glossy_beckmann, velvet, mix,
-  add, glass, glass_rough, refraction, transparent, translucent): a smooth sphere of that BSDF (or Mix/Add Shader of BSDFs) on a checker floor under a
-  sky and a sun; bsdf_room: a room of several of them (docs/design/closures.md).
+  add, glass, glass_rough, refraction, transparent, translucent, principled_sheen,
+  principled_clearcoat, principled_transmission): a smooth sphere of that BSDF (or Mix/Add
+  Shader of BSDFs) on a checker floor under a sky and a sun; bsdf_room: a room of several
+  of them (docs/design/closures.md). The principled_* scenes also write DIR/tiles.json with the
+  ball's box.
 - light_path_depth: (b) an emissive panel that emits only for Ray Depth 1 (black to the
   camera, lighting the floor and a wall directly, no bounced light). Both write
   DIR/tiles.json with their regions (panel, floor, wall) as the Principled scenes do.
@@ -277,6 +280,22 @@ BSDF_TREES = {
                                         Color=(0.9, 0.6, 0.3)),
     'translucent': lambda nt: bsdf_node(nt, 'ShaderNodeBsdfTranslucent',
                                         Color=(0.3, 0.7, 0.4)),
+    # The Principled BSDF v1's layers (PrincipledLayers), each over a dark base so that the
+    # layer is much of what the ball reflects: a dark blue cloth's sheen (tinted halfway to
+    # its hue) and a dark red lacquer's clearcoat, sharper than the base's own specular.
+    'principled_sheen': lambda nt: bsdf_node(
+        nt, 'ShaderNodeBsdfPrincipled', distribution='GGX',
+        **{'Base Color': (0.02, 0.02, 0.06), 'Roughness': 0.6, 'Sheen': 1.0,
+           'Sheen Tint': 0.5}),
+    'principled_clearcoat': lambda nt: bsdf_node(
+        nt, 'ShaderNodeBsdfPrincipled', distribution='GGX',
+        **{'Base Color': (0.05, 0.01, 0.01), 'Roughness': 0.6, 'Clearcoat': 1.0,
+           'Clearcoat Roughness': 0.1}),
+    # A tinted glass ball whose refraction is rougher than its reflection.
+    'principled_transmission': lambda nt: bsdf_node(
+        nt, 'ShaderNodeBsdfPrincipled', distribution='GGX',
+        **{'Base Color': (0.8, 0.9, 1.0), 'Roughness': 0.1, 'Transmission': 1.0,
+           'Transmission Roughness': 0.2, 'IOR': 1.45}),
 }
 
 
@@ -343,6 +362,11 @@ def bsdf_scene(tree):
     light('SUN', 'Sun', (0, 0, 5), rotation=(math.radians(35), 0, math.radians(-40)),
           energy=3.0, angle=0.0)
     camera((0, -3.6, 1.6), rotation=(math.radians(80), 0, 0), lens=40)
+    if tree.startswith('principled_'):
+        # A Principled layer is a small part of the whole image: the ball's own box (the
+        # square around it, through its centre, facing the camera) is compared too.
+        return [('Ball', [(x, 0.0, z) for x in (-0.8, 0.8) for z in (0.0, 1.6)])]
+    return None
 
 
 def bsdf_room_scene():

@@ -3,7 +3,11 @@
 // cachePack / cacheUnpack (kCacheOutputLobes) and, in the wavefront, the path state's lobe
 // fields. The cached image must differ from the uncached one no more than the same checker
 // through the Principled outputs does (the cache's texel quantisation of the checker's
-// edges), and keep the sphere's colour.
+// edges), and keep the sphere's colour. The same for a Principled BSDF with its sheen,
+// clearcoat and transmission layers (PrincipledLayers: four lobes over the Principled
+// outputs), the checker driving its base colour, sheen, clearcoat and transmission, in the
+// wavefront (its entries go through cachePack / cacheUnpack and the path state's lobe
+// fields).
 #include <cstdio>
 #include <string>
 
@@ -25,6 +29,15 @@ const char* const kLobesGraph =
     "MixShader Fac<1 WeightA>2 WeightB>3;\n"
     "DiffuseBsdf Color=(0.9, 0.2, 0.1) Weight<2;\n"
     "GlossyBsdf Color=(0.2, 0.9, 0.3) Roughness=0.3 Weight<3;\n";
+
+const char* const kPrincipledLayersGraph =
+    "material Lobes;\n"
+    "UVInput Out>0;\n"
+    "CheckerTexture Vector<0 Scale=4 Fac>1;\n"
+    "Mix A=(0.9, 0.2, 0.1) B=(0.2, 0.9, 0.3) Factor<1 Out>2;\n"
+    "PrincipledOutput BaseColor<2 Roughness=0.3 CyclesPrincipled=1;\n"
+    "PrincipledLayers BaseColor<2 Roughness=0.3 Sheen<1 SheenTint=1 Clearcoat<1 "
+    "ClearcoatRoughness=0.1 Transmission<1 TransmissionRoughness=0.2 IOR=1.5;\n";
 
 // The same checker through the Principled outputs: the cache's own difference, for scale.
 const char* const kPrincipledGraph =
@@ -55,9 +68,9 @@ RenderResult renderGraph(const char* graph, CacheMode mode, Backend backend, Sha
   return Renderer(options).render(scene, settings);
 }
 
-void expectCachedLikeUncached(Backend backend, Shading shading) {
-  RenderResult off = renderGraph(kLobesGraph, CacheMode::None, backend, shading);
-  RenderResult on = renderGraph(kLobesGraph, CacheMode::Texel, backend, shading);
+void expectCachedLikeUncached(Backend backend, Shading shading, const char* graph = kLobesGraph) {
+  RenderResult off = renderGraph(graph, CacheMode::None, backend, shading);
+  RenderResult on = renderGraph(graph, CacheMode::Texel, backend, shading);
   double flip = meanFlip(off.image, on.image);
   double principledFlip =
       meanFlip(renderGraph(kPrincipledGraph, CacheMode::None, backend, shading).image,
@@ -87,6 +100,10 @@ TEST(BsdfLobesCache, CachedLobesRenderLikeUncachedWithCallables) {
 
 TEST(BsdfLobesCache, CachedLobesRenderLikeUncachedInTheWavefront) {
   expectCachedLikeUncached(Backend::RayQuery, Shading::Wavefront);
+}
+
+TEST(BsdfLobesCache, CachedPrincipledLayersRenderLikeUncachedInTheWavefront) {
+  expectCachedLikeUncached(Backend::RayQuery, Shading::Wavefront, kPrincipledLayersGraph);
 }
 
 }  // namespace

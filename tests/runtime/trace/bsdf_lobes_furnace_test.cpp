@@ -123,6 +123,34 @@ const FurnaceCase kCases[] = {
      {0.75, 0.75, 0.75},
      {1.01, 1.01, 1.01},
      16},
+    // The Principled BSDF's transmission (PrincipledLayers, Transmission 1: its diffuse and
+    // specular weigh 0): smooth, the sharp glass's Fresnel choice at every crossing, so all
+    // light leaves (measured 1.0000); rough (Roughness 0.3 for the reflection, 1 - 0.7 x 0.8 =
+    // 0.44 for the refraction), GGX's G1 and the microfacets' internal reflections past 16
+    // rays are lost (measured 0.9343). Tinted: the reflection is white and each refraction
+    // is tinted (Cycles' base_color x glass weight), so a path leaves either by the first
+    // reflection, F = 0.04, or after two refractions, tinted twice: 0.04 + 0.96 t^2 = (1,
+    // 0.28, 0.1) for t = (1, 0.5, 0.25) (measured (1.0000, 0.2837, 0.1046): the Fresnel
+    // choices and the pixels off normal incidence make F nearer 0.045 there).
+    {"PrincipledTransmissionSmooth",
+     "PrincipledOutput BaseColor=(1, 1, 1) Roughness=0 CyclesPrincipled=1;\n"
+     "PrincipledLayers BaseColor=(1, 1, 1) Roughness=0 Transmission=1 IOR=1.5;\n",
+     {0.99, 0.99, 0.99},
+     {1.01, 1.01, 1.01},
+     16},
+    {"PrincipledTransmissionRough",
+     "PrincipledOutput BaseColor=(1, 1, 1) Roughness=0.3 CyclesPrincipled=1;\n"
+     "PrincipledLayers BaseColor=(1, 1, 1) Roughness=0.3 Transmission=1 "
+     "TransmissionRoughness=0.2 IOR=1.5;\n",
+     {0.75, 0.75, 0.75},
+     {1.01, 1.01, 1.01},
+     16},
+    {"PrincipledTransmissionTinted",
+     "PrincipledOutput BaseColor=(1, 0.5, 0.25) Roughness=0 CyclesPrincipled=1;\n"
+     "PrincipledLayers BaseColor=(1, 0.5, 0.25) Roughness=0 Transmission=1 IOR=1.5;\n",
+     {0.99, 0.27, 0.09},
+     {1.01, 0.29, 0.11},
+     16},
 };
 
 // gtest prints a case by its name, not its bytes.

@@ -41,7 +41,14 @@ layout(push_constant) uniform Push { Results results; } push;
 #define MG_LOBE_REFRACTION_BECKMANN 8
 #define MG_LOBE_GLASS_GGX 9
 #define MG_LOBE_GLASS_BECKMANN 10
+#define MG_LOBE_PRINCIPLED 11
+#define MG_LOBE_PRINCIPLED_SHEEN 12
+#define MG_LOBE_PRINCIPLED_CLEARCOAT 13
+#define MG_LOBE_PRINCIPLED_GLASS 14
 struct MaterialOutputs {
+  vec3 baseColor;
+  float roughness;
+  float specularTint;
   int lobeCount;
   vec4 lobeWeight[MG_MAX_LOBES];
   vec4 lobeParameters[MG_MAX_LOBES];

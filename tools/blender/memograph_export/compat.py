@@ -26,15 +26,21 @@ _WHITE = ((1.0, 1.0, 1.0),)
 # Principled features memograph's BRDF does not have: (names 3.4 then 4.x, values meaning
 # "off", what to call it). A linked socket or another value is reported. 3.4's Specular
 # Tint (a factor) is carried (shaders.principled); 4.x's colour Specular Tint is not.
+# 3.4's (v1) Sheen, Sheen Tint, Clearcoat, Clearcoat Roughness, Transmission, Transmission
+# Roughness and IOR are carried as the PrincipledLayers lobes (shaders.principled); 4.x's
+# Sheen Weight, Coat Weight and Transmission Weight, another model (PRINCIPLED_V2_LAYERS),
+# are not.
 PRINCIPLED_UNCARRIED = (
     (('Subsurface', 'Subsurface Weight'), _OFF, 'Subsurface'),
     (('Anisotropic',), _OFF, 'Anisotropic'),
-    (('Sheen', 'Sheen Weight'), _OFF, 'Sheen'),
-    (('Clearcoat', 'Coat Weight'), _OFF, 'Clearcoat/Coat'),
-    (('Transmission', 'Transmission Weight'), _OFF, 'Transmission'),
     (('Clearcoat Normal', 'Coat Normal'), ((0.0, 0.0, 0.0),), 'Clearcoat/Coat Normal'),
     (('Tangent',), ((0.0, 0.0, 0.0),), 'Tangent'),
     (('Thin Film Thickness',), _OFF, 'Thin Film'),
+)
+PRINCIPLED_V2_LAYERS = (
+    (('Sheen Weight',), _OFF, 'Sheen'),
+    (('Coat Weight',), _OFF, 'Coat'),
+    (('Transmission Weight',), _OFF, 'Transmission'),
 )
 PRINCIPLED_V2_SPECULAR_TINT = (('Specular Tint',), _WHITE, 'Specular Tint (4.x colour)')
 

@@ -9,7 +9,10 @@ approximation and says so in a warning naming the material, the node and what wa
 A Blender 3.x Principled BSDF (v1) also sets cycles_principled = 1: memograph's BRDF then
 weights and shapes its diffuse and specular as Cycles 3.4 does (runtime/shaders/common/brdf.glsl,
 docs/guide/blender.md "Principled BSDF"); every other shader, and 4.x's v2, keeps memograph's
-own energy-conserving weighting (0).
+own energy-conserving weighting (0). A v1 Principled BSDF whose Sheen, Clearcoat or
+Transmission is in use also writes PrincipledLayers (nodes/bsdf.inc): the BRDF, its sheen, its
+clearcoat and its transmission as lobes, when it is the surface shader itself (under a Mix
+Shader, or an Add Shader with another BSDF, they are dropped, warned).
 """
 
 from . import compat
@@ -36,6 +39,9 @@ class Params:
         self.alpha = kw.get('alpha', Literal(1.0))
         self.normal = kw.get('normal')  # operand or None (geometric normal)
         self.pure_emission = kw.get('pure_emission', False)
+        # A v1 Principled BSDF's sheen, clearcoat and transmission: a dict of PrincipledLayers'
+        # operands by socket, or None (none in use).
+        self.layers = kw.get('layers')
 
     def emission_product(self, mw):
         """emission x emission_strength as one operand (folds constant strength 1)."""
@@ -83,6 +89,46 @@ def _warn_unused(mw, flat, checks):
             mw.warn(flat, '%s = %s is not carried: ignored' % (what, _fmt(src.value)))
 
 
+def _in_use(flat, name):
+    """Whether input name is linked or set off 0 (its operand would change the result)."""
+    ident = compat.find_input(flat.node, name)
+    if ident is None:
+        return False
+    src = flat.input(ident)
+    return src is not None and (not isinstance(src, Const) or src.value != 0.0)
+
+
+# PrincipledLayers' sockets: (socket, Blender 3.4's input, its default).
+_LAYER_SOCKETS = (('Sheen', 'Sheen', 0.0), ('SheenTint', 'Sheen Tint', 0.5),
+                  ('Clearcoat', 'Clearcoat', 0.0),
+                  ('ClearcoatRoughness', 'Clearcoat Roughness', 0.03),
+                  ('Transmission', 'Transmission', 0.0),
+                  ('TransmissionRoughness', 'Transmission Roughness', 0.0), ('IOR', 'IOR', 1.45))
+
+
+def _principled_layers(mw, flat, multiscatter):
+    """The PrincipledLayers operands of a v1 Principled BSDF whose Sheen, Clearcoat or
+    Transmission is in use, or None. multiscatter: Multiscatter GGX, whose glass Cycles
+    takes of the one roughness (Transmission Roughness unused)."""
+    if not any(_in_use(flat, name) for name in ('Sheen', 'Clearcoat', 'Transmission')):
+        return None
+    # Blender 3.4's defaults where a socket is missing (a hand-made node group's stand-in).
+    layers = {socket: _in(mw, flat, name) or Literal(default)
+              for socket, name, default in _LAYER_SOCKETS}
+    if multiscatter:
+        layers['TransmissionRoughness'] = Literal(0.0)
+    return layers
+
+
+def _warn_layers_dropped(mw, flat, *params):
+    """A mixed Principled BSDF's layers (sheen, clearcoat, transmission) are not carried:
+    says so."""
+    if any(p.layers is not None for p in params):
+        mw.warn(flat, 'the Sheen, Clearcoat and Transmission of a Principled BSDF under a %s '
+                'are not carried (only a Principled BSDF that is the surface shader itself has '
+                'them): ignored' % flat.node.bl_idname.replace('ShaderNode', ''))
+
+
 def _fmt(v):
     if isinstance(v, tuple):
         return '(' + ', '.join('%.3g' % x for x in v) + ')'
@@ -115,13 +161,18 @@ def principled(mw, flat):
     p.alpha = _in(mw, flat, 'Alpha') or Literal(1.0)
     p.normal = _normal(mw, flat)
     checks = compat.PRINCIPLED_UNCARRIED
+    distribution = getattr(node, 'distribution', 'GGX')
+    if v1:
+        p.layers = _principled_layers(mw, flat, distribution == 'MULTI_GGX')
+    else:
+        checks = checks + compat.PRINCIPLED_V2_LAYERS
     if tint_socket is not None and tint_socket.type != 'VALUE':
         checks = checks + (compat.PRINCIPLED_V2_SPECULAR_TINT,)
     _warn_unused(mw, flat, checks)
-    distribution = getattr(node, 'distribution', 'GGX')
     if v1 and distribution == 'MULTI_GGX':
         mw.warn(flat, 'Multiscatter GGX is written as single-scatter GGX (Cycles uses '
-                'multiscatter above Roughness 0.075: rough speculars are brighter there)')
+                'multiscatter above Roughness 0.075, and for Transmission above 0.05: rough '
+                'speculars are brighter there)')
     return p
 
 
@@ -155,6 +206,7 @@ def transparent(mw, flat):
 def mix_shader(mw, flat):
     a = mw.shader(flat.input('Shader'))
     b = mw.shader(flat.input('Shader_001'))
+    _warn_layers_dropped(mw, flat, a, b)
     if not (a.pure_emission and b.pure_emission):  # two emissions mix exactly
         mw.warn(flat, 'Mix Shader approximated by blending the two shaders\' parameters '
                 '(base colour, metallic, roughness, specular, specular tint, Cycles weighting, '
@@ -188,15 +240,20 @@ def mix_shader(mw, flat):
 def add_shader(mw, flat):
     a = mw.shader(flat.input('Shader'))
     b = mw.shader(flat.input('Shader_001'))
+    if not (a.pure_emission or b.pure_emission):
+        _warn_layers_dropped(mw, flat, a, b)
     if not (a.pure_emission and b.pure_emission):  # two emissions add exactly
         mw.warn(flat, 'Add Shader approximated: emissions are summed, the surface parameters '
                 'are those of the %s shader' % ('second' if a.pure_emission else 'first'))
     surface = b if a.pure_emission else a
+    # An emission added to a Principled BSDF keeps its layers: the sum is exact.
+    other = a if a.pure_emission else b
     out = Params(base_color=surface.base_color, metallic=surface.metallic,
                  roughness=surface.roughness, specular=surface.specular,
                  specular_tint=surface.specular_tint,
                  cycles_principled=surface.cycles_principled, alpha=surface.alpha,
-                 normal=surface.normal)
+                 normal=surface.normal,
+                 layers=surface.layers if other.pure_emission else None)
     ea, eb = a.emission_product(mw), b.emission_product(mw)
     link = mw.builder.new_link()
     mw.builder.add('Add', [('A', ea), ('B', eb)], [('Out', link)], comment=flat.label)
@@ -278,5 +335,12 @@ def write_outputs(mw, params):
         ('Emission', params.emission), ('EmissionStrength', params.emission_strength),
         ('Alpha', params.alpha), ('SpecularTint', params.specular_tint),
         ('CyclesPrincipled', params.cycles_principled)], [])
+    if params.layers is not None:
+        # The sheen's weight and tint come from the same base colour and metallic.
+        b.add('PrincipledLayers', [('BaseColor', params.base_color),
+                                   ('Metallic', params.metallic),
+                                   ('Roughness', params.roughness)] +
+              [(socket, params.layers[socket]) for socket, _, _ in _LAYER_SOCKETS], [],
+              comment='Principled sheen, clearcoat and transmission')
     if params.normal is not None:
         b.add('NormalOutput', [('In', params.normal)], [])
