@@ -70,6 +70,17 @@ float ambientOcclusion(vec3 position, vec3 normal, vec3 geometricNormal, uint in
 #ifndef MG_OMIT_TRACED_INPUTS
 #include "bevel.glsl"
 
+// The random numbers of the traced inputs at path vertex `vertexKey` (rng.glsl's key: bounce
+// + 1 for the bounce-th hit) of sample `sampleIndex` of pixel `pixelIndex`: the vertex's own
+// stream hashed apart, so the path's numbers stay as without the traced rays. One function
+// for the megakernel and the wavefront's traced-inputs pass, so at one seed both trace the
+// same rays.
+Rng tracedInputsRng(uint pixelIndex, uint sampleIndex, uint vertexKey, uint seed) {
+  Rng rng = rngForPathVertex(pixelIndex, sampleIndex, vertexKey, seed);
+  rng.key = pcgHash(rng.key ^ 0x6A09E667u);
+  return rng;
+}
+
 // Fills the traced inputs of hit `s` before its graph runs, with the settings its material's
 // metadata recorded (materials.glsl): the Ambient Occlusion node's fraction
 // (mg_materialAmbientOcclusion) about the interpolated shading normal, as Cycles' svm_node_ao
