@@ -12,6 +12,14 @@ std::vector<std::uint32_t> wavefrontComputePasses(const WavefrontPipelineChoice&
                         pass == gpu::kWavefrontTracedInputs;
     const bool binning = pass == gpu::kWavefrontBinCount || pass == gpu::kWavefrontBinOffsets ||
                          pass == gpu::kWavefrontBinScatter;
+    if (choice.ambientOcclusionIntegrator) {
+      const bool used = pass == gpu::kWavefrontGenerate || pass == gpu::kWavefrontFinish ||
+                        ((pass == gpu::kWavefrontTrace || pass == gpu::kWavefrontTracedInputs) &&
+                         choice.rayQuery);
+      if (used)
+        passes.push_back(pass);
+      continue;
+    }
     if ((traces && !choice.rayQuery) || (binning && !materials) ||
         pass == gpu::kWavefrontMaterial ||
         (pass == gpu::kWavefrontLookup && !choice.cacheLookups) ||

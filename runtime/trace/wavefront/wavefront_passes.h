@@ -20,6 +20,9 @@ struct WavefrontPipelineChoice {
   // traced-inputs pass, a compute pass on the query backend, a third raygen of the
   // ray-tracing pipeline on the pipeline backend (no pipeline of its own there).
   bool tracedInputs = false;
+  // The AO integrator (--integrator ao; no material graphs): a round is generate, trace, the
+  // traced-inputs pass (there the integrator's AO rays) and finish, no shading passes.
+  bool ambientOcclusionIntegrator = false;
 };
 
 // The compute passes (gpu::kWavefront* indices, ascending) that get a pipeline of their own;

@@ -72,6 +72,13 @@ std::vector<WavefrontPathTracer::FramePass> WavefrontPathTracer::framePasses(
   };
   for (std::uint32_t round = 0; round < chunks_ * paths; ++round) {
     passes.push_back({gpu::kWavefrontGenerate});
+    if (ambientOcclusionIntegrator_) {
+      // The AO integrator: the camera rays' hits and their AO rays, nothing shaded.
+      for (std::uint32_t pass :
+           {gpu::kWavefrontTrace, gpu::kWavefrontTracedInputs, gpu::kWavefrontFinish})
+        passes.push_back({pass});
+      continue;
+    }
     for (std::uint32_t bounce = 0; bounce < bounces; ++bounce) {
       passes.push_back({gpu::kWavefrontTrace});
       if (materials) {
@@ -100,15 +107,18 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
       lookup_(setup.cacheLookups),
       lightPoints_(setup.emitterGraphs),
       tracedInputs_(setup.materials && setup.materials->tracedInputs),
+      ambientOcclusionIntegrator_(setup.ambientOcclusionIntegrator),
       pixels_(width * height) {
   VkDevice device = context.device();
   const LinkedMaterials* materials = setup.materials;
   const std::uint32_t pathSlots = setup.pathSlots;
   // The renderer refuses both first, in the user's words (trace/shading.cpp, wavefrontGap).
-  if (((lookup_ || lightPoints_) && !materials) || (!query_ && !context.info().traceRaysIndirect))
+  if (((lookup_ || lightPoints_) && !materials) || (!query_ && !context.info().traceRaysIndirect) ||
+      (ambientOcclusionIntegrator_ && (materials || setup.sharedPrimaryHits)))
     throw std::logic_error(
-        "WavefrontPathTracer: a cache or emitters' graphs without material passes, or a "
-        "pipeline without indirect trace launches");
+        "WavefrontPathTracer: a cache or emitters' graphs without material passes, a "
+        "pipeline without indirect trace launches, or the AO integrator with materials or "
+        "shared camera hits");
   // The path state (vec4 fields a slot, four more for material outputs, one more for the
   // path state that Light Path reads, two more for light samples' points), the queues (two
   // live, one shadow, with materials the material-sorted one; a uint a slot) and the control
@@ -216,6 +226,7 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   choice.materialGraphs = materials ? static_cast<std::uint32_t>(materials->distinct.size()) : 0;
   choice.cacheLookups = lookup_;
   choice.tracedInputs = tracedInputs_;
+  choice.ambientOcclusionIntegrator = ambientOcclusionIntegrator_;
   PipelineShaders shaders;
   shaders.passes = wavefrontComputePasses(choice);
   std::vector<ShaderCompileRequest> requests;
@@ -227,7 +238,8 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
     requests.push_back({"wavefront.glsl", ShaderStage::Compute, std::move(passDefines)});
   }
   if (!query_)
-    appendRayTracingRequests(defines, tracedInputs_, requests, shaders.rayTracingStages);
+    appendRayTracingRequests(defines, tracedInputs_ || ambientOcclusionIntegrator_, requests,
+                             shaders.rayTracingStages);
   std::vector<std::vector<std::uint32_t>> spirv =
       compiler.compileAll(requests, setup.compileThreads);
   for (std::size_t i = 0; i < spirv.size(); ++i) {
@@ -275,14 +287,14 @@ std::vector<std::vector<std::uint32_t>> WavefrontPathTracer::compileMaterialPass
 }
 
 // The ray-tracing pipeline's shaders, as compile requests: the trace and shadow raygens (and
-// with `tracedInputs` the traced-inputs raygen), then the megakernel's miss and hit shaders
-// (they only report the hit).
+// with `tracesFromHits` the traced-inputs raygen: traced inputs or the AO integrator's rays),
+// then the megakernel's miss and hit shaders (they only report the hit).
 void WavefrontPathTracer::appendRayTracingRequests(const std::vector<std::string>& defines,
-                                                   bool tracedInputs,
+                                                   bool tracesFromHits,
                                                    std::vector<ShaderCompileRequest>& requests,
                                                    std::vector<VkShaderStageFlagBits>& stages) {
   std::vector<std::uint32_t> raygens = {gpu::kWavefrontTrace, gpu::kWavefrontShadow};
-  if (tracedInputs)
+  if (tracesFromHits)
     raygens.push_back(gpu::kWavefrontTracedInputs);
   for (std::uint32_t pass : raygens) {
     std::vector<std::string> raygenDefines = defines;
@@ -348,7 +360,8 @@ void WavefrontPathTracer::createPipelines(const PipelineShaders& shaders,
     return;
   // The table: [trace raygen][shadow raygen]([traced-inputs raygen])[miss, shadow miss][hit];
   // the pipeline keeps the spec's default stack.
-  const std::uint32_t raygens = tracedInputs_ ? 3 : 2;
+  const bool tracesFromHits = tracedInputs_ || ambientOcclusionIntegrator_;
+  const std::uint32_t raygens = tracesFromHits ? 3 : 2;
   std::vector<ShaderBindingRegion> regions;
   for (std::uint32_t raygen = 0; raygen < raygens; ++raygen)
     regions.push_back({{raygen}, true});
@@ -359,7 +372,7 @@ void WavefrontPathTracer::createPipelines(const PipelineShaders& shaders,
   shaderBindingTable_ = std::move(table.buffer);
   traceRaygenRegion_ = table.regions[0];
   shadowRaygenRegion_ = table.regions[1];
-  if (tracedInputs_)
+  if (tracesFromHits)
     tracedInputsRaygenRegion_ = table.regions[2];
   missRegion_ = table.regions[raygens];
   hitRegion_ = table.regions[raygens + 1];
@@ -397,7 +410,9 @@ void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pas
       launchOffset = offsetof(gpu::WavefrontControl, shadowLaunch);
       raygen = &shadowRaygenRegion_;
     } else if (pass == gpu::kWavefrontTracedInputs) {
-      launchOffset = offsetof(gpu::WavefrontControl, tracedLaunch);
+      // The AO integrator's pass runs over the live queue, the traced inputs' over their hits.
+      if (!ambientOcclusionIntegrator_)
+        launchOffset = offsetof(gpu::WavefrontControl, tracedLaunch);
       raygen = &tracedInputsRaygenRegion_;
     }
     const VkStridedDeviceAddressRegionKHR callables{};
@@ -434,7 +449,9 @@ void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pas
       break;
     case gpu::kWavefrontTracedInputs:
       vkCmdDispatchIndirect(commands, control_.buffer(),
-                            offsetof(gpu::WavefrontControl, tracedGroups));
+                            ambientOcclusionIntegrator_
+                                ? offsetof(gpu::WavefrontControl, liveGroups)
+                                : offsetof(gpu::WavefrontControl, tracedGroups));
       break;
     case gpu::kWavefrontBinCount:
     case gpu::kWavefrontBinScatter:

@@ -54,6 +54,9 @@ struct WavefrontSetup {
   // storage-buffer range and work-group count allow); a round over more pixels runs in
   // chunks of at most that many, one after another.
   std::uint32_t pathSlots = 0;
+  // The AO integrator (--integrator ao, MG_INTEGRATOR_AO in the defines; no materials): a
+  // round is generate, trace, the traced-inputs pass computing each hit's AO, and finish.
+  bool ambientOcclusionIntegrator = false;
   // Threads compiling the GLSL and creating the pipelines; 0: one per core.
   std::uint32_t compileThreads = 0;
 };
@@ -135,6 +138,9 @@ class WavefrontPathTracer final : public FrameTracer {
   bool lightPoints_ = false;  // WavefrontSetup::emitterGraphs
   // Some material reads a traced input: the traced-inputs pass after the hits' scatter.
   bool tracedInputs_ = false;
+  // The AO integrator: rounds of generate, trace, the traced-inputs pass (its AO rays over
+  // the live queue) and finish.
+  bool ambientOcclusionIntegrator_ = false;
   std::uint32_t pixels_ = 0;
   std::uint32_t slots_ = 0;   // paths in flight: a pixel's each, up to the capacity
   std::uint32_t chunks_ = 1;  // chunks of at most slots_ pixels a round takes
@@ -171,10 +177,10 @@ class WavefrontPathTracer final : public FrameTracer {
   std::vector<std::vector<std::uint32_t>> compileMaterialPasses(
       ShaderCompiler& compiler, const LinkedMaterials& materials,
       const std::vector<std::string>& defines, const WavefrontSetup& setup);
-  // The pipeline backend's trace and shadow raygens (with `tracedInputs` the traced-inputs
+  // The pipeline backend's trace and shadow raygens (with `tracesFromHits` the traced-inputs
   // raygen) and the report-only shaders, as compile requests appended to `requests`, with
   // their stages.
-  static void appendRayTracingRequests(const std::vector<std::string>& defines, bool tracedInputs,
+  static void appendRayTracingRequests(const std::vector<std::string>& defines, bool tracesFromHits,
                                        std::vector<ShaderCompileRequest>& requests,
                                        std::vector<VkShaderStageFlagBits>& stages);
   // Every pipeline (compute passes, material passes, the ray-tracing pipeline and its

@@ -20,7 +20,9 @@
 //   their bins first in the material-sorted queue) with the megakernel's estimators
 //   (ambient_occlusion.glsl, bevel.glsl) and keeps the results for the material passes
 //   (docs/design/traced-inputs.md): a compute shader with ray queries, or a raygen of the
-//   ray-tracing pipeline, as the trace pass;
+//   ray-tracing pipeline, as the trace pass; with the AO integrator (MG_INTEGRATOR_AO,
+//   --integrator ao) the same pass computes the integrator's AO at every live path's camera
+//   hit, and a round is generate, trace, this pass and finish;
 // - with the texel cache (MG_CACHE_TEXEL), MG_WAVEFRONT_LOOKUP first looks up every live hit
 //   of a whole uv-only material (thesis §5.3): a hit's cached values become its material
 //   outputs and only the misses are binned; the material passes insert what they evaluate
@@ -271,6 +273,16 @@ uint workgroupsFor(uint invocations) {
 // A material pass's work groups for `invocations` (kWavefrontMaterialWorkgroupSize).
 uint materialWorkgroupsFor(uint invocations) {
   return (invocations + kWavefrontMaterialWorkgroupSize - 1u) / kWavefrontMaterialWorkgroupSize;
+}
+
+// Whether every round's camera ray is the pixel centre's, traced once (--shared-primary); the
+// AO integrator ignores it, as the megakernel's ambientOcclusionPixel does.
+bool sharesPrimaryRay() {
+#ifdef MG_INTEGRATOR_AO
+  return false;
+#else
+  return (frame.path.z & kFlagSharedPrimaryRay) != 0u;
+#endif
 }
 
 // The pixel's sample index over frames: frame * P + the round's path.
@@ -560,7 +572,7 @@ void main() {
     control.liveGroups = uvec4(workgroupsFor(slots), 1u, 1u, 0u);
     control.liveLaunch = uvec4(slots, 1u, 1u, 0u);
     // With --shared-primary the later rounds' camera rays are round 0's hits, not traced.
-    bool traced = (frame.path.z & kFlagSharedPrimaryRay) == 0u || push.step.x == 0u;
+    bool traced = !sharesPrimaryRay() || push.step.x == 0u;
     if (traced) atomicAdd(counters.rays, slots);
   }
   if (slot >= slots) return;
@@ -570,7 +582,7 @@ void main() {
   // --shared-primary (thesis §5.1): every round's camera ray through the pixel centre, traced
   // once for the P paths (round 0; the trace pass keeps its hit for the others), as the
   // megakernel traces it.
-  bool sharedPrimary = (frame.path.z & kFlagSharedPrimaryRay) != 0u;
+  bool sharedPrimary = sharesPrimaryRay();
   vec3 origin, direction;
   primaryRay(pixel, sharedPrimary ? vec2(0.5) : rngNext2(rng), origin, direction);
   pathState[fieldIndex(kFieldOrigin, slot)] = vec4(origin, 0.0);
@@ -801,6 +813,34 @@ void main() {
   uint bin = i < binnedCount() ? binToEvaluate(slot) : kNoBin;
   uint place = addToBinRecord(kBinRecords * bin + 1u, true, bin != kNoBin);
   if (bin != kNoBin) pathQueues[queueIndex(3u, place)] = slot;
+}
+
+#elif defined(MG_WAVEFRONT_TRACED_INPUTS) && defined(MG_INTEGRATOR_AO)
+// The AO integrator (--integrator ao): its rounds are generate, trace, this pass and finish.
+// Each live path's camera-ray hit gets the megakernel's estimate
+// (ambientOcclusionIntegratorAt), a miss 1 (nothing occludes the sky), as the path's
+// radiance, which the finish pass averages over the rounds. Every AO ray is counted.
+void main() {
+  uint i = invocationIndex();
+  uint rays = 0u;
+  if (i < control.counts.x) {
+    uint slot = pathQueues[queueIndex(push.step.z, i)];
+    float unoccluded = 1.0;
+    if (pathState[fieldIndex(kFieldRadiance, slot)].w >= 0.0) {
+      vec3 origin, direction;
+      RayCone cone;
+      SurfaceHit s = surfaceOfPath(slot, origin, direction, cone);
+      unoccluded =
+          ambientOcclusionIntegratorAt(s, pixelOfSlot(slot), sampleIndexOf(push.step.x), rays);
+    }
+    pathState[fieldIndex(kFieldRadiance, slot)] = vec4(vec3(unoccluded), 0.0);
+  }
+#ifdef MG_SUBGROUP_RAY_COUNT
+  uint subgroupRays = subgroupAdd(rays);
+  if (subgroupElect() && subgroupRays > 0u) atomicAdd(counters.rays, subgroupRays);
+#else
+  if (rays > 0u) atomicAdd(counters.rays, rays);
+#endif
 }
 
 #elif defined(MG_WAVEFRONT_TRACED_INPUTS)

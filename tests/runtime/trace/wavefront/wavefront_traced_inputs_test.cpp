@@ -188,6 +188,16 @@ TEST(WavefrontTracedInputs, TheirPassIsAComputePassOnlyOnTheQueryBackend) {
   EXPECT_EQ(wavefrontPipelineCount(choice), query + 1);
   const auto passes = wavefrontComputePasses(choice);
   EXPECT_NE(std::find(passes.begin(), passes.end(), gpu::kWavefrontTracedInputs), passes.end());
+  // The AO integrator (no graphs): generate, trace, the AO pass in the traced-inputs pass's
+  // slot and finish on the query backend; generate, finish and the ray-tracing pipeline (its
+  // third raygen) on the pipeline backend.
+  WavefrontPipelineChoice ambientOcclusion;
+  ambientOcclusion.ambientOcclusionIntegrator = true;
+  EXPECT_EQ(wavefrontComputePasses(ambientOcclusion),
+            (std::vector<std::uint32_t>{gpu::kWavefrontGenerate, gpu::kWavefrontTrace,
+                                        gpu::kWavefrontFinish, gpu::kWavefrontTracedInputs}));
+  ambientOcclusion.rayQuery = false;
+  EXPECT_EQ(wavefrontPipelineCount(ambientOcclusion), 3u);
   choice.materialGraphs = 0;  // the floor: no graph reads anything
   const auto floorPasses = wavefrontComputePasses(choice);
   EXPECT_EQ(std::find(floorPasses.begin(), floorPasses.end(), gpu::kWavefrontTracedInputs),
