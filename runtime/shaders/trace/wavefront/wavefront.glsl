@@ -861,7 +861,7 @@ void main() {
     vec3 origin, direction;
     RayCone cone;
     SurfaceHit s = surfaceOfPath(slot, origin, direction, cone);
-    bool sharedCameraRay = push.step.y == 0u && (frame.path.z & kFlagSharedPrimaryRay) != 0u;
+    bool sharedCameraRay = push.step.y == 0u && sharesPrimaryRay();
     Rng rng = tracedInputsRng(pixelOfSlot(slot), sampleIndexOf(sharedCameraRay ? 0u : push.step.x),
                               push.step.y + 1u, frame.image.w);
     setTracedInputs(s, rng, rays);
