@@ -87,7 +87,8 @@ struct RendererOptions {
   // (RenderResult::cullingView; 0: none).
   std::uint32_t debugCullingSize = 0;
   // What a pixel holds: the path tracer's radiance, or the ray-traced AO workload's
-  // unoccluded fraction (seeds/004 §3; runtime/trace/integrator.h, megakernel only).
+  // unoccluded fraction (seeds/004 §3; runtime/trace/integrator.h; auto runs it in the
+  // megakernel).
   Integrator integrator = Integrator::Path;
   AmbientOcclusionOptions ambientOcclusion;  // Integrator::AmbientOcclusion's rays
 };

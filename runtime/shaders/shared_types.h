@@ -109,8 +109,9 @@ MG_CONSTANT(uint, kFillWorkgroupSize, 64);
 
 // The wavefront path tracer's passes (MG_WAVEFRONT_PASS, wavefront.glsl), in the order one
 // bounce records them: generate once a round, then trace, (with material graphs: with the
-// texel cache a lookup, then bin count, bin offsets, bin scatter, one material pass per
-// graph,) shade, queue and shadow per bounce, finish once a round.
+// texel cache a lookup, then bin count, bin offsets, bin scatter, with traced inputs the
+// traced-inputs pass, one material pass per graph,) shade, queue and shadow per bounce,
+// finish once a round.
 MG_CONSTANT(uint, kWavefrontGenerate, 0);
 MG_CONSTANT(uint, kWavefrontTrace, 1);
 MG_CONSTANT(uint, kWavefrontShade, 2);
@@ -122,7 +123,8 @@ MG_CONSTANT(uint, kWavefrontBinOffsets, 7);
 MG_CONSTANT(uint, kWavefrontBinScatter, 8);
 MG_CONSTANT(uint, kWavefrontMaterial, 9);
 MG_CONSTANT(uint, kWavefrontLookup, 10);
-MG_CONSTANT(uint, kWavefrontPassCount, 11);
+MG_CONSTANT(uint, kWavefrontTracedInputs, 11);
+MG_CONSTANT(uint, kWavefrontPassCount, 12);
 // Compute work-group size of the wavefront passes (one invocation per queued path).
 MG_CONSTANT(uint, kWavefrontWorkgroupSize, 64);
 // The material passes' work-group size: a graph keyed by its cut gathers the misses of a
@@ -148,6 +150,10 @@ MG_CONSTANT(uint, kPathStateFieldsForLightPoints, 2);
 // With materials of BSDF lobes (MG_BSDF_LOBES), two per lobe after those: its weight and kind,
 // its parameters (MaterialOutputs::lobeWeight, lobeParameters; MG_MAX_LOBES of them).
 MG_CONSTANT(uint, kPathStateFieldsForLobes, 8);
+// With materials that read a traced input (Ambient Occlusion, Bevel; MG_OMIT_TRACED_INPUTS
+// undefined), one more after those: the traced-inputs pass's Bevel normal and AO fraction at
+// the hit, for its material pass.
+MG_CONSTANT(uint, kPathStateFieldsForTracedInputs, 1);
 
 // The wavefront's queue counts and indirect arguments (binding kBindingWavefrontControl).
 // Each launch block is a VkDispatchIndirectCommand (work groups) or a
@@ -163,6 +169,10 @@ struct WavefrontControl {
   uvec4 liveLaunch;    // the pipeline backend's trace of the live queue
   uvec4 shadowGroups;  // the query backend's shadow pass
   uvec4 shadowLaunch;  // the pipeline backend's shadow pass
+  // With traced inputs: the hits whose material reads one, the material-sorted queue's first
+  // places (the bin offsets pass puts those bins first), for the traced-inputs pass.
+  uvec4 tracedGroups;  // the query backend's traced-inputs pass
+  uvec4 tracedLaunch;  // the pipeline backend's
 };
 // Push constants of every wavefront pass. A round of one path a pixel runs in chunks of at
 // most `slots` pixels when the image has more pixels than the path state has slots (its
@@ -393,7 +403,7 @@ struct Light {
 #ifdef __cplusplus
 static_assert(sizeof(TileQueueHeader) == 16 && sizeof(TileFillItem) == 32);
 static_assert(sizeof(VertexMotionJob) == 48 && sizeof(VertexMotionRest) == 48);
-static_assert(sizeof(WavefrontControl) == 80 && sizeof(WavefrontPush) == 32);
+static_assert(sizeof(WavefrontControl) == 112 && sizeof(WavefrontPush) == 32);
 static_assert(sizeof(Counters) % 16 == 0 &&
               offsetof(Counters, cacheOccupancy) == kCountersPerFrameUints * sizeof(uint));
 }  // namespace memograph::runtime::gpu

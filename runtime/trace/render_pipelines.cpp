@@ -123,7 +123,9 @@ std::unique_ptr<FrameTracer> buildWavefront(const ShaderBuild& b, ShaderCompiler
   setup.tileImage = cache.tileImageView() != VK_NULL_HANDLE;
   setup.emitterGraphs = b.inputs.materials->neeEvaluatesEmission && !b.floor;
   setup.lightPointGraphs = b.inputs.materials->neeEvaluatedGraphs;
-  setup.sharedPrimaryHits = b.settings.sharedPrimaryRay;
+  // The AO integrator ignores --shared-primary, as its megakernel does.
+  setup.ambientOcclusionIntegrator = b.options.integrator == Integrator::AmbientOcclusion;
+  setup.sharedPrimaryHits = b.settings.sharedPrimaryRay && !setup.ambientOcclusionIntegrator;
   setup.cutKeys = b.cutKeys;
   setup.pathSlots = b.options.wavefrontPaths;
   setup.compileThreads = b.options.shaderCompileThreads;

@@ -195,27 +195,12 @@ MaterialDispatch resolveMaterialDispatch(MaterialDispatch requested, Backend bac
 }
 
 // The architecture the render runs, refused where the options ask what it cannot do.
-ShadingChoice chooseShading(const RendererOptions& options, const VulkanContext& context,
-                            const SceneMaterials& materials) {
+ShadingChoice chooseShading(const RendererOptions& options, const VulkanContext& context) {
   ShadingDevice device;
   device.type = context.info().type;
   device.wavefrontTraces =
       context.backend() == Backend::RayQuery || context.info().traceRaysIndirect;
   ShadingChoice shading = resolveShading(options, device);
-  // A traced input's rays (Ambient Occlusion) are traced from the hit before the graph runs,
-  // which the megakernel does in place; the wavefront would need a pass of its own between
-  // its trace and material passes (docs/design/traced-inputs.md), which it does not have yet.
-  if (materials.linked.tracedInputs && !options.floorMaterials &&
-      options.integrator == Integrator::Path) {
-    const char* gap =
-        "the scene's materials read a traced input (Ambient Occlusion), whose rays only the "
-        "megakernel traces";
-    if (options.shading == Shading::Wavefront)
-      throw std::invalid_argument(std::string("--shading wavefront is a prototype: ") + gap +
-                                  " (--shading megakernel or auto)");
-    if (shading.shading == Shading::Wavefront)
-      shading = {Shading::Megakernel, gap};
-  }
   if (options.wavefrontPaths > 0 && shading.shading != Shading::Wavefront)
     throw std::invalid_argument(
         "--wavefront-paths sets the wavefront's paths in flight; it needs the wavefront, which "
@@ -322,7 +307,7 @@ RenderPlan planRender(const RendererOptions& options, const RenderSettings& sett
                       std::uint32_t feedbackPathWeight) {
   RenderPlan plan;
   plan.feedbackPathWeight = feedbackPathWeight;
-  plan.shading = chooseShading(options, context, materials);
+  plan.shading = chooseShading(options, context);
   plan.wavefront = plan.shading.shading == Shading::Wavefront;
   // The image is one storage buffer of 4 floats a pixel: refused before anything compiles
   // when the device cannot bind it whole.

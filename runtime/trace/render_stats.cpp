@@ -64,8 +64,9 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
          "blas_build_gpu_ms,tlas_build_gpu_ms,culling_host_ms,shading,"
          "wavefront_generate_gpu_ms,wavefront_trace_gpu_ms,wavefront_shade_gpu_ms,"
          "wavefront_queue_gpu_ms,wavefront_shadow_gpu_ms,wavefront_finish_gpu_ms,"
-         "wavefront_bin_gpu_ms,wavefront_material_gpu_ms,wavefront_lookup_gpu_ms,looks,look_gpu_"
-         "ms,look_rays,feedback_frame,trace_dispatches\n";
+         "wavefront_bin_gpu_ms,wavefront_material_gpu_ms,wavefront_lookup_gpu_ms,"
+         "wavefront_traced_inputs_gpu_ms,looks,look_gpu_ms,look_rays,feedback_frame,"
+         "trace_dispatches\n";
   const auto& a = s.accelerationStructures;
   for (const auto& f : s.frames) {
     double mraysPerSecond = f.gpuMilliseconds > 0 ? f.rays / (f.gpuMilliseconds * 1e3) : 0.0;
@@ -94,8 +95,9 @@ void writeStatsCsv(std::ostream& out, const RenderStats& s) {
         << f.wavefrontShadeMilliseconds << ',' << f.wavefrontQueueMilliseconds << ','
         << f.wavefrontShadowMilliseconds << ',' << f.wavefrontFinishMilliseconds << ','
         << f.wavefrontBinMilliseconds << ',' << f.wavefrontMaterialMilliseconds << ','
-        << f.wavefrontLookupMilliseconds << ',' << f.looks << ',' << f.lookMilliseconds << ','
-        << f.lookRays << ',' << f.feedbackFrame << ',' << f.traceDispatches << '\n';
+        << f.wavefrontLookupMilliseconds << ',' << f.wavefrontTracedInputsMilliseconds << ','
+        << f.looks << ',' << f.lookMilliseconds << ',' << f.lookRays << ',' << f.feedbackFrame
+        << ',' << f.traceDispatches << '\n';
   }
 }
 

@@ -97,6 +97,9 @@ struct FrameStats {
   // With the texel cache: the lookup pass (a hit's values read, a miss binned for its
   // material pass, which inserts it).
   double wavefrontLookupMilliseconds = 0.0;
+  // With materials that read a traced input (Ambient Occlusion, Bevel): the traced-inputs
+  // pass, which traces their rays from those materials' hits.
+  double wavefrontTracedInputsMilliseconds = 0.0;
   // Hits each material bin (distinct graph, in LinkedMaterials::distinct order) evaluated
   // over the frame's rounds and bounces. Not in the CSV.
   std::vector<std::uint32_t> wavefrontBinHits;

@@ -21,6 +21,9 @@ RendererOptions testOptions(Backend backend = Backend::Auto);
 Mesh quad(float size, float uvScale = 1.0f);
 // A unit sphere (smooth normals, UVs from longitude/latitude).
 Mesh sphere(int segments);
+// A unit cube about the origin as one mesh (flat normals, outward counter-clockwise faces):
+// Bevel looks only at its own instance, so the faces must not be instances of their own.
+Mesh unitCube();
 
 // Graph text of a material with a constant base color and roughness.
 std::string constantGraph(const std::string& name, glm::vec3 baseColor, float roughness);

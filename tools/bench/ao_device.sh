@@ -9,7 +9,8 @@
 #   run(kind="nvidia-h100-x1", carry=["bundle", ".gl"], timeout_s=600,
 #       command="OUT=$OUT bash tools/bench/ao_device.sh")
 # Arguments: SCENE... (default builtin:classroom builtin:landscape builtin:city:scale=0.25).
-# MEMOGRAPH=path picks another binary, SIZE=WxH another image size. Results: $OUT/ao_rays.csv (bench's CSV rows),
+# MEMOGRAPH=path picks another binary, SIZE=WxH another image size, SHADING=wavefront the
+# wavefront's AO passes (default auto: the megakernel). Results: $OUT/ao_rays.csv (bench's CSV rows),
 # $OUT/ao_log.txt (each run's summary), $OUT/env.txt (the GPU and driver).
 set -uo pipefail
 [ -n "${MEMOGRAPH:-}" ] || source bundle/device_env.sh
@@ -17,14 +18,16 @@ OUT=${OUT:-/tmp/out}
 mkdir -p "$OUT"
 m=${MEMOGRAPH:-bundle/memograph}
 size=${SIZE:-1920x1080}
+shading=${SHADING:-auto}
 nvidia-smi --query-gpu=name,driver_version --format=csv,noheader >"$OUT/env.txt" 2>&1
 [ $# -gt 0 ] || set -- builtin:classroom builtin:landscape builtin:city:scale=0.25
 for scene in "$@"; do
   for sps in 8 32; do
-    label="ao_$(echo "$scene" | tr -c 'a-zA-Z0-9\n' '_')_sps${sps}"
-    echo "== $label: $scene --ao-samples $sps" | tee -a "$OUT/ao_log.txt"
+    label="ao_$(echo "$scene" | tr -c 'a-zA-Z0-9\n' '_')_sps${sps}${SHADING:+_$SHADING}"
+    echo "== $label: $scene --ao-samples $sps --shading $shading" | tee -a "$OUT/ao_log.txt"
     timeout 90 "$m" bench "$scene" --sizes "$size" --paths 1 --integrator ao \
-      --ao-samples "$sps" --warmup 3 --frames 60 --time-limit 60 --shader-cache /tmp/sc \
+      --ao-samples "$sps" --shading "$shading" --warmup 3 --frames 60 --time-limit 60 \
+      --shader-cache /tmp/sc \
       --label "$label" --csv "/tmp/$label.csv" 2>&1 | tail -8 | tee -a "$OUT/ao_log.txt"
     echo "rc=${PIPESTATUS[0]}" | tee -a "$OUT/ao_log.txt"
     if [ -f "$OUT/ao_rays.csv" ]; then tail -n +2 "/tmp/$label.csv"; else cat "/tmp/$label.csv"; fi \

@@ -14,22 +14,26 @@
 # before it, so these render the first 100 cameras of the path one after another (--frames
 # sets how many) instead of every 10th. --tile-cache: the same with the default tile cache
 # (--cache tile; the megakernel's subgroup fill against the wavefront's material passes
-# computing the queued tiles).
+# computing the queued tiles). --traced-inputs: the graphs without a cache, each with an
+# Ambient Occlusion node of 8 samples on its base colour and a Bevel node of 4 as its normal
+# (the built-in scenes' ao=8,bevel=4; docs/design/traced-inputs.md): the wavefront's
+# traced-inputs pass against the megakernel's rays traced in place, in a call of its own.
 #   bash tools/bench/wavefront_floor_device.sh [--local] [--materials | --texel-cache |
-#        --tile-cache]
+#        --tile-cache | --traced-inputs]
 #        [--size WxH] [--frames N]
 # e.g. run(carry=["bundle", ".gl"], command="bash tools/bench/wavefront_floor_device.sh").
 # Results in $OUT: wavefront_rows.csv (one bench line a run, with the wavefront's pass
-# columns median_wavefront_{trace,shade,shadow,queue,bin,material,lookup}_gpu_ms) and
-# wavefront_log.txt.
+# columns median_wavefront_{trace,shade,shadow,queue,bin,material,lookup,traced_inputs}_gpu_ms)
+# and wavefront_log.txt.
 set -uo pipefail
-frames= size=1920x1080 local=0 materials=0 cache=()
+frames= size=1920x1080 local=0 materials=0 cache=() sceneOptions=
 while [ $# -gt 0 ]; do
   case $1 in
   --local) local=1; shift ;;
   --materials) materials=1; shift ;;
   --texel-cache) materials=1; cache=(--cache texel); shift ;;
   --tile-cache) materials=1; cache=(--cache tile); shift ;;
+  --traced-inputs) materials=1; sceneOptions=:ao=8,bevel=4; shift ;;
   --size) size=$2; shift 2 ;;
   --frames) frames=$2; shift 2 ;;
   *) echo "unknown argument $1" >&2; exit 2 ;;
@@ -52,7 +56,7 @@ for entry in $entries; do
     t0=$(date +%s)
     csv="/tmp/wavefront_${scene}_${shading}.csv"
     rm -f "$csv"
-    timeout "$limit" "$m" bench "builtin:$scene" --backend pipeline --sizes "$size" --paths 6 \
+    timeout "$limit" "$m" bench "builtin:$scene$sceneOptions" --backend pipeline --sizes "$size" --paths 6 \
       --bounces 4 --warmup 2 --frames "$frames" "${stride[@]}" $floor "${cache[@]}" \
       --shading "$shading" --time-limit $((limit - 15)) --label "$shading" \
       --shader-cache /tmp/wavefront_shaders --csv "$csv" 2>&1 | tail -6 | tee -a "$log"

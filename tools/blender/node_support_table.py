@@ -42,9 +42,9 @@ APPROXIMATIONS = {
     'ShaderNodeAttribute': 'the mesh\'s colour attribute only',
     'ShaderNodeAmbientOcclusion': 'rays about the interpolated normal (a linked Normal '
                                   'is warned and ignored); Distance and the settings must be '
-                                  'constants; the megakernel traces them',
+                                  'constants; both architectures trace them',
     'ShaderNodeBevel': 'a linked Normal is warned and ignored; Radius and Samples must be '
-                       'constants; the megakernel traces them (the first 4 hits of a disk ray, '
+                       'constants; both architectures trace them (the first 4 hits of a disk ray, '
                        'not a random 4)',
     'ShaderNodeLightPath': 'a Transparent BSDF\'s ray keeps the state it came with (a linked '
                            'Transparent Depth is 0); shadow rays evaluate no material (Is '

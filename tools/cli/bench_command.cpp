@@ -310,8 +310,10 @@ void printRun(const Bench& bench, const RunNames& names, const BenchRun& run) {
               << run.summary.medianWavefrontQueueMilliseconds << ", bin "
               << run.summary.medianWavefrontBinMilliseconds << ", material "
               << run.summary.medianWavefrontMaterialMilliseconds << ", lookup "
-              << run.summary.medianWavefrontLookupMilliseconds << "; " << stats.wavefrontPathSlots
-              << " paths in flight, " << stats.wavefrontChunks << " chunk(s) a round\n";
+              << run.summary.medianWavefrontLookupMilliseconds << ", traced inputs "
+              << run.summary.medianWavefrontTracedInputsMilliseconds << "; "
+              << stats.wavefrontPathSlots << " paths in flight, " << stats.wavefrontChunks
+              << " chunk(s) a round\n";
   if (run.stoppedEarly)
     std::cout << "  stopped by --time-limit " << *o.timeLimitSeconds << " s after "
               << stats.frames.size() << " of " << o.warmup + o.settings.frames << " frames ("

@@ -23,7 +23,8 @@ double median(std::vector<double> values) {
 
 TimedFrameSummary summarizeTimedFrames(std::span<const runtime::FrameStats> frames) {
   TimedFrameSummary summary;
-  std::vector<double> ms, mrays, hitRates, trace, shade, shadow, queue, bin, material, lookup;
+  std::vector<double> ms, mrays, hitRates, trace, shade, shadow, queue, bin, material, lookup,
+      traced;
   std::vector<std::vector<double> > counters(runtime::frameCounters({}).size());
   for (const auto& frame : frames) {
     ms.push_back(frame.gpuMilliseconds);
@@ -36,6 +37,7 @@ TimedFrameSummary summarizeTimedFrames(std::span<const runtime::FrameStats> fram
     bin.push_back(frame.wavefrontBinMilliseconds);
     material.push_back(frame.wavefrontMaterialMilliseconds);
     lookup.push_back(frame.wavefrontLookupMilliseconds);
+    traced.push_back(frame.wavefrontTracedInputsMilliseconds);
     summary.cacheLookups += frame.cacheLookups;
     summary.cacheHits += frame.cacheHits;
     const auto values = runtime::frameCounters(frame);
@@ -52,6 +54,7 @@ TimedFrameSummary summarizeTimedFrames(std::span<const runtime::FrameStats> fram
   summary.medianWavefrontBinMilliseconds = median(std::move(bin));
   summary.medianWavefrontMaterialMilliseconds = median(std::move(material));
   summary.medianWavefrontLookupMilliseconds = median(std::move(lookup));
+  summary.medianWavefrontTracedInputsMilliseconds = median(std::move(traced));
   summary.totalCacheHitRate =
       summary.cacheLookups ? double(summary.cacheHits) / double(summary.cacheLookups) : 0.0;
   const auto names = runtime::frameCounters({});
@@ -89,19 +92,21 @@ std::string wavefrontPassCsvColumns() {
   return "median_wavefront_trace_gpu_ms,median_wavefront_shade_gpu_ms,"
          "median_wavefront_shadow_gpu_ms,median_wavefront_queue_gpu_ms,"
          "median_wavefront_bin_gpu_ms,median_wavefront_material_gpu_ms,"
-         "median_wavefront_lookup_gpu_ms,wavefront_paths,wavefront_chunks";
+         "median_wavefront_lookup_gpu_ms,median_wavefront_traced_inputs_gpu_ms,wavefront_paths,"
+         "wavefront_chunks";
 }
 
 std::string wavefrontPassCsvValues(const TimedFrameSummary& summary,
                                    const runtime::RenderStats& stats) {
   if (stats.shading != "wavefront")
-    return ",,,,,,,,";
+    return ",,,,,,,,,";
   std::ostringstream out;
   out << summary.medianWavefrontTraceMilliseconds << ',' << summary.medianWavefrontShadeMilliseconds
       << ',' << summary.medianWavefrontShadowMilliseconds << ','
       << summary.medianWavefrontQueueMilliseconds << ',' << summary.medianWavefrontBinMilliseconds
       << ',' << summary.medianWavefrontMaterialMilliseconds << ','
-      << summary.medianWavefrontLookupMilliseconds << ',' << stats.wavefrontPathSlots << ','
+      << summary.medianWavefrontLookupMilliseconds << ','
+      << summary.medianWavefrontTracedInputsMilliseconds << ',' << stats.wavefrontPathSlots << ','
       << stats.wavefrontChunks;
   return out.str();
 }

@@ -32,6 +32,7 @@ struct TimedFrameSummary {
   double medianWavefrontBinMilliseconds = 0.0;
   double medianWavefrontMaterialMilliseconds = 0.0;
   double medianWavefrontLookupMilliseconds = 0.0;
+  double medianWavefrontTracedInputsMilliseconds = 0.0;
 };
 
 TimedFrameSummary summarizeTimedFrames(std::span<const runtime::FrameStats> frames);

@@ -52,7 +52,9 @@ constexpr std::string_view kIntro =
     "pack (.mgpack, written by 'memograph pack'; its camera path is followed unless\n"
     "--camera-path is given), or a built-in scene (classroom, landscape, city) with\n"
     "options octaves, layers, terrain, nee, scale, path (the city's camera: street or\n"
-    "aerial), e.g. builtin:classroom:octaves=10,layers=3 (docs/guide/scenes.md).\n";
+    "aerial), ao and bevel (samples of an Ambient Occlusion and a Bevel node in every\n"
+    "material; default 0, none), e.g. builtin:classroom:octaves=10,layers=3\n"
+    "(docs/guide/scenes.md).\n";
 
 std::string imageExtension(const std::string& path) {
   std::string extension = std::filesystem::path(path).extension().string();

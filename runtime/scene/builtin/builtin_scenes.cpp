@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <stdexcept>
+#include <tuple>
 
 namespace memograph::runtime {
 
@@ -15,6 +16,11 @@ std::string terrainRange() {
 std::string octavesRange() {
   return "octaves (noise octaves of every generated material) is an integer in " +
          std::to_string(kMinOctaves) + ".." + std::to_string(kMaxOctaves);
+}
+std::string tracedSamplesRange(const char* key, const char* node) {
+  return std::string(key) + " (the samples of an " + node +
+         " node in every generated material; 0: none) is an integer in 0.." +
+         std::to_string(kMaxTracedInputSamples);
 }
 std::string layersRange() {
   return "layers (extra layers of every generated material) is an integer in " +
@@ -93,6 +99,14 @@ std::optional<BuiltinSceneSpec> parseBuiltinSceneSpec(std::string_view text, std
       if (number < kMinLayers || number > kMaxLayers)
         return outOfRange(layersRange());
       spec.options.materialCost.layers = number;
+    } else if (key == "ao") {
+      if (number < 0 || number > kMaxTracedInputSamples)
+        return outOfRange(tracedSamplesRange("ao", "Ambient Occlusion"));
+      spec.options.materialCost.ambientOcclusionSamples = number;
+    } else if (key == "bevel") {
+      if (number < 0 || number > kMaxTracedInputSamples)
+        return outOfRange(tracedSamplesRange("bevel", "Bevel"));
+      spec.options.materialCost.bevelSamples = number;
     } else if (key == "terrain") {
       if (number < kMinTerrainCells || number > kMaxTerrainCells)
         return outOfRange(terrainRange());
@@ -106,7 +120,7 @@ std::optional<BuiltinSceneSpec> parseBuiltinSceneSpec(std::string_view text, std
       spec.options.emissiveNee = number == 1;
     } else {
       error = "unknown option '" + std::string(key) + "' for built-in scene '" + spec.name +
-              "'; known options: octaves, layers, terrain, nee, scale, path";
+              "'; known options: octaves, layers, terrain, nee, scale, path, ao, bevel";
       return std::nullopt;
     }
   }
@@ -123,6 +137,12 @@ Scene makeBuiltinScene(std::string_view name, const BuiltinSceneOptions& options
   if (options.materialCost.layers < kMinLayers || options.materialCost.layers > kMaxLayers)
     throw std::invalid_argument("built-in scene option " + layersRange() + ", got " +
                                 std::to_string(options.materialCost.layers));
+  for (const auto& [samples, key, node] :
+       {std::tuple(options.materialCost.ambientOcclusionSamples, "ao", "Ambient Occlusion"),
+        std::tuple(options.materialCost.bevelSamples, "bevel", "Bevel")})
+    if (samples < 0 || samples > kMaxTracedInputSamples)
+      throw std::invalid_argument("built-in scene option " + tracedSamplesRange(key, node) +
+                                  ", got " + std::to_string(samples));
   if (name == "classroom")
     return makeClassroomScene(options);
   if (name == "landscape")

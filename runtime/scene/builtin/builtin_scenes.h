@@ -25,6 +25,9 @@ enum class CityCameraPath { Street, Aerial };
 // The options' ranges (parseBuiltinSceneSpec and makeBuiltinScene refuse others).
 inline constexpr int kMinTerrainCells = 2, kMaxTerrainCells = 4096;
 inline constexpr int kMinOctaves = 1, kMaxOctaves = 16;
+// The ao and bevel options' samples: the compiler's range of the nodes' Samples
+// (docs/design/traced-inputs.md), 0 for none.
+inline constexpr int kMaxTracedInputSamples = 128;
 inline constexpr int kMinLayers = 0, kMaxLayers = 16;
 
 struct BuiltinSceneOptions {

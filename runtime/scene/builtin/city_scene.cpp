@@ -160,7 +160,9 @@ struct CityMaterials {
 };
 
 CityMaterials addCityMaterials(SceneBuilder& b, const MaterialCost& cost) {
-  const MaterialCost light{std::max(1, cost.octaves / 2), 0};
+  // Half the octaves and no layers; the traced inputs as the others.
+  const MaterialCost light{std::max(1, cost.octaves / 2), 0, cost.ambientOcclusionSamples,
+                           cost.bevelSamples};
   CityMaterials m;
   const glm::vec3 facadeColours[6] = {{0.82f, 0.78f, 0.70f}, {0.70f, 0.55f, 0.45f},
                                       {0.60f, 0.62f, 0.66f}, {0.85f, 0.84f, 0.80f},

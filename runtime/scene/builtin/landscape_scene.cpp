@@ -24,7 +24,9 @@ Scene makeLandscapeScene(const BuiltinSceneOptions& options) {
   SceneBuilder b(options.onGeometry);
   const MaterialCost cost = options.materialCost;
   // Cheap objects keep their own detail low: the terrain is the one expensive material.
-  const MaterialCost light{std::max(1, cost.octaves / 2), 0};
+  // Half the octaves and no layers; the traced inputs as the others.
+  const MaterialCost light{std::max(1, cost.octaves / 2), 0, cost.ambientOcclusionSamples,
+                           cost.bevelSamples};
   const TerrainParams terrainParams{};
   const auto terrain =
       b.material("Landscape_Terrain", terrainGraph("Landscape_Terrain", terrainParams, cost));

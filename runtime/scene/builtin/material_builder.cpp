@@ -8,6 +8,32 @@ namespace {
 using A = GraphArg;
 }  // namespace
 
+MaterialBuilder::MaterialBuilder(std::string name, int ambientOcclusionSamples, int bevelSamples)
+    : graph_(std::move(name)), ambientOcclusionSamples_(ambientOcclusionSamples) {
+  if (bevelSamples > 0) {
+    const GraphLink normal = graph_.newLink();
+    graph_.node("Bevel", {A::constant("Radius", 0.05f),
+                          A::constant("Samples", static_cast<float>(bevelSamples)),
+                          A::out("Normal", normal)});
+    graph_.node("NormalOutput", {A::in("In", normal)});
+  }
+}
+
+void MaterialBuilder::baseColorOutput(GraphArg color) {
+  if (ambientOcclusionSamples_ > 0) {
+    const GraphLink occluded = graph_.newLink();
+    color.socket = "Color";
+    graph_.node("AmbientOcclusion",
+                {color, A::constant("Distance", 1.0f),
+                 A::constant("Samples", static_cast<float>(ambientOcclusionSamples_)),
+                 A::out("Out", occluded)});
+    graph_.node("BaseColorOutput", {A::in("In", occluded)});
+    return;
+  }
+  color.socket = "In";
+  graph_.node("BaseColorOutput", {color});
+}
+
 GraphLink MaterialBuilder::uv() {
   const GraphLink out = graph_.newLink();
   graph_.node("UVInput", {A::out("Out", out)});
@@ -138,10 +164,10 @@ GraphLink MaterialBuilder::mix(GraphLink fac, float a, float b) {
 }
 
 void MaterialBuilder::baseColor(GraphLink color) {
-  graph_.node("BaseColorOutput", {A::in("In", color)});
+  baseColorOutput(A::in("In", color));
 }
 void MaterialBuilder::baseColor(glm::vec3 color) {
-  graph_.node("BaseColorOutput", {A::constant("In", color)});
+  baseColorOutput(A::constant("In", color));
 }
 void MaterialBuilder::roughness(GraphLink value) {
   graph_.node("RoughnessOutput", {A::in("In", value)});

@@ -13,7 +13,10 @@ namespace memograph::runtime {
 
 class MaterialBuilder {
  public:
-  explicit MaterialBuilder(std::string name) : graph_(std::move(name)) {}
+  // `ambientOcclusionSamples` > 0: the base colour goes through an Ambient Occlusion node
+  // (Blender's default Distance, 1) of that many samples; `bevelSamples` > 0: the normal is a
+  // Bevel node's (Blender's default Radius, 0.05) of that many samples. Both traced inputs.
+  explicit MaterialBuilder(std::string name, int ambientOcclusionSamples = 0, int bevelSamples = 0);
 
   // Inputs and arithmetic.
   GraphLink uv();  // float2 texture coordinates
@@ -56,6 +59,9 @@ class MaterialBuilder {
 
  private:
   GraphWriter graph_;
+  int ambientOcclusionSamples_ = 0;
+  // The base colour, through the Ambient Occlusion node where there is one.
+  void baseColorOutput(GraphArg color);
 };
 
 }  // namespace memograph::runtime

@@ -35,7 +35,7 @@ glm::vec2 RecipeSeed::offset() const {
 
 std::string woodGraph(const std::string& name, const WoodParams& p, RecipeSeed seed,
                       MaterialCost cost) {
-  MaterialBuilder b(name);
+  MaterialBuilder b(name, cost.ambientOcclusionSamples, cost.bevelSamples);
   const GraphLink uv = b.uv();
   // Grain: noise stretched along u, turned into growth rings by taking the fraction of a
   // multiple of it.
@@ -53,7 +53,7 @@ std::string woodGraph(const std::string& name, const WoodParams& p, RecipeSeed s
 
 std::string paintedMetalGraph(const std::string& name, const PaintedMetalParams& p, RecipeSeed seed,
                               MaterialCost cost) {
-  MaterialBuilder b(name);
+  MaterialBuilder b(name, cost.ambientOcclusionSamples, cost.bevelSamples);
   const GraphLink uv = b.transformUv(b.uv(), {1.0f, 1.0f}, seed.offset());
   // Wear: large blotches where the noise exceeds 1 - wear, chipped at their edges by
   // voronoi cells.
@@ -73,7 +73,7 @@ std::string paintedMetalGraph(const std::string& name, const PaintedMetalParams&
 
 std::string plasticGraph(const std::string& name, const PlasticParams& p, RecipeSeed seed,
                          MaterialCost cost) {
-  MaterialBuilder b(name);
+  MaterialBuilder b(name, cost.ambientOcclusionSamples, cost.bevelSamples);
   const GraphLink uv = b.transformUv(b.uv(), {1.0f, 1.0f}, seed.offset());
   const GraphLink mottling = b.noise(uv, 5.0f, cost.octaves, 0.5f);
   const GraphLink speckles = b.voronoiDistance(uv, 80.0f);
@@ -88,7 +88,7 @@ std::string plasticGraph(const std::string& name, const PlasticParams& p, Recipe
 
 std::string fabricGraph(const std::string& name, const FabricParams& p, RecipeSeed seed,
                         MaterialCost cost) {
-  MaterialBuilder b(name);
+  MaterialBuilder b(name, cost.ambientOcclusionSamples, cost.bevelSamples);
   const GraphLink uv = b.transformUv(b.uv(), {1.0f, 1.0f}, seed.offset());
   // Weave: a fine checker decides warp or weft; fibres are noise stretched along each.
   const GraphLink weave = b.checker(uv, p.threadsPerMetre);
@@ -107,7 +107,7 @@ std::string fabricGraph(const std::string& name, const FabricParams& p, RecipeSe
 
 std::string tileGraph(const std::string& name, const TileParams& p, RecipeSeed seed,
                       MaterialCost cost) {
-  MaterialBuilder b(name);
+  MaterialBuilder b(name, cost.ambientOcclusionSamples, cost.bevelSamples);
   const GraphLink uv = b.transformUv(b.uv(), {1.0f, 1.0f}, seed.offset());
   const float tilesPerMetre = 1.0f / p.tileSize;
   const GraphLink mortar = b.brick(uv, tilesPerMetre, p.checker ? 0.03f : 0.05f);
@@ -129,7 +129,7 @@ std::string tileGraph(const std::string& name, const TileParams& p, RecipeSeed s
 
 std::string plasterGraph(const std::string& name, const PlasterParams& p, RecipeSeed seed,
                          MaterialCost cost) {
-  MaterialBuilder b(name);
+  MaterialBuilder b(name, cost.ambientOcclusionSamples, cost.bevelSamples);
   const GraphLink uv = b.transformUv(b.uv(), {1.0f, 1.0f}, seed.offset());
   const GraphLink blotches = b.noise(uv, 1.5f, cost.octaves, 0.55f);
   const GraphLink grain = b.noise(uv, 60.0f, cost.octaves, 0.7f);
@@ -143,7 +143,7 @@ std::string plasterGraph(const std::string& name, const PlasterParams& p, Recipe
 
 std::string chalkboardGraph(const std::string& name, const ChalkboardParams& p, RecipeSeed seed,
                             MaterialCost cost) {
-  MaterialBuilder b(name);
+  MaterialBuilder b(name, cost.ambientOcclusionSamples, cost.bevelSamples);
   const GraphLink uv = b.transformUv(b.uv(), {1.0f, 1.0f}, seed.offset());
   // Wiped chalk: broad horizontal smears plus fine dust.
   const GraphLink smears =
@@ -159,7 +159,7 @@ std::string chalkboardGraph(const std::string& name, const ChalkboardParams& p, 
 
 std::string leatherGraph(const std::string& name, const LeatherParams& p, RecipeSeed seed,
                          MaterialCost cost) {
-  MaterialBuilder b(name);
+  MaterialBuilder b(name, cost.ambientOcclusionSamples, cost.bevelSamples);
   const GraphLink uv = b.transformUv(b.uv(), {1.0f, 1.0f}, seed.offset());
   // Leather grain: small voronoi cells, their borders darker, over mottled noise.
   const GraphLink cells = b.voronoiDistance(uv, 150.0f);
@@ -174,7 +174,7 @@ std::string leatherGraph(const std::string& name, const LeatherParams& p, Recipe
 
 std::string posterGraph(const std::string& name, const PosterParams& p, RecipeSeed seed,
                         MaterialCost cost) {
-  MaterialBuilder b(name);
+  MaterialBuilder b(name, cost.ambientOcclusionSamples, cost.bevelSamples);
   const GraphLink uv = b.transformUv(b.uv(), {1.0f, 1.0f}, seed.offset());
   // An abstract print: coloured voronoi cells blended between two inks, faded by noise.
   const GraphLink cells = b.voronoiColor(uv, p.cellsPerMetre);
@@ -190,7 +190,7 @@ std::string posterGraph(const std::string& name, const PosterParams& p, RecipeSe
 
 std::string corkGraph(const std::string& name, const CorkParams& p, RecipeSeed seed,
                       MaterialCost cost) {
-  MaterialBuilder b(name);
+  MaterialBuilder b(name, cost.ambientOcclusionSamples, cost.bevelSamples);
   const GraphLink uv = b.transformUv(b.uv(), {1.0f, 1.0f}, seed.offset());
   const GraphLink granules = b.voronoiDistance(uv, 300.0f);
   const GraphLink tone = b.noise(uv, 40.0f, cost.octaves, 0.7f);
@@ -226,7 +226,7 @@ std::string mirrorGraph(const std::string& name) {
 }
 
 std::string terrainGraph(const std::string& name, const TerrainParams& p, MaterialCost cost) {
-  MaterialBuilder b(name);
+  MaterialBuilder b(name, cost.ambientOcclusionSamples, cost.bevelSamples);
   const GraphLink uv = b.uv();
   const float perMetre = p.metresPerUv;  // noise Scale s over UV = s / metresPerUv per metre
   // Layers, each with its own multi-octave detail.
@@ -267,7 +267,7 @@ std::string terrainGraph(const std::string& name, const TerrainParams& p, Materi
 
 std::string rockGraph(const std::string& name, const RockParams& p, RecipeSeed seed,
                       MaterialCost cost) {
-  MaterialBuilder b(name);
+  MaterialBuilder b(name, cost.ambientOcclusionSamples, cost.bevelSamples);
   const GraphLink uv = b.transformUv(b.uv(), {1.0f, 1.0f}, seed.offset());
   const GraphLink cells = b.voronoiDistance(uv, 3.0f);
   const GraphLink grain = b.noise(uv, 12.0f, cost.octaves, 0.65f);
@@ -280,7 +280,7 @@ std::string rockGraph(const std::string& name, const RockParams& p, RecipeSeed s
 
 std::string barkGraph(const std::string& name, const BarkParams& p, RecipeSeed seed,
                       MaterialCost cost) {
-  MaterialBuilder b(name);
+  MaterialBuilder b(name, cost.ambientOcclusionSamples, cost.bevelSamples);
   const GraphLink uv = b.transformUv(b.uv(), {6.0f, 1.0f}, seed.offset());
   const GraphLink furrows = b.noise(uv, 4.0f, cost.octaves, 0.6f);
   b.baseColor(b.mix(furrows, p.color * 0.5f, p.color * 1.3f));
@@ -290,7 +290,7 @@ std::string barkGraph(const std::string& name, const BarkParams& p, RecipeSeed s
 
 std::string foliageGraph(const std::string& name, const FoliageParams& p, RecipeSeed seed,
                          MaterialCost cost) {
-  MaterialBuilder b(name);
+  MaterialBuilder b(name, cost.ambientOcclusionSamples, cost.bevelSamples);
   const GraphLink uv = b.transformUv(b.uv(), {1.0f, 1.0f}, seed.offset());
   const GraphLink leaves = b.voronoiDistance(uv, 25.0f);
   const GraphLink tone = b.noise(uv, 3.0f, cost.octaves, 0.5f);

@@ -14,10 +14,15 @@ namespace memograph::runtime {
 
 // The cost knob of every recipe. `octaves` is the Detail of each noise node; `layers` adds
 // that many extra detail-noise layers mixed into the base colour (each one a full
-// multi-octave noise evaluation that cannot be pruned).
+// multi-octave noise evaluation that cannot be pruned). `ambientOcclusionSamples` and
+// `bevelSamples` (0: none) put an Ambient Occlusion node on the base colour and a Bevel node
+// on the normal (MaterialBuilder), whose rays the path tracer traces from every hit (traced
+// inputs, docs/design/traced-inputs.md).
 struct MaterialCost {
   int octaves = 6;
   int layers = 1;
+  int ambientOcclusionSamples = 0;
+  int bevelSamples = 0;
 };
 
 // Where in UV space a recipe's pattern sits: two materials from one recipe with different

@@ -67,8 +67,34 @@ float ambientOcclusion(vec3 position, vec3 normal, vec3 geometricNormal, uint in
   return float(unoccluded) / float(samples);
 }
 
+#ifdef MG_INTEGRATOR_AO
+// The AO integrator's value (--integrator ao, seeds/004 §3) at the hit `s` of sample
+// `sampleIndex`'s camera ray through pixel `pixelIndex`: MG_AO_SAMPLES rays of length
+// MG_AO_DISTANCE_BITS (float bits) about the geometric normal facing the camera, drawn with
+// the path vertex key 1 (key 0 jittered the camera ray). One function for the megakernel's
+// ambientOcclusionPixel and the wavefront's pass, so at one seed both trace the same rays.
+float ambientOcclusionIntegratorAt(SurfaceHit s, uint pixelIndex, uint sampleIndex,
+                                   inout uint rays) {
+  Rng rng = rngForPathVertex(pixelIndex, sampleIndex, 1u, frame.image.w);
+  return ambientOcclusion(s.inputs.position.v, s.geometricNormal, s.geometricNormal, s.object.x,
+                          uintBitsToFloat(uint(MG_AO_DISTANCE_BITS)), uint(MG_AO_SAMPLES), 0u,
+                          rng, rays);
+}
+#endif
+
 #ifndef MG_OMIT_TRACED_INPUTS
 #include "bevel.glsl"
+
+// The random numbers of the traced inputs at path vertex `vertexKey` (rng.glsl's key: bounce
+// + 1 for the bounce-th hit) of sample `sampleIndex` of pixel `pixelIndex`: the vertex's own
+// stream hashed apart, so the path's numbers stay as without the traced rays. One function
+// for the megakernel and the wavefront's traced-inputs pass, so at one seed both trace the
+// same rays.
+Rng tracedInputsRng(uint pixelIndex, uint sampleIndex, uint vertexKey, uint seed) {
+  Rng rng = rngForPathVertex(pixelIndex, sampleIndex, vertexKey, seed);
+  rng.key = pcgHash(rng.key ^ 0x6A09E667u);
+  return rng;
+}
 
 // Fills the traced inputs of hit `s` before its graph runs, with the settings its material's
 // metadata recorded (materials.glsl): the Ambient Occlusion node's fraction

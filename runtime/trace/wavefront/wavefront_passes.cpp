@@ -8,11 +8,22 @@ std::vector<std::uint32_t> wavefrontComputePasses(const WavefrontPipelineChoice&
   const bool materials = choice.materialGraphs > 0;
   std::vector<std::uint32_t> passes;
   for (std::uint32_t pass = 0; pass < gpu::kWavefrontPassCount; ++pass) {
-    const bool traces = pass == gpu::kWavefrontTrace || pass == gpu::kWavefrontShadow;
+    const bool traces = pass == gpu::kWavefrontTrace || pass == gpu::kWavefrontShadow ||
+                        pass == gpu::kWavefrontTracedInputs;
     const bool binning = pass == gpu::kWavefrontBinCount || pass == gpu::kWavefrontBinOffsets ||
                          pass == gpu::kWavefrontBinScatter;
+    if (choice.ambientOcclusionIntegrator) {
+      const bool used = pass == gpu::kWavefrontGenerate || pass == gpu::kWavefrontFinish ||
+                        ((pass == gpu::kWavefrontTrace || pass == gpu::kWavefrontTracedInputs) &&
+                         choice.rayQuery);
+      if (used)
+        passes.push_back(pass);
+      continue;
+    }
     if ((traces && !choice.rayQuery) || (binning && !materials) ||
-        pass == gpu::kWavefrontMaterial || (pass == gpu::kWavefrontLookup && !choice.cacheLookups))
+        pass == gpu::kWavefrontMaterial ||
+        (pass == gpu::kWavefrontLookup && !choice.cacheLookups) ||
+        (pass == gpu::kWavefrontTracedInputs && !(materials && choice.tracedInputs)))
       continue;
     passes.push_back(pass);
   }

@@ -23,11 +23,12 @@ constexpr std::array<const char*, gpu::kWavefrontPassCount> kPassDefines = {
     "MG_WAVEFRONT_GENERATE=1",  "MG_WAVEFRONT_TRACE=1",       "MG_WAVEFRONT_SHADE=1",
     "MG_WAVEFRONT_QUEUE=1",     "MG_WAVEFRONT_SHADOW=1",      "MG_WAVEFRONT_FINISH=1",
     "MG_WAVEFRONT_BIN_COUNT=1", "MG_WAVEFRONT_BIN_OFFSETS=1", "MG_WAVEFRONT_BIN_SCATTER=1",
-    "MG_WAVEFRONT_MATERIAL=1",  "MG_WAVEFRONT_LOOKUP=1"};
+    "MG_WAVEFRONT_MATERIAL=1",  "MG_WAVEFRONT_LOOKUP=1",      "MG_WAVEFRONT_TRACED_INPUTS=1"};
 constexpr std::array<const char*, gpu::kWavefrontPassCount> kPassNames = {
-    "wavefront generate",    "wavefront trace",    "wavefront shade",     "wavefront queue",
-    "wavefront shadow",      "wavefront finish",   "wavefront bin count", "wavefront bin offsets",
-    "wavefront bin scatter", "wavefront material", "wavefront lookup"};
+    "wavefront generate",  "wavefront trace",       "wavefront shade",
+    "wavefront queue",     "wavefront shadow",      "wavefront finish",
+    "wavefront bin count", "wavefront bin offsets", "wavefront bin scatter",
+    "wavefront material",  "wavefront lookup",      "wavefront traced inputs"};
 
 // Where each pass's GPU time goes in FrameStats, indexed by gpu::kWavefront*: the three
 // binning passes together, the material passes of a bounce together.
@@ -37,7 +38,7 @@ constexpr std::array<double FrameStats::*, gpu::kWavefrontPassCount> kPassTimes 
     &FrameStats::wavefrontShadowMilliseconds,   &FrameStats::wavefrontFinishMilliseconds,
     &FrameStats::wavefrontBinMilliseconds,      &FrameStats::wavefrontBinMilliseconds,
     &FrameStats::wavefrontBinMilliseconds,      &FrameStats::wavefrontMaterialMilliseconds,
-    &FrameStats::wavefrontLookupMilliseconds};
+    &FrameStats::wavefrontLookupMilliseconds,   &FrameStats::wavefrontTracedInputsMilliseconds};
 
 // The bytes of a bin's record after gpu::WavefrontControl: its material pass's dispatch
 // arguments, its hits' counts and its queued tiles' counts (shared_types.h).
@@ -52,7 +53,8 @@ std::uint32_t workgroupsFor(std::uint64_t invocations) {
 
 // The passes of a frame in recording order (the timestamp after each says when it ended);
 // kWavefrontMaterial stands for every bin's material pass of the bounce; `lookup`: the texel
-// cache's lookup before the binning; `lightPoints`: after the shadow pass the light samples'
+// cache's lookup before the binning; with traced inputs their pass between the hits' scatter
+// and the material passes; `lightPoints`: after the shadow pass the light samples'
 // points are binned and their emitters' graphs evaluated. Every chunk of pixels runs all P
 // rounds before the next.
 std::vector<WavefrontPathTracer::FramePass> WavefrontPathTracer::framePasses(
@@ -60,12 +62,23 @@ std::vector<WavefrontPathTracer::FramePass> WavefrontPathTracer::framePasses(
   const bool materials = !materialPasses_.empty();
   std::vector<FramePass> passes;
   auto binning = [&](bool lightPoints) {
-    for (std::uint32_t pass : {gpu::kWavefrontBinCount, gpu::kWavefrontBinOffsets,
-                               gpu::kWavefrontBinScatter, gpu::kWavefrontMaterial})
+    for (std::uint32_t pass :
+         {gpu::kWavefrontBinCount, gpu::kWavefrontBinOffsets, gpu::kWavefrontBinScatter})
       passes.push_back({pass, lightPoints});
+    // A light point's emitter graph reads no traced input (the megakernel traces none for it).
+    if (tracedInputs_ && !lightPoints)
+      passes.push_back({gpu::kWavefrontTracedInputs});
+    passes.push_back({gpu::kWavefrontMaterial, lightPoints});
   };
   for (std::uint32_t round = 0; round < chunks_ * paths; ++round) {
     passes.push_back({gpu::kWavefrontGenerate});
+    if (ambientOcclusionIntegrator_) {
+      // The AO integrator: the camera rays' hits and their AO rays, nothing shaded.
+      for (std::uint32_t pass :
+           {gpu::kWavefrontTrace, gpu::kWavefrontTracedInputs, gpu::kWavefrontFinish})
+        passes.push_back({pass});
+      continue;
+    }
     for (std::uint32_t bounce = 0; bounce < bounces; ++bounce) {
       passes.push_back({gpu::kWavefrontTrace});
       if (materials) {
@@ -93,15 +106,19 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
       query_(context.backend() == Backend::RayQuery),
       lookup_(setup.cacheLookups),
       lightPoints_(setup.emitterGraphs),
+      tracedInputs_(setup.materials && setup.materials->tracedInputs),
+      ambientOcclusionIntegrator_(setup.ambientOcclusionIntegrator),
       pixels_(width * height) {
   VkDevice device = context.device();
   const LinkedMaterials* materials = setup.materials;
   const std::uint32_t pathSlots = setup.pathSlots;
   // The renderer refuses both first, in the user's words (trace/shading.cpp, wavefrontGap).
-  if (((lookup_ || lightPoints_) && !materials) || (!query_ && !context.info().traceRaysIndirect))
+  if (((lookup_ || lightPoints_) && !materials) || (!query_ && !context.info().traceRaysIndirect) ||
+      (ambientOcclusionIntegrator_ && (materials || setup.sharedPrimaryHits)))
     throw std::logic_error(
-        "WavefrontPathTracer: a cache or emitters' graphs without material passes, or a "
-        "pipeline without indirect trace launches");
+        "WavefrontPathTracer: a cache or emitters' graphs without material passes, a "
+        "pipeline without indirect trace launches, or the AO integrator with materials or "
+        "shared camera hits");
   // The path state (vec4 fields a slot, four more for material outputs, one more for the
   // path state that Light Path reads, two more for light samples' points), the queues (two
   // live, one shadow, with materials the material-sorted one; a uint a slot) and the control
@@ -117,8 +134,11 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
                        (materials->pathInputs ? gpu::kPathStateFieldsForPathInputs : 0u) +
                        (lightPoints_ ? gpu::kPathStateFieldsForLightPoints : 0u);
   const bool lobes = materials && materials->bsdfLobes;
-  const std::uint32_t fieldsBeforePrimary =
+  // With traced inputs one more after the lobes' (MG_WAVEFRONT_TRACED_FIELD).
+  const std::uint32_t fieldsBeforeTraced =
       fieldsBeforeLobes + (lobes ? gpu::kPathStateFieldsForLobes : 0u);
+  const std::uint32_t fieldsBeforePrimary =
+      fieldsBeforeTraced + (tracedInputs_ ? gpu::kPathStateFieldsForTracedInputs : 0u);
   const std::uint32_t fields = fieldsBeforePrimary + (setup.sharedPrimaryHits ? 2u : 0u);
   // Paths in flight: as asked, else every pixel, or as many as one storage binding of path
   // state, a row of work groups and the largest allocation hold (lavapipe's 128 MiB range:
@@ -173,6 +193,19 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
     defines.push_back("MG_WAVEFRONT_PRIMARY_FIELD=" + std::to_string(fieldsBeforePrimary));
   if (lobes)
     defines.push_back("MG_WAVEFRONT_LOBE_FIELD=" + std::to_string(fieldsBeforeLobes));
+  if (tracedInputs_) {
+    defines.push_back("MG_WAVEFRONT_TRACED_FIELD=" + std::to_string(fieldsBeforeTraced));
+    // Per bin, whether its graph reads a traced input: those bins' hits go first in the
+    // material-sorted queue, the traced-inputs pass's range.
+    std::vector<bool> traced(bins, false);
+    for (const LinkedMaterial& material : materials->materials)
+      if (material.ambientOcclusionSamples > 0 || material.bevelSamples > 0)
+        traced[material.distinctIndex] = true;
+    std::string binTraced = "bool[](";
+    for (std::uint32_t bin = 0; bin < bins; ++bin)
+      binTraced += std::string(bin ? ", " : "") + (traced[bin] ? "true" : "false");
+    defines.push_back("MG_MATERIAL_BIN_TRACED=" + binTraced + ")");
+  }
   if (materials) {
     // Scene material id -> bin (its distinct graph), for the binning passes' lookup.
     std::string binOf = "uint[](";
@@ -192,6 +225,8 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   choice.rayQuery = query_;
   choice.materialGraphs = materials ? static_cast<std::uint32_t>(materials->distinct.size()) : 0;
   choice.cacheLookups = lookup_;
+  choice.tracedInputs = tracedInputs_;
+  choice.ambientOcclusionIntegrator = ambientOcclusionIntegrator_;
   PipelineShaders shaders;
   shaders.passes = wavefrontComputePasses(choice);
   std::vector<ShaderCompileRequest> requests;
@@ -203,7 +238,8 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
     requests.push_back({"wavefront.glsl", ShaderStage::Compute, std::move(passDefines)});
   }
   if (!query_)
-    appendRayTracingRequests(defines, requests, shaders.rayTracingStages);
+    appendRayTracingRequests(defines, tracedInputs_ || ambientOcclusionIntegrator_, requests,
+                             shaders.rayTracingStages);
   std::vector<std::vector<std::uint32_t>> spirv =
       compiler.compileAll(requests, setup.compileThreads);
   for (std::size_t i = 0; i < spirv.size(); ++i) {
@@ -250,12 +286,17 @@ std::vector<std::vector<std::uint32_t>> WavefrontPathTracer::compileMaterialPass
   return compileMaterialShaders(compiler, materials, request, materialShaderStats_);
 }
 
-// The ray-tracing pipeline's shaders, as compile requests: the trace and shadow raygens, then
-// the megakernel's miss and hit shaders (they only report the hit).
+// The ray-tracing pipeline's shaders, as compile requests: the trace and shadow raygens (and
+// with `tracesFromHits` the traced-inputs raygen: traced inputs or the AO integrator's rays),
+// then the megakernel's miss and hit shaders (they only report the hit).
 void WavefrontPathTracer::appendRayTracingRequests(const std::vector<std::string>& defines,
+                                                   bool tracesFromHits,
                                                    std::vector<ShaderCompileRequest>& requests,
                                                    std::vector<VkShaderStageFlagBits>& stages) {
-  for (std::uint32_t pass : {gpu::kWavefrontTrace, gpu::kWavefrontShadow}) {
+  std::vector<std::uint32_t> raygens = {gpu::kWavefrontTrace, gpu::kWavefrontShadow};
+  if (tracesFromHits)
+    raygens.push_back(gpu::kWavefrontTracedInputs);
+  for (std::uint32_t pass : raygens) {
     std::vector<std::string> raygenDefines = defines;
     raygenDefines.push_back(kPassDefines[pass]);
     requests.push_back({"wavefront.glsl", ShaderStage::RayGen, std::move(raygenDefines)});
@@ -317,15 +358,24 @@ void WavefrontPathTracer::createPipelines(const PipelineShaders& shaders,
   caches.merge();
   if (rayTracingJobs == 0)
     return;
-  // The table: [trace raygen][shadow raygen][miss, shadow miss][hit]; the pipeline keeps the
-  // spec's default stack.
-  ShaderBindingTable table = createShaderBindingTable(context_, rayTracing_.get(), 5,
-                                                      {{{0}, true}, {{1}, true}, {{2, 3}}, {{4}}});
+  // The table: [trace raygen][shadow raygen]([traced-inputs raygen])[miss, shadow miss][hit];
+  // the pipeline keeps the spec's default stack.
+  const bool tracesFromHits = tracedInputs_ || ambientOcclusionIntegrator_;
+  const std::uint32_t raygens = tracesFromHits ? 3 : 2;
+  std::vector<ShaderBindingRegion> regions;
+  for (std::uint32_t raygen = 0; raygen < raygens; ++raygen)
+    regions.push_back({{raygen}, true});
+  regions.push_back({{raygens, raygens + 1}});
+  regions.push_back({{raygens + 2}});
+  ShaderBindingTable table =
+      createShaderBindingTable(context_, rayTracing_.get(), raygens + 3, regions);
   shaderBindingTable_ = std::move(table.buffer);
   traceRaygenRegion_ = table.regions[0];
   shadowRaygenRegion_ = table.regions[1];
-  missRegion_ = table.regions[2];
-  hitRegion_ = table.regions[3];
+  if (tracesFromHits)
+    tracedInputsRaygenRegion_ = table.regions[2];
+  missRegion_ = table.regions[raygens];
+  hitRegion_ = table.regions[raygens + 1];
 }
 
 std::uint32_t WavefrontPathTracer::timestampCount(std::uint32_t paths,
@@ -349,18 +399,26 @@ void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pas
   VkShaderStageFlags stages = query_ ? VK_SHADER_STAGE_COMPUTE_BIT
                                      : VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_RAYGEN_BIT_KHR;
   vkCmdPushConstants(commands, layout_.get(), stages, 0, sizeof push, &push);
-  const bool traces = pass == gpu::kWavefrontTrace || pass == gpu::kWavefrontShadow;
+  const bool traces = pass == gpu::kWavefrontTrace || pass == gpu::kWavefrontShadow ||
+                      pass == gpu::kWavefrontTracedInputs;
   if (traces && !query_) {
-    // The launch size is the queue's count, written by the pass before (generate or queue).
-    const VkDeviceAddress launch =
-        control_.address() + (pass == gpu::kWavefrontTrace
-                                  ? offsetof(gpu::WavefrontControl, liveLaunch)
-                                  : offsetof(gpu::WavefrontControl, shadowLaunch));
+    // The launch size is the queue's count, written by the pass before (generate or queue),
+    // or for the traced inputs the bin offsets pass's count of their hits.
+    std::size_t launchOffset = offsetof(gpu::WavefrontControl, liveLaunch);
+    const VkStridedDeviceAddressRegionKHR* raygen = &traceRaygenRegion_;
+    if (pass == gpu::kWavefrontShadow) {
+      launchOffset = offsetof(gpu::WavefrontControl, shadowLaunch);
+      raygen = &shadowRaygenRegion_;
+    } else if (pass == gpu::kWavefrontTracedInputs) {
+      // The AO integrator's pass runs over the live queue, the traced inputs' over their hits.
+      if (!ambientOcclusionIntegrator_)
+        launchOffset = offsetof(gpu::WavefrontControl, tracedLaunch);
+      raygen = &tracedInputsRaygenRegion_;
+    }
     const VkStridedDeviceAddressRegionKHR callables{};
     vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_RAY_TRACING_KHR, rayTracing_.get());
-    context_.functions().cmdTraceRaysIndirect(
-        commands, pass == gpu::kWavefrontTrace ? &traceRaygenRegion_ : &shadowRaygenRegion_,
-        &missRegion_, &hitRegion_, &callables, launch);
+    context_.functions().cmdTraceRaysIndirect(commands, raygen, &missRegion_, &hitRegion_,
+                                              &callables, control_.address() + launchOffset);
     return;
   }
   if (pass == gpu::kWavefrontMaterial) {
@@ -388,6 +446,12 @@ void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pas
     case gpu::kWavefrontShadow:
       vkCmdDispatchIndirect(commands, control_.buffer(),
                             offsetof(gpu::WavefrontControl, shadowGroups));
+      break;
+    case gpu::kWavefrontTracedInputs:
+      vkCmdDispatchIndirect(commands, control_.buffer(),
+                            ambientOcclusionIntegrator_
+                                ? offsetof(gpu::WavefrontControl, liveGroups)
+                                : offsetof(gpu::WavefrontControl, tracedGroups));
       break;
     case gpu::kWavefrontBinCount:
     case gpu::kWavefrontBinScatter:

@@ -54,6 +54,9 @@ struct WavefrontSetup {
   // storage-buffer range and work-group count allow); a round over more pixels runs in
   // chunks of at most that many, one after another.
   std::uint32_t pathSlots = 0;
+  // The AO integrator (--integrator ao, MG_INTEGRATOR_AO in the defines; no materials): a
+  // round is generate, trace, the traced-inputs pass computing each hit's AO, and finish.
+  bool ambientOcclusionIntegrator = false;
   // Threads compiling the GLSL and creating the pipelines; 0: one per core.
   std::uint32_t compileThreads = 0;
 };
@@ -102,7 +105,8 @@ class WavefrontPathTracer final : public FrameTracer {
   const std::vector<MaterialPassSize>& materialPassSizes() const { return materialPassSizes_; }
 
   // Records one frame: per chunk of pixels, P rounds of one path a pixel, each generate, L x
-  // (trace, [[lookup,] bin count, bin offsets, bin scatter, material passes,] shade, queue,
+  // (trace, [[lookup,] bin count, bin offsets, bin scatter, [traced inputs,] material passes,]
+  // shade, queue,
   // shadow[, the light points' bin count, offsets, scatter and material passes]), finish, with
   // a barrier between passes. `countsHits`: the trace passes count LiPaC's hit feedback (a
   // tracer built with MG_HIT_FEEDBACK; the frame counts). `timestamps` VK_NULL_HANDLE: none.
@@ -132,6 +136,11 @@ class WavefrontPathTracer final : public FrameTracer {
   bool query_ = true;
   bool lookup_ = false;       // the texel cache's lookup pass
   bool lightPoints_ = false;  // WavefrontSetup::emitterGraphs
+  // Some material reads a traced input: the traced-inputs pass after the hits' scatter.
+  bool tracedInputs_ = false;
+  // The AO integrator: rounds of generate, trace, the traced-inputs pass (its AO rays over
+  // the live queue) and finish.
+  bool ambientOcclusionIntegrator_ = false;
   std::uint32_t pixels_ = 0;
   std::uint32_t slots_ = 0;   // paths in flight: a pixel's each, up to the capacity
   std::uint32_t chunks_ = 1;  // chunks of at most slots_ pixels a round takes
@@ -147,6 +156,7 @@ class WavefrontPathTracer final : public FrameTracer {
   GpuBuffer shaderBindingTable_;
   VkStridedDeviceAddressRegionKHR traceRaygenRegion_{};
   VkStridedDeviceAddressRegionKHR shadowRaygenRegion_{};
+  VkStridedDeviceAddressRegionKHR tracedInputsRaygenRegion_{};
   VkStridedDeviceAddressRegionKHR missRegion_{};
   VkStridedDeviceAddressRegionKHR hitRegion_{};
   GpuBuffer pathState_;
@@ -167,9 +177,10 @@ class WavefrontPathTracer final : public FrameTracer {
   std::vector<std::vector<std::uint32_t>> compileMaterialPasses(
       ShaderCompiler& compiler, const LinkedMaterials& materials,
       const std::vector<std::string>& defines, const WavefrontSetup& setup);
-  // The pipeline backend's trace and shadow raygens and the report-only shaders, as compile
-  // requests appended to `requests`, with their stages.
-  static void appendRayTracingRequests(const std::vector<std::string>& defines,
+  // The pipeline backend's trace and shadow raygens (with `tracesFromHits` the traced-inputs
+  // raygen) and the report-only shaders, as compile requests appended to `requests`, with
+  // their stages.
+  static void appendRayTracingRequests(const std::vector<std::string>& defines, bool tracesFromHits,
                                        std::vector<ShaderCompileRequest>& requests,
                                        std::vector<VkShaderStageFlagBits>& stages);
   // Every pipeline (compute passes, material passes, the ray-tracing pipeline and its

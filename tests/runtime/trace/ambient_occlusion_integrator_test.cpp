@@ -7,7 +7,9 @@
 // tolerances below.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -64,8 +66,10 @@ glm::dvec3 planePointOfPixel(const Camera& camera, int x, int y, int width, int 
 }
 
 RenderResult renderAmbientOcclusion(const Scene& scene, float distance, std::uint32_t samples,
-                                    RenderSettings& settings, Backend backend = Backend::Auto) {
+                                    RenderSettings& settings, Backend backend = Backend::Auto,
+                                    Shading shading = Shading::Auto) {
   RendererOptions options = testing::testOptions(backend);
+  options.shading = shading;
   options.integrator = Integrator::AmbientOcclusion;
   options.ambientOcclusion.distance = distance;
   options.ambientOcclusion.samples = samples;
@@ -158,7 +162,47 @@ TEST(AmbientOcclusionIntegrator, RefusesWhatItCannotDo) {
   options.ambientOcclusion.distance = 0.0f;
   EXPECT_NO_THROW(validateIntegratorOptions(options));
   options.shading = Shading::Wavefront;
-  EXPECT_THROW(validateWavefrontOptions(options), std::invalid_argument);
+  EXPECT_NO_THROW(validateWavefrontOptions(options));
+  // Auto keeps the megakernel, on a GPU too (the wavefront is not measured faster here).
+  options.shading = Shading::Auto;
+  EXPECT_EQ(resolveShading(options, {VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, true}).shading,
+            Shading::Megakernel);
+}
+
+// The wavefront runs the AO integrator as rounds of generate, trace, an AO pass (the
+// traced-inputs pass's slot) and finish, with the megakernel's estimator and random numbers
+// (ambientOcclusionIntegratorAt): at one seed the same picture (exactly: a pixel is a count
+// of unoccluded rays over the same rays) and the same rays, on both backends: 32x32, P = 2,
+// 8 AO rays of length 1 (the sphere, 0.5 above the plane, occludes part of it).
+TEST(AmbientOcclusionIntegrator, TheWavefrontGivesTheMegakernelsPictureAtOneSeed) {
+  const Scene scene = planeUnderSphere();
+  for (Backend backend : {Backend::RayQuery, Backend::RayTracingPipeline}) {
+    SCOPED_TRACE(backend == Backend::RayQuery ? "query" : "pipeline");
+    RenderSettings settings;
+    settings.pathsPerPixel = 2;
+    settings.seed = 7;
+    const RenderResult megakernel =
+        renderAmbientOcclusion(scene, 1.0f, 8, settings, backend, Shading::Megakernel);
+    const RenderResult wavefront =
+        renderAmbientOcclusion(scene, 1.0f, 8, settings, backend, Shading::Wavefront);
+    EXPECT_EQ(megakernel.stats.shading, "megakernel");
+    EXPECT_EQ(wavefront.stats.shading, "wavefront");
+    ASSERT_EQ(megakernel.image.rgba.size(), wavefront.image.rgba.size());
+    double largest = 0.0, mean = 0.0;
+    for (std::size_t i = 0; i < megakernel.image.rgba.size(); ++i) {
+      largest =
+          std::max(largest, double(std::abs(megakernel.image.rgba[i] - wavefront.image.rgba[i])));
+      mean += megakernel.image.rgba[i];
+    }
+    mean /= double(megakernel.image.rgba.size());
+    std::printf(
+        "AO integrator, wavefront against megakernel: largest difference %.3g (mean %.4f)\n",
+        largest, mean);
+    EXPECT_LT(largest, 1e-6);
+    EXPECT_LT(mean, 0.99);  // the sphere occludes: not a picture of ones
+    EXPECT_EQ(wavefront.stats.frames.back().rays, megakernel.stats.frames.back().rays);
+    EXPECT_GT(wavefront.stats.frames.back().wavefrontTracedInputsMilliseconds, 0.0);
+  }
 }
 
 }  // namespace

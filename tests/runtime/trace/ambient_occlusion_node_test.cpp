@@ -1,14 +1,14 @@
 // The Ambient Occlusion node in a material (a traced input, docs/design/traced-inputs.md):
 // the megakernel traces the node's rays from the hit before the graph runs, with the settings
-// the compiler recorded. Each probe material emits its AO (black base colour, one ray a path:
-// the pixel is the node's value), checked against analytic answers on both trace backends:
-// a plane under a sphere (1 - (r/d)^2 cos(theta), as the AO integrator's test), Only Local
-// (the sphere is another instance: exactly 1), and Inside on a sphere (a cosine-weighted
+// the compiler recorded (the wavefront's traced-inputs pass does the same, tested against the
+// megakernel in wavefront_traced_inputs_test.cpp). Each probe material emits its AO (black base
+// colour, one ray a path: the pixel is the node's value), checked against analytic answers on both
+// trace backends: a plane under a sphere (1 - (r/d)^2 cos(theta), as the AO integrator's test),
+// Only Local (the sphere is another instance: exactly 1), and Inside on a sphere (a cosine-weighted
 // chord 2 cos(theta) of a unit sphere is shorter than D with probability (D/2)^2).
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <stdexcept>
 #include <string>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -161,25 +161,10 @@ TEST(AmbientOcclusionNodeLinking, OnlyGraphsWithTheNodeTraceRays) {
   EXPECT_EQ(linked.materials[1].ambientOcclusionSamples, 4u);
   EXPECT_FLOAT_EQ(linked.materials[1].ambientOcclusionDistance, 0.5f);
   EXPECT_EQ(linked.materials[1].ambientOcclusionFlags, kAmbientOcclusionInside);
-  // Both dispatches' materials.glsl carry the table the megakernel reads.
+  // Both dispatches' materials.glsl carry the table the megakernel reads (the prelude is also
+  // the wavefront's: its traced-inputs pass reads it, wavefront_traced_inputs_test.cpp).
   EXPECT_NE(linked.source.find("mg_materialAmbientOcclusion"), std::string::npos);
   EXPECT_NE(linked.preludeSource.find("mg_materialAmbientOcclusion"), std::string::npos);
-}
-
-TEST(AmbientOcclusionNodeLinking, TheWavefrontIsRefusedAndAutoPicksTheMegakernel) {
-  const Scene scene = planeUnderSphere(aoProbe("PlaneAo", "Distance=1.0 Samples=1"));
-  RendererOptions options = testing::testOptions(Backend::RayQuery);
-  options.nodeLibraryDirectory.clear();
-  options.shading = Shading::Wavefront;
-  Renderer renderer(options);
-  RenderSettings settings;
-  settings.width = settings.height = 8;
-  try {
-    renderer.render(scene, settings);
-    FAIL() << "the wavefront rendered a scene with a traced input";
-  } catch (const std::invalid_argument& e) {
-    EXPECT_NE(std::string(e.what()).find("traced input"), std::string::npos) << e.what();
-  }
 }
 
 }  // namespace

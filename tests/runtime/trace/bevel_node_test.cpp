@@ -15,36 +15,13 @@
 namespace memograph::runtime {
 namespace {
 
-// A unit cube about the origin as one mesh (flat normals, outward counter-clockwise faces):
-// Bevel looks only at its own instance, so the faces must not be instances of their own.
-Mesh unitCube() {
-  Mesh mesh;
-  mesh.name = "cube";
-  const glm::vec3 normals[6] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
-                                {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
-  for (const glm::vec3& n : normals) {
-    // Two axes spanning the face, u x v = n, so the quad winds counter-clockwise seen from n.
-    const glm::vec3 u = std::abs(n.y) > 0.5f ? glm::vec3(0, 0, n.y) : glm::vec3(-n.z, 0, n.x);
-    const glm::vec3 v = glm::cross(n, u);
-    const auto first = static_cast<std::uint32_t>(mesh.positions.size());
-    for (const glm::vec2 c :
-         {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)}) {
-      mesh.positions.push_back(0.5f * (n + c.x * u + c.y * v));
-      mesh.normals.push_back(n);
-    }
-    mesh.indices.insert(mesh.indices.end(),
-                        {first, first + 1, first + 2, first, first + 2, first + 3});
-  }
-  return mesh;
-}
-
 constexpr float kRadius = 0.1f;
 
 // The top face (y = 0.5) from straight above, z from about 0.11 to 0.49: the front edge
 // (z = 0.5) just outside the image.
 Scene cubeTopScene() {
   Scene scene;
-  scene.meshes.push_back(unitCube());
+  scene.meshes.push_back(testing::unitCube());
   scene.materials.push_back({"Rounded", "",
                              "material Rounded;\n"
                              "Bevel Radius=0.1 Samples=16 Normal>1;\n"

@@ -8,7 +8,6 @@
 // caller's running mean adds the shares, as tracePixel's).
 float ambientOcclusionPixel(uvec2 pixel, bool inside, inout uint rays) {
   uint pathCount = max(frame.path.x, 1u);
-  float distance = uintBitsToFloat(uint(MG_AO_DISTANCE_BITS));
   float sum = 0.0;
   if (!inside) return 0.0;
   for (uint path = 0u; path < pathCount; ++path) {
@@ -28,9 +27,7 @@ float ambientOcclusionPixel(uvec2 pixel, bool inside, inout uint rays) {
     cone.width = 0.0;
     cone.spread = frame.cameraPosition.w;
     SurfaceHit s = surfaceAt(hit, origin, direction, cone);
-    rng = rngForPathVertex(pixelIndex, sampleIndex, 1u, frame.image.w);
-    sum += ambientOcclusion(s.inputs.position.v, s.geometricNormal, s.geometricNormal,
-                            s.object.x, distance, uint(MG_AO_SAMPLES), 0u, rng, rays);
+    sum += ambientOcclusionIntegratorAt(s, pixelIndex, sampleIndex, rays);
   }
   return sum / float(pathCount);
 }

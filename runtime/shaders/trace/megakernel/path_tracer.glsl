@@ -257,10 +257,10 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
           s = surfaceAt(hit, origin, direction, cone);
           setPathInputs(s.inputs, pathState, hit.t);
 #ifndef MG_OMIT_TRACED_INPUTS
-          // The AO node's rays, before the graph runs: their own stream of numbers (the
-          // vertex's key, hashed apart), so the path's own numbers stay as without them.
-          Rng tracedRng = rngForPathVertex(pixelIndex, sampleIndex, bounce + 1u, frame.image.w);
-          tracedRng.key = pcgHash(tracedRng.key ^ 0x6A09E667u);
+          // The AO and Bevel nodes' rays, before the graph runs: their own stream of numbers
+          // (the vertex's key, hashed apart), so the path's own numbers stay as without them;
+          // the wavefront's traced-inputs pass draws the same.
+          Rng tracedRng = tracedInputsRng(pixelIndex, sampleIndex, bounce + 1u, frame.image.w);
           setTracedInputs(s, tracedRng, rays);
 #endif
 #ifdef MG_HIT_FEEDBACK

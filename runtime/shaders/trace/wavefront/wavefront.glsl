@@ -14,6 +14,15 @@
 //   indirect arguments, MG_WAVEFRONT_BIN_SCATTER writes the hits' slots into the
 //   material-sorted queue, and MG_WAVEFRONT_MATERIAL (compiled once per distinct graph with
 //   only its include, "material.glsl") evaluates its bin's hits into the path state;
+// - with materials that read a traced input (Ambient Occlusion, Bevel: no
+//   MG_OMIT_TRACED_INPUTS), MG_WAVEFRONT_TRACED_INPUTS between the scatter and the material
+//   passes traces their rays from the hits of those materials alone (the bin offsets pass puts
+//   their bins first in the material-sorted queue) with the megakernel's estimators
+//   (ambient_occlusion.glsl, bevel.glsl) and keeps the results for the material passes
+//   (docs/design/traced-inputs.md): a compute shader with ray queries, or a raygen of the
+//   ray-tracing pipeline, as the trace pass; with the AO integrator (MG_INTEGRATOR_AO,
+//   --integrator ao) the same pass computes the integrator's AO at every live path's camera
+//   hit, and a round is generate, trace, this pass and finish;
 // - with the texel cache (MG_CACHE_TEXEL), MG_WAVEFRONT_LOOKUP first looks up every live hit
 //   of a whole uv-only material (thesis §5.3): a hit's cached values become its material
 //   outputs and only the misses are binned; the material passes insert what they evaluate
@@ -66,7 +75,8 @@
 #include "bsdf_lobes.glsl"
 #include "ray_cone.glsl"
 
-#if defined(MG_WAVEFRONT_TRACE) || defined(MG_WAVEFRONT_SHADOW)
+#if defined(MG_WAVEFRONT_TRACE) || defined(MG_WAVEFRONT_SHADOW) || \
+    defined(MG_WAVEFRONT_TRACED_INPUTS)
 #ifdef MG_BACKEND_QUERY
 #include "trace_query.glsl"
 #else
@@ -123,6 +133,9 @@ void evaluateMaterialRestSwitch(uint materialId, MaterialInputs inputs,
 #endif  // MG_CACHE_TEXEL
 #endif
 #include "path_shading.glsl"
+#ifdef MG_WAVEFRONT_TRACED_INPUTS
+#include "ambient_occlusion.glsl"  // setTracedInputs, the megakernel's; bevel.glsl with it
+#endif
 // The texel cache where it is read (the lookup pass) and written (the material passes); the
 // tile cache also where its queued tiles are binned.
 #if defined(MG_WAVEFRONT_LOOKUP) && defined(MG_SUBGROUP_RAY_COUNT)
@@ -226,6 +239,11 @@ const uint kFieldLightOrigin = kFieldLightHit + 1u;  // xyz the shading point, w
 // in the next.
 const uint kFieldLobes = uint(MG_WAVEFRONT_LOBE_FIELD);
 #endif
+#ifdef MG_WAVEFRONT_TRACED_FIELD
+// With materials that read a traced input, after the lobes: xyz the Bevel normal, w the AO
+// fraction at the hit (the traced-inputs pass's, for the material pass).
+const uint kFieldTracedInputs = uint(MG_WAVEFRONT_TRACED_FIELD);
+#endif
 #ifdef MG_WAVEFRONT_PRIMARY_FIELD
 // With --shared-primary, after the fields above (the host's count of them): the pixel's
 // camera-ray hit, traced in round 0 and read by the later rounds' trace passes.
@@ -264,12 +282,23 @@ uint materialWorkgroupsFor(uint invocations) {
   return (invocations + kWavefrontMaterialWorkgroupSize - 1u) / kWavefrontMaterialWorkgroupSize;
 }
 
+// Whether every round's camera ray is the pixel centre's, traced once (--shared-primary); the
+// AO integrator ignores it, as the megakernel's ambientOcclusionPixel does.
+bool sharesPrimaryRay() {
+#ifdef MG_INTEGRATOR_AO
+  return false;
+#else
+  return (frame.path.z & kFlagSharedPrimaryRay) != 0u;
+#endif
+}
+
 // The pixel's sample index over frames: frame * P + the round's path.
 uint sampleIndexOf(uint round) {
   return rngSampleIndex(frame.image.z, frame.path.x, round);
 }
 
-#if defined(MG_WAVEFRONT_TRACE) || defined(MG_WAVEFRONT_SHADOW)
+#if defined(MG_WAVEFRONT_TRACE) || defined(MG_WAVEFRONT_SHADOW) || \
+    defined(MG_WAVEFRONT_TRACED_INPUTS)
 #ifdef MG_BACKEND_QUERY
 layout(local_size_x = kWavefrontWorkgroupSize) in;
 uint invocationIndex() {
@@ -391,6 +420,10 @@ const uint kNoBin = 0xffffffffu;
 // (count, first place, scatter cursor, batch).
 const uint kBinRecords = 3u;
 const uint kBinOfMaterial[MG_MATERIAL_COUNT] = MG_MATERIAL_BIN_OF;
+#ifdef MG_WAVEFRONT_TRACED_FIELD
+// Per bin, whether its graph reads a traced input (the host's MG_MATERIAL_BIN_TRACED).
+const bool kBinTracesInputs[MG_MATERIAL_BIN_COUNT] = MG_MATERIAL_BIN_TRACED;
+#endif
 
 // The scene material of a live path's hit, from its instance (no surface built).
 uint materialOfPath(uint slot) {
@@ -546,7 +579,7 @@ void main() {
     control.liveGroups = uvec4(workgroupsFor(slots), 1u, 1u, 0u);
     control.liveLaunch = uvec4(slots, 1u, 1u, 0u);
     // With --shared-primary the later rounds' camera rays are round 0's hits, not traced.
-    bool traced = (frame.path.z & kFlagSharedPrimaryRay) == 0u || push.step.x == 0u;
+    bool traced = !sharesPrimaryRay() || push.step.x == 0u;
     if (traced) atomicAdd(counters.rays, slots);
   }
   if (slot >= slots) return;
@@ -556,7 +589,7 @@ void main() {
   // --shared-primary (thesis §5.1): every round's camera ray through the pixel centre, traced
   // once for the P paths (round 0; the trace pass keeps its hit for the others), as the
   // megakernel traces it.
-  bool sharedPrimary = (frame.path.z & kFlagSharedPrimaryRay) != 0u;
+  bool sharedPrimary = sharesPrimaryRay();
   vec3 origin, direction;
   primaryRay(pixel, sharedPrimary ? vec2(0.5) : rngNext2(rng), origin, direction);
   pathState[fieldIndex(kFieldOrigin, slot)] = vec4(origin, 0.0);
@@ -754,20 +787,46 @@ void main() {
 // frame, for FrameStats. A few hundred bins at most: one invocation walks them.
 // With the tile cache each bin's queued tiles get their segment of the sorted tile list too,
 // and its material pass one invocation more per texel of them.
+// With traced inputs the bins whose graph reads one come first (a sweep over them, then one
+// over the others), so their hits are the sorted queue's first places: the traced-inputs
+// pass runs over that prefix alone, with no bin it need not trace for.
+#ifdef MG_WAVEFRONT_TRACED_FIELD
+const uint kOffsetSweeps = 2u;
+uint offsetSweepOf(uint bin) {
+  return kBinTracesInputs[bin] ? 0u : 1u;
+}
+#else
+const uint kOffsetSweeps = 1u;
+uint offsetSweepOf(uint bin) {
+  return 0u;
+}
+#endif
+
 void main() {
   if (invocationIndex() != 0u) return;
   uint offset = 0u;
   uint tileOffset = 0u;
-  for (uint bin = 0u; bin < uint(MG_MATERIAL_BIN_COUNT); ++bin) {
-    uint count = materialBins[kBinRecords * bin + 1u].x;
-    uint tiles = materialBins[kBinRecords * bin + 2u].x;
-    uint frameHits = materialBins[kBinRecords * bin].w + count;
-    materialBins[kBinRecords * bin] =
-        uvec4(materialWorkgroupsFor(count + tiles * kTileTexelsOrZero), 1u, 1u, frameHits);
-    materialBins[kBinRecords * bin + 1u] = uvec4(0u, offset, offset, count);
-    materialBins[kBinRecords * bin + 2u] = uvec4(0u, tileOffset, tileOffset, tiles);
-    offset += count;
-    tileOffset += tiles;
+  for (uint sweep = 0u; sweep < kOffsetSweeps; ++sweep) {
+    for (uint bin = 0u; bin < uint(MG_MATERIAL_BIN_COUNT); ++bin) {
+      if (offsetSweepOf(bin) != sweep) continue;
+      uint count = materialBins[kBinRecords * bin + 1u].x;
+      uint tiles = materialBins[kBinRecords * bin + 2u].x;
+      uint frameHits = materialBins[kBinRecords * bin].w + count;
+      materialBins[kBinRecords * bin] =
+          uvec4(materialWorkgroupsFor(count + tiles * kTileTexelsOrZero), 1u, 1u, frameHits);
+      materialBins[kBinRecords * bin + 1u] = uvec4(0u, offset, offset, count);
+      materialBins[kBinRecords * bin + 2u] = uvec4(0u, tileOffset, tileOffset, tiles);
+      offset += count;
+      tileOffset += tiles;
+    }
+#ifdef MG_WAVEFRONT_TRACED_FIELD
+    // The hits of the bins that read a traced input: the traced-inputs pass's arguments (the
+    // light points' binning writes them too, after that pass has run for the bounce).
+    if (sweep == 0u) {
+      control.tracedGroups = uvec4(workgroupsFor(offset), 1u, 1u, 0u);
+      control.tracedLaunch = uvec4(offset, 1u, 1u, 0u);
+    }
+#endif
   }
 }
 
@@ -786,6 +845,68 @@ void main() {
   uint bin = i < binnedCount() ? binToEvaluate(slot) : kNoBin;
   uint place = addToBinRecord(kBinRecords * bin + 1u, true, bin != kNoBin);
   if (bin != kNoBin) pathQueues[queueIndex(3u, place)] = slot;
+}
+
+#elif defined(MG_WAVEFRONT_TRACED_INPUTS) && defined(MG_INTEGRATOR_AO)
+// The AO integrator (--integrator ao): its rounds are generate, trace, this pass and finish.
+// Each live path's camera-ray hit gets the megakernel's estimate
+// (ambientOcclusionIntegratorAt), a miss 1 (nothing occludes the sky), as the path's
+// radiance, which the finish pass averages over the rounds. Every AO ray is counted.
+void main() {
+  uint i = invocationIndex();
+  uint rays = 0u;
+  if (i < control.counts.x) {
+    uint slot = pathQueues[queueIndex(push.step.z, i)];
+    float unoccluded = 1.0;
+    if (pathState[fieldIndex(kFieldRadiance, slot)].w >= 0.0) {
+      vec3 origin, direction;
+      RayCone cone;
+      SurfaceHit s = surfaceOfPath(slot, origin, direction, cone);
+      unoccluded =
+          ambientOcclusionIntegratorAt(s, pixelOfSlot(slot), sampleIndexOf(push.step.x), rays);
+    }
+    pathState[fieldIndex(kFieldRadiance, slot)] = vec4(vec3(unoccluded), 0.0);
+  }
+#ifdef MG_SUBGROUP_RAY_COUNT
+  uint subgroupRays = subgroupAdd(rays);
+  if (subgroupElect() && subgroupRays > 0u) atomicAdd(counters.rays, subgroupRays);
+#else
+  if (rays > 0u) atomicAdd(counters.rays, rays);
+#endif
+}
+
+#elif defined(MG_WAVEFRONT_TRACED_INPUTS)
+// The traced inputs (docs/design/traced-inputs.md) of the hits whose material reads one: the
+// material-sorted queue's first control.tracedLaunch.x places, which the bin offsets pass
+// gave those materials' bins. Each hit's surface is built as its material pass builds it, and
+// the megakernel's setTracedInputs traces the Ambient Occlusion and Bevel rays from it with
+// the megakernel's random numbers for this path vertex (tracedInputsRng), so at one seed both
+// architectures trace the same rays. The results go into the path state for the material
+// pass. With --shared-primary the camera ray's hit is the same surface in every round, and
+// the megakernel evaluates its material once, in the pixel's first path: its numbers are
+// round 0's here. Every traced ray is counted, as the megakernel counts them.
+void main() {
+  uint i = invocationIndex();
+  uint rays = 0u;
+  if (i < control.tracedLaunch.x) {
+    uint slot = pathQueues[queueIndex(3u, i)];
+    vec3 origin, direction;
+    RayCone cone;
+    SurfaceHit s = surfaceOfPath(slot, origin, direction, cone);
+    bool sharedCameraRay = push.step.y == 0u && sharesPrimaryRay();
+    Rng rng = tracedInputsRng(pixelOfSlot(slot), sampleIndexOf(sharedCameraRay ? 0u : push.step.x),
+                              push.step.y + 1u, frame.image.w);
+    setTracedInputs(s, rng, rays);
+    pathState[fieldIndex(kFieldTracedInputs, slot)] =
+        vec4(s.inputs.bevelNormal, s.inputs.ambientOcclusion);
+  }
+#ifdef MG_SUBGROUP_RAY_COUNT
+  // One atomic per subgroup (every invocation comes here).
+  uint subgroupRays = subgroupAdd(rays);
+  if (subgroupElect() && subgroupRays > 0u) atomicAdd(counters.rays, subgroupRays);
+#else
+  if (rays > 0u) atomicAdd(counters.rays, rays);
+#endif
 }
 
 #elif defined(MG_WAVEFRONT_MATERIAL)
@@ -851,6 +972,20 @@ SurfaceHit surfaceToEvaluate(uint slot, bool lightPoint) {
   cone.spread = directionField.w;
   SurfaceHit s = surfaceAt(hit, originField.xyz, directionField.xyz, cone);
   setPathInputs(s.inputs, vertex, t);
+#ifdef MG_WAVEFRONT_TRACED_FIELD
+  // A hit's traced inputs, as the traced-inputs pass left them for a material that reads
+  // them; a light point keeps surfaceAt's 1 and shading normal, as the megakernel's
+  // (sampleDirectLight traces nothing for an emitter's graph).
+  if (!lightPoint) {
+    bool ambientOcclusion = mg_materialAmbientOcclusion[s.materialId].y != 0u;
+    bool bevel = mg_materialBevel[s.materialId].y != 0u;
+    if (ambientOcclusion || bevel) {
+      vec4 traced = pathState[fieldIndex(kFieldTracedInputs, slot)];
+      if (ambientOcclusion) s.inputs.ambientOcclusion = traced.w;
+      if (bevel) s.inputs.bevelNormal = traced.xyz;
+    }
+  }
+#endif
   return s;
 }
 

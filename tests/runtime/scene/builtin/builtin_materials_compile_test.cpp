@@ -56,5 +56,37 @@ TEST(BuiltinMaterials, HeaviestSettingStillCompiles) {
   expectAllCompile(makeBuiltinScene("landscape", options));
 }
 
+// ao=N and bevel=N (the traced-inputs benchmark's scenes, tools/bench/wavefront_floor_device.sh
+// --traced-inputs): every recipe's graph compiles with an Ambient Occlusion node of N samples
+// on its base colour and a Bevel node of N samples as its normal, recorded in the metadata;
+// the emitters and the mirror keep their constants.
+TEST(BuiltinMaterials, TracedInputKnobsPutAmbientOcclusionAndBevelInTheRecipes) {
+  BuiltinSceneOptions options;
+  options.terrainCells = 8;
+  options.materialCost.ambientOcclusionSamples = 8;
+  options.materialCost.bevelSamples = 4;
+  const Scene scene = makeBuiltinScene("landscape", options);
+  compiler::Diagnostics libraryDiagnostics;
+  const auto library = nodes::loadNodeLibrary("", libraryDiagnostics);
+  ASSERT_TRUE(library) << compiler::formatDiagnostics(libraryDiagnostics);
+  int traced = 0;
+  for (const MaterialRef& material : scene.materials) {
+    SCOPED_TRACE(material.name);
+    compiler::Diagnostics diagnostics;
+    const auto compiled = compiler::compileMaterial(
+        compiler::SourceFile{material.name + ".mgraph", material.graphText}, *library, {},
+        diagnostics);
+    ASSERT_TRUE(compiled.has_value()) << compiler::formatDiagnostics(diagnostics);
+    if (!compiled->metadata.ambientOcclusion)
+      continue;
+    ++traced;
+    EXPECT_EQ(compiled->metadata.ambientOcclusion->samples, 8u);
+    ASSERT_TRUE(compiled->metadata.bevel.has_value());
+    EXPECT_EQ(compiled->metadata.bevel->samples, 4u);
+    EXPECT_FALSE(compiled->metadata.cacheable);  // per hit (traced-inputs.md)
+  }
+  EXPECT_EQ(traced, static_cast<int>(scene.materials.size()));
+}
+
 }  // namespace
 }  // namespace memograph::runtime

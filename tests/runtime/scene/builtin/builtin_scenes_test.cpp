@@ -212,6 +212,32 @@ TEST(BuiltinSceneSpec, OptionsSetTheCostKnobs) {
   EXPECT_EQ(spec->options.terrainCells, 64);
 }
 
+// ao and bevel (0..128 samples, 0: none) put those nodes into every recipe's graph, links
+// whole; without them no graph has either.
+TEST(BuiltinSceneSpec, TracedInputKnobsAddTheirNodes) {
+  std::string error;
+  const auto spec = parseBuiltinSceneSpec("classroom:ao=8,bevel=4", error);
+  ASSERT_TRUE(spec.has_value()) << error;
+  EXPECT_EQ(spec->options.materialCost.ambientOcclusionSamples, 8);
+  EXPECT_EQ(spec->options.materialCost.bevelSamples, 4);
+  const Scene traced = makeBuiltinScene("classroom", spec->options);
+  const Scene plain = makeBuiltinScene("classroom");
+  const MaterialRef& wood = traced.materials[0];
+  EXPECT_NE(wood.graphText.find("AmbientOcclusion"), std::string::npos) << wood.graphText;
+  EXPECT_NE(wood.graphText.find("Samples=8.0"), std::string::npos) << wood.graphText;
+  EXPECT_NE(wood.graphText.find("Bevel"), std::string::npos) << wood.graphText;
+  EXPECT_EQ(checkLinks(wood.graphText), "");
+  for (const MaterialRef& material : plain.materials) {
+    EXPECT_EQ(material.graphText.find("AmbientOcclusion"), std::string::npos) << material.name;
+    EXPECT_EQ(material.graphText.find("Bevel"), std::string::npos) << material.name;
+  }
+  EXPECT_FALSE(parseBuiltinSceneSpec("classroom:ao=129", error).has_value());
+  EXPECT_NE(error.find("ao (the samples of an Ambient Occlusion node"), std::string::npos) << error;
+  BuiltinSceneOptions options;
+  options.materialCost.bevelSamples = -1;
+  EXPECT_THROW(makeBuiltinScene("classroom", options), std::invalid_argument);
+}
+
 // The classroom samples its emissive panels and windows only when asked (nee=1): measured
 // on the H200, its lamps' point lights make that NEE a loss at equal time (builtin_scenes.h).
 TEST(BuiltinSceneSpec, TheClassroomSamplesItsEmittersOnlyWhenAsked) {

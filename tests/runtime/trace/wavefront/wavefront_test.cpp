@@ -657,7 +657,8 @@ TEST(Wavefront, BenchCsvHasThePassColumns) {
   EXPECT_NE(header.find(",shading,median_wavefront_trace_gpu_ms,median_wavefront_shade_gpu_ms,"
                         "median_wavefront_shadow_gpu_ms,median_wavefront_queue_gpu_ms,"
                         "median_wavefront_bin_gpu_ms,median_wavefront_material_gpu_ms,"
-                        "median_wavefront_lookup_gpu_ms,wavefront_paths,wavefront_chunks,"
+                        "median_wavefront_lookup_gpu_ms,median_wavefront_traced_inputs_gpu_ms,"
+                        "wavefront_paths,wavefront_chunks,"
                         "frames_requested,stopped_early"),
             std::string::npos)
       << header;
@@ -667,7 +668,7 @@ TEST(Wavefront, BenchCsvHasThePassColumns) {
   // frames_requested, stopped_early stay last (checked above with the wavefront's two)
   auto [megakernelHeader, megakernelRow] = lines(megakernel);
   EXPECT_EQ(megakernelHeader, header);
-  EXPECT_NE(megakernelRow.find(",megakernel,,,,,,,,,,2,0"), std::string::npos) << megakernelRow;
+  EXPECT_NE(megakernelRow.find(",megakernel,,,,,,,,,,,2,0"), std::string::npos) << megakernelRow;
   std::filesystem::remove(wavefront);
   std::filesystem::remove(megakernel);
 }
