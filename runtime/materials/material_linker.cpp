@@ -347,6 +347,9 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
       if (output == "lobes")
         linked.bsdfLobes = true;
     }
+    // The include defines a library function only where the graph calls it.
+    if (compiled->glsl.find("PrincipledLayers") != std::string::npos)
+      linked.principledLayers = true;
     entry.textureCount = compiled->metadata.textures.size();
     entry.estimatedCost = compiled->metadata.estimatedCost;
     // A whole uv-only material's key is a uv texel: it is cached only with the uv domain.

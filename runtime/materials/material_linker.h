@@ -99,6 +99,10 @@ struct LinkedMaterials {
   // Some material writes BSDF lobes (nodes/bsdf.inc): the path tracer needs MG_BSDF_LOBES
   // (bsdf_lobes.glsl), which other scenes do without, so their kernels stay as they were.
   bool bsdfLobes = false;
+  // Some graph calls PrincipledLayers (Principled v1's sheen, clearcoat and transmission as
+  // lobes): the path tracer needs MG_PRINCIPLED_LAYERS (bsdf_lobes.glsl), which scenes of
+  // other lobes do without.
+  bool principledLayers = false;
   // Some material reads an object-space input (generated, objectPosition, geometricNormal,
   // objectLocation, objectRandom, backfacing); without one the shaders define
   // MG_OMIT_OBJECT_INPUTS and MaterialInputs carries none of them.

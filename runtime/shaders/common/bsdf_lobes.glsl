@@ -26,6 +26,10 @@ struct BsdfLobes {
   float roughness[MG_MAX_LOBES];
   float eta[MG_MAX_LOBES];   // relative IOR across the surface: the far side's over the ray's
   float pick[MG_MAX_LOBES];  // probability that BSDF sampling samples lobe i
+#ifdef MG_PRINCIPLED_LAYERS
+  // Only in scenes with a PrincipledLayers node (the host's MG_PRINCIPLED_LAYERS): the
+  // Principled BRDF and glass in the lobe loops cost the other scenes' shade pass registers
+  // (H100, the Blender material scene: 8.9 against 10.1 ms a frame).
   BrdfParameters principled;  // the MG_LOBE_PRINCIPLED lobe's BRDF (per unit weight)
   // The MG_LOBE_PRINCIPLED_GLASS lobe's refraction tint (the base colour), its reflection's F0
   // colour (Cycles' cspec0: white mixed by the specular tint towards the base colour) and
@@ -33,6 +37,7 @@ struct BsdfLobes {
   vec3 glassRefractionColor;
   vec3 glassReflectionF0;
   float glassReflectionRoughness;
+#endif
 };
 
 // `entering`: the ray hit the front face (by the geometric normal), so a transmission lobe's
@@ -41,18 +46,21 @@ struct BsdfLobes {
 // weights.
 BsdfLobes bsdfLobesFromMaterial(MaterialOutputs m, bool entering, BrdfParameters principled) {
   BsdfLobes lobes;
+#ifdef MG_PRINCIPLED_LAYERS
   lobes.principled = principled;
   vec3 baseColor = clamp(m.baseColor, 0.0, 1.0);
   lobes.glassRefractionColor = max(m.baseColor, vec3(0.0));
   float tint = clamp(m.specularTint, 0.0, 1.0);
   lobes.glassReflectionF0 = baseColor * tint + vec3(1.0 - tint);
   lobes.glassReflectionRoughness = clamp(m.roughness, 0.0, 1.0);
+#endif
   lobes.count = min(m.lobeCount, MG_MAX_LOBES);
   float total = 0.0;
   for (int i = 0; i < MG_MAX_LOBES; ++i) {
     lobes.weight[i] = max(m.lobeWeight[i].rgb, vec3(0.0));
     lobes.kind[i] = int(m.lobeWeight[i].w);
     lobes.roughness[i] = clamp(m.lobeParameters[i].x, 0.0, 1.0);
+#ifdef MG_PRINCIPLED_LAYERS
     if (lobes.kind[i] == MG_LOBE_PRINCIPLED) {
       // Its roughness (ray cones, Light Path) is its BRDF's; its IOR slot holds the diffuse's
       // share of its weight (the transmission takes the rest: PrincipledLayers).
@@ -61,6 +69,7 @@ BsdfLobes bsdfLobesFromMaterial(MaterialOutputs m, bool entering, BrdfParameters
       lobes.principled.diffuse *= diffuseShare;
       lobes.principled.diffuseBurley *= diffuseShare;
     }
+#endif
     float ior = max(m.lobeParameters[i].y, 1e-5);
     lobes.eta[i] = entering ? ior : 1.0 / ior;
     lobes.pick[i] = i < lobes.count ? dot(lobes.weight[i], vec3(0.2126, 0.7152, 0.0722)) : 0.0;
@@ -361,6 +370,7 @@ vec3 lobeSample(int kind, float roughness, float eta, vec3 wo, vec2 u, float uCh
   return reflect(-wo, m);
 }
 
+#ifdef MG_PRINCIPLED_LAYERS
 // Cycles' interpolate_fresnel_color (bsdf_util.h): F0 blended to white by the dielectric
 // Fresnel of relative IOR eta at `cosine`, normalised to run from 0 at normal incidence to 1.
 vec3 fresnelInterpolated(vec3 f0, float cosine, float eta) {
@@ -424,6 +434,7 @@ vec3 principledGlassSample(BsdfLobes lobes, int i, vec3 wo, vec2 u, float uChoic
   vec3 m = ggxSampleVisibleNormal(wo, lobeAlpha(roughness), u);
   return reflects ? reflect(-wo, m) : refractDirection(wo, m, eta);
 }
+#endif  // MG_PRINCIPLED_LAYERS
 
 // The material's f(wo, wi) |wi.z|: every lobe's, weighted (the Principled lobe's BRDF is
 // coloured by the material's outputs).
@@ -431,11 +442,13 @@ vec3 bsdfLobesEvaluateCos(BsdfLobes lobes, vec3 wo, vec3 wi) {
   vec3 sum = vec3(0.0);
   for (int i = 0; i < lobes.count; ++i) {
     if (lobes.pick[i] <= 0.0) continue;  // no weight: nothing to add (a PrincipledLayers slot)
+#ifdef MG_PRINCIPLED_LAYERS
     if (lobes.kind[i] == MG_LOBE_PRINCIPLED)
       sum += lobes.weight[i] * brdfEvaluateCos(lobes.principled, wo, wi);
     else if (lobes.kind[i] == MG_LOBE_PRINCIPLED_GLASS)
       sum += lobes.weight[i] * principledGlassCos(lobes, i, wo, wi);
     else
+#endif
       sum += lobes.weight[i] *
              lobeEvaluateCos(lobes.kind[i], lobes.roughness[i], lobes.eta[i], wo, wi);
   }
@@ -447,11 +460,15 @@ float bsdfLobesPdf(BsdfLobes lobes, vec3 wo, vec3 wi) {
   float pdf = 0.0;
   for (int i = 0; i < lobes.count; ++i)
     if (lobes.pick[i] > 0.0)
+#ifdef MG_PRINCIPLED_LAYERS
       pdf += lobes.pick[i] *
              (lobes.kind[i] == MG_LOBE_PRINCIPLED ? brdfPdf(lobes.principled, wo, wi)
               : lobes.kind[i] == MG_LOBE_PRINCIPLED_GLASS
                   ? principledGlassPdf(lobes, i, wo, wi)
                   : lobePdf(lobes.kind[i], lobes.roughness[i], lobes.eta[i], wo, wi));
+#else
+      pdf += lobes.pick[i] * lobePdf(lobes.kind[i], lobes.roughness[i], lobes.eta[i], wo, wi);
+#endif
   return pdf;
 }
 
@@ -500,13 +517,16 @@ bool bsdfLobesSample(BsdfLobes lobes, vec3 wo, float uLobe, vec2 u, out vec3 wi,
   vec3 singularColor = vec3(1.0);
   diffuse = kind == MG_LOBE_DIFFUSE || kind == MG_LOBE_VELVET || kind == MG_LOBE_TRANSLUCENT ||
             kind == MG_LOBE_PRINCIPLED_SHEEN;
+#ifdef MG_PRINCIPLED_LAYERS
   if (kind == MG_LOBE_PRINCIPLED) {
     // brdfSample picks its specular part below the specular probability, its diffuse above.
     wi = brdfSample(lobes.principled, wo, uChoice, u);
     diffuse = uChoice >= brdfSpecularProbability(lobes.principled, wo);
   } else if (kind == MG_LOBE_PRINCIPLED_GLASS) {
     wi = principledGlassSample(lobes, picked, wo, u, uChoice, singularColor);
-  } else {
+  } else
+#endif
+  {
     wi = lobeSample(kind, roughness, lobes.eta[picked], wo, u, uChoice, singularWeight);
   }
   if (!(dot(wi, wi) > 0.0)) return false;
