@@ -389,6 +389,19 @@ void storePathState(uint slot, PathState path) {
 #endif
 }
 
+#ifdef MG_WAVEFRONT_TRACED_INPUTS
+// Adds an invocation's traced rays to the frame's count, as the megakernel counts them: with
+// subgroup arithmetic one atomic per subgroup, so every invocation of it must call this.
+void countTracedRays(uint rays) {
+#ifdef MG_SUBGROUP_RAY_COUNT
+  uint subgroupRays = subgroupAdd(rays);
+  if (subgroupElect() && subgroupRays > 0u) atomicAdd(counters.rays, subgroupRays);
+#else
+  if (rays > 0u) atomicAdd(counters.rays, rays);
+#endif
+}
+#endif
+
 // The surface a live path's traced hit lies on (its ray, cone and hit from the path state),
 // as the megakernel's loop body builds it: the material passes and the shade pass both
 // start from here.
@@ -867,12 +880,7 @@ void main() {
     }
     pathState[fieldIndex(kFieldRadiance, slot)] = vec4(vec3(unoccluded), 0.0);
   }
-#ifdef MG_SUBGROUP_RAY_COUNT
-  uint subgroupRays = subgroupAdd(rays);
-  if (subgroupElect() && subgroupRays > 0u) atomicAdd(counters.rays, subgroupRays);
-#else
-  if (rays > 0u) atomicAdd(counters.rays, rays);
-#endif
+  countTracedRays(rays);  // every invocation comes here
 }
 
 #elif defined(MG_WAVEFRONT_TRACED_INPUTS)
@@ -900,13 +908,7 @@ void main() {
     pathState[fieldIndex(kFieldTracedInputs, slot)] =
         vec4(s.inputs.bevelNormal, s.inputs.ambientOcclusion);
   }
-#ifdef MG_SUBGROUP_RAY_COUNT
-  // One atomic per subgroup (every invocation comes here).
-  uint subgroupRays = subgroupAdd(rays);
-  if (subgroupElect() && subgroupRays > 0u) atomicAdd(counters.rays, subgroupRays);
-#else
-  if (rays > 0u) atomicAdd(counters.rays, rays);
-#endif
+  countTracedRays(rays);  // every invocation comes here
 }
 
 #elif defined(MG_WAVEFRONT_MATERIAL)
