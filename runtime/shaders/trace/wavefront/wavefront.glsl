@@ -28,10 +28,11 @@
 //   outputs and only the misses are binned; the material passes insert what they evaluate
 //   (lock, values, unlock, as the megakernel's evaluateMaterialCached does); with
 //   MG_CACHE_CUTS a material that is not cacheable as a whole is keyed by its cut (thesis §7;
-//   texel_cache.glsl cacheCutKeyFor): its hits are always binned, since the rest of its graph
-//   runs per hit, and its material pass reads the cut's entry, or evaluates the cut at the
-//   key's centre and inserts it, in place (the megakernel's evaluateMaterialThroughCut), as
-//   it does every read with a filter (MG_CACHE_FILTER); with the tile cache (MG_CACHE_TILE, its
+//   texel_cache.glsl cacheCutKeyFor): the lookup reads the cut's entry and a found one's hit
+//   runs the rest of its graph there (the host's material_rests.glsl), a missing one's is
+//   binned and its material pass evaluates the cut at the key's centre, inserts it and runs
+//   the rest; a read with a filter (MG_CACHE_FILTER) runs in the material pass, in place (the
+//   megakernel's evaluateMaterialThroughCut); with the tile cache (MG_CACHE_TILE, its
 //   deferred fill's queue) the lookup reads the hit's tile and queues a missing one, and each
 //   bin's material pass also computes its bin's queued tiles, one invocation a texel, so the
 //   next bounce finds them;
