@@ -215,13 +215,15 @@ bool lobeTransmits(int kind) {
          lobeIsGlass(kind) || kind == MG_LOBE_PRINCIPLED_GLASS;
 }
 
-// A lobe without density: Transparent, and a Refraction or Glass lobe where Cycles takes the
-// microfacet as perfectly smooth (alpha_x alpha_y <= 1e-7, bsdf_microfacet.h; alpha =
-// roughness^2). The Glossy lobe is never singular here: it keeps brdf.glsl's clamp (0.02).
+// A lobe without density: Transparent, and a Glossy, Refraction or Glass lobe where Cycles
+// takes the microfacet as perfectly smooth (alpha_x alpha_y <= 1e-7, bsdf_microfacet.h;
+// alpha = roughness^2): a Glossy of Roughness 0 is a mirror, which light sampling cannot see.
+// The Principled lobe keeps brdf.glsl's clamp (0.02).
 bool lobeIsSingular(int kind, float roughness) {
   if (kind == MG_LOBE_TRANSPARENT) return true;
   float alpha = roughness * roughness;
-  return (lobeIsRefraction(kind) || lobeIsGlass(kind) || kind == MG_LOBE_PRINCIPLED_GLASS) &&
+  return (kind == MG_LOBE_GLOSSY_GGX || kind == MG_LOBE_GLOSSY_BECKMANN ||
+          lobeIsRefraction(kind) || lobeIsGlass(kind) || kind == MG_LOBE_PRINCIPLED_GLASS) &&
          alpha * alpha <= 1e-7;
 }
 

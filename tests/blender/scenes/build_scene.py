@@ -264,6 +264,9 @@ BSDF_TREES = {
                                        Roughness=0.3, distribution='GGX'),
     'glossy_beckmann': lambda nt: bsdf_node(nt, 'ShaderNodeBsdfGlossy', Color=(0.9, 0.7, 0.3),
                                             Roughness=0.3, distribution='BECKMANN'),
+    # Roughness 0: Cycles' perfect mirror (alpha^2 <= 1e-7), which light sampling cannot see.
+    'glossy_sharp': lambda nt: bsdf_node(nt, 'ShaderNodeBsdfGlossy', Color=(0.9, 0.9, 0.9),
+                                         Roughness=0.0, distribution='GGX'),
     'velvet': lambda nt: bsdf_node(nt, 'ShaderNodeBsdfVelvet', Color=(0.8, 0.2, 0.5),
                                    Sigma=0.5),
     'mix': lambda nt: mix_tree(nt),

@@ -85,7 +85,8 @@ BSDF_FLIP_LIMIT = 0.05
 # measured LDR-FLIP 0.0788 and brightness -2.41 % on lavapipe; the limits keep it from
 # growing (docs/design/closures.md, "The path through the surface").
 BSDF_FLIP_LIMITS = {'bsdf_room': 0.065, 'bsdf_transparent': 0.085}
-for _tree in ('diffuse', 'oren_nayar', 'glossy_ggx', 'glossy_beckmann', 'velvet', 'mix', 'add',
+for _tree in ('diffuse', 'oren_nayar', 'glossy_ggx', 'glossy_sharp', 'glossy_beckmann', 'velvet',
+              'mix', 'add',
               'room', 'principled_sheen', 'principled_clearcoat'):
     CHECKS['bsdf_' + _tree] = (32, 256, 16, 16, 5, 'bsdf', 0.02)
 # The transmission lobes: 9 rays a path (Cycles' 8 bounces after the camera's hit), since a
