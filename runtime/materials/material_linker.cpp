@@ -347,8 +347,9 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
       if (output == "lobes")
         linked.bsdfLobes = true;
     }
-    // The include defines a library function only where the graph calls it.
-    if (compiled->glsl.find("PrincipledLayers") != std::string::npos)
+    // The include defines a library function, under its MG_FN_ guard, only where the graph
+    // calls it.
+    if (compiled->glsl.find("#define MG_FN_PrincipledLayers_") != std::string::npos)
       linked.principledLayers = true;
     entry.textureCount = compiled->metadata.textures.size();
     entry.estimatedCost = compiled->metadata.estimatedCost;

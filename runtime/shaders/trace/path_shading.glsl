@@ -224,8 +224,8 @@ PathState cameraPathState() {
 
 // A reflection by the lobe continuePath sampled: diffuse, or the GGX lobe (glossy, and
 // singular where Cycles' microfacet is a perfect mirror: alpha_x alpha_y <= 1e-7 in
-// bsdf_microfacet.h, alpha = roughness^2; memograph's GGX clamps its roughness at 0.02 but
-// labels the bounce as Cycles would). Cycles counts a singular bounce as a glossy one.
+// bsdf_microfacet.h, alpha = roughness^2; a Glossy lobe there is a mirror, the Principled
+// BRDF's GGX clamps its roughness at 0.02 but labels the bounce as Cycles would). Cycles counts a singular bounce as a glossy one.
 void pathStateAfterReflection(inout PathState path, bool specularLobe, float roughness) {
   path.depth += 1;
   if (specularLobe) {
