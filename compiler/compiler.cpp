@@ -67,9 +67,14 @@ std::optional<CompiledMaterial> compileMaterial(const SourceFile& file, const No
   result.metadata.ambientOcclusion = analysis.ambientOcclusion;
   result.metadata.bevel = analysis.bevel;
   result.metadataJson = metadataToJson(result.metadata);
-  const EmitInput emitInput{
-      *analysis.resolved, *analysis.order, *analysis.chosen, library, result.metadata, cut,
-      file.path};
+  const EmitInput emitInput{*analysis.resolved, *analysis.order,
+                            *analysis.chosen,   library,
+                            result.metadata,    cut,
+                            file.path,          options.parameterConstants};
+  for (auto& constant : floatConstantInputs(emitInput))
+    result.floatConstants.push_back(std::move(constant.floats));
+  if (options.reportShape)
+    result.shape = materialShape(emitInput, "Shape");
   if (options.emitGlsl)
     result.glsl = emitMaterial(emitInput, Target::Glsl);
   if (options.emitHlsl)

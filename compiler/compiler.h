@@ -16,6 +16,14 @@ namespace memograph::compiler {
 struct CompileOptions {
   bool emitGlsl = true;
   bool emitHlsl = true;
+  // Material instances (docs/design/wavefront.md#material-instances): the float constant
+  // inputs, by their index in CompiledMaterial::floatConstants, that the code reads from the
+  // material's parameter block instead of writing them as literals. MG_MATERIAL_PARAMETER(k)
+  // is float k of the block, which holds the chosen constants' floats in index order; the
+  // including shader defines it. Empty (or all false): every constant a literal.
+  std::vector<bool> parameterConstants;
+  // Fill CompiledMaterial::shape.
+  bool reportShape = false;
 };
 
 // Cycles' AO node settings (svm_node_ao): rays of length `distance` (0: none traced, the
@@ -70,6 +78,14 @@ struct CompiledMaterial {
   std::string glsl;  // empty unless CompileOptions::emitGlsl
   std::string hlsl;  // empty unless CompileOptions::emitHlsl
   std::string metadataJson;
+  // The graph's float constant inputs (float to float4 sockets, with or without derivatives;
+  // not tables, ints or textures) in emission order, node by node and socket by socket: each
+  // as the floats its socket takes (a number splat to the socket's width).
+  std::vector<std::vector<float>> floatConstants;
+  // With CompileOptions::reportShape: the material's GLSL functions with every float
+  // constant a parameter and a placeholder for its name. Graphs of one shape differ only in
+  // their float constants, so one compiled shader serves them all (material instances).
+  std::string shape;
 };
 
 // One link of a checked graph: what `memograph check` prints.

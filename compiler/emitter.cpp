@@ -1,6 +1,7 @@
 #include "compiler/emitter.h"
 
 #include <algorithm>
+#include <map>
 #include <optional>
 #include <set>
 
@@ -131,6 +132,49 @@ std::string tableDefinition(const std::string& name, const Literal& value) {
   return out;
 }
 
+// The floats a constant of `type` (float..float4) takes: as formatConstant spells them.
+std::vector<float> constantFloats(const Literal& value, Type type) {
+  std::vector<float> floats;
+  for (int i = 0; i < type.width(); ++i) {
+    const auto index = static_cast<std::size_t>(i);
+    const double component = value.components.size() == 1      ? value.components[0]
+                             : index < value.components.size() ? value.components[index]
+                                                               : (i == 3 ? 1.0 : 0.0);
+    floats.push_back(static_cast<float>(component));
+  }
+  return floats;
+}
+
+// Where each float constant input that is a parameter starts in the parameter block
+// (CompileOptions::parameterConstants): by (node, socket).
+using ParameterSlots = std::map<std::pair<std::size_t, std::size_t>, std::size_t>;
+
+ParameterSlots parameterSlots(const EmitInput& in, const std::vector<bool>& parameters) {
+  ParameterSlots slots;
+  std::size_t next = 0;
+  const auto constants = floatConstantInputs(in);
+  for (std::size_t i = 0; i < constants.size() && i < parameters.size(); ++i) {
+    if (!parameters[i])
+      continue;
+    slots[{constants[i].node, constants[i].socket}] = next;
+    next += constants[i].floats.size();
+  }
+  return slots;
+}
+
+// A float constant read from the material's parameter block, floats first.. of it.
+std::string parameterExpression(std::size_t first, Type type) {
+  std::string code;
+  for (int i = 0; i < type.width(); ++i) {
+    code += std::string(i ? ", " : "") + "MG_MATERIAL_PARAMETER(" +
+            std::to_string(first + static_cast<std::size_t>(i)) + ")";
+  }
+  const Type plain{type.base, false};
+  if (type.width() > 1)
+    code = plain.name() + "(" + code + ")";
+  return type.derivatives ? "mg_const_" + type.name() + "(" + code + ")" : code;
+}
+
 std::string constantExpression(const Literal& value, Type type) {
   if (type.base == BaseType::TextureRef) {
     return std::to_string(static_cast<long long>(value.components.at(0)));
@@ -145,6 +189,7 @@ std::string constantExpression(const Literal& value, Type type) {
 // declaration per output, then the constant tables, then one call per node, as in thesis
 // Listing 5.3.
 std::string nodeStatements(const EmitInput& in, const std::vector<NodeCall>& calls,
+                           const ParameterSlots& parameters,
                            const std::vector<std::size_t>& nodes) {
   std::string text;
   for (const std::size_t node : nodes) {
@@ -189,8 +234,10 @@ std::string nodeStatements(const EmitInput& in, const std::vector<NodeCall>& cal
       }
       const InputSource& source = *resolved.inputs[s];
       if (source.kind != InputSource::Kind::Link) {
-        argument = wanted.base == BaseType::Table ? tableName(node, type.sockets[s].name)
-                                                  : constantExpression(source.constant, wanted);
+        const auto parameter = parameters.find({node, s});
+        argument = wanted.base == BaseType::Table  ? tableName(node, type.sockets[s].name)
+                   : parameter != parameters.end() ? parameterExpression(parameter->second, wanted)
+                                                   : constantExpression(source.constant, wanted);
         continue;
       }
       const auto& producer = in.graph.nodes[source.producer];
@@ -334,7 +381,8 @@ std::string keyAxesSeeding(Variation domain) {
 // and runs everything else, so that rest(inputs, cut(inputs)) computes what
 // EvaluateMaterial_<Name>(inputs) does (for gradient values, up to the gradient's finite
 // difference over one key step against the hit's over its footprint).
-std::string cutFunctions(const EmitInput& in, const std::vector<NodeCall>& calls) {
+std::string cutFunctions(const EmitInput& in, const std::vector<NodeCall>& calls,
+                         const ParameterSlots& parameters) {
   const MaterialCut& cut = in.cut;
   const std::string& name = in.metadata.name;
   const std::string domain(variationName(cut.domain));
@@ -349,7 +397,7 @@ std::string cutFunctions(const EmitInput& in, const std::vector<NodeCall>& calls
   if (!cut.hasGradients()) {
     text += "void EvaluateMaterialCut_" + name + "(in MaterialInputs inputs, out MaterialCut_" +
             name + " cut) {\n";
-    text += nodeStatements(in, calls, cut.cutNodes);
+    text += nodeStatements(in, calls, parameters, cut.cutNodes);
     for (const CutValue& value : cut.values)
       text += packedValue(in, value, 0, "  ");
     text += "}\n";
@@ -372,12 +420,12 @@ std::string cutFunctions(const EmitInput& in, const std::vector<NodeCall>& calls
     }
     if (!threeAxes) {
       text += keyAxesSeeding(cut.domain);
-      text += nodeStatements(in, calls, cut.cutNodes);
+      text += nodeStatements(in, calls, parameters, cut.cutNodes);
       text += packing0;
     } else {
       text += "  for (int axisRun = 0; axisRun < 2; ++axisRun) {\n";
       text += keyAxesSeeding(cut.domain);
-      text += indented(nodeStatements(in, calls, cut.cutNodes));
+      text += indented(nodeStatements(in, calls, parameters, cut.cutNodes));
       text += "    if (axisRun == 0) {\n" + packing0 + "    } else {\n" + packing1 + "    }\n";
       text += "  }\n";
     }
@@ -388,11 +436,57 @@ std::string cutFunctions(const EmitInput& in, const std::vector<NodeCall>& calls
   text += "  outputs = mg_defaultMaterialOutputs(inputs);\n";
   for (const CutValue& value : cut.values)
     text += unpackedValue(in, value);
-  text += nodeStatements(in, calls, cut.restNodes);
+  text += nodeStatements(in, calls, parameters, cut.restNodes);
   return text + "}\n";
 }
 
 }  // namespace
+
+std::vector<FloatConstantInput> floatConstantInputs(const EmitInput& in) {
+  std::vector<FloatConstantInput> constants;
+  for (const std::size_t node : in.order) {
+    const auto& resolved = in.graph.nodes[node];
+    const auto& overload = resolved.type->overloads[*in.chosen[node]];
+    for (std::size_t s = 0; s < resolved.type->sockets.size(); ++s) {
+      const Type wanted = overload.socketTypes[s];
+      if (resolved.type->sockets[s].direction != Direction::In || !resolved.inputs[s] ||
+          resolved.inputs[s]->kind == InputSource::Kind::Link || !wanted.isFloat())
+        continue;
+      constants.push_back({node, s, constantFloats(resolved.inputs[s]->constant, wanted)});
+    }
+  }
+  return constants;
+}
+
+namespace {
+
+// EvaluateMaterial_<Name>, then the cut's functions where the material has a cut.
+std::string materialFunctions(const EmitInput& in, const std::vector<NodeCall>& calls,
+                              const ParameterSlots& parameters) {
+  std::string body = "\nvoid EvaluateMaterial_" + in.metadata.name +
+                     "(in MaterialInputs inputs, out MaterialOutputs outputs) {\n";
+  body += "  outputs = mg_defaultMaterialOutputs(inputs);\n";
+  body += nodeStatements(in, calls, parameters, in.order);
+  body += "}\n";
+  return in.cut.empty() ? body : body + cutFunctions(in, calls, parameters);
+}
+
+std::vector<NodeCall> nodeCalls(const EmitInput& in) {
+  std::vector<NodeCall> calls(in.graph.nodes.size());
+  for (const std::size_t node : in.order)
+    calls[node] = callFor(in, node);
+  return calls;
+}
+
+}  // namespace
+
+std::string materialShape(const EmitInput& in, const std::string& placeholder) {
+  MaterialMetadata renamed = in.metadata;
+  renamed.name = placeholder;
+  const EmitInput shape{in.graph, in.order, in.chosen, in.library, renamed, in.cut, in.sourcePath};
+  const std::vector<bool> every(floatConstantInputs(in).size(), true);
+  return materialFunctions(shape, nodeCalls(shape), parameterSlots(shape, every));
+}
 
 std::string emitMaterial(const EmitInput& in, Target target) {
   const bool glsl = target == Target::Glsl;
@@ -406,16 +500,10 @@ std::string emitMaterial(const EmitInput& in, Target target) {
     out += "// texture slot " + std::to_string(slot) + ": " + meta.textures[slot] + "\n";
   }
   // Each node's callee, once: the call below and the functions to emit follow it.
-  std::vector<NodeCall> calls(in.graph.nodes.size());
-  for (const std::size_t node : in.order)
-    calls[node] = callFor(in, node);
-  // The function first: what it calls decides which library functions come before it.
-  std::string body = "\nvoid EvaluateMaterial_" + meta.name +
-                     "(in MaterialInputs inputs, out MaterialOutputs outputs) {\n";
-  body += "  outputs = mg_defaultMaterialOutputs(inputs);\n";
-  body += nodeStatements(in, calls, in.order);
-  body += "}\n";
-  const std::string cutText = in.cut.empty() ? std::string() : cutFunctions(in, calls);
+  const std::vector<NodeCall> calls = nodeCalls(in);
+  // The functions first: what they call decides which library functions come before them.
+  const std::string functions =
+      materialFunctions(in, calls, parameterSlots(in, in.parameterConstants));
 
   // The prelude's declarations (types, defines, prototypes) once per shader; then each
   // reached function once, under its own guard, so that any number of material includes
@@ -424,12 +512,12 @@ std::string emitMaterial(const EmitInput& in, Target target) {
   out += "\n#ifndef " + preludeGuard + "\n#define " + preludeGuard + "\n";
   out += in.library.preludeDeclarations(target);
   out += "#endif  // " + preludeGuard + "\n";
-  for (const std::size_t index : functionsToEmit(in, target, calls, body + cutText)) {
+  for (const std::size_t index : functionsToEmit(in, target, calls, functions)) {
     const auto& function = in.library.functions()[index];
     out += "\n#ifndef " + function.guard + "\n#define " + function.guard + "\n";
     out += function.text + "\n#endif\n";
   }
-  return out + body + cutText;
+  return out + functions;
 }
 
 }  // namespace memograph::compiler

@@ -23,8 +23,25 @@ struct EmitInput {
   const MaterialMetadata& metadata;
   const MaterialCut& cut;
   std::string sourcePath;
+  // CompileOptions::parameterConstants, by index in floatConstantInputs().
+  std::vector<bool> parameterConstants = {};
 };
 
 std::string emitMaterial(const EmitInput& input, Target target);
+
+// A float constant input: node `node`'s input socket `socket`, given `floats` (a number splat
+// to the socket's width).
+struct FloatConstantInput {
+  std::size_t node = 0;
+  std::size_t socket = 0;
+  std::vector<float> floats;
+};
+
+// The graph's float constant inputs (CompiledMaterial::floatConstants) in emission order.
+std::vector<FloatConstantInput> floatConstantInputs(const EmitInput& input);
+
+// The material's functions alone (EvaluateMaterial_<Name> and the cut's), every float
+// constant a parameter and the name `placeholder`: CompiledMaterial::shape.
+std::string materialShape(const EmitInput& input, const std::string& placeholder);
 
 }  // namespace memograph::compiler

@@ -70,6 +70,9 @@ struct RendererOptions {
   // runs in chunks of this many. 0: every pixel, or what the device's storage-buffer range
   // holds. Non-zero needs the wavefront (Shading::Wavefront, or Auto resolving to it).
   std::uint32_t wavefrontPaths = 0;
+  // Wavefront: graphs of one shape (equal but for float constants) share a material pass
+  // (LinkedMaterials::instanceGroups). False only to check that sharing changes no picture.
+  bool materialInstances = true;
   // The megakernel: a frame's P paths per pixel are traced in dispatches of at most this many
   // paths each (runtime/trace/megakernel/path_dispatches.h); 0: all P in one. The default is the
   // fastest split measured: at P = 6 (5 paths, then 1) the unculled city's frame took 0.935x the

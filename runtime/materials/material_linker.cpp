@@ -45,6 +45,22 @@ MaterialDispatch parseMaterialDispatch(const std::string& text) {
                               "' (choose auto, switch or callable)");
 }
 
+std::vector<std::uint32_t> materialInstanceWords(const LinkedMaterials& materials) {
+  std::vector<std::uint32_t> words(2 * materials.distinct.size(), 0u);
+  for (std::size_t bin = 0; bin < materials.distinct.size(); ++bin)
+    words[2 * bin + 1] = static_cast<std::uint32_t>(materials.distinct[bin].textureBase);
+  for (const MaterialInstanceGroup& group : materials.instanceGroups) {
+    const InstanceGroup& instances = group.instances;
+    for (std::size_t m = 0; m < instances.members.size(); ++m) {
+      words[2 * instances.members[m]] = static_cast<std::uint32_t>(words.size());
+      for (std::uint32_t k = 0; k < instances.parameterCount; ++k)
+        words.push_back(
+            std::bit_cast<std::uint32_t>(instances.parameters[m * instances.parameterCount + k]));
+    }
+  }
+  return words;
+}
+
 std::uint32_t pcgHash(std::uint32_t v) {
   std::uint32_t state = v * 747796405u + 2891336453u;
   std::uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
@@ -283,6 +299,10 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
   compiler::CompileOptions compileOptions;
   compileOptions.emitGlsl = true;
   compileOptions.emitHlsl = false;
+  compileOptions.reportShape = true;
+  // Per distinct graph: its source and its shape, for the material instances.
+  std::vector<compiler::SourceFile> distinctSources;
+  std::vector<InstanceCandidate> candidates;
   for (const MaterialRef& material : materials) {
     compiler::SourceFile graph;
     std::filesystem::path baseDirectory;
@@ -390,8 +410,34 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
     includes += include;
     linked.distinct.push_back(
         {name, std::move(include), entry.textureBase, entry.cutWidth, entry.cacheable});
+    // A shared pass takes its defines from its first member, so what sets them joins the shape.
+    candidates.push_back({compiled->shape + "\n// cacheable " + std::to_string(entry.cacheable) +
+                              ", cut " + std::to_string(entry.cutWidth) + "\n",
+                          std::move(compiled->floatConstants)});
+    distinctSources.push_back(graph);
     bySource.emplace(graph.text, entry);
     linked.materials.push_back(entry);
+  }
+
+  for (InstanceGroup& group : groupMaterialInstances(candidates)) {
+    const DistinctMaterial& first = linked.distinct[group.members.front()];
+    MaterialInstanceGroup shared{first.name, first.include, std::move(group)};
+    if (shared.instances.parameterCount > 0) {
+      compiler::CompileOptions parameterOptions = compileOptions;
+      parameterOptions.reportShape = false;
+      parameterOptions.parameterConstants = shared.instances.parameterConstants;
+      compiler::Diagnostics diagnostics;
+      const auto& source = distinctSources[shared.instances.members.front()];
+      auto compiled = compiler::compileMaterial(source, *library, parameterOptions, diagnostics);
+      if (!compiled) {
+        throw std::runtime_error("material '" + first.name +
+                                 "' does not compile with parameters:\n" +
+                                 compiler::formatDiagnostics(diagnostics));
+      }
+      shared.include = "// ---- material " + first.name + " and its instances (" + source.path +
+                       ")\n" + compiled->glsl + "\n";
+    }
+    linked.instanceGroups.push_back(std::move(shared));
   }
 
   std::string& out = linked.source;

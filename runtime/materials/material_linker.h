@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "runtime/materials/material_instances.h"
 #include "runtime/memo/cache_options.h"
 #include "runtime/scene/scene.h"
 
@@ -76,6 +77,14 @@ struct DistinctMaterial {
   bool cacheable = false;
 };
 
+// Distinct graphs of one shape, which share one wavefront material pass (material
+// instances, material_instances.h).
+struct MaterialInstanceGroup {
+  std::string name;         // the EvaluateMaterial_<name> of `include`: the first member's graph
+  std::string include;      // that graph's include, its differing constants read as parameters
+  InstanceGroup instances;  // members: indices into LinkedMaterials::distinct
+};
+
 struct LinkedMaterials {
   std::string source;         // materials.glsl for the switch dispatch
   std::string preludeSource;  // materials.glsl for the callable dispatch
@@ -86,6 +95,9 @@ struct LinkedMaterials {
   std::string lookupRestSource;
   std::vector<LinkedMaterial> materials;  // parallel to Scene::materials
   std::vector<DistinctMaterial> distinct;
+  // The distinct graphs by shape: each in exactly one group, the groups in the order of their
+  // first members.
+  std::vector<MaterialInstanceGroup> instanceGroups;
   std::vector<std::string> texturePaths;  // resolved paths, in descriptor-array order
   // Floats per texel-cache entry: the largest cacheValueCount (0: nothing is cacheable).
   std::uint32_t cacheValueCount = 0;
@@ -118,6 +130,11 @@ struct LinkedMaterials {
   bool tracedInputs = false;
   double compileMilliseconds = 0.0;
 };
+
+// The words of the wavefront material passes' parameter buffer (shared_types.h,
+// kBindingMaterialParameters): per distinct graph its parameter block's first word and its
+// first texture slot, then every instance group's blocks, floats as uint bits.
+std::vector<std::uint32_t> materialInstanceWords(const LinkedMaterials& materials);
 
 // How the path tracer reaches a scene material's graph: a switch in the one path-tracer
 // shader (both backends), or a callable shader per material (ray-tracing pipeline only).

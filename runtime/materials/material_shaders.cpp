@@ -11,16 +11,26 @@ std::vector<std::vector<std::uint32_t>> compileMaterialShaders(const ShaderCompi
                                                                const LinkedMaterials& materials,
                                                                const MaterialShaderRequest& request,
                                                                ShaderCacheStats& stats) {
-  const std::size_t count = materials.distinct.size();
+  const std::size_t count =
+      request.instanceGroups ? materials.instanceGroups.size() : materials.distinct.size();
   std::vector<std::vector<std::uint32_t>> spirv(count);
   std::vector<ShaderCacheStats> threadStats(workerThreads(request.threads, count));
   const auto start = std::chrono::steady_clock::now();
   parallelFor(count, request.threads, [&](std::size_t index, std::uint32_t thread) {
-    const DistinctMaterial& material = materials.distinct[index];
-    ShaderCompiler compiler = base.withFile("material.glsl", material.include);
+    // A group's pass is its first member's, but for the constants and texture slots.
+    const MaterialInstanceGroup* group =
+        request.instanceGroups ? &materials.instanceGroups[index] : nullptr;
+    const DistinctMaterial& material =
+        materials.distinct[group ? group->instances.members.front() : index];
+    ShaderCompiler compiler =
+        base.withFile("material.glsl", group ? group->include : material.include);
     try {
       std::vector<std::string> defines = request.defines;
-      defines.push_back("MG_TEXTURE_BASE=" + std::to_string(material.textureBase));
+      if (group && group->instances.members.size() > 1) {
+        defines.push_back("MG_MATERIAL_INSTANCES=1");
+      } else {
+        defines.push_back("MG_TEXTURE_BASE=" + std::to_string(material.textureBase));
+      }
       defines.push_back("MG_EVALUATE_MATERIAL=EvaluateMaterial_" + material.name);
       if (material.cacheable)
         defines.push_back("MG_MATERIAL_CACHEABLE=1");

@@ -24,13 +24,21 @@ struct MaterialShaderRequest {
   // with a cut also gets MG_MATERIAL_CUT (its MaterialCut_<Name>), MG_MATERIAL_CUT_WIDTH,
   // MG_EVALUATE_MATERIAL_CUT and MG_EVALUATE_MATERIAL_REST.
   bool cutFunctions = false;
-  // Per distinct material (empty: none), defines of that material's shader alone.
+  // One shader per LinkedMaterials::instanceGroups entry instead of per distinct graph (the
+  // wavefront's material passes, which bin by distinct graph and dispatch each bin with its
+  // index, push.step.w): a group of several graphs gets MG_MATERIAL_INSTANCES instead of
+  // MG_TEXTURE_BASE, and reads each bin's texture slot and constants from the buffer
+  // materialInstanceWords() fills.
+  bool instanceGroups = false;
+  // Per shader (distinct material, or instance group; empty: none), defines of that shader
+  // alone.
   std::vector<std::vector<std::string>> materialDefines;
   std::uint32_t threads = 0;    // 0: one per hardware thread
   std::string what = "shader";  // names the shader in a compile error: "<what> of material 'X'"
 };
 
-// Compiles `request.source` once per LinkedMaterials::distinct (in that order) with a compiler
+// Compiles `request.source` once per LinkedMaterials::distinct (in that order; or per
+// instance group with request.instanceGroups) with a compiler
 // that sees `base`'s files plus the material's include as "material.glsl", so its cache key
 // changes only when this material, the shared sources or the defines change. Adds the hits,
 // compiles and summed compile time (CPU time over all threads) to `stats`. Throws the first

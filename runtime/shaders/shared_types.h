@@ -58,7 +58,11 @@ MG_CONSTANT(uint, kBindingCountingBoxes, 17);
 MG_CONSTANT(uint, kBindingPathState, 18);
 MG_CONSTANT(uint, kBindingPathQueues, 19);
 MG_CONSTANT(uint, kBindingWavefrontControl, 20);
-MG_CONSTANT(uint, kBindingCount, 21);
+// The wavefront's material instances (material_instances.h): per bin (distinct graph) its
+// parameter block's first word and its first texture slot, then the blocks, floats as uint
+// bits. Read by the material passes that graphs of one shape share.
+MG_CONSTANT(uint, kBindingMaterialParameters, 21);
+MG_CONSTANT(uint, kBindingCount, 22);
 
 // TLAS instance masks and the rays' cull masks. Surfaces answer every path ray; lights'
 // quads (Blender area lamps) only BSDF rays, as Cycles' lamps.

@@ -131,6 +131,7 @@ std::unique_ptr<FrameTracer> buildWavefront(const ShaderBuild& b, ShaderCompiler
   setup.cutKeys = b.cutKeys;
   setup.pathSlots = b.options.wavefrontPaths;
   setup.compileThreads = b.options.shaderCompileThreads;
+  setup.materialInstances = b.options.materialInstances;
   // LiPaC's hit feedback: one set of passes for every frame (a push constant says whether a
   // frame counts), where the megakernel keeps a second, quiet pipeline: only the trace pass
   // counts, and it is small.

@@ -5,7 +5,7 @@
 namespace memograph::runtime {
 
 std::vector<std::uint32_t> wavefrontComputePasses(const WavefrontPipelineChoice& choice) {
-  const bool materials = choice.materialGraphs > 0;
+  const bool materials = choice.materialPasses > 0;
   std::vector<std::uint32_t> passes;
   for (std::uint32_t pass = 0; pass < gpu::kWavefrontPassCount; ++pass) {
     const bool traces = pass == gpu::kWavefrontTrace || pass == gpu::kWavefrontShadow ||
@@ -31,7 +31,7 @@ std::vector<std::uint32_t> wavefrontComputePasses(const WavefrontPipelineChoice&
 }
 
 std::uint32_t wavefrontPipelineCount(const WavefrontPipelineChoice& choice) {
-  return static_cast<std::uint32_t>(wavefrontComputePasses(choice).size()) + choice.materialGraphs +
+  return static_cast<std::uint32_t>(wavefrontComputePasses(choice).size()) + choice.materialPasses +
          (choice.rayQuery ? 0u : 1u);
 }
 

@@ -13,9 +13,11 @@ namespace memograph::runtime {
 
 // What decides the wavefront's pipelines.
 struct WavefrontPipelineChoice {
-  bool rayQuery = true;              // the query backend: trace and shadow are compute passes
-  std::uint32_t materialGraphs = 0;  // distinct graphs (material bins); 0: the floor
-  bool cacheLookups = false;         // a cache's lookup pass (WavefrontSetup::cacheLookups)
+  bool rayQuery = true;  // the query backend: trace and shadow are compute passes
+  // Material passes: one per instance group of distinct graphs (graphs of one shape share
+  // one, LinkedMaterials::instanceGroups); 0: the floor.
+  std::uint32_t materialPasses = 0;
+  bool cacheLookups = false;  // a cache's lookup pass (WavefrontSetup::cacheLookups)
   // With material graphs, some reads a traced input (LinkedMaterials::tracedInputs): the
   // traced-inputs pass, a compute pass on the query backend, a third raygen of the
   // ray-tracing pipeline on the pipeline backend (no pipeline of its own there).
@@ -26,10 +28,10 @@ struct WavefrontPipelineChoice {
 };
 
 // The compute passes (gpu::kWavefront* indices, ascending) that get a pipeline of their own;
-// kWavefrontMaterial never does: each graph has its material pipeline.
+// kWavefrontMaterial never does: each instance group has its material pipeline.
 std::vector<std::uint32_t> wavefrontComputePasses(const WavefrontPipelineChoice& choice);
 
-// Every pipeline the tracer creates: the compute passes, one material pass per graph, and on
+// Every pipeline the tracer creates: the compute passes, the material passes, and on
 // the pipeline backend the one ray-tracing pipeline of the trace and shadow raygens.
 std::uint32_t wavefrontPipelineCount(const WavefrontPipelineChoice& choice);
 

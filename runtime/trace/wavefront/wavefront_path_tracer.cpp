@@ -181,6 +181,10 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
 
   if (bins > 0)
     binReadback_ = hostBuffer(context, bins * kBinRecordBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
+  const std::vector<std::uint32_t> parameterWords =
+      materials ? materialInstanceWords(*materials) : std::vector<std::uint32_t>{};
+  materialParameters_ = uploadBuffer(context, std::span<const std::uint32_t>(parameterWords),
+                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
   VkShaderStageFlags stages = query_ ? VK_SHADER_STAGE_COMPUTE_BIT
                                      : VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_RAYGEN_BIT_KHR;
   setLayout_ = createTraceSetLayout(device, stages, textureCount, setup.tileImage, true);
@@ -221,9 +225,24 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   // passes' and the ray-tracing pipeline's shaders compile together on the threads (the five
   // ray-tracing shaders compiled one after another added their sum to a cold start), then
   // the material passes'.
+  if (materials) {
+    // A material pass per instance group, or per distinct graph.
+    materialBins_ = static_cast<std::uint32_t>(materials->distinct.size());
+    if (setup.materialInstances) {
+      for (const MaterialInstanceGroup& group : materials->instanceGroups) {
+        binsOfPass_.push_back(group.instances.members);
+        materialPassNames_.push_back(group.name);
+      }
+    } else {
+      for (std::uint32_t bin = 0; bin < materialBins_; ++bin) {
+        binsOfPass_.push_back({bin});
+        materialPassNames_.push_back(materials->distinct[bin].name);
+      }
+    }
+  }
   WavefrontPipelineChoice choice;
   choice.rayQuery = query_;
-  choice.materialGraphs = materials ? static_cast<std::uint32_t>(materials->distinct.size()) : 0;
+  choice.materialPasses = static_cast<std::uint32_t>(binsOfPass_.size());
   choice.cacheLookups = lookup_;
   choice.tracedInputs = tracedInputs_;
   choice.ambientOcclusionIntegrator = ambientOcclusionIntegrator_;
@@ -250,18 +269,19 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   }
   if (materials)
     shaders.materialSpirv = compileMaterialPasses(compiler, *materials, defines, setup);
-  for (std::size_t bin = 0; bin < shaders.materialSpirv.size(); ++bin)
+  for (std::size_t pass = 0; pass < shaders.materialSpirv.size(); ++pass)
     materialPassSizes_.push_back(
-        {spirvSize(shaders.materialSpirv[bin]),
-         spirvFunctionCopies(shaders.materialSpirv[bin],
-                             "EvaluateMaterial_" + materials->distinct[bin].name)});
+        {spirvSize(shaders.materialSpirv[pass]),
+         spirvFunctionCopies(shaders.materialSpirv[pass],
+                             "EvaluateMaterial_" + materialPassNames_[pass])});
   createPipelines(shaders, materials, setup.compileThreads);
 }
 
-// One small shader per distinct graph, compiled with only that graph's include (as a
-// material callable is), so no compile ever sees all of a scene's graphs: the query
-// backend's megakernel inlines every one (the classroom's 88 do not compile on lavapipe).
-// Compiled on several threads (glslang took 4.4 s for all of the classroom's, cold).
+// One small shader per instance group (graphs of one shape: material_instances.h), compiled
+// with only that group's include (as a material callable is), so no compile ever sees all of
+// a scene's graphs: the query backend's megakernel inlines every one (the classroom's 88 do
+// not compile on lavapipe). Compiled on several threads (glslang took 4.4 s for all of the
+// classroom's 88 graphs, cold, one pass each).
 std::vector<std::vector<std::uint32_t>> WavefrontPathTracer::compileMaterialPasses(
     ShaderCompiler& compiler, const LinkedMaterials& materials,
     const std::vector<std::string>& defines, const WavefrontSetup& setup) {
@@ -271,15 +291,20 @@ std::vector<std::vector<std::uint32_t>> WavefrontPathTracer::compileMaterialPass
   request.stage = ShaderStage::Compute;
   request.defines = defines;
   request.defines.push_back(kPassDefines[gpu::kWavefrontMaterial]);
+  request.instanceGroups = setup.materialInstances;
   // The evaluation of light points only in the passes of graphs that emitters' light samples
   // evaluate: the others' bins never hold a point, and each pass compiled is a driver's
   // compile at a cold start.
   if (lightPoints_) {
-    request.materialDefines.resize(materials.distinct.size());
-    for (std::size_t bin = 0; bin < materials.distinct.size(); ++bin)
-      if (setup.lightPointGraphs.empty() ||
-          (bin < setup.lightPointGraphs.size() && setup.lightPointGraphs[bin]))
-        request.materialDefines[bin].push_back("MG_MATERIAL_LIGHT_POINTS=1");
+    request.materialDefines.resize(binsOfPass_.size());
+    for (std::size_t pass = 0; pass < binsOfPass_.size(); ++pass) {
+      const auto& bins = binsOfPass_[pass];
+      if (std::any_of(bins.begin(), bins.end(), [&](std::uint32_t bin) {
+            return setup.lightPointGraphs.empty() ||
+                   (bin < setup.lightPointGraphs.size() && setup.lightPointGraphs[bin]);
+          }))
+        request.materialDefines[pass].push_back("MG_MATERIAL_LIGHT_POINTS=1");
+    }
   }
   request.threads = setup.compileThreads;
   request.what = "wavefront material pass";
@@ -321,10 +346,10 @@ void WavefrontPathTracer::createPipelines(const PipelineShaders& shaders,
   VkDevice device = context_.device();
   computePasses_.resize(gpu::kWavefrontPassCount);
   materialPasses_.resize(shaders.materialSpirv.size());
-  std::vector<std::size_t> binsBySize(shaders.materialSpirv.size());
-  for (std::size_t bin = 0; bin < binsBySize.size(); ++bin)
-    binsBySize[bin] = bin;
-  std::stable_sort(binsBySize.begin(), binsBySize.end(), [&](std::size_t a, std::size_t b) {
+  std::vector<std::size_t> passesBySize(shaders.materialSpirv.size());
+  for (std::size_t pass = 0; pass < passesBySize.size(); ++pass)
+    passesBySize[pass] = pass;
+  std::stable_sort(passesBySize.begin(), passesBySize.end(), [&](std::size_t a, std::size_t b) {
     return shaders.materialSpirv[a].size() > shaders.materialSpirv[b].size();
   });
   const std::size_t rayTracingJobs = shaders.rayTracingModules.empty() ? 0 : 1;
@@ -340,16 +365,15 @@ void WavefrontPathTracer::createPipelines(const PipelineShaders& shaders,
       return;
     }
     job -= rayTracingJobs;
-    if (job < binsBySize.size()) {
-      const std::size_t bin = binsBySize[job];
-      auto module = createShaderModule(device, shaders.materialSpirv[bin]);
-      materialPasses_[bin] =
-          createComputePipeline(context_, module.get(), layout_.get(),
-                                ("wavefront material " + materials->distinct[bin].name).c_str(),
-                                caches.forThread(thread));
+    if (job < passesBySize.size()) {
+      const std::size_t pass = passesBySize[job];
+      auto module = createShaderModule(device, shaders.materialSpirv[pass]);
+      materialPasses_[pass] = createComputePipeline(
+          context_, module.get(), layout_.get(),
+          ("wavefront material " + materialPassNames_[pass]).c_str(), caches.forThread(thread));
       return;
     }
-    job -= binsBySize.size();
+    job -= passesBySize.size();
     const std::uint32_t pass = shaders.passes[job];
     auto module = createShaderModule(device, shaders.passSpirv[job]);
     computePasses_[pass] = createComputePipeline(context_, module.get(), layout_.get(),
@@ -423,13 +447,15 @@ void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pas
   }
   if (pass == gpu::kWavefrontMaterial) {
     // Every bin's graph over its batch, each sized by the offsets pass; the bins' slots are
-    // disjoint, so no barrier between them.
-    for (std::uint32_t bin = 0; bin < materialPasses_.size(); ++bin) {
-      push.step.w = bin;
-      vkCmdPushConstants(commands, layout_.get(), stages, 0, sizeof push, &push);
-      vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, materialPasses_[bin].get());
-      vkCmdDispatchIndirect(commands, control_.buffer(),
-                            sizeof(gpu::WavefrontControl) + bin * kBinRecordBytes);
+    // disjoint, so no barrier between them. The bins of an instance group share a pipeline.
+    for (std::size_t pass = 0; pass < materialPasses_.size(); ++pass) {
+      vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, materialPasses_[pass].get());
+      for (const std::uint32_t bin : binsOfPass_[pass]) {
+        push.step.w = bin;
+        vkCmdPushConstants(commands, layout_.get(), stages, 0, sizeof push, &push);
+        vkCmdDispatchIndirect(commands, control_.buffer(),
+                              sizeof(gpu::WavefrontControl) + bin * kBinRecordBytes);
+      }
     }
     return;
   }
@@ -519,7 +545,8 @@ void WavefrontPathTracer::record(VkCommandBuffer commands, VkDescriptorSet set, 
     barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
     vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
                          VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &barrier, 0, nullptr, 0, nullptr);
-    VkBufferCopy copy{sizeof(gpu::WavefrontControl), 0, materialPasses_.size() * kBinRecordBytes};
+    VkBufferCopy copy{sizeof(gpu::WavefrontControl), 0,
+                      std::size_t{materialBins_} * kBinRecordBytes};
     vkCmdCopyBuffer(commands, control_.buffer(), binReadback_.buffer(), 1, &copy);
   }
 }
@@ -529,9 +556,9 @@ std::vector<std::uint32_t> WavefrontPathTracer::binHits() const {
   if (materialPasses_.empty())
     return hits;
   constexpr std::size_t kRecords = kBinRecordBytes / sizeof(glm::uvec4);
-  std::vector<glm::uvec4> records(materialPasses_.size() * kRecords);
+  std::vector<glm::uvec4> records(std::size_t{materialBins_} * kRecords);
   binReadback_.read(records.data(), records.size() * sizeof(glm::uvec4));
-  for (std::size_t bin = 0; bin < materialPasses_.size(); ++bin)
+  for (std::size_t bin = 0; bin < materialBins_; ++bin)
     hits.push_back(records[kRecords * bin].w);
   return hits;
 }
@@ -552,6 +579,7 @@ void WavefrontPathTracer::addResources(TraceResources& resources) const {
   resources.pathState = &pathState_;
   resources.pathQueues = &pathQueues_;
   resources.wavefrontControl = &control_;
+  resources.materialParameters = &materialParameters_;
 }
 
 void WavefrontPathTracer::addFrameStats(const FrameTrace& trace,

@@ -26,8 +26,11 @@ namespace memograph::runtime {
 // What the wavefront renders beyond the megakernel's defines.
 struct WavefrontSetup {
   // Null: the floor (MG_MATERIAL_FLOOR in the defines); otherwise the scene's linked graphs,
-  // one material pipeline per distinct graph.
+  // one material pipeline per instance group (graphs of one shape).
   const LinkedMaterials* materials = nullptr;
+  // Graphs of one shape share a material pipeline (LinkedMaterials::instanceGroups); false:
+  // each distinct graph has its own, as a check of the sharing compares.
+  bool materialInstances = true;
   // A cache's defines (MG_CACHE_TEXEL, or MG_CACHE_TILE with MG_TILE_FILL_DEFERRED), with
   // materials: a lookup pass before the binning; the material passes insert the texel
   // cache's misses, or compute the tiles the lookups queued (tileQueueCapacity of them at
@@ -87,8 +90,10 @@ class WavefrontPathTracer final : public FrameTracer {
   // one after each pass.
   std::uint32_t timestampCount(std::uint32_t paths, std::uint32_t bounces) const override;
 
-  // Material bins (distinct graphs, each a material pipeline); 0 with the floor.
-  std::uint32_t materialBinCount() const {
+  // Material bins (distinct graphs); 0 with the floor.
+  std::uint32_t materialBinCount() const { return materialBins_; }
+  // Material pipelines: one per instance group (graphs of one shape share one).
+  std::uint32_t materialPassCount() const {
     return static_cast<std::uint32_t>(materialPasses_.size());
   }
   // Hits each bin's material pass evaluated in the last frame record() recorded (read after
@@ -96,7 +101,7 @@ class WavefrontPathTracer final : public FrameTracer {
   std::vector<std::uint32_t> binHits() const;
   // The material pipelines' GLSL compiles (they have compilers of their own).
   const ShaderCacheStats& materialShaderStats() const { return materialShaderStats_; }
-  // Per material pass (bin), its SPIR-V as a driver that inlines every call compiles it
+  // Per material pass (instance group), its SPIR-V as a driver that inlines every call compiles it
   // (spirv_size.h): the pass, and its graph (EvaluateMaterial_<name>) within it.
   struct MaterialPassSize {
     SpirvSize pass;
@@ -148,8 +153,13 @@ class WavefrontPathTracer final : public FrameTracer {
   VulkanHandle<VkPipelineLayout> layout_;
   // Indexed by gpu::kWavefront*; trace and shadow empty on the pipeline backend.
   std::vector<VulkanHandle<VkPipeline>> computePasses_;
-  // One a distinct material graph (material bin), indexed by bin; empty with the floor.
+  // One per instance group of distinct graphs (LinkedMaterials::instanceGroups); empty with
+  // the floor. Each runs over the bins (distinct graphs) of its group, binsOfPass_.
   std::vector<VulkanHandle<VkPipeline>> materialPasses_;
+  std::vector<std::vector<std::uint32_t>> binsOfPass_;
+  std::vector<std::string> materialPassNames_;  // each pass's EvaluateMaterial_<name>
+  std::uint32_t materialBins_ = 0;
+  GpuBuffer materialParameters_;  // materialInstanceWords() (empty without materials)
   ShaderCacheStats materialShaderStats_;
   std::vector<MaterialPassSize> materialPassSizes_;
   VulkanHandle<VkPipeline> rayTracing_;  // pipeline backend: the trace and shadow raygens

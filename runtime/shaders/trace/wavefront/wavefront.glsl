@@ -96,8 +96,15 @@
 #if defined(MG_MATERIAL_FLOOR)
 #include "material_floor.glsl"
 #elif defined(MG_WAVEFRONT_MATERIAL)
+#ifdef MG_MATERIAL_INSTANCES
+// Float k of the bin's parameter block: the constants in which the graphs sharing this pass
+// differ (material_instances.h). Defined below the push constants, which name the bin.
+float materialParameter(int k);
+#define MG_MATERIAL_PARAMETER(k) materialParameter(k)
+#endif
 // One distinct graph's include (the host's "material.glsl"; its EvaluateMaterial_<Name> is
-// MG_EVALUATE_MATERIAL, its first texture slot MG_TEXTURE_BASE), as a material callable has.
+// MG_EVALUATE_MATERIAL, its first texture slot MG_TEXTURE_BASE), as a material callable has;
+// or the shared include of graphs of one shape, each bin one of them.
 #include "material.glsl"
 #include "material_textures.glsl"
 #ifdef MG_CACHE_TEXEL
@@ -202,6 +209,20 @@ layout(set = 0, binding = kBindingWavefrontControl, std430) buffer WavefrontCont
 layout(push_constant) uniform WavefrontPushBlock {
   WavefrontPush push;
 };
+
+#if defined(MG_WAVEFRONT_MATERIAL) && defined(MG_MATERIAL_INSTANCES)
+// A pass shared by graphs of one shape: the bin (push.step.w) names the graph, its first
+// texture slot and its parameter block (shared_types.h, kBindingMaterialParameters). A
+// buffer, not constants in the code: the pass then compiles once whatever the constants are.
+layout(set = 0, binding = kBindingMaterialParameters, std430) readonly buffer MaterialParameters {
+  uint materialParameterWords[];
+};
+#define MG_TEXTURE_BASE int(materialParameterWords[2u * push.step.w + 1u])
+float materialParameter(int k) {
+  const uint block = materialParameterWords[2u * push.step.w];
+  return uintBitsToFloat(materialParameterWords[block + uint(k)]);
+}
+#endif
 
 // The path state's fields (kPathStateFields vec4 arrays, one slot per pixel): each pass
 // reads and writes only the fields it needs, so a trace moves 3 of the 9.

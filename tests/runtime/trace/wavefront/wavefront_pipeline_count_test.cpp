@@ -1,6 +1,6 @@
 // How many pipelines a wavefront frame creates: a cold start's first frame waits for every
-// one of them (the classroom's 96 took 6.5 s of an H100's 8.7 s, docs/results.md, "First
-// frame"), so a pipeline more is a regression to see here, counted, never timed. A render
+// one of them (docs/results.md, "First frame"), so a pipeline more is a regression to see
+// here, counted, never timed. A render
 // counts the pipelines it created (RenderStats::pipelinesCreated); the classroom's render is
 // pinned in wavefront_test.cpp (TheClassroomsGraphsGiveTheMegakernelsPictureAtOneSeed).
 #include <unistd.h>
@@ -20,25 +20,27 @@
 namespace memograph::runtime {
 namespace {
 
-// The classroom on the GPU (the pipeline backend, no cache): its 88 distinct graphs each a
-// material pass, the generate, shade, queue, finish and three binning passes, and one
-// ray-tracing pipeline for the trace and shadow raygens. No lookup pass without a cache; no
-// trace or shadow compute pass where raygens trace.
-TEST(WavefrontPipelineCount, TheClassroomCreates96PipelinesOnThePipelineBackend) {
+// The classroom on the GPU (the pipeline backend, no cache): its 88 distinct graphs come from
+// 11 recipes, which differ only in float constants (colours, offsets, scales), so they are 11
+// instance groups, each a material pass; then the generate, shade, queue, finish and three
+// binning passes, and one ray-tracing pipeline for the trace and shadow raygens. No lookup
+// pass without a cache; no trace or shadow compute pass where raygens trace.
+TEST(WavefrontPipelineCount, TheClassroomCreates19PipelinesOnThePipelineBackend) {
   const Scene scene = makeBuiltinScene("classroom", {});
   const SceneMaterials materials = linkSceneMaterials(scene, {});
+  EXPECT_EQ(materials.linked.distinct.size(), 88u);
   WavefrontPipelineChoice choice;
   choice.rayQuery = false;
-  choice.materialGraphs = static_cast<std::uint32_t>(materials.linked.distinct.size());
-  EXPECT_EQ(choice.materialGraphs, 88u);
+  choice.materialPasses = static_cast<std::uint32_t>(materials.linked.instanceGroups.size());
+  EXPECT_EQ(choice.materialPasses, 11u);
   EXPECT_EQ(wavefrontComputePasses(choice),
             (std::vector<std::uint32_t>{gpu::kWavefrontGenerate, gpu::kWavefrontShade,
                                         gpu::kWavefrontQueue, gpu::kWavefrontFinish,
                                         gpu::kWavefrontBinCount, gpu::kWavefrontBinOffsets,
                                         gpu::kWavefrontBinScatter}));
-  EXPECT_EQ(wavefrontPipelineCount(choice), 96u);
+  EXPECT_EQ(wavefrontPipelineCount(choice), 19u);
   choice.cacheLookups = true;  // --cache texel or tile: the lookup pass
-  EXPECT_EQ(wavefrontPipelineCount(choice), 97u);
+  EXPECT_EQ(wavefrontPipelineCount(choice), 20u);
 }
 
 // The free-material floor has no bins to sort: generate, shade, queue, finish, plus trace and
@@ -77,7 +79,7 @@ TEST(WavefrontPipelineCount, ARenderCreatesExactlyThePipelinesItsFrameUses) {
     EXPECT_TRUE(renderer.context().validationErrors().empty());
     WavefrontPipelineChoice choice;
     choice.rayQuery = backend == Backend::RayQuery;
-    choice.materialGraphs = static_cast<std::uint32_t>(materials.linked.distinct.size());
+    choice.materialPasses = static_cast<std::uint32_t>(materials.linked.instanceGroups.size());
     EXPECT_EQ(stats.pipelinesCreated, wavefrontPipelineCount(choice)) << stats.backend;
   }
   std::filesystem::remove_all(folder);

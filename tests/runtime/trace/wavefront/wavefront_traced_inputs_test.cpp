@@ -178,7 +178,7 @@ TEST(WavefrontTracedInputs, TheyComposeWithLobesAndEmitterGraphs) {
 // never without a material graph that reads a traced input.
 TEST(WavefrontTracedInputs, TheirPassIsAComputePassOnlyOnTheQueryBackend) {
   WavefrontPipelineChoice choice;
-  choice.materialGraphs = 3;
+  choice.materialPasses = 3;
   const std::uint32_t query = wavefrontPipelineCount(choice);
   choice.rayQuery = false;
   const std::uint32_t pipeline = wavefrontPipelineCount(choice);
@@ -198,7 +198,7 @@ TEST(WavefrontTracedInputs, TheirPassIsAComputePassOnlyOnTheQueryBackend) {
                                         gpu::kWavefrontFinish, gpu::kWavefrontTracedInputs}));
   ambientOcclusion.rayQuery = false;
   EXPECT_EQ(wavefrontPipelineCount(ambientOcclusion), 3u);
-  choice.materialGraphs = 0;  // the floor: no graph reads anything
+  choice.materialPasses = 0;  // the floor: no graph reads anything
   const auto floorPasses = wavefrontComputePasses(choice);
   EXPECT_EQ(std::find(floorPasses.begin(), floorPasses.end(), gpu::kWavefrontTracedInputs),
             floorPasses.end());

@@ -1,0 +1,137 @@
+// Material instances (runtime/materials/material_instances.h): distinct graphs that differ only
+// in float constants share one wavefront material pass, reading the constants that differ from
+// their bin's parameter block. Pinned: which graphs group and which constants become
+// parameters, the parameter buffer's layout, and that a shared pass renders what each graph's
+// own pass renders.
+#include <bit>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "render_test_support.h"
+#include "runtime/materials/material_instances.h"
+#include "runtime/materials/material_linker.h"
+#include "runtime/renderer.h"
+
+namespace memograph::runtime {
+namespace {
+
+TEST(MaterialInstances, GraphsOfOneShapeGroupAndTheirDifferingConstantsBecomeParameters) {
+  const std::vector<InstanceCandidate> candidates = {
+      {"A", {{1.0f}, {0.1f, 0.2f, 0.3f}, {7.0f}}},
+      {"B", {{2.0f}}},
+      {"A", {{1.0f}, {0.4f, 0.5f, 0.6f}, {8.0f}}},
+      {"A", {{1.0f}, {0.1f, 0.2f, 0.3f}, {9.0f}}},
+  };
+  const auto groups = groupMaterialInstances(candidates);
+  ASSERT_EQ(groups.size(), 2u);
+  EXPECT_EQ(groups[0].members, (std::vector<std::uint32_t>{0, 2, 3}));
+  // The first constant is the same in all three: a literal still.
+  EXPECT_EQ(groups[0].parameterConstants, (std::vector<bool>{false, true, true}));
+  EXPECT_EQ(groups[0].parameterCount, 4u);
+  EXPECT_EQ(groups[0].parameters, (std::vector<float>{0.1f, 0.2f, 0.3f, 7.0f, 0.4f, 0.5f, 0.6f,
+                                                      8.0f, 0.1f, 0.2f, 0.3f, 9.0f}));
+  EXPECT_EQ(groups[1].members, (std::vector<std::uint32_t>{1}));
+  EXPECT_EQ(groups[1].parameterCount, 0u);
+}
+
+TEST(MaterialInstances, MinusZeroIsAnotherConstant) {
+  const auto groups = groupMaterialInstances({{"A", {{0.0f}}}, {"A", {{-0.0f}}}});
+  ASSERT_EQ(groups.size(), 1u);
+  EXPECT_EQ(groups[0].parameterConstants, (std::vector<bool>{true}));
+}
+
+// A recipe's material: uv noise between two colours, with its own offset, scale, colours and
+// roughness; `stretched` puts one node more before the noise, another shape.
+std::string recipeGraph(const std::string& name, float offset, float scale, glm::vec3 a,
+                        glm::vec3 b, float roughness, bool stretched = false) {
+  std::ostringstream text;
+  text << "material " << name << ";\n"
+       << "UVInput Out>0;\n"
+       << "Add A<0 B=(" << offset << ", 0.25, 0.0) Out>1;\n";
+  if (stretched)
+    text << "Mul A<1 B=(2.0, 1.0, 1.0) Out>9;\n";
+  text << "NoiseTexture Vector<" << (stretched ? 9 : 1) << " Scale=" << scale
+       << " Detail=4.0 Roughness=0.5 Fac>2;\n"
+       << "Mix A=(" << a.x << ", " << a.y << ", " << a.z << ") B=(" << b.x << ", " << b.y << ", "
+       << b.z << ") Factor<2 Out>3;\n"
+       << "BaseColorOutput In<3;\n"
+       << "RoughnessOutput In=" << roughness << ";\n";
+  return text.str();
+}
+
+std::vector<MaterialRef> recipeMaterials() {
+  return {
+      {"Red", "", recipeGraph("Red", 0.0f, 6.0f, {0.8f, 0.1f, 0.1f}, {0.3f, 0.0f, 0.0f}, 0.4f)},
+      {"Green", "",
+       recipeGraph("Green", 3.5f, 11.0f, {0.1f, 0.8f, 0.1f}, {0.0f, 0.3f, 0.0f}, 0.6f)},
+      {"Finer", "",
+       recipeGraph("Finer", 1.0f, 6.0f, {0.8f, 0.8f, 0.1f}, {0.3f, 0.3f, 0.0f}, 0.4f, true)},
+      {"Blue", "", recipeGraph("Blue", 7.25f, 6.0f, {0.1f, 0.1f, 0.8f}, {0.0f, 0.0f, 0.3f}, 0.4f)},
+  };
+}
+
+TEST(MaterialInstances, TheLinkerSharesAPassAmongARecipesGraphs) {
+  const LinkedMaterials linked = linkMaterials(recipeMaterials());
+  ASSERT_EQ(linked.distinct.size(), 4u);
+  // Red, Green and Blue differ only in float constants; Finer has a node more, so it has a
+  // pass of its own.
+  ASSERT_EQ(linked.instanceGroups.size(), 2u);
+  const MaterialInstanceGroup& shared = linked.instanceGroups[0];
+  EXPECT_EQ(shared.name, "Red");
+  EXPECT_EQ(shared.instances.members, (std::vector<std::uint32_t>{0, 1, 3}));
+  // The offset's x (a float3: 3 floats), the scale, both colours and the roughness differ;
+  // the offset's y and z, Detail and the noise's Roughness are the same in all three: they
+  // stay literals, which the driver folds.
+  EXPECT_EQ(shared.instances.parameterCount, 3u + 1u + 3u + 3u + 1u);
+  EXPECT_NE(shared.include.find("MG_MATERIAL_PARAMETER("), std::string::npos);
+  EXPECT_EQ(linked.instanceGroups[1].instances.members, (std::vector<std::uint32_t>{2}));
+  EXPECT_EQ(linked.instanceGroups[1].include, linked.distinct[2].include);
+  EXPECT_EQ(linked.distinct[2].include.find("MG_MATERIAL_PARAMETER("), std::string::npos);
+
+  // The buffer: per bin its block's first word and texture slot, then the blocks.
+  const std::vector<std::uint32_t> words = materialInstanceWords(linked);
+  ASSERT_EQ(words.size(), 2u * 4u + 3u * shared.instances.parameterCount);
+  EXPECT_EQ(words[2 * 0], 8u);
+  EXPECT_EQ(words[2 * 1], 8u + shared.instances.parameterCount);
+  EXPECT_EQ(words[2 * 3], 8u + 2u * shared.instances.parameterCount);
+  EXPECT_EQ(std::bit_cast<float>(words[words[2 * 1] + 3]), 11.0f);  // Green's scale
+}
+
+// The shared pass renders each graph as its own pass does, up to float rounding: a constant
+// read from the buffer instead of folded into the code (lavapipe; 4 quads, one per material).
+TEST(MaterialInstances, ASharedPassRendersWhatEachGraphsOwnPassRenders) {
+  Scene scene;
+  scene.meshes.push_back(testing::quad(1.0f));
+  scene.materials = recipeMaterials();
+  for (std::uint32_t m = 0; m < scene.materials.size(); ++m)
+    scene.instances.push_back(
+        {0, m,
+         glm::translate(glm::mat4(1.0f), glm::vec3(-0.5f + static_cast<float>(m % 2), 0.0f,
+                                                   -0.5f + static_cast<float>(m / 2)))});
+  scene.camera.position = {0, 3, 1};
+  RenderSettings settings;
+  settings.width = 24;
+  settings.height = 16;
+  settings.pathsPerPixel = 2;
+  settings.raysPerPath = 2;
+  RendererOptions options = testing::testOptions(Backend::RayQuery);
+  options.nodeLibraryDirectory.clear();  // the real node library
+  options.shading = Shading::Wavefront;
+  Renderer renderer(options);
+  const RenderResult shared = renderer.render(scene, settings);
+  options.materialInstances = false;
+  Renderer separate(options);
+  const RenderResult own = separate.render(scene, settings);
+  EXPECT_EQ(shared.stats.wavefrontMaterialPasses, 2u);
+  EXPECT_EQ(own.stats.wavefrontMaterialPasses, 4u);
+  EXPECT_EQ(shared.stats.pipelinesCreated + 2u, own.stats.pipelinesCreated);
+  const auto difference = testing::roundingDifference(shared.image, own.image);
+  EXPECT_GT(difference.referenceMean, 0.01);
+  EXPECT_LT(difference.largest, 1e-4 * difference.referenceMean + 1e-6);
+}
+
+}  // namespace
+}  // namespace memograph::runtime
