@@ -171,10 +171,6 @@ std::string cutInfoTable(const std::vector<LinkedMaterial>& materials) {
   return out + "#endif  // MG_CACHE_CUTS\n";
 }
 
-// The wavefront lookup pass's rests (LinkedMaterials::lookupRestSource): the includes of the
-// graphs keyed by their cut, and two switches over the scene materials, which of them finish
-// in the lookup and their rests from the cut's values. A graph that reads a traced input is
-// left to its material pass, which has the traced values (docs/design/traced-inputs.md).
 // The includes of the distinct graphs of the scene materials that `wanted` picks, each once.
 template <typename Predicate>
 std::string includesOf(const LinkedMaterials& linked, Predicate wanted) {
@@ -189,6 +185,10 @@ std::string includesOf(const LinkedMaterials& linked, Predicate wanted) {
   return out;
 }
 
+// The wavefront lookup pass's rests (LinkedMaterials::lookupRestSource): the includes of the
+// graphs keyed by their cut, and two switches over the scene materials, which of them finish
+// in the lookup and their rests from the cut's values. A graph that reads a traced input is
+// left to its material pass, which has the traced values (docs/design/traced-inputs.md).
 std::string lookupRests(const LinkedMaterials& linked) {
   auto finishesInLookup = [](const LinkedMaterial& m) {
     return m.cutDomain != gpu::kCacheCutNone && m.ambientOcclusionSamples == 0 &&

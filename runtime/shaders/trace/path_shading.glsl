@@ -203,7 +203,10 @@ const int kPathRayLightSample = 4;  // a light sample's ray to an emitter
 const int kPathRayTransmitGlossy = 5;    // refracted by a rough Refraction or Glass lobe
 const int kPathRayTransmitSingular = 6;  // refracted by a smooth one
 const int kPathRayTransmitDiffuse = 7;   // sent through by the Translucent lobe
-const int kPathRayShadow = 8;            // a shadow ray at a surface it may pass through
+#ifdef MG_TRANSPARENT_SHADOWS
+// Only with transparent shadows, so that the other scenes' passes hold no constant more.
+const int kPathRayShadow = 8;  // a shadow ray at a surface it may pass through
+#endif
 
 struct PathState {
   int ray;  // kPathRay*

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -25,14 +26,24 @@ constexpr const char* kFloor = "material Floor;\nDiffuseBsdf Color=(0.8, 0.8, 0.
 constexpr const char* kTinted = "material Tinted;\nTransparentBsdf Color=(0.9, 0.6, 0.3);\n";
 constexpr const char* kOpaque = "material Opaque;\nDiffuseBsdf Color=(0.5, 0.5, 0.5);\n";
 constexpr const char* kLayer = "material Layer;\nTransparentBsdf Color=(0.9, 0.8, 0.7);\n";
+// Blender's "no shadow" trick: diffuse to every ray but shadow rays, which see a white
+// Transparent BSDF (Is Shadow Ray is 1 at a shadow ray's hit).
+constexpr const char* kNoShadow =
+    "material NoShadow;\n"
+    "LightPath IsShadowRay>0;\n"
+    "MixShader Fac<0 WeightA>1 WeightB>2;\n"
+    "DiffuseBsdf Color=(0.5, 0.5, 0.5) Weight<1;\n"
+    "TransparentBsdf Color=(1, 1, 1) Weight<2;\n";
 
-// Four stacks of 1.2 m square planes over a diffuse floor, left to right: one Tinted plane,
-// one Opaque plane, seven Layer planes, eight Layer planes (3 cm apart from 1 m up). The sun
+// Five stacks of 1.2 m square planes over a diffuse floor, left to right: one Tinted plane,
+// one Opaque plane, seven Layer planes, eight Layer planes (3 cm apart from 1 m up), one
+// NoShadow plane. The sun
 // comes down at 45 degrees towards +z, so each stack's shadow lies beside it, where the camera
 // above sees it without looking through a plane.
 constexpr float kHalfSide = 0.6f;
-constexpr float kStackX[4] = {-2.25f, -0.75f, 0.75f, 2.25f};
-constexpr int kStackPlanes[4] = {1, 1, 7, 8};
+constexpr int kStacks = 5;
+constexpr float kStackX[kStacks] = {-3.0f, -1.5f, 0.0f, 1.5f, 3.0f};
+constexpr int kStackPlanes[kStacks] = {1, 1, 7, 8, 1};
 float planeHeight(int k) {
   return 1.0f + 0.03f * float(k);
 }
@@ -44,10 +55,11 @@ Scene stacksScene() {
   scene.materials = {{"Floor", "", kFloor},
                      {"Tinted", "", kTinted},
                      {"Opaque", "", kOpaque},
-                     {"Layer", "", kLayer}};
+                     {"Layer", "", kLayer},
+                     {"NoShadow", "", kNoShadow}};
   scene.instances.push_back({0, 0, glm::mat4(1.0f)});
-  const std::uint32_t stackMaterial[4] = {1, 2, 3, 3};
-  for (int stack = 0; stack < 4; ++stack)
+  const std::uint32_t stackMaterial[kStacks] = {1, 2, 3, 3, 4};
+  for (int stack = 0; stack < kStacks; ++stack)
     for (int k = 0; k < kStackPlanes[stack]; ++k)
       scene.instances.push_back(
           {1, stackMaterial[stack],
@@ -60,7 +72,7 @@ Scene stacksScene() {
   return scene;
 }
 
-constexpr int kWidth = 48;
+constexpr int kWidth = 64;
 constexpr int kHeight = 32;
 
 // What a pixel's camera ray (through its centre, setCamera's basis) finds: the floor point
@@ -80,7 +92,7 @@ bool floorPointOf(const Scene& scene, int x, int y, int& stack) {
   if (d.y >= 0.0)
     return false;
   const double tFloor = -eye.y / d.y;
-  for (int s = 0; s < 4; ++s)
+  for (int s = 0; s < kStacks; ++s)
     for (int k = 0; k < kStackPlanes[s]; ++k) {
       const double t = (planeHeight(k) - eye.y) / d.y;
       const glm::dvec3 p = eye + t * d;
@@ -92,7 +104,7 @@ bool floorPointOf(const Scene& scene, int x, int y, int& stack) {
   if (std::abs(p.x) > 9.0 || std::abs(p.z) > 9.0)
     return false;
   stack = -1;
-  for (int s = 0; s < 4; ++s) {
+  for (int s = 0; s < kStacks; ++s) {
     int inside = 0, near = 0;
     for (int k = 0; k < kStackPlanes[s]; ++k) {
       // Towards the sun: up one metre, back one metre in z.
@@ -113,40 +125,40 @@ bool floorPointOf(const Scene& scene, int x, int y, int& stack) {
   return true;
 }
 
-RendererOptions options(Shading shading, Backend backend) {
-  RendererOptions o = testing::testOptions(backend);
-  o.nodeLibraryDirectory.clear();  // the real node library, which has the BSDF nodes
-  o.shading = shading;
-  return o;
-}
-
 // One ray a path (the floor's direct light alone) through each pixel's centre: a lit floor
 // pixel is the diffuse floor's f cos E = 0.8 / pi x cos 45 degrees x 2, and a shadowed one
 // that times what the stack lets through: the Tinted colour, 0 for the Opaque plane, the
-// Layer colour to the 7th power, and 0 for eight Layer planes (Cycles passes seven).
+// Layer colour to the 7th power, 0 for eight Layer planes (Cycles passes seven), and all of
+// it for the NoShadow plane.
 TEST(TransparentShadow, FloorUnderStacksGetsTheirTransmittance) {
-  struct Case {
-    Shading shading;
-    Backend backend;
-    const char* name;
-  };
   const Scene scene = stacksScene();
   const double lit = 0.8 / kPi * std::sqrt(0.5) * 2.0;
   const glm::dvec3 layer(0.9, 0.8, 0.7);
   const glm::dvec3 seven = layer * layer * layer * layer * layer * layer * layer;
-  const glm::dvec3 expected[4] = {glm::dvec3(0.9, 0.6, 0.3), glm::dvec3(0.0), seven,
-                                  glm::dvec3(0.0)};
+  const glm::dvec3 expected[kStacks] = {glm::dvec3(0.9, 0.6, 0.3), glm::dvec3(0.0), seven,
+                                        glm::dvec3(0.0), glm::dvec3(1.0)};
   RenderSettings settings;
   settings.width = kWidth;
   settings.height = kHeight;
   settings.raysPerPath = 1;
   settings.sharedPrimaryRay = true;
-  for (const Case& c :
-       {Case{Shading::Megakernel, Backend::RayQuery, "megakernel, switch"},
-        Case{Shading::Megakernel, Backend::RayTracingPipeline, "megakernel, callables"},
-        Case{Shading::Wavefront, Backend::RayQuery, "wavefront"}}) {
-    const HdrImage image = Renderer(options(c.shading, c.backend)).render(scene, settings).image;
-    int counted[5] = {0, 0, 0, 0, 0};  // per stack, then the lit floor
+  // The megakernel on the query backend (the switch) and on the pipeline backend (material
+  // callables), and the wavefront on both (its shadow pass a compute shader, or a raygen as
+  // on the GPU).
+  for (const auto& [shading, backend] :
+       {std::pair{Shading::Megakernel, Backend::RayQuery},
+        std::pair{Shading::Megakernel, Backend::RayTracingPipeline},
+        std::pair{Shading::Wavefront, Backend::RayQuery},
+        std::pair{Shading::Wavefront, Backend::RayTracingPipeline}}) {
+    const bool query = backend == Backend::RayQuery;
+    const char* name = shading == Shading::Wavefront
+                           ? (query ? "wavefront, ray queries" : "wavefront, pipeline")
+                           : (query ? "megakernel, switch" : "megakernel, callables");
+    RendererOptions o = testing::testOptions(backend);
+    o.nodeLibraryDirectory.clear();  // the real node library, which has the BSDF nodes
+    o.shading = shading;
+    const HdrImage image = Renderer(o).render(scene, settings).image;
+    int counted[kStacks + 1] = {};  // per stack, then the lit floor
     double worst = 0.0;
     for (int y = 0; y < kHeight; ++y)
       for (int x = 0; x < kWidth; ++x) {
@@ -159,14 +171,15 @@ TEST(TransparentShadow, FloorUnderStacksGetsTheirTransmittance) {
           const double error = std::abs(p[ch] - want[ch]);
           worst = std::max(worst, error / lit);
           EXPECT_NEAR(p[ch], want[ch], 1e-3 * lit)
-              << c.name << ": pixel " << x << "," << y << " channel " << ch << " stack " << stack;
+              << name << ": pixel " << x << "," << y << " channel " << ch << " stack " << stack;
         }
-        ++counted[stack < 0 ? 4 : stack];
+        ++counted[stack < 0 ? kStacks : stack];
       }
-    std::printf("%s: pixels per stack %d %d %d %d, lit %d; largest error %.2g of the lit value\n",
-                c.name, counted[0], counted[1], counted[2], counted[3], counted[4], worst);
+    std::printf(
+        "%s: pixels per stack %d %d %d %d %d, lit %d; largest error %.2g of the lit value\n", name,
+        counted[0], counted[1], counted[2], counted[3], counted[4], counted[5], worst);
     for (int n : counted)
-      EXPECT_GE(n, 4) << c.name;  // every case is seen
+      EXPECT_GE(n, 4) << name;  // every case is seen
   }
 }
 
