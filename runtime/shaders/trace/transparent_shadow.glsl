@@ -9,11 +9,13 @@
 // evaluateMaterialAtShadowHit (materials.glsl's switch over the maybe-transparent graphs, or
 // the megakernel's callable).
 
-// The transparent surfaces a shadow ray passes at most: Cycles' transparent_max_bounce (8)
-// less one (integrate_shadow_max_transparent_hits: max_bounce - transparent_bounce - 1); the
-// next one it meets is opaque. Cycles starts transparent_bounce at the path's own transparent
-// bounces; memograph's path does not count them, so its shadow rays start at 0.
-const uint kShadowTransparentHitsMax = 7u;
+// The transparent surfaces a shadow ray passes at most: Cycles' transparent_max_bounce, 8 by
+// default (intersect_shadow.h integrate_shadow_max_transparent_hits); the next one it meets
+// is opaque. Cycles 3.4 passes eight and stops at the ninth (the Blender scene
+// transparent_shadows, tests/blender/scenes/build_scene.py, measures it). Cycles starts the
+// count at the path's own transparent bounces; memograph's path does not count them, so its
+// shadow rays start at 0.
+const uint kShadowTransparentHitsMax = 8u;
 
 // The transparency of a material's outputs at a shadow hit: the summed weight of its
 // Transparent lobes (Cycles' shader_bsdf_transparency, closure_transparent_extinction).

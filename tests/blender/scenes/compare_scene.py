@@ -15,9 +15,9 @@ scene export), compared. One scene per run:
    - principled, principled_retro: per tile (DIR/tiles.json: the middle of each Principled BSDF tile), the
      mean of each channel within LIMIT of Cycles', relative (|m - c| / max(c, 0.01)); the
      largest over tiles and channels is the figure.
-   - light_path_camera, light_path_depth, ao, ao_local: as the tiles, over the scene's
-     regions (DIR/tiles.json: panel, floor, wall; floor and cube parts), and the whole
-     image's mean too.
+   - light_path_camera, light_path_depth, ao, ao_local, transparent_shadows: as the tiles,
+     over the scene's regions (DIR/tiles.json: panel, floor, wall; floor and cube parts; the
+     shadows of the Transparent stacks and the lit floor), and the whole image's mean too.
 Exit 0 pass, 1 fail (a clear message; also when Blender is missing: it never skips).
 """
 
@@ -69,6 +69,11 @@ CHECKS = {
     'bevel': (64, 256, 4, 16, 1, 'regions', BEVEL_LIMIT),
     # Texture Coordinate Normal of rotated, scaled objects, emitted (as emission).
     'object_normal': (32, 16, 4, 4, 1, 'mae', 0.01),
+    # Transparent shadows: the floor in the shadows of one Transparent plane, of eight and of
+    # nine (Cycles stops the light at the ninth), and the lit floor, per region within 1 %
+    # (a ninth plane passed would read the light of eight times 0.9, 0.8, 0.7: many times
+    # the limit against Cycles' 0, which counts as 0.01).
+    'transparent_shadows': (64, 16, 4, 4, 1, 'regions', 0.01),
 }
 # BSDF lobes (nodes/bsdf.inc): one scene per BSDF tree and a room of several. 'bsdf': mean
 # LDR-FLIP <= BSDF_FLIP_LIMIT and the mean brightness (linear Rec. 709 luminance) within
