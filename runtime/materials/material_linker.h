@@ -57,6 +57,10 @@ struct LinkedMaterial {
   // Likewise the Bevel node's rays (samples 0: none; the input is the shading normal).
   float bevelRadius = 0.0f;
   std::uint32_t bevelSamples = 0;
+  // The graph calls TransparentBsdf (perhaps under a Mix or Add Shader): a shadow ray that
+  // hits it evaluates the graph and passes through, tinted by its Transparent lobes'
+  // weight (transparent_shadow.glsl); a shadow ray stops at any other material.
+  bool transparentShadow = false;
 };
 
 // LinkedMaterial::ambientOcclusionFlags, as ambient_occlusion.glsl's kAmbientOcclusion*.
@@ -115,6 +119,14 @@ struct LinkedMaterials {
   // lobes): the path tracer needs MG_PRINCIPLED_LAYERS (bsdf_lobes.glsl), which scenes of
   // other lobes do without.
   bool principledLayers = false;
+  // Some material may be transparent (LinkedMaterial::transparentShadow): the path tracer
+  // needs MG_TRANSPARENT_SHADOWS (transparent_shadow.glsl), and materials.glsl then holds
+  // materialTransparentShadow and, with the switch, evaluateMaterialAtShadowHit; scenes
+  // without one trace opaque shadow rays, as they always did.
+  bool transparentShadows = false;
+  // shadow_materials.glsl for the wavefront's shadow pass: the maybe-transparent graphs'
+  // includes and evaluateMaterialAtShadowHit over them (empty without such a material).
+  std::string shadowSource;
   // Some material reads an object-space input (generated, objectPosition, geometricNormal,
   // objectLocation, objectRandom, backfacing); without one the shaders define
   // MG_OMIT_OBJECT_INPUTS and MaterialInputs carries none of them.

@@ -111,6 +111,11 @@ std::vector<std::string> pathTracerDefines(const ShaderBuild& b, const MaterialC
     defines.push_back("MG_EMISSIVE_NEE=1");
   if (b.inputs.materials->neeEvaluatesEmission && !b.floor)
     defines.push_back("MG_NEE_EVALUATES_EMISSION=1");
+  // Shadow rays through Transparent lobes (transparent_shadow.glsl), only for scenes with a
+  // material that may be transparent; the others keep their opaque shadow rays and kernels.
+  // The floor evaluates no graph, so its shadows stay opaque.
+  if (!b.omitBsdfLobes && b.inputs.materials->linked.transparentShadows)
+    defines.push_back("MG_TRANSPARENT_SHADOWS=1");
   return defines;
 }
 
@@ -221,6 +226,7 @@ RenderPipelines buildPipelines(const VulkanContext& context, const RendererOptio
   files["materials.glsl"] =
       callables || b.floor || plan.wavefront ? materials.preludeSource : materials.source;
   files["material_rests.glsl"] = plan.wavefront && !b.floor ? materials.lookupRestSource : "";
+  files["shadow_materials.glsl"] = plan.wavefront && !b.floor ? materials.shadowSource : "";
   ShaderCompiler compiler(std::move(files), inputs.shaderCacheDirectory);
   const auto pipelineStart = std::chrono::steady_clock::now();
   static_assert(static_cast<std::uint32_t>(CacheEviction::Lru) == gpu::kCacheEvictionLru &&

@@ -47,8 +47,8 @@ APPROXIMATIONS = {
                        'constants; both architectures trace them (the first 4 hits of a disk ray, '
                        'not a random 4)',
     'ShaderNodeLightPath': 'a Transparent BSDF\'s ray keeps the state it came with (a linked '
-                           'Transparent Depth is 0); shadow rays evaluate no material (Is '
-                           'Shadow Ray 0); '
+                           'Transparent Depth is 0); Is Shadow Ray is 1 only in a graph with a '
+                           'Transparent BSDF, which shadow rays evaluate; '
                            'diffuse or glossy as memograph\'s BSDF picks its lobe',
 }
 
@@ -88,7 +88,7 @@ LOBE_SHADERS = {
     'ShaderNodeBsdfGlass': 'lobe `GlassBsdf` (GGX, Beckmann, Sharp, split by Fresnel as Cycles '
                            '3.4; Multiscatter GGX as GGX, warned)',
     'ShaderNodeBsdfTransparent': 'lobe `TransparentBsdf` (straight through, tinted; shadow '
-                                 'rays stop at it)',
+                                 'rays pass it tinted, at most 8 such surfaces)',
     'ShaderNodeBsdfTranslucent': 'lobe `TranslucentBsdf` (Lambert on the far side)',
     'ShaderNodeMixShader': '`MixShader` splits the weight by Fac (textured Fac too)',
     'ShaderNodeAddShader': 'both shaders at its weight',

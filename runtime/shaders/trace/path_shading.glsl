@@ -187,8 +187,9 @@ SurfaceHit surfaceAt(HitInfo hit, vec3 origin, vec3 direction, RayCone cone) {
 // The path state that Blender's Light Path node reads (MaterialInputs rayFlags and the
 // depths), kept as Cycles 3.4 keeps it (kernel/integrator/path_state.h path_state_init_integrator
 // and path_state_next): how the ray left the last vertex and the bounces so far, overall and
-// by lobe. Shadow rays are opaque, so no material is evaluated for one: MG_RAY_SHADOW is
-// never set. A Transparent lobe's ray keeps the state it came with (Cycles counts it as a
+// by lobe. A shadow ray evaluates a material only where it may pass through it
+// (transparent_shadow.glsl, MG_TRANSPARENT_SHADOWS): only then is MG_RAY_SHADOW set. A
+// Transparent lobe's ray keeps the state it came with (Cycles counts it as a
 // transparent bounce, which Light Path's depths leave out). The ray's kind is the tracer's own
 // (kPathRay*), turned into the prelude's MG_RAY_* bits only where MaterialInputs has the path
 // state, so that the tracer compiles with a node library whose prelude has none of it. Scenes
@@ -202,6 +203,10 @@ const int kPathRayLightSample = 4;  // a light sample's ray to an emitter
 const int kPathRayTransmitGlossy = 5;    // refracted by a rough Refraction or Glass lobe
 const int kPathRayTransmitSingular = 6;  // refracted by a smooth one
 const int kPathRayTransmitDiffuse = 7;   // sent through by the Translucent lobe
+#ifdef MG_TRANSPARENT_SHADOWS
+// Only with transparent shadows, so that the other scenes' passes hold no constant more.
+const int kPathRayShadow = 8;  // a shadow ray at a surface it may pass through
+#endif
 
 struct PathState {
   int ray;  // kPathRay*
@@ -257,6 +262,16 @@ PathState lightSamplePathState(PathState path) {
   return path;
 }
 
+#ifdef MG_TRANSPARENT_SHADOWS
+// The state a maybe-transparent surface's graph sees at a shadow ray's hit, from the light
+// sample's (lightSamplePathState): Cycles evaluates it with PATH_RAY_SHADOW alone
+// (shade_shadow.h), and Light Path counts its Ray Depth one bounce further, as for emission.
+PathState shadowPathState(PathState lightSample) {
+  lightSample.ray = kPathRayShadow;
+  return lightSample;
+}
+#endif
+
 // Puts the path state and the ray's length to the hit (the ray's t: its direction is unit)
 // into a hit's material inputs.
 void setPathInputs(inout MaterialInputs inputs, PathState path, float rayLength) {
@@ -270,6 +285,9 @@ void setPathInputs(inout MaterialInputs inputs, PathState path, float rayLength)
   else if (path.ray == kPathRayTransmitSingular)
     flags = MG_RAY_TRANSMIT | MG_RAY_GLOSSY | MG_RAY_SINGULAR;
   else if (path.ray == kPathRayTransmitDiffuse) flags = MG_RAY_TRANSMIT | MG_RAY_DIFFUSE;
+#ifdef MG_TRANSPARENT_SHADOWS
+  else if (path.ray == kPathRayShadow) flags = MG_RAY_SHADOW;
+#endif
   inputs.rayFlags = flags;
   inputs.rayLength = rayLength;
   inputs.rayDepth = path.depth;
@@ -482,8 +500,10 @@ bool sameSideOfBothNormals(ShadingPoint p, vec3 wi, float wiLocalZ) {
 // along s.wi up to s.tMax, then weights with lightSampleMisWeight. A light behind the
 // surface is sampled only for a BSDF that transmits (Translucent, rough Refraction and
 // Glass); singular lobes evaluate to 0, so a light is never seen through smooth glass or a
-// Transparent lobe by light sampling (Cycles' light sampling cannot either), and a shadow ray
-// stops at any surface, Transparent ones too (docs/design/closures.md).
+// Transparent lobe by light sampling (Cycles' light sampling cannot either). The shadow ray
+// stops at any surface, except with MG_TRANSPARENT_SHADOWS at the surfaces of materials that
+// may be transparent, which it passes tinted (transparent_shadow.glsl,
+// docs/design/closures.md).
 bool sampleLightBeforeShadowRay(ShadingPoint p, inout Rng rng, out LightSample s, out vec3 fCos) {
   fCos = vec3(0.0);
   uint lightCount = frame.path.w;

@@ -562,6 +562,40 @@ def object_normal_scene():
     return []
 
 
+def transparent_shadows_scene():
+    """Transparent shadows and their limit (transparent_shadow.glsl): three stacks of 0.8 m
+    Transparent planes over a diffuse floor, one plane of (0.9, 0.6, 0.3) and eight and nine
+    of (0.9, 0.8, 0.7), 3 cm apart from 3 m up, under a sun at 45 degrees that puts each
+    stack's shadow 3 m beside it. Cycles 3.4 (Max Transparent Bounces 8) lets the light
+    through the one plane and the eight tinted and stops it at the ninth. The camera looks
+    straight down on the shadows and sees no plane (a camera ray through the stacks would
+    meet Cycles' transparent bounce limit on the path, which memograph does not count); the
+    regions are the three shadows and the lit floor between two of them."""
+    world()
+    plane('Floor', 16.0, diffuse('Floor', (0.8, 0.8, 0.8)))
+    tinted = bpy.data.materials.new('Tinted')
+    layer = bpy.data.materials.new('Layer')
+    for m, color in ((tinted, (0.9, 0.6, 0.3)), (layer, (0.9, 0.8, 0.7))):
+        m.use_nodes = True
+        nt = m.node_tree
+        nt.nodes.clear()
+        o = nt.nodes.new('ShaderNodeOutputMaterial')
+        nt.links.new(bsdf_node(nt, 'ShaderNodeBsdfTransparent', Color=color).outputs[0],
+                     o.inputs['Surface'])
+    stacks = (('one', -1.3, tinted, 1), ('eight', 0.0, layer, 8), ('nine', 1.3, layer, 9))
+    for name, x, material, count in stacks:
+        for k in range(count):
+            plane('%s_%d' % (name, k), 0.8, material, location=(x, 0.0, 3.0 + 0.03 * k))
+    # Light travelling towards -y and down: a plane h above the floor shades y in
+    # [-0.4 - h, 0.4 - h], so every layer of a stack (h up to 3.24) shades y in [-3.4, -2.84].
+    light('SUN', 'Sun', (0, 0, 5), rotation=(math.radians(-45), 0, 0), energy=2.0, angle=0.0)
+    camera((0, -3.1, 12.0), lens=100)
+    y0, y1 = -3.3, -2.95
+    return [(name, [(x + dx, y, 0.0) for dx in (-0.25, 0.25) for y in (y0, y1)])
+            for name, x, _, _ in stacks] + \
+        [('lit', [(x, y, 0.0) for x in (-0.8, -0.5) for y in (y0, y1)])]
+
+
 def region_boxes(regions, size):
     """Pixel boxes of regions given by four world-space corners each: the box inside their
     projection, so no pixel sees an edge."""
@@ -608,6 +642,7 @@ SCENES = {
     'bevel': bevel_scene,
     'object_normal': object_normal_scene,
     'bsdf_room': bsdf_room_scene,
+    'transparent_shadows': transparent_shadows_scene,
 }
 SCENES.update({'bsdf_' + tree: (lambda tree=tree: bsdf_scene(tree)) for tree in BSDF_TREES})
 

@@ -85,6 +85,14 @@ void evaluateMaterialDirect(uint materialId, MaterialInputs inputs,
   executeCallableEXT(materialId, kMaterialCallLocation);
   outputs = materialCall.outputs;
 }
+#ifdef MG_TRANSPARENT_SHADOWS
+// A maybe-transparent material at a shadow ray's hit (transparent_shadow.glsl): its callable,
+// as for a path's hit; the switch dispatch's materials.glsl has a switch of its own.
+void evaluateMaterialAtShadowHit(uint materialId, MaterialInputs inputs,
+                                 out MaterialOutputs outputs) {
+  evaluateMaterialDirect(materialId, inputs, outputs);
+}
+#endif
 #else
 #include "material_textures.glsl"
 
@@ -135,6 +143,9 @@ void evaluateMaterial(bool hasHit, uint materialId, uvec2 object, MaterialInputs
 }
 
 #include "path_shading.glsl"
+#ifdef MG_TRANSPARENT_SHADOWS
+#include "transparent_shadow.glsl"
+#endif
 #if defined(MG_INTEGRATOR_AO) || !defined(MG_OMIT_TRACED_INPUTS)
 #include "ambient_occlusion.glsl"
 #endif
@@ -144,14 +155,23 @@ void evaluateMaterial(bool hasHit, uint materialId, uvec2 object, MaterialInputs
 
 // Direct light (thesis §5.2): one light sample through one shadow ray, traced here; an
 // emissive sample is MIS-weighted when `mis` (path_shading.glsl); an emitter's graph sees
-// the light sample's path state from `path`, the vertex's. Returns f * cos * L_i / pdf.
+// the light sample's path state from `path`, the vertex's. With MG_TRANSPARENT_SHADOWS the
+// shadow ray passes maybe-transparent surfaces, tinted (transparent_shadow.glsl). Returns
+// f * cos * L_i / pdf.
 vec3 sampleDirectLight(ShadingPoint p, PathState path, bool mis, inout Rng rng,
                        inout uint rays) {
   LightSample s;
   vec3 fCos;
   if (!sampleLightBeforeShadowRay(p, rng, s, fCos)) return vec3(0.0);
   rays += 1u;
+#ifdef MG_TRANSPARENT_SHADOWS
+  vec3 transmittance = traceShadowTransmittance(
+      rayOriginTowards(p, s.wi), s.wi, s.tMax, shadowPathState(lightSamplePathState(path)), rays);
+  if (all(equal(transmittance, vec3(0.0)))) return vec3(0.0);
+  s.incident *= transmittance;
+#else
   if (traceShadow(rayOriginTowards(p, s.wi), s.wi, s.tMax)) return vec3(0.0);
+#endif
 #ifdef MG_NEE_EVALUATES_EMISSION
   if (s.evaluate) {
     RayCone cone;

@@ -59,7 +59,8 @@
 #ifdef MG_SUBGROUP_RAY_COUNT
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #endif
-#if defined(MG_WAVEFRONT_MATERIAL) || (defined(MG_WAVEFRONT_LOOKUP) && defined(MG_CACHE_CUTS))
+#if defined(MG_WAVEFRONT_MATERIAL) || (defined(MG_WAVEFRONT_LOOKUP) && defined(MG_CACHE_CUTS)) || \
+    (defined(MG_WAVEFRONT_SHADOW) && defined(MG_TRANSPARENT_SHADOWS))
 #extension GL_EXT_nonuniform_qualifier : require  // material_textures.glsl
 #endif
 #ifdef MG_CACHE_CLOCK_COUNTER
@@ -140,7 +141,17 @@ void evaluateMaterialRestSwitch(uint materialId, MaterialInputs inputs,
 #endif  // MG_CACHE_CUTS
 #endif  // MG_CACHE_TEXEL
 #endif
+#if defined(MG_WAVEFRONT_SHADOW) && defined(MG_TRANSPARENT_SHADOWS)
+// The maybe-transparent graphs and their switch, evaluateMaterialAtShadowHit (the host's
+// shadow_materials.glsl): the shadow pass evaluates them where its rays hit them, in place,
+// as the megakernel does (transparent_shadow.glsl).
+#include "shadow_materials.glsl"
+#include "material_textures.glsl"
+#endif
 #include "path_shading.glsl"
+#if defined(MG_WAVEFRONT_SHADOW) && defined(MG_TRANSPARENT_SHADOWS)
+#include "transparent_shadow.glsl"
+#endif
 #ifdef MG_WAVEFRONT_TRACED_INPUTS
 #include "ambient_occlusion.glsl"  // setTracedInputs, the megakernel's; bevel.glsl with it
 #endif
@@ -1291,19 +1302,38 @@ void main() {
 }
 
 #elif defined(MG_WAVEFRONT_SHADOW)
-// The queued shadow rays: an unblocked one adds its contribution to its path's radiance.
+// The queued shadow rays: an unblocked one adds its contribution to its path's radiance. With
+// MG_TRANSPARENT_SHADOWS a ray passes maybe-transparent surfaces, evaluating their graphs
+// here (transparent_shadow.glsl, the megakernel's), and its contribution is tinted by them.
 void main() {
   uint i = invocationIndex();
   if (i >= control.shadowLaunch.x) return;
   uint slot = pathQueues[queueIndex(2u, i)];
   vec4 origin = pathState[fieldIndex(kFieldShadowOrigin, slot)];
+#ifdef MG_TRANSPARENT_SHADOWS
+  vec4 directionField = pathState[fieldIndex(kFieldShadowDirection, slot)];
+  // The segments traced past a surface count as rays, as the megakernel counts them (the
+  // queue pass counted the first).
+  uint rays = 0u;
+  vec3 transmittance = traceShadowTransmittance(
+      origin.xyz, directionField.xyz, origin.w,
+      shadowPathState(unpackLightPathState(floatBitsToUint(directionField.w))), rays);
+  if (rays > 0u) atomicAdd(counters.rays, rays);
+  if (all(equal(transmittance, vec3(0.0)))) return;
+  vec4 contribution = pathState[fieldIndex(kFieldShadowContribution, slot)];
+  contribution.rgb *= transmittance;
+#else
   vec3 direction = pathState[fieldIndex(kFieldShadowDirection, slot)].xyz;
   if (traceShadow(origin.xyz, direction, origin.w)) return;
   vec4 contribution = pathState[fieldIndex(kFieldShadowContribution, slot)];
+#endif
 #ifdef MG_NEE_EVALUATES_EMISSION
   // An emitter's graph to evaluate: into the light points' queue, the bounce's live queue,
   // which the shade pass has read (the binning and material passes that follow evaluate it).
   if (contribution.w != 0.0) {
+#ifdef MG_TRANSPARENT_SHADOWS
+    pathState[fieldIndex(kFieldShadowContribution, slot)] = contribution;
+#endif
     pathQueues[queueIndex(push.step.z, atomicAdd(control.counts.w, 1u))] = slot;
     return;
   }

@@ -126,6 +126,39 @@ TEST(WavefrontEmitterNee, EmittersGraphsAtLightSamplesGiveTheMegakernelsPicture)
   }
 }
 
+// Transparent shadows (transparent_shadow.glsl) on the light points' route: a tinted
+// Transparent plane between the panel and the floor. The shadow pass evaluates the plane's
+// graph where its rays cross it and queues the point with its contribution tinted, the
+// emitter's pass then multiplies in the emission: the megakernel's picture, and the same
+// rays (each segment past the plane counted). Fails where the tint is dropped on the way to
+// the light points' pass (the floor under the plane then as bright as without it).
+TEST(WavefrontEmitterNee, LightPointsThroughATransparentPlaneGiveTheMegakernelsPicture) {
+  const std::string checker =
+      "PositionInput Out>0;\n"
+      "CheckerTexture Vector<0 Color1=(8, 8, 8) Color2=(1, 2, 4) Scale=4 Color>1;\n"
+      "EmissionOutput Color<1 Strength=1;\n";
+  const Scene open = panelScene(checker, true);
+  Scene shaded = open;
+  shaded.meshes.push_back(testing::quad(1.5f));
+  shaded.materials.push_back(
+      {"Tinted", "", "material Tinted;\nTransparentBsdf Color=(0.9, 0.6, 0.3);\n"});
+  shaded.instances.push_back({2, 2, glm::translate(glm::mat4(1.0f), {0.0f, 0.75f, 0.0f})});
+  const RenderResult megakernel = renderPanel(shaded, Backend::RayQuery, Shading::Megakernel);
+  const RenderResult wavefront = renderPanel(shaded, Backend::RayQuery, Shading::Wavefront);
+  const RenderResult unshaded = renderPanel(open, Backend::RayQuery, Shading::Wavefront);
+  const double difference = largestRelativeDifference(megakernel.image, wavefront.image);
+  // The floor in the middle of the image, beneath the plane (the camera sees it past the
+  // plane's edge): its blue is the panel's light through the plane's 0.3.
+  const double blue = testing::meanChannel(wavefront.image, 2, 6, 6, 10, 10);
+  const double openBlue = testing::meanChannel(unshaded.image, 2, 6, 6, 10, 10);
+  std::printf("floor blue %.4f (without the plane %.4f), largest relative difference %.3g\n", blue,
+              openBlue, difference);
+  EXPECT_LT(difference, 1e-4);
+  EXPECT_EQ(wavefront.stats.frames.back().rays, megakernel.stats.frames.back().rays);
+  EXPECT_GT(blue, 0.01);
+  EXPECT_LT(blue, 0.7 * openBlue);
+}
+
 // A round split into chunks (a path state of 100 slots for 256 pixels) queues and evaluates
 // each chunk's light points with its own passes: the same image bit for bit.
 TEST(WavefrontEmitterNee, LightPointsOfARoundSplitIntoChunksGiveTheSameImage) {
