@@ -80,17 +80,18 @@ CHECKS = {
 # LIMIT of Cycles', relative, at matched sample counts (256 a pixel). DIR/result.json holds
 # both figures (bsdf_table.py collects them).
 BSDF_FLIP_LIMIT = 0.05
-# The room misses the target: 0.061 at 256 samples (Cycles' Filter Glossy off, as in every
-# bsdf_* scene; 0.059 with it on, 0.050 at 1024 samples), its mean brightness within 1.1 %.
-# The difference sits around the two balls under the point light, not yet explained
-# (docs/results.md); the limit keeps it from growing.
+ROOM_FLIP_LIMIT = 0.043
+# The room is compared at 2048 samples a pixel (both renderers): at 256 its FLIP is mostly
+# noise, and Cycles' own 256-sample images of it differ by 0.054 from one seed to the next,
+# above the target, so no renderer as noisy as Cycles could meet it there. Measured on
+# lavapipe at 2048: 0.0393 and -0.65 % (docs/results.md, "BSDF lobes against Cycles").
 # Transparent's shadow rays pass the ball tinted, as Cycles' (transparent_shadow.glsl):
 # measured LDR-FLIP 0.0184 and brightness -0.04 % on lavapipe; its limits hold it there.
-BSDF_FLIP_LIMITS = {'bsdf_room': 0.065, 'bsdf_transparent': 0.025}
+BSDF_FLIP_LIMITS = {'bsdf_room': ROOM_FLIP_LIMIT, 'bsdf_transparent': 0.025}
 for _tree in ('diffuse', 'oren_nayar', 'glossy_ggx', 'glossy_sharp', 'glossy_beckmann', 'velvet',
-              'mix', 'add',
-              'room', 'principled_sheen', 'principled_clearcoat'):
+              'mix', 'add', 'principled_sheen', 'principled_clearcoat'):
     CHECKS['bsdf_' + _tree] = (32, 256, 16, 16, 5, 'bsdf', 0.02)
+CHECKS['bsdf_room'] = (32, 2048, 128, 16, 5, 'bsdf', 0.02)
 # The transmission lobes: 9 rays a path (Cycles' 8 bounces after the camera's hit), since a
 # path through the ball takes two of them before it finds the floor or the sky.
 for _tree in ('glass', 'glass_rough', 'refraction', 'transparent', 'translucent',
