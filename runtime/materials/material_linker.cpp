@@ -45,22 +45,6 @@ MaterialDispatch parseMaterialDispatch(const std::string& text) {
                               "' (choose auto, switch or callable)");
 }
 
-std::vector<std::uint32_t> materialInstanceWords(const LinkedMaterials& materials) {
-  std::vector<std::uint32_t> words(2 * materials.distinct.size(), 0u);
-  for (std::size_t bin = 0; bin < materials.distinct.size(); ++bin)
-    words[2 * bin + 1] = static_cast<std::uint32_t>(materials.distinct[bin].textureBase);
-  for (const MaterialInstanceGroup& group : materials.instanceGroups) {
-    const InstanceGroup& instances = group.instances;
-    for (std::size_t m = 0; m < instances.members.size(); ++m) {
-      words[2 * instances.members[m]] = static_cast<std::uint32_t>(words.size());
-      for (std::uint32_t k = 0; k < instances.parameterCount; ++k)
-        words.push_back(
-            std::bit_cast<std::uint32_t>(instances.parameters[m * instances.parameterCount + k]));
-    }
-  }
-  return words;
-}
-
 std::uint32_t pcgHash(std::uint32_t v) {
   std::uint32_t state = v * 747796405u + 2891336453u;
   std::uint32_t word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;

@@ -143,11 +143,6 @@ struct LinkedMaterials {
   double compileMilliseconds = 0.0;
 };
 
-// The words of the wavefront material passes' parameter buffer (shared_types.h,
-// kBindingMaterialParameters): per distinct graph its parameter block's first word and its
-// first texture slot, then every instance group's blocks, floats as uint bits.
-std::vector<std::uint32_t> materialInstanceWords(const LinkedMaterials& materials);
-
 // How the path tracer reaches a scene material's graph: a switch in the one path-tracer
 // shader (both backends), or a callable shader per material (ray-tracing pipeline only).
 // Auto: callable on the pipeline backend, switch on the query backend.

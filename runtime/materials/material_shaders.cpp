@@ -12,22 +12,26 @@ std::vector<std::vector<std::uint32_t>> compileMaterialShaders(const ShaderCompi
                                                                const MaterialShaderRequest& request,
                                                                ShaderCacheStats& stats) {
   const std::size_t count =
-      request.instanceGroups ? materials.instanceGroups.size() : materials.distinct.size();
+      request.units.empty() ? materials.distinct.size() : request.units.size();
   std::vector<std::vector<std::uint32_t>> spirv(count);
   std::vector<ShaderCacheStats> threadStats(workerThreads(request.threads, count));
   const auto start = std::chrono::steady_clock::now();
   parallelFor(count, request.threads, [&](std::size_t index, std::uint32_t thread) {
     // A group's pass is its first member's, but for the constants and texture slots.
     const MaterialInstanceGroup* group =
-        request.instanceGroups ? &materials.instanceGroups[index] : nullptr;
-    const DistinctMaterial& material =
-        materials.distinct[group ? group->instances.members.front() : index];
+        request.units.empty() ? nullptr : request.units[index].group;
+    const std::size_t distinct = group                   ? group->instances.members.front()
+                                 : request.units.empty() ? index
+                                                         : request.units[index].distinct;
+    const DistinctMaterial& material = materials.distinct[distinct];
     ShaderCompiler compiler =
         base.withFile("material.glsl", group ? group->include : material.include);
     try {
       std::vector<std::string> defines = request.defines;
-      if (group && group->instances.members.size() > 1) {
+      if (group) {
         defines.push_back("MG_MATERIAL_INSTANCES=1");
+        defines.push_back("MG_MATERIAL_PARAMETER_COUNT=" +
+                          std::to_string(group->instances.parameterCount));
       } else {
         defines.push_back("MG_TEXTURE_BASE=" + std::to_string(material.textureBase));
       }

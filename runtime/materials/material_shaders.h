@@ -13,6 +13,13 @@
 
 namespace memograph::runtime {
 
+// One shader to compile: an instance group's shared pass, or (group null) distinct graph
+// `distinct`'s own.
+struct MaterialShaderUnit {
+  const MaterialInstanceGroup* group = nullptr;
+  std::uint32_t distinct = 0;
+};
+
 struct MaterialShaderRequest {
   std::string source;  // the entry file among `base`'s files
   ShaderStage stage = ShaderStage::Compute;
@@ -24,12 +31,12 @@ struct MaterialShaderRequest {
   // with a cut also gets MG_MATERIAL_CUT (its MaterialCut_<Name>), MG_MATERIAL_CUT_WIDTH,
   // MG_EVALUATE_MATERIAL_CUT and MG_EVALUATE_MATERIAL_REST.
   bool cutFunctions = false;
-  // One shader per LinkedMaterials::instanceGroups entry instead of per distinct graph (the
-  // wavefront's material passes, which bin by distinct graph and dispatch each bin with its
-  // index, push.step.w): a group of several graphs gets MG_MATERIAL_INSTANCES instead of
-  // MG_TEXTURE_BASE, and reads each bin's texture slot and constants from the buffer
-  // materialInstanceWords() fills.
-  bool instanceGroups = false;
+  // The shaders to compile (empty: one per distinct graph). The wavefront's material passes
+  // bin by distinct graph and dispatch each bin with its index (push.step.w); a group's
+  // shared pass gets MG_MATERIAL_INSTANCES and its parameter count
+  // (MG_MATERIAL_PARAMETER_COUNT) instead of MG_TEXTURE_BASE, and takes each bin's texture
+  // slot and constants in push constants (shared_types.h, kMaterialParameterPushOffset).
+  std::vector<MaterialShaderUnit> units;
   // Per shader (distinct material, or instance group; empty: none), defines of that shader
   // alone.
   std::vector<std::vector<std::string>> materialDefines;
@@ -37,8 +44,8 @@ struct MaterialShaderRequest {
   std::string what = "shader";  // names the shader in a compile error: "<what> of material 'X'"
 };
 
-// Compiles `request.source` once per LinkedMaterials::distinct (in that order; or per
-// instance group with request.instanceGroups) with a compiler
+// Compiles `request.source` once per LinkedMaterials::distinct (in that order), or per
+// request.units entry, with a compiler
 // that sees `base`'s files plus the material's include as "material.glsl", so its cache key
 // changes only when this material, the shared sources or the defines change. Adds the hits,
 // compiles and summed compile time (CPU time over all threads) to `stats`. Throws the first

@@ -58,11 +58,7 @@ MG_CONSTANT(uint, kBindingCountingBoxes, 17);
 MG_CONSTANT(uint, kBindingPathState, 18);
 MG_CONSTANT(uint, kBindingPathQueues, 19);
 MG_CONSTANT(uint, kBindingWavefrontControl, 20);
-// The wavefront's material instances (material_instances.h): per bin (distinct graph) its
-// parameter block's first word and its first texture slot, then the blocks, floats as uint
-// bits. Read by the material passes that graphs of one shape share.
-MG_CONSTANT(uint, kBindingMaterialParameters, 21);
-MG_CONSTANT(uint, kBindingCount, 22);
+MG_CONSTANT(uint, kBindingCount, 21);
 
 // TLAS instance masks and the rays' cull masks. Surfaces answer every path ray; lights'
 // quads (Blender area lamps) only BSDF rays, as Cycles' lamps.
@@ -186,6 +182,12 @@ struct WavefrontPush {
   uvec4 chunk;  // x slots (the path state's capacity), y the chunk's first pixel, z its pixels,
                 // w kWavefront* bits below
 };
+// A material pass shared by graphs of one shape (material instances) takes its bin's graph in
+// push constants after WavefrontPush: a uvec4 (x its first texture slot), then its parameter
+// block, kMaterialParameterPushOffset bytes from the start. The push range holds at most
+// (the device's maxPushConstantsSize - that offset) / 4 floats; a group with more parameters
+// gets a pass per graph instead.
+MG_CONSTANT(uint, kMaterialParameterPushOffset, 48);
 // WavefrontPush::chunk.w bits: the trace pass counts LiPaC's hit feedback (a counting frame);
 // the binning and material passes bin and evaluate light samples' points, not hits.
 MG_CONSTANT(uint, kWavefrontCountsHits, 1);

@@ -13,7 +13,7 @@ TraceDescriptorSet::TraceDescriptorSet(const VulkanContext& context,
   std::vector<VkDescriptorPoolSize> poolSizes = {
       {VK_DESCRIPTOR_TYPE_ACCELERATION_STRUCTURE_KHR, 2},
       {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 17},
+      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 16},
       {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1},
       {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, r.textures->count()}};
   VkDescriptorPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -72,8 +72,6 @@ TraceDescriptorSet::TraceDescriptorSet(const VulkanContext& context,
     writeBuffer(gpu::kBindingPathQueues, kStorage, *r.pathQueues, "the wavefront's path queues");
     writeBuffer(gpu::kBindingWavefrontControl, kStorage, *r.wavefrontControl,
                 "the wavefront's queue counts");
-    writeBuffer(gpu::kBindingMaterialParameters, kStorage, *r.materialParameters,
-                "the material instances' parameters");
   }
   VkDescriptorImageInfo tileImageInfo{VK_NULL_HANDLE, r.cache->tileImageView(),
                                       VK_IMAGE_LAYOUT_GENERAL};

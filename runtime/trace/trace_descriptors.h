@@ -30,7 +30,6 @@ struct TraceResources {
   const GpuBuffer* pathState = nullptr;
   const GpuBuffer* pathQueues = nullptr;
   const GpuBuffer* wavefrontControl = nullptr;
-  const GpuBuffer* materialParameters = nullptr;  // binding kBindingMaterialParameters
 };
 
 class TraceDescriptorSet {

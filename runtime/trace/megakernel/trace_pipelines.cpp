@@ -203,7 +203,6 @@ VulkanHandle<VkDescriptorSetLayout> createTraceSetLayout(VkDevice device, VkShad
     add(gpu::kBindingPathState, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     add(gpu::kBindingPathQueues, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     add(gpu::kBindingWavefrontControl, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-    add(gpu::kBindingMaterialParameters, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
   }
   VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
   setInfo.bindingCount = static_cast<std::uint32_t>(bindings.size());

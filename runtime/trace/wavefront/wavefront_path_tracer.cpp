@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cstring>
 #include <stdexcept>
 
 #include "runtime/host/parallel_for.h"
@@ -181,14 +182,13 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
 
   if (bins > 0)
     binReadback_ = hostBuffer(context, bins * kBinRecordBytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT);
-  const std::vector<std::uint32_t> parameterWords =
-      materials ? materialInstanceWords(*materials) : std::vector<std::uint32_t>{};
-  materialParameters_ = uploadBuffer(context, std::span<const std::uint32_t>(parameterWords),
-                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT);
+  std::vector<MaterialShaderUnit> passUnits;
+  if (materials)
+    passUnits = planMaterialPasses(*materials, setup.materialInstances);
   VkShaderStageFlags stages = query_ ? VK_SHADER_STAGE_COMPUTE_BIT
                                      : VK_SHADER_STAGE_COMPUTE_BIT | VK_SHADER_STAGE_RAYGEN_BIT_KHR;
   setLayout_ = createTraceSetLayout(device, stages, textureCount, setup.tileImage, true);
-  layout_ = createPipelineLayout(device, setLayout_.get(), stages, sizeof(gpu::WavefrontPush));
+  layout_ = createPipelineLayout(device, setLayout_.get(), stages, pushBytes_);
 
   std::vector<std::string> defines = {"MG_TEXTURE_COUNT=" + std::to_string(textureCount),
                                       query_ ? "MG_BACKEND_QUERY=1" : "MG_BACKEND_PIPELINE=1"};
@@ -225,21 +225,6 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   // passes' and the ray-tracing pipeline's shaders compile together on the threads (the five
   // ray-tracing shaders compiled one after another added their sum to a cold start), then
   // the material passes'.
-  if (materials) {
-    // A material pass per instance group, or per distinct graph.
-    materialBins_ = static_cast<std::uint32_t>(materials->distinct.size());
-    if (setup.materialInstances) {
-      for (const MaterialInstanceGroup& group : materials->instanceGroups) {
-        binsOfPass_.push_back(group.instances.members);
-        materialPassNames_.push_back(group.name);
-      }
-    } else {
-      for (std::uint32_t bin = 0; bin < materialBins_; ++bin) {
-        binsOfPass_.push_back({bin});
-        materialPassNames_.push_back(materials->distinct[bin].name);
-      }
-    }
-  }
   WavefrontPipelineChoice choice;
   choice.rayQuery = query_;
   choice.materialPasses = static_cast<std::uint32_t>(binsOfPass_.size());
@@ -268,7 +253,7 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
       shaders.rayTracingModules.push_back(createShaderModule(device, spirv[i]));
   }
   if (materials)
-    shaders.materialSpirv = compileMaterialPasses(compiler, *materials, defines, setup);
+    shaders.materialSpirv = compileMaterialPasses(compiler, *materials, passUnits, defines, setup);
   for (std::size_t pass = 0; pass < shaders.materialSpirv.size(); ++pass)
     materialPassSizes_.push_back(
         {spirvSize(shaders.materialSpirv[pass]),
@@ -282,16 +267,58 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
 // a scene's graphs: the query backend's megakernel inlines every one (the classroom's 88 do
 // not compile on lavapipe). Compiled on several threads (glslang took 4.4 s for all of the
 // classroom's 88 graphs, cold, one pass each).
+// The material passes (binsOfPass_ and the units to compile): an instance group's shared pass
+// where its parameters fit the push constants, else a pass per graph; the push range's size.
+std::vector<MaterialShaderUnit> WavefrontPathTracer::planMaterialPasses(
+    const LinkedMaterials& materials, bool instances) {
+  const std::uint32_t pushLimit = context_.info().limits.maxPushConstantsSize;
+  const std::uint32_t capacity =
+      pushLimit > gpu::kMaterialParameterPushOffset
+          ? (pushLimit - gpu::kMaterialParameterPushOffset) / sizeof(float)
+          : 0u;
+  std::vector<MaterialShaderUnit> units;
+  materialBins_ = static_cast<std::uint32_t>(materials.distinct.size());
+  binInstances_.assign(materialBins_, {});
+  for (const MaterialInstanceGroup& group : materials.instanceGroups) {
+    const InstanceGroup& shared = group.instances;
+    if (instances && shared.members.size() > 1 && shared.parameterCount <= capacity) {
+      units.push_back({&group, 0});
+      binsOfPass_.push_back(shared.members);
+      materialPassNames_.push_back(group.name);
+      passShared_.push_back(true);
+      for (std::size_t m = 0; m < shared.members.size(); ++m) {
+        BinInstance& bin = binInstances_[shared.members[m]];
+        bin.textureBase = materials.distinct[shared.members[m]].textureBase;
+        bin.parameters.assign(
+            shared.parameters.begin() + static_cast<std::ptrdiff_t>(m * shared.parameterCount),
+            shared.parameters.begin() +
+                static_cast<std::ptrdiff_t>((m + 1) * shared.parameterCount));
+      }
+      pushBytes_ = std::max<std::uint32_t>(
+          pushBytes_, gpu::kMaterialParameterPushOffset + shared.parameterCount * sizeof(float));
+      continue;
+    }
+    for (const std::uint32_t bin : shared.members) {
+      units.push_back({nullptr, bin});
+      binsOfPass_.push_back({bin});
+      materialPassNames_.push_back(materials.distinct[bin].name);
+      passShared_.push_back(false);
+    }
+  }
+  return units;
+}
+
 std::vector<std::vector<std::uint32_t>> WavefrontPathTracer::compileMaterialPasses(
     ShaderCompiler& compiler, const LinkedMaterials& materials,
-    const std::vector<std::string>& defines, const WavefrontSetup& setup) {
+    const std::vector<MaterialShaderUnit>& units, const std::vector<std::string>& defines,
+    const WavefrontSetup& setup) {
   MaterialShaderRequest request;
   request.cutFunctions = setup.cutKeys;
   request.source = "wavefront.glsl";
   request.stage = ShaderStage::Compute;
   request.defines = defines;
   request.defines.push_back(kPassDefines[gpu::kWavefrontMaterial]);
-  request.instanceGroups = setup.materialInstances;
+  request.units = units;
   // The evaluation of light points only in the passes of graphs that emitters' light samples
   // evaluate: the others' bins never hold a point, and each pass compiled is a driver's
   // compile at a cold start.
@@ -448,11 +475,25 @@ void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pas
   if (pass == gpu::kWavefrontMaterial) {
     // Every bin's graph over its batch, each sized by the offsets pass; the bins' slots are
     // disjoint, so no barrier between them. The bins of an instance group share a pipeline.
+    // A shared pass takes each bin's graph (its texture slot and parameters) after the
+    // WavefrontPush (shared_types.h, kMaterialParameterPushOffset).
+    std::vector<std::byte> bytes(pushBytes_);
     for (std::size_t pass = 0; pass < materialPasses_.size(); ++pass) {
       vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, materialPasses_[pass].get());
       for (const std::uint32_t bin : binsOfPass_[pass]) {
         push.step.w = bin;
-        vkCmdPushConstants(commands, layout_.get(), stages, 0, sizeof push, &push);
+        std::uint32_t size = sizeof push;
+        std::memcpy(bytes.data(), &push, sizeof push);
+        if (passShared_[pass]) {
+          const BinInstance& instance = binInstances_[bin];
+          const glm::ivec4 slot(instance.textureBase, 0, 0, 0);
+          std::memcpy(bytes.data() + sizeof push, &slot, sizeof slot);
+          std::memcpy(bytes.data() + gpu::kMaterialParameterPushOffset, instance.parameters.data(),
+                      instance.parameters.size() * sizeof(float));
+          size = gpu::kMaterialParameterPushOffset +
+                 static_cast<std::uint32_t>(instance.parameters.size() * sizeof(float));
+        }
+        vkCmdPushConstants(commands, layout_.get(), stages, 0, size, bytes.data());
         vkCmdDispatchIndirect(commands, control_.buffer(),
                               sizeof(gpu::WavefrontControl) + bin * kBinRecordBytes);
       }
@@ -579,7 +620,6 @@ void WavefrontPathTracer::addResources(TraceResources& resources) const {
   resources.pathState = &pathState_;
   resources.pathQueues = &pathQueues_;
   resources.wavefrontControl = &control_;
-  resources.materialParameters = &materialParameters_;
 }
 
 void WavefrontPathTracer::addFrameStats(const FrameTrace& trace,

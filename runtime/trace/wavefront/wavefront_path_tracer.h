@@ -13,6 +13,7 @@
 #include <vulkan/vulkan.h>
 
 #include "runtime/materials/material_linker.h"
+#include "runtime/materials/material_shaders.h"
 #include "runtime/trace/frame_tracer.h"
 #include "runtime/trace/render_stats.h"
 #include "runtime/vk/gpu_buffer.h"
@@ -159,7 +160,14 @@ class WavefrontPathTracer final : public FrameTracer {
   std::vector<std::vector<std::uint32_t>> binsOfPass_;
   std::vector<std::string> materialPassNames_;  // each pass's EvaluateMaterial_<name>
   std::uint32_t materialBins_ = 0;
-  GpuBuffer materialParameters_;  // materialInstanceWords() (empty without materials)
+  std::vector<bool> passShared_;  // the pass serves an instance group: push each bin's graph
+  // Per bin of a shared pass: what its dispatch pushes after the WavefrontPush.
+  struct BinInstance {
+    int textureBase = 0;
+    std::vector<float> parameters;
+  };
+  std::vector<BinInstance> binInstances_;
+  std::uint32_t pushBytes_ = sizeof(gpu::WavefrontPush);  // the pipeline layout's push range
   ShaderCacheStats materialShaderStats_;
   std::vector<MaterialPassSize> materialPassSizes_;
   VulkanHandle<VkPipeline> rayTracing_;  // pipeline backend: the trace and shadow raygens
@@ -178,15 +186,21 @@ class WavefrontPathTracer final : public FrameTracer {
   struct PipelineShaders {
     std::vector<std::uint32_t> passes;                      // the compute passes (gpu::kWavefront*)
     std::vector<std::vector<std::uint32_t>> passSpirv;      // one a compute pass
-    std::vector<std::vector<std::uint32_t>> materialSpirv;  // one a material bin
+    std::vector<std::vector<std::uint32_t>> materialSpirv;  // one a material pass
     // Pipeline backend: the trace and shadow raygens, the misses and the hit.
     std::vector<VulkanHandle<VkShaderModule>> rayTracingModules;
     std::vector<VkShaderStageFlagBits> rayTracingStages;
   };
-  // One shader per distinct graph (the material bins), from its include alone.
+  // Which material passes there are (binsOfPass_, binInstances_, pushBytes_) and what each
+  // compiles: an instance group's shared pass where its parameters fit the push constants,
+  // else a pass per distinct graph.
+  std::vector<MaterialShaderUnit> planMaterialPasses(const LinkedMaterials& materials,
+                                                     bool instances);
+  // One shader per material pass, from its include alone.
   std::vector<std::vector<std::uint32_t>> compileMaterialPasses(
       ShaderCompiler& compiler, const LinkedMaterials& materials,
-      const std::vector<std::string>& defines, const WavefrontSetup& setup);
+      const std::vector<MaterialShaderUnit>& units, const std::vector<std::string>& defines,
+      const WavefrontSetup& setup);
   // The pipeline backend's trace and shadow raygens (with `tracesFromHits` the traced-inputs
   // raygen) and the report-only shaders, as compile requests appended to `requests`, with
   // their stages.

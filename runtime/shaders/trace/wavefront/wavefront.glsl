@@ -217,22 +217,28 @@ layout(set = 0, binding = kBindingWavefrontControl, std430) buffer WavefrontCont
   WavefrontControl control;
   uvec4 materialBins[];  // kBinRecords a bin (shared_types.h); none with the floor
 };
+#if defined(MG_WAVEFRONT_MATERIAL) && defined(MG_MATERIAL_INSTANCES)
+// A pass shared by graphs of one shape: the host pushes each bin's graph with its dispatch,
+// its first texture slot and its parameter block (shared_types.h,
+// kMaterialParameterPushOffset). Push constants, not constants in the code: the pass compiles
+// once whatever the constants are, and needs no descriptor of its own.
+layout(push_constant) uniform WavefrontPushBlock {
+  WavefrontPush push;
+  ivec4 materialInstance;  // x: the bin's graph's first texture slot
+#if MG_MATERIAL_PARAMETER_COUNT > 0
+  float materialParameters[MG_MATERIAL_PARAMETER_COUNT];
+#endif
+};
+#define MG_TEXTURE_BASE materialInstance.x
+#if MG_MATERIAL_PARAMETER_COUNT > 0
+float materialParameter(int k) {
+  return materialParameters[k];
+}
+#endif
+#else
 layout(push_constant) uniform WavefrontPushBlock {
   WavefrontPush push;
 };
-
-#if defined(MG_WAVEFRONT_MATERIAL) && defined(MG_MATERIAL_INSTANCES)
-// A pass shared by graphs of one shape: the bin (push.step.w) names the graph, its first
-// texture slot and its parameter block (shared_types.h, kBindingMaterialParameters). A
-// buffer, not constants in the code: the pass then compiles once whatever the constants are.
-layout(set = 0, binding = kBindingMaterialParameters, std430) readonly buffer MaterialParameters {
-  uint materialParameterWords[];
-};
-#define MG_TEXTURE_BASE int(materialParameterWords[2u * push.step.w + 1u])
-float materialParameter(int k) {
-  const uint block = materialParameterWords[2u * push.step.w];
-  return uintBitsToFloat(materialParameterWords[block + uint(k)]);
-}
 #endif
 
 // The path state's fields (kPathStateFields vec4 arrays, one slot per pixel): each pass
