@@ -163,7 +163,7 @@ TEST(AmbientOcclusionIntegrator, RefusesWhatItCannotDo) {
   EXPECT_NO_THROW(validateIntegratorOptions(options));
   options.shading = Shading::Wavefront;
   EXPECT_NO_THROW(validateWavefrontOptions(options));
-  // Auto keeps the megakernel, on a GPU too (the wavefront is not measured faster here).
+  // Auto keeps the megakernel, on a GPU too (the wavefront measured slower there).
   options.shading = Shading::Auto;
   EXPECT_EQ(resolveShading(options, {VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU, true}).shading,
             Shading::Megakernel);
