@@ -259,7 +259,7 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
         {spirvSize(shaders.materialSpirv[pass]),
          spirvFunctionCopies(shaders.materialSpirv[pass],
                              "EvaluateMaterial_" + materialPassNames_[pass])});
-  createPipelines(shaders, materials, setup.compileThreads);
+  createPipelines(shaders, setup.compileThreads);
 }
 
 // One small shader per instance group (graphs of one shape: material_instances.h), compiled
@@ -368,8 +368,7 @@ void WavefrontPathTracer::appendRayTracingRequests(const std::vector<std::string
 // to start then is a short one, so no core runs on alone at the end): the ray-tracing
 // pipeline (five shaders), then the material passes by their SPIR-V's size, the largest
 // first (a driver's compile grows with the code), then the small compute passes.
-void WavefrontPathTracer::createPipelines(const PipelineShaders& shaders,
-                                          const LinkedMaterials* materials, std::uint32_t threads) {
+void WavefrontPathTracer::createPipelines(const PipelineShaders& shaders, std::uint32_t threads) {
   VkDevice device = context_.device();
   computePasses_.resize(gpu::kWavefrontPassCount);
   materialPasses_.resize(shaders.materialSpirv.size());

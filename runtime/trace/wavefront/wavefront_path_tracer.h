@@ -209,8 +209,7 @@ class WavefrontPathTracer final : public FrameTracer {
                                        std::vector<VkShaderStageFlagBits>& stages);
   // Every pipeline (compute passes, material passes, the ray-tracing pipeline and its
   // table) at once, on up to `threads` threads.
-  void createPipelines(const PipelineShaders& shaders, const LinkedMaterials* materials,
-                       std::uint32_t threads);
+  void createPipelines(const PipelineShaders& shaders, std::uint32_t threads);
   // One pass of a frame; `lightPoints`: a binning or material pass over the light samples'
   // points (WavefrontSetup::emitterGraphs).
   struct FramePass {
