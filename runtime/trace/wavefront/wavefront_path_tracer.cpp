@@ -262,11 +262,6 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
   createPipelines(shaders, setup.compileThreads);
 }
 
-// One small shader per instance group (graphs of one shape: material_instances.h), compiled
-// with only that group's include (as a material callable is), so no compile ever sees all of
-// a scene's graphs: the query backend's megakernel inlines every one (the classroom's 88 do
-// not compile on lavapipe). Compiled on several threads (glslang took 4.4 s for all of the
-// classroom's 88 graphs, cold, one pass each).
 // The material passes (binsOfPass_ and the units to compile): an instance group's shared pass
 // where its parameters fit the push constants, else a pass per graph; the push range's size.
 std::vector<MaterialShaderUnit> WavefrontPathTracer::planMaterialPasses(
@@ -308,6 +303,11 @@ std::vector<MaterialShaderUnit> WavefrontPathTracer::planMaterialPasses(
   return units;
 }
 
+// One small shader per material pass (an instance group's, or a graph's:
+// material_instances.h), compiled with only that include (as a material callable is), so no
+// compile ever sees all of a scene's graphs: the query backend's megakernel inlines every one
+// (the classroom's 88 do not compile on lavapipe). Compiled on several threads (glslang took
+// 4.4 s for all of the classroom's 88 graphs, cold, one pass each).
 std::vector<std::vector<std::uint32_t>> WavefrontPathTracer::compileMaterialPasses(
     ShaderCompiler& compiler, const LinkedMaterials& materials,
     const std::vector<MaterialShaderUnit>& units, const std::vector<std::string>& defines,
@@ -477,13 +477,13 @@ void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pas
     // A shared pass takes each bin's graph (its texture slot and parameters) after the
     // WavefrontPush (shared_types.h, kMaterialParameterPushOffset).
     std::vector<std::byte> bytes(pushBytes_);
-    for (std::size_t pass = 0; pass < materialPasses_.size(); ++pass) {
-      vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, materialPasses_[pass].get());
-      for (const std::uint32_t bin : binsOfPass_[pass]) {
+    for (std::size_t material = 0; material < materialPasses_.size(); ++material) {
+      vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, materialPasses_[material].get());
+      for (const std::uint32_t bin : binsOfPass_[material]) {
         push.step.w = bin;
         std::uint32_t size = sizeof push;
         std::memcpy(bytes.data(), &push, sizeof push);
-        if (passShared_[pass]) {
+        if (passShared_[material]) {
           const BinInstance& instance = binInstances_[bin];
           const glm::ivec4 slot(instance.textureBase, 0, 0, 0);
           std::memcpy(bytes.data() + sizeof push, &slot, sizeof slot);
