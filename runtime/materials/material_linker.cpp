@@ -285,14 +285,18 @@ std::string transparentShadowTable(const std::vector<LinkedMaterial>& materials)
   return out + "      return true;\n    default:\n      return false;\n  }\n}\n";
 }
 
-std::string transparentShadowSwitch(const std::vector<LinkedMaterial>& materials) {
-  std::string out =
-      "// The outputs of maybe-transparent scene material `materialId` at a shadow ray's hit.\n"
-      "void evaluateMaterialAtShadowHit(uint materialId, MaterialInputs inputs, "
-      "out MaterialOutputs outputs) {\n  switch (materialId) {\n";
+// `void function(uint materialId, MaterialInputs inputs, out MaterialOutputs outputs)`: a switch
+// that calls the graph of each scene material `wanted` picks, with its first texture slot, and
+// gives any other material the default outputs.
+template <typename Predicate>
+std::string materialSwitch(const std::string& function,
+                           const std::vector<LinkedMaterial>& materials, Predicate wanted) {
+  std::string out = "void " + function +
+                    "(uint materialId, MaterialInputs inputs, out MaterialOutputs outputs) {\n"
+                    "  switch (materialId) {\n";
   for (std::size_t i = 0; i < materials.size(); ++i) {
     const LinkedMaterial& m = materials[i];
-    if (!m.transparentShadow)
+    if (!wanted(m))
       continue;
     out += "    case " + std::to_string(i) +
            "u:\n      inputs.textureBase = " + std::to_string(m.textureBase) +
@@ -300,6 +304,13 @@ std::string transparentShadowSwitch(const std::vector<LinkedMaterial>& materials
   }
   return out +
          "    default:\n      outputs = mg_defaultMaterialOutputs(inputs);\n      break;\n  }\n}\n";
+}
+
+std::string transparentShadowSwitch(const std::vector<LinkedMaterial>& materials) {
+  return "// The outputs of maybe-transparent scene material `materialId` at a shadow ray's "
+         "hit.\n" +
+         materialSwitch("evaluateMaterialAtShadowHit", materials,
+                        [](const LinkedMaterial& m) { return m.transparentShadow; });
 }
 
 std::string shadowMaterials(const LinkedMaterials& linked) {
@@ -488,19 +499,9 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
   out += includes;
   out +=
       "// Evaluates the graph of scene material `materialId` (thesis §5.2: branch by material).\n";
-  out +=
-      "void evaluateMaterialSwitch(uint materialId, MaterialInputs inputs, "
-      "out MaterialOutputs outputs) {\n";
-  out += "  switch (materialId) {\n";
-  for (std::size_t i = 0; i < linked.materials.size(); ++i) {
-    const LinkedMaterial& m = linked.materials[i];
-    out += "    case " + std::to_string(i) + "u:\n";
-    out += "      inputs.textureBase = " + std::to_string(m.textureBase) + ";\n";
-    out += "      EvaluateMaterial_" + m.name + "(inputs, outputs);\n";
-    out += "      break;\n";
-  }
-  out += "    default:\n      outputs = mg_defaultMaterialOutputs(inputs);\n      break;\n";
-  out += "  }\n}\n#endif\n";
+  out += materialSwitch("evaluateMaterialSwitch", linked.materials,
+                        [](const LinkedMaterial&) { return true; });
+  out += "#endif\n";
 
   // The callable dispatch's raygen sees no material, only the types they exchange. The
   // guard is the emitter's, so a material include after it does not repeat the prelude.

@@ -410,6 +410,8 @@ struct Light {
 static_assert(sizeof(TileQueueHeader) == 16 && sizeof(TileFillItem) == 32);
 static_assert(sizeof(VertexMotionJob) == 48 && sizeof(VertexMotionRest) == 48);
 static_assert(sizeof(WavefrontControl) == 112 && sizeof(WavefrontPush) == 32);
+// The material instance's ivec4 sits between the WavefrontPush and the parameters.
+static_assert(kMaterialParameterPushOffset == sizeof(WavefrontPush) + 16);
 static_assert(sizeof(Counters) % 16 == 0 &&
               offsetof(Counters, cacheOccupancy) == kCountersPerFrameUints * sizeof(uint));
 }  // namespace memograph::runtime::gpu

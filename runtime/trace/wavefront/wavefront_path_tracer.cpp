@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstddef>
-#include <cstring>
 #include <stdexcept>
 
 #include "runtime/host/parallel_for.h"
@@ -280,14 +280,15 @@ std::vector<MaterialShaderUnit> WavefrontPathTracer::planMaterialPasses(
       units.push_back({&group, 0});
       binsOfPass_.push_back(shared.members);
       materialPassNames_.push_back(group.name);
-      passShared_.push_back(true);
+      // Each bin's words after the WavefrontPush: an ivec4 (x its first texture slot), then
+      // its parameters as float bits.
       for (std::size_t m = 0; m < shared.members.size(); ++m) {
-        BinInstance& bin = binInstances_[shared.members[m]];
-        bin.textureBase = materials.distinct[shared.members[m]].textureBase;
-        bin.parameters.assign(
-            shared.parameters.begin() + static_cast<std::ptrdiff_t>(m * shared.parameterCount),
-            shared.parameters.begin() +
-                static_cast<std::ptrdiff_t>((m + 1) * shared.parameterCount));
+        std::vector<std::uint32_t>& words = binInstances_[shared.members[m]];
+        words.assign(4, 0u);
+        words[0] = static_cast<std::uint32_t>(materials.distinct[shared.members[m]].textureBase);
+        for (std::uint32_t k = 0; k < shared.parameterCount; ++k)
+          words.push_back(
+              std::bit_cast<std::uint32_t>(shared.parameters[m * shared.parameterCount + k]));
       }
       pushBytes_ = std::max<std::uint32_t>(
           pushBytes_, gpu::kMaterialParameterPushOffset + shared.parameterCount * sizeof(float));
@@ -297,7 +298,6 @@ std::vector<MaterialShaderUnit> WavefrontPathTracer::planMaterialPasses(
       units.push_back({nullptr, bin});
       binsOfPass_.push_back({bin});
       materialPassNames_.push_back(materials.distinct[bin].name);
-      passShared_.push_back(false);
     }
   }
   return units;
@@ -476,23 +476,16 @@ void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pas
     // disjoint, so no barrier between them. The bins of an instance group share a pipeline.
     // A shared pass takes each bin's graph (its texture slot and parameters) after the
     // WavefrontPush (shared_types.h, kMaterialParameterPushOffset).
-    std::vector<std::byte> bytes(pushBytes_);
     for (std::size_t material = 0; material < materialPasses_.size(); ++material) {
       vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, materialPasses_[material].get());
       for (const std::uint32_t bin : binsOfPass_[material]) {
         push.step.w = bin;
-        std::uint32_t size = sizeof push;
-        std::memcpy(bytes.data(), &push, sizeof push);
-        if (passShared_[material]) {
-          const BinInstance& instance = binInstances_[bin];
-          const glm::ivec4 slot(instance.textureBase, 0, 0, 0);
-          std::memcpy(bytes.data() + sizeof push, &slot, sizeof slot);
-          std::memcpy(bytes.data() + gpu::kMaterialParameterPushOffset, instance.parameters.data(),
-                      instance.parameters.size() * sizeof(float));
-          size = gpu::kMaterialParameterPushOffset +
-                 static_cast<std::uint32_t>(instance.parameters.size() * sizeof(float));
-        }
-        vkCmdPushConstants(commands, layout_.get(), stages, 0, size, bytes.data());
+        vkCmdPushConstants(commands, layout_.get(), stages, 0, sizeof push, &push);
+        const std::vector<std::uint32_t>& instance = binInstances_[bin];
+        if (!instance.empty())
+          vkCmdPushConstants(commands, layout_.get(), stages, sizeof push,
+                             static_cast<std::uint32_t>(instance.size() * sizeof(std::uint32_t)),
+                             instance.data());
         vkCmdDispatchIndirect(commands, control_.buffer(),
                               sizeof(gpu::WavefrontControl) + bin * kBinRecordBytes);
       }

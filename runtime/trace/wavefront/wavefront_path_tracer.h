@@ -160,13 +160,9 @@ class WavefrontPathTracer final : public FrameTracer {
   std::vector<std::vector<std::uint32_t>> binsOfPass_;
   std::vector<std::string> materialPassNames_;  // each pass's EvaluateMaterial_<name>
   std::uint32_t materialBins_ = 0;
-  std::vector<bool> passShared_;  // the pass serves an instance group: push each bin's graph
-  // Per bin of a shared pass: what its dispatch pushes after the WavefrontPush.
-  struct BinInstance {
-    int textureBase = 0;
-    std::vector<float> parameters;
-  };
-  std::vector<BinInstance> binInstances_;
+  // Per bin, what its dispatch pushes after the WavefrontPush where its pass is an instance
+  // group's (shared_types.h, kMaterialParameterPushOffset); empty for a pass of its own.
+  std::vector<std::vector<std::uint32_t>> binInstances_;
   std::uint32_t pushBytes_ = sizeof(gpu::WavefrontPush);  // the pipeline layout's push range
   ShaderCacheStats materialShaderStats_;
   std::vector<MaterialPassSize> materialPassSizes_;

@@ -49,20 +49,25 @@ RenderResult renderPlaneUnderWhiteSky(const std::string& graph, Shading shading)
 
 class PrincipledLayers : public ::testing::TestWithParam<Shading> {};
 
+// A layer alone (the base black) on the plane: each channel's mean is its albedo at 75 degrees.
+void expectLayerAlbedo(const std::string& layer, const char* name, double expected,
+                       double tolerance, Shading shading) {
+  RenderResult result = renderPlaneUnderWhiteSky(std::string(kBlackPrincipled) + layer, shading);
+  for (int channel = 0; channel < 3; ++channel) {
+    double mean = testing::meanChannel(result.image, channel, 0, 0, 24, 24);
+    std::printf("%s albedo at 75 degrees (%s) channel %d: %.4f\n", name, shadingName(shading),
+                channel, mean);
+    EXPECT_NEAR(mean, expected, tolerance) << name << ", channel " << channel;
+  }
+}
+
 // Cycles' sheen f cos = (1 - wi.h)^5 cos(theta_i) integrates to 0.0395 at 75 degrees (0.0351
 // at 73, 0.0443 at 77; at most 0.087 at grazing, 0.0003 head-on: far below 1). Its
 // cosine-weighted samples each weigh pi (1 - wi.h)^5 (measured 0.0398 in the megakernel and
 // the wavefront alike): within 0.004.
 TEST_P(PrincipledLayers, SheenAloneReflectsItsAlbedo) {
-  RenderResult result = renderPlaneUnderWhiteSky(
-      std::string(kBlackPrincipled) + "PrincipledLayers BaseColor=(0, 0, 0) Sheen=1 SheenTint=0;\n",
-      GetParam());
-  for (int channel = 0; channel < 3; ++channel) {
-    double mean = testing::meanChannel(result.image, channel, 0, 0, 24, 24);
-    std::printf("sheen albedo at 75 degrees (%s) channel %d: %.4f\n", shadingName(GetParam()),
-                channel, mean);
-    EXPECT_NEAR(mean, 0.0395, 0.004) << "channel " << channel;
-  }
+  expectLayerAlbedo("PrincipledLayers BaseColor=(0, 0, 0) Sheen=1 SheenTint=0;\n", "sheen", 0.0395,
+                    0.004, GetParam());
 }
 
 // Clearcoat 4 makes the clearcoat lobe's weight 0.25 x 4 = 1. Its GTR1 (Roughness 0.5: alpha
@@ -70,16 +75,8 @@ TEST_P(PrincipledLayers, SheenAloneReflectsItsAlbedo) {
 // 75 degrees (0.0920 at 73, 0.1127 at 77; 0.0295 head-on, 0.265 at grazing: below 1)
 // (measured 0.1012 in both architectures): within 0.006.
 TEST_P(PrincipledLayers, ClearcoatAloneReflectsItsAlbedo) {
-  RenderResult result = renderPlaneUnderWhiteSky(
-      std::string(kBlackPrincipled) +
-          "PrincipledLayers BaseColor=(0, 0, 0) Clearcoat=4 ClearcoatRoughness=0.5;\n",
-      GetParam());
-  for (int channel = 0; channel < 3; ++channel) {
-    double mean = testing::meanChannel(result.image, channel, 0, 0, 24, 24);
-    std::printf("clearcoat albedo at 75 degrees (%s) channel %d: %.4f\n", shadingName(GetParam()),
-                channel, mean);
-    EXPECT_NEAR(mean, 0.1015, 0.006) << "channel " << channel;
-  }
+  expectLayerAlbedo("PrincipledLayers BaseColor=(0, 0, 0) Clearcoat=4 ClearcoatRoughness=0.5;\n",
+                    "clearcoat", 0.1015, 0.006, GetParam());
 }
 
 // The Principled lobe is brdf.glsl's BRDF: with Sheen and Clearcoat 0 the material renders
