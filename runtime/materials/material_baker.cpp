@@ -1,5 +1,7 @@
 #include "runtime/materials/material_baker.h"
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <stdexcept>
 #include <utility>
@@ -248,6 +250,31 @@ BakeOutputs MaterialBaker::bake(const BakeMaterial& material, const BakeSettings
 
 namespace memograph::runtime {
 
+namespace {
+
+// About a quarter of a second of untimed work before the timed dispatches.
+constexpr double kBakeWarmUpNs = 250e6;
+constexpr std::uint32_t kBakeMaxWarmUps = 4096;
+
+// Makes the next dispatch wait for the one before: they write the same buffer.
+void recordDispatchAfterWrites(VkCommandBuffer commands) {
+  VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+  barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  barrier.dstAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+  vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                       VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &barrier, 0, nullptr, 0,
+                       nullptr);
+}
+
+}  // namespace
+
+std::uint32_t bakeWarmUpDispatches(double probeNs) {
+  if (!(probeNs > 0.0))
+    return kBakeMaxWarmUps;
+  const double count = std::ceil(kBakeWarmUpNs / probeNs);
+  return count >= double(kBakeMaxWarmUps) ? kBakeMaxWarmUps : std::max(1u, std::uint32_t(count));
+}
+
 std::vector<double> MaterialBaker::timeDispatches(const BakeMaterial& material,
                                                   const BakeSettings& settings,
                                                   std::uint32_t dispatches) {
@@ -274,18 +301,35 @@ std::vector<double> MaterialBaker::timeDispatches(const BakeMaterial& material,
   VulkanHandle<VkQueryPool> queries(
       rawQueries, [device](VkQueryPool p) { vkDestroyQueryPool(device, p, nullptr); });
 
+  // The GPU lowers its clocks while the host compiles the pipeline, and raises them again
+  // only after some milliseconds of work: dispatches timed at once would time the ramp, and
+  // one graph's time would differ from call to call by more than the nodes do. So the timed
+  // dispatches follow untimed ones that keep the GPU busy for about kBakeWarmUpNs, counted
+  // from one probe dispatch's time.
   context.submitAndWait([&](VkCommandBuffer commands) {
+    vkCmdResetQueryPool(commands, rawQueries, 0, 2);
+    vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, rawQueries, 0);
+    program.recordDispatch(commands, settings);
+    vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, rawQueries, 1);
+  });
+  std::uint64_t probe[2] = {};
+  checkVk(
+      vkGetQueryPoolResults(device, rawQueries, 0, 2, sizeof(probe), probe, sizeof(std::uint64_t),
+                            VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT),
+      "vkGetQueryPoolResults (bake probe)");
+  const std::uint32_t warmUps =
+      bakeWarmUpDispatches(double(probe[1] - probe[0]) * context.info().timestampPeriodNs);
+  context.submitAndWait([&](VkCommandBuffer commands) {
+    for (std::uint32_t w = 0; w < warmUps; ++w) {
+      recordDispatchAfterWrites(commands);
+      program.recordDispatch(commands, settings);
+    }
     vkCmdResetQueryPool(commands, rawQueries, 0, queryCount);
     for (std::uint32_t d = 0; d < dispatches; ++d) {
       // Each dispatch waits for the one before (they write the same buffer), and both
       // timestamps wait for the compute work recorded before them (a top-of-pipe one would
       // not), so that one pair brackets one dispatch alone.
-      VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-      barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-      barrier.dstAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-      vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &barrier, 0, nullptr, 0,
-                           nullptr);
+      recordDispatchAfterWrites(commands);
       vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, rawQueries, 2 * d);
       program.recordDispatch(commands, settings);
       vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, rawQueries, 2 * d + 1);

@@ -73,7 +73,8 @@ class MaterialBaker {
   // the other, and returns each dispatch's GPU time in nanoseconds (timestamp queries);
   // nothing is read back. Each pixel stores one float, the sum of every output component
   // (bake.comp's MG_BAKE_TIMING), so that the stores do not bound a cheap evaluation. Throws as
-  // bake() does, and std::runtime_error on a device without timestamps.
+  // bake() does, and std::runtime_error on a device without timestamps. Untimed dispatches
+  // run first (bakeWarmUpDispatches), so that the GPU's clocks are up when the timing starts.
   std::vector<double> timeDispatches(const BakeMaterial& material, const BakeSettings& settings,
                                      std::uint32_t dispatches);
 
@@ -82,5 +83,10 @@ class MaterialBaker {
   std::unique_ptr<VulkanContext> context_;
   std::filesystem::path shaderCacheDirectory_;
 };
+
+// Untimed dispatches that MaterialBaker::timeDispatches runs before it times, for a probe
+// dispatch of `probeNs`: about a quarter of a second of work, at least 1 and at most 4096
+// (4096 when the probe timed nothing).
+std::uint32_t bakeWarmUpDispatches(double probeNs);
 
 }  // namespace memograph::runtime

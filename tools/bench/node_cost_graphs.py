@@ -414,9 +414,13 @@ def write_graphs(args):
             # Wave adds its fBm only where Distortion is nonzero.
             distortion = {"Distortion": 1} if node == "WaveTexture" else {}
             variants = [({"Detail": d, **distortion}, d) for d in DETAILS]
+        # An fBm node's Details share one chain length (the longest Detail's), so that their
+        # difference is the octaves' alone: chains of different lengths compile to code of
+        # different shapes, whose cost per copy differs by more than an octave.
+        longest = max((d for _, d in variants if d is not None), default=None)
+        copies = chain_copies(estimate_units(base, per_octave, longest), args.work)
         for extra, detail in variants:
             material = node if detail is None else f"{node}_detail{detail}"
-            copies = chain_copies(estimate_units(base, per_octave, detail), args.work)
             (out / f"{material}.mgraph").write_text(
                 timed_node_graph(material, node, inputs, shape, copies, extra)
             )

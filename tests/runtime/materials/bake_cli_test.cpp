@@ -19,6 +19,7 @@
 
 #include "cli_run.h"
 #include "runtime/host/image.h"
+#include "runtime/materials/material_baker.h"
 #include "tools/io/image_io.h"
 
 namespace memograph {
@@ -464,6 +465,17 @@ TEST_F(BakeCli, TimeReportsEachMaterialsMedianAndWritesNothing) {
   }
   EXPECT_EQ(run.output.find("wrote "), std::string::npos) << run.output;
   EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+// --time keeps the GPU busy for about a quarter of a second before it times, so that its
+// clocks are up (a graph timed right after its compile timed 2-5x slower or faster on an
+// H100 from one call to the next).
+TEST(BakeWarmUp, CoversAQuarterSecondWithinItsBounds) {
+  EXPECT_EQ(runtime::bakeWarmUpDispatches(1e6), 250u);   // 1 ms a dispatch
+  EXPECT_EQ(runtime::bakeWarmUpDispatches(3e6), 84u);    // rounded up
+  EXPECT_EQ(runtime::bakeWarmUpDispatches(1e9), 1u);     // a dispatch longer than that
+  EXPECT_EQ(runtime::bakeWarmUpDispatches(1e3), 4096u);  // at most 4096
+  EXPECT_EQ(runtime::bakeWarmUpDispatches(0.0), 4096u);  // a probe that timed nothing
 }
 
 TEST_F(BakeCli, BoundsOutOfRangeAreNamedAsSuchNotAsMinOverMax) {
