@@ -10,12 +10,15 @@ namespace {
 
 // Cost per node name, in units of one arithmetic node (Add: 1, the default). `perOctave`
 // applies per fBm octave of the node's Detail socket (Cycles: floor(Detail) + 1 octaves, one
-// more blended in when Detail has a fraction). The values come from the operation counts of
-// nodes/*.inc until `tools/bench/node_cost_graphs.py calibrate --write` sets the rows a
-// committed GPU timing table covers (tools/bench/node_costs_device.sh times each node as a
-// dependent chain against a baseline: docs/design/memoization.md, "Measuring the node
-// costs"); the rows it cannot time (the inputs, outputs and BSDF sinks, Bump) stay
-// estimates. Trust a share as a ranking of a cut's parts, not as a prediction of its time.
+// more blended in when Detail has a fraction). The rows that the committed GPU timing table
+// tools/bench/node_timings_h100.txt covers are set from it by `tools/bench/node_cost_graphs.py
+// calibrate --write` (tools/bench/node_costs_device.sh times each node as a dependent chain
+// against a baseline: docs/design/memoization.md, "Measuring the node costs"); a node that
+// timed at the noise of its measurement (folded into the chain by the driver) gets 0.5. The
+// rows it cannot time (the inputs, outputs and BSDF sinks, Bump) are operation counts of
+// nodes/*.inc. A chain waits for each image lookup's latency, which a real graph overlaps with
+// other work: the image rows are upper bounds. Trust a share as a ranking of a cut's parts,
+// not as a prediction of its time.
 struct NodeCost {
   std::string_view node;
   double base = 0;
@@ -69,54 +72,54 @@ const NodeCost kNodeCosts[] = {
     {"MixShader", 1},
     // Traced inputs: the tracer casts their rays before the graph runs, outside its cost
     // (and never in a cut); in the graph Ambient Occlusion scales a colour, Bevel reads.
-    {"AmbientOcclusion", 1},
+    {"AmbientOcclusion", 0.5},
     {"Bevel", 0},
     // Procedural textures: a 3D Perlin octave is 8 gradient hashes and a trilinear blend.
-    {"NoiseTexture", 2, 10},
-    {"MusgraveTexture", 2, 10},
-    {"WaveTexture", 4, 10},
-    {"SimplexNoiseTexture", 2, 8},
-    {"ValueNoiseTexture", 2, 5},
-    {"VoronoiTexture", 60},  // 27 cells (3D), each a hash and a distance
-    {"WhiteNoiseTexture", 3},
-    {"MagicTexture", 12},
-    {"BrickTexture", 10},
-    {"CheckerTexture", 3},
-    {"CheckerTextureFiltered", 6},
-    {"GradientTexture", 2},
+    {"NoiseTexture", 0.5, 276.8},
+    {"MusgraveTexture", 0.5, 272.8},
+    {"WaveTexture", 0.5, 273.3},
+    {"SimplexNoiseTexture", 0.5, 204.5},
+    {"ValueNoiseTexture", 0.5, 138.4},
+    {"VoronoiTexture", 2382.9},  // 27 cells (3D), each a hash and a distance
+    {"WhiteNoiseTexture", 21.7},
+    {"MagicTexture", 42.8},
+    {"BrickTexture", 33},
+    {"CheckerTexture", 15.4},
+    {"CheckerTextureFiltered", 238.7},
+    {"GradientTexture", 0.7},
     // A filtered fetch with explicit gradients; more when it misses the texture cache.
-    {"ImageTexture", 8},
+    {"ImageTexture", 537.7},
     // Cycles' filters over the full-resolution texels: 1, 4 and 16 fetches with their
     // weights; Box is three Linear lookups blended by the normal.
-    {"ImageTextureClosest", 5},
-    {"ImageTextureBilinear", 10},
-    {"ImageTextureBicubic", 30},
-    {"ImageTextureBox", 36},
-    {"ImageProjection", 6},  // an atan2 and an acos
-    {"BrightnessContrast", 2},
-    {"Gamma", 3},
-    {"Invert", 2},
-    {"LinearToSRGB", 4},
-    {"SRGBToLinear", 4},
-    {"MixColor", 1},  // one blend type (a constant): a lerp for Mix; the HSV ones cost more
-    {"ColorRamp", 4},
-    {"ColorRamp4", 3},
-    {"FloatCurve", 4},
-    {"RGBCurves", 8},
-    {"VectorCurves", 8},
-    {"HueSaturationValue", 6},
-    {"Blackbody", 6},
-    {"Wavelength", 6},
-    {"Mapping", 3},
-    {"VectorRotate", 4},
-    {"VectorTransform", 3},
+    {"ImageTextureClosest", 256.5},
+    {"ImageTextureBilinear", 1081.8},
+    {"ImageTextureBicubic", 4259.1},
+    {"ImageTextureBox", 4185.2},
+    {"ImageProjection", 99.7},  // an atan2 and an acos
+    {"BrightnessContrast", 5.7},
+    {"Gamma", 32.2},
+    {"Invert", 3.5},
+    {"LinearToSRGB", 34.9},
+    {"SRGBToLinear", 37.4},
+    {"MixColor", 5.9},  // one blend type (a constant): a lerp for Mix; the HSV ones cost more
+    {"ColorRamp", 46.2},
+    {"ColorRamp4", 0.5},
+    {"FloatCurve", 1.8},
+    {"RGBCurves", 296.3},
+    {"VectorCurves", 166},
+    {"HueSaturationValue", 62.4},
+    {"Blackbody", 34.1},
+    {"Wavelength", 149.6},
+    {"Mapping", 8.9},
+    {"VectorRotate", 9.8},
+    {"VectorTransform", 0.5},
     {"Tangent", 2},
-    {"Fresnel", 4},
-    {"LayerWeight", 4},
+    {"Fresnel", 18.4},
+    {"LayerWeight", 18.4},
     {"Bump", 12},
-    {"NormalMap", 6},
+    {"NormalMap", 17},
     {"NormalFromPosition", 4},
-    {"Normal", 2},
+    {"Normal", 7.9},
 };
 
 // fBm octaves for a Detail input: its constant, or Blender's default of 2 when it is linked.

@@ -166,8 +166,9 @@ TEST(Cut, UvPrefixWithAViewDependentTailCachesTheNoise) {
   EXPECT_FALSE(c.metadata.cacheable);  // the whole-graph meaning is unchanged
   EXPECT_EQ(c.metadata.cutDomain, "uv");
   EXPECT_EQ(c.metadata.cutWidth, 4u);  // the noise's Fac (1) and Color (3)
-  // Noise: 2 + 10 per octave, 5 octaves; Layer Weight 4, Mix 1: 52 / 57.
-  EXPECT_NEAR(c.metadata.cutCostShare, 52.0 / 57.0, 1e-9);
+  // The calibrated costs (compiler/cut.cpp): Noise 0.5 + 276.8 per octave, 5 octaves; Layer
+  // Weight 18.4, Mix 1.
+  EXPECT_NEAR(c.metadata.cutCostShare, 1384.5 / (1384.5 + 18.4 + 1.0), 1e-9);
   EXPECT_NE(c.cut.find("NoiseTexture"), std::string::npos) << c.cut;
   EXPECT_EQ(c.cut.find("LayerWeight"), std::string::npos) << c.cut;
   EXPECT_EQ(c.rest.find("NoiseTexture"), std::string::npos) << c.rest;
@@ -179,8 +180,8 @@ TEST(Cut, GeneratedNoiseUnderALayerWeightMixIsAnObjectSpaceCut) {
   const auto c = compileReal(kGeneratedUnderLayerWeight);
   EXPECT_EQ(c.metadata.cutDomain, "object");
   EXPECT_EQ(c.metadata.cutWidth, 3u);
-  // Noise 2 + 10 * 3 octaves = 32; Layer Weight 4, MixColor 1.
-  EXPECT_NEAR(c.metadata.cutCostShare, 32.0 / 37.0, 1e-9);
+  // Noise 0.5 + 276.8 * 3 octaves = 830.9; Layer Weight 18.4, MixColor 5.9.
+  EXPECT_NEAR(c.metadata.cutCostShare, 830.9 / (830.9 + 18.4 + 5.9), 1e-9);
   EXPECT_NE(c.cut.find("TextureCoordinate"), std::string::npos);
   EXPECT_EQ(c.rest.find("TextureCoordinate"), std::string::npos) << c.rest;
   EXPECT_NE(c.rest.find("MixColor"), std::string::npos);
@@ -212,8 +213,8 @@ TEST(Cut, BumpOverANoiseHeightCachesTheHeightWithItsGradient) {
   EXPECT_TRUE(c.metadata.needsDerivatives);
   EXPECT_EQ(c.metadata.cutDomain, "object");
   EXPECT_EQ(c.metadata.cutWidth, 4u);  // the height and its gradient's three components
-  // The noise's derivative overload: (2 + 10 * 4 octaves) * 3 = 126; Bump 12.
-  EXPECT_NEAR(c.metadata.cutCostShare, 126.0 / 138.0, 1e-9);
+  // The noise's derivative overload: (0.5 + 276.8 * 4 octaves) * 3 = 3323.1; Bump 12.
+  EXPECT_NEAR(c.metadata.cutCostShare, 3323.1 / (3323.1 + 12.0), 1e-9);
   EXPECT_NE(c.cut.find("NoiseTexture"), std::string::npos) << c.cut;
   EXPECT_EQ(c.rest.find("NoiseTexture"), std::string::npos) << c.rest;
   EXPECT_NE(c.rest.find("Bump("), std::string::npos) << c.rest;

@@ -13,7 +13,7 @@ namespace memograph::runtime {
 namespace {
 
 // Three instances: a whole cacheable graph (textured_checker), a world-space cut holding all
-// of its graph's cost (marble) and a uv cut holding 0.849 of it (car_paint).
+// of its graph's cost (marble) and a uv cut holding 0.984 of it (car_paint).
 class CachedCostShare : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -48,12 +48,12 @@ TEST_F(CachedCostShare, TheWavefrontTexelCacheServesWholeGraphsAndCutsByDomain) 
   ASSERT_NE(marble, checker);  // else the weighting would not show
   const double total = checker + marble + carPaint;
   EXPECT_NEAR(m.at(1).cutCostShare, 1.0, 1e-3);
-  EXPECT_NEAR(m.at(2).cutCostShare, 0.849, 1e-3);
+  EXPECT_NEAR(m.at(2).cutCostShare, 0.984, 1e-3);
   EXPECT_NEAR(s.whole, checker / total, 1e-9);
   EXPECT_NEAR(s.world, marble / total, 1e-3);
-  EXPECT_NEAR(s.uv, 0.849 * carPaint / total, 1e-3);
+  EXPECT_NEAR(s.uv, 0.984 * carPaint / total, 1e-3);
   EXPECT_EQ(s.object, 0.0);
-  EXPECT_NEAR(s.total(), (checker + marble + 0.849 * carPaint) / total, 1e-3);
+  EXPECT_NEAR(s.total(), (checker + marble + 0.984 * carPaint) / total, 1e-3);
   const auto megakernelSwitch = share(CacheMode::Texel, false, MaterialDispatch::Switch);
   EXPECT_NEAR(megakernelSwitch.total(), s.total(), 1e-12);
 }
