@@ -15,9 +15,9 @@ where materials matter"):
     memograph render DIR/scene.gltf --materials DIR --camera-path OUT.camera --size 64x36 ...
 
 The materials are chosen so that shading, not tracing, dominates the frame: Noise and Musgrave
-of detail 8-15, a 4D Voronoi, Wave, Brick, ColorRamps, Bump, Fresnel and Layer Weight mixes,
-Generated and Object coordinates and one UV image texture (packed into the .blend, so the
-file needs nothing beside it). Every node used is one the exporter supports
+of detail 8-15 (the floor and the wall also under a 4D Noise grime pass), a 4D Voronoi, Wave,
+Brick, ColorRamps, Bump, Fresnel and Layer Weight mixes, Generated and Object coordinates and
+one UV image texture (packed into the .blend, so the file needs nothing beside it). Every node used is one the exporter supports
 (docs/guide/blender-node-accuracy.md).
 """
 
@@ -82,6 +82,20 @@ def bump(nt, height_socket, strength, distance=0.1):
     b = node(nt, 'ShaderNodeBump', {'Strength': strength, 'Distance': distance})
     link(nt, height_socket, b.inputs['Height'])
     return b
+
+
+def grime(nt, vector_socket, color_socket, w):
+    """The weathering pass artists lay over large surfaces: a 4D Noise (detail 15; W picks
+    the pattern) ramped into a mask that darkens color_socket towards a brown grime.
+    Returns the grimed colour socket."""
+    n = node(nt, 'ShaderNodeTexNoise', {'Scale': 1.5, 'Detail': 15.0, 'Roughness': 0.6,
+                                        'W': w}, noise_dimensions='4D')
+    link(nt, vector_socket, n.inputs['Vector'])
+    mask = ramp(nt, n.outputs['Fac'], [(0.45, (0.0, 0.0, 0.0)), (0.75, (1.0, 1.0, 1.0))])
+    mix = node(nt, 'ShaderNodeMixRGB', {'Color2': (0.23, 0.18, 0.13, 1)}, blend_type='MULTIPLY')
+    link(nt, mask.outputs['Color'], mix.inputs['Fac'])
+    link(nt, color_socket, mix.inputs['Color1'])
+    return mix.outputs['Color']
 
 
 # --- the materials ------------------------------------------------------------------------
@@ -271,14 +285,15 @@ def moss():
     r = ramp(nt, n.outputs['Fac'], [(0.35, (0.08, 0.15, 0.03)), (0.7, (0.35, 0.5, 0.12))])
     b = bump(nt, n.outputs['Fac'], 0.5)
     d = node(nt, 'ShaderNodeBsdfDiffuse')
-    link(nt, r.outputs['Color'], d.inputs['Color'])
+    link(nt, grime(nt, gen, r.outputs['Color'], 1.7), d.inputs['Color'])
     link(nt, b.outputs['Normal'], d.inputs['Normal'])
     link(nt, d.outputs[0], out.inputs['Surface'])
     return m
 
 
 def terrazzo_floor():
-    """Floor: Brick tiles multiplied by hybrid Musgrave (detail 15) and a Voronoi fleck."""
+    """Floor: Brick tiles multiplied by hybrid Musgrave (detail 15) and a Voronoi fleck, under
+    grime."""
     m, nt, out = new_material('TerrazzoFloor')
     gen = coords(nt, 'Generated')
     b = node(nt, 'ShaderNodeTexBrick', {'Scale': 4.0, 'Mortar Size': 0.01,
@@ -306,14 +321,14 @@ def terrazzo_floor():
     link(nt, wear.outputs['Fac'], rough.inputs['Value'])
     p = node(nt, 'ShaderNodeBsdfPrincipled')
     link(nt, rough.outputs['Result'], p.inputs['Roughness'])
-    link(nt, mix2.outputs['Color'], p.inputs['Base Color'])
+    link(nt, grime(nt, gen, mix2.outputs['Color'], 0.3), p.inputs['Base Color'])
     link(nt, p.outputs[0], out.inputs['Surface'])
     return m
 
 
 def plaster_wall():
     """Back wall: Wave bands (detail 15) and hetero-terrain Musgrave (detail 15), ramped, with
-    Bump."""
+    Bump, under grime."""
     m, nt, out = new_material('PlasterWall')
     gen = coords(nt, 'Generated')
     w = node(nt, 'ShaderNodeTexWave', {'Scale': 3.0, 'Distortion': 4.0, 'Detail': 15.0},
