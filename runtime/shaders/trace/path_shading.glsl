@@ -308,13 +308,15 @@ void setPathInputs(inout MaterialInputs inputs, PathState path, float rayLength)
 // vertex draws for its light and BSDF samples, so both architectures choose alike and the
 // path's own numbers are those it draws without a choice. A shadow ray's hit and a light
 // sample's emitter, which have no vertex of their own, keep setPathInputs' word.
+// Only where MaterialInputs has the path state (the callers test MG_OMIT_PATH_INPUTS too), so
+// that the other scenes' kernels are what they were.
+#ifndef MG_OMIT_PATH_INPUTS
 void setClosureSeed(inout MaterialInputs inputs, uint pixelIndex, uint sampleIndex,
                     uint vertexKey, uint seed) {
-#ifndef MG_OMIT_PATH_INPUTS
   inputs.closureSeed =
       pcgHash(rngForPathVertex(pixelIndex, sampleIndex, vertexKey, seed).key ^ 0xBB67AE85u);
-#endif
 }
+#endif
 
 // The power heuristic (beta 2) for a sample of pdf a against a strategy of pdf b.
 float misWeight(float a, float b) {
