@@ -20,7 +20,8 @@ namespace {
 
 constexpr int kSize = 24;
 
-RenderResult renderPlane(const std::string& graph, Shading shading, float sky, int frames) {
+RenderResult renderPlane(const std::string& graph, Shading shading, float sky, int frames,
+                         Backend backend = Backend::RayQuery) {
   Scene scene;
   scene.meshes.push_back(testing::quad(400.0f));
   scene.materials.push_back({"Choice", "", "material Choice;\n" + graph});
@@ -31,7 +32,7 @@ RenderResult renderPlane(const std::string& graph, Shading shading, float sky, i
   scene.camera.position = {0.0f, 3.0f * std::sin(elevation), 3.0f * std::cos(elevation)};
   scene.camera.target = {0, 0, 0};
   scene.camera.verticalFovDegrees = 4.0f;
-  RendererOptions options = testing::testOptions();
+  RendererOptions options = testing::testOptions(backend);
   options.nodeLibraryDirectory.clear();  // the embedded library: nodes/bsdf.inc
   options.shading = shading;
   Renderer renderer(options);
@@ -143,9 +144,9 @@ INSTANTIATE_TEST_SUITE_P(BothArchitectures, ClosureChoice,
                          ::testing::Values(Shading::Megakernel, Shading::Wavefront),
                          [](const auto& info) { return std::string(shadingName(info.param)); });
 
-// At one seed the two architectures draw the same choices: the emissive choice pattern of the
-// first test is the same image, pixel for pixel.
-TEST(ClosureChoiceArchitectures, MegakernelAndWavefrontChooseAlike) {
+// At one seed the two architectures, and the pipeline backend's callables, draw the same
+// choices: the emissive choice pattern is the same image, pixel for pixel.
+TEST(ClosureChoiceArchitectures, MegakernelWavefrontAndCallablesChooseAlike) {
   const std::string graph =
       "ChooseShader WeightA=1 WeightB=1 ChosenA>1 ChosenB>2;\n"
       "CombineXYZ X<1 Y<2 Z=0 Vector>4;\n"
@@ -160,10 +161,39 @@ TEST(ClosureChoiceArchitectures, MegakernelAndWavefrontChooseAlike) {
     largest = std::max(largest, double(std::abs(mega.image.rgba[i] - wave.image.rgba[i])));
   std::printf("largest per-pixel difference megakernel vs wavefront: %g\n", largest);
   EXPECT_LT(largest, 1e-5);
+  // The ray-tracing pipeline (the GPU's backend) with a callable shader per material, whose
+  // callables are compiled with the choice's mg_addLobe too: the same picks.
+  RenderResult callable =
+      renderPlane(graph, Shading::Megakernel, 0.0f, 1, Backend::RayTracingPipeline);
+  EXPECT_EQ(callable.stats.materialDispatch, "callable");
+  double largestCallable = 0.0;
+  for (std::size_t i = 0; i < mega.image.rgba.size(); ++i)
+    largestCallable =
+        std::max(largestCallable, double(std::abs(mega.image.rgba[i] - callable.image.rgba[i])));
+  std::printf("largest per-pixel difference megakernel vs callables: %g\n", largestCallable);
+  EXPECT_LT(largestCallable, 1e-5);
   // Not the same pick everywhere: the pixels' choices differ.
   const double red = testing::meanChannel(mega.image, 0, 0, 0, kSize, kSize);
   EXPECT_GT(red, 0.5);
   EXPECT_LT(red, 1.5);
+}
+
+// The callables of the pipeline backend compile mg_addLobe with the choice too
+// (MG_CLOSURE_CHOICE): the eight-lobe mix renders there as in the query backend's megakernel.
+TEST(ClosureChoiceArchitectures, CallablesRenderTheEightLobeMixAlike) {
+  const std::string graph = std::string(
+                                "MixShader Fac=0.35 WeightA>1 WeightB>2;\n"
+                                "ChooseShader WeightA<1 WeightB<2 ChosenA>3 ChosenB>4;\n") +
+                            kMixedSinks;
+  RenderResult query = renderPlane(graph, Shading::Megakernel, 1.0f, 2);
+  RenderResult callable =
+      renderPlane(graph, Shading::Megakernel, 1.0f, 2, Backend::RayTracingPipeline);
+  for (int c = 0; c < 3; ++c) {
+    const double a = testing::meanChannel(query.image, c, 0, 0, kSize, kSize);
+    const double b = testing::meanChannel(callable.image, c, 0, 0, kSize, kSize);
+    std::printf("eight-lobe mix, channel %d: query %.5f, callables %.5f\n", c, a, b);
+    EXPECT_NEAR(a, b, 1e-4) << "channel " << c;
+  }
 }
 
 }  // namespace
