@@ -8,8 +8,9 @@
 // outputs), the checker driving its base colour, sheen, clearcoat and transmission, in the
 // wavefront (its entries go through cachePack / cacheUnpack and the path state's lobe
 // fields). And a Mix Shader of two layered Principled BSDFs chosen per hit (ChooseShader,
-// PrincipledBsdf: eight lobes, four at a hit): the checker is the cut, the choice runs per hit
-// after it, never cached, so the cached image keeps the uncached one's colours.
+// PrincipledBsdf: eight lobes, four at a hit), in the wavefront, whose lookup pass finishes
+// cut entries itself: the checker is the cut, the choice runs per hit after it, never cached,
+// so the cached image keeps the uncached one's colours.
 #include <cstdio>
 #include <string>
 
@@ -121,10 +122,6 @@ TEST(BsdfLobesCache, CachedLobesRenderLikeUncachedInTheWavefront) {
 
 TEST(BsdfLobesCache, CachedPrincipledLayersRenderLikeUncachedInTheWavefront) {
   expectCachedLikeUncached(Backend::RayQuery, Shading::Wavefront, kPrincipledLayersGraph);
-}
-
-TEST(BsdfLobesCache, CachedChoiceRendersLikeUncachedInTheMegakernel) {
-  expectCachedLikeUncached(Backend::RayQuery, Shading::Megakernel, kChosenPrincipledGraph, true);
 }
 
 TEST(BsdfLobesCache, CachedChoiceRendersLikeUncachedInTheWavefront) {

@@ -12,6 +12,9 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "render_test_support.h"
 
@@ -20,17 +23,26 @@ namespace {
 
 constexpr int kSize = 24;
 
-RenderResult renderPlane(const std::string& graph, Shading shading, float sky, int frames,
-                         Backend backend = Backend::RayQuery) {
+// Planes of the given graphs, 1000 apart along x in the plane y = 0 (so that no ray leaving one
+// reaches another), under a uniform sky, and the camera looking at plane `look` 75 degrees
+// from its normal through a narrow lens. One scene for several graphs: one shader to compile
+// (the switch holds them all) whichever plane is looked at.
+RenderResult renderPlane(const std::vector<std::string>& graphs, std::size_t look, Shading shading,
+                         float sky, int frames, Backend backend = Backend::RayQuery) {
   Scene scene;
   scene.meshes.push_back(testing::quad(400.0f));
-  scene.materials.push_back({"Choice", "", "material Choice;\n" + graph});
-  scene.instances.push_back({0, 0, glm::mat4(1.0f)});
+  for (std::size_t i = 0; i < graphs.size(); ++i) {
+    const std::string name = "Choice" + std::to_string(i);
+    scene.materials.push_back({name, "", "material " + name + ";\n" + graphs[i]});
+    scene.instances.push_back(
+        {0, std::uint32_t(i), glm::translate(glm::mat4(1.0f), glm::vec3(1000.0f * i, 0, 0))});
+  }
   scene.environment.constantRadiance = glm::vec3(sky);
   // 75 degrees from the plane's normal (+y): 15 degrees above the plane.
   const float elevation = 15.0f * 3.14159265f / 180.0f;
-  scene.camera.position = {0.0f, 3.0f * std::sin(elevation), 3.0f * std::cos(elevation)};
-  scene.camera.target = {0, 0, 0};
+  const float x = 1000.0f * float(look);
+  scene.camera.position = {x, 3.0f * std::sin(elevation), 3.0f * std::cos(elevation)};
+  scene.camera.target = {x, 0, 0};
   scene.camera.verticalFovDegrees = 4.0f;
   RendererOptions options = testing::testOptions(backend);
   options.nodeLibraryDirectory.clear();  // the embedded library: nodes/bsdf.inc
@@ -44,45 +56,6 @@ RenderResult renderPlane(const std::string& graph, Shading shading, float sky, i
   RenderResult result = renderer.render(scene, settings);
   EXPECT_TRUE(renderer.context().validationErrors().empty());
   return result;
-}
-
-class ClosureChoice : public ::testing::TestWithParam<Shading> {};
-
-// ChooseShader(WeightA 0.5, WeightB 1.5) picks A with probability 0.25 and gives the chosen
-// side 2, the other 0. Seen as emission (red: ChosenA, green: ChosenA + ChosenB, blue:
-// ChosenB), every sample's green is exactly 2, and red's mean over the 24 x 24 pixels' 32
-// samples each (18432 choices) is 2 x 0.25 = 0.5, its standard error 2 sqrt(0.25 x 0.75 /
-// 18432) = 0.0064: within 0.03. The sky is black, so nothing else adds light.
-TEST_P(ClosureChoice, PicksBySideWeightAndGivesTheChosenSideBoth) {
-  const std::string graph =
-      "ChooseShader WeightA=0.5 WeightB=1.5 Stream=3 ChosenA>1 ChosenB>2;\n"
-      "Add A<1 B<2 Out>3;\n"
-      "CombineXYZ X<1 Y<3 Z<2 Vector>4;\n"
-      "EmissionOutput Color<4 Strength=1;\n"
-      "BaseColorOutput In=(0, 0, 0);\n"
-      "SpecularOutput In=0;\n";
-  RenderResult result = renderPlane(graph, GetParam(), 0.0f, 8);
-  const auto channel = [&](int c) {
-    return testing::meanChannel(result.image, c, 0, 0, kSize, kSize);
-  };
-  std::printf("ChooseShader (%s): mean ChosenA %.4f, ChosenA + ChosenB %.6f, ChosenB %.4f\n",
-              shadingName(GetParam()), channel(0), channel(1), channel(2));
-  EXPECT_NEAR(channel(0), 0.5, 0.03);
-  EXPECT_NEAR(channel(2), 1.5, 0.03);
-  EXPECT_NEAR(channel(1), 2.0, 1e-5);
-}
-
-// The albedo at 75 degrees of each channel of a graph's material.
-struct Albedo {
-  double rgb[3];
-};
-
-Albedo albedoOf(const std::string& graph, Shading shading) {
-  RenderResult result = renderPlane(graph, shading, 1.0f, 16);
-  Albedo a{};
-  for (int c = 0; c < 3; ++c)
-    a.rgb[c] = testing::meanChannel(result.image, c, 0, 0, kSize, kSize);
-  return a;
 }
 
 // Plastic red with a clearcoat and a sheen, and rough gold metal: as today's single-Principled
@@ -101,6 +74,58 @@ const char* const kMixedSinks =
     "PrincipledBsdf BaseColor=(1.0, 0.75, 0.3) Metallic=1 Roughness=0.5 Sheen=0.5 "
     "Clearcoat=0.5 Layers=7 Weight<4;\n";
 
+// The planes of the choice tests, one scene (one shader): ChooseShader(WeightA 0.5, WeightB
+// 1.5) seen as emission (red: ChosenA, green: ChosenA + ChosenB, blue: ChosenB), an even
+// choice (red ChosenA, green ChosenB), both under a black sky, and the eight-lobe mix of the
+// two Principled BSDFs, under a white one.
+const std::vector<std::string> kChoicePlanes = {
+    "ChooseShader WeightA=0.5 WeightB=1.5 Stream=3 ChosenA>1 ChosenB>2;\n"
+    "Add A<1 B<2 Out>3;\n"
+    "CombineXYZ X<1 Y<3 Z<2 Vector>4;\n"
+    "EmissionOutput Color<4 Strength=1;\n"
+    "BaseColorOutput In=(0, 0, 0);\n"
+    "SpecularOutput In=0;\n",
+    "ChooseShader WeightA=1 WeightB=1 ChosenA>1 ChosenB>2;\n"
+    "CombineXYZ X<1 Y<2 Z=0 Vector>4;\n"
+    "EmissionOutput Color<4 Strength=1;\n"
+    "BaseColorOutput In=(0, 0, 0);\n"
+    "SpecularOutput In=0;\n",
+    std::string("MixShader Fac=0.35 WeightA>1 WeightB>2;\n"
+                "ChooseShader WeightA<1 WeightB<2 ChosenA>3 ChosenB>4;\n") +
+        kMixedSinks};
+
+class ClosureChoice : public ::testing::TestWithParam<Shading> {};
+
+// ChooseShader(WeightA 0.5, WeightB 1.5) picks A with probability 0.25 and gives the chosen
+// side 2, the other 0. Seen as emission (kChoicePlanes[0]), every sample's green is
+// exactly 2, and red's mean over the 24 x 24 pixels' 32
+// samples each (18432 choices) is 2 x 0.25 = 0.5, its standard error 2 sqrt(0.25 x 0.75 /
+// 18432) = 0.0064: within 0.03. The sky is black, so nothing else adds light.
+TEST_P(ClosureChoice, PicksBySideWeightAndGivesTheChosenSideBoth) {
+  RenderResult result = renderPlane(kChoicePlanes, 0, GetParam(), 0.0f, 8);
+  const auto channel = [&](int c) {
+    return testing::meanChannel(result.image, c, 0, 0, kSize, kSize);
+  };
+  std::printf("ChooseShader (%s): mean ChosenA %.4f, ChosenA + ChosenB %.6f, ChosenB %.4f\n",
+              shadingName(GetParam()), channel(0), channel(1), channel(2));
+  EXPECT_NEAR(channel(0), 0.5, 0.03);
+  EXPECT_NEAR(channel(2), 1.5, 0.03);
+  EXPECT_NEAR(channel(1), 2.0, 1e-5);
+}
+
+// The albedo at 75 degrees of each channel of plane `look`'s material.
+struct Albedo {
+  double rgb[3];
+};
+
+Albedo albedoOf(const std::vector<std::string>& graphs, std::size_t look, Shading shading) {
+  RenderResult result = renderPlane(graphs, look, shading, 1.0f, 16);
+  Albedo a{};
+  for (int c = 0; c < 3; ++c)
+    a.rgb[c] = testing::meanChannel(result.image, c, 0, 0, kSize, kSize);
+  return a;
+}
+
 // Each side alone renders its albedo through 4608 x 16 paths; the mix draws one side per hit,
 // so its estimate has the two sides' variance plus the choice's: the red channel's albedos
 // (about 1.09 and 0.85) differ by 0.25, which adds about 0.25 x sqrt(0.35 x 0.65 / 73728) =
@@ -111,21 +136,21 @@ const char* const kMixedSinks =
 // sky passes or reflects all light (albedo 1): two choices, nested, each with its own stream.
 // Expected 0.6 x (0.65 red + 0.35 gold) + 0.4; measured within 0.005: within 0.02.
 TEST_P(ClosureChoice, MixesOfTwoLayeredPrincipledRenderTheMixedAlbedo) {
-  const Albedo red = albedoOf(kRedPlastic, GetParam());
-  const Albedo gold = albedoOf(kGold, GetParam());
-  const Albedo mixed =
-      albedoOf(std::string("MixShader Fac=0.35 WeightA>1 WeightB>2;\n"
-                           "ChooseShader WeightA<1 WeightB<2 ChosenA>3 ChosenB>4;\n") +
-                   kMixedSinks,
-               GetParam());
-  const Albedo nested =
-      albedoOf(std::string("MixShader Fac=0.4 WeightA>10 WeightB>11;\n"
-                           "ChooseShader WeightA<10 WeightB<11 Stream=0 ChosenA>12 ChosenB>13;\n"
-                           "GlassBsdf Color=(1, 1, 1) Roughness=0 IOR=1.45 Weight<13;\n"
-                           "MixShader Fac=0.35 Weight<12 WeightA>1 WeightB>2;\n"
-                           "ChooseShader WeightA<1 WeightB<2 Stream=1 ChosenA>3 ChosenB>4;\n") +
-                   kMixedSinks,
-               GetParam());
+  const std::vector<std::string> graphs = {
+      kRedPlastic, kGold,
+      std::string("MixShader Fac=0.35 WeightA>1 WeightB>2;\n"
+                  "ChooseShader WeightA<1 WeightB<2 ChosenA>3 ChosenB>4;\n") +
+          kMixedSinks,
+      std::string("MixShader Fac=0.4 WeightA>10 WeightB>11;\n"
+                  "ChooseShader WeightA<10 WeightB<11 Stream=0 ChosenA>12 ChosenB>13;\n"
+                  "GlassBsdf Color=(1, 1, 1) Roughness=0 IOR=1.45 Weight<13;\n"
+                  "MixShader Fac=0.35 Weight<12 WeightA>1 WeightB>2;\n"
+                  "ChooseShader WeightA<1 WeightB<2 Stream=1 ChosenA>3 ChosenB>4;\n") +
+          kMixedSinks};
+  const Albedo red = albedoOf(graphs, 0, GetParam());
+  const Albedo gold = albedoOf(graphs, 1, GetParam());
+  const Albedo mixed = albedoOf(graphs, 2, GetParam());
+  const Albedo nested = albedoOf(graphs, 3, GetParam());
   for (int c = 0; c < 3; ++c) {
     const double expected = 0.65 * red.rgb[c] + 0.35 * gold.rgb[c];
     std::printf(
@@ -147,14 +172,8 @@ INSTANTIATE_TEST_SUITE_P(BothArchitectures, ClosureChoice,
 // At one seed the two architectures, and the pipeline backend's callables, draw the same
 // choices: the emissive choice pattern is the same image, pixel for pixel.
 TEST(ClosureChoiceArchitectures, MegakernelWavefrontAndCallablesChooseAlike) {
-  const std::string graph =
-      "ChooseShader WeightA=1 WeightB=1 ChosenA>1 ChosenB>2;\n"
-      "CombineXYZ X<1 Y<2 Z=0 Vector>4;\n"
-      "EmissionOutput Color<4 Strength=1;\n"
-      "BaseColorOutput In=(0, 0, 0);\n"
-      "SpecularOutput In=0;\n";
-  RenderResult mega = renderPlane(graph, Shading::Megakernel, 0.0f, 1);
-  RenderResult wave = renderPlane(graph, Shading::Wavefront, 0.0f, 1);
+  RenderResult mega = renderPlane(kChoicePlanes, 1, Shading::Megakernel, 0.0f, 1);
+  RenderResult wave = renderPlane(kChoicePlanes, 1, Shading::Wavefront, 0.0f, 1);
   ASSERT_EQ(mega.image.rgba.size(), wave.image.rgba.size());
   double largest = 0.0;
   for (std::size_t i = 0; i < mega.image.rgba.size(); ++i)
@@ -164,7 +183,7 @@ TEST(ClosureChoiceArchitectures, MegakernelWavefrontAndCallablesChooseAlike) {
   // The ray-tracing pipeline (the GPU's backend) with a callable shader per material, whose
   // callables are compiled with the choice's mg_addLobe too: the same picks.
   RenderResult callable =
-      renderPlane(graph, Shading::Megakernel, 0.0f, 1, Backend::RayTracingPipeline);
+      renderPlane(kChoicePlanes, 1, Shading::Megakernel, 0.0f, 1, Backend::RayTracingPipeline);
   EXPECT_EQ(callable.stats.materialDispatch, "callable");
   double largestCallable = 0.0;
   for (std::size_t i = 0; i < mega.image.rgba.size(); ++i)
@@ -181,13 +200,9 @@ TEST(ClosureChoiceArchitectures, MegakernelWavefrontAndCallablesChooseAlike) {
 // The callables of the pipeline backend compile mg_addLobe with the choice too
 // (MG_CLOSURE_CHOICE): the eight-lobe mix renders there as in the query backend's megakernel.
 TEST(ClosureChoiceArchitectures, CallablesRenderTheEightLobeMixAlike) {
-  const std::string graph = std::string(
-                                "MixShader Fac=0.35 WeightA>1 WeightB>2;\n"
-                                "ChooseShader WeightA<1 WeightB<2 ChosenA>3 ChosenB>4;\n") +
-                            kMixedSinks;
-  RenderResult query = renderPlane(graph, Shading::Megakernel, 1.0f, 2);
+  RenderResult query = renderPlane(kChoicePlanes, 2, Shading::Megakernel, 1.0f, 2);
   RenderResult callable =
-      renderPlane(graph, Shading::Megakernel, 1.0f, 2, Backend::RayTracingPipeline);
+      renderPlane(kChoicePlanes, 2, Shading::Megakernel, 1.0f, 2, Backend::RayTracingPipeline);
   for (int c = 0; c < 3; ++c) {
     const double a = testing::meanChannel(query.image, c, 0, 0, kSize, kSize);
     const double b = testing::meanChannel(callable.image, c, 0, 0, kSize, kSize);
