@@ -25,8 +25,8 @@ no clamping, no light threshold) and DIR/export/ (the memograph exporter with --
   add, glass, glass_rough, refraction, transparent, translucent, principled_sheen,
   principled_clearcoat, principled_transmission, principled_mix, principled_add): a smooth
   sphere of that BSDF (or Mix/Add Shader of BSDFs) on a checker floor under a sky and a sun;
-  bsdf_room: a room of several of them (docs/design/closures.md). The principled_* scenes also write DIR/tiles.json with the
-  ball's box.
+  bsdf_room: a room of several of them (docs/design/closures.md). The principled_* scenes
+  also write DIR/tiles.json with the ball's box.
 - light_path_depth: (b) an emissive panel that emits only for Ray Depth 1 (black to the
   camera, lighting the floor and a wall directly, no bounced light). Both write
   DIR/tiles.json with their regions (panel, floor, wall) as the Principled scenes do.
