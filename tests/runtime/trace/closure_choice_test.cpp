@@ -126,11 +126,12 @@ Albedo albedoOf(const std::vector<std::string>& graphs, std::size_t look, Shadin
   return a;
 }
 
-// Each side alone renders its albedo through 4608 x 16 paths; the mix draws one side per hit,
-// so its estimate has the two sides' variance plus the choice's: the red channel's albedos
-// (about 1.09 and 0.85) differ by 0.25, which adds about 0.25 x sqrt(0.35 x 0.65 / 73728) =
-// 0.0004 of standard error. Measured within 0.004 of the weighted sum: within 0.015 (a mix
-// that kept only one side, or both at full weight, misses by 0.1 or more).
+// Each side alone renders its albedo through 36864 paths (24 x 24 pixels, 4 paths, 16
+// frames); the mix draws one side per hit, so its estimate has the two sides' variance plus
+// the choice's: the red channel's albedos (about 1.09 and 0.85) differ by 0.24, which adds
+// about 0.24 x sqrt(0.35 x 0.65 / 36864) = 0.0006 of standard error. Measured within 0.004 of
+// the weighted sum: within 0.015 (a mix that kept only one side, or both at full weight,
+// misses by 0.1 or more).
 //
 // Then a Mix of (that Mix) and a white smooth Glass, which on the open plane under the white
 // sky passes or reflects all light (albedo 1): two choices, nested, each with its own stream.
