@@ -3,6 +3,7 @@
 #include "compiler/conversions.h"
 #include "compiler/cut.h"
 #include "compiler/emitter.h"
+#include "compiler/lobe_budget.h"
 #include "compiler/metadata.h"
 #include "compiler/parser.h"
 #include "compiler/resolved_graph.h"
@@ -45,6 +46,7 @@ struct Analysis {
     const std::size_t errorsBeforeSettings = diagnostics.errorCount();
     ambientOcclusion = collectAmbientOcclusionSettings(*resolved, *order, file, diagnostics);
     bevel = collectBevelSettings(*resolved, *order, file, diagnostics);
+    checkLobeBudget(*resolved, *order, file, diagnostics);
     return diagnostics.errorCount() == errorsBeforeSettings;
   }
 

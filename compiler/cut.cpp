@@ -70,6 +70,9 @@ const NodeCost kNodeCosts[] = {
     // Three lobes, the sheen colour from the base colour's hue.
     {"PrincipledLayers", 2},
     {"MixShader", 1},
+    // A hash and a comparison; the Principled BSDF's outputs and up to four lobes.
+    {"ChooseShader", 3},
+    {"PrincipledBsdf", 3},
     // Traced inputs: the tracer casts their rays before the graph runs, outside its cost
     // (and never in a cut); in the graph Ambient Occlusion scales a colour, Bevel reads.
     {"AmbientOcclusion", 0.5},

@@ -10,7 +10,7 @@
 
 namespace memograph::compiler {
 
-inline constexpr std::array<std::string_view, 22> kMaterialInputNames = {"uv",
+inline constexpr std::array<std::string_view, 23> kMaterialInputNames = {"uv",
                                                                          "position",
                                                                          "normal",
                                                                          "tangent",
@@ -30,6 +30,7 @@ inline constexpr std::array<std::string_view, 22> kMaterialInputNames = {"uv",
                                                                          "diffuseDepth",
                                                                          "glossyDepth",
                                                                          "transmissionDepth",
+                                                                         "closureSeed",
                                                                          "ambientOcclusion",
                                                                          "bevelNormal"};
 
@@ -39,8 +40,8 @@ inline constexpr std::array<std::string_view, 22> kMaterialInputNames = {"uv",
 inline constexpr std::size_t kFirstObjectSpaceInput = 7;
 static_assert(kMaterialInputNames[kFirstObjectSpaceInput] == "generated");
 
-// The path-state inputs (Blender's Light Path node): the members from `rayFlags` on, which
-// the prelude leaves out under MG_OMIT_PATH_INPUTS.
+// The path-state inputs (Blender's Light Path node, and ChooseShader's per-hit random word):
+// the members from `rayFlags` on, which the prelude leaves out under MG_OMIT_PATH_INPUTS.
 inline constexpr std::size_t kFirstPathInput = 14;
 static_assert(kMaterialInputNames[kFirstPathInput] == "rayFlags");
 
@@ -53,7 +54,7 @@ inline bool isObjectSpaceInput(std::string_view name) {
 // The traced inputs (docs/design/traced-inputs.md: Ambient Occlusion, Bevel): the members
 // from `ambientOcclusion` on, filled by rays the path tracer traces from the hit before the graph
 // runs; the prelude leaves them out under MG_OMIT_TRACED_INPUTS.
-inline constexpr std::size_t kFirstTracedInput = 20;
+inline constexpr std::size_t kFirstTracedInput = 21;
 static_assert(kMaterialInputNames[kFirstTracedInput] == "ambientOcclusion");
 
 inline bool isPathInput(std::string_view name) {

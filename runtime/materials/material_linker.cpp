@@ -414,8 +414,13 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
     }
     // The include defines a library function, under its MG_FN_ guard, only where the graph
     // calls it.
-    if (compiled->glsl.find("#define MG_FN_PrincipledLayers_") != std::string::npos)
+    if (compiled->glsl.find("#define MG_FN_PrincipledLayers_") != std::string::npos ||
+        compiled->glsl.find("#define MG_FN_PrincipledBsdf_") != std::string::npos)
       linked.principledLayers = true;
+    // ChooseShader: its graph may hold more lobes than fit, of which the chosen ones take the
+    // slots of those of weight 0 (mg_addLobe under MG_CLOSURE_CHOICE).
+    if (compiled->glsl.find("#define MG_FN_ChooseShader_") != std::string::npos)
+      linked.closureChoice = true;
     // Likewise TransparentBsdf, the only node that adds a MG_LOBE_TRANSPARENT lobe
     // (nodes/bsdf.inc): Cycles decides a shader's transparent shadows from its graph too
     // (SD_HAS_TRANSPARENT_SHADOW), so only such graphs are evaluated at shadow hits.

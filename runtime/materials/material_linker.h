@@ -115,10 +115,13 @@ struct LinkedMaterials {
   // Some material writes BSDF lobes (nodes/bsdf.inc): the path tracer needs MG_BSDF_LOBES
   // (bsdf_lobes.glsl), which other scenes do without, so their kernels stay as they were.
   bool bsdfLobes = false;
-  // Some graph calls PrincipledLayers (Principled v1's sheen, clearcoat and transmission as
-  // lobes): the path tracer needs MG_PRINCIPLED_LAYERS (bsdf_lobes.glsl), which scenes of
-  // other lobes do without.
+  // Some graph calls PrincipledLayers or PrincipledBsdf (Principled v1's sheen, clearcoat and
+  // transmission as lobes, or a Principled BSDF among other shaders): the path tracer needs
+  // MG_PRINCIPLED_LAYERS (bsdf_lobes.glsl), which scenes of other lobes do without.
   bool principledLayers = false;
+  // Some graph calls ChooseShader (a Mix or Add Shader chosen per hit): mg_addLobe needs
+  // MG_CLOSURE_CHOICE, which other scenes do without, so their kernels stay as they were.
+  bool closureChoice = false;
   // Some material may be transparent (LinkedMaterial::transparentShadow): the path tracer
   // needs MG_TRANSPARENT_SHADOWS (transparent_shadow.glsl), and materials.glsl then holds
   // materialTransparentShadow and, with the switch, evaluateMaterialAtShadowHit; scenes

@@ -449,7 +449,10 @@ class PrincipledTest(unittest.TestCase):
         msgs = ' | '.join(w[2] for w in result.warnings)
         self.assertIn('Multiscatter GGX is written as single-scatter GGX', msgs)
 
-    def test_v1_layers_under_a_mix_shader_are_dropped_and_warned(self):
+    def test_v1_under_a_mix_shader_is_a_principled_bsdf_sink(self):
+        # A Principled BSDF mixed with an Emission: exact as lobes (lobes.py), its clearcoat a
+        # lobe of PrincipledBsdf (Layers bit 2), the emission weighted by the Mix; it fits one
+        # hit, so nothing is chosen per hit and nothing is warned.
         tree = Tree()
         out = output_node(tree)
         p = principled_v1(tree)
@@ -462,10 +465,17 @@ class PrincipledTest(unittest.TestCase):
         tree.link(em.outputs[0], mix.inputs[2])
         tree.link(mix.outputs[0], out.inputs[0])
         result, (text,) = export([Material('Mat', tree)])
-        self.assertNotIn('PrincipledLayers', text)
-        msgs = ' | '.join(w[2] for w in result.warnings)
-        self.assertIn('the Sheen, Clearcoat and Transmission of a Principled BSDF under a '
-                      'MixShader are not carried', msgs)
+        self.assertIn('MixShader Fac=0.5 Weight=1 WeightA>0 WeightB>1;', text)
+        self.assertIn('PrincipledBsdf BaseColor=(0.800000012, 0.300000012, 0.100000001) '
+                      'Metallic=0.25 Roughness=0.400000006 Specular=0.699999988 SpecularTint=0 '
+                      'Sheen=0 SheenTint=0.5 Clearcoat=1 ClearcoatRoughness=0.0299999993 '
+                      'Transmission=0 TransmissionRoughness=0 IOR=1.45000005 Layers=2 '
+                      'Weight<0;', text)
+        self.assertIn('Mul A=(1, 1, 1) B<1 Out>2;', text)
+        self.assertIn('EmissionOutput Color<2 Strength=1;', text)
+        self.assertNotIn('ChooseShader', text)
+        self.assertNotIn('PrincipledOutput', text)
+        self.assertEqual(result.warnings, [])
         # Added to an emission, the sum is exact: the layers stay, and nothing is warned
         # of them.
         tree = Tree()
@@ -480,12 +490,16 @@ class PrincipledTest(unittest.TestCase):
         tree.link(p.outputs[0], add.inputs[1])
         tree.link(add.outputs[0], out.inputs[0])
         result, (text,) = export([Material('Mat', tree)])
-        self.assertIn('Metallic=0.25 Roughness=0.400000006 Sheen=0 SheenTint=0.5 Clearcoat=1 '
+        self.assertIn('PrincipledLayers BaseColor=(0.800000012, 0.300000012, 0.100000001) '
+                      'Metallic=0.25 Roughness=0.400000006 Sheen=0 SheenTint=0.5 Clearcoat=1 '
                       'ClearcoatRoughness=0.0299999993 Transmission=0', text)
+        self.assertNotIn('PrincipledBsdf', text)
         msgs = ' | '.join(w[2] for w in result.warnings)
         self.assertNotIn('Sheen, Clearcoat', msgs)
 
-    def test_mix_blends_the_cycles_weighting_with_a_diffuse(self):
+    def test_mix_with_a_diffuse_fits_one_hit_and_is_exact(self):
+        # A Principled BSDF without layers (one lobe) and a Diffuse (one lobe): both at every
+        # hit, no choice, nothing approximated.
         tree = Tree()
         out = output_node(tree)
         p = principled_v1(tree, tint=1.0)
@@ -500,8 +514,137 @@ class PrincipledTest(unittest.TestCase):
         tree.link(p.outputs[0], mix.inputs[2])
         tree.link(mix.outputs[0], out.inputs[0])
         result, (text,) = export([Material('Mat', tree)])
-        self.assertIn('Mix A=0 B=1 Factor<0 Out>', text)  # specular tint and the weighting
-        self.assertEqual(text.count('Mix A=0 B=1 Factor<0'), 2)
+        self.assertIn('DiffuseBsdf Color=(0.5, 0.100000001, 0.100000001) Roughness=0 Weight<0;',
+                      text)
+        self.assertIn('PrincipledBsdf BaseColor=(0.800000012, 0.300000012, 0.100000001) '
+                      'Metallic=0.25 Roughness=0.400000006 Specular=0.699999988 SpecularTint=1 '
+                      'Layers=0 Weight<1;', text)
+        self.assertNotIn('ChooseShader', text)
+        self.assertEqual(result.warnings, [])
+
+
+def mix_shader(tree, name, fac):
+    return tree.add(Node('ShaderNodeMixShader', name,
+                         [Sock('Fac', 'VALUE', fac), Sock('Shader', 'SHADER'),
+                          Sock('Shader_001', 'SHADER')], [Sock('Shader', 'SHADER')]))
+
+
+def add_shader(tree, name):
+    return tree.add(Node('ShaderNodeAddShader', name,
+                         [Sock('Shader', 'SHADER'), Sock('Shader_001', 'SHADER')],
+                         [Sock('Shader', 'SHADER')]))
+
+
+class ClosureChoiceTest(unittest.TestCase):
+    def test_two_principled_bsdfs_are_chosen_per_hit(self):
+        # Two sets of Principled outputs cannot share a hit: the Mix chooses (ChooseShader
+        # after its MixShader), each side a PrincipledBsdf at its chosen weight.
+        tree = Tree()
+        out = output_node(tree)
+        red = principled_v1(tree)
+        red.inputs[8].default_value = 1.0  # Clearcoat
+        red.inputs[7].default_value = 0.5  # Sheen
+        gold = principled_v1(tree)
+        gold.name = 'Gold'
+        gold.inputs[2].default_value = 1.0  # Metallic
+        mix = mix_shader(tree, 'Mix', 0.3)
+        tree.link(red.outputs[0], mix.inputs[1])
+        tree.link(gold.outputs[0], mix.inputs[2])
+        tree.link(mix.outputs[0], out.inputs[0])
+        result, (text,) = export([Material('Mat', tree)])
+        self.assertIn('MixShader Fac=0.300000012 Weight=1 WeightA>0 WeightB>1;', text)
+        self.assertIn('ChooseShader WeightA<0 WeightB<1 Stream=0 ChosenA>2 ChosenB>3;', text)
+        self.assertIn('Layers=3 Weight<2;', text)
+        self.assertIn('Metallic=1 Roughness=0.400000006 Specular=0.699999988 SpecularTint=0 '
+                      'Layers=0 Weight<3;', text)
+        self.assertNotIn('PrincipledOutput', text)
+        self.assertEqual(result.warnings, [])
+
+    def test_nested_mixes_choose_where_their_sides_do_not_fit(self):
+        # Mix(Mix(layered Principled, Principled), Glass): the inner Mix holds two Principled
+        # BSDFs and chooses; its larger side needs 4 lobes, which with the Glass's 1 exceed
+        # MAX_LOBES, so the outer Mix chooses too, with its own stream.
+        tree = Tree()
+        out = output_node(tree)
+        a = principled_v1(tree)
+        a.inputs[7].default_value = 0.5  # Sheen
+        a.inputs[8].default_value = 1.0  # Clearcoat
+        a.inputs[9].default_value = 0.5  # Transmission
+        b = principled_v1(tree)
+        b.name = 'Plain'
+        glass = tree.add(Node('ShaderNodeBsdfGlass', 'Glass',
+                              [Sock('Color', 'RGBA', (1.0, 1.0, 1.0, 1)),
+                               Sock('Roughness', 'VALUE', 0.0), Sock('IOR', 'VALUE', 1.5),
+                               Sock('Normal', 'VECTOR', (0, 0, 0))], [Sock('BSDF', 'SHADER')],
+                              distribution='GGX'))
+        inner = mix_shader(tree, 'Inner', 0.5)
+        outer = mix_shader(tree, 'Outer', 0.25)
+        tree.link(a.outputs[0], inner.inputs[1])
+        tree.link(b.outputs[0], inner.inputs[2])
+        tree.link(inner.outputs[0], outer.inputs[1])
+        tree.link(glass.outputs[0], outer.inputs[2])
+        tree.link(outer.outputs[0], out.inputs[0])
+        result, (text,) = export([Material('Mat', tree)])
+        self.assertIn('ChooseShader WeightA<0 WeightB<1 Stream=0 ChosenA>2 ChosenB>3;', text)
+        self.assertIn('MixShader Fac=0.5 Weight<2 WeightA>4 WeightB>5;', text)
+        self.assertIn('ChooseShader WeightA<4 WeightB<5 Stream=1 ChosenA>6 ChosenB>7;', text)
+        self.assertIn('Layers=7 Weight<6;', text)
+        self.assertIn('Layers=0 Weight<7;', text)
+        self.assertIn('GlassBsdf', text)
+        self.assertIn('Weight<3;', text)
+        self.assertEqual(result.warnings, [])
+
+    def test_add_shader_that_fits_stays_exact_and_one_that_does_not_chooses(self):
+        # Principled (no layer) + Glossy: two lobes, both at every hit.
+        tree = Tree()
+        out = output_node(tree)
+        p = principled_v1(tree)
+        gl = tree.add(Node('ShaderNodeBsdfGlossy', 'Glossy',
+                           [Sock('Color', 'RGBA', (0.9, 0.9, 0.9, 1)),
+                            Sock('Roughness', 'VALUE', 0.2), Sock('Normal', 'VECTOR', (0, 0, 0))],
+                           [Sock('BSDF', 'SHADER')], distribution='GGX'))
+        add = add_shader(tree, 'Add')
+        tree.link(p.outputs[0], add.inputs[0])
+        tree.link(gl.outputs[0], add.inputs[1])
+        tree.link(add.outputs[0], out.inputs[0])
+        result, (text,) = export([Material('Mat', tree)])
+        self.assertIn('Layers=0 Weight=1;', text)
+        self.assertIn('GlossyBsdf Color=(0.899999976, 0.899999976, 0.899999976) '
+                      'Roughness=0.200000003 Distribution=0 Weight=1;', text)
+        self.assertNotIn('ChooseShader', text)
+        # With its clearcoat, sheen and transmission (4 lobes) + Glossy: 5, the Add chooses,
+        # each side with probability 1/2 at twice the weight.
+        p.inputs[7].default_value = 0.5
+        p.inputs[8].default_value = 1.0
+        p.inputs[9].default_value = 0.5
+        result, (text,) = export([Material('Mat', tree)])
+        self.assertIn('ChooseShader WeightA=1 WeightB=1 Stream=0 ChosenA>0 ChosenB>1;', text)
+        self.assertIn('Layers=7 Weight<0;', text)
+        self.assertIn('Distribution=0 Weight<1;', text)
+        self.assertEqual(result.warnings, [])
+
+    def test_five_bsdfs_choose_instead_of_being_approximated(self):
+        # Five Diffuse BSDFs added: more than MAX_LOBES. The top Add chooses between a side of
+        # four (which fits) and one; nothing falls back to the Principled approximation.
+        tree = Tree()
+        out = output_node(tree)
+        diffuse = [tree.add(Node('ShaderNodeBsdfDiffuse', 'D%d' % i,
+                                 [Sock('Color', 'RGBA', (0.1 * i, 0.1, 0.1, 1)),
+                                  Sock('Roughness', 'VALUE', 0.0),
+                                  Sock('Normal', 'VECTOR', (0, 0, 0))], [Sock('BSDF', 'SHADER')]))
+                   for i in range(5)]
+        adds = [add_shader(tree, 'A%d' % i) for i in range(4)]
+        tree.link(diffuse[0].outputs[0], adds[0].inputs[0])
+        tree.link(diffuse[1].outputs[0], adds[0].inputs[1])
+        for i in range(1, 4):
+            tree.link(adds[i - 1].outputs[0], adds[i].inputs[0])
+            tree.link(diffuse[i + 1].outputs[0], adds[i].inputs[1])
+        tree.link(adds[3].outputs[0], out.inputs[0])
+        result, (text,) = export([Material('Mat', tree)])
+        self.assertEqual(text.count('ChooseShader'), 1)
+        self.assertEqual(text.count('DiffuseBsdf'), 5)
+        self.assertNotIn('PrincipledOutput', text)
+        self.assertEqual(result.warnings, [])
 
 
 class SpecWriterTest(unittest.TestCase):

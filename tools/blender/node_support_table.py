@@ -24,10 +24,10 @@ CATEGORIES = ('Shader', 'Texture', 'Color', 'Vector', 'Converter', 'Input', 'Out
 # What differs from Cycles for nodes that have a writer (docs/guide/blender.md, nodes.md).
 APPROXIMATIONS = {
     'ShaderNodeBsdfPrincipled': '3.x Sheen, Clearcoat, Transmission (and their tint, '
-                                'roughness, IOR sockets) as lobes `PrincipledLayers` (dropped, '
-                                'warned, under a Mix Shader or added to another BSDF); '
-                                'Clearcoat Normal, Subsurface, '
-                                'Anisotropic, Multiscatter GGX not carried (warned)',
+                                'roughness, IOR sockets) as lobes `PrincipledLayers`; under a '
+                                'Mix or Add Shader with other BSDFs (3.x) `PrincipledBsdf` '
+                                'lobes, its Alpha not carried (warned); Clearcoat Normal, '
+                                'Subsurface, Anisotropic, Multiscatter GGX not carried (warned)',
     'ShaderNodeBsdfDiffuse': 'Principled with Specular 0, Roughness 1 (Oren-Nayar dropped)',
     'ShaderNodeBsdfGlossy': 'Principled metal (distribution dropped)',
     'ShaderNodeBsdfTransparent': 'opacity 0 (tint dropped)',
@@ -76,8 +76,10 @@ NOT_SUPPORTED = {
     'ShaderNodeOutputLineStyle': 'Freestyle',
 }
 # Shaders written exactly as BSDF lobes (memograph_export/lobes.py, nodes/bsdf.inc) when the
-# surface's tree holds only these, Emission and at most lobes.MAX_LOBES BSDFs; in a tree with
-# any other shader (Principled, Subsurface, ...) APPROXIMATIONS' Principled fallback.
+# surface's tree holds only these, 3.x Principled BSDFs and Emission (a Mix or Add Shader whose
+# sides need more than lobes.MAX_LOBES lobes, or two Principled BSDFs, at one hit chooses one
+# side per hit); in a tree with any other shader (Subsurface, ...) APPROXIMATIONS' Principled
+# fallback.
 LOBE_SHADERS = {
     'ShaderNodeBsdfDiffuse': 'lobe `DiffuseBsdf` (Lambert; Oren-Nayar at Roughness > 0)',
     'ShaderNodeBsdfGlossy': 'lobe `GlossyBsdf` (GGX, Beckmann, Sharp; Multiscatter GGX and '
@@ -90,12 +92,14 @@ LOBE_SHADERS = {
     'ShaderNodeBsdfTransparent': 'lobe `TransparentBsdf` (straight through, tinted; shadow '
                                  'rays pass it tinted, at most 8 such surfaces)',
     'ShaderNodeBsdfTranslucent': 'lobe `TranslucentBsdf` (Lambert on the far side)',
-    'ShaderNodeMixShader': '`MixShader` splits the weight by Fac (textured Fac too)',
-    'ShaderNodeAddShader': 'both shaders at its weight',
+    'ShaderNodeMixShader': '`MixShader` splits the weight by Fac (textured Fac too); '
+                           '`ChooseShader` picks one side per hit where both do not fit one '
+                           'hit (noisier, the same mean)',
+    'ShaderNodeAddShader': 'both shaders at its weight; `ChooseShader` picks one per hit where '
+                           'both do not fit one hit',
 }
 LOBE_CONDITION = ('in a tree of Diffuse, Glossy, Velvet, Refraction, Glass, Transparent, '
-                  'Translucent, Emission, Mix and Add Shader only '
-                  '(at most 4 BSDFs); else ')
+                  'Translucent, 3.x Principled BSDF, Emission, Mix and Add Shader only; else ')
 
 HANDLED_BY_WALK = {
     'ShaderNodeOutputMaterial': 'the walk starts here (Surface carried; Volume, '

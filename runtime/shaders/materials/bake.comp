@@ -102,6 +102,7 @@ void main() {
   inputs.diffuseDepth = 0;
   inputs.glossyDepth = 0;
   inputs.transmissionDepth = 0;
+  inputs.closureSeed = 0u;
 #ifndef MG_OMIT_TRACED_INPUTS
   // A bake traces nothing (Cycles' bake would trace AO against the scene; here no scene).
   inputs.ambientOcclusion = 1.0;

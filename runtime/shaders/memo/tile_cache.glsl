@@ -332,6 +332,7 @@ MaterialInputs tileFillInputs(TileFillItem item, uint texel) {
   inputs.diffuseDepth = 0;
   inputs.glossyDepth = 0;
   inputs.transmissionDepth = 0;
+  inputs.closureSeed = 0u;
 #endif
 #ifndef MG_OMIT_TRACED_INPUTS
   inputs.ambientOcclusion = 1.0;  // never read: a graph with a traced input is not cacheable

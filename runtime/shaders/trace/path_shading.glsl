@@ -294,8 +294,29 @@ void setPathInputs(inout MaterialInputs inputs, PathState path, float rayLength)
   inputs.diffuseDepth = path.diffuseDepth;
   inputs.glossyDepth = path.glossyDepth;
   inputs.transmissionDepth = path.transmissionDepth;
+  // A path's hit replaces it with its vertex's word (setClosureSeed); a shadow ray's hit and
+  // a light sample's emitter keep this hash of the hit's distance and position, which both
+  // architectures compute alike and which varies from sample to sample.
+  inputs.closureSeed = pcgHash(floatBitsToUint(rayLength) ^
+                               pcgHash(floatBitsToUint(inputs.position.v.x) ^
+                                       pcgHash(floatBitsToUint(inputs.position.v.y))));
 #endif
 }
+
+// The per-hit random word ChooseShader picks a shader by (MaterialInputs::closureSeed): the
+// path vertex's key (rng.glsl: pixel, sample, vertex, seed), hashed apart from the numbers the
+// vertex draws for its light and BSDF samples, so both architectures choose alike and the
+// path's own numbers are those it draws without a choice. A shadow ray's hit and a light
+// sample's emitter, which have no vertex of their own, keep setPathInputs' word.
+// Only where MaterialInputs has the path state (the callers test MG_OMIT_PATH_INPUTS too), so
+// that the other scenes' kernels are what they were.
+#ifndef MG_OMIT_PATH_INPUTS
+void setClosureSeed(inout MaterialInputs inputs, uint pixelIndex, uint sampleIndex,
+                    uint vertexKey, uint seed) {
+  inputs.closureSeed =
+      pcgHash(rngForPathVertex(pixelIndex, sampleIndex, vertexKey, seed).key ^ 0xBB67AE85u);
+}
+#endif
 
 // The power heuristic (beta 2) for a sample of pdf a against a strategy of pdf b.
 float misWeight(float a, float b) {

@@ -23,10 +23,10 @@ no clamping, no light threshold) and DIR/export/ (the memograph exporter with --
   (red to the camera, blue to every other ray) over a grey floor, which it lights blue.
 - bsdf_<tree> (BSDF_TREES: diffuse, oren_nayar, glossy_ggx, glossy_beckmann, velvet, mix,
   add, glass, glass_rough, refraction, transparent, translucent, principled_sheen,
-  principled_clearcoat, principled_transmission): a smooth sphere of that BSDF (or Mix/Add
-  Shader of BSDFs) on a checker floor under a sky and a sun; bsdf_room: a room of several
-  of them (docs/design/closures.md). The principled_* scenes also write DIR/tiles.json with the
-  ball's box.
+  principled_clearcoat, principled_transmission, principled_mix, principled_add): a smooth
+  sphere of that BSDF (or Mix/Add Shader of BSDFs) on a checker floor under a sky and a sun;
+  bsdf_room: a room of several of them (docs/design/closures.md). The principled_* scenes
+  also write DIR/tiles.json with the ball's box.
 - light_path_depth: (b) an emissive panel that emits only for Ray Depth 1 (black to the
   camera, lighting the floor and a wall directly, no bounced light). Both write
   DIR/tiles.json with their regions (panel, floor, wall) as the Principled scenes do.
@@ -294,6 +294,12 @@ BSDF_TREES = {
         nt, 'ShaderNodeBsdfPrincipled', distribution='GGX',
         **{'Base Color': (0.05, 0.01, 0.01), 'Roughness': 0.6, 'Clearcoat': 1.0,
            'Clearcoat Roughness': 0.1}),
+    # Principled BSDFs under Mix and Add Shader (PrincipledBsdf; a Mix of two Principled
+    # BSDFs chooses one per hit, ChooseShader): red plastic with a clearcoat and gold metal
+    # mixed by a noise texture, and a dark Principled BSDF with a sheen and a clearcoat plus a
+    # Glossy GGX (four lobes: both at every hit).
+    'principled_mix': lambda nt: principled_mix_tree(nt),
+    'principled_add': lambda nt: principled_add_tree(nt),
     # A tinted glass ball whose refraction is rougher than its reflection.
     'principled_transmission': lambda nt: bsdf_node(
         nt, 'ShaderNodeBsdfPrincipled', distribution='GGX',
@@ -324,6 +330,40 @@ def add_tree(nt):
                  add.inputs[0])
     nt.links.new(bsdf_node(nt, 'ShaderNodeBsdfGlossy', Color=(0.5, 0.5, 0.5), Roughness=0.4,
                            distribution='BECKMANN').outputs[0], add.inputs[1])
+    return add
+
+
+def principled_mix_tree(nt):
+    """Mix Shader by a noise factor of red plastic with a clearcoat and gold metal."""
+    mix = nt.nodes.new('ShaderNodeMixShader')
+    noise = nt.nodes.new('ShaderNodeTexNoise')
+    noise.inputs['Scale'].default_value = 3.0
+    noise.inputs['Detail'].default_value = 2.0
+    ramp = nt.nodes.new('ShaderNodeMapRange')  # noise's 0.3-0.7 stretched to 0-1
+    ramp.inputs['From Min'].default_value = 0.35
+    ramp.inputs['From Max'].default_value = 0.65
+    nt.links.new(noise.outputs['Fac'], ramp.inputs['Value'])
+    nt.links.new(ramp.outputs['Result'], mix.inputs['Fac'])
+    red = bsdf_node(nt, 'ShaderNodeBsdfPrincipled', distribution='GGX',
+                    **{'Base Color': (0.8, 0.05, 0.03), 'Roughness': 0.4, 'Clearcoat': 1.0,
+                       'Clearcoat Roughness': 0.1})
+    gold = bsdf_node(nt, 'ShaderNodeBsdfPrincipled', distribution='GGX',
+                     **{'Base Color': (1.0, 0.77, 0.34), 'Metallic': 1.0, 'Roughness': 0.3})
+    nt.links.new(red.outputs[0], mix.inputs[1])
+    nt.links.new(gold.outputs[0], mix.inputs[2])
+    return mix
+
+
+def principled_add_tree(nt):
+    """Add Shader of a dark blue Principled BSDF with a sheen and a clearcoat and a grey Glossy
+    GGX."""
+    add = nt.nodes.new('ShaderNodeAddShader')
+    nt.links.new(bsdf_node(nt, 'ShaderNodeBsdfPrincipled', distribution='GGX',
+                           **{'Base Color': (0.05, 0.08, 0.3), 'Roughness': 0.5, 'Sheen': 1.0,
+                              'Clearcoat': 0.5, 'Clearcoat Roughness': 0.2}).outputs[0],
+                 add.inputs[0])
+    nt.links.new(bsdf_node(nt, 'ShaderNodeBsdfGlossy', Color=(0.3, 0.3, 0.3), Roughness=0.25,
+                           distribution='GGX').outputs[0], add.inputs[1])
     return add
 
 

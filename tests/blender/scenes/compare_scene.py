@@ -89,7 +89,8 @@ ROOM_FLIP_LIMIT = 0.043
 # measured LDR-FLIP 0.0184 and brightness -0.04 % on lavapipe; its limits hold it there.
 BSDF_FLIP_LIMITS = {'bsdf_room': ROOM_FLIP_LIMIT, 'bsdf_transparent': 0.025}
 for _tree in ('diffuse', 'oren_nayar', 'glossy_ggx', 'glossy_sharp', 'glossy_beckmann', 'velvet',
-              'mix', 'add', 'principled_sheen', 'principled_clearcoat'):
+              'mix', 'add', 'principled_sheen', 'principled_clearcoat', 'principled_mix',
+              'principled_add'):
     CHECKS['bsdf_' + _tree] = (32, 256, 16, 16, 5, 'bsdf', 0.02)
 CHECKS['bsdf_room'] = (32, 2048, 128, 16, 5, 'bsdf', 0.02)
 # The transmission lobes: 9 rays a path (Cycles' 8 bounces after the camera's hit), since a

@@ -277,7 +277,7 @@ class MaterialWriter:
         surface = root.input('Surface')
         if surface is None or isinstance(surface, Const):
             self.warn(root, 'Surface is not linked: Cycles renders black, which is written')
-        if lobes.writes_lobes(self, surface):  # Diffuse/Glossy/Velvet, Mix/Add: exact
+        if lobes.writes_lobes(self, surface):  # BSDFs, mixed Principled, Mix/Add: exact
             lobes.write(self, surface)
             return self.builder.text()
         params = shaders.evaluate(self, surface)

@@ -1,20 +1,35 @@
 """Shader trees of BSDF lobes -> memograph's BSDF sinks (nodes/bsdf.inc).
 
 A surface whose shader tree holds only Diffuse, Glossy, Velvet, Refraction, Glass,
-Transparent and Translucent BSDFs, Emission, and Mix and Add Shaders between them is written
-exactly: each BSDF becomes a sink that adds one lobe (DiffuseBsdf, GlossyBsdf, VelvetBsdf,
-RefractionBsdf, GlassBsdf, TransparentBsdf, TranslucentBsdf) with a weight, Mix Shader becomes a MixShader node
-that splits its weight by Fac, Add Shader gives both its shaders its weight, and the
-emissions, weighted likewise, are summed into one EmissionOutput. This is Cycles' own
-closure weighting (svm_node_mix_closure, svm_node_closure_bsdf), so the runtime samples
-the same BSDF (docs/design/closures.md). Any other shader in the tree (Principled,
-Subsurface, ...) keeps the Principled approximation of shaders.py.
+Transparent and Translucent BSDFs, Blender 3.x Principled BSDFs (v1), Emission, and Mix and
+Add Shaders between them is written exactly: each BSDF becomes a sink that adds its lobes
+(DiffuseBsdf, GlossyBsdf, VelvetBsdf, RefractionBsdf, GlassBsdf, TransparentBsdf,
+TranslucentBsdf; PrincipledBsdf, one lobe and one per layer in use) with a weight, Mix Shader
+becomes a MixShader node that splits its weight by Fac, Add Shader gives both its shaders its
+weight, and the emissions, weighted likewise, are summed into one EmissionOutput. This is
+Cycles' own closure weighting (svm_node_mix_closure, svm_node_closure_bsdf), so the runtime
+samples the same BSDF (docs/design/closures.md).
+
+One hit holds at most MAX_LOBES lobes and one Principled BSDF's parameters. A Mix or Add
+Shader whose two sides together need more is written with a ChooseShader after its weights:
+each hit takes one side, by weight, at the weight of both (Cycles' mixed BSDF in
+expectation). Which ones is decided bottom-up (_Plan): a node stays exact (both sides at
+every hit) where its sides fit together, so a tree that fits is written as without choices.
+The emissions keep the exact weights. A Principled BSDF that is the surface shader itself, or
+added to an emission, stays with shaders.py (PrincipledOutput, and PrincipledLayers where its
+layers are in use); any other shader in the tree (Subsurface, a 4.x Principled BSDF, ...)
+keeps the Principled approximation of shaders.py.
 """
 
+from . import compat
+from . import shaders
 from .graph import Const, Out
 from .mgraph import Literal
 
 MAX_LOBES = 4  # MG_MAX_LOBES of nodes/prelude/common.inc
+PRINCIPLED = 'ShaderNodeBsdfPrincipled'
+# PrincipledBsdf's Layers bits: the layers whose input is in use get a lobe each.
+_LAYER_BITS = (('Sheen', 1), ('Clearcoat', 2), ('Transmission', 4))
 
 LOBE_NODES = ('ShaderNodeBsdfDiffuse', 'ShaderNodeBsdfGlossy', 'ShaderNodeBsdfVelvet',
               'ShaderNodeBsdfRefraction', 'ShaderNodeBsdfGlass', 'ShaderNodeBsdfTransparent',
@@ -28,38 +43,99 @@ def _shader_node(source):
     return source.node if isinstance(source, Out) else None
 
 
-def count_lobes(source):
-    """The number of BSDF lobes of the tree at source, or None when some shader of it is not
-    one that lobes express (then shaders.py approximates the whole surface)."""
-    if source is None or isinstance(source, Const):
-        return 0  # an unlinked shader socket: no closure
-    flat = _shader_node(source)
-    if flat is None or flat.bl_idname not in TREE_NODES:
+def _is_v1_principled(flat):
+    """A Blender 3.x Principled BSDF (v1, with a Specular factor): one PrincipledBsdf sink."""
+    return (flat.bl_idname == PRINCIPLED and
+            compat.find_input(flat.node, 'Specular', 'Specular IOR Level') == 'Specular')
+
+
+def _layer_bits(flat):
+    """PrincipledBsdf's Layers: the sheen, clearcoat and transmission whose input is in use."""
+    return sum(bit for name, bit in _LAYER_BITS if shaders._in_use(flat, name))
+
+
+def _principled_lobes(flat):
+    return 1 + bin(_layer_bits(flat)).count('1')
+
+
+class _Need:
+    """What a shader tree needs at one hit: lobes and sets of Principled outputs."""
+
+    def __init__(self, lobes=0, principled=0):
+        self.lobes = lobes
+        self.principled = principled
+
+    def fits(self):
+        return self.lobes <= MAX_LOBES and self.principled <= 1
+
+
+class _Plan:
+    """Which Mix and Add Shaders of a tree choose one side per hit (ChooseShader), decided
+    bottom-up: a node whose sides fit one hit together stays exact; else it chooses, and needs
+    the larger side's lobes. Counts the tree's BSDFs and Principled BSDFs on the way."""
+
+    def __init__(self):
+        self.choosing = set()  # keys of the Mix/Add FlatNodes that choose
+        self.bsdfs = 0         # BSDF nodes other than Principled BSDFs
+        self.principled = 0
+        self.mixes = 0
+
+    def need(self, source):
+        """The tree's _Need at source, or None when some shader of it is not one that lobes
+        express (then shaders.py writes the whole surface)."""
+        if source is None or isinstance(source, Const):
+            return _Need()  # an unlinked shader socket: no closure
+        flat = _shader_node(source)
+        if flat is None:
+            return None
+        kind = flat.bl_idname
+        if kind in LOBE_NODES:
+            self.bsdfs += 1
+            return _Need(1, 0)
+        if kind == 'ShaderNodeEmission':
+            return _Need()
+        if _is_v1_principled(flat):
+            self.principled += 1
+            return _Need(_principled_lobes(flat), 1)
+        if kind not in ('ShaderNodeMixShader', 'ShaderNodeAddShader'):
+            return None
+        if kind == 'ShaderNodeMixShader':
+            self.mixes += 1
+        a = self.need(flat.input('Shader'))
+        b = self.need(flat.input('Shader_001'))
+        if a is None or b is None:
+            return None
+        both = _Need(a.lobes + b.lobes, a.principled + b.principled)
+        if both.fits():
+            return both
+        self.choosing.add(flat.key)
+        return _Need(max(a.lobes, b.lobes), max(a.principled, b.principled))
+
+
+def plan_lobes(surface):
+    """The _Plan of a surface written as lobes, or None where shaders.py writes it: a tree with
+    a shader that lobes do not express, without any BSDF, or whose only BSDF is one Principled
+    BSDF outside any Mix Shader (the surface shader itself, or added to emissions: exact
+    there, with the layers, as before)."""
+    plan = _Plan()
+    need = plan.need(surface)
+    if need is None or need.lobes == 0:
         return None
-    if flat.bl_idname in LOBE_NODES:
-        return 1
-    if flat.bl_idname == 'ShaderNodeEmission':
-        return 0
-    counts = [count_lobes(flat.input(name)) for name in ('Shader', 'Shader_001')]
-    return None if None in counts else sum(counts)
+    if plan.bsdfs == 0 and plan.principled == 1 and plan.mixes == 0:
+        return None
+    return plan
 
 
 def writes_lobes(mw, surface):
-    """Whether the surface is written as lobes (it holds one at least, all expressible); a
-    tree of more than MAX_LOBES is refused with a warning and approximated instead."""
-    n = count_lobes(surface)
-    if not n:
-        return False
-    if n > MAX_LOBES:
-        mw.warn('', 'the surface mixes %d BSDFs, more than memograph\'s %d lobes: '
-                'approximated as one Principled BSDF' % (n, MAX_LOBES))
-        return False
-    return True
+    """Whether the surface is written as lobes (plan_lobes)."""
+    return plan_lobes(surface) is not None
 
 
 class _Writer:
-    def __init__(self, mw):
+    def __init__(self, mw, plan):
         self.mw = mw
+        self.plan = plan
+        self.streams = 0     # ChooseShaders written: each draws its own number (Stream)
         self.emissions = []  # weighted emission operands
         self.normal = None   # the first linked Normal of a BSDF
 
@@ -85,27 +161,54 @@ class _Writer:
             self.mw.warn(flat, 'memograph\'s lobes share one normal: this BSDF\'s Normal is '
                          'replaced by the first linked one')
 
-    def write(self, source, weight):
+    def _choose(self, flat, weight_a, weight_b):
+        """ChooseShader over two weights: each hit keeps one side, at both weights."""
+        b = self.mw.builder
+        ca, cb = b.new_link(), b.new_link()
+        b.add('ChooseShader', [('WeightA', weight_a), ('WeightB', weight_b),
+                               ('Stream', Literal(self.streams, form='int'))],
+              [('ChosenA', ca), ('ChosenB', cb)],
+              comment=flat.label + ' chosen per hit (its sides do not fit one hit together)')
+        self.streams += 1
+        return ca, cb
+
+    def write(self, source, weight, emission_weight=None):
+        """Writes the tree at source: its BSDFs' lobes at weight (ChooseShader's below a
+        choice), its emissions at emission_weight (the exact weight; weight where None)."""
         flat = _shader_node(source)
         if flat is None:
             return
+        if emission_weight is None:
+            emission_weight = weight
         kind = flat.bl_idname
         b = self.mw.builder
+        choosing = flat.key in self.plan.choosing
         if kind == 'ShaderNodeMixShader':
             fac = self._operand(flat, 'Fac', Literal(0.5))
             wa, wb = b.new_link(), b.new_link()
             b.add('MixShader', [('Fac', fac), ('Weight', weight)],
                   [('WeightA', wa), ('WeightB', wb)], comment=flat.label)
-            self.write(flat.input('Shader'), wa)
-            self.write(flat.input('Shader_001'), wb)
+            ea, eb = wa, wb
+            if emission_weight is not weight and _emits(flat):
+                ea, eb = b.new_link(), b.new_link()
+                b.add('MixShader', [('Fac', fac), ('Weight', emission_weight)],
+                      [('WeightA', ea), ('WeightB', eb)], comment=flat.label + ' emission')
+            if choosing:
+                wa, wb = self._choose(flat, wa, wb)
+            self.write(flat.input('Shader'), wa, ea)
+            self.write(flat.input('Shader_001'), wb, eb)
         elif kind == 'ShaderNodeAddShader':
-            self.write(flat.input('Shader'), weight)
-            self.write(flat.input('Shader_001'), weight)
+            wa, wb = (self._choose(flat, weight, weight) if choosing else (weight, weight))
+            self.write(flat.input('Shader'), wa, emission_weight)
+            self.write(flat.input('Shader_001'), wb, emission_weight)
+        elif kind == PRINCIPLED:
+            self._principled(flat, weight, emission_weight)
         elif kind == 'ShaderNodeEmission':
             color = self._operand(flat, 'Color', Literal((1.0, 1.0, 1.0)))
             strength = self._operand(flat, 'Strength', Literal(1.0))
             emitted = self._weighted(color, strength, flat.label + ' emission x strength')
-            self.emissions.append(self._weighted(emitted, weight, flat.label + ' weight'))
+            self.emissions.append(self._weighted(emitted, emission_weight,
+                                                 flat.label + ' weight'))
         elif kind == 'ShaderNodeBsdfDiffuse':
             self._take_normal(flat)
             b.add('DiffuseBsdf', [('Color', self._operand(flat, 'Color', Literal((0.8,) * 3))),
@@ -164,9 +267,69 @@ class _Writer:
                                  ('Weight', weight)], [], comment=flat.label)
 
 
+    def _principled(self, flat, weight, emission_weight):
+        """A v1 Principled BSDF among other shaders: PrincipledBsdf, which writes the
+        Principled outputs where its weight is above 0 and adds its lobes."""
+        mw = self.mw
+        self._take_normal(flat)
+        shaders._warn_unused(mw, flat, compat.PRINCIPLED_UNCARRIED)
+        distribution = getattr(flat.node, 'distribution', 'GGX')
+        if distribution == 'MULTI_GGX':
+            mw.warn(flat, 'Multiscatter GGX is written as single-scatter GGX (Cycles uses '
+                    'multiscatter above Roughness 0.075, and for Transmission above 0.05: rough '
+                    'speculars are brighter there)')
+        if shaders._in_use(flat, 'Alpha') and not _is_const(flat, 'Alpha', 1.0):
+            mw.warn(flat, 'Alpha of a Principled BSDF under a Mix or Add Shader is not carried: '
+                    'ignored (opaque)')
+        operands = [('BaseColor', shaders._in(mw, flat, 'Base Color')),
+                    ('Metallic', shaders._in(mw, flat, 'Metallic')),
+                    ('Roughness', shaders._in(mw, flat, 'Roughness')),
+                    ('Specular', shaders._in(mw, flat, 'Specular')),
+                    ('SpecularTint', shaders._in(mw, flat, 'Specular Tint') or Literal(0.0))]
+        layers = shaders._principled_layers(mw, flat, distribution == 'MULTI_GGX')
+        if layers is not None:
+            operands += [(socket, layers[socket]) for socket, _, _ in shaders._LAYER_SOCKETS]
+        operands += [('Layers', Literal(_layer_bits(flat), form='int')), ('Weight', weight)]
+        mw.builder.add('PrincipledBsdf', [(k, v) for k, v in operands if v is not None], [],
+                       comment=flat.label)
+        if _emits(flat):
+            color = shaders._in(mw, flat, 'Emission', 'Emission Color')
+            strength = shaders._in(mw, flat, 'Emission Strength') or Literal(1.0)
+            emitted = self._weighted(color, strength, flat.label + ' emission x strength')
+            self.emissions.append(self._weighted(emitted, emission_weight,
+                                                 flat.label + ' weight'))
+
+
+def _is_const(flat, name, value):
+    src = flat.input(name)
+    return isinstance(src, Const) and src.value == value
+
+
+def _emits(flat):
+    """Whether the tree at flat may emit: an Emission shader, or a Principled BSDF whose
+    Emission is linked or not black (and its Strength not 0)."""
+    kind = flat.bl_idname
+    if kind == 'ShaderNodeEmission':
+        return True
+    if kind == PRINCIPLED:
+        ident = compat.find_input(flat.node, 'Emission', 'Emission Color')
+        strength = compat.find_input(flat.node, 'Emission Strength')
+        if ident is None:
+            return False
+        color = flat.input(ident)
+        if isinstance(color, Const) and tuple(color.value)[:3] == (0.0, 0.0, 0.0):
+            return False
+        return not (strength is not None and _is_const(flat, strength, 0.0))
+    if kind in ('ShaderNodeMixShader', 'ShaderNodeAddShader'):
+        return any(_emits(child) for child in
+                   (_shader_node(flat.input(n)) for n in ('Shader', 'Shader_001'))
+                   if child is not None)
+    return False
+
+
 def write(mw, surface):
     """Writes the surface's lobes, emission and normal (writes_lobes(surface) holds)."""
-    w = _Writer(mw)
+    w = _Writer(mw, plan_lobes(surface))
     w.write(surface, Literal(1.0))
     b = mw.builder
     if w.emissions:

@@ -11,8 +11,9 @@ weights and shapes its diffuse and specular as Cycles 3.4 does (runtime/shaders/
 docs/guide/blender.md "Principled BSDF"); every other shader, and 4.x's v2, keeps memograph's
 own energy-conserving weighting (0). A v1 Principled BSDF whose Sheen, Clearcoat or
 Transmission is in use also writes PrincipledLayers (nodes/bsdf.inc): the BRDF, its sheen, its
-clearcoat and its transmission as lobes, when it is the surface shader itself (under a Mix
-Shader, or an Add Shader with another BSDF, they are dropped, warned).
+clearcoat and its transmission as lobes, when it is the surface shader itself. Under a Mix
+Shader, or an Add Shader with another BSDF, lobes.py writes it (PrincipledBsdf); only a tree
+with a shader that lobes do not express comes here mixed, and drops the layers, warned.
 """
 
 from . import compat

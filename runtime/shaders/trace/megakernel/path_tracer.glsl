@@ -276,6 +276,9 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
         } else {
           s = surfaceAt(hit, origin, direction, cone);
           setPathInputs(s.inputs, pathState, hit.t);
+#ifndef MG_OMIT_PATH_INPUTS
+          setClosureSeed(s.inputs, pixelIndex, sampleIndex, bounce + 1u, frame.image.w);
+#endif
 #ifndef MG_OMIT_TRACED_INPUTS
           // The AO and Bevel nodes' rays, before the graph runs: their own stream of numbers
           // (the vertex's key, hashed apart), so the path's own numbers stay as without them;

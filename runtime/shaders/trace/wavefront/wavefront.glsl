@@ -459,6 +459,13 @@ SurfaceHit surfaceOfPath(uint slot, out vec3 origin, out vec3 direction, out Ray
   cone.spread = directionField.w;
   SurfaceHit s = surfaceAt(hit, origin, direction, cone);
   setPathInputs(s.inputs, loadPathState(slot), hit.t);
+#ifndef MG_OMIT_PATH_INPUTS
+  // The megakernel's word for this vertex; with --shared-primary the camera ray's hit is
+  // evaluated once, in the pixel's first path, whose numbers are round 0's.
+  bool sharedCameraRay = push.step.y == 0u && sharesPrimaryRay();
+  setClosureSeed(s.inputs, pixelOfSlot(slot), sampleIndexOf(sharedCameraRay ? 0u : push.step.x),
+                 push.step.y + 1u, frame.image.w);
+#endif
   return s;
 }
 
@@ -1016,6 +1023,14 @@ SurfaceHit surfaceToEvaluate(uint slot, bool lightPoint) {
   cone.spread = directionField.w;
   SurfaceHit s = surfaceAt(hit, originField.xyz, directionField.xyz, cone);
   setPathInputs(s.inputs, vertex, t);
+#ifndef MG_OMIT_PATH_INPUTS
+  if (!lightPoint) {
+    bool sharedCameraRay = push.step.y == 0u && sharesPrimaryRay();
+    setClosureSeed(s.inputs, pixelOfSlot(slot),
+                   sampleIndexOf(sharedCameraRay ? 0u : push.step.x), push.step.y + 1u,
+                   frame.image.w);
+  }
+#endif
 #ifdef MG_WAVEFRONT_TRACED_FIELD
   // A hit's traced inputs, as the traced-inputs pass left them for a material that reads
   // them; a light point keeps surfaceAt's 1 and shading normal, as the megakernel's
