@@ -119,6 +119,10 @@ struct LinkedMaterials {
   // lobes): the path tracer needs MG_PRINCIPLED_LAYERS (bsdf_lobes.glsl), which scenes of
   // other lobes do without.
   bool principledLayers = false;
+  // Some graph gives a lobe its own normal (a BSDF sink's Normal, PrincipledLayers'
+  // ClearcoatNormal; the compiler's `lobeNormals` output): the path tracer needs
+  // MG_LOBE_NORMALS (bsdf_lobes.glsl's per-lobe frames), which other scenes of lobes do without.
+  bool lobeNormals = false;
   // Some material may be transparent (LinkedMaterial::transparentShadow): the path tracer
   // needs MG_TRANSPARENT_SHADOWS (transparent_shadow.glsl), and materials.glsl then holds
   // materialTransparentShadow and, with the switch, evaluateMaterialAtShadowHit; scenes
