@@ -25,8 +25,8 @@ CATEGORIES = ('Shader', 'Texture', 'Color', 'Vector', 'Converter', 'Input', 'Out
 APPROXIMATIONS = {
     'ShaderNodeBsdfPrincipled': '3.x Sheen, Clearcoat, Transmission (and their tint, '
                                 'roughness, IOR sockets) as lobes `PrincipledLayers` (dropped, '
-                                'warned, under a Mix Shader or added to another BSDF); '
-                                'Clearcoat Normal, Subsurface, '
+                                'warned, under a Mix Shader or added to another BSDF), Clearcoat '
+                                'Normal as the clearcoat lobe\'s own normal; Subsurface, '
                                 'Anisotropic, Multiscatter GGX not carried (warned)',
     'ShaderNodeBsdfDiffuse': 'Principled with Specular 0, Roughness 1 (Oren-Nayar dropped)',
     'ShaderNodeBsdfGlossy': 'Principled metal (distribution dropped)',
@@ -93,6 +93,10 @@ LOBE_SHADERS = {
     'ShaderNodeMixShader': '`MixShader` splits the weight by Fac (textured Fac too)',
     'ShaderNodeAddShader': 'both shaders at its weight',
 }
+# Each BSDF but Transparent is shaded about its own Normal (the sink's Normal input).
+for _bsdf in ('ShaderNodeBsdfDiffuse', 'ShaderNodeBsdfGlossy', 'ShaderNodeBsdfVelvet',
+              'ShaderNodeBsdfRefraction', 'ShaderNodeBsdfGlass', 'ShaderNodeBsdfTranslucent'):
+    LOBE_SHADERS[_bsdf] += ', about its own Normal'
 LOBE_CONDITION = ('in a tree of Diffuse, Glossy, Velvet, Refraction, Glass, Transparent, '
                   'Translucent, Emission, Mix and Add Shader only '
                   '(at most 4 BSDFs); else ')

@@ -9,6 +9,11 @@ emissions, weighted likewise, are summed into one EmissionOutput. This is Cycles
 closure weighting (svm_node_mix_closure, svm_node_closure_bsdf), so the runtime samples
 the same BSDF (docs/design/closures.md). Any other shader in the tree (Principled,
 Subsurface, ...) keeps the Principled approximation of shaders.py.
+
+Each BSDF is shaded about its own Normal, as Cycles shades each closure: where every BSDF
+that has a normal links the same one, it is the material's normal (NormalOutput); otherwise
+each linked Normal goes to its sink's Normal input, and an unlinked one means the material's
+normal, the interpolated one (Cycles' sd->N).
 """
 
 from .graph import Const, Out
@@ -44,6 +49,30 @@ def count_lobes(source):
     return None if None in counts else sum(counts)
 
 
+def _source_key(source):
+    """What a Normal socket reads, comparable across sockets (None: unlinked)."""
+    if isinstance(source, Out):
+        return ('out', source.node.key, source.identifier)
+    if isinstance(source, Const):
+        return None if source.unlinked else ('const', repr(source.value))
+    if source is None:
+        return None
+    return ('convert', getattr(source, 'op', None), _source_key(getattr(source, 'source', None)))
+
+
+def _normal_keys(source, keys):
+    """Appends the Normal of every BSDF of the tree at source that has one (all but
+    Transparent) to keys, as _source_key gives it."""
+    flat = _shader_node(source)
+    if flat is None:
+        return
+    if flat.bl_idname in ('ShaderNodeMixShader', 'ShaderNodeAddShader'):
+        _normal_keys(flat.input('Shader'), keys)
+        _normal_keys(flat.input('Shader_001'), keys)
+    elif flat.bl_idname in LOBE_NODES and flat.bl_idname != 'ShaderNodeBsdfTransparent':
+        keys.append(_source_key(flat.input('Normal')) if flat.is_linked('Normal') else None)
+
+
 def writes_lobes(mw, surface):
     """Whether the surface is written as lobes (it holds one at least, all expressible); a
     tree of more than MAX_LOBES is refused with a warning and approximated instead."""
@@ -58,10 +87,12 @@ def writes_lobes(mw, surface):
 
 
 class _Writer:
-    def __init__(self, mw):
+    def __init__(self, mw, per_lobe_normals):
         self.mw = mw
         self.emissions = []  # weighted emission operands
-        self.normal = None   # the first linked Normal of a BSDF
+        self.normal = None   # the shared Normal of the BSDFs (not per_lobe_normals)
+        # The BSDFs' Normals differ (or some are unlinked): each sink takes its own.
+        self.per_lobe_normals = per_lobe_normals
 
     def _weighted(self, operand, weight, comment):
         if isinstance(weight, Literal) and float(weight.value) == 1.0:
@@ -76,14 +107,16 @@ class _Writer:
         return default if value is None else value
 
     def _take_normal(self, flat):
+        """The sink's Normal input for flat's linked Normal ([] where it has none, or where
+        every BSDF shares it: then it is the material's normal)."""
         if not flat.is_linked('Normal'):
-            return
+            return []
         normal = self.mw.input_operand(flat, 'Normal')
+        if self.per_lobe_normals:
+            return [('Normal', normal)]
         if self.normal is None:
             self.normal = normal
-        else:
-            self.mw.warn(flat, 'memograph\'s lobes share one normal: this BSDF\'s Normal is '
-                         'replaced by the first linked one')
+        return []
 
     def write(self, source, weight):
         flat = _shader_node(source)
@@ -107,12 +140,12 @@ class _Writer:
             emitted = self._weighted(color, strength, flat.label + ' emission x strength')
             self.emissions.append(self._weighted(emitted, weight, flat.label + ' weight'))
         elif kind == 'ShaderNodeBsdfDiffuse':
-            self._take_normal(flat)
+            normal = self._take_normal(flat)
             b.add('DiffuseBsdf', [('Color', self._operand(flat, 'Color', Literal((0.8,) * 3))),
                                   ('Roughness', self._operand(flat, 'Roughness', Literal(0.0))),
-                                  ('Weight', weight)], [], comment=flat.label)
+                                  ('Weight', weight)] + normal, [], comment=flat.label)
         elif kind == 'ShaderNodeBsdfGlossy':
-            self._take_normal(flat)
+            normal = self._take_normal(flat)
             distribution = getattr(flat.node, 'distribution', 'GGX')
             roughness = self._operand(flat, 'Roughness', Literal(0.5))
             if distribution == 'SHARP':
@@ -127,9 +160,9 @@ class _Writer:
                                  ('Roughness', roughness),
                                  ('Distribution', Literal(1 if distribution == 'BECKMANN' else 0,
                                                           form='int')),
-                                 ('Weight', weight)], [], comment=flat.label)
+                                 ('Weight', weight)] + normal, [], comment=flat.label)
         elif kind in ('ShaderNodeBsdfRefraction', 'ShaderNodeBsdfGlass'):
-            self._take_normal(flat)
+            normal = self._take_normal(flat)
             distribution = getattr(flat.node, 'distribution', 'GGX')
             roughness = self._operand(flat, 'Roughness', Literal(0.0))
             if distribution == 'SHARP':
@@ -147,26 +180,31 @@ class _Writer:
                          ('IOR', self._operand(flat, 'IOR', Literal(1.45))),
                          ('Distribution', Literal(1 if distribution == 'BECKMANN' else 0,
                                                   form='int')),
-                         ('Weight', weight)], [], comment=flat.label)
+                         ('Weight', weight)] + normal, [], comment=flat.label)
         elif kind == 'ShaderNodeBsdfTransparent':
             b.add('TransparentBsdf', [('Color', self._operand(flat, 'Color',
                                                               Literal((1.0,) * 3))),
                                       ('Weight', weight)], [], comment=flat.label)
         elif kind == 'ShaderNodeBsdfTranslucent':
-            self._take_normal(flat)
+            normal = self._take_normal(flat)
             b.add('TranslucentBsdf', [('Color', self._operand(flat, 'Color',
                                                               Literal((0.8,) * 3))),
-                                      ('Weight', weight)], [], comment=flat.label)
+                                      ('Weight', weight)] + normal, [], comment=flat.label)
         elif kind == 'ShaderNodeBsdfVelvet':
-            self._take_normal(flat)
+            normal = self._take_normal(flat)
             b.add('VelvetBsdf', [('Color', self._operand(flat, 'Color', Literal((0.8,) * 3))),
                                  ('Sigma', self._operand(flat, 'Sigma', Literal(1.0))),
-                                 ('Weight', weight)], [], comment=flat.label)
+                                 ('Weight', weight)] + normal, [], comment=flat.label)
 
 
 def write(mw, surface):
     """Writes the surface's lobes, emission and normal (writes_lobes(surface) holds)."""
-    w = _Writer(mw)
+    keys = []
+    _normal_keys(surface, keys)
+    # One Normal linked by every BSDF is the material's (as before per-lobe normals, so such
+    # a material's graph and image are unchanged); any other case gives each lobe its own.
+    shared = bool(keys) and keys[0] is not None and all(k == keys[0] for k in keys)
+    w = _Writer(mw, per_lobe_normals=not shared and any(k is not None for k in keys))
     w.write(surface, Literal(1.0))
     b = mw.builder
     if w.emissions:
