@@ -96,7 +96,7 @@ LOBE_SHADERS = {
 # Each BSDF but Transparent is shaded about its own Normal (the sink's Normal input).
 for _bsdf in ('ShaderNodeBsdfDiffuse', 'ShaderNodeBsdfGlossy', 'ShaderNodeBsdfVelvet',
               'ShaderNodeBsdfRefraction', 'ShaderNodeBsdfGlass', 'ShaderNodeBsdfTranslucent'):
-    LOBE_SHADERS[_bsdf] += ', about its own Normal'
+    LOBE_SHADERS[_bsdf] += ', about its own Normal,'
 LOBE_CONDITION = ('in a tree of Diffuse, Glossy, Velvet, Refraction, Glass, Transparent, '
                   'Translucent, Emission, Mix and Add Shader only '
                   '(at most 4 BSDFs); else ')
