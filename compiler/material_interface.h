@@ -68,9 +68,11 @@ inline bool isTracedInput(std::string_view name) {
   return std::find(first, kMaterialInputNames.end(), name) != kMaterialInputNames.end();
 }
 
-// `lobes`: the BSDF lobes that the BSDF sinks add (nodes/bsdf.inc; docs/design/closures.md).
-inline constexpr std::array<std::string_view, 10> kMaterialOutputNames = {
-    "baseColor",        "metallic", "roughness", "specular", "specularTint",
-    "cyclesPrincipled", "normal",   "emission",  "opacity",  "lobes"};
+// `lobes`: the BSDF lobes that the BSDF sinks add (nodes/bsdf.inc; docs/design/closures.md);
+// `lobeNormals`: some lobe has a normal of its own (a sink's Normal or ClearcoatNormal given),
+// carried in MaterialOutputs::lobeParameters z, w.
+inline constexpr std::array<std::string_view, 11> kMaterialOutputNames = {
+    "baseColor", "metallic", "roughness", "specular", "specularTint", "cyclesPrincipled",
+    "normal",    "emission", "opacity",   "lobes",    "lobeNormals"};
 
 }  // namespace memograph::compiler

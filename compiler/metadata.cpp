@@ -60,6 +60,31 @@ std::string jsonList(const std::vector<std::string>& items) {
   return out + "]";
 }
 
+// Whether a lobe sink (@output lobes) is given a normal of its own: its Normal or
+// ClearcoatNormal socket (nodes/bsdf.inc) linked, or set to a constant other than (0, 0, 0),
+// which means the material's normal. Such a material writes `lobeNormals`: the runtime then
+// compiles the per-lobe frames (MG_LOBE_NORMALS) and the texel cache stores them.
+bool writesLobeNormal(const ResolvedNode& node) {
+  const NodeType& type = *node.type;
+  if (std::find(type.outputsWritten.begin(), type.outputsWritten.end(), "lobes") ==
+      type.outputsWritten.end())
+    return false;
+  for (std::size_t socket = 0; socket < type.sockets.size(); ++socket) {
+    const std::string& name = type.sockets[socket].name;
+    if (type.sockets[socket].direction != Direction::In ||
+        (name != "Normal" && name != "ClearcoatNormal") || !node.inputs[socket])
+      continue;
+    const InputSource& source = *node.inputs[socket];
+    if (source.kind == InputSource::Kind::Link)
+      return true;
+    if (source.kind == InputSource::Kind::Constant &&
+        std::any_of(source.constant.components.begin(), source.constant.components.end(),
+                    [](double c) { return c != 0.0; }))
+      return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 std::string formatShare(double share) {
@@ -81,6 +106,8 @@ MaterialMetadata collectMetadata(const ResolvedGraph& graph, const std::vector<s
       addUnique(meta.inputsUsed, input);
     for (const auto& output : type.outputsWritten)
       addUnique(meta.outputsWritten, output);
+    if (writesLobeNormal(graph.nodes[node]))
+      addUnique(meta.outputsWritten, "lobeNormals");
     const auto& overload = type.overloads[*chosen[node]];
     if (overload.derivativeInputs + overload.derivativeOutputs > 0)
       meta.needsDerivatives = true;

@@ -79,16 +79,18 @@ std::uint32_t cacheOutputMask(const std::vector<std::string>& outputsWritten,
     std::uint32_t bit;
     std::uint32_t floats;
   };
-  static const Output kOutputs[] = {{"baseColor", gpu::kCacheOutputBaseColor, 3},
-                                    {"metallic", gpu::kCacheOutputMetallic, 1},
-                                    {"roughness", gpu::kCacheOutputRoughness, 1},
-                                    {"normal", gpu::kCacheOutputNormal, 3},
-                                    {"emission", gpu::kCacheOutputEmission, 3},
-                                    {"opacity", gpu::kCacheOutputOpacity, 1},
-                                    {"specular", gpu::kCacheOutputSpecular, 1},
-                                    {"specularTint", gpu::kCacheOutputSpecularTint, 1},
-                                    {"cyclesPrincipled", gpu::kCacheOutputCyclesPrincipled, 1},
-                                    {"lobes", gpu::kCacheOutputLobes, gpu::kCacheLobeValues}};
+  static const Output kOutputs[] = {
+      {"baseColor", gpu::kCacheOutputBaseColor, 3},
+      {"metallic", gpu::kCacheOutputMetallic, 1},
+      {"roughness", gpu::kCacheOutputRoughness, 1},
+      {"normal", gpu::kCacheOutputNormal, 3},
+      {"emission", gpu::kCacheOutputEmission, 3},
+      {"opacity", gpu::kCacheOutputOpacity, 1},
+      {"specular", gpu::kCacheOutputSpecular, 1},
+      {"specularTint", gpu::kCacheOutputSpecularTint, 1},
+      {"cyclesPrincipled", gpu::kCacheOutputCyclesPrincipled, 1},
+      {"lobes", gpu::kCacheOutputLobes, gpu::kCacheLobeValues},
+      {"lobeNormals", gpu::kCacheOutputLobeNormals, gpu::kCacheLobeNormalValues}};
   std::uint32_t mask = 0, floats = 0;
   for (const std::string& name : outputsWritten) {
     bool known = false;
@@ -411,6 +413,8 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
         linked.cyclesPrincipled = true;
       if (output == "lobes")
         linked.bsdfLobes = true;
+      if (output == "lobeNormals")
+        linked.lobeNormals = true;
     }
     // The include defines a library function, under its MG_FN_ guard, only where the graph
     // calls it.

@@ -122,6 +122,10 @@ struct LinkedMaterials {
   // Some graph calls ChooseShader (a Mix or Add Shader chosen per hit): mg_addLobe needs
   // MG_CLOSURE_CHOICE, which other scenes do without, so their kernels stay as they were.
   bool closureChoice = false;
+  // Some graph gives a lobe its own normal (a BSDF sink's Normal, PrincipledLayers'
+  // ClearcoatNormal; the compiler's `lobeNormals` output): the path tracer needs
+  // MG_LOBE_NORMALS (bsdf_lobes.glsl's per-lobe frames), which other scenes of lobes do without.
+  bool lobeNormals = false;
   // Some material may be transparent (LinkedMaterial::transparentShadow): the path tracer
   // needs MG_TRANSPARENT_SHADOWS (transparent_shadow.glsl), and materials.glsl then holds
   // materialTransparentShadow and, with the switch, evaluateMaterialAtShadowHit; scenes

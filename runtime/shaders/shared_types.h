@@ -249,6 +249,11 @@ MG_CONSTANT(uint, kCacheOutputCyclesPrincipled, 256);
 // the count, then per lobe of MG_MAX_LOBES its weight, kind, roughness and IOR.
 MG_CONSTANT(uint, kCacheOutputLobes, 512);
 MG_CONSTANT(uint, kCacheLobeValues, 25);  // 1 + MG_MAX_LOBES (4) x 6
+// The lobes' own normals (MaterialOutputs::lobeParameters z, w of each of MG_MAX_LOBES), only
+// for a material that gives some lobe one (the compiler's `lobeNormals` output), after the
+// lobes: the others' entries keep their size.
+MG_CONSTANT(uint, kCacheOutputLobeNormals, 1024);
+MG_CONSTANT(uint, kCacheLobeNormalValues, 8);  // MG_MAX_LOBES (4) x 2
 // The key domain of a material's cut (compiler/cut.h) as the texel cache keys it
 // (mg_materialCutInfo.x, MG_CACHE_CUTS): none runs the whole graph uncached; uv keys the
 // cut's values by (material, uv texel, mip level) as §5.3.2 keys whole outputs; object by

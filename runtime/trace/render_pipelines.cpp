@@ -107,6 +107,8 @@ std::vector<std::string> pathTracerDefines(const ShaderBuild& b, const MaterialC
     defines.push_back("MG_PRINCIPLED_LAYERS=1");
   if (!b.omitBsdfLobes && b.inputs.materials->linked.closureChoice)
     defines.push_back("MG_CLOSURE_CHOICE=1");
+  if (!b.omitBsdfLobes && b.inputs.materials->linked.lobeNormals)
+    defines.push_back("MG_LOBE_NORMALS=1");
   // Emissive-triangle NEE and its MIS, only for scenes with emissive triangles; with free
   // materials too, so the floor traces the same rays. NEE evaluates emitters whose emission
   // is not a known constant: a second material call site, compiled only for scenes that

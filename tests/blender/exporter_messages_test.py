@@ -14,7 +14,7 @@ it and checks the exit status, the warnings and the summary line:
     included;
   - a Principled BSDF's Sheen, Clearcoat and Transmission (with their tint, roughness and IOR
     sockets, a linked one too) export as PrincipledLayers without a warning (a linked
-    Clearcoat Normal, still warned, is in combined/build_scenes.py).
+    Clearcoat Normal, carried too, is in combined/build_scenes.py).
 
 Fails (never skips) without Blender 3.4. Plain python3, standard library only.
 """

@@ -428,6 +428,32 @@ class PrincipledTest(unittest.TestCase):
                       'TransmissionRoughness=0 IOR=1.45000005;', text)
         self.assertEqual(result.warnings, [])  # Sheen, Clearcoat and their sockets: carried
 
+    def test_v1_clearcoat_normal_is_carried(self):
+        # Clearcoat Normal linked: PrincipledLayers' ClearcoatNormal, no warning. Unlinked
+        # under a linked Normal: the interpolated normal (Cycles' sd->N), not the bumped one.
+        tree = Tree()
+        out = output_node(tree)
+        p = principled_v1(tree)
+        p.inputs[8].default_value = 1.0  # Clearcoat
+        bump = tree.add(Node('ShaderNodeMath', 'N', [], [Sock('Vector', 'VECTOR', (0, 0, 1))]))
+        coat = tree.add(Node('ShaderNodeMath', 'C', [], [Sock('Vector', 'VECTOR', (0, 1, 0))]))
+        tree.link(coat.outputs[0], p.inputs[16])  # Clearcoat Normal
+        tree.link(p.outputs[0], out.inputs[0])
+        table = writers.build_table({'ShaderNodeMath': NodeSpec(
+            'NormalInput', {}, {'Vector': 'Out'})})
+        result, (text,) = export([Material('Coat', tree)], table)
+        self.assertIn('Clearcoat=1 ClearcoatRoughness=0.0299999993 Transmission=0 '
+                      'TransmissionRoughness=0 IOR=1.45000005 ClearcoatNormal<0;', text)
+        self.assertNotIn('NormalOutput', text)
+        self.assertEqual(result.warnings, [])
+        tree.links = [l for l in tree.links if l.to_socket is not p.inputs[16]]
+        tree.link(bump.outputs[0], p.inputs[15])  # Normal
+        result, (text,) = export([Material('Bumped', tree)], table)
+        self.assertIn('NormalInput Out>1;  # implicit normal', text)
+        self.assertIn('ClearcoatNormal<1;', text)
+        self.assertIn('NormalOutput In<0;', text)
+        self.assertEqual(result.warnings, [])
+
     def test_v1_transmission_is_carried_as_a_layer(self):
         tree = Tree()
         out = output_node(tree)
@@ -881,6 +907,46 @@ class ShaderTest(unittest.TestCase):
         self.assertIn('ShaderNodeHoldout is not supported', result.warnings[0][2])
         self.assertIn('PrincipledOutput BaseColor=(0.800000012, 0.800000012, 0.800000012)',
                       text)
+
+    def test_each_bsdf_keeps_its_own_normal(self):
+        # A bumped Diffuse mixed with a smooth Glossy: the Diffuse's sink takes its Normal,
+        # the Glossy none (the material's normal), and no NormalOutput. Both linked to the
+        # same normal: that normal is the material's (NormalOutput), the sinks take none.
+        tree = Tree()
+        out = output_node(tree)
+        diff = tree.add(Node('ShaderNodeBsdfDiffuse', 'Diffuse',
+                             [Sock('Color', 'RGBA', (0.5, 0.1, 0.1, 1)),
+                              Sock('Roughness', 'VALUE', 0.0),
+                              Sock('Normal', 'VECTOR', (0, 0, 0))], [Sock('BSDF', 'SHADER')]))
+        gl = tree.add(Node('ShaderNodeBsdfGlossy', 'Glossy',
+                           [Sock('Color', 'RGBA', (0.9, 0.9, 0.9, 1)),
+                            Sock('Roughness', 'VALUE', 0.2),
+                            Sock('Normal', 'VECTOR', (0, 0, 0))], [Sock('BSDF', 'SHADER')],
+                           distribution='GGX'))
+        mix = tree.add(Node('ShaderNodeMixShader', 'Mix',
+                            [Sock('Fac', 'VALUE', 0.25), Sock('Shader', 'SHADER'),
+                             Sock('Shader_001', 'SHADER')], [Sock('Shader', 'SHADER')]))
+        bump = tree.add(Node('ShaderNodeMath', 'B', [], [Sock('Vector', 'VECTOR', (0, 0, 1))]))
+        tree.link(bump.outputs[0], diff.inputs[2])
+        tree.link(diff.outputs[0], mix.inputs[1])
+        tree.link(gl.outputs[0], mix.inputs[2])
+        tree.link(mix.outputs[0], out.inputs[0])
+        table = writers.build_table({'ShaderNodeMath': NodeSpec(
+            'NormalInput', {}, {'Vector': 'Out'})})
+        result, (text,) = export([Material('OwnNormals', tree)], table)
+        self.assertIn('NormalInput Out>2;', text)
+        self.assertIn('DiffuseBsdf Color=(0.5, 0.100000001, 0.100000001) Roughness=0 '
+                      'Weight<0 Normal<2;', text)
+        self.assertIn('GlossyBsdf Color=(0.899999976, 0.899999976, 0.899999976) '
+                      'Roughness=0.200000003 Distribution=0 Weight<1;', text)
+        self.assertNotIn('NormalOutput', text)
+        self.assertEqual(result.warnings, [])
+        tree.link(bump.outputs[0], gl.inputs[2])
+        result, (text,) = export([Material('SharedNormal', tree)], table)
+        self.assertIn('Roughness=0 Weight<0;', text)
+        self.assertIn('Distribution=0 Weight<1;', text)
+        self.assertIn('NormalOutput In<2;', text)
+        self.assertEqual(result.warnings, [])
 
     def test_transmission_shaders_are_lobes_without_warnings(self):
         # Glass, Refraction, Transparent and Translucent are lobes now (lobes.py): written as

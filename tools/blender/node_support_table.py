@@ -24,10 +24,11 @@ CATEGORIES = ('Shader', 'Texture', 'Color', 'Vector', 'Converter', 'Input', 'Out
 # What differs from Cycles for nodes that have a writer (docs/guide/blender.md, nodes.md).
 APPROXIMATIONS = {
     'ShaderNodeBsdfPrincipled': '3.x Sheen, Clearcoat, Transmission (and their tint, '
-                                'roughness, IOR sockets) as lobes `PrincipledLayers`; under a '
-                                'Mix or Add Shader with other BSDFs (3.x) `PrincipledBsdf` '
-                                'lobes, its Alpha not carried (warned); Clearcoat Normal, '
-                                'Subsurface, Anisotropic, Multiscatter GGX not carried (warned)',
+                                'roughness, IOR sockets) as lobes `PrincipledLayers`, Clearcoat '
+                                'Normal as the clearcoat lobe\'s own normal; under a Mix or Add '
+                                'Shader with other BSDFs (3.x) `PrincipledBsdf` lobes, its Alpha '
+                                'and Clearcoat Normal not carried (warned); Subsurface, '
+                                'Anisotropic, Multiscatter GGX not carried (warned)',
     'ShaderNodeBsdfDiffuse': 'Principled with Specular 0, Roughness 1 (Oren-Nayar dropped)',
     'ShaderNodeBsdfGlossy': 'Principled metal (distribution dropped)',
     'ShaderNodeBsdfTransparent': 'opacity 0 (tint dropped)',
@@ -98,6 +99,10 @@ LOBE_SHADERS = {
     'ShaderNodeAddShader': 'both shaders at its weight; `ChooseShader` picks one per hit where '
                            'both do not fit one hit',
 }
+# Each BSDF but Transparent is shaded about its own Normal (the sink's Normal input).
+for _bsdf in ('ShaderNodeBsdfDiffuse', 'ShaderNodeBsdfGlossy', 'ShaderNodeBsdfVelvet',
+              'ShaderNodeBsdfRefraction', 'ShaderNodeBsdfGlass', 'ShaderNodeBsdfTranslucent'):
+    LOBE_SHADERS[_bsdf] += ', about its own Normal,'
 LOBE_CONDITION = ('in a tree of Diffuse, Glossy, Velvet, Refraction, Glass, Transparent, '
                   'Translucent, 3.x Principled BSDF, Emission, Mix and Add Shader only; else ')
 

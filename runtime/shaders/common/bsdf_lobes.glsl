@@ -38,6 +38,17 @@ struct BsdfLobes {
   vec3 glassReflectionF0;
   float glassReflectionRoughness;
 #endif
+#ifdef MG_LOBE_NORMALS
+  // Only in scenes with a lobe shaded about its own normal (a BSDF node's Normal, the
+  // Principled's Clearcoat Normal: the host's MG_LOBE_NORMALS; bsdfLobesSetNormals). toLobe[i]
+  // turns a direction of the material's frame into lobe i's (its normal +z) where ownNormal[i];
+  // with any own normal, each lobe checks its directions against the geometric normal
+  // (geometricNormal, in the material's frame) itself, as Cycles' closures do.
+  bool anyOwnNormal;
+  bool ownNormal[MG_MAX_LOBES];
+  mat3 toLobe[MG_MAX_LOBES];
+  vec3 geometricNormal;
+#endif
 };
 
 // `entering`: the ray hit the front face (by the geometric normal), so a transmission lobe's
@@ -78,6 +89,41 @@ BsdfLobes bsdfLobesFromMaterial(MaterialOutputs m, bool entering, BrdfParameters
   for (int i = 0; i < MG_MAX_LOBES; ++i) lobes.pick[i] = total > 0.0 ? lobes.pick[i] / total : 0.0;
   return lobes;
 }
+
+#ifdef MG_LOBE_NORMALS
+// A lobe's own world-space normal from its lobeParameters z, w (the node library's
+// mg_encodeLobeNormal: z = 2 + the octahedral x, w the octahedral y; Cigolle et al. 2014).
+vec3 lobeNormalDecode(vec2 code) {
+  vec2 e = vec2(code.x - 2.0, code.y);
+  vec3 v = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+  if (v.z < 0.0)
+    v.xy = (vec2(1.0) - abs(v.yx)) * vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0);
+  return normalize(v);
+}
+
+// Whether lobe i has its own normal (lobeParameters z >= 1; 0 is the material's).
+bool lobeHasOwnNormal(MaterialOutputs m, int i) {
+  return m.lobeParameters[i].z >= 1.0;
+}
+
+// Lobe i's view of wo and wi (the material's frame): in its own frame where it has its own
+// normal. False: wi lies on one side of the lobe's normal and the other of the geometric
+// normal (a direction between the two planes, which would leak light through the surface or
+// hide it: path_shading.glsl's sameSideOfBothNormals, lobe by lobe; Cycles 3.4 evaluates a
+// closure's reflection only above Ng and its transmission only below, bsdf.h bsdf_eval).
+bool lobeDirections(BsdfLobes lobes, int i, vec3 wo, vec3 wi, out vec3 woLobe,
+                    out vec3 wiLobe) {
+  woLobe = wo;
+  wiLobe = wi;
+  if (!lobes.anyOwnNormal) return true;
+  if (lobes.ownNormal[i]) {
+    woLobe = lobes.toLobe[i] * wo;
+    wiLobe = lobes.toLobe[i] * wi;
+  }
+  float g = dot(wi, lobes.geometricNormal);
+  return wiLobe.z > 0.0 ? g > 0.0 : g < 0.0;
+}
+#endif
 
 // The microfacet alpha of Cycles' Glossy BSDF (roughness^2), kept above GGX's float limit
 // as brdf.glsl keeps it (roughness 0.02): Cycles takes roughness 0 as a perfect mirror.
@@ -440,10 +486,17 @@ vec3 principledGlassSample(BsdfLobes lobes, int i, vec3 wo, vec2 u, float uChoic
 
 // The material's f(wo, wi) |wi.z|: every lobe's, weighted (the Principled lobe's BRDF is
 // coloured by the material's outputs).
-vec3 bsdfLobesEvaluateCos(BsdfLobes lobes, vec3 wo, vec3 wi) {
+vec3 bsdfLobesEvaluateCos(BsdfLobes lobes, vec3 woMaterial, vec3 wiMaterial) {
   vec3 sum = vec3(0.0);
   for (int i = 0; i < lobes.count; ++i) {
     if (lobes.pick[i] <= 0.0) continue;  // no weight: nothing to add (a PrincipledLayers slot)
+#ifdef MG_LOBE_NORMALS
+    vec3 wo, wi;
+    if (!lobeDirections(lobes, i, woMaterial, wiMaterial, wo, wi)) continue;
+#else
+    vec3 wo = woMaterial;
+    vec3 wi = wiMaterial;
+#endif
 #ifdef MG_PRINCIPLED_LAYERS
     if (lobes.kind[i] == MG_LOBE_PRINCIPLED)
       sum += lobes.weight[i] * brdfEvaluateCos(lobes.principled, wo, wi);
@@ -458,19 +511,28 @@ vec3 bsdfLobesEvaluateCos(BsdfLobes lobes, vec3 wo, vec3 wi) {
 }
 
 // The density of bsdfLobesSample: the lobes' densities mixed by their pick probabilities.
-float bsdfLobesPdf(BsdfLobes lobes, vec3 wo, vec3 wi) {
+float bsdfLobesPdf(BsdfLobes lobes, vec3 woMaterial, vec3 wiMaterial) {
   float pdf = 0.0;
-  for (int i = 0; i < lobes.count; ++i)
-    if (lobes.pick[i] > 0.0)
-#ifdef MG_PRINCIPLED_LAYERS
-      pdf += lobes.pick[i] *
-             (lobes.kind[i] == MG_LOBE_PRINCIPLED ? brdfPdf(lobes.principled, wo, wi)
-              : lobes.kind[i] == MG_LOBE_PRINCIPLED_GLASS
-                  ? principledGlassPdf(lobes, i, wo, wi)
-                  : lobePdf(lobes.kind[i], lobes.roughness[i], lobes.eta[i], wo, wi));
+  for (int i = 0; i < lobes.count; ++i) {
+    if (lobes.pick[i] <= 0.0) continue;
+#ifdef MG_LOBE_NORMALS
+    // A direction a lobe's sample may not take (lobeDirections) has no density from it.
+    vec3 wo, wi;
+    if (!lobeDirections(lobes, i, woMaterial, wiMaterial, wo, wi)) continue;
 #else
-      pdf += lobes.pick[i] * lobePdf(lobes.kind[i], lobes.roughness[i], lobes.eta[i], wo, wi);
+    vec3 wo = woMaterial;
+    vec3 wi = wiMaterial;
 #endif
+#ifdef MG_PRINCIPLED_LAYERS
+    pdf += lobes.pick[i] *
+           (lobes.kind[i] == MG_LOBE_PRINCIPLED ? brdfPdf(lobes.principled, wo, wi)
+            : lobes.kind[i] == MG_LOBE_PRINCIPLED_GLASS
+                ? principledGlassPdf(lobes, i, wo, wi)
+                : lobePdf(lobes.kind[i], lobes.roughness[i], lobes.eta[i], wo, wi));
+#else
+    pdf += lobes.pick[i] * lobePdf(lobes.kind[i], lobes.roughness[i], lobes.eta[i], wo, wi);
+#endif
+  }
   return pdf;
 }
 
@@ -504,7 +566,7 @@ bool bsdfLobesTransmit(BsdfLobes lobes) {
 // mixture's density (`pdf`). `diffuse`: the direction came from a diffuse closure (Diffuse,
 // Velvet, Translucent, the sheen, the Principled lobe's diffuse part), as Cycles labels a
 // bounce. False: no direction.
-bool bsdfLobesSample(BsdfLobes lobes, vec3 wo, float uLobe, vec2 u, out vec3 wi,
+bool bsdfLobesSample(BsdfLobes lobes, vec3 woMaterial, float uLobe, vec2 u, out vec3 wi,
                      out vec3 weight, out float pdf, out int picked, out bool diffuse) {
   float uChoice;
   picked = bsdfLobesPick(lobes, uLobe, uChoice);
@@ -513,6 +575,14 @@ bool bsdfLobesSample(BsdfLobes lobes, vec3 wo, float uLobe, vec2 u, out vec3 wi,
   wi = vec3(0.0, 0.0, 1.0);
   diffuse = false;
   if (picked < 0) return false;
+  vec3 wo = woMaterial;  // in the picked lobe's frame
+#ifdef MG_LOBE_NORMALS
+  bool ownNormal = lobes.ownNormal[picked];
+  if (ownNormal) {
+    wo = lobes.toLobe[picked] * woMaterial;
+    if (!(wo.z > 0.0)) return false;  // the viewer is below the lobe: it scatters nothing
+  }
+#endif
   int kind = lobes.kind[picked];
   float roughness = lobes.roughness[picked];
   float singularWeight = 1.0;
@@ -533,13 +603,18 @@ bool bsdfLobesSample(BsdfLobes lobes, vec3 wo, float uLobe, vec2 u, out vec3 wi,
   }
   if (!(dot(wi, wi) > 0.0)) return false;
   wi = normalize(wi);
+#ifdef MG_LOBE_NORMALS
+  if (ownNormal) wi = wi * lobes.toLobe[picked];  // back to the material's frame (transpose)
+  vec3 woUnused, wiLobe;
+  if (!lobeDirections(lobes, picked, woMaterial, wi, woUnused, wiLobe)) return false;
+#endif
   if (lobeIsSingular(kind, roughness)) {
     weight = lobes.weight[picked] * singularColor * (singularWeight / lobes.pick[picked]);
     return true;
   }
-  pdf = bsdfLobesPdf(lobes, wo, wi);
+  pdf = bsdfLobesPdf(lobes, woMaterial, wi);
   if (!(pdf > 0.0)) return false;
-  weight = bsdfLobesEvaluateCos(lobes, wo, wi) / pdf;
+  weight = bsdfLobesEvaluateCos(lobes, woMaterial, wi) / pdf;
   return true;
 }
 

@@ -467,6 +467,13 @@ void cachePack(uint mask, MaterialOutputs o, out float values[MG_CACHE_VALUES]) 
     }
     n += kCacheLobeValues;
   }
+  if ((mask & kCacheOutputLobeNormals) != 0u) {
+    for (uint i = 0u; i < uint(MG_MAX_LOBES); ++i) {
+      values[n + 2u * i] = o.lobeParameters[i].z;
+      values[n + 2u * i + 1u] = o.lobeParameters[i].w;
+    }
+    n += kCacheLobeNormalValues;
+  }
 #endif
 }
 
@@ -510,6 +517,15 @@ MaterialOutputs cacheUnpack(uint mask, float values[MG_CACHE_VALUES], MaterialIn
       o.lobeParameters[i] = vec4(values[at + 4u], values[at + 5u], 0.0, 0.0);
     }
     n += kCacheLobeValues;
+  }
+  // A filtered entry blends the lobes' octahedral normals: nearby normals, as the material's
+  // normal is blended. A lobe without one stores (0, 0) in every entry and keeps it.
+  if ((mask & kCacheOutputLobeNormals) != 0u) {
+    for (uint i = 0u; i < uint(MG_MAX_LOBES); ++i) {
+      o.lobeParameters[i].z = values[n + 2u * i];
+      o.lobeParameters[i].w = values[n + 2u * i + 1u];
+    }
+    n += kCacheLobeNormalValues;
   }
 #endif
   return o;

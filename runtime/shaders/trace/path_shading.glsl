@@ -447,6 +447,28 @@ struct ShadingPoint {
   bool transmits;  // some lobe sends light through: light sampling looks on both sides
 };
 
+#ifdef MG_LOBE_NORMALS
+// Each lobe's frame (bsdf_lobes.glsl BsdfLobes::toLobe): its own normal (lobeParameters z, w),
+// flipped to the geometric normal's side as the material's normal is, with a basis around it,
+// as a rotation from the material's frame `toLocal`; a lobe without one keeps the material's.
+void bsdfLobesSetNormals(inout BsdfLobes lobes, MaterialOutputs m, mat3 toLocal,
+                         vec3 geometricNormal) {
+  lobes.anyOwnNormal = false;
+  lobes.geometricNormal = toLocal * geometricNormal;
+  for (int i = 0; i < MG_MAX_LOBES; ++i) {
+    lobes.ownNormal[i] = i < lobes.count && lobeHasOwnNormal(m, i);
+    lobes.toLobe[i] = mat3(1.0);
+    if (!lobes.ownNormal[i]) continue;
+    lobes.anyOwnNormal = true;
+    vec3 n = lobeNormalDecode(m.lobeParameters[i].zw);
+    if (dot(n, geometricNormal) < 0.0) n = -n;
+    vec3 t, b;
+    basisAround(n, t, b);
+    lobes.toLobe[i] = transpose(mat3(t, b, n)) * transpose(toLocal);
+  }
+}
+#endif
+
 ShadingPoint shadingPointAt(SurfaceHit s, MaterialOutputs m, vec3 direction) {
   ShadingPoint p;
   vec3 n = dot(m.normal, m.normal) > 1e-30 ? normalize(m.normal) : s.geometricNormal;
@@ -461,6 +483,9 @@ ShadingPoint shadingPointAt(SurfaceHit s, MaterialOutputs m, vec3 direction) {
   p.geometricNormal = s.geometricNormal;
 #ifdef MG_BSDF_LOBES
   p.lobes = bsdfLobesFromMaterial(m, s.entering, p.brdf);
+#ifdef MG_LOBE_NORMALS
+  bsdfLobesSetNormals(p.lobes, m, p.toLocal, s.geometricNormal);
+#endif
   p.transmits = p.lobes.count > 0 && bsdfLobesTransmit(p.lobes);
 #else
   p.transmits = false;
@@ -509,8 +534,13 @@ vec3 rayOriginTowards(ShadingPoint p, vec3 wi) {
 
 // Whether wi lies on the same side of the geometric normal as of the shading normal (local
 // wi.z): a direction between the two planes would leak light through the surface or hide it.
+// Where a lobe has its own normal, each lobe checks its own (bsdf_lobes.glsl lobeDirections),
+// and the material's normal, which then may shade no lobe, does not.
 bool sameSideOfBothNormals(ShadingPoint p, vec3 wi, float wiLocalZ) {
   float g = dot(wi, p.geometricNormal);
+#ifdef MG_LOBE_NORMALS
+  if (p.lobes.count > 0 && p.lobes.anyOwnNormal) return true;
+#endif
   return wiLocalZ > 0.0 ? g > 0.0 : g < 0.0;
 }
 
@@ -589,6 +619,10 @@ bool continuePathThroughLobes(ShadingPoint p, SurfaceHit s, vec3 woLocal, float 
   int kind = p.lobes.kind[picked];
   float roughness = p.lobes.roughness[picked];
   bool transmitted = wiLocal.z < 0.0;
+#ifdef MG_LOBE_NORMALS
+  // The lobe's side is the geometric normal's (lobeDirections), not the material normal's.
+  if (p.lobes.anyOwnNormal) transmitted = dot(wi, s.geometricNormal) < 0.0;
+#endif
   if (kind != MG_LOBE_TRANSPARENT) {  // a straight-through ray keeps its cone's spread
     cone.spread += rayConeRoughnessSpread(diffuse ? 1.0 : lobeAlpha(roughness)) +
                    rayConeCurvatureSpread(s.curvature, s.coneWidth, s.geometricNormal, direction);

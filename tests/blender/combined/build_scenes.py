@@ -371,17 +371,16 @@ def build_warnings():
     p.name = 'P'
     p.inputs['Anisotropic'].default_value = 0.5
     nt.links.new(uv(nt), p.inputs['Subsurface Radius'])  # not a warned feature
-    nt.links.new(uv(nt), p.inputs['Clearcoat Normal'])
     nt.links.new(p.outputs[0], out.inputs['Surface'])
-    exp[mat.name] = [('P', 'Anisotropic = 0.5 is not carried'),
-                     ('P', 'Clearcoat/Coat Normal is linked but not carried')]
+    exp[mat.name] = [('P', 'Anisotropic = 0.5 is not carried')]
 
-    # Sheen, Clearcoat and Transmission (a linked one too) are carried as PrincipledLayers:
-    # no warning of them, and the graph compiles for both targets (below).
+    # Sheen, Clearcoat and Transmission (a linked one too) and Clearcoat Normal are carried as
+    # PrincipledLayers: no warning of them, and the graph compiles for both targets (below).
     mat, nt, out = new_material('W_principled_layers')
     p = nt.nodes.new('ShaderNodeBsdfPrincipled')
     p.name = 'P'
     p.inputs['Clearcoat'].default_value = 0.5
+    nt.links.new(uv(nt), p.inputs['Clearcoat Normal'])
     p.inputs['Sheen'].default_value = 0.5
     sx = separate_x(nt, uv(nt))
     nt.links.new(sx.outputs['X'], p.inputs['Transmission'])

@@ -412,6 +412,73 @@ def bsdf_scene(tree):
     return None
 
 
+def noise_bump(nt, scale, distance):
+    """A Bump node over smooth Noise (Detail 0, of the object's Generated coordinates): a
+    low-frequency bump, which Cycles' dP differences and memograph's footprint derivatives
+    both follow (docs/guide/blender-node-accuracy.md)."""
+    tex = nt.nodes.new('ShaderNodeTexNoise')
+    tex.inputs['Scale'].default_value = scale
+    tex.inputs['Detail'].default_value = 0.0
+    bump = nt.nodes.new('ShaderNodeBump')
+    bump.inputs['Distance'].default_value = distance
+    nt.links.new(tex.outputs['Fac'], bump.inputs['Height'])
+    return bump
+
+
+def normals_material(name, kind):
+    """Per-BSDF normals (docs/design/closures.md): a lacquered Principled BSDF whose base is
+    bumped under a smooth clearcoat (Clearcoat Normal unlinked: Cycles' sd->N), the same with
+    its clearcoat bumped otherwise (Clearcoat Normal linked to a finer bump), and a Mix Shader
+    of a bumped Diffuse and a smooth (unbumped) Glossy. The glossy parts are rough enough
+    that the sun's highlight spreads over several pixels: a one-pixel highlight would weigh
+    each renderer's pixel filter (Cycles' Blackman-Harris, memograph's box) more than the
+    normals."""
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    nt = m.node_tree
+    nt.nodes.clear()
+    o = nt.nodes.new('ShaderNodeOutputMaterial')
+    if kind == 'mix':
+        mix = nt.nodes.new('ShaderNodeMixShader')
+        mix.inputs['Fac'].default_value = 0.5
+        diffuse_bsdf = bsdf_node(nt, 'ShaderNodeBsdfDiffuse', Color=(0.2, 0.5, 0.8))
+        nt.links.new(noise_bump(nt, 4.0, 0.3).outputs['Normal'], diffuse_bsdf.inputs['Normal'])
+        nt.links.new(diffuse_bsdf.outputs[0], mix.inputs[1])
+        nt.links.new(bsdf_node(nt, 'ShaderNodeBsdfGlossy', Color=(0.9, 0.9, 0.9),
+                               Roughness=0.35, distribution='GGX').outputs[0], mix.inputs[2])
+        nt.links.new(mix.outputs[0], o.inputs['Surface'])
+        return m
+    p = bsdf_node(nt, 'ShaderNodeBsdfPrincipled', distribution='GGX',
+                  **{'Base Color': (0.05, 0.01, 0.01), 'Roughness': 0.6, 'Clearcoat': 1.0,
+                     'Clearcoat Roughness': 0.15})
+    nt.links.new(noise_bump(nt, 4.0, 0.3).outputs['Normal'], p.inputs['Normal'])
+    if kind == 'coat_bumped':
+        nt.links.new(noise_bump(nt, 2.0, 0.2).outputs['Normal'], p.inputs['Clearcoat Normal'])
+    nt.links.new(p.outputs[0], o.inputs['Surface'])
+    return m
+
+
+def bsdf_normals_scene():
+    """Three balls of per-BSDF normals (normals_material: smooth coat, bumped coat, Mix of a
+    bumped Diffuse and a smooth Glossy) on bsdf_scene's floor, sky and sun; each ball's box
+    is compared too."""
+    unbiased_glossy()
+    world(color=(0.3, 0.35, 0.45))
+    plane('Floor', 6.0, diffuse('Floor', albedo_node=lambda nt, c: checker(
+        nt, c, (0.7, 0.7, 0.7), (0.25, 0.25, 0.25), 6.0)))
+    balls = (('CoatSmooth', 'coat_smooth', -1.1), ('CoatBumped', 'coat_bumped', 0.0),
+             ('MixBumpedDiffuse', 'mix', 1.1))
+    for name, kind, x in balls:
+        sphere(name, normals_material(name, kind), (x, 0, 0.5), 0.5)
+    light('SUN', 'Sun', (0, 0, 5), rotation=(math.radians(35), 0, math.radians(-40)),
+          energy=3.0, angle=0.0)
+    camera((0, -3.0, 0.9), rotation=(math.radians(82.4), 0, 0), lens=26)
+    # The middle of each ball (its box through the centre, facing the camera, 0.3 m either
+    # side): the floor and its glossy caustics around a ball stay out.
+    return [(name, [(x + dx, 0.0, 0.5 + dz) for dx in (-0.3, 0.3) for dz in (-0.3, 0.3)])
+            for name, _, x in balls]
+
+
 def bsdf_room_scene():
     """A lit room of several BSDFs: a Mix-Shader floor (checker between Diffuse and Glossy),
     Oren-Nayar walls, a Velvet ball and a Glossy GGX ball; a point light and a panel."""
@@ -682,6 +749,7 @@ SCENES = {
     'bevel': bevel_scene,
     'object_normal': object_normal_scene,
     'bsdf_room': bsdf_room_scene,
+    'bsdf_normals': bsdf_normals_scene,
     'transparent_shadows': transparent_shadows_scene,
 }
 SCENES.update({'bsdf_' + tree: (lambda tree=tree: bsdf_scene(tree)) for tree in BSDF_TREES})

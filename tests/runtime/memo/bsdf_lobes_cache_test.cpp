@@ -10,7 +10,9 @@
 // fields). And a Mix Shader of two layered Principled BSDFs chosen per hit (ChooseShader,
 // PrincipledBsdf: eight lobes, four at a hit), in the wavefront, whose lookup pass finishes
 // cut entries itself: the checker is the cut, the choice runs per hit after it, never cached,
-// so the cached image keeps the uncached one's colours.
+// so the cached image keeps the uncached one's colours. And a Diffuse lobe about a normal of
+// its own, whose normal the entries carry (kCacheOutputLobeNormals).
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -42,6 +44,17 @@ const char* const kPrincipledLayersGraph =
     "PrincipledLayers BaseColor<2 Roughness=0.3 Sheen<1 SheenTint=1 Clearcoat<1 "
     "ClearcoatRoughness=0.1 Transmission<1 TransmissionRoughness=0.2 IOR=1.5;\n";
 
+// The Diffuse lobe about a normal of its own (a constant one: the graph stays uv-only, so it
+// is cached whole and the lobes' normals go through the entries, kCacheOutputLobeNormals).
+// kLobesGraph is the same without it.
+const char* const kLobeNormalGraph =
+    "material Lobes;\n"
+    "UVInput Out>0;\n"
+    "CheckerTexture Vector<0 Scale=4 Fac>1;\n"
+    "MixShader Fac<1 WeightA>2 WeightB>3;\n"
+    "DiffuseBsdf Color=(0.9, 0.2, 0.1) Weight<2 Normal=(0.8660254, 0.5, 0);\n"
+    "GlossyBsdf Color=(0.2, 0.9, 0.3) Roughness=0.3 Weight<3;\n";
+
 const char* const kChosenPrincipledGraph =
     "material Lobes;\n"
     "UVInput Out>0;\n"
@@ -62,13 +75,23 @@ const char* const kPrincipledGraph =
     "BaseColorOutput In<2;\n"
     "RoughnessOutput 0.3;\n";
 
+// Under a white sky, or (sun) lit by one sun alone: then a convex sphere's pixels are its
+// light samples, without the noise of the paths that find the sky.
 RenderResult renderGraph(const char* graph, CacheMode mode, Backend backend, Shading shading,
-                         std::uint32_t seed = 0) {
+                         std::uint32_t seed = 0, bool sun = false) {
   Scene scene;
   scene.meshes.push_back(testing::sphere(32));
   scene.materials.push_back({"Lobes", "", graph});
   scene.instances.push_back({0, 0, glm::mat4(1.0f)});
-  scene.environment.constantRadiance = glm::vec3(1.0f);
+  if (sun) {
+    Light light;
+    light.type = LightType::Directional;
+    light.direction = glm::normalize(glm::vec3(-0.3f, -0.5f, -1.0f));
+    light.intensity = glm::vec3(3.0f);
+    scene.lights.push_back(light);
+  } else {
+    scene.environment.constantRadiance = glm::vec3(1.0f);
+  }
   scene.camera.position = {0, 0, 3};
   scene.camera.target = {0, 0, 0};
   scene.camera.verticalFovDegrees = 45.0f;
@@ -126,6 +149,37 @@ TEST(BsdfLobesCache, CachedPrincipledLayersRenderLikeUncachedInTheWavefront) {
 
 TEST(BsdfLobesCache, CachedChoiceRendersLikeUncachedInTheWavefront) {
   expectCachedLikeUncached(Backend::RayQuery, Shading::Wavefront, kChosenPrincipledGraph, true);
+}
+
+// Lit by one sun, the cached and uncached images of kLobeNormalGraph differ by the checker's
+// texel quantisation alone, while its Diffuse lobe about the material's normal (kLobesGraph,
+// what a cache that lost the lobes' normals would give) is far brighter in red (the
+// Diffuse's colour) where the constant normal turns away from the sun. Measured on lavapipe:
+// red 0.107 to 0.108 cached, 0.121 uncached, 0.454 about the material's normal (kLobesGraph's
+// own quantisation: 0.464 cached against 0.454), so 0.02 either side.
+void expectCachedLobeNormals(Shading shading) {
+  Backend backend = Backend::RayQuery;
+  RenderResult off = renderGraph(kLobeNormalGraph, CacheMode::None, backend, shading, 0, true);
+  RenderResult on = renderGraph(kLobeNormalGraph, CacheMode::Texel, backend, shading, 0, true);
+  RenderResult lost = renderGraph(kLobesGraph, CacheMode::None, backend, shading, 0, true);
+  double redOff = testing::meanChannel(off.image, 0, 6, 6, 18, 18);
+  double redOn = testing::meanChannel(on.image, 0, 6, 6, 18, 18);
+  double redLost = testing::meanChannel(lost.image, 0, 6, 6, 18, 18);
+  std::printf(
+      "lobe normals through the texel cache (%s): red %.4f cached, %.4f uncached, "
+      "%.4f about the material's normal\n",
+      on.stats.shading.c_str(), redOn, redOff, redLost);
+  EXPECT_GT(on.stats.frames.back().cacheLookups, 0u);
+  EXPECT_NEAR(redOn, redOff, 0.02);
+  EXPECT_GT(std::abs(redLost - redOff), 0.05);
+}
+
+TEST(BsdfLobesCache, CachedLobeNormalsRenderLikeUncachedInTheMegakernel) {
+  expectCachedLobeNormals(Shading::Megakernel);
+}
+
+TEST(BsdfLobesCache, CachedLobeNormalsRenderLikeUncachedInTheWavefront) {
+  expectCachedLobeNormals(Shading::Wavefront);
 }
 
 }  // namespace

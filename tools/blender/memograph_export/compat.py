@@ -27,13 +27,13 @@ _WHITE = ((1.0, 1.0, 1.0),)
 # "off", what to call it). A linked socket or another value is reported. 3.4's Specular
 # Tint (a factor) is carried (shaders.principled); 4.x's colour Specular Tint is not.
 # 3.4's (v1) Sheen, Sheen Tint, Clearcoat, Clearcoat Roughness, Transmission, Transmission
-# Roughness and IOR are carried as the PrincipledLayers lobes (shaders.principled); 4.x's
-# Sheen Weight, Coat Weight and Transmission Weight, another model (PRINCIPLED_V2_LAYERS),
-# are not.
+# Roughness, IOR and Clearcoat Normal are carried as the PrincipledLayers lobes
+# (shaders.principled); 4.x's Sheen Weight, Coat Weight, Transmission Weight and Coat Normal,
+# another model (PRINCIPLED_V2_LAYERS), are not.
 PRINCIPLED_UNCARRIED = (
     (('Subsurface', 'Subsurface Weight'), _OFF, 'Subsurface'),
     (('Anisotropic',), _OFF, 'Anisotropic'),
-    (('Clearcoat Normal', 'Coat Normal'), ((0.0, 0.0, 0.0),), 'Clearcoat/Coat Normal'),
+    (('Coat Normal',), ((0.0, 0.0, 0.0),), 'Coat Normal'),
     (('Tangent',), ((0.0, 0.0, 0.0),), 'Tangent'),
     (('Thin Film Thickness',), _OFF, 'Thin Film'),
 )

@@ -19,6 +19,12 @@ The emissions keep the exact weights. A Principled BSDF that is the surface shad
 added to an emission, stays with shaders.py (PrincipledOutput, and PrincipledLayers where its
 layers are in use); any other shader in the tree (Subsurface, a 4.x Principled BSDF, ...)
 keeps the Principled approximation of shaders.py.
+
+Each BSDF is shaded about its own Normal, as Cycles shades each closure: where every BSDF
+that has a normal links the same one, it is the material's normal (NormalOutput); otherwise
+each linked Normal goes to its sink's Normal input, and an unlinked one means the material's
+normal, the interpolated one (Cycles' sd->N). A Principled BSDF among them (PrincipledBsdf)
+has no Normal input: its own Normal is then not carried (warned).
 """
 
 from . import compat
@@ -126,18 +132,45 @@ def plan_lobes(surface):
     return plan
 
 
+def _source_key(source):
+    """What a Normal socket reads, comparable across sockets (None: unlinked)."""
+    if isinstance(source, Out):
+        return ('out', source.node.key, source.identifier)
+    if isinstance(source, Const):
+        return None if source.unlinked else ('const', repr(source.value))
+    if source is None:
+        return None
+    return ('convert', getattr(source, 'op', None), _source_key(getattr(source, 'source', None)))
+
+
+def _normal_keys(source, keys):
+    """Appends the Normal of every BSDF of the tree at source that has one (all but
+    Transparent; a Principled BSDF's too) to keys, as _source_key gives it."""
+    flat = _shader_node(source)
+    if flat is None:
+        return
+    if flat.bl_idname in ('ShaderNodeMixShader', 'ShaderNodeAddShader'):
+        _normal_keys(flat.input('Shader'), keys)
+        _normal_keys(flat.input('Shader_001'), keys)
+    elif ((flat.bl_idname in LOBE_NODES and flat.bl_idname != 'ShaderNodeBsdfTransparent')
+          or flat.bl_idname == PRINCIPLED):
+        keys.append(_source_key(flat.input('Normal')) if flat.is_linked('Normal') else None)
+
+
 def writes_lobes(mw, surface):
     """Whether the surface is written as lobes (plan_lobes)."""
     return plan_lobes(surface) is not None
 
 
 class _Writer:
-    def __init__(self, mw, plan):
+    def __init__(self, mw, plan, per_lobe_normals):
         self.mw = mw
         self.plan = plan
         self.streams = 0     # ChooseShaders written: each draws its own number (Stream)
         self.emissions = []  # weighted emission operands
-        self.normal = None   # the first linked Normal of a BSDF
+        self.normal = None   # the shared Normal of the BSDFs (not per_lobe_normals)
+        # The BSDFs' Normals differ (or some are unlinked): each sink takes its own.
+        self.per_lobe_normals = per_lobe_normals
 
     def _weighted(self, operand, weight, comment):
         if isinstance(weight, Literal) and float(weight.value) == 1.0:
@@ -152,14 +185,16 @@ class _Writer:
         return default if value is None else value
 
     def _take_normal(self, flat):
+        """The sink's Normal input for flat's linked Normal ([] where it has none, or where
+        every BSDF shares it: then it is the material's normal)."""
         if not flat.is_linked('Normal'):
-            return
+            return []
         normal = self.mw.input_operand(flat, 'Normal')
+        if self.per_lobe_normals:
+            return [('Normal', normal)]
         if self.normal is None:
             self.normal = normal
-        else:
-            self.mw.warn(flat, 'memograph\'s lobes share one normal: this BSDF\'s Normal is '
-                         'replaced by the first linked one')
+        return []
 
     def _choose(self, flat, weight_a, weight_b):
         """ChooseShader over two weights: each hit keeps one side, at both weights."""
@@ -210,12 +245,12 @@ class _Writer:
             self.emissions.append(self._weighted(emitted, emission_weight,
                                                  flat.label + ' weight'))
         elif kind == 'ShaderNodeBsdfDiffuse':
-            self._take_normal(flat)
+            normal = self._take_normal(flat)
             b.add('DiffuseBsdf', [('Color', self._operand(flat, 'Color', Literal((0.8,) * 3))),
                                   ('Roughness', self._operand(flat, 'Roughness', Literal(0.0))),
-                                  ('Weight', weight)], [], comment=flat.label)
+                                  ('Weight', weight)] + normal, [], comment=flat.label)
         elif kind == 'ShaderNodeBsdfGlossy':
-            self._take_normal(flat)
+            normal = self._take_normal(flat)
             distribution = getattr(flat.node, 'distribution', 'GGX')
             roughness = self._operand(flat, 'Roughness', Literal(0.5))
             if distribution == 'SHARP':
@@ -230,9 +265,9 @@ class _Writer:
                                  ('Roughness', roughness),
                                  ('Distribution', Literal(1 if distribution == 'BECKMANN' else 0,
                                                           form='int')),
-                                 ('Weight', weight)], [], comment=flat.label)
+                                 ('Weight', weight)] + normal, [], comment=flat.label)
         elif kind in ('ShaderNodeBsdfRefraction', 'ShaderNodeBsdfGlass'):
-            self._take_normal(flat)
+            normal = self._take_normal(flat)
             distribution = getattr(flat.node, 'distribution', 'GGX')
             roughness = self._operand(flat, 'Roughness', Literal(0.0))
             if distribution == 'SHARP':
@@ -250,28 +285,33 @@ class _Writer:
                          ('IOR', self._operand(flat, 'IOR', Literal(1.45))),
                          ('Distribution', Literal(1 if distribution == 'BECKMANN' else 0,
                                                   form='int')),
-                         ('Weight', weight)], [], comment=flat.label)
+                         ('Weight', weight)] + normal, [], comment=flat.label)
         elif kind == 'ShaderNodeBsdfTransparent':
             b.add('TransparentBsdf', [('Color', self._operand(flat, 'Color',
                                                               Literal((1.0,) * 3))),
                                       ('Weight', weight)], [], comment=flat.label)
         elif kind == 'ShaderNodeBsdfTranslucent':
-            self._take_normal(flat)
+            normal = self._take_normal(flat)
             b.add('TranslucentBsdf', [('Color', self._operand(flat, 'Color',
                                                               Literal((0.8,) * 3))),
-                                      ('Weight', weight)], [], comment=flat.label)
+                                      ('Weight', weight)] + normal, [], comment=flat.label)
         elif kind == 'ShaderNodeBsdfVelvet':
-            self._take_normal(flat)
+            normal = self._take_normal(flat)
             b.add('VelvetBsdf', [('Color', self._operand(flat, 'Color', Literal((0.8,) * 3))),
                                  ('Sigma', self._operand(flat, 'Sigma', Literal(1.0))),
-                                 ('Weight', weight)], [], comment=flat.label)
+                                 ('Weight', weight)] + normal, [], comment=flat.label)
 
 
     def _principled(self, flat, weight, emission_weight):
         """A v1 Principled BSDF among other shaders: PrincipledBsdf, which writes the
         Principled outputs where its weight is above 0 and adds its lobes."""
         mw = self.mw
-        self._take_normal(flat)
+        if self._take_normal(flat):
+            mw.warn(flat, 'Normal of a Principled BSDF under a Mix or Add Shader whose BSDFs '
+                    'have other normals is not carried: shaded about the material\'s normal')
+        if compat.find_input(flat.node, 'Clearcoat Normal') and flat.is_linked('Clearcoat Normal'):
+            mw.warn(flat, 'Clearcoat Normal of a Principled BSDF under a Mix or Add Shader is not '
+                    'carried: its clearcoat is shaded about the material\'s normal')
         shaders._warn_unused(mw, flat, compat.PRINCIPLED_UNCARRIED)
         distribution = getattr(flat.node, 'distribution', 'GGX')
         if distribution == 'MULTI_GGX':
@@ -329,7 +369,13 @@ def _emits(flat):
 
 def write(mw, surface):
     """Writes the surface's lobes, emission and normal (writes_lobes(surface) holds)."""
-    w = _Writer(mw, plan_lobes(surface))
+    keys = []
+    _normal_keys(surface, keys)
+    # One Normal linked by every BSDF is the material's (as before per-lobe normals, so such
+    # a material's graph and image are unchanged); any other case gives each lobe its own.
+    shared = bool(keys) and keys[0] is not None and all(k == keys[0] for k in keys)
+    w = _Writer(mw, plan_lobes(surface),
+                per_lobe_normals=not shared and any(k is not None for k in keys))
     w.write(surface, Literal(1.0))
     b = mw.builder
     if w.emissions:

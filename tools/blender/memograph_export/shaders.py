@@ -13,7 +13,8 @@ own energy-conserving weighting (0). A v1 Principled BSDF whose Sheen, Clearcoat
 Transmission is in use also writes PrincipledLayers (nodes/bsdf.inc): the BRDF, its sheen, its
 clearcoat and its transmission as lobes, when it is the surface shader itself. Under a Mix
 Shader, or an Add Shader with another BSDF, lobes.py writes it (PrincipledBsdf); only a tree
-with a shader that lobes do not express comes here mixed, and drops the layers, warned.
+with a shader that lobes do not express comes here mixed, and drops the layers, warned. The
+clearcoat is shaded about its Clearcoat Normal (PrincipledLayers' ClearcoatNormal).
 """
 
 from . import compat
@@ -165,6 +166,14 @@ def principled(mw, flat):
     distribution = getattr(node, 'distribution', 'GGX')
     if v1:
         p.layers = _principled_layers(mw, flat, distribution == 'MULTI_GGX')
+        if p.layers is not None:
+            # Cycles 3.4 shades the clearcoat about Clearcoat Normal, and about the interpolated
+            # normal sd->N where it is unlinked, not about the (maybe bumped) Normal.
+            clearcoat_normal = _normal(mw, flat, 'Clearcoat Normal')
+            if clearcoat_normal is None and p.normal is not None:
+                clearcoat_normal = mw.implicit('normal')
+            if clearcoat_normal is not None:
+                p.layers['ClearcoatNormal'] = clearcoat_normal
     else:
         checks = checks + compat.PRINCIPLED_V2_LAYERS
     if tint_socket is not None and tint_socket.type != 'VALUE':
@@ -341,7 +350,9 @@ def write_outputs(mw, params):
         b.add('PrincipledLayers', [('BaseColor', params.base_color),
                                    ('Metallic', params.metallic),
                                    ('Roughness', params.roughness)] +
-              [(socket, params.layers[socket]) for socket, _, _ in _LAYER_SOCKETS], [],
+              [(socket, params.layers[socket]) for socket, _, _ in _LAYER_SOCKETS] +
+              [(socket, params.layers[socket]) for socket in ('ClearcoatNormal',)
+               if socket in params.layers], [],
               comment='Principled sheen, clearcoat and transmission')
     if params.normal is not None:
         b.add('NormalOutput', [('In', params.normal)], [])
