@@ -948,6 +948,43 @@ class ShaderTest(unittest.TestCase):
         self.assertIn('NormalOutput In<2;', text)
         self.assertEqual(result.warnings, [])
 
+    def test_a_mixed_principled_bsdf_says_which_normals_it_cannot_carry(self):
+        # PrincipledBsdf has no Normal inputs: mixed with a Diffuse of another normal, the
+        # Principled's own Normal and its Clearcoat Normal are warned, not dropped silently;
+        # when both BSDFs link the same Normal it is the material's, and only the Clearcoat
+        # Normal is warned.
+        tree = Tree()
+        out = output_node(tree)
+        p = principled_v1(tree)
+        diff = tree.add(Node('ShaderNodeBsdfDiffuse', 'Diffuse',
+                             [Sock('Color', 'RGBA', (0.5, 0.1, 0.1, 1)),
+                              Sock('Roughness', 'VALUE', 0.0),
+                              Sock('Normal', 'VECTOR', (0, 0, 0))], [Sock('BSDF', 'SHADER')]))
+        mix = tree.add(Node('ShaderNodeMixShader', 'Mix',
+                            [Sock('Fac', 'VALUE', 0.5), Sock('Shader', 'SHADER'),
+                             Sock('Shader_001', 'SHADER')], [Sock('Shader', 'SHADER')]))
+        bump = tree.add(Node('ShaderNodeMath', 'B', [], [Sock('Vector', 'VECTOR', (0, 0, 1))]))
+        tree.link(bump.outputs[0], p.inputs[15])  # Normal
+        tree.link(bump.outputs[0], p.inputs[16])  # Clearcoat Normal
+        tree.link(p.outputs[0], mix.inputs[1])
+        tree.link(diff.outputs[0], mix.inputs[2])
+        tree.link(mix.outputs[0], out.inputs[0])
+        table = writers.build_table({'ShaderNodeMath': NodeSpec(
+            'NormalInput', {}, {'Vector': 'Out'})})
+        result, (text,) = export([Material('OwnNormals', tree)], table)
+        self.assertIn('PrincipledBsdf', text)
+        msgs = ' | '.join(w[2] for w in result.warnings)
+        self.assertIn('Normal of a Principled BSDF under a Mix or Add Shader whose BSDFs have '
+                      'other normals is not carried', msgs)
+        self.assertIn('Clearcoat Normal of a Principled BSDF under a Mix or Add Shader is not '
+                      'carried', msgs)
+        tree.link(bump.outputs[0], diff.inputs[2])
+        result, (text,) = export([Material('SharedNormal', tree)], table)
+        self.assertIn('NormalOutput In<', text)
+        msgs = ' | '.join(w[2] for w in result.warnings)
+        self.assertNotIn('whose BSDFs have other normals', msgs)
+        self.assertIn('Clearcoat Normal of a Principled BSDF under a Mix or Add Shader', msgs)
+
     def test_transmission_shaders_are_lobes_without_warnings(self):
         # Glass, Refraction, Transparent and Translucent are lobes now (lobes.py): written as
         # their sinks with IOR and distribution, no Principled approximation and no warning.
