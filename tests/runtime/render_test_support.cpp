@@ -92,6 +92,18 @@ std::string constantGraph(const std::string& name, glm::vec3 c, float roughness)
   return text.str();
 }
 
+TextureImage flatTexture(glm::vec3 color) {
+  TextureImage texture;
+  for (std::uint32_t size : {4u, 2u, 1u}) {
+    HdrImage image;
+    image.width = image.height = size;
+    for (std::uint32_t i = 0; i < size * size; ++i)
+      image.rgba.insert(image.rgba.end(), {color.x, color.y, color.z, 1.0f});
+    texture.levels.push_back(std::move(image));
+  }
+  return texture;
+}
+
 RoundingDifference roundingDifference(const HdrImage& image, const HdrImage& reference) {
   RoundingDifference d;
   EXPECT_EQ(image.rgba.size(), reference.rgba.size());

@@ -19,6 +19,10 @@ RendererOptions testOptions(Backend backend = Backend::Auto);
 
 // A square in the y = 0 plane (normal +y) of side `size`, UVs 0..uvScale across it.
 Mesh quad(float size, float uvScale = 1.0f);
+
+// A texture whose every texel is `color`, with levels of 4, 2 and 1 texels a side (so that
+// textureGrad picks a mip).
+TextureImage flatTexture(glm::vec3 color);
 // A unit sphere (smooth normals, UVs from longitude/latitude).
 Mesh sphere(int segments);
 // A unit cube about the origin as one mesh (flat normals, outward counter-clockwise faces):

@@ -123,6 +123,14 @@ bool lobeDirections(BsdfLobes lobes, int i, vec3 wo, vec3 wi, out vec3 woLobe,
   float g = dot(wi, lobes.geometricNormal);
   return wiLobe.z > 0.0 ? g > 0.0 : g < 0.0;
 }
+#else
+// Without per-lobe normals every lobe sees the material's frame.
+bool lobeDirections(BsdfLobes lobes, int i, vec3 wo, vec3 wi, out vec3 woLobe,
+                    out vec3 wiLobe) {
+  woLobe = wo;
+  wiLobe = wi;
+  return true;
+}
 #endif
 
 // The microfacet alpha of Cycles' Glossy BSDF (roughness^2), kept above GGX's float limit
@@ -490,13 +498,8 @@ vec3 bsdfLobesEvaluateCos(BsdfLobes lobes, vec3 woMaterial, vec3 wiMaterial) {
   vec3 sum = vec3(0.0);
   for (int i = 0; i < lobes.count; ++i) {
     if (lobes.pick[i] <= 0.0) continue;  // no weight: nothing to add (a PrincipledLayers slot)
-#ifdef MG_LOBE_NORMALS
     vec3 wo, wi;
     if (!lobeDirections(lobes, i, woMaterial, wiMaterial, wo, wi)) continue;
-#else
-    vec3 wo = woMaterial;
-    vec3 wi = wiMaterial;
-#endif
 #ifdef MG_PRINCIPLED_LAYERS
     if (lobes.kind[i] == MG_LOBE_PRINCIPLED)
       sum += lobes.weight[i] * brdfEvaluateCos(lobes.principled, wo, wi);
@@ -515,14 +518,9 @@ float bsdfLobesPdf(BsdfLobes lobes, vec3 woMaterial, vec3 wiMaterial) {
   float pdf = 0.0;
   for (int i = 0; i < lobes.count; ++i) {
     if (lobes.pick[i] <= 0.0) continue;
-#ifdef MG_LOBE_NORMALS
     // A direction a lobe's sample may not take (lobeDirections) has no density from it.
     vec3 wo, wi;
     if (!lobeDirections(lobes, i, woMaterial, wiMaterial, wo, wi)) continue;
-#else
-    vec3 wo = woMaterial;
-    vec3 wi = wiMaterial;
-#endif
 #ifdef MG_PRINCIPLED_LAYERS
     pdf += lobes.pick[i] *
            (lobes.kind[i] == MG_LOBE_PRINCIPLED ? brdfPdf(lobes.principled, wo, wi)

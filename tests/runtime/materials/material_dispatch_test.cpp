@@ -13,19 +13,6 @@
 namespace memograph::runtime {
 namespace {
 
-// A texture whose every texel is `color`, with a second level so textureGrad picks a mip.
-TextureImage flatTexture(glm::vec3 color) {
-  TextureImage texture;
-  for (std::uint32_t size : {4u, 2u, 1u}) {
-    HdrImage image;
-    image.width = image.height = size;
-    for (std::uint32_t i = 0; i < size * size; ++i)
-      image.rgba.insert(image.rgba.end(), {color.x, color.y, color.z, 1.0f});
-    texture.levels.push_back(std::move(image));
-  }
-  return texture;
-}
-
 std::string texturedGraph(const std::string& name, const std::string& texture) {
   return "material " + name + ";\nUVInput UV>0;\nImageTexture Image=\"" + texture +
          "\" UV<0 Color>1;\nBaseColorOutput Color<1;\nRoughnessOutput Roughness=0.6;\n";
@@ -58,8 +45,8 @@ RendererOptions dispatchOptions(Backend backend, MaterialDispatch dispatch) {
   RendererOptions options = testing::testOptions(backend);
   options.materialDispatch = dispatch;
   options.textureLoader = [](const std::string& path) {
-    return flatTexture(path == "red.pfm" ? glm::vec3(0.9f, 0.1f, 0.1f)
-                                         : glm::vec3(0.1f, 0.1f, 0.9f));
+    return testing::flatTexture(path == "red.pfm" ? glm::vec3(0.9f, 0.1f, 0.1f)
+                                                  : glm::vec3(0.1f, 0.1f, 0.9f));
   };
   return options;
 }

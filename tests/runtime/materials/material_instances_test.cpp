@@ -150,19 +150,6 @@ TEST(MaterialInstances, ASharedPassRendersWhatEachGraphsOwnPassRenders) {
   EXPECT_LT(difference.largest, 1e-4 * difference.referenceMean + 1e-6);
 }
 
-// A texture of one colour (two levels, so that textureGrad picks a mip).
-TextureImage flatTexture(glm::vec3 color) {
-  TextureImage texture;
-  for (std::uint32_t size : {2u, 1u}) {
-    HdrImage image;
-    image.width = image.height = size;
-    for (std::uint32_t i = 0; i < size * size; ++i)
-      image.rgba.insert(image.rgba.end(), {color.x, color.y, color.z, 1.0f});
-    texture.levels.push_back(std::move(image));
-  }
-  return texture;
-}
-
 // Graphs of one shape that sample different images: the code names no image, only the graph's
 // texture slots, so they share a pass, and each bin must sample from its own first slot (the
 // word its dispatch pushes).
@@ -176,8 +163,8 @@ TEST(MaterialInstances, EachBinOfASharedPassSamplesItsOwnTextures) {
   const auto [shared, own] =
       renderBothWays({textured("Red", "red.pfm", 0.9f), textured("Blue", "blue.pfm", 0.8f)},
                      [](const std::string& path) {
-                       return flatTexture(path == "red.pfm" ? glm::vec3(0.9f, 0.1f, 0.1f)
-                                                            : glm::vec3(0.1f, 0.1f, 0.9f));
+                       return testing::flatTexture(path == "red.pfm" ? glm::vec3(0.9f, 0.1f, 0.1f)
+                                                                     : glm::vec3(0.1f, 0.1f, 0.9f));
                      });
   EXPECT_EQ(shared.stats.wavefrontMaterialPasses, 1u);
   EXPECT_EQ(own.stats.wavefrontMaterialPasses, 2u);

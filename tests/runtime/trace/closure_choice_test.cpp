@@ -166,6 +166,31 @@ TEST_P(ClosureChoice, MixesOfTwoLayeredPrincipledRenderTheMixedAlbedo) {
   }
 }
 
+// A lobe about its own normal takes an unchosen shader's slot as any lobe does: a Mix of the
+// four-lobe red plastic and a white smooth Glass about the plane's own normal (+y, so its
+// picture is the Glass's without a normal: albedo 1), chosen per hit, renders 0.65 x red +
+// 0.35. The Glass, added when the Principled's four lobes fill the slots, would otherwise be
+// lost where it is chosen (0.65 x red alone, 0.35 lower).
+TEST_P(ClosureChoice, AChosenLobeAboutItsOwnNormalTakesAnUnchosenSlot) {
+  const std::vector<std::string> graphs = {
+      kRedPlastic,
+      "MixShader Fac=0.35 WeightA>1 WeightB>2;\n"
+      "ChooseShader WeightA<1 WeightB<2 ChosenA>3 ChosenB>4;\n"
+      "PrincipledBsdf BaseColor=(0.8, 0.1, 0.05) Metallic=0 Roughness=0.3 Sheen=1 Clearcoat=1 "
+      "ClearcoatRoughness=0.1 Layers=7 Weight<3;\n"
+      "GlassBsdf Color=(1, 1, 1) Roughness=0 IOR=1.45 Weight<4 Normal=(0, 1, 0);\n"};
+  const Albedo red = albedoOf(graphs, 0, GetParam());
+  const Albedo mixed = albedoOf(graphs, 1, GetParam());
+  for (int c = 0; c < 3; ++c) {
+    const double expected = 0.65 * red.rgb[c] + 0.35;
+    std::printf(
+        "Mix(red plastic, glass about its normal) (%s) channel %d: expected %.4f, "
+        "mixed %.4f\n",
+        shadingName(GetParam()), c, expected, mixed.rgb[c]);
+    EXPECT_NEAR(mixed.rgb[c], expected, 0.02) << "channel " << c;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(BothArchitectures, ClosureChoice,
                          ::testing::Values(Shading::Megakernel, Shading::Wavefront),
                          [](const auto& info) { return std::string(shadingName(info.param)); });
