@@ -192,9 +192,11 @@ TEST(MaterialInstances, AGroupWiderThanThePushConstantsGetsAPassPerGraph) {
     int previous = -1;
     for (int k = 0; k < 27; ++k) {
       const float c = tint + 0.01f * static_cast<float>(k);
-      text << "Mix A"
-           << (previous < 0 ? std::string("=(0.5, 0.5, 0.5)") : "<" + std::to_string(previous))
-           << " B=(" << c << ", " << 0.5f * c << ", " << 1.0f - c << ") Factor<" << (k % 2 ? 1 : 2)
+      if (previous < 0)
+        text << "Mix A=(0.5, 0.5, 0.5)";
+      else
+        text << "Mix A<" << previous;
+      text << " B=(" << c << ", " << 0.5f * c << ", " << 1.0f - c << ") Factor<" << (k % 2 ? 1 : 2)
            << " Out>" << 10 + k << ";\n";
       previous = 10 + k;
     }
