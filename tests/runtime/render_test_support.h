@@ -43,8 +43,8 @@ double meanChannel(const HdrImage& image, int c, int x0, int y0, int x1, int y1)
 // several dispatches, each adding its share of the mean): the largest difference of any
 // channel, and the reference's mean absolute value to judge it against. Sizes must match.
 struct RoundingDifference {
-  double largest = 0.0;
-  double referenceMean = 0.0;
+  double largest = 0.0;        // over every channel
+  double referenceMean = 0.0;  // the reference's mean colour channel (alpha left out)
 };
 RoundingDifference roundingDifference(const HdrImage& image, const HdrImage& reference);
 
