@@ -135,13 +135,8 @@ std::string tableDefinition(const std::string& name, const Literal& value) {
 // The floats a constant of `type` (float..float4) takes: as formatConstant spells them.
 std::vector<float> constantFloats(const Literal& value, Type type) {
   std::vector<float> floats;
-  for (int i = 0; i < type.width(); ++i) {
-    const auto index = static_cast<std::size_t>(i);
-    const double component = value.components.size() == 1      ? value.components[0]
-                             : index < value.components.size() ? value.components[index]
-                                                               : (i == 3 ? 1.0 : 0.0);
-    floats.push_back(static_cast<float>(component));
-  }
+  for (int i = 0; i < type.width(); ++i)
+    floats.push_back(static_cast<float>(literalComponent(value, i)));
   return floats;
 }
 
@@ -149,12 +144,14 @@ std::vector<float> constantFloats(const Literal& value, Type type) {
 // (CompileOptions::parameterConstants): by (node, socket).
 using ParameterSlots = std::map<std::pair<std::size_t, std::size_t>, std::size_t>;
 
-ParameterSlots parameterSlots(const EmitInput& in, const std::vector<bool>& parameters) {
+// The slots of the constants that `parameter` picks (by index in `constants`, the graph's
+// floatConstantInputs).
+template <typename Picked>
+ParameterSlots parameterSlots(const std::vector<FloatConstantInput>& constants, Picked parameter) {
   ParameterSlots slots;
   std::size_t next = 0;
-  const auto constants = floatConstantInputs(in);
-  for (std::size_t i = 0; i < constants.size() && i < parameters.size(); ++i) {
-    if (!parameters[i])
+  for (std::size_t i = 0; i < constants.size(); ++i) {
+    if (!parameter(i))
       continue;
     slots[{constants[i].node, constants[i].socket}] = next;
     next += constants[i].floats.size();
@@ -484,8 +481,9 @@ std::string materialShape(const EmitInput& in, const std::string& placeholder) {
   MaterialMetadata renamed = in.metadata;
   renamed.name = placeholder;
   const EmitInput shape{in.graph, in.order, in.chosen, in.library, renamed, in.cut, in.sourcePath};
-  const std::vector<bool> every(floatConstantInputs(in).size(), true);
-  return materialFunctions(shape, nodeCalls(shape), parameterSlots(shape, every));
+  return materialFunctions(
+      shape, nodeCalls(shape),
+      parameterSlots(floatConstantInputs(in), [](std::size_t) { return true; }));
 }
 
 std::string emitMaterial(const EmitInput& in, Target target) {
@@ -502,8 +500,14 @@ std::string emitMaterial(const EmitInput& in, Target target) {
   // Each node's callee, once: the call below and the functions to emit follow it.
   const std::vector<NodeCall> calls = nodeCalls(in);
   // The functions first: what they call decides which library functions come before them.
-  const std::string functions =
-      materialFunctions(in, calls, parameterSlots(in, in.parameterConstants));
+  // The constants are looked for only when some are parameters (material instances).
+  const std::vector<bool>& picked = in.parameterConstants;
+  const ParameterSlots parameters =
+      std::find(picked.begin(), picked.end(), true) == picked.end()
+          ? ParameterSlots{}
+          : parameterSlots(floatConstantInputs(in),
+                           [&](std::size_t i) { return i < picked.size() && picked[i]; });
+  const std::string functions = materialFunctions(in, calls, parameters);
 
   // The prelude's declarations (types, defines, prototypes) once per shader; then each
   // reached function once, under its own guard, so that any number of material includes

@@ -93,14 +93,16 @@ std::string formatConstant(const Literal& literal, Type type) {
   if (width == 1)
     return formatFloat(literal.components.at(0));
   std::string code = type.name() + "(";
-  for (int i = 0; i < width; ++i) {
-    const double component = literal.components.size() == 1 ? literal.components[0]
-                             : static_cast<std::size_t>(i) < literal.components.size()
-                                 ? literal.components[i]
-                                 : (i == 3 ? 1.0 : 0.0);
-    code += (i > 0 ? ", " : "") + formatFloat(component);
-  }
+  for (int i = 0; i < width; ++i)
+    code += (i > 0 ? ", " : "") + formatFloat(literalComponent(literal, i));
   return code + ")";
+}
+
+double literalComponent(const Literal& literal, int i) {
+  const auto index = static_cast<std::size_t>(i);
+  if (literal.components.size() == 1)
+    return literal.components[0];
+  return index < literal.components.size() ? literal.components[index] : (i == 3 ? 1.0 : 0.0);
 }
 
 }  // namespace memograph::compiler

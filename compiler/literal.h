@@ -29,4 +29,8 @@ std::string formatFloat(double value);
 // components; tuples must match the width.
 std::string formatConstant(const Literal& literal, Type type);
 
+// Component i of a constant written to a socket of several components: a number splat to
+// every component; a shorter vector padded with 0, and with 1 for the fourth (alpha).
+double literalComponent(const Literal& literal, int i);
+
 }  // namespace memograph::compiler

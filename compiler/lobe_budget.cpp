@@ -46,17 +46,14 @@ Context contextOfChoice(const ResolvedGraph& graph, const ResolvedNode& choice) 
   return a == b ? a : Context{kRoot, 0};
 }
 
-// The lobes a sink adds (nodes/bsdf.inc): PrincipledLayers four, every other sink one.
-int lobesAddedBy(std::string_view node) {
-  return node == "PrincipledLayers" ? 4 : 1;
-}
-
-// The lobes a sink adds: PrincipledBsdf one and one per Layers bit (all three where Layers is
-// linked).
+// The lobes a sink adds (nodes/bsdf.inc): PrincipledLayers four, PrincipledBsdf one and one
+// per Layers bit (all three where Layers is linked), every other sink one.
 int lobesOf(const ResolvedNode& node) {
   const std::string& name = node.type->name;
+  if (name == "PrincipledLayers")
+    return 4;
   if (name != "PrincipledBsdf")
-    return lobesAddedBy(name);
+    return 1;
   const InputSource* layers = input(node, "Layers");
   if (!layers || layers->kind == InputSource::Kind::Link || layers->constant.components.size() != 1)
     return 4;
