@@ -294,12 +294,16 @@ void setPathInputs(inout MaterialInputs inputs, PathState path, float rayLength)
   inputs.diffuseDepth = path.diffuseDepth;
   inputs.glossyDepth = path.glossyDepth;
   inputs.transmissionDepth = path.transmissionDepth;
+#ifdef MG_CLOSURE_CHOICE
   // A path's hit replaces it with its vertex's word (setClosureSeed); a shadow ray's hit and
   // a light sample's emitter keep this hash of the hit's distance and position, which both
   // architectures compute alike and which varies from sample to sample.
   inputs.closureSeed = pcgHash(floatBitsToUint(rayLength) ^
                                pcgHash(floatBitsToUint(inputs.position.v.x) ^
                                        pcgHash(floatBitsToUint(inputs.position.v.y))));
+#else
+  inputs.closureSeed = 0u;  // no graph of the scene calls ChooseShader
+#endif
 #endif
 }
 
@@ -308,13 +312,16 @@ void setPathInputs(inout MaterialInputs inputs, PathState path, float rayLength)
 // vertex draws for its light and BSDF samples, so both architectures choose alike and the
 // path's own numbers are those it draws without a choice. A shadow ray's hit and a light
 // sample's emitter, which have no vertex of their own, keep setPathInputs' word.
-// Only where MaterialInputs has the path state (the callers test MG_OMIT_PATH_INPUTS too), so
-// that the other scenes' kernels are what they were.
+// Only where MaterialInputs has the path state (the callers test MG_OMIT_PATH_INPUTS too), and
+// a hash only in scenes whose graphs choose (MG_CLOSURE_CHOICE): the others' kernels do no
+// more work than without it.
 #ifndef MG_OMIT_PATH_INPUTS
 void setClosureSeed(inout MaterialInputs inputs, uint pixelIndex, uint sampleIndex,
                     uint vertexKey, uint seed) {
+#ifdef MG_CLOSURE_CHOICE
   inputs.closureSeed =
       pcgHash(rngForPathVertex(pixelIndex, sampleIndex, vertexKey, seed).key ^ 0xBB67AE85u);
+#endif
 }
 #endif
 

@@ -441,6 +441,17 @@ void countTracedRays(uint rays) {
 }
 #endif
 
+// The path vertex's word at slot's hit (setClosureSeed), as the megakernel draws it; with
+// --shared-primary the camera ray's hit is evaluated once, in the pixel's first path, whose
+// numbers are round 0's.
+void setVertexClosureSeed(inout MaterialInputs inputs, uint slot) {
+#ifndef MG_OMIT_PATH_INPUTS
+  bool sharedCameraRay = push.step.y == 0u && sharesPrimaryRay();
+  setClosureSeed(inputs, pixelOfSlot(slot), sampleIndexOf(sharedCameraRay ? 0u : push.step.x),
+                 push.step.y + 1u, frame.image.w);
+#endif
+}
+
 // The surface a live path's traced hit lies on (its ray, cone and hit from the path state),
 // as the megakernel's loop body builds it: the material passes and the shade pass both
 // start from here.
@@ -459,13 +470,7 @@ SurfaceHit surfaceOfPath(uint slot, out vec3 origin, out vec3 direction, out Ray
   cone.spread = directionField.w;
   SurfaceHit s = surfaceAt(hit, origin, direction, cone);
   setPathInputs(s.inputs, loadPathState(slot), hit.t);
-#ifndef MG_OMIT_PATH_INPUTS
-  // The megakernel's word for this vertex; with --shared-primary the camera ray's hit is
-  // evaluated once, in the pixel's first path, whose numbers are round 0's.
-  bool sharedCameraRay = push.step.y == 0u && sharesPrimaryRay();
-  setClosureSeed(s.inputs, pixelOfSlot(slot), sampleIndexOf(sharedCameraRay ? 0u : push.step.x),
-                 push.step.y + 1u, frame.image.w);
-#endif
+  setVertexClosureSeed(s.inputs, slot);
   return s;
 }
 
@@ -1023,14 +1028,7 @@ SurfaceHit surfaceToEvaluate(uint slot, bool lightPoint) {
   cone.spread = directionField.w;
   SurfaceHit s = surfaceAt(hit, originField.xyz, directionField.xyz, cone);
   setPathInputs(s.inputs, vertex, t);
-#ifndef MG_OMIT_PATH_INPUTS
-  if (!lightPoint) {
-    bool sharedCameraRay = push.step.y == 0u && sharesPrimaryRay();
-    setClosureSeed(s.inputs, pixelOfSlot(slot),
-                   sampleIndexOf(sharedCameraRay ? 0u : push.step.x), push.step.y + 1u,
-                   frame.image.w);
-  }
-#endif
+  if (!lightPoint) setVertexClosureSeed(s.inputs, slot);
 #ifdef MG_WAVEFRONT_TRACED_FIELD
   // A hit's traced inputs, as the traced-inputs pass left them for a material that reads
   // them; a light point keeps surfaceAt's 1 and shading normal, as the megakernel's
