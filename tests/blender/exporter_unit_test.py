@@ -8,6 +8,7 @@ the Blender 3.4 installed here (Principled v2 sockets, 4.1 Noise types, 4.x-only
 """
 
 import os
+import re
 import sys
 import tempfile
 import textwrap
@@ -948,14 +949,15 @@ class ShaderTest(unittest.TestCase):
         self.assertIn('NormalOutput In<2;', text)
         self.assertEqual(result.warnings, [])
 
-    def test_a_mixed_principled_bsdf_says_which_normals_it_cannot_carry(self):
-        # PrincipledBsdf has no Normal inputs: mixed with a Diffuse of another normal, the
-        # Principled's own Normal and its Clearcoat Normal are warned, not dropped silently;
-        # when both BSDFs link the same Normal it is the material's, and only the Clearcoat
-        # Normal is warned.
+    def test_a_mixed_principled_bsdf_carries_its_normals(self):
+        # Mixed with a Diffuse of another normal, the Principled BSDF's Normal and Clearcoat
+        # Normal go to PrincipledBsdf's Normal and ClearcoatNormal, without warnings. When both
+        # BSDFs link the same Normal it is the material's, and an unlinked Clearcoat Normal is
+        # the interpolated normal (Cycles' sd->N), not the bumped one.
         tree = Tree()
         out = output_node(tree)
         p = principled_v1(tree)
+        p.inputs[8].default_value = 1.0  # Clearcoat
         diff = tree.add(Node('ShaderNodeBsdfDiffuse', 'Diffuse',
                              [Sock('Color', 'RGBA', (0.5, 0.1, 0.1, 1)),
                               Sock('Roughness', 'VALUE', 0.0),
@@ -964,26 +966,26 @@ class ShaderTest(unittest.TestCase):
                             [Sock('Fac', 'VALUE', 0.5), Sock('Shader', 'SHADER'),
                              Sock('Shader_001', 'SHADER')], [Sock('Shader', 'SHADER')]))
         bump = tree.add(Node('ShaderNodeMath', 'B', [], [Sock('Vector', 'VECTOR', (0, 0, 1))]))
+        coat = tree.add(Node('ShaderNodeMath', 'C', [], [Sock('Vector', 'VECTOR', (0, 1, 0))]))
         tree.link(bump.outputs[0], p.inputs[15])  # Normal
-        tree.link(bump.outputs[0], p.inputs[16])  # Clearcoat Normal
+        tree.link(coat.outputs[0], p.inputs[16])  # Clearcoat Normal
         tree.link(p.outputs[0], mix.inputs[1])
         tree.link(diff.outputs[0], mix.inputs[2])
         tree.link(mix.outputs[0], out.inputs[0])
         table = writers.build_table({'ShaderNodeMath': NodeSpec(
             'NormalInput', {}, {'Vector': 'Out'})})
         result, (text,) = export([Material('OwnNormals', tree)], table)
-        self.assertIn('PrincipledBsdf', text)
-        msgs = ' | '.join(w[2] for w in result.warnings)
-        self.assertIn('Normal of a Principled BSDF under a Mix or Add Shader whose BSDFs have '
-                      'other normals is not carried', msgs)
-        self.assertIn('Clearcoat Normal of a Principled BSDF under a Mix or Add Shader is not '
-                      'carried', msgs)
+        self.assertRegex(text, r'PrincipledBsdf [^;]* Normal<(\d+) ClearcoatNormal<(?!\1)\d+;')
+        self.assertNotIn('NormalOutput', text)
+        self.assertEqual(result.warnings, [])
+        tree.links = [l for l in tree.links if l.to_socket is not p.inputs[16]]
         tree.link(bump.outputs[0], diff.inputs[2])
         result, (text,) = export([Material('SharedNormal', tree)], table)
-        self.assertIn('NormalOutput In<', text)
-        msgs = ' | '.join(w[2] for w in result.warnings)
-        self.assertNotIn('whose BSDFs have other normals', msgs)
-        self.assertIn('Clearcoat Normal of a Principled BSDF under a Mix or Add Shader', msgs)
+        normal = re.search(r'NormalOutput In<(\d+);', text).group(1)
+        implicit = re.search(r'NormalInput Out>(\d+);  # implicit normal', text).group(1)
+        self.assertNotEqual(normal, implicit)
+        self.assertRegex(text, r'PrincipledBsdf [^;]* Weight<\d+ ClearcoatNormal<%s;' % implicit)
+        self.assertEqual(result.warnings, [])
 
     def test_transmission_shaders_are_lobes_without_warnings(self):
         # Glass, Refraction, Transparent and Translucent are lobes now (lobes.py): written as

@@ -26,9 +26,9 @@ APPROXIMATIONS = {
     'ShaderNodeBsdfPrincipled': '3.x Sheen, Clearcoat, Transmission (and their tint, '
                                 'roughness, IOR sockets) as lobes `PrincipledLayers`, Clearcoat '
                                 'Normal as the clearcoat lobe\'s own normal; under a Mix or Add '
-                                'Shader with other BSDFs (3.x) `PrincipledBsdf` lobes, its Alpha '
-                                'and Clearcoat Normal not carried (warned); Subsurface, '
-                                'Anisotropic, Multiscatter GGX not carried (warned)',
+                                'Shader with other BSDFs (3.x) `PrincipledBsdf` lobes (with its '
+                                'Normal and Clearcoat Normal), its Alpha not carried (warned); '
+                                'Subsurface, Anisotropic, Multiscatter GGX not carried (warned)',
     'ShaderNodeBsdfDiffuse': 'Principled with Specular 0, Roughness 1 (Oren-Nayar dropped)',
     'ShaderNodeBsdfGlossy': 'Principled metal (distribution dropped)',
     'ShaderNodeBsdfTransparent': 'opacity 0 (tint dropped)',

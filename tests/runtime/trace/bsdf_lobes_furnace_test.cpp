@@ -305,6 +305,35 @@ TEST_P(LobeNormals, TiltedDiffuseUnderOneSunFollowsItsOwnCosine) {
   EXPECT_NEAR(mean, 0.25, 0.005);
 }
 
+// PrincipledBsdf's Normal (a Principled BSDF under a Mix or Add Shader keeps its own normal):
+// a white Principled base (Specular 0: its diffuse alone) whose Normal is tilted 60 degrees
+// under the sun straight above is lit as one whose material normal (NormalOutput) is tilted
+// so: the same lobe in the same frame, so the same value up to rounding. Light sampling alone
+// lights the quad (a black sky, and bounces leave the flat quad for the sky): no noise. About
+// the quad's own normal the diffuse sees the sun at cos 0 instead of cos 60, so it is far
+// brighter.
+TEST_P(LobeNormals, PrincipledBsdfIsShadedAboutItsOwnNormal) {
+  Shading shading = GetParam();
+  auto lit = [&](const char* graph) {
+    RenderResult result = renderLobeQuad(graph, shading, false, 4);
+    return testing::meanChannel(result.image, 1, 12, 12, 20, 20);
+  };
+  const char* principled = "PrincipledBsdf BaseColor=(1, 1, 1) Specular=0 Roughness=0.5";
+  double own = lit(
+      (std::string("material Lobes;\n") + principled + " Normal=(0.8660254, 0.5, 0);\n").c_str());
+  double material = lit(
+      (std::string("material Lobes;\nNormalOutput In=(0.8660254, 0.5, 0);\n") + principled + ";\n")
+          .c_str());
+  double upright = lit((std::string("material Lobes;\n") + principled + ";\n").c_str());
+  std::printf(
+      "PrincipledBsdf under one sun (%s): %.5f about its Normal, %.5f about the "
+      "material's tilted normal, %.5f upright\n",
+      shadingName(shading), own, material, upright);
+  EXPECT_GT(upright, 0.1);
+  EXPECT_NEAR(own, material, 1e-3 * material);
+  EXPECT_LT(own, 0.75 * upright);
+}
+
 // The Principled BSDF's Clearcoat Normal: a black base (Specular 0) under a sharp clearcoat
 // (Clearcoat Roughness 0.05), the sun and the camera straight above, so the coat shows the
 // sun's highlight where its normal is the quad's (+y). Given explicitly as (0, 1, 0) it is

@@ -24,7 +24,8 @@ Each BSDF is shaded about its own Normal, as Cycles shades each closure: where e
 that has a normal links the same one, it is the material's normal (NormalOutput); otherwise
 each linked Normal goes to its sink's Normal input, and an unlinked one means the material's
 normal, the interpolated one (Cycles' sd->N). A Principled BSDF among them (PrincipledBsdf)
-has no Normal input: its own Normal is then not carried (warned).
+takes its Normal the same way and its Clearcoat Normal as ClearcoatNormal (unlinked under a
+linked Normal: the interpolated normal, as Cycles' clearcoat takes sd->N).
 """
 
 from . import compat
@@ -306,12 +307,15 @@ class _Writer:
         """A v1 Principled BSDF among other shaders: PrincipledBsdf, which writes the
         Principled outputs where its weight is above 0 and adds its lobes."""
         mw = self.mw
-        if self._take_normal(flat):
-            mw.warn(flat, 'Normal of a Principled BSDF under a Mix or Add Shader whose BSDFs '
-                    'have other normals is not carried: shaded about the material\'s normal')
-        if compat.find_input(flat.node, 'Clearcoat Normal') and flat.is_linked('Clearcoat Normal'):
-            mw.warn(flat, 'Clearcoat Normal of a Principled BSDF under a Mix or Add Shader is not '
-                    'carried: its clearcoat is shaded about the material\'s normal')
+        normals = self._take_normal(flat)
+        if _layer_bits(flat) & 2:
+            # Cycles 3.4 shades the clearcoat about Clearcoat Normal, and about the interpolated
+            # normal sd->N where it is unlinked, not about the (maybe bumped) Normal.
+            clearcoat_normal = shaders._normal(mw, flat, 'Clearcoat Normal')
+            if clearcoat_normal is None and flat.is_linked('Normal'):
+                clearcoat_normal = mw.implicit('normal')
+            if clearcoat_normal is not None:
+                normals.append(('ClearcoatNormal', clearcoat_normal))
         shaders._warn_unused(mw, flat, compat.PRINCIPLED_UNCARRIED)
         distribution = getattr(flat.node, 'distribution', 'GGX')
         if distribution == 'MULTI_GGX':
@@ -330,6 +334,7 @@ class _Writer:
         if layers is not None:
             operands += [(socket, layers[socket]) for socket, _, _ in shaders._LAYER_SOCKETS]
         operands += [('Layers', Literal(_layer_bits(flat), form='int')), ('Weight', weight)]
+        operands += normals
         mw.builder.add('PrincipledBsdf', [(k, v) for k, v in operands if v is not None], [],
                        comment=flat.label)
         if _emits(flat):
