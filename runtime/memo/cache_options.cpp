@@ -208,6 +208,15 @@ void validateCacheOptions(const CacheOptions& cache) {
                                 ")");
   if (!std::isfinite(cache.mipBias))
     throw std::invalid_argument("--mip-bias must be finite");
+  if (cache.refreshFrames > 0 && cache.mode == CacheMode::Tile)
+    throw std::invalid_argument(
+        "--cache-refresh is the texel cache's (--cache texel): a tile's "
+        "texels are computed at their centres");
+  if (cache.refreshFrames > 0 && cache.filter != CacheFilter::Nearest)
+    throw std::invalid_argument(std::string("--cache-refresh with --cache-filter ") +
+                                cacheFilterName(cache.filter) +
+                                ": the filters blend or pick entries by their cells' centres, "
+                                "so their entries are evaluated there; use --cache-filter nearest");
   if (cache.mode == CacheMode::Tile && cache.filter != CacheFilter::Nearest)
     throw std::invalid_argument(std::string("--cache-filter ") + cacheFilterName(cache.filter) +
                                 " is the texel cache's (--cache texel); the tile cache filters "
@@ -314,6 +323,8 @@ std::vector<std::string> cacheShaderDefines(const CacheOptions& cache, std::uint
     defines.push_back("MG_CACHE_SNAP_UV=1");
   if (cache.secondaryOnly)
     defines.push_back("MG_CACHE_SECONDARY_ONLY=1");
+  if (cache.mode == CacheMode::Texel && cache.refreshFrames > 0)
+    defines.push_back("MG_CACHE_REFRESH=" + std::to_string(cache.refreshFrames));
   if (cache.mode == CacheMode::Texel && cache.filter != CacheFilter::Nearest)
     defines.push_back("MG_CACHE_FILTER=" +
                       std::to_string(static_cast<std::uint32_t>(cache.filter)));

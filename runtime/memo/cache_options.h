@@ -133,6 +133,11 @@ struct CacheOptions {
   std::uint32_t keyDomains = kCacheKeysAll;
   // §6.1, Fig. 6.6: primary hits evaluate their graph directly; only bounces >= 1 cache.
   bool secondaryOnly = false;
+  // Texel cache, nearest filter: frames a key lives before its cell is keyed and filled anew at
+  // another point of the cell, each key at its own phase (texel_cache.glsl cacheKeyOfHashes);
+  // 0: never, an entry keeps its cell's centre value (the snapped or cut evaluation) or its
+  // first hit's for as long as it stays.
+  std::uint32_t refreshFrames = 0;
   // Tile cache (§5.4): texels stored per tile (W x H <= the device's subgroup size; the
   // thesis's 4 x 4 needs 16 lanes, lavapipe has 8), the filter, the storage and §5.4.4's
   // grouping of missing tiles by material. `entries` counts tiles.

@@ -31,7 +31,8 @@
 # (default wavefront; lavapipe compiles the wavefront's per-material passes slowly);
 # --variants: texel-cache settings measured beside the default, each a bench run
 # texel-wavefront-NAME and a picture texel-NAME: trilinear and stochastic (--cache-filter),
-# finer (--mip-bias 1: keys of half the size) (default none); --keep-pictures: the uncached
+# finer (--mip-bias 1: keys of half the size), refreshN (--cache-refresh N) (default none);
+# --keep-pictures: the uncached
 # and texel pictures (PFM) come back in $OUT too, as SCENE_none.pfm and SCENE_texel.pfm.
 # e.g. run(carry=["bundle", ".gl"], command="bash tools/bench/memo_scenes_device.sh").
 # Results in $OUT (default /tmp/out), written row by row so that a run cut short keeps what
@@ -59,7 +60,7 @@ while [ $# -gt 0 ]; do
   --quality-shading) qshading=$2; shift 2 ;;
   --variants) variants=$2; shift 2 ;;
   --keep-pictures) keep=1; shift ;;
-  -h | --help) sed -n '2,35p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  -h | --help) sed -n '2,36p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
   *) echo "memo_scenes_device.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -100,6 +101,7 @@ variantFlags() {
   case $1 in
     trilinear | stochastic) echo "--cache-filter $1" ;;
     finer) echo "--mip-bias 1" ;;
+    refresh[0-9]*) echo "--cache-refresh ${1#refresh}" ;;
     *) echo "memo_scenes_device.sh: unknown variant $1" >&2; exit 2 ;;
   esac
 }

@@ -287,6 +287,13 @@ const Option kOptions[] = {
      [](O& o, const Value& v) {
        o.renderer.cache.valueFormat = runtime::parseCacheValueFormat(v.text);
      }},
+    {"--cache-refresh", ValueType::Whole, "N",
+     "texel cache: a key lives N frames, then its cell is filled again at\n"
+     "another point of the cell, each key at its own phase, so accumulated\n"
+     "frames average the cell's values; 0: never",
+     "0", kShown, S::Memoization, kAdvanced, N::Cache, kBoth,
+     [](O& o, const Value& v) { o.renderer.cache.refreshFrames = v.whole; },
+     "a number of frames (0..65536)", 0, 65536},
     {"--cache-secondary-only", ValueType::Flag, "",
      "only bounces >= 1 use the cache; camera hits evaluate their graph\n"
      "(§6.1, Fig. 6.6)",

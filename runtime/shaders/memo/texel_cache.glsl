@@ -10,6 +10,8 @@
 //   MG_CACHE_CLOCK_COUNTER   (optional) the 64-bit atomic counter clock of §5.3.3 instead of
 //                            the frame clock, with MG_CACHE_CLOCK_SHIFT (bits kept),
 //   MG_CACHE_SNAP_UV         (optional) a miss evaluates the graph at its texel centre (§6.1),
+//   MG_CACHE_REFRESH         (optional) frames a key lives before its cell is keyed (and
+//                            filled) anew at another point of the cell (cacheKeyOfHashes),
 //   MG_CACHE_STAMP_BY_SUBGROUP (optional; needs subgroup arithmetic and every invocation of
 //                            the subgroup calling cacheStampReads) lru's counter-clock stamps
 //                            of reads, one clock atomic per subgroup (cacheStampReads),
@@ -219,7 +221,8 @@ uint cachePcg(uint v) {
 struct CacheKey {
   uint base;     // first entry of the probe range: I of eq. 5.10
   uint hash;     // H1 of eq. 5.9, stored in the entry; never kCacheKeyEmpty or kCacheKeyLock
-  vec2 texelUv;  // the texel's centre (û, v̂ of eq. 5.6-5.7 over 2^m): where a snapped miss
+  vec2 texelUv;  // the texel's centre (û, v̂ of eq. 5.6-5.7 over 2^m; with MG_CACHE_REFRESH
+                 // this epoch's point of the texel): where a snapped miss
                  // evaluates the graph (§6.1)
   float texelSize;  // 2^-m: a texel's width in uv, the snapped evaluation's footprint
 };
@@ -246,6 +249,18 @@ bool cacheMipLevel(MaterialInputs inputs, out int m) {
 // values; eq. 5.10: the first probed entry is I = H0 mod (S - D) (the host guarantees S > D).
 // texelUv and texelSize are the caller's.
 CacheKey cacheKeyOfHashes(uint h0, uint h1) {
+#ifdef MG_CACHE_REFRESH
+  // --cache-refresh N: a key lives N frames, then its cell is another key (an epoch in the
+  // hashes), so the entry is filled again, at another point of the cell (cacheRefreshJitter),
+  // and the old one ages out under the eviction. Each key's epochs start at its own phase
+  // (H1 mod N), so a still camera refreshes 1/N of its entries a frame, not all of them every
+  // N-th frame. Accumulated frames then average the cell's values instead of holding one
+  // point of it (the voxel keys' point sample is otherwise fixed: seed 002 §3.2's aliasing).
+  uint epoch = (frame.image.z + h1 % uint(MG_CACHE_REFRESH)) / uint(MG_CACHE_REFRESH);
+  uint epochHash = cachePcg(epoch ^ 0x5bd1e995u);
+  h0 = cachePcg(h0 ^ epochHash);
+  h1 = cachePcg(h1 ^ cachePcg(epochHash));
+#endif
   if (h1 == kCacheKeyEmpty) h1 = 1u;
   if (h1 == kCacheKeyLock) h1 = kCacheKeyLock - 1u;
   CacheKey key;
@@ -255,6 +270,17 @@ CacheKey cacheKeyOfHashes(uint h0, uint h1) {
   key.texelSize = 0.0;
   return key;
 }
+
+#ifdef MG_CACHE_REFRESH
+// The point of its cell where a refreshed key is evaluated, in [0, 1)^3 of the cell: a hash
+// of the key (which holds the epoch), so an entry is still its key's value whichever hit
+// fills it, and each epoch takes a new point.
+vec3 cacheRefreshJitter(CacheKey key) {
+  uvec3 bits = uvec3(cachePcg(key.hash ^ 0x9e3779b9u), cachePcg(key.hash ^ 0x7f4a7c15u),
+                     cachePcg(key.hash ^ 0x94d049bbu));
+  return vec3(bits >> 8u) * (1.0 / 16777216.0);
+}
+#endif
 
 // Eq. 5.8-5.10 for the cell (texel or tile) `cell` of level m. Cells are hashed by their
 // float bits, which are exact for every magnitude (an int conversion would merge all cells
@@ -299,7 +325,8 @@ CacheKey cacheVoxelKeyOf(uvec4 info, uint objectWord, int m, vec3 voxel) {
 }
 
 // The voxel key of `p` with footprint axes `axis1`, `axis2`; `objectWord` the instance or mesh
-// (0 for world space). `centre` and `size` are the voxel's centre and width. False when the
+// (0 for world space). `centre` and `size` are the voxel's centre (with MG_CACHE_REFRESH this
+// epoch's point of the voxel: where its value is evaluated) and width. False when the
 // position is unusable (non-finite, or its voxel outside the fixed-point range).
 bool cacheVoxelKeyFor(uvec4 info, uint objectWord, vec3 p, vec3 axis1, vec3 axis2,
                       out CacheKey key, out vec3 centre, out float size) {
@@ -318,6 +345,9 @@ bool cacheVoxelKeyFor(uvec4 info, uint objectWord, vec3 p, vec3 axis1, vec3 axis
       any(greaterThanEqual(abs(voxel), vec3(kCacheVoxelLimit))))
     return false;
   key = cacheVoxelKeyOf(info, objectWord, m, voxel);
+#ifdef MG_CACHE_REFRESH
+  centre = (voxel + cacheRefreshJitter(key)) * size;  // this epoch's point of the voxel
+#endif
   return true;
 }
 
@@ -335,6 +365,10 @@ bool cacheKeyFor(uvec4 info, MaterialInputs inputs, out CacheKey key) {
   key = cacheKeyOf(info, m, texel);
   key.texelSize = exp2(-float(m));
   key.texelUv = key.texelSize * texel;  // exact: a power of two times an integer
+#ifdef MG_CACHE_REFRESH
+  // This epoch's point of the texel (eq. 5.6-5.7's texel spans its centre +- half a texel).
+  key.texelUv += key.texelSize * (cacheRefreshJitter(key).xy - 0.5);
+#endif
   return usable;
 }
 
