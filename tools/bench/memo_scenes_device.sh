@@ -33,7 +33,8 @@
 # texel-wavefront-NAME and a picture texel-NAME: trilinear and stochastic (--cache-filter),
 # finer (--mip-bias 1: keys of half the size), refreshN (--cache-refresh N) (default none);
 # --keep-pictures: the uncached
-# and texel pictures (PFM) come back in $OUT too, as SCENE_none.pfm and SCENE_texel.pfm.
+# and texel pictures (PFM) come back in $OUT too, as SCENE_none.pfm and SCENE_texel.pfm (and
+# SCENE_texel-NAME.pfm for each variant).
 # e.g. run(carry=["bundle", ".gl"], command="bash tools/bench/memo_scenes_device.sh").
 # Results in $OUT (default /tmp/out), written row by row so that a run cut short keeps what
 # it finished: memo_scenes_table.md (the timing table), memo_scenes_quality.md (the picture
@@ -60,7 +61,7 @@ while [ $# -gt 0 ]; do
   --quality-shading) qshading=$2; shift 2 ;;
   --variants) variants=$2; shift 2 ;;
   --keep-pictures) keep=1; shift ;;
-  -h | --help) sed -n '2,36p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  -h | --help) sed -n '2,37p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
   *) echo "memo_scenes_device.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -240,7 +241,7 @@ for scene in $scenes; do
   compare "$scene" texel
   for v in $variants; do compare "$scene" "texel-$v"; done
   if [ $keep = 1 ]; then
-    for name in none texel; do
+    for name in none texel $(for v in $variants; do echo "texel-$v"; done); do
       [ -f "$work/${scene}_$name.pfm" ] && cp "$work/${scene}_$name.pfm" "$OUT/"
     done
   fi
