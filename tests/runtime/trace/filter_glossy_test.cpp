@@ -76,17 +76,17 @@ TEST(FilterGlossy, MirrorSeenAfterADiffuseBounceBlursToAlphaOneHalf) {
     const char* name = shading == Shading::Megakernel ? "megakernel" : "wavefront";
     const HdrImage blurred = renderWith(mirror, shading, 1.0e6f);
     const HdrImage reference = renderWith(rough, shading, std::nullopt);
-    const HdrImage unblurred = renderWith(mirror, shading, std::nullopt);
     const testing::RoundingDifference d = testing::roundingDifference(blurred, reference);
-    const double blurredMean = meanOf(blurred);
-    const double unblurredMean = meanOf(unblurred);
-    std::printf(
-        "%s: mean %.5f blurred, %.5f alpha 1/2, %.5f unblurred; largest difference "
-        "%.3g\n",
-        name, blurredMean, meanOf(reference), unblurredMean, d.largest);
+    std::printf("%s: mean %.5f blurred, %.5f alpha 1/2; largest difference %.3g\n", name,
+                meanOf(blurred), meanOf(reference), d.largest);
     EXPECT_LE(d.largest, 1e-3 * d.referenceMean) << name;
-    // Without the blur the mirror adds nothing to the floor through light sampling.
-    EXPECT_GT(blurredMean, 1.05 * unblurredMean) << name;
+    if (shading == Shading::Megakernel) {
+      // Without the blur the mirror adds nothing to the floor through light sampling (the
+      // architectures trace the same paths, so one of them shows it).
+      const double unblurredMean = meanOf(renderWith(mirror, shading, std::nullopt));
+      std::printf("%s: mean %.5f unblurred\n", name, unblurredMean);
+      EXPECT_GT(meanOf(blurred), 1.05 * unblurredMean) << name;
+    }
   }
 }
 
@@ -99,11 +99,11 @@ TEST(FilterGlossy, OffOrWithoutGlossyLobesChangesNoPixel) {
   for (Shading shading : {Shading::Megakernel, Shading::Wavefront}) {
     const char* name = shading == Shading::Megakernel ? "megakernel" : "wavefront";
     const HdrImage plain = renderWith(diffuseOnly, shading, std::nullopt);
-    const HdrImage off = renderWith(diffuseOnly, shading, 0.0f);
     const HdrImage on = renderWith(diffuseOnly, shading, 1.0f);
-    ASSERT_EQ(plain.rgba.size(), off.rgba.size());
-    EXPECT_EQ(plain.rgba, off.rgba) << name;
+    ASSERT_EQ(plain.rgba.size(), on.rgba.size());
     EXPECT_EQ(plain.rgba, on.rgba) << name;
+    if (shading == Shading::Megakernel)  // F = 0 is resolved on the host, alike for both
+      EXPECT_EQ(plain.rgba, renderWith(diffuseOnly, shading, 0.0f).rgba) << name;
   }
 }
 
