@@ -168,9 +168,9 @@ const Option kOptions[] = {
      "4", kApplied, S::Image, kCommon, N::Nothing, kBoth,
      [](O& o, const Value& v) { o.settings.raysPerPath = v.whole; }, "a whole number > 0", 1},
     {"--filter-glossy", ValueType::Real, "F",
-     "Cycles' Filter Glossy: glossy lobes seen after a bounce of pdf p < F are\n"
-     "widened to alpha >= sqrt(1 - p/F)/2; 0: off",
-     "a Blender export's value, else 0", kShown, S::Image, kCommon, N::Nothing, kBoth,
+     "Cycles' Filter Glossy: after bounces of pdf p < F, glossy lobes get\n"
+     "alpha >= sqrt(1 - p/F)/2; 0: off",
+     "a Blender export's, else 0", kShown, S::Image, kCommon, N::Nothing, kBoth,
      [](O& o, const Value& v) { o.renderer.filterGlossy = float(v.real); },
      "a number >= 0", 0, 3.0e38},
     {"--frames", ValueType::Whole, "F",
