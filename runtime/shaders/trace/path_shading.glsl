@@ -537,9 +537,11 @@ ShadingPoint shadingPointAt(SurfaceHit s, MaterialOutputs m, vec3 direction) {
 // its transmission's reflection and refraction. Diffuse, Oren-Nayar, Velvet, Translucent,
 // Transparent and the sheen keep theirs, as bsdf_blur's default case does. The lobes hold
 // perceptual roughness (alpha = roughness^2, lobeAlpha), so their roughness takes the max
-// with sqrt of the blur's alpha. Applied per hit to the shading point, after the material's
-// outputs (and any cache lookup of them), never stored.
-void filterGlossy(inout ShadingPoint p, PathState path) {
+// with sqrt of the blur's alpha. A lobe of Blender's Sharp distribution (roughness slot
+// MG_LOBE_ROUGHNESS_SHARP in the material's outputs `m`) is Cycles' separate perfect
+// reflection or refraction closure, which bsdf_blur leaves alone. Applied per hit to the
+// shading point, after the material's outputs (and any cache lookup of them), never stored.
+void filterGlossy(inout ShadingPoint p, MaterialOutputs m, PathState path) {
   float blurPdf = MG_FILTER_GLOSSY_INVERSE * path.minRayPdf;
   if (!(blurPdf < 1.0)) return;
   float blurAlpha = sqrt(1.0 - blurPdf) * 0.5;
@@ -548,6 +550,7 @@ void filterGlossy(inout ShadingPoint p, PathState path) {
   float blurRoughness = sqrt(blurAlpha);
   for (int i = 0; i < p.lobes.count; ++i) {
     int kind = p.lobes.kind[i];
+    if (m.lobeParameters[i].x < 0.0) continue;  // Sharp (MG_LOBE_ROUGHNESS_SHARP)
     if (kind == MG_LOBE_GLOSSY_GGX || kind == MG_LOBE_GLOSSY_BECKMANN || lobeIsRefraction(kind) ||
         lobeIsGlass(kind) || kind == MG_LOBE_PRINCIPLED || kind == MG_LOBE_PRINCIPLED_CLEARCOAT ||
         kind == MG_LOBE_PRINCIPLED_GLASS)

@@ -22,16 +22,17 @@ namespace {
 
 constexpr int kSize = 24;
 
-// A white Diffuse floor (y = 0) and a Glossy ceiling (y = 2) of `roughness`, a point light at
-// y = 1, and a camera at y = 1.5 looking down at the floor, which never sees the ceiling: every
-// glossy hit comes after the floor's diffuse bounce.
-Scene floorUnderCeiling(float roughness) {
+// A white Diffuse floor (y = 0) and a Glossy ceiling (y = 2) of `roughness` and `distribution`
+// (0 GGX, 2 Sharp), a point light at y = 1, and a camera at y = 1.5 looking down at the floor,
+// which never sees the ceiling: every glossy hit comes after the floor's diffuse bounce.
+Scene floorUnderCeiling(float roughness, int distribution = 0) {
   Scene scene;
   scene.meshes.push_back(testing::quad(40.0f));
-  scene.materials = {{"Floor", "", "material Floor;\nDiffuseBsdf Color=(0.8, 0.8, 0.8);\n"},
-                     {"Ceiling", "",
-                      "material Ceiling;\nGlossyBsdf Color=(0.9, 0.9, 0.9) Roughness=" +
-                          std::to_string(roughness) + ";\n"}};
+  scene.materials = {
+      {"Floor", "", "material Floor;\nDiffuseBsdf Color=(0.8, 0.8, 0.8);\n"},
+      {"Ceiling", "",
+       "material Ceiling;\nGlossyBsdf Color=(0.9, 0.9, 0.9) Roughness=" +
+           std::to_string(roughness) + " Distribution=" + std::to_string(distribution) + ";\n"}};
   scene.instances.push_back({0, 0, glm::mat4(1.0f)});
   scene.instances.push_back({0, 1, glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 2.0f, 0.0f))});
   Light bulb;
@@ -68,7 +69,8 @@ double meanOf(const HdrImage& image) {
 
 // The mirror blurred by F = 1e6 traces the same paths as a Glossy of roughness sqrt(1/2) (alpha
 // 1/2) without the blur: the same random numbers drive both, and alpha differs by 3e-7, so the
-// pictures agree to float rounding. The unblurred mirror's floor is much darker.
+// pictures agree to float rounding. The unblurred mirror's floor is much darker, and so is a
+// Sharp one's at the same F.
 TEST(FilterGlossy, MirrorSeenAfterADiffuseBounceBlursToAlphaOneHalf) {
   const Scene mirror = floorUnderCeiling(0.0f);
   const Scene rough = floorUnderCeiling(std::sqrt(0.5f));
@@ -83,9 +85,16 @@ TEST(FilterGlossy, MirrorSeenAfterADiffuseBounceBlursToAlphaOneHalf) {
     if (shading == Shading::Megakernel) {
       // Without the blur the mirror adds nothing to the floor through light sampling (the
       // architectures trace the same paths, so one of them shows it).
-      const double unblurredMean = meanOf(renderWith(mirror, shading, std::nullopt));
-      std::printf("%s: mean %.5f unblurred\n", name, unblurredMean);
+      const HdrImage unblurred = renderWith(mirror, shading, std::nullopt);
+      const double unblurredMean = meanOf(unblurred);
       EXPECT_GT(meanOf(blurred), 1.05 * unblurredMean) << name;
+      // Blender's Sharp distribution is Cycles' separate mirror closure, which bsdf_blur leaves
+      // alone: the same huge F leaves it the unblurred mirror.
+      const HdrImage sharp = renderWith(floorUnderCeiling(0.0f, 2), shading, 1.0e6f);
+      const testing::RoundingDifference s = testing::roundingDifference(sharp, unblurred);
+      std::printf("%s: mean %.5f unblurred, %.5f Sharp at F = 1e6; largest difference %.3g\n", name,
+                  unblurredMean, meanOf(sharp), s.largest);
+      EXPECT_LE(s.largest, 1e-5 * s.referenceMean) << name;
     }
   }
 }

@@ -310,7 +310,7 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
 
       ShadingPoint p = shadingPointAt(s, m, direction);
 #ifdef MG_FILTER_GLOSSY_INVERSE
-      filterGlossy(p, pathState);  // the path's blur, before light and BSDF sampling use p
+      filterGlossy(p, m, pathState);  // the path's blur, before light and BSDF sampling use p
 #endif
       // Emission found by a BSDF ray, MIS-weighted against emissive NEE at the last vertex.
       radiance += throughput * m.emission * emissionMisWeight(s, origin, direction, previousBsdfPdf);

@@ -1275,7 +1275,7 @@ void main() {
 #endif
       PathState path = loadPathState(slot);  // the vertex's: its ray's state
 #ifdef MG_FILTER_GLOSSY_INVERSE
-      filterGlossy(p, path);  // the path's blur, before light and BSDF sampling use p
+      filterGlossy(p, m, path);  // the path's blur, before light and BSDF sampling use p
 #endif
       LightSample light;
       vec3 fCos;
