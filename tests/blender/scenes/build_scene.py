@@ -391,9 +391,10 @@ def sphere(name, material, location, radius):
 
 
 def unbiased_glossy():
-    """Cycles' Filter Glossy off: its default (1) widens glossy lobes after a diffuse bounce, a
-    biased shortcut memograph does not take (with it, light that the room's Glossy ball
-    reflects onto the floor comes 3-5 % darker in Cycles)."""
+    """Cycles' Filter Glossy off, so that a scene compares its lobes alone: its default (1)
+    widens glossy lobes after a diffuse bounce (light that the room's Glossy ball reflects onto
+    the floor comes 3-5 % darker with it). The export carries the 0, so memograph renders
+    without the blur too; bsdf_glossy_filtered keeps the default in both."""
     bpy.context.scene.cycles.blur_glossy = 0.0
 
 
