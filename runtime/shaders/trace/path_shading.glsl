@@ -528,9 +528,9 @@ ShadingPoint shadingPointAt(SurfaceHit s, MaterialOutputs m, vec3 direction) {
 // Cycles 3.4's Filter Glossy (integrator/surface_shader.h surface_shader_prepare_closures,
 // closure/bsdf.h bsdf_blur; scene/integrator.cpp keeps 1 / F, MG_FILTER_GLOSSY_INVERSE): at a
 // hit whose path has bounced with a pdf as low as minRayPdf, blur_pdf = minRayPdf / F; below
-// 1 every microfacet closure's alpha becomes max(alpha, sqrt(1 - blur_pdf) / 2), so that a
-// glossy highlight seen after a diffuse or rough bounce is found by fewer, brighter paths
-// less often. Microfacet here: the Glossy, Refraction and Glass lobes of GGX and Beckmann
+// 1 every microfacet closure's alpha becomes max(alpha, sqrt(1 - blur_pdf) / 2): a small
+// glossy highlight seen through a diffuse or rough bounce, which few paths would find, each
+// bringing much, is spread over many that bring less (less noise, some bias). Microfacet here: the Glossy, Refraction and Glass lobes of GGX and Beckmann
 // (Cycles' MICROFACET_GGX/BECKMANN ids, refraction and glass too; a smooth one, singular at
 // alpha^2 <= 1e-7, turns rough as Cycles' does), the Principled BSDF's specular GGX (the BRDF
 // of a material without lobes, and the Principled lobe's), its clearcoat (GGX_CLEARCOAT) and
