@@ -1,6 +1,7 @@
 #include "runtime/renderer.h"
 
 #include <chrono>
+#include <cmath>
 #include <set>
 #include <stdexcept>
 
@@ -95,6 +96,10 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   pipelineInputs.shaderCacheDirectory = shaderCacheDirectory;
   pipelineInputs.ambientOcclusionDistance =
       resolveAmbientOcclusionDistance(options_.ambientOcclusion, scene);
+  pipelineInputs.filterGlossy = options_.filterGlossy.value_or(scene.filterGlossy);
+  if (!(pipelineInputs.filterGlossy >= 0.0f) || !std::isfinite(pipelineInputs.filterGlossy))
+    throw std::invalid_argument("Filter Glossy must be a finite number >= 0, not " +
+                                std::to_string(pipelineInputs.filterGlossy));
   if (options_.integrator == Integrator::AmbientOcclusion) {
     result.stats.ambientOcclusionSamples = options_.ambientOcclusion.samples;
     result.stats.ambientOcclusionDistance = pipelineInputs.ambientOcclusionDistance;

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -94,6 +95,9 @@ struct RendererOptions {
   // megakernel).
   Integrator integrator = Integrator::Path;
   AmbientOcclusionOptions ambientOcclusion;  // Integrator::AmbientOcclusion's rays
+  // Cycles' Filter Glossy (F >= 0, finite; 0: off): replaces the scene's Scene::filterGlossy
+  // where set (--filter-glossy).
+  std::optional<float> filterGlossy;
 };
 
 // Materials that share a graph (same file or same text) count once.

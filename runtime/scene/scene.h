@@ -132,6 +132,11 @@ struct Scene {
   Camera camera;
   Environment environment;
   bool emissiveLightSampling = true;  // NEE of emissive triangles (materials with an estimate)
+  // Cycles' Filter Glossy of a Blender scene (the export's sidecar, `render filter_glossy F`):
+  // glossy lobes seen after low-pdf bounces are blurred (path_shading.glsl filterGlossy); 0: off,
+  // as for every scene that does not come from Blender. RendererOptions::filterGlossy
+  // overrides it.
+  float filterGlossy = 0.0f;
   // Meshes whose vertices move every frame (the city's flags), and how the k-th one's rest
   // vertices (object space) move (gpu::VertexMotion, vertex_motion.h): the renderer's vertex
   // pass moves them on the GPU, recomputes their normals from the moved triangles and

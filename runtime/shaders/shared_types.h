@@ -154,6 +154,9 @@ MG_CONSTANT(uint, kPathStateFieldsForLobes, 8);
 // undefined), one more after those: the traced-inputs pass's Bevel normal and AO fraction at
 // the hit, for its material pass.
 MG_CONSTANT(uint, kPathStateFieldsForTracedInputs, 1);
+// With Filter Glossy (MG_FILTER_GLOSSY_INVERSE), one more after all those (and after
+// --shared-primary's two): the path's smallest bounce pdf (path_shading.glsl PathState).
+MG_CONSTANT(uint, kPathStateFieldsForMinRayPdf, 1);
 
 // The wavefront's queue counts and indirect arguments (binding kBindingWavefrontControl).
 // Each launch block is a VkDispatchIndirectCommand (work groups) or a

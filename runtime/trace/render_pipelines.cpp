@@ -1,8 +1,10 @@
 #include "runtime/trace/render_pipelines.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <optional>
+#include <string>
 #include <thread>
 
 #include "runtime/materials/material_callables.h"
@@ -78,6 +80,12 @@ MaterialCallables compileCallables(const ShaderBuild& b,
   return compileMaterialCallables(b.inputs.materials->linked, callableOptions, callableStats);
 }
 
+// Whether the path tracer blurs glossy lobes by Cycles' Filter Glossy: a path-traced render
+// with F > 0 (the AO integrator shades no BSDF).
+bool filterGlossyOn(const ShaderBuild& b) {
+  return b.inputs.filterGlossy > 0.0f && b.options.integrator == Integrator::Path;
+}
+
 // The path tracer's defines besides the backend's: the cache's, then the scene's.
 std::vector<std::string> pathTracerDefines(const ShaderBuild& b, const MaterialCache& cache) {
   std::vector<std::string> defines = cache.defines();
@@ -122,6 +130,13 @@ std::vector<std::string> pathTracerDefines(const ShaderBuild& b, const MaterialC
   // The floor evaluates no graph, so its shadows stay opaque.
   if (!b.omitBsdfLobes && b.inputs.materials->linked.transparentShadows)
     defines.push_back("MG_TRANSPARENT_SHADOWS=1");
+  // Cycles' Filter Glossy (path_shading.glsl filterGlossy), only for renders that ask for it,
+  // so that the others' path state and kernels stay as they were. The constant is 1 / F, as
+  // Cycles keeps it (scene/integrator.cpp), spelled by its bits so that it is exact.
+  if (filterGlossyOn(b))
+    defines.push_back("MG_FILTER_GLOSSY_INVERSE=uintBitsToFloat(" +
+                      std::to_string(std::bit_cast<std::uint32_t>(1.0f / b.inputs.filterGlossy)) +
+                      "u)");
   return defines;
 }
 
@@ -143,6 +158,7 @@ std::unique_ptr<FrameTracer> buildWavefront(const ShaderBuild& b, ShaderCompiler
   setup.pathSlots = b.options.wavefrontPaths;
   setup.compileThreads = b.options.shaderCompileThreads;
   setup.materialInstances = b.options.materialInstances;
+  setup.minRayPdf = filterGlossyOn(b);
   // LiPaC's hit feedback: one set of passes for every frame (a push constant says whether a
   // frame counts), where the megakernel keeps a second, quiet pipeline: only the trace pass
   // counts, and it is small.

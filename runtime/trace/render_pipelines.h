@@ -29,6 +29,9 @@ struct PipelineInputs {
   std::filesystem::path shaderCacheDirectory;  // empty: compiled shaders are not kept
   // Integrator::AmbientOcclusion: its rays' length, resolved for the scene.
   float ambientOcclusionDistance = 0.0f;
+  // Cycles' Filter Glossy the path tracer applies (RendererOptions::filterGlossy, else the
+  // scene's); 0: off, and its code is not compiled in (MG_FILTER_GLOSSY_INVERSE).
+  float filterGlossy = 0.0f;
 };
 
 // Compiles and creates everything; fills `stats`'s shader, cache and architecture figures.

@@ -1024,9 +1024,10 @@ class ShaderTest(unittest.TestCase):
         result, (text,) = export([Material('Glassy', tree)])
         self.assertIn('GlassBsdf Color=(0.899999976, 0.899999976, 1) Roughness=0.100000001 '
                       'IOR=1.5 Distribution=1 Weight=1;', text)
-        # Sharp: Roughness 0 (the lobe is then singular, as Cycles' sharp refraction).
+        # Sharp: Distribution 2, Roughness 0 (the lobe is then singular, as Cycles' sharp
+        # refraction, and Filter Glossy leaves it alone, as Cycles' bsdf_blur does).
         self.assertIn('RefractionBsdf Color=(1, 1, 1) Roughness=0 IOR=1.33000004 '
-                      'Distribution=0 Weight=1;', text)
+                      'Distribution=2 Weight=1;', text)
         self.assertIn('TransparentBsdf Color=(0.5, 0.25, 1) Weight=1;', text)
         self.assertIn('TranslucentBsdf Color=(0.25, 0.5, 0.25) Weight=1;', text)
         self.assertNotIn('PrincipledOutput', text)

@@ -267,6 +267,33 @@ TEST_F(SceneImportTest, BlenderSidecarConvertsUnitsWorldTextureSpaceAndAreaLight
       << compiler::formatDiagnostics(bad);
 }
 
+// Cycles' Filter Glossy travels in the sidecar (`render filter_glossy F`, docs/guide/blender.md);
+// a sidecar without the line (an older export) means 0, off; a negative or non-numeric value
+// is an error naming the line.
+TEST_F(SceneImportTest, BlenderSidecarCarriesFilterGlossy) {
+  const std::string path = write("quad.gltf", quadGltf());
+  write("quad.memograph", "memograph-blender-scene 1\nup z\n");
+  Diagnostics oldDiagnostics;
+  const auto old = importScene(path, materials(), oldDiagnostics);
+  ASSERT_TRUE(old.has_value()) << compiler::formatDiagnostics(oldDiagnostics);
+  EXPECT_EQ(old->filterGlossy, 0.0f);
+
+  write("quad.memograph", "memograph-blender-scene 1\nup z\nrender filter_glossy 0.75\n");
+  Diagnostics diagnostics;
+  const auto scene = importScene(path, materials(), diagnostics);
+  ASSERT_TRUE(scene.has_value()) << compiler::formatDiagnostics(diagnostics);
+  EXPECT_EQ(scene->filterGlossy, 0.75f);
+
+  for (const char* value : {"-1", "nan", "glossy", ""}) {
+    write("quad.memograph",
+          std::string("memograph-blender-scene 1\nrender filter_glossy ") + value + "\n");
+    Diagnostics bad;
+    EXPECT_FALSE(importScene(path, materials(), bad).has_value()) << value;
+    EXPECT_NE(compiler::formatDiagnostics(bad).find("line 2"), std::string::npos)
+        << compiler::formatDiagnostics(bad);
+  }
+}
+
 TEST_F(SceneImportTest, BinaryGltfImportsLikeTheTextForm) {
   Diagnostics diagnostics;
   const auto glb = importScene(write("quad.glb", quadGlb()), materials(), diagnostics);

@@ -167,6 +167,12 @@ const Option kOptions[] = {
     {"--bounces", ValueType::Whole, "L", "rays per path; 1: the primary hit with direct light",
      "4", kApplied, S::Image, kCommon, N::Nothing, kBoth,
      [](O& o, const Value& v) { o.settings.raysPerPath = v.whole; }, "a whole number > 0", 1},
+    {"--filter-glossy", ValueType::Real, "F",
+     "Cycles' Filter Glossy: after bounces of pdf p < F, glossy lobes get\n"
+     "alpha >= sqrt(1 - p/F)/2; 0: off",
+     "a Blender export's, else 0", kShown, S::Image, kCommon, N::Nothing, kBoth,
+     [](O& o, const Value& v) { o.renderer.filterGlossy = float(v.real); },
+     "a number >= 0", 0, 3.0e38},
     {"--frames", ValueType::Whole, "F",
      "frames; a static camera accumulates them", "1", kApplied, S::Image, kCommon, N::Nothing,
      kBoth, [](O& o, const Value& v) { o.settings.frames = v.whole; }, "a whole number > 0", 1,

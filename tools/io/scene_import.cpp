@@ -192,6 +192,7 @@ struct Sidecar {
     bool constant = false;
   };
   std::vector<Emitter> emitters;
+  float filterGlossy = 0.0f;  // `render filter_glossy F`: Cycles' Filter Glossy; absent: 0
 };
 
 std::string restOfLine(std::istringstream& s) {
@@ -257,6 +258,15 @@ bool readSidecar(const std::string& gltfPath, Sidecar& out, compiler::Diagnostic
       } else {
         return bad("unknown world kind '" + kind + "'");
       }
+    } else if (word == "render") {
+      std::string setting;
+      s >> setting;
+      if (setting == "filter_glossy") {
+        float f = 0.0f;
+        if (!(s >> f) || !std::isfinite(f) || f < 0.0f)
+          return bad("render filter_glossy needs a number >= 0 (Cycles' Filter Glossy)");
+        out.filterGlossy = f;
+      }  // other render settings are ignored, as unknown statements are
     } else if (word == "texspace") {
       TextureSpaceLine t;
       if (!(s >> t.location.x >> t.location.y >> t.location.z >> t.size.x >> t.size.y >> t.size.z))
@@ -462,8 +472,9 @@ struct Importer {
   }
 };
 
-// World, texture spaces and area lights (emissive quads) from the sidecar.
+// World, texture spaces, area lights (emissive quads) and Filter Glossy from the sidecar.
 void applySidecar(Scene& scene, const Sidecar& side, const glm::mat4& root, const fs::path& dir) {
+  scene.filterGlossy = side.filterGlossy;
   if (side.hasWorld) {
     if (side.worldImage.empty()) {
       scene.environment.constantRadiance = side.worldColor * side.worldStrength;

@@ -214,7 +214,15 @@ struct PathState {
   int diffuseDepth;
   int glossyDepth;
   int transmissionDepth;
+#ifdef MG_FILTER_GLOSSY_INVERSE
+  // Cycles 3.4's min_ray_pdf (path_state.h): the smallest BSDF pdf of the path's bounces so
+  // far, what Filter Glossy blurs by (filterGlossy). Only in scenes rendered with it.
+  float minRayPdf;
+#endif
 };
+#ifdef MG_FILTER_GLOSSY_INVERSE
+const float kFloatMax = 3.402823466e38;  // C's FLT_MAX
+#endif
 
 // A camera ray's state: the path's start (Cycles' PATH_RAY_CAMERA, every depth 0).
 PathState cameraPathState() {
@@ -224,8 +232,24 @@ PathState cameraPathState() {
   path.diffuseDepth = 0;
   path.glossyDepth = 0;
   path.transmissionDepth = 0;
+#ifdef MG_FILTER_GLOSSY_INVERSE
+  path.minRayPdf = kFloatMax;  // Cycles' path_state_init_integrator: FLT_MAX at the camera
+#endif
   return path;
 }
+
+#ifdef MG_FILTER_GLOSSY_INVERSE
+// The path's smallest bounce pdf after a BSDF-sampled bounce of density `bsdfPdf` (Cycles 3.4
+// shade_surface.h integrate_surface_bsdf_bssrdf_bounce: min_ray_pdf = min(min_ray_pdf, pdf),
+// the pdf of the closures' mixture, skipped for a transparent bounce). A singular lobe's
+// bounce (pdf 0 here) leaves it: Cycles gives a perfect mirror or refraction the stand-in pdf
+// 1e6 (bsdf_reflection.h, bsdf_refraction.h, bsdf_microfacet.h's alpha^2 <= 1e-7 case), which
+// lowers it only to about 1e6 x the lobe's pick share s, and blurs nothing unless Filter Glossy
+// exceeds 1e6 s. The Transparent lobe is singular too, so it is skipped as Cycles skips it.
+void pathStateAfterBsdfPdf(inout PathState path, float bsdfPdf) {
+  if (bsdfPdf > 0.0) path.minRayPdf = min(path.minRayPdf, bsdfPdf);
+}
+#endif
 
 // A reflection by the lobe continuePath sampled: diffuse, or the GGX lobe (glossy, and
 // singular where Cycles' microfacet is a perfect mirror: alpha_x alpha_y <= 1e-7 in
@@ -500,6 +524,46 @@ ShadingPoint shadingPointAt(SurfaceHit s, MaterialOutputs m, vec3 direction) {
   return p;
 }
 
+#ifdef MG_FILTER_GLOSSY_INVERSE
+// Cycles 3.4's Filter Glossy (integrator/surface_shader.h surface_shader_prepare_closures,
+// closure/bsdf.h bsdf_blur; scene/integrator.cpp keeps 1 / F, MG_FILTER_GLOSSY_INVERSE): at a
+// hit whose path has bounced with a pdf as low as minRayPdf, blur_pdf = minRayPdf / F; below
+// 1 every microfacet closure's alpha becomes max(alpha, sqrt(1 - blur_pdf) / 2): a small
+// glossy highlight seen through a diffuse or rough bounce, which few paths would find, each
+// bringing much, is spread over many that bring less (less noise, some bias). Microfacet here: the Glossy, Refraction and Glass lobes of GGX and Beckmann
+// (Cycles' MICROFACET_GGX/BECKMANN ids, refraction and glass too; a smooth one, singular at
+// alpha^2 <= 1e-7, turns rough as Cycles' does), the Principled BSDF's specular GGX (the BRDF
+// of a material without lobes, and the Principled lobe's), its clearcoat (GGX_CLEARCOAT) and
+// its transmission's reflection and refraction. Diffuse, Oren-Nayar, Velvet, Translucent,
+// Transparent and the sheen keep theirs, as bsdf_blur's default case does. The lobes hold
+// perceptual roughness (alpha = roughness^2, lobeAlpha), so their roughness takes the max
+// with sqrt of the blur's alpha. A lobe of Blender's Sharp distribution (roughness slot
+// MG_LOBE_ROUGHNESS_SHARP in the material's outputs `m`) is Cycles' separate perfect
+// reflection or refraction closure, which bsdf_blur leaves alone. Applied per hit to the
+// shading point, after the material's outputs (and any cache lookup of them), never stored.
+void filterGlossy(inout ShadingPoint p, MaterialOutputs m, PathState path) {
+  float blurPdf = MG_FILTER_GLOSSY_INVERSE * path.minRayPdf;
+  if (!(blurPdf < 1.0)) return;
+  float blurAlpha = sqrt(1.0 - blurPdf) * 0.5;
+  p.brdf.alpha = max(p.brdf.alpha, blurAlpha);
+#ifdef MG_BSDF_LOBES
+  float blurRoughness = sqrt(blurAlpha);
+  for (int i = 0; i < p.lobes.count; ++i) {
+    int kind = p.lobes.kind[i];
+    if (m.lobeParameters[i].x < 0.0) continue;  // Sharp (MG_LOBE_ROUGHNESS_SHARP)
+    if (kind == MG_LOBE_GLOSSY_GGX || kind == MG_LOBE_GLOSSY_BECKMANN || lobeIsRefraction(kind) ||
+        lobeIsGlass(kind) || kind == MG_LOBE_PRINCIPLED || kind == MG_LOBE_PRINCIPLED_CLEARCOAT ||
+        kind == MG_LOBE_PRINCIPLED_GLASS)
+      p.lobes.roughness[i] = max(p.lobes.roughness[i], blurRoughness);
+  }
+#ifdef MG_PRINCIPLED_LAYERS
+  p.lobes.principled.alpha = max(p.lobes.principled.alpha, blurAlpha);
+  p.lobes.glassReflectionRoughness = max(p.lobes.glassReflectionRoughness, blurRoughness);
+#endif
+#endif
+}
+#endif
+
 // The shading point's BSDF times the cosine (local frame): its lobes, or the Principled BRDF.
 vec3 bsdfEvaluateCos(ShadingPoint p, vec3 wo, vec3 wi) {
 #ifdef MG_BSDF_LOBES
@@ -623,6 +687,9 @@ bool continuePathThroughLobes(ShadingPoint p, SurfaceHit s, vec3 woLocal, float 
   if (!sameSideOfBothNormals(p, wi, wiLocal.z)) return false;
   throughput *= weight;
   previousBsdfPdf = pdf;
+#ifdef MG_FILTER_GLOSSY_INVERSE
+  pathStateAfterBsdfPdf(path, pdf);
+#endif
   int kind = p.lobes.kind[picked];
   float roughness = p.lobes.roughness[picked];
   bool transmitted = wiLocal.z < 0.0;
@@ -667,6 +734,9 @@ bool continuePath(ShadingPoint p, SurfaceHit s, inout Rng rng, inout vec3 throug
   if (pdf <= 0.0 || dot(wi, s.geometricNormal) <= 0.0) return false;
   throughput *= brdfEvaluateCos(p.brdf, woLocal, wiLocal) / pdf;
   previousBsdfPdf = pdf;
+#ifdef MG_FILTER_GLOSSY_INVERSE
+  pathStateAfterBsdfPdf(path, pdf);
+#endif
 
   // The cone leaves with its width and a spread grown by roughness (eq. 2.11) and
   // curvature (eq. 2.12); a diffuse bounce spreads like the roughest lobe.

@@ -140,7 +140,10 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
       fieldsBeforeLobes + (lobes ? gpu::kPathStateFieldsForLobes : 0u);
   const std::uint32_t fieldsBeforePrimary =
       fieldsBeforeTraced + (tracedInputs_ ? gpu::kPathStateFieldsForTracedInputs : 0u);
-  const std::uint32_t fields = fieldsBeforePrimary + (setup.sharedPrimaryHits ? 2u : 0u);
+  const std::uint32_t fieldsBeforeMinRayPdf =
+      fieldsBeforePrimary + (setup.sharedPrimaryHits ? 2u : 0u);
+  const std::uint32_t fields =
+      fieldsBeforeMinRayPdf + (setup.minRayPdf ? gpu::kPathStateFieldsForMinRayPdf : 0u);
   // Paths in flight: as asked, else every pixel, or as many as one storage binding of path
   // state, a row of work groups and the largest allocation hold (lavapipe's 128 MiB range:
   // about 645,000 with graphs, so a 1080p round there runs in 4 chunks).
@@ -197,6 +200,8 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
     defines.push_back("MG_WAVEFRONT_PRIMARY_FIELD=" + std::to_string(fieldsBeforePrimary));
   if (lobes)
     defines.push_back("MG_WAVEFRONT_LOBE_FIELD=" + std::to_string(fieldsBeforeLobes));
+  if (setup.minRayPdf)
+    defines.push_back("MG_WAVEFRONT_MIN_RAY_PDF_FIELD=" + std::to_string(fieldsBeforeMinRayPdf));
   if (tracedInputs_) {
     defines.push_back("MG_WAVEFRONT_TRACED_FIELD=" + std::to_string(fieldsBeforeTraced));
     // Per bin, whether its graph reads a traced input: those bins' hits go first in the

@@ -50,6 +50,9 @@ struct WavefrontSetup {
   // --shared-primary (RenderSettings::sharedPrimaryRay): round 0 traces each pixel's camera ray
   // and keeps its hit in two more fields, which the later rounds take instead of tracing it.
   bool sharedPrimaryHits = false;
+  // Filter Glossy (MG_FILTER_GLOSSY_INVERSE in the defines): one more field after the others
+  // keeps each path's smallest bounce pdf (PathState::minRayPdf) from one bounce to the next.
+  bool minRayPdf = false;
   // The texel cache keys materials by their cut (MG_CACHE_CUTS in the defines): the lookup
   // pass reads a cut material's values, and its material pass evaluates the cut on a miss
   // and the rest always, through the cut functions of its graph's include.

@@ -24,7 +24,9 @@ no clamping, no light threshold) and DIR/export/ (the memograph exporter with --
 - bsdf_<tree> (BSDF_TREES: diffuse, oren_nayar, glossy_ggx, glossy_beckmann, velvet, mix,
   add, glass, glass_rough, refraction, transparent, translucent, principled_sheen,
   principled_clearcoat, principled_transmission, principled_mix, principled_add): a smooth
-  sphere of that BSDF (or Mix/Add Shader of BSDFs) on a checker floor under a sky and a sun;
+  sphere of that BSDF (or Mix/Add Shader of BSDFs) on a checker floor under a sky and a sun,
+  with Cycles' Filter Glossy off (unbiased_glossy); bsdf_glossy_filtered: bsdf_glossy_ggx's
+  scene with Filter Glossy at Blender's default 1 (and a box of the floor beside the ball);
   bsdf_room: a room of several of them (docs/design/closures.md). The principled_* scenes
   also write DIR/tiles.json with the ball's box.
 - light_path_depth: (b) an emissive panel that emits only for Ray Depth 1 (black to the
@@ -389,15 +391,20 @@ def sphere(name, material, location, radius):
 
 
 def unbiased_glossy():
-    """Cycles' Filter Glossy off: its default (1) widens glossy lobes after a diffuse bounce, a
-    biased shortcut memograph does not take (with it, light that the room's Glossy ball
-    reflects onto the floor comes 3-5 % darker in Cycles)."""
+    """Cycles' Filter Glossy off, so that a scene compares its lobes alone: its default (1)
+    widens glossy lobes after a diffuse bounce (light that the room's Glossy ball reflects onto
+    the floor comes 3-5 % darker with it). The export carries the 0, so memograph renders
+    without the blur too; bsdf_glossy_filtered keeps the default in both."""
     bpy.context.scene.cycles.blur_glossy = 0.0
 
 
-def bsdf_scene(tree):
-    """A sphere of one BSDF tree on a grey checker floor, under a blue-grey sky and a sun."""
-    unbiased_glossy()
+def bsdf_scene(tree, filter_glossy=False):
+    """A sphere of one BSDF tree on a grey checker floor, under a blue-grey sky and a sun.
+    With `filter_glossy`, Cycles' Filter Glossy stays at Blender's default (1), which the export
+    carries; the floor beside the ball, which sees the ball's glossy reflections after its
+    diffuse bounce, is compared as a box too."""
+    if not filter_glossy:
+        unbiased_glossy()
     world(color=(0.3, 0.35, 0.45))
     plane('Floor', 6.0, diffuse('Floor', albedo_node=lambda nt, c: checker(
         nt, c, (0.7, 0.7, 0.7), (0.25, 0.25, 0.25), 6.0)))
@@ -405,6 +412,9 @@ def bsdf_scene(tree):
     light('SUN', 'Sun', (0, 0, 5), rotation=(math.radians(35), 0, math.radians(-40)),
           energy=3.0, angle=0.0)
     camera((0, -3.6, 1.6), rotation=(math.radians(80), 0, 0), lens=40)
+    if filter_glossy:
+        # The floor in front of the ball (0.45 m to 0.95 m from its foot, 1.2 m either side).
+        return [('FloorNearBall', [(x, y, 0.0) for x in (-1.2, 1.2) for y in (-0.95, -0.45)])]
     if tree.startswith('principled_'):
         # A Principled layer is a small part of the whole image: the ball's own box (the
         # square around it, through its centre, facing the camera) is compared too.
@@ -751,6 +761,7 @@ SCENES = {
     'bsdf_room': bsdf_room_scene,
     'bsdf_normals': bsdf_normals_scene,
     'transparent_shadows': transparent_shadows_scene,
+    'bsdf_glossy_filtered': lambda: bsdf_scene('glossy_ggx', filter_glossy=True),
 }
 SCENES.update({'bsdf_' + tree: (lambda tree=tree: bsdf_scene(tree)) for tree in BSDF_TREES})
 

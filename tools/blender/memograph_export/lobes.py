@@ -34,6 +34,9 @@ from .graph import Const, Out
 from .mgraph import Literal
 
 MAX_LOBES = 4  # MG_MAX_LOBES of nodes/prelude/common.inc
+# The Distribution input of GlossyBsdf, RefractionBsdf and GlassBsdf (nodes/bsdf.inc); any
+# other Blender distribution is written as GGX (0), warned where it differs.
+DISTRIBUTIONS = {'GGX': 0, 'BECKMANN': 1, 'SHARP': 2}
 PRINCIPLED = 'ShaderNodeBsdfPrincipled'
 # PrincipledBsdf's Layers bits: the layers whose input is in use get a lobe each.
 _LAYER_BITS = (('Sheen', 1), ('Clearcoat', 2), ('Transmission', 4))
@@ -255,6 +258,8 @@ class _Writer:
             distribution = getattr(flat.node, 'distribution', 'GGX')
             roughness = self._operand(flat, 'Roughness', Literal(0.5))
             if distribution == 'SHARP':
+                # Distribution 2: a mirror, Cycles' separate reflection closure (which Filter
+                # Glossy does not widen, unlike GGX of Roughness 0).
                 roughness = Literal(0.0)
             elif distribution == 'MULTI_GGX':
                 self.mw.warn(flat, 'Multiscatter GGX is written as single-scatter GGX: the '
@@ -264,14 +269,14 @@ class _Writer:
                 self.mw.warn(flat, 'distribution %s is written as GGX' % distribution)
             b.add('GlossyBsdf', [('Color', self._operand(flat, 'Color', Literal((0.8,) * 3))),
                                  ('Roughness', roughness),
-                                 ('Distribution', Literal(1 if distribution == 'BECKMANN' else 0,
+                                 ('Distribution', Literal(DISTRIBUTIONS.get(distribution, 0),
                                                           form='int')),
                                  ('Weight', weight)] + normal, [], comment=flat.label)
         elif kind in ('ShaderNodeBsdfRefraction', 'ShaderNodeBsdfGlass'):
             normal = self._take_normal(flat)
             distribution = getattr(flat.node, 'distribution', 'GGX')
             roughness = self._operand(flat, 'Roughness', Literal(0.0))
-            if distribution == 'SHARP':
+            if distribution == 'SHARP':  # Distribution 2: Cycles' sharp closures (as Glossy's)
                 roughness = Literal(0.0)
             elif distribution == 'MULTI_GGX':
                 self.mw.warn(flat, 'Multiscatter GGX is written as single-scatter GGX glass '
@@ -284,7 +289,7 @@ class _Writer:
             b.add(node, [('Color', self._operand(flat, 'Color', Literal((1.0,) * 3))),
                          ('Roughness', roughness),
                          ('IOR', self._operand(flat, 'IOR', Literal(1.45))),
-                         ('Distribution', Literal(1 if distribution == 'BECKMANN' else 0,
+                         ('Distribution', Literal(DISTRIBUTIONS.get(distribution, 0),
                                                   form='int')),
                          ('Weight', weight)] + normal, [], comment=flat.label)
         elif kind == 'ShaderNodeBsdfTransparent':

@@ -119,6 +119,11 @@ def sidecar_lines(scene, objects, out_dir, warnings, names=None):
              _line('lighting', 'SPEC', WATTS_TO_LUMENS)]
     if scene.camera is not None:
         lines.append(_line('camera', scene.camera.name))
+    # Cycles' Filter Glossy (Render Properties > Light Paths > Caustics; 1 in a new file): the
+    # renderer blurs glossy lobes after low-pdf bounces as Cycles does (docs/design/closures.md).
+    cycles = getattr(scene, 'cycles', None)
+    if cycles is not None:
+        lines.append(_line('render', 'filter_glossy', float(cycles.blur_glossy)))
     lines += _world_lines(scene, out_dir, warnings)
     for mat in bpy.data.materials:
         if names and mat.name in names:

@@ -309,6 +309,9 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
       if (!alive) continue;
 
       ShadingPoint p = shadingPointAt(s, m, direction);
+#ifdef MG_FILTER_GLOSSY_INVERSE
+      filterGlossy(p, m, pathState);  // the path's blur, before light and BSDF sampling use p
+#endif
       // Emission found by a BSDF ray, MIS-weighted against emissive NEE at the last vertex.
       radiance += throughput * m.emission * emissionMisWeight(s, origin, direction, previousBsdfPdf);
       bool continues = bounce + 1u < rayCountPerPath;

@@ -283,6 +283,11 @@ const uint kFieldLobes = uint(MG_WAVEFRONT_LOBE_FIELD);
 // fraction at the hit (the traced-inputs pass's, for the material pass).
 const uint kFieldTracedInputs = uint(MG_WAVEFRONT_TRACED_FIELD);
 #endif
+#ifdef MG_WAVEFRONT_MIN_RAY_PDF_FIELD
+// With Filter Glossy (MG_FILTER_GLOSSY_INVERSE), after the fields above: x the path's
+// PathState::minRayPdf, written where the path's ray is (the generate and shade passes).
+const uint kFieldMinRayPdf = uint(MG_WAVEFRONT_MIN_RAY_PDF_FIELD);
+#endif
 #ifdef MG_WAVEFRONT_PRIMARY_FIELD
 // With --shared-primary, after the fields above (the host's count of them): the pixel's
 // camera-ray hit, traced in round 0 and read by the later rounds' trace passes.
@@ -383,7 +388,8 @@ void appendToQueue(uint queue, bool shadow, uint slot, bool append) {
 #endif
 }
 
-// The Light Path state of a path's ray (kFieldPathState); the camera's where no graph reads it.
+// The Light Path state of a path's ray (kFieldPathState; the camera's where no graph reads it)
+// and with Filter Glossy its minRayPdf (kFieldMinRayPdf).
 PathState loadPathState(uint slot) {
 #ifndef MG_OMIT_PATH_INPUTS
   ivec4 bits = floatBitsToInt(pathState[fieldIndex(kFieldPathState, slot)]);
@@ -393,6 +399,13 @@ PathState loadPathState(uint slot) {
   path.depth = bits.y;
   path.diffuseDepth = bits.z;
   path.glossyDepth = bits.w;
+#ifdef MG_WAVEFRONT_MIN_RAY_PDF_FIELD
+  path.minRayPdf = pathState[fieldIndex(kFieldMinRayPdf, slot)].x;
+#endif
+  return path;
+#elif defined(MG_WAVEFRONT_MIN_RAY_PDF_FIELD)
+  PathState path = cameraPathState();
+  path.minRayPdf = pathState[fieldIndex(kFieldMinRayPdf, slot)].x;
   return path;
 #else
   return cameraPathState();
@@ -419,12 +432,16 @@ PathState unpackLightPathState(uint bits) {
   return light;
 }
 
-// Keeps the Light Path state of a path's next ray for the next bounce's passes.
+// Keeps the path state of a path's next ray (loadPathState's fields) for the next bounce's
+// passes.
 void storePathState(uint slot, PathState path) {
 #ifndef MG_OMIT_PATH_INPUTS
   pathState[fieldIndex(kFieldPathState, slot)] =
       intBitsToFloat(ivec4(path.ray | (path.transmissionDepth << 4), path.depth,
                            path.diffuseDepth, path.glossyDepth));
+#endif
+#ifdef MG_WAVEFRONT_MIN_RAY_PDF_FIELD
+  pathState[fieldIndex(kFieldMinRayPdf, slot)].x = path.minRayPdf;
 #endif
 }
 
@@ -1257,6 +1274,9 @@ void main() {
       countsOnly = (frame.culling.w & kCullingLook) != 0u;
 #endif
       PathState path = loadPathState(slot);  // the vertex's: its ray's state
+#ifdef MG_FILTER_GLOSSY_INVERSE
+      filterGlossy(p, m, path);  // the path's blur, before light and BSDF sampling use p
+#endif
       LightSample light;
       vec3 fCos;
       if (!countsOnly && sampleLightBeforeShadowRay(p, rng, light, fCos)) {
