@@ -111,8 +111,9 @@ TEST(FilterGlossy, OffOrWithoutGlossyLobesChangesNoPixel) {
     const HdrImage on = renderWith(diffuseOnly, shading, 1.0f);
     ASSERT_EQ(plain.rgba.size(), on.rgba.size());
     EXPECT_EQ(plain.rgba, on.rgba) << name;
-    if (shading == Shading::Megakernel)  // F = 0 is resolved on the host, alike for both
+    if (shading == Shading::Megakernel) {  // F = 0 is resolved on the host, alike for both
       EXPECT_EQ(plain.rgba, renderWith(diffuseOnly, shading, 0.0f).rgba) << name;
+    }
   }
 }
 
