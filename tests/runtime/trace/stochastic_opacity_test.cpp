@@ -220,6 +220,54 @@ TEST(StochasticOpacity, ARayPassesEightSurfacesAndTheNinthIsShaded) {
   }
 }
 
+// An emitting quad of opacity 0.5 over a diffuse floor, sampled as a light (NEE of emissive
+// triangles, one ray a path so the floor's light is all light samples): each light sample takes
+// 0.5 x the quad's emission, the expectation of a path's ray that finds it (Cycles weighs the
+// expanded Principled's emission by Alpha). The same random numbers pick the same points as
+// for the opaque quad, so every floor pixel is half the opaque render's, to rounding; in the
+// megakernel and in the wavefront, whose light points' material pass applies the opacity.
+TEST(StochasticOpacity, ALightSampleTakesOpacityTimesTheEmission) {
+  auto glowScene = [](const char* glow) {
+    Scene scene;
+    scene.meshes.push_back(testing::quad(20.0f));
+    scene.meshes.push_back(testing::quad(1.0f));
+    scene.materials = {{"Floor", "", kFloor}, {"Glow", "", glow}};
+    scene.materials[1].emissionEstimate = glm::vec3(4.0f);
+    scene.materials[1].emissionKind = MaterialRef::EmissionKind::Constant;
+    scene.instances.push_back({0, 0, glm::mat4(1.0f)});
+    scene.instances.push_back({1, 1, glm::translate(glm::mat4(1.0f), glm::vec3(1.5f, 1, 0))});
+    scene.camera.position = {-3.0f, 3.0f, 0.0f};
+    scene.camera.target = {0.0f, 0.0f, 0.0f};
+    scene.camera.verticalFovDegrees = 40.0f;
+    return scene;
+  };
+  const Scene half = glowScene(
+      "material Glow;\nDiffuseBsdf Color=(0, 0, 0);\nEmissionOutput Color=(1, 1, 1) "
+      "Strength=4;\nOpacityOutput In=0.5;\n");
+  const Scene opaque = glowScene(
+      "material Glow;\nDiffuseBsdf Color=(0, 0, 0);\nEmissionOutput Color=(1, 1, 1) "
+      "Strength=4;\n");
+  for (const Variant& v : {kVariants[0], kVariants[2]}) {
+    const HdrImage a = renderWith(half, v, 4);
+    const HdrImage b = renderWith(opaque, v, 4);
+    int lit = 0;
+    double worst = 0.0;
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth / 2; ++x) {  // the floor on the camera's side of the quad
+        const float* p = a.pixel(x, y);
+        const float* q = b.pixel(x, y);
+        if (q[1] < 1e-3f)
+          continue;
+        ++lit;
+        worst = std::max(worst, std::abs(double(p[1]) - 0.5 * q[1]) / q[1]);
+      }
+    std::printf("%s: %d lit floor pixels, largest |half - opaque / 2| / opaque %.2g\n", v.name, lit,
+                worst);
+    EXPECT_GE(lit, 100) << v.name;
+    EXPECT_LT(worst, 1e-4) << v.name;
+  }
+}
+
 // A graph whose opacity is 1 (a constant 1, or Principled's default Alpha) links no alpha code,
 // and its scene renders byte-identically to the same scene whose graph writes no opacity.
 TEST(StochasticOpacity, OpacityOneLinksNothingAndRendersAsWithout) {
