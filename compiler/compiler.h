@@ -71,6 +71,10 @@ struct MaterialMetadata {
   std::optional<AmbientOcclusionSettings> ambientOcclusion;
   // Likewise `bevelNormal` (Blender's Bevel node): its rays' settings.
   std::optional<BevelSettings> bevel;
+  // The graph writes an opacity that may be below 1 (an opacity sink whose Alpha or In is
+  // linked or a constant below 1): the runtime lets paths and shadow rays pass its surface
+  // (docs/design/closures.md, "Alpha"). A sink left at its default of 1 is opaque.
+  bool opacityBelowOne = false;
 };
 
 struct CompiledMaterial {

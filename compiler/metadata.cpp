@@ -85,6 +85,29 @@ bool writesLobeNormal(const ResolvedNode& node) {
   return false;
 }
 
+// Whether an opacity sink (@output opacity: OpacityOutput's In, PrincipledOutput's Alpha) may
+// write an opacity below 1: its socket linked, or a constant below 1 (the sinks saturate it).
+// A sink of another shape counts as maybe below 1, so that no opacity is ever ignored.
+bool writesOpacityBelowOne(const ResolvedNode& node) {
+  const NodeType& type = *node.type;
+  if (std::find(type.outputsWritten.begin(), type.outputsWritten.end(), "opacity") ==
+      type.outputsWritten.end())
+    return false;
+  for (std::size_t socket = 0; socket < type.sockets.size(); ++socket) {
+    const std::string& name = type.sockets[socket].name;
+    if (type.sockets[socket].direction != Direction::In || (name != "Alpha" && name != "In"))
+      continue;
+    if (!node.inputs[socket])
+      return true;
+    const InputSource& source = *node.inputs[socket];
+    if (source.kind == InputSource::Kind::Link)
+      return true;
+    return std::any_of(source.constant.components.begin(), source.constant.components.end(),
+                       [](double c) { return c < 1.0; });
+  }
+  return true;
+}
+
 }  // namespace
 
 std::string formatShare(double share) {
@@ -108,6 +131,8 @@ MaterialMetadata collectMetadata(const ResolvedGraph& graph, const std::vector<s
       addUnique(meta.outputsWritten, output);
     if (writesLobeNormal(graph.nodes[node]))
       addUnique(meta.outputsWritten, "lobeNormals");
+    if (writesOpacityBelowOne(graph.nodes[node]))
+      meta.opacityBelowOne = true;
     const auto& overload = type.overloads[*chosen[node]];
     if (overload.derivativeInputs + overload.derivativeOutputs > 0)
       meta.needsDerivatives = true;

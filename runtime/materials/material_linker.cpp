@@ -276,10 +276,23 @@ std::string cutSwitches(const std::vector<LinkedMaterial>& materials) {
 // materials' graphs alone, for the switch dispatch's materials.glsl and the wavefront's
 // shadow pass (shadowSource, which also holds their includes). A switch of its own keeps the
 // other graphs out of the shadow ray's code: the shader compiler inlines every call.
+// materialStochasticOpacity, which says of a scene material whether a path's trace evaluates
+// its opacity at a hit (stochastic_opacity.glsl), for every materials.glsl.
+std::string stochasticOpacityTable(const std::vector<LinkedMaterial>& materials) {
+  std::string out =
+      "// Whether a path that hits scene material `materialId` evaluates its opacity in the\n"
+      "// trace (it may write one below 1); it stops at any other.\n"
+      "bool materialStochasticOpacity(uint materialId) {\n  switch (materialId) {\n";
+  for (std::size_t i = 0; i < materials.size(); ++i)
+    if (materials[i].stochasticOpacity)
+      out += "    case " + std::to_string(i) + "u:\n";
+  return out + "      return true;\n    default:\n      return false;\n  }\n}\n";
+}
+
 std::string transparentShadowTable(const std::vector<LinkedMaterial>& materials) {
   std::string out =
       "// Whether a shadow ray that hits scene material `materialId` evaluates its graph (it\n"
-      "// writes a Transparent lobe); it stops at any other.\n"
+      "// writes a Transparent lobe or an opacity below 1); it stops at any other.\n"
       "bool materialTransparentShadow(uint materialId) {\n  switch (materialId) {\n";
   for (std::size_t i = 0; i < materials.size(); ++i)
     if (materials[i].transparentShadow)
@@ -432,6 +445,15 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
       entry.transparentShadow = true;
       linked.transparentShadows = true;
     }
+    // An opacity below 1 is seen through by paths and shadow rays alike (Cycles expands a
+    // Principled BSDF's Alpha into a Transparent BSDF: shader_nodes.cpp
+    // PrincipledBsdfNode::expand); an opacity left at 1 costs nothing.
+    if (compiled->metadata.opacityBelowOne) {
+      entry.stochasticOpacity = true;
+      entry.transparentShadow = true;
+      linked.stochasticOpacity = true;
+      linked.transparentShadows = true;
+    }
     entry.textureCount = compiled->metadata.textures.size();
     entry.estimatedCost = compiled->metadata.estimatedCost;
     // A whole uv-only material's key is a uv texel: it is cached only with the uv domain.
@@ -545,7 +567,9 @@ LinkedMaterials linkMaterials(const std::vector<MaterialRef>& materials,
   linked.preludeSource.insert(linked.preludeSource.rfind("#endif"), cutInfoTable(linked.materials));
   linked.lookupRestSource = lookupRests(linked);
   if (linked.transparentShadows) {
-    const std::string table = transparentShadowTable(linked.materials);
+    std::string table = transparentShadowTable(linked.materials);
+    if (linked.stochasticOpacity)
+      table += stochasticOpacityTable(linked.materials);
     out.insert(out.rfind("#endif"), table + transparentShadowSwitch(linked.materials));
     linked.preludeSource.insert(linked.preludeSource.rfind("#endif"), table);
   }

@@ -57,10 +57,15 @@ struct LinkedMaterial {
   // Likewise the Bevel node's rays (samples 0: none; the input is the shading normal).
   float bevelRadius = 0.0f;
   std::uint32_t bevelSamples = 0;
-  // The graph calls TransparentBsdf (perhaps under a Mix or Add Shader): a shadow ray that
-  // hits it evaluates the graph and passes through, tinted by its Transparent lobes'
-  // weight (transparent_shadow.glsl); a shadow ray stops at any other material.
+  // The graph calls TransparentBsdf (perhaps under a Mix or Add Shader) or writes an opacity
+  // that may be below 1: a shadow ray that hits it evaluates the graph and passes through,
+  // tinted by its transparency (transparent_shadow.glsl); a shadow ray stops at any other
+  // material.
   bool transparentShadow = false;
+  // The graph writes an opacity that may be below 1 (compiler metadata opacityBelowOne): a
+  // path that hits it evaluates the graph in the trace and passes through with probability
+  // 1 - opacity (stochastic_opacity.glsl); it is also a transparentShadow material.
+  bool stochasticOpacity = false;
 };
 
 // LinkedMaterial::ambientOcclusionFlags, as ambient_occlusion.glsl's kAmbientOcclusion*.
@@ -131,6 +136,11 @@ struct LinkedMaterials {
   // materialTransparentShadow and, with the switch, evaluateMaterialAtShadowHit; scenes
   // without one trace opaque shadow rays, as they always did.
   bool transparentShadows = false;
+  // Some material writes an opacity that may be below 1 (LinkedMaterial::stochasticOpacity):
+  // the path tracer needs MG_STOCHASTIC_OPACITY (stochastic_opacity.glsl), and materials.glsl
+  // then holds materialStochasticOpacity; it implies transparentShadows, whose switch
+  // (evaluateMaterialAtShadowHit) the path's trace calls. Scenes without one trace as before.
+  bool stochasticOpacity = false;
   // shadow_materials.glsl for the wavefront's shadow pass: the maybe-transparent graphs'
   // includes and evaluateMaterialAtShadowHit over them (empty without such a material).
   std::string shadowSource;

@@ -156,7 +156,9 @@ std::vector<MaterialRef::EmissionKind> emissionKindsVerified(const Scene& scene,
     auto kind = scene.materials[i].emissionKind;
     if (kind != MaterialRef::EmissionKind::Graph) {
       const LinkedMaterial* m = i < linked.materials.size() ? &linked.materials[i] : nullptr;
-      bool constant = m && m->textureCount == 0;
+      // An opacity below 1 scales what NEE takes from an emitter (Cycles' expanded Principled
+      // weighs its emission by Alpha), so its graph is evaluated at the light sample.
+      bool constant = m && m->textureCount == 0 && !m->stochasticOpacity;
       if (constant)
         for (const std::string& input : m->inputsUsed)
           if (!(kind == MaterialRef::EmissionKind::ConstantFront && input == "backfacing"))

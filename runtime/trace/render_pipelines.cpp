@@ -125,10 +125,10 @@ std::vector<std::string> pathTracerDefines(const ShaderBuild& b, const MaterialC
     defines.push_back("MG_EMISSIVE_NEE=1");
   if (b.inputs.materials->neeEvaluatesEmission && !b.floor)
     defines.push_back("MG_NEE_EVALUATES_EMISSION=1");
-  // Shadow rays through Transparent lobes (transparent_shadow.glsl), only for scenes with a
-  // material that may be transparent; the others keep their opaque shadow rays and kernels.
-  // The floor evaluates no graph, so its shadows stay opaque.
-  if (!b.omitBsdfLobes && b.inputs.materials->linked.transparentShadows)
+  // Shadow rays through Transparent lobes and opacities below 1 (transparent_shadow.glsl),
+  // only for scenes with a material that may be transparent; the others keep their opaque
+  // shadow rays and kernels. The floor evaluates no graph, so its shadows stay opaque.
+  if (!b.floor && b.inputs.materials->linked.transparentShadows)
     defines.push_back("MG_TRANSPARENT_SHADOWS=1");
   // Cycles' Filter Glossy (path_shading.glsl filterGlossy), only for renders that ask for it,
   // so that the others' path state and kernels stay as they were. The constant is 1 / F, as
@@ -137,6 +137,10 @@ std::vector<std::string> pathTracerDefines(const ShaderBuild& b, const MaterialC
     defines.push_back("MG_FILTER_GLOSSY_INVERSE=uintBitsToFloat(" +
                       std::to_string(std::bit_cast<std::uint32_t>(1.0f / b.inputs.filterGlossy)) +
                       "u)");
+  // Paths through opacities below 1 (stochastic_opacity.glsl), likewise only where a graph may
+  // write one: the other scenes' traces stay as they were.
+  if (!b.floor && b.inputs.materials->linked.stochasticOpacity)
+    defines.push_back("MG_STOCHASTIC_OPACITY=1");
   return defines;
 }
 

@@ -674,6 +674,60 @@ class ClosureChoiceTest(unittest.TestCase):
         self.assertEqual(result.warnings, [])
 
 
+    def test_a_mixed_principled_bsdfs_alpha_is_a_transparent_lobe(self):
+        # Mix(Principled of Alpha 0.4 with emission, Glossy): written as Cycles expands the
+        # Principled BSDF (PrincipledBsdfNode::expand): a MixShader of Fac Alpha splits its
+        # weight into a white TransparentBsdf (1 - Alpha) and the PrincipledBsdf (Alpha), and
+        # its emission takes Alpha too. Three lobes fit one hit: no choice, and no warning.
+        tree = Tree()
+        out = output_node(tree)
+        p = principled_v1(tree)
+        p.inputs[12].default_value = (1.0, 0.5, 0.0, 1)  # Emission
+        p.inputs[14].default_value = 0.4  # Alpha
+        gl = tree.add(Node('ShaderNodeBsdfGlossy', 'Glossy',
+                           [Sock('Color', 'RGBA', (0.9, 0.9, 0.9, 1)),
+                            Sock('Roughness', 'VALUE', 0.2), Sock('Normal', 'VECTOR', (0, 0, 0))],
+                           [Sock('BSDF', 'SHADER')], distribution='GGX'))
+        mix = mix_shader(tree, 'Mix', 0.25)
+        tree.link(p.outputs[0], mix.inputs[1])
+        tree.link(gl.outputs[0], mix.inputs[2])
+        tree.link(mix.outputs[0], out.inputs[0])
+        result, (text,) = export([Material('Mat', tree)])
+        self.assertIn('MixShader Fac=0.25 Weight=1 WeightA>0 WeightB>1;', text)
+        self.assertIn('MixShader Fac=0.400000006 Weight<0 WeightA>2 WeightB>3;', text)
+        self.assertIn('TransparentBsdf Color=(1, 1, 1) Weight<2;', text)
+        self.assertIn('Saturate In=0.400000006 Out>4;', text)
+        self.assertIn('Mul A<4 B<0 Out>5;', text)
+        self.assertIn('Layers=0 Weight<3;', text)
+        self.assertIn('EmissionOutput', text)
+        self.assertNotIn('ChooseShader', text)
+        self.assertEqual(result.warnings, [])
+        # Alpha 1 (the default) writes no Transparent lobe at all.
+        p.inputs[14].default_value = 1.0
+        result, (text,) = export([Material('Mat', tree)])
+        self.assertNotIn('TransparentBsdf', text)
+        self.assertIn('Layers=0 Weight<0;', text)
+        # With its sheen and clearcoat (3 lobes) and Alpha the Principled side needs 4, the
+        # Glossy one more: the Mix chooses, and each side keeps its own lobes.
+        p.inputs[14].default_value = 0.4
+        p.inputs[7].default_value = 0.5
+        p.inputs[8].default_value = 1.0
+        result, (text,) = export([Material('Mat', tree)])
+        self.assertIn('ChooseShader WeightA<0 WeightB<1 Stream=0 ChosenA>2 ChosenB>3;', text)
+        self.assertIn('MixShader Fac=0.400000006 Weight<2 WeightA>4 WeightB>5;', text)
+        self.assertIn('TransparentBsdf Color=(1, 1, 1) Weight<4;', text)
+        self.assertIn('Layers=3 Weight<5;', text)
+        self.assertEqual(result.warnings, [])
+        # With its transmission too, its four lobes leave no room for the Transparent one: the
+        # Alpha is warned and dropped, never written as a fifth lobe the compiler would refuse.
+        p.inputs[9].default_value = 0.5
+        result, (text,) = export([Material('Mat', tree)])
+        self.assertNotIn('TransparentBsdf', text)
+        self.assertIn('Layers=7 Weight<', text)
+        msgs = ' | '.join(w[2] for w in result.warnings)
+        self.assertIn('Alpha of a Principled BSDF under a Mix or Add Shader is not carried', msgs)
+
+
 class SpecWriterTest(unittest.TestCase):
     def test_uncarried_input_and_output_are_reported(self):
         tree = Tree()

@@ -27,7 +27,8 @@ APPROXIMATIONS = {
                                 'roughness, IOR sockets) as lobes `PrincipledLayers`, Clearcoat '
                                 'Normal as the clearcoat lobe\'s own normal; under a Mix or Add '
                                 'Shader with other BSDFs (3.x) `PrincipledBsdf` lobes (with its '
-                                'Normal and Clearcoat Normal), its Alpha not carried (warned); '
+                                'Normal and Clearcoat Normal), its Alpha a Transparent lobe (as '
+                                'Cycles expands it); '
                                 'Subsurface, Anisotropic, Multiscatter GGX not carried (warned)',
     'ShaderNodeBsdfDiffuse': 'Principled with Specular 0, Roughness 1 (Oren-Nayar dropped)',
     'ShaderNodeBsdfGlossy': 'Principled metal (distribution dropped)',

@@ -1,7 +1,8 @@
 // Transparent shadows, for both architectures (the megakernel's sampleDirectLight, the
 // wavefront's shadow pass): a shadow ray passes through the surfaces of materials that may be
-// transparent (the linker's materialTransparentShadow: the graph calls TransparentBsdf),
-// attenuated at each by the summed weight of the Transparent lobes its graph writes there,
+// transparent (the linker's materialTransparentShadow: the graph calls TransparentBsdf or
+// writes an opacity below 1), attenuated at each by the summed weight of the Transparent lobes
+// its graph writes there and the share its opacity lets through (transparencyOf),
 // as Cycles 3.4 does by default (kernel/integrator/intersect_shadow.h
 // integrate_intersect_shadow_transparent, shade_shadow.h integrate_transparent_shadow,
 // kernel/closure/bsdf.h's transparent extinction). Compiled only with MG_TRANSPARENT_SHADOWS.
@@ -18,13 +19,22 @@
 const uint kShadowTransparentHitsMax = 8u;
 
 // The transparency of a material's outputs at a shadow hit: the summed weight of its
-// Transparent lobes (Cycles' shader_bsdf_transparency, closure_transparent_extinction).
+// Transparent lobes (Cycles' shader_bsdf_transparency, closure_transparent_extinction), and
+// with MG_STOCHASTIC_OPACITY the see-through share of its opacity alpha: Cycles expands a
+// Principled BSDF's Alpha into Mix(Alpha, Transparent, surface) (shader_nodes.cpp
+// PrincipledBsdfNode::expand), whose transparent weight is (1 - alpha) + alpha * the surface's.
 vec3 transparencyOf(MaterialOutputs m) {
   vec3 transparency = vec3(0.0);
+#ifndef MG_OMIT_BSDF_LOBES
   int count = min(m.lobeCount, MG_MAX_LOBES);
   for (int i = 0; i < MG_MAX_LOBES; ++i)
     if (i < count && int(m.lobeWeight[i].w) == MG_LOBE_TRANSPARENT)
       transparency += max(m.lobeWeight[i].rgb, vec3(0.0));
+#endif
+#ifdef MG_STOCHASTIC_OPACITY
+  float alpha = clamp(m.opacity, 0.0, 1.0);
+  transparency = vec3(1.0 - alpha) + alpha * transparency;
+#endif
   return transparency;
 }
 

@@ -36,6 +36,8 @@ no clamping, no light threshold) and DIR/export/ (the memograph exporter with --
   (ao: plain; ao_local: the floor Only Local, the cube Inside), regions in DIR/tiles.json.
 - bevel: a cube emitting the tilt of its Bevel node's normal from the shading normal;
   regions: the top and front faces' middles and the strips along the edge between them.
+- alpha_cutout: leaf cards whose Principled Alpha is a cut-out texture, and a Principled
+  BSDF of Alpha 0.5 under a Mix with a Glossy, before a wall over a floor, under a sun.
 - object_normal: Texture Coordinate Normal as emission on a rotated, unevenly scaled sphere
   and plane, black world (the object-space normal through the object's transform).
 """
@@ -713,6 +715,75 @@ def transparent_shadows_scene():
         [('lit', [(x, y, 0.0) for x in (-0.8, -0.5) for y in (y0, y1)])]
 
 
+def leaf_card(name, color, alpha_node):
+    """A Principled BSDF leaf card whose Alpha is alpha_node(nt) (a cut-out: 0 or 1)."""
+    m = bpy.data.materials.new(name)
+    m.use_nodes = True
+    nt = m.node_tree
+    p = nt.nodes['Principled BSDF']
+    p.inputs['Base Color'].default_value = (*color, 1)
+    p.inputs['Roughness'].default_value = 0.6
+    nt.links.new(alpha_node(nt), p.inputs['Alpha'])
+    return m
+
+
+def thresholded_noise(nt):
+    """Noise Texture Fac > 0.5: irregular holes, as an artist cuts a leaf out."""
+    noise = nt.nodes.new('ShaderNodeTexNoise')
+    noise.inputs['Scale'].default_value = 4.0
+    noise.inputs['Detail'].default_value = 2.0
+    cut = nt.nodes.new('ShaderNodeMath')
+    cut.operation = 'GREATER_THAN'
+    cut.inputs[1].default_value = 0.5
+    nt.links.new(noise.outputs['Fac'], cut.inputs[0])
+    return cut.outputs[0]
+
+
+def checker_fac(nt):
+    """Checker Texture Fac (0 or 1): a fence of square holes."""
+    tex = nt.nodes.new('ShaderNodeTexChecker')
+    tex.inputs['Scale'].default_value = 5.0
+    return tex.outputs['Fac']
+
+
+def alpha_cutout_scene():
+    """Alpha (stochastic_opacity.glsl): two vertical leaf cards whose Principled Alpha is a
+    cut-out (thresholded Noise, Checker), and a third card of a Principled BSDF of Alpha 0.5
+    mixed with a Glossy BSDF (the exporter writes the Alpha as a Transparent lobe), before a
+    blue wall over a grey floor, under a sky and a sun that casts the cards' shadows on both."""
+    unbiased_glossy()
+    world(color=(0.3, 0.35, 0.45), strength=0.3)
+    plane('Floor', 8.0, diffuse('Floor', (0.6, 0.6, 0.6)))
+    plane('Wall', 8.0, diffuse('Wall', (0.2, 0.35, 0.7)), location=(0, 1.5, 2),
+          rotation=(math.radians(90), 0, 0))
+    upright = (math.radians(90), 0, 0)
+    plane('LeafNoise', 1.0, leaf_card('LeafNoise', (0.15, 0.5, 0.1), thresholded_noise),
+          location=(-1.1, 0.9, 0.75), rotation=upright)
+    plane('LeafChecker', 1.0, leaf_card('LeafChecker', (0.6, 0.4, 0.1), checker_fac),
+          location=(0.0, 1.0, 0.75), rotation=upright)
+    mixed = bpy.data.materials.new('MixedAlpha')
+    mixed.use_nodes = True
+    nt = mixed.node_tree
+    nt.nodes.clear()
+    p = nt.nodes.new('ShaderNodeBsdfPrincipled')
+    p.inputs['Base Color'].default_value = (0.8, 0.15, 0.1, 1)
+    p.inputs['Roughness'].default_value = 0.5
+    p.inputs['Alpha'].default_value = 0.5
+    glossy = bsdf_node(nt, 'ShaderNodeBsdfGlossy', Color=(0.8, 0.8, 0.8), Roughness=0.3)
+    mix = nt.nodes.new('ShaderNodeMixShader')
+    mix.inputs['Fac'].default_value = 0.3
+    nt.links.new(p.outputs[0], mix.inputs[1])
+    nt.links.new(glossy.outputs[0], mix.inputs[2])
+    nt.links.new(mix.outputs[0], nt.nodes.new('ShaderNodeOutputMaterial').inputs['Surface'])
+    plane('MixedAlpha', 1.0, mixed, location=(1.1, 0.9, 0.75), rotation=upright)
+    # Light travelling towards the wall (+y) and +x, down at 35 degrees: each card's shadow
+    # falls on the wall and the floor half a metre to its right.
+    light('SUN', 'Sun', (0, 0, 5), rotation=(math.radians(55), 0, math.radians(-40)),
+          energy=4.0, angle=0.0)
+    camera((0, -3.0, 1.0), rotation=(math.radians(85), 0, 0), lens=30)
+    return None
+
+
 def region_boxes(regions, size):
     """Pixel boxes of regions given by four world-space corners each: the box inside their
     projection, so no pixel sees an edge."""
@@ -762,6 +833,7 @@ SCENES = {
     'bsdf_normals': bsdf_normals_scene,
     'transparent_shadows': transparent_shadows_scene,
     'bsdf_glossy_filtered': lambda: bsdf_scene('glossy_ggx', filter_glossy=True),
+    'alpha_cutout': alpha_cutout_scene,
 }
 SCENES.update({'bsdf_' + tree: (lambda tree=tree: bsdf_scene(tree)) for tree in BSDF_TREES})
 

@@ -26,6 +26,11 @@ each linked Normal goes to its sink's Normal input, and an unlinked one means th
 normal, the interpolated one (Cycles' sd->N). A Principled BSDF among them (PrincipledBsdf)
 takes its Normal the same way and its Clearcoat Normal as ClearcoatNormal (unlinked under a
 linked Normal: the interpolated normal, as Cycles' clearcoat takes sd->N).
+
+A Principled BSDF among them whose Alpha is linked or not 1 is written as Cycles expands it
+(PrincipledBsdfNode::expand): its lobes and emission at weight x Alpha, and a white
+TransparentBsdf at weight x (1 - Alpha), one lobe more for the hit (where its layers already
+take all MAX_LOBES, the Alpha is warned and dropped).
 """
 
 from . import compat
@@ -106,7 +111,7 @@ class _Plan:
             return _Need()
         if _is_v1_principled(flat):
             self.principled += 1
-            return _Need(_principled_lobes(flat), 1)
+            return _Need(_principled_lobes(flat) + (1 if _alpha_lobe(flat) else 0), 1)
         if kind not in ('ShaderNodeMixShader', 'ShaderNodeAddShader'):
             return None
         if kind == 'ShaderNodeMixShader':
@@ -327,9 +332,32 @@ class _Writer:
             mw.warn(flat, 'Multiscatter GGX is written as single-scatter GGX (Cycles uses '
                     'multiscatter above Roughness 0.075, and for Transmission above 0.05: rough '
                     'speculars are brighter there)')
-        if shaders._in_use(flat, 'Alpha') and not _is_const(flat, 'Alpha', 1.0):
-            mw.warn(flat, 'Alpha of a Principled BSDF under a Mix or Add Shader is not carried: '
-                    'ignored (opaque)')
+        if _has_alpha(flat) and not _alpha_lobe(flat):
+            mw.warn(flat, 'Alpha of a Principled BSDF under a Mix or Add Shader is not carried '
+                    'when its sheen, clearcoat and transmission are all in use (with them its '
+                    'Transparent share would be a fifth lobe): ignored (opaque)')
+        if _alpha_lobe(flat):
+            # Cycles' expansion (scene/shader_nodes.cpp PrincipledBsdfNode::expand): Mix(Fac =
+            # Alpha, Transparent BSDF (white), Principled BSDF + its emission), so the
+            # Principled lobes and the emission take weight x Alpha and a white Transparent
+            # lobe weight x (1 - Alpha); the Transparent lobe is one more of the hit's lobes
+            # (_Plan counts it).
+            b = mw.builder
+            alpha = shaders._in(mw, flat, 'Alpha')
+            transparent, principled = b.new_link(), b.new_link()
+            b.add('MixShader', [('Fac', alpha), ('Weight', weight)],
+                  [('WeightA', transparent), ('WeightB', principled)],
+                  comment=flat.label + ' Alpha')
+            b.add('TransparentBsdf', [('Color', Literal((1.0, 1.0, 1.0))),
+                                      ('Weight', transparent)], [],
+                  comment=flat.label + ' Alpha: the transparent share')
+            weight = principled
+            if _emits(flat):
+                clamped = b.new_link()  # MixShader's Fac is clamped so (svm_node_mix_closure)
+                b.add('Saturate', [('In', alpha)], [('Out', clamped)],
+                      comment=flat.label + ' Alpha')
+                emission_weight = self._weighted(clamped, emission_weight,
+                                                 flat.label + ' Alpha: emission weight')
         operands = [('BaseColor', shaders._in(mw, flat, 'Base Color')),
                     ('Metallic', shaders._in(mw, flat, 'Metallic')),
                     ('Roughness', shaders._in(mw, flat, 'Roughness')),
@@ -348,6 +376,19 @@ class _Writer:
             emitted = self._weighted(color, strength, flat.label + ' emission x strength')
             self.emissions.append(self._weighted(emitted, emission_weight,
                                                  flat.label + ' weight'))
+
+
+def _has_alpha(flat):
+    """Whether a Principled BSDF's Alpha is linked or not 1: Cycles then expands it into a
+    Mix with a Transparent BSDF (PrincipledBsdfNode::expand)."""
+    ident = compat.find_input(flat.node, 'Alpha')
+    return ident is not None and not _is_const(flat, ident, 1.0)
+
+
+def _alpha_lobe(flat):
+    """Whether a mixed Principled BSDF's Alpha is written as a Transparent lobe: it has one
+    (_has_alpha) and its lobes with that one fit a hit."""
+    return _has_alpha(flat) and _principled_lobes(flat) + 1 <= MAX_LOBES
 
 
 def _is_const(flat, name, value):

@@ -56,16 +56,6 @@ bool dispatchTracesPath(uint path, uint pathCount) {
 #include "hit_feedback.glsl"
 #endif
 
-// A path ray, counted with `weight` (0, and always without MG_HIT_FEEDBACK: not counted):
-// the raygen or compute shader counts after the trace (countHitFeedback).
-HitInfo traceCounted(vec3 origin, vec3 direction, uint mask, uint weight) {
-  HitInfo hit = traceClosest(origin, direction, kRayTMax, mask);
-#ifdef MG_HIT_FEEDBACK
-  countHitFeedback(origin, direction, hit, weight);
-#endif
-  return hit;
-}
-
 #if defined(MG_MATERIAL_FLOOR)
 #include "material_floor.glsl"
 #elif defined(MG_MATERIAL_CALLABLES)
@@ -146,6 +136,37 @@ void evaluateMaterial(bool hasHit, uint materialId, uvec2 object, MaterialInputs
 #ifdef MG_TRANSPARENT_SHADOWS
 #include "transparent_shadow.glsl"
 #endif
+#ifdef MG_STOCHASTIC_OPACITY
+#include "stochastic_opacity.glsl"
+#endif
+
+// A path ray, counted with `weight` (0, and always without MG_HIT_FEEDBACK: not counted):
+// the raygen or compute shader counts after the trace (countHitFeedback). With
+// MG_STOCHASTIC_OPACITY the ray passes surfaces by their opacity (stochastic_opacity.glsl),
+// drawing from the key of the vertex it finds, `vertexKey` (pixel, sample, vertex, seed), and
+// its hit is the surface it stops at; `path` is its Light Path state.
+HitInfo traceCounted(vec3 origin, vec3 direction, uint mask, uint weight, PathState path,
+                     uint vertexKey, inout uint rays) {
+#ifdef MG_STOCHASTIC_OPACITY
+  HitInfo hit = traceThroughOpacity(origin, direction, kRayTMax, mask, path, vertexKey, rays);
+#else
+  HitInfo hit = traceClosest(origin, direction, kRayTMax, mask);
+#endif
+#ifdef MG_HIT_FEEDBACK
+  countHitFeedback(origin, direction, hit, weight);
+#endif
+  return hit;
+}
+
+// The key of the path vertex that a ray of `bounce` (0: the camera's) finds, for
+// traceCounted's crossings: the vertex's rng.glsl key, which only MG_STOCHASTIC_OPACITY reads.
+uint crossingKey(uint pixelIndex, uint sampleIndex, uint bounce) {
+#ifdef MG_STOCHASTIC_OPACITY
+  return rngForPathVertex(pixelIndex, sampleIndex, bounce + 1u, frame.image.w).key;
+#else
+  return 0u;
+#endif
+}
 #if defined(MG_INTEGRATOR_AO) || !defined(MG_OMIT_TRACED_INPUTS)
 #include "ambient_occlusion.glsl"
 #endif
@@ -182,6 +203,12 @@ vec3 sampleDirectLight(ShadingPoint p, PathState path, bool mis, inout Rng rng,
     MaterialOutputs m;
     evaluateMaterialDirect(light.materialId, light.inputs, m);
     s.incident *= m.emission;
+#ifdef MG_STOCHASTIC_OPACITY
+    // A path's ray finds the emitter with probability alpha (stochastic_opacity.glsl), so its
+    // expected emission is alpha * E: a light sample takes the same (Cycles weighs the expanded
+    // Principled's emission by Alpha). The linker makes such emitters' emission kind Graph.
+    s.incident *= clamp(m.opacity, 0.0, 1.0);
+#endif
   }
 #elif defined(MG_EMISSIVE_NEE)
   // The floor's free materials emit nothing; elsewhere the host defines
@@ -218,8 +245,12 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
   primaryHit.t = -1.0;
   if (sharedPrimary && inside) {
     primaryRay(pixel, vec2(0.5), primaryOrigin, primaryDirection);
-    primaryHit = traceCounted(primaryOrigin, primaryDirection, kRayMaskNoLightQuads,
-                              feedbackWeight);
+    // Its crossings draw from the first path's key, as its closure seed does: every path of
+    // the pixel shares the hit, as the wavefront's round 0 traces it for the later rounds.
+    uint pixelIndex = pixel.y * frame.image.x + pixel.x;
+    primaryHit = traceCounted(
+        primaryOrigin, primaryDirection, kRayMaskNoLightQuads, feedbackWeight, cameraPathState(),
+        crossingKey(pixelIndex, rngSampleIndex(frame.image.z, pathCount, 0u), 0u), rays);
     rays += 1u;
   }
 
@@ -267,7 +298,8 @@ vec3 tracePixel(uvec2 pixel, bool inside, inout uint rays) {
         } else {
           // Camera rays skip lights' quads (Cycles 3.4 shows no area lamp to the camera).
           hit = traceCounted(origin, direction, bounce == 0u ? kRayMaskNoLightQuads : kRayMaskAll,
-                             pathWeight);
+                             pathWeight, pathState, crossingKey(pixelIndex, sampleIndex, bounce),
+                             rays);
           rays += 1u;
         }
         if (hit.t < 0.0) {

@@ -60,7 +60,8 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #endif
 #if defined(MG_WAVEFRONT_MATERIAL) || (defined(MG_WAVEFRONT_LOOKUP) && defined(MG_CACHE_CUTS)) || \
-    (defined(MG_WAVEFRONT_SHADOW) && defined(MG_TRANSPARENT_SHADOWS))
+    (defined(MG_WAVEFRONT_SHADOW) && defined(MG_TRANSPARENT_SHADOWS)) || \
+    (defined(MG_WAVEFRONT_TRACE) && defined(MG_STOCHASTIC_OPACITY))
 #extension GL_EXT_nonuniform_qualifier : require  // material_textures.glsl
 #endif
 #ifdef MG_CACHE_CLOCK_COUNTER
@@ -141,16 +142,21 @@ void evaluateMaterialRestSwitch(uint materialId, MaterialInputs inputs,
 #endif  // MG_CACHE_CUTS
 #endif  // MG_CACHE_TEXEL
 #endif
-#if defined(MG_WAVEFRONT_SHADOW) && defined(MG_TRANSPARENT_SHADOWS)
+#if (defined(MG_WAVEFRONT_SHADOW) && defined(MG_TRANSPARENT_SHADOWS)) || \
+    (defined(MG_WAVEFRONT_TRACE) && defined(MG_STOCHASTIC_OPACITY))
 // The maybe-transparent graphs and their switch, evaluateMaterialAtShadowHit (the host's
-// shadow_materials.glsl): the shadow pass evaluates them where its rays hit them, in place,
-// as the megakernel does (transparent_shadow.glsl).
+// shadow_materials.glsl): the shadow pass evaluates them where its rays hit them, and the
+// trace pass where its rays hit a surface of opacity maybe below 1, in place, as the megakernel
+// does (transparent_shadow.glsl, stochastic_opacity.glsl).
 #include "shadow_materials.glsl"
 #include "material_textures.glsl"
 #endif
 #include "path_shading.glsl"
 #if defined(MG_WAVEFRONT_SHADOW) && defined(MG_TRANSPARENT_SHADOWS)
 #include "transparent_shadow.glsl"
+#endif
+#if defined(MG_WAVEFRONT_TRACE) && defined(MG_STOCHASTIC_OPACITY)
+#include "stochastic_opacity.glsl"
 #endif
 #ifdef MG_WAVEFRONT_TRACED_INPUTS
 #include "ambient_occlusion.glsl"  // setTracedInputs, the megakernel's; bevel.glsl with it
@@ -727,8 +733,22 @@ void main() {
     } else
 #endif
     {
+#ifdef MG_STOCHASTIC_OPACITY
+      // Through surfaces by their opacity (stochastic_opacity.glsl), drawing from the key of
+      // the vertex the ray finds, as the megakernel's traceCounted does: with --shared-primary
+      // the camera ray's from round 0's sample. The segments past the first count as rays.
+      bool sharedRound = push.step.y == 0u && (frame.path.z & kFlagSharedPrimaryRay) != 0u;
+      uint vertexKey = rngForPathVertex(pixelOfSlot(slot), sampleIndexOf(sharedRound ? 0u : push.step.x),
+                                        push.step.y + 1u, frame.image.w).key;
+      uint crossings = 0u;
+      hit = traceThroughOpacity(origin, direction, kRayTMax,
+                                push.step.y == 0u ? kRayMaskNoLightQuads : kRayMaskAll,
+                                loadPathState(slot), vertexKey, crossings);
+      if (crossings > 0u) atomicAdd(counters.rays, crossings);
+#else
       hit = traceClosest(origin, direction, kRayTMax,
                          push.step.y == 0u ? kRayMaskNoLightQuads : kRayMaskAll);
+#endif
     }
     vec4 hitField = uintBitsToFloat(
         uvec4(hit.instanceIndex, hit.primitiveIndex, floatBitsToUint(hit.barycentrics)));
@@ -1069,6 +1089,10 @@ void storeEvaluated(uint slot, bool lightPoint, MaterialOutputs m) {
 #ifdef MG_MATERIAL_LIGHT_POINTS
   if (lightPoint) {
     vec3 contribution = pathState[fieldIndex(kFieldShadowContribution, slot)].rgb;
+#ifdef MG_STOCHASTIC_OPACITY
+    // The emitter's expected emission, alpha * E, as the megakernel's sampleDirectLight takes it.
+    contribution *= clamp(m.opacity, 0.0, 1.0);
+#endif
     pathState[fieldIndex(kFieldRadiance, slot)].rgb += contribution * m.emission;
     return;
   }
