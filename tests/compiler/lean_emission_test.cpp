@@ -40,8 +40,9 @@ TEST(LeanEmission, AnIncludeCarriesOnlyThePreludeFunctionsItReaches) {
     EXPECT_EQ(code.find("float3_D mg_mul("), std::string::npos);
     // The interface's declarations are most of it: MaterialInputs with its traced inputs,
     // objectNormal and generatedScale, MaterialOutputs with its BSDF lobes, their default and
-    // the lobe kinds with the Principled layers' (14,001 bytes of GLSL, 13,563 of HLSL).
-    EXPECT_LT(code.size(), 14'300u) << "the whole prelude is ~56 KB";
+    // the lobe kinds with the Principled layers' and the Sharp distribution's mark (14,321
+    // bytes of GLSL, 13,883 of HLSL).
+    EXPECT_LT(code.size(), 14'500u) << "the whole prelude is ~56 KB";
   }
   EXPECT_NE(run.material->glsl.find("#define float3 vec3"), std::string::npos);
   EXPECT_EQ(run.material->hlsl.find("#define float3 vec3"), std::string::npos);

@@ -294,9 +294,8 @@ const Option kOptions[] = {
        o.renderer.cache.valueFormat = runtime::parseCacheValueFormat(v.text);
      }},
     {"--cache-refresh", ValueType::Whole, "N",
-     "texel cache: a key lives N frames, then its cell is filled again at\n"
-     "another point of the cell, each key at its own phase, so accumulated\n"
-     "frames average the cell's values; 0: never",
+     "texel cache: refill each key at another point of its cell every N\n"
+     "frames, each at its own phase; 0: never",
      "0", kShown, S::Memoization, kAdvanced, N::Cache, kBoth,
      [](O& o, const Value& v) { o.renderer.cache.refreshFrames = v.whole; },
      "a number of frames (0..65536)", 0, 65536},

@@ -18,7 +18,8 @@ namespace memograph::runtime {
 
 // "MGPACK" and two zero bytes, then the format version (little-endian u32).
 inline constexpr std::string_view kScenePackMagic{"MGPACK\0\0", 8};
-inline constexpr std::uint32_t kScenePackVersion = 1;
+// Version 2 added the scene's Filter Glossy after the emissive light sampling flag.
+inline constexpr std::uint32_t kScenePackVersion = 2;
 inline constexpr std::string_view kScenePackExtension = ".mgpack";
 
 // A texture as a material graph names it (the graph's own texture path, e.g.

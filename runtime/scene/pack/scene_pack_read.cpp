@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cmath>
 
 #include "compiler/input_file.h"
 #include "runtime/scene/pack/pack_bytes.h"
@@ -167,6 +168,11 @@ ScenePack decodePayload(ByteReader& in) {
   scene.camera = readCamera(in);
   readEnvironment(in, scene.environment);
   scene.emissiveLightSampling = in.u8("emissive light sampling flag");
+  const std::size_t filterGlossyAt = in.offset();
+  scene.filterGlossy = in.f32("Filter Glossy");
+  if (!(scene.filterGlossy >= 0.0f) || !std::isfinite(scene.filterGlossy))
+    throw PackFormatError(
+        filterGlossyAt, "Filter Glossy " + std::to_string(scene.filterGlossy) + " (a number >= 0)");
   const std::size_t animatedAt = in.offset();
   scene.animatedMeshes = in.array<std::uint32_t>("animated meshes");
   scene.animatedMotions = in.array<gpu::VertexMotion>("vertex motions");

@@ -105,6 +105,7 @@ std::string encodeScenePack(const ScenePack& pack) {
   writeCamera(payload, scene.camera);
   writeEnvironment(payload, scene.environment);
   payload.u8(scene.emissiveLightSampling);
+  payload.value(scene.filterGlossy);
   payload.array(scene.animatedMeshes);
   payload.array(scene.animatedMotions);
   payload.count(pack.cameraPath.size());
@@ -115,7 +116,7 @@ std::string encodeScenePack(const ScenePack& pack) {
   pack::ByteWriter file;
   file.bytes().append(kScenePackMagic);
   file.value(kScenePackVersion);
-  file.value(std::uint32_t(0));  // flags: none defined in version 1
+  file.value(std::uint32_t(0));  // flags: none defined
   file.value(std::uint64_t(payload.bytes().size()));
   file.value(pack::fnv1a64(payload.bytes()));
   file.bytes() += payload.bytes();

@@ -54,6 +54,7 @@ ScenePack makePack() {
   scene.environment.imageHeight = 1;
   scene.environment.imageRgb = {1, 2, 3, 4, 5, 6};
   scene.emissiveLightSampling = false;
+  scene.filterGlossy = 0.75f;
   scene.animatedMeshes = {1};
   gpu::VertexMotion motion{};
   motion.drift = {0.1f, 0, 0, 0};
@@ -113,6 +114,7 @@ TEST(ScenePack, ARoundTripKeepsEveryFieldAndGivesTheSameBytes) {
   EXPECT_EQ(b.environment.imagePath, "sky.exr");
   EXPECT_EQ(b.environment.constantRadiance, a.environment.constantRadiance);
   EXPECT_FALSE(b.emissiveLightSampling);
+  EXPECT_EQ(b.filterGlossy, 0.75f);  // a Blender scene's Filter Glossy travels to the GPU bundle
   EXPECT_EQ(b.animatedMeshes, a.animatedMeshes);
   ASSERT_EQ(b.animatedMotions.size(), 1u);
   EXPECT_EQ(b.animatedMotions[0].drift.x, 0.1f);
@@ -151,9 +153,9 @@ TEST(ScenePack, AnotherFileOrVersionIsNamed) {
   EXPECT_FALSE(decodeScenePack("glTF and more bytes than a header has, surely", "a.mgpack", error));
   EXPECT_EQ(error, "a.mgpack: offset 0: not a memograph scene pack (no MGPACK magic)");
   std::string bytes = encodeScenePack(makePack());
-  bytes[8] = 2;
+  bytes[8] = 3;
   EXPECT_FALSE(decodeScenePack(bytes, "a.mgpack", error));
-  EXPECT_NE(error.find("offset 8: format version 2; this memograph reads version 1"),
+  EXPECT_NE(error.find("offset 8: format version 3; this memograph reads version 2"),
             std::string::npos)
       << error;
 }
