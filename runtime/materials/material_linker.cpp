@@ -278,26 +278,33 @@ std::string cutSwitches(const std::vector<LinkedMaterial>& materials) {
 // other graphs out of the shadow ray's code: the shader compiler inlines every call.
 // materialStochasticOpacity, which says of a scene material whether a path's trace evaluates
 // its opacity at a hit (stochastic_opacity.glsl), for every materials.glsl.
-std::string stochasticOpacityTable(const std::vector<LinkedMaterial>& materials) {
+
+// A GLSL function `bool NAME(uint materialId)` that is true for the scene materials whose
+// member `flag` is set, after the comment `comment` (lines of `// `).
+std::string materialFlagTable(const std::vector<LinkedMaterial>& materials, const char* name,
+                              const char* comment, bool LinkedMaterial::*flag) {
   std::string out =
-      "// Whether a path that hits scene material `materialId` evaluates its opacity in the\n"
-      "// trace (it may write one below 1); it stops at any other.\n"
-      "bool materialStochasticOpacity(uint materialId) {\n  switch (materialId) {\n";
+      std::string(comment) + "bool " + name + "(uint materialId) {\n  switch (materialId) {\n";
   for (std::size_t i = 0; i < materials.size(); ++i)
-    if (materials[i].stochasticOpacity)
+    if (materials[i].*flag)
       out += "    case " + std::to_string(i) + "u:\n";
   return out + "      return true;\n    default:\n      return false;\n  }\n}\n";
 }
 
+std::string stochasticOpacityTable(const std::vector<LinkedMaterial>& materials) {
+  return materialFlagTable(
+      materials, "materialStochasticOpacity",
+      "// Whether a path that hits scene material `materialId` evaluates its opacity in the\n"
+      "// trace (it may write one below 1); it stops at any other.\n",
+      &LinkedMaterial::stochasticOpacity);
+}
+
 std::string transparentShadowTable(const std::vector<LinkedMaterial>& materials) {
-  std::string out =
+  return materialFlagTable(
+      materials, "materialTransparentShadow",
       "// Whether a shadow ray that hits scene material `materialId` evaluates its graph (it\n"
-      "// writes a Transparent lobe or an opacity below 1); it stops at any other.\n"
-      "bool materialTransparentShadow(uint materialId) {\n  switch (materialId) {\n";
-  for (std::size_t i = 0; i < materials.size(); ++i)
-    if (materials[i].transparentShadow)
-      out += "    case " + std::to_string(i) + "u:\n";
-  return out + "      return true;\n    default:\n      return false;\n  }\n}\n";
+      "// writes a Transparent lobe or an opacity below 1); it stops at any other.\n",
+      &LinkedMaterial::transparentShadow);
 }
 
 // `void function(uint materialId, MaterialInputs inputs, out MaterialOutputs outputs)`: a switch

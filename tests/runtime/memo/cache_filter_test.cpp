@@ -74,12 +74,8 @@ RendererOptions options(CacheMode mode, CacheFilter filter) {
   return o;
 }
 
-// 32x32 primary hits (L = 1), one path a pixel, seed 5.
 RenderSettings settings(std::uint32_t frames) {
-  RenderSettings s = testing::cacheSettings(frames, 1);
-  s.width = 32;
-  s.height = 32;
-  return s;
+  return testing::primaryHitSettings(frames);
 }
 
 struct RampCase {

@@ -48,12 +48,8 @@ RendererOptions options(CacheMode mode, Shading shading, std::uint32_t refreshFr
   return o;
 }
 
-// 32x32 primary hits (L = 1), one path a pixel.
 RenderSettings settings(std::uint32_t frames) {
-  RenderSettings s = testing::cacheSettings(frames, 1);
-  s.width = 32;
-  s.height = 32;
-  return s;
+  return testing::primaryHitSettings(frames);
 }
 
 // The results page's bias measure at this size: the mean absolute difference of 4x4-block

@@ -80,12 +80,8 @@ RendererOptions options(CacheMode mode, Shading shading = Shading::Auto) {
   return o;
 }
 
-// 32x32 primary hits (L = 1), one path a pixel, seed 5.
 RenderSettings settings(std::uint32_t frames) {
-  RenderSettings s = testing::cacheSettings(frames, 1);
-  s.width = 32;
-  s.height = 32;
-  return s;
+  return testing::primaryHitSettings(frames);
 }
 
 // The linker's view of a graph: which key its cut takes, and its width.

@@ -109,6 +109,14 @@ inline RenderSettings cacheSettings(std::uint32_t frames, std::uint32_t raysPerP
   return s;
 }
 
+// 32x32 primary hits (L = 1), one path a pixel, seed 5: the filter, refresh and cut-key tests.
+inline RenderSettings primaryHitSettings(std::uint32_t frames) {
+  RenderSettings s = cacheSettings(frames, 1);
+  s.width = 32;
+  s.height = 32;
+  return s;
+}
+
 // Every frame's hits and misses add up to its lookups.
 inline void expectConsistentCounters(const RenderStats& stats) {
   for (const FrameStats& f : stats.frames) {
