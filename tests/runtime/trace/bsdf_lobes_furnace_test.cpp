@@ -287,10 +287,15 @@ RenderResult renderLobeQuad(const char* graph, Shading shading, bool sky, unsign
   return result;
 }
 
+// The green mean of the quad's middle (8x8 pixels), where the tests read it.
+double middleOfQuad(const RenderResult& result) {
+  return testing::meanChannel(result.image, 1, 12, 12, 20, 20);
+}
+
 TEST_P(LobeNormals, TiltedDiffuseUnderWhiteSkySeesOnlyTheSkyAboveThePlane) {
   Shading shading = GetParam();
   RenderResult result = renderLobeQuad(kTiltedDiffuseAndMirror, shading, true);
-  double mean = testing::meanChannel(result.image, 1, 12, 12, 20, 20);
+  double mean = middleOfQuad(result);
   std::printf("tilted Diffuse + mirror under a white sky (%s): %.4f (closed form 0.875)\n",
               shadingName(shading), mean);
   EXPECT_NEAR(mean, 0.875, 0.02);
@@ -299,7 +304,7 @@ TEST_P(LobeNormals, TiltedDiffuseUnderWhiteSkySeesOnlyTheSkyAboveThePlane) {
 TEST_P(LobeNormals, TiltedDiffuseUnderOneSunFollowsItsOwnCosine) {
   Shading shading = GetParam();
   RenderResult result = renderLobeQuad(kTiltedDiffuseAndMirror, shading, false);
-  double mean = testing::meanChannel(result.image, 1, 12, 12, 20, 20);
+  double mean = middleOfQuad(result);
   std::printf("tilted Diffuse + mirror under one sun (%s): %.4f (closed form 0.25)\n",
               shadingName(shading), mean);
   EXPECT_NEAR(mean, 0.25, 0.005);
@@ -316,7 +321,7 @@ TEST_P(LobeNormals, PrincipledBsdfIsShadedAboutItsOwnNormal) {
   Shading shading = GetParam();
   auto lit = [&](const char* graph) {
     RenderResult result = renderLobeQuad(graph, shading, false, 4);
-    return testing::meanChannel(result.image, 1, 12, 12, 20, 20);
+    return middleOfQuad(result);
   };
   const char* principled = "PrincipledBsdf BaseColor=(1, 1, 1) Specular=0 Roughness=0.5";
   double own = lit(
@@ -358,7 +363,7 @@ TEST(LobeNormalsMegakernel, ClearcoatHighlightFollowsTheClearcoatNormal) {
   auto highlight = [&](const char* clearcoatNormal) {
     RenderResult result =
         renderLobeQuad(clearcoatGraph(clearcoatNormal).c_str(), shading, false, 4);
-    return testing::meanChannel(result.image, 1, 12, 12, 20, 20);
+    return middleOfQuad(result);
   };
   double none = highlight("");
   double upright = highlight(" ClearcoatNormal=(0, 1, 0)");

@@ -464,14 +464,18 @@ void countTracedRays(uint rays) {
 }
 #endif
 
-// The path vertex's word at slot's hit (setClosureSeed), as the megakernel draws it; with
-// --shared-primary the camera ray's hit is evaluated once, in the pixel's first path, whose
-// numbers are round 0's.
+// The sample whose numbers this round's path vertex draws, as the megakernel's: with
+// --shared-primary the camera ray is traced and its hit evaluated once, in the pixel's first
+// path, whose numbers are round 0's.
+uint vertexSampleIndex() {
+  return sampleIndexOf(push.step.y == 0u && sharesPrimaryRay() ? 0u : push.step.x);
+}
+
+// The path vertex's word at slot's hit (setClosureSeed), as the megakernel draws it.
 void setVertexClosureSeed(inout MaterialInputs inputs, uint slot) {
 #ifndef MG_OMIT_PATH_INPUTS
-  bool sharedCameraRay = push.step.y == 0u && sharesPrimaryRay();
-  setClosureSeed(inputs, pixelOfSlot(slot), sampleIndexOf(sharedCameraRay ? 0u : push.step.x),
-                 push.step.y + 1u, frame.image.w);
+  setClosureSeed(inputs, pixelOfSlot(slot), vertexSampleIndex(), push.step.y + 1u,
+                 frame.image.w);
 #endif
 }
 
@@ -737,9 +741,9 @@ void main() {
       // Through surfaces by their opacity (stochastic_opacity.glsl), drawing from the key of
       // the vertex the ray finds, as the megakernel's traceCounted does: with --shared-primary
       // the camera ray's from round 0's sample. The segments past the first count as rays.
-      bool sharedRound = push.step.y == 0u && (frame.path.z & kFlagSharedPrimaryRay) != 0u;
-      uint vertexKey = rngForPathVertex(pixelOfSlot(slot), sampleIndexOf(sharedRound ? 0u : push.step.x),
-                                        push.step.y + 1u, frame.image.w).key;
+      uint vertexKey =
+          rngForPathVertex(pixelOfSlot(slot), vertexSampleIndex(), push.step.y + 1u, frame.image.w)
+              .key;
       uint crossings = 0u;
       hit = traceThroughOpacity(origin, direction, kRayTMax,
                                 push.step.y == 0u ? kRayMaskNoLightQuads : kRayMaskAll,
@@ -992,9 +996,8 @@ void main() {
     vec3 origin, direction;
     RayCone cone;
     SurfaceHit s = surfaceOfPath(slot, origin, direction, cone);
-    bool sharedCameraRay = push.step.y == 0u && sharesPrimaryRay();
-    Rng rng = tracedInputsRng(pixelOfSlot(slot), sampleIndexOf(sharedCameraRay ? 0u : push.step.x),
-                              push.step.y + 1u, frame.image.w);
+    Rng rng = tracedInputsRng(pixelOfSlot(slot), vertexSampleIndex(), push.step.y + 1u,
+                              frame.image.w);
     setTracedInputs(s, rng, rays);
     pathState[fieldIndex(kFieldTracedInputs, slot)] =
         vec4(s.inputs.bevelNormal, s.inputs.ambientOcclusion);
