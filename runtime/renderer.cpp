@@ -129,6 +129,11 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   frames.cullingViewSize = options_.debugCullingSize;
   frames.renderStart = renderStart;
   FrameLoop(context, frames).run(result);
+  if (result.stats.deferredPipelinesCreated > 0) {
+    // The graphs' own material passes, created before the second frame, join the file too.
+    result.stats.deferredPipelineCacheHits = pipelineCache.counts().hits - countsAfter.hits;
+    result.stats.pipelineCacheWritten = pipelineCache.save() || result.stats.pipelineCacheWritten;
+  }
   return result;
 }
 

@@ -74,6 +74,11 @@ struct RendererOptions {
   // Wavefront: graphs of one shape (equal but for float constants) share a material pass
   // (LinkedMaterials::instanceGroups). False only to check that sharing changes no picture.
   bool materialInstances = true;
+  // With materialInstances: the first frame renders with the shared passes, and each graph
+  // of a shared pass gets its own before the second frame (a shared pass starts sooner; on an
+  // H100 the classroom's 88 own passes ran 12.1 ms a frame against the 11 shared ones' 14.9).
+  // Unset: on GPUs, not on CPU devices (lavapipe), whose driver compile is the cost.
+  std::optional<bool> ownMaterialPassesFromSecondFrame;
   // The megakernel: a frame's P paths per pixel are traced in dispatches of at most this many
   // paths each (runtime/trace/megakernel/path_dispatches.h); 0: all P in one. The default is the
   // fastest split measured: at P = 6 (5 paths, then 1) the unculled city's frame took 0.935x the

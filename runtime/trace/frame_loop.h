@@ -30,7 +30,7 @@ struct FrameLoopInputs {
   const SceneResources* resources = nullptr;
   RenderAcceleration* acceleration = nullptr;
   const MaterialCache* cache = nullptr;
-  const FrameTracer* tracer = nullptr;
+  FrameTracer* tracer = nullptr;      // its deferred pipelines are created before the 2nd frame
   std::uint32_t cullingViewSize = 0;  // RendererOptions::debugCullingSize
   // When Renderer::render began: RenderStats::firstFrameMilliseconds counts from it.
   std::chrono::steady_clock::time_point renderStart = std::chrono::steady_clock::now();

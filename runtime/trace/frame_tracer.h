@@ -42,6 +42,9 @@ class FrameTracer {
   // recordTrace wrote (null without timestamps).
   virtual void addFrameStats(const FrameTrace& trace, const std::vector<std::uint64_t>* passTicks,
                              double millisecondsPerTick, FrameStats& stats) const = 0;
+  // Pipelines the set-up deferred past the first frame, created before the second (the frame
+  // loop calls it once there): the wavefront's graphs' own material passes. Returns how many.
+  virtual std::uint32_t createDeferredPipelines() { return 0; }
 };
 
 }  // namespace memograph::runtime

@@ -162,6 +162,8 @@ std::unique_ptr<FrameTracer> buildWavefront(const ShaderBuild& b, ShaderCompiler
   setup.pathSlots = b.options.wavefrontPaths;
   setup.compileThreads = b.options.shaderCompileThreads;
   setup.materialInstances = b.options.materialInstances;
+  setup.ownPassesFromSecondFrame = b.options.ownMaterialPassesFromSecondFrame.value_or(
+      b.context.info().type != VK_PHYSICAL_DEVICE_TYPE_CPU);
   setup.minRayPdf = filterGlossyOn(b);
   // LiPaC's hit feedback: one set of passes for every frame (a push constant says whether a
   // frame counts), where the megakernel keeps a second, quiet pipeline: only the trace pass

@@ -26,6 +26,15 @@ std::string pipelineCacheText(const RenderStats& stats) {
                   stats.pipelineCreateCallMilliseconds / stats.pipelineCreateMilliseconds);
     text += calls;
   }
+  if (stats.deferredPipelinesCreated > 0) {
+    char deferred[128];
+    std::snprintf(deferred, sizeof deferred,
+                  "; before the second frame %u own material passes in %.0f ms",
+                  stats.deferredPipelinesCreated, stats.deferredPipelineMilliseconds);
+    text += deferred;
+    if (stats.pipelineCacheHitsReported)
+      text += " (" + std::to_string(stats.deferredPipelineCacheHits) + " from the pipeline cache)";
+  }
   return text;
 }
 

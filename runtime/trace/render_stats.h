@@ -168,6 +168,12 @@ struct RenderStats {
   // says how many the driver compiled at a time (threads that wait on a lock in the driver
   // add time here without shortening the wall time).
   double pipelineCreateCallMilliseconds = 0.0;
+  // Pipelines created between the first frame and the second (FrameTracer::
+  // createDeferredPipelines: the wavefront's graphs' own material passes), and the wall time
+  // that took, GLSL compiles included; where the driver says, how many came from the cache.
+  std::uint32_t deferredPipelinesCreated = 0;
+  std::uint32_t deferredPipelineCacheHits = 0;
+  double deferredPipelineMilliseconds = 0.0;
   // Wall time from the start of Renderer::render (the device is open by then) to the end of
   // the first frame read back: every set-up stage (materials, upload, acceleration
   // structures, shaders, pipelines) and the first frame.

@@ -8,23 +8,26 @@
 # pipelines (created, found in the pipeline cache, their time, their creation calls' time
 # summed and how many the driver compiled at a time, the first frame's wall time), after the
 # machine's CPU count (the threads that create pipelines: one a core).
+# FRAMES=2 renders a second frame too: render's line then also says how long the graphs' own
+# material passes took to create before it (RendererOptions::ownMaterialPassesFromSecondFrame).
 # After tools/bundle_device.sh, on the GPU machine (carry bundle and .gl):
-#   OUT=$OUT bash tools/bench/first_frame_device.sh
+#   OUT=$OUT [FRAMES=2] bash tools/bench/first_frame_device.sh
 set -uo pipefail
 source bundle/device_env.sh
 OUT=${OUT:-/tmp/out}
 SCENE=${SCENE:-builtin:classroom}
 SIZE=${SIZE:-1920x1080}
+FRAMES=${FRAMES:-1}
 mkdir -p "$OUT"
 m=$PWD/bundle/memograph
-table="$OUT/first_frame.txt"
+table="$OUT/first_frame$([ "$FRAMES" = 1 ] || echo "_$FRAMES").txt"
 printf '%-17s %-5s %9s  %s\n' driver_cache run wall_s "render's pipeline line" >"$table"
 one_run() {
   local label=$1 run=$2 cache=$3
   local start end log
   log=$(mktemp)
   start=$(date +%s%N)
-  timeout 280 "$m" render "$SCENE" --size "$SIZE" --paths 6 --bounces 4 --frames 1 \
+  timeout 280 "$m" render "$SCENE" --size "$SIZE" --paths 6 --bounces 4 --frames "$FRAMES" \
     --shader-cache "$cache" --out "/tmp/first_frame_${label}_${run}.pfm" >"$log" 2>&1
   local rc=$?
   end=$(date +%s%N)
@@ -47,4 +50,4 @@ one_run() {
   one_run driver-cache-on cold "$c"
   one_run driver-cache-on warm "$c"
   cat "$table"
-} 2>&1 | tee "$OUT/first_frame_log.txt"
+} 2>&1 | tee "$OUT/first_frame$([ "$FRAMES" = 1 ] || echo "_$FRAMES")_log.txt"

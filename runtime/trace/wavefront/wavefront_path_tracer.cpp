@@ -258,13 +258,87 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
       shaders.rayTracingModules.push_back(createShaderModule(device, spirv[i]));
   }
   if (materials)
-    shaders.materialSpirv = compileMaterialPasses(compiler, *materials, passUnits, defines, setup);
+    shaders.materialSpirv =
+        compileMaterialPasses(compiler, *materials, passUnits, binsOfPass_, defines, setup);
   for (std::size_t pass = 0; pass < shaders.materialSpirv.size(); ++pass)
     materialPassSizes_.push_back(
         {spirvSize(shaders.materialSpirv[pass]),
          spirvFunctionCopies(shaders.materialSpirv[pass],
                              "EvaluateMaterial_" + materialPassNames_[pass])});
   createPipelines(shaders, setup.compileThreads);
+  const bool sharesAPass =
+      std::any_of(binInstances_.begin(), binInstances_.end(),
+                  [](const std::vector<std::uint32_t>& words) { return !words.empty(); });
+  if (materials && setup.ownPassesFromSecondFrame && sharesAPass)
+    deferredOwnPasses_ = DeferredOwnPasses{compiler.fresh(), defines, materials, setup};
+}
+
+// Each graph of a shared pass gets a pass of its own, compiled and created now (on the
+// set-up's threads, longest first), and the shared pass goes: frames from here on bind them.
+// A graph's own pass from the set-up stays as it is. The frame before has completed (the
+// frame loop submits and waits), so no command buffer still holds a shared pipeline.
+std::uint32_t WavefrontPathTracer::createDeferredPipelines() {
+  if (!deferredOwnPasses_)
+    return 0;
+  const DeferredOwnPasses deferred = std::move(*deferredOwnPasses_);
+  deferredOwnPasses_.reset();
+  const LinkedMaterials& materials = *deferred.materials;
+  std::vector<VulkanHandle<VkPipeline>> pipelines;
+  std::vector<std::vector<std::uint32_t>> binsOfPass;
+  std::vector<std::string> names;
+  std::vector<MaterialPassSize> sizes;
+  std::vector<MaterialShaderUnit> units;
+  std::vector<std::size_t> passOfUnit;
+  for (std::size_t pass = 0; pass < materialPasses_.size(); ++pass) {
+    const std::vector<std::uint32_t>& bins = binsOfPass_[pass];
+    if (binInstances_[bins.front()].empty()) {  // a graph's own pass already
+      pipelines.push_back(std::move(materialPasses_[pass]));
+      binsOfPass.push_back(bins);
+      names.push_back(materialPassNames_[pass]);
+      sizes.push_back(materialPassSizes_[pass]);
+      continue;
+    }
+    for (const std::uint32_t bin : bins) {
+      units.push_back({nullptr, bin});
+      passOfUnit.push_back(pipelines.size());
+      pipelines.emplace_back();
+      binsOfPass.push_back({bin});
+      names.push_back(materials.distinct[bin].name);
+      sizes.emplace_back();
+      binInstances_[bin].clear();  // its pass reads no parameter block
+    }
+  }
+  std::vector<std::vector<std::uint32_t>> binsOfUnit;
+  for (const std::size_t pass : passOfUnit)
+    binsOfUnit.push_back(binsOfPass[pass]);
+  ShaderCompiler compiler = deferred.compiler.fresh();
+  const std::vector<std::vector<std::uint32_t>> spirv = compileMaterialPasses(
+      compiler, materials, units, binsOfUnit, deferred.defines, deferred.setup);
+  std::vector<std::size_t> unitsBySize(units.size());
+  for (std::size_t unit = 0; unit < units.size(); ++unit)
+    unitsBySize[unit] = unit;
+  std::stable_sort(unitsBySize.begin(), unitsBySize.end(),
+                   [&](std::size_t a, std::size_t b) { return spirv[a].size() > spirv[b].size(); });
+  const std::uint32_t threads = deferred.setup.compileThreads;
+  ThreadPipelineCaches caches(context_.pipelineCache(), workerThreads(threads, units.size()));
+  parallelFor(units.size(), threads, [&](std::size_t job, std::uint32_t thread) {
+    const std::size_t unit = unitsBySize[job];
+    const std::size_t pass = passOfUnit[unit];
+    auto module = createShaderModule(context_.device(), spirv[unit]);
+    pipelines[pass] = createComputePipeline(context_, module.get(), layout_.get(),
+                                            ("wavefront material " + names[pass]).c_str(),
+                                            caches.forThread(thread));
+  });
+  caches.merge();
+  for (std::size_t unit = 0; unit < units.size(); ++unit)
+    sizes[passOfUnit[unit]] = {
+        spirvSize(spirv[unit]),
+        spirvFunctionCopies(spirv[unit], "EvaluateMaterial_" + names[passOfUnit[unit]])};
+  materialPasses_ = std::move(pipelines);
+  binsOfPass_ = std::move(binsOfPass);
+  materialPassNames_ = std::move(names);
+  materialPassSizes_ = std::move(sizes);
+  return static_cast<std::uint32_t>(units.size());
 }
 
 // The material passes (binsOfPass_ and the units to compile): an instance group's shared pass
@@ -315,8 +389,9 @@ std::vector<MaterialShaderUnit> WavefrontPathTracer::planMaterialPasses(
 // 4.4 s for all of the classroom's 88 graphs, cold, one pass each).
 std::vector<std::vector<std::uint32_t>> WavefrontPathTracer::compileMaterialPasses(
     ShaderCompiler& compiler, const LinkedMaterials& materials,
-    const std::vector<MaterialShaderUnit>& units, const std::vector<std::string>& defines,
-    const WavefrontSetup& setup) {
+    const std::vector<MaterialShaderUnit>& units,
+    const std::vector<std::vector<std::uint32_t>>& binsOfUnit,
+    const std::vector<std::string>& defines, const WavefrontSetup& setup) {
   MaterialShaderRequest request;
   request.cutFunctions = setup.cutKeys;
   request.source = "wavefront.glsl";
@@ -328,9 +403,9 @@ std::vector<std::vector<std::uint32_t>> WavefrontPathTracer::compileMaterialPass
   // evaluate: the others' bins never hold a point, and each pass compiled is a driver's
   // compile at a cold start.
   if (lightPoints_) {
-    request.materialDefines.resize(binsOfPass_.size());
-    for (std::size_t pass = 0; pass < binsOfPass_.size(); ++pass) {
-      const auto& bins = binsOfPass_[pass];
+    request.materialDefines.resize(binsOfUnit.size());
+    for (std::size_t pass = 0; pass < binsOfUnit.size(); ++pass) {
+      const auto& bins = binsOfUnit[pass];
       if (std::any_of(bins.begin(), bins.end(), [&](std::uint32_t bin) {
             return setup.lightPointGraphs.empty() ||
                    (bin < setup.lightPointGraphs.size() && setup.lightPointGraphs[bin]);

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -32,6 +33,10 @@ struct WavefrontSetup {
   // Graphs of one shape share a material pipeline (LinkedMaterials::instanceGroups); false:
   // each distinct graph has its own, as a check of the sharing compares.
   bool materialInstances = true;
+  // With materialInstances: the first frame binds the shared passes, and before the second
+  // each graph of a shared pass gets its own (createDeferredPipelines). A shared pass starts
+  // sooner, a graph's own pass runs faster (docs/design/wavefront.md, "Material instances").
+  bool ownPassesFromSecondFrame = false;
   // A cache's defines (MG_CACHE_TEXEL, or MG_CACHE_TILE with MG_TILE_FILL_DEFERRED), with
   // materials: a lookup pass before the binning; the material passes insert the texel
   // cache's misses, or compute the tiles the lookups queued (tileQueueCapacity of them at
@@ -139,6 +144,10 @@ class WavefrontPathTracer final : public FrameTracer {
   }
   void addFrameStats(const FrameTrace& trace, const std::vector<std::uint64_t>* passTicks,
                      double millisecondsPerTick, FrameStats& stats) const override;
+  // With WavefrontSetup::ownPassesFromSecondFrame: each graph of a shared material pass gets
+  // a pass of its own, compiled and created now, and the shared passes go. Returns the
+  // pipelines created (0 where no pass was shared, or on a second call).
+  std::uint32_t createDeferredPipelines() override;
 
  private:
   const VulkanContext& context_;
@@ -169,6 +178,15 @@ class WavefrontPathTracer final : public FrameTracer {
   std::uint32_t pushBytes_ = sizeof(gpu::WavefrontPush);  // the pipeline layout's push range
   ShaderCacheStats materialShaderStats_;
   std::vector<MaterialPassSize> materialPassSizes_;
+  // What createDeferredPipelines compiles the graphs' own passes with (the material passes'
+  // defines, the linked graphs and the set-up); empty once they exist, or where none is due.
+  struct DeferredOwnPasses {
+    ShaderCompiler compiler;
+    std::vector<std::string> defines;
+    const LinkedMaterials* materials = nullptr;
+    WavefrontSetup setup;
+  };
+  std::optional<DeferredOwnPasses> deferredOwnPasses_;
   VulkanHandle<VkPipeline> rayTracing_;  // pipeline backend: the trace and shadow raygens
   GpuBuffer shaderBindingTable_;
   VkStridedDeviceAddressRegionKHR traceRaygenRegion_{};
@@ -195,11 +213,13 @@ class WavefrontPathTracer final : public FrameTracer {
   // else a pass per distinct graph.
   std::vector<MaterialShaderUnit> planMaterialPasses(const LinkedMaterials& materials,
                                                      bool instances);
-  // One shader per material pass, from its include alone.
+  // One shader per unit (a material pass), from its include alone; `binsOfUnit` the bins each
+  // unit's pass runs over.
   std::vector<std::vector<std::uint32_t>> compileMaterialPasses(
       ShaderCompiler& compiler, const LinkedMaterials& materials,
-      const std::vector<MaterialShaderUnit>& units, const std::vector<std::string>& defines,
-      const WavefrontSetup& setup);
+      const std::vector<MaterialShaderUnit>& units,
+      const std::vector<std::vector<std::uint32_t>>& binsOfUnit,
+      const std::vector<std::string>& defines, const WavefrontSetup& setup);
   // The pipeline backend's trace and shadow raygens (with `tracesFromHits` the traced-inputs
   // raygen) and the report-only shaders, as compile requests appended to `requests`, with
   // their stages.

@@ -102,8 +102,7 @@ struct InstancesAndOwnPasses {
   RenderResult shared;
   RenderResult own;
 };
-InstancesAndOwnPasses renderBothWays(const std::vector<MaterialRef>& materials,
-                                     TextureLoader textures = loadTextureCore) {
+Scene quadsOf(const std::vector<MaterialRef>& materials) {
   Scene scene;
   scene.meshes.push_back(testing::quad(1.0f));
   scene.materials = materials;
@@ -114,21 +113,31 @@ InstancesAndOwnPasses renderBothWays(const std::vector<MaterialRef>& materials,
                                                    -0.5f + static_cast<float>(m / 2)))});
   scene.camera.position = {0, 3, 1};
   scene.environment.constantRadiance = {1.0f, 1.0f, 1.0f};  // the quads lit by a white sky
+  return scene;
+}
+RenderSettings quadSettings() {
   RenderSettings settings;
   settings.width = 24;
   settings.height = 16;
   settings.pathsPerPixel = 2;
   settings.raysPerPath = 2;
+  return settings;
+}
+RendererOptions wavefrontOptions(TextureLoader textures = loadTextureCore) {
   RendererOptions options = testing::testOptions(Backend::RayQuery);
   options.nodeLibraryDirectory.clear();  // the real node library
   options.shading = Shading::Wavefront;
   options.textureLoader = std::move(textures);
-  Renderer renderer(options);
+  return options;
+}
+InstancesAndOwnPasses renderBothWays(const std::vector<MaterialRef>& materials,
+                                     TextureLoader textures = loadTextureCore) {
+  const Scene scene = quadsOf(materials);
+  RendererOptions options = wavefrontOptions(std::move(textures));
   InstancesAndOwnPasses result;
-  result.shared = renderer.render(scene, settings);
+  result.shared = Renderer(options).render(scene, quadSettings());
   options.materialInstances = false;
-  Renderer separate(options);
-  result.own = separate.render(scene, settings);
+  result.own = Renderer(options).render(scene, quadSettings());
   return result;
 }
 
@@ -140,6 +149,40 @@ TEST(MaterialInstances, ASharedPassRendersWhatEachGraphsOwnPassRenders) {
   const auto difference = testing::roundingDifference(shared.image, own.image);
   EXPECT_GT(difference.referenceMean, 0.05);
   EXPECT_LT(difference.largest, 1e-4 * difference.referenceMean + 1e-6);
+}
+
+// With ownMaterialPassesFromSecondFrame the first frame binds the shared passes and, before
+// the second, each graph of a shared pass gets its own: from then on a frame renders to the
+// bit what the instances-off render's does. Each frame alone, so the image is the last
+// frame's; the shared pass's rounding makes its frame differ, so the comparison can fail.
+TEST(MaterialInstances, GraphsGetTheirOwnPassesBeforeTheSecondFrame) {
+  const Scene scene = quadsOf(recipeMaterials());
+  RenderSettings settings = quadSettings();
+  settings.frames = 3;
+  settings.eachFrameAlone = true;
+  RendererOptions options = wavefrontOptions();
+  const RenderResult sharedThroughout = Renderer(options).render(scene, settings);
+  EXPECT_EQ(sharedThroughout.stats.deferredPipelinesCreated, 0u);  // lavapipe: not by default
+
+  options.ownMaterialPassesFromSecondFrame = true;
+  const RenderResult deferred = Renderer(options).render(scene, settings);
+  // Red, Green and Blue share the set-up's pass; Finer's own pass stays.
+  EXPECT_EQ(deferred.stats.wavefrontMaterialPasses, 2u);
+  EXPECT_EQ(deferred.stats.deferredPipelinesCreated, 3u);
+  EXPECT_EQ(deferred.stats.pipelinesCreated, sharedThroughout.stats.pipelinesCreated);
+
+  options.materialInstances = false;
+  const RenderResult ownThroughout = Renderer(options).render(scene, settings);
+  EXPECT_EQ(ownThroughout.stats.deferredPipelinesCreated, 0u);  // nothing was shared
+  const auto sharedAgainstOwn =
+      testing::roundingDifference(ownThroughout.image, sharedThroughout.image);
+  ASSERT_GT(sharedAgainstOwn.largest, 0.0);
+  EXPECT_EQ(testing::roundingDifference(ownThroughout.image, deferred.image).largest, 0.0);
+
+  // A one-frame render has no second frame to prepare for.
+  options.materialInstances = true;
+  settings.frames = 1;
+  EXPECT_EQ(Renderer(options).render(scene, settings).stats.deferredPipelinesCreated, 0u);
 }
 
 // Graphs of one shape that sample different images: the code names no image, only the graph's
