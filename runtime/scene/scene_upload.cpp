@@ -1,5 +1,6 @@
 #include "runtime/scene/scene_upload.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -238,6 +239,19 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
     gm.ranges = glm::uvec4(g.firstVertex, g.firstIndex, flags, g.triangleCount);
     gm.textureSpaceLocation = glm::vec4(space.location, 0.0f);
     gm.textureSpaceSize = glm::vec4(space.size, 0.0f);
+    // A flat mesh (every vertex at one coordinate along an axis: Blender's planes) that no
+    // animation moves: its plane, where the texel cache evaluates its object-space cells.
+    const bool animated = std::find(scene.animatedMeshes.begin(), scene.animatedMeshes.end(),
+                                    meshes.size()) != scene.animatedMeshes.end();
+    if (!mesh.positions.empty() && !animated) {
+      const Bounds bounds = meshBounds(mesh);
+      for (int k = 0; k < 3; ++k)
+        if (bounds.lo[k] == bounds.hi[k]) {
+          gm.textureSpaceSize.w = static_cast<float>(k + 1);
+          gm.textureSpaceLocation.w = bounds.lo[k];
+          break;
+        }
+    }
     meshes.push_back(gm);
     return g;
   };

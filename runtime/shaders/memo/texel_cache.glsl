@@ -836,6 +836,14 @@ MaterialInputs voxelKeyInputs(uint domain, MaterialInputs inputs, uvec2 object, 
     // from the centre alone, not moved from the hit's, so an entry's value is the same to the
     // bit whichever hit filled it (moved, it differed by float rounding from run to run).
     vec3 toGenerated = 0.5 / meshes[object.y].textureSpaceSize.xyz;
+    // A cell's point lies up to a cell off the surface, and a graph of the 3D position reads
+    // another value there than on the surface: the expectation of the cell's points is not
+    // what the surface shows (on the material scene's floor and wall, whose Generated z moves
+    // 7x faster than x and y, a block error 15x the noise). On a flat mesh the surface is
+    // known from the key: the point moves onto its plane, still a function of the key.
+    uint flatAxis = uint(meshes[object.y].textureSpaceSize.w);
+    if (flatAxis != 0u)
+      centre[flatAxis - 1u] = meshes[object.y].textureSpaceLocation.w;
     keyInputs.objectPosition.v = centre;
     keyInputs.objectPosition.x = voxelAxis(0u, size);
     keyInputs.objectPosition.y = voxelAxis(1u, size);
