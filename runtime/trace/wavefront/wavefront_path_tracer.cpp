@@ -270,7 +270,7 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
       std::any_of(binInstances_.begin(), binInstances_.end(),
                   [](const std::vector<std::uint32_t>& words) { return !words.empty(); });
   if (materials && setup.ownPassesFromSecondFrame && sharesAPass)
-    deferredOwnPasses_ = DeferredOwnPasses{compiler.fresh(), defines, materials, setup};
+    deferredOwnPasses_ = DeferredOwnPasses{compiler.fresh(), defines, setup};
 }
 
 // Each graph of a shared pass gets a pass of its own, compiled and created now (on the
@@ -282,7 +282,7 @@ std::uint32_t WavefrontPathTracer::createDeferredPipelines() {
     return 0;
   const DeferredOwnPasses deferred = std::move(*deferredOwnPasses_);
   deferredOwnPasses_.reset();
-  const LinkedMaterials& materials = *deferred.materials;
+  const LinkedMaterials& materials = *deferred.setup.materials;
   std::vector<VulkanHandle<VkPipeline>> pipelines;
   std::vector<std::vector<std::uint32_t>> binsOfPass;
   std::vector<std::string> names;

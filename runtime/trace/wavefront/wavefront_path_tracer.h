@@ -179,11 +179,11 @@ class WavefrontPathTracer final : public FrameTracer {
   ShaderCacheStats materialShaderStats_;
   std::vector<MaterialPassSize> materialPassSizes_;
   // What createDeferredPipelines compiles the graphs' own passes with (the material passes'
-  // defines, the linked graphs and the set-up); empty once they exist, or where none is due.
+  // defines, and the set-up with its linked graphs); empty once they exist, or where none is
+  // due.
   struct DeferredOwnPasses {
     ShaderCompiler compiler;
     std::vector<std::string> defines;
-    const LinkedMaterials* materials = nullptr;
     WavefrontSetup setup;
   };
   std::optional<DeferredOwnPasses> deferredOwnPasses_;
