@@ -142,6 +142,10 @@ TextureSpace autoTextureSpace(const Mesh& mesh) {
   space.location = bounds.centre();
   space.size = 0.5f * (bounds.hi - bounds.lo);
   for (int k = 0; k < 3; ++k) {
+    if (bounds.lo[k] == bounds.hi[k] && space.flatAxis < 0) {
+      space.flatAxis = k;
+      space.flatCoordinate = bounds.lo[k];
+    }
     if (space.size[k] == 0.0f)
       space.size[k] = 1.0f;
     else if (space.size[k] < 1e-5f)
@@ -239,18 +243,13 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
     gm.ranges = glm::uvec4(g.firstVertex, g.firstIndex, flags, g.triangleCount);
     gm.textureSpaceLocation = glm::vec4(space.location, 0.0f);
     gm.textureSpaceSize = glm::vec4(space.size, 0.0f);
-    // A flat mesh (every vertex at one coordinate along an axis: Blender's planes) that no
-    // animation moves: its plane, where the texel cache evaluates its object-space cells.
+    // A flat mesh that no animation moves: its plane, where the texel cache evaluates its
+    // object-space cells (a LOD keeps its mesh's, as it keeps the texture space).
     const bool animated = std::find(scene.animatedMeshes.begin(), scene.animatedMeshes.end(),
                                     meshes.size()) != scene.animatedMeshes.end();
-    if (!mesh.positions.empty() && !animated) {
-      const Bounds bounds = meshBounds(mesh);
-      for (int k = 0; k < 3; ++k)
-        if (bounds.lo[k] == bounds.hi[k]) {
-          gm.textureSpaceSize.w = static_cast<float>(k + 1);
-          gm.textureSpaceLocation.w = bounds.lo[k];
-          break;
-        }
+    if (space.flatAxis >= 0 && !animated) {
+      gm.textureSpaceSize.w = static_cast<float>(space.flatAxis + 1);
+      gm.textureSpaceLocation.w = space.flatCoordinate;
     }
     meshes.push_back(gm);
     return g;

@@ -57,8 +57,11 @@ TEST(ObjectInputs, TextureSpaceIsBlendersAutomaticOne) {
   const TextureSpace space = autoTextureSpace(mesh);
   EXPECT_EQ(space.location, glm::vec3(1.0f, 0.0f, 0.5f));
   EXPECT_EQ(space.size, glm::vec3(1.0f, 1.0f, 1.0f));  // the flat y: 0 becomes 1
+  EXPECT_EQ(space.flatAxis, 1);                        // the plane y = 0
+  EXPECT_EQ(space.flatCoordinate, 0.0f);
   mesh.positions = {{0, 0, 0}, {4, 1e-6f, 2}};
   EXPECT_EQ(autoTextureSpace(mesh).size, glm::vec3(2.0f, 1e-5f, 1.0f));
+  EXPECT_EQ(autoTextureSpace(mesh).flatAxis, -1);  // thin, not flat
 }
 
 TEST(ObjectInputs, PathTracerFillsGeneratedObjectInfoAndFaceNormal) {
