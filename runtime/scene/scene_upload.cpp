@@ -1,6 +1,5 @@
 #include "runtime/scene/scene_upload.h"
 
-#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -154,6 +153,31 @@ TextureSpace autoTextureSpace(const Mesh& mesh) {
   return space;
 }
 
+std::vector<TextureSpace> sceneTextureSpaces(const Scene& scene) {
+  std::vector<std::uint8_t> animated(scene.meshes.size(), 0);
+  for (const std::uint32_t mesh : scene.animatedMeshes)
+    if (mesh < animated.size())
+      animated[mesh] = 1;
+  std::vector<TextureSpace> spaces;
+  spaces.reserve(scene.meshes.size());
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
+    const Mesh& mesh = scene.meshes[m];
+    TextureSpace space = autoTextureSpace(mesh);
+    if (mesh.hasTextureSpace) {
+      space.location = mesh.textureSpaceLocation;
+      space.size = mesh.textureSpaceSize;
+      for (int k = 0; k < 3; ++k)
+        if (space.size[k] == 0.0f)
+          space.size[k] = 1.0f;
+    }
+    // A moving mesh is flat only at rest (a flag's cloth).
+    if (animated[m])
+      space.flatAxis = -1;
+    spaces.push_back(space);
+  }
+  return spaces;
+}
+
 std::vector<MaterialRef::EmissionKind> emissionKindsVerified(const Scene& scene,
                                                              const LinkedMaterials& linked) {
   std::vector<MaterialRef::EmissionKind> kinds;
@@ -243,30 +267,18 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
     gm.ranges = glm::uvec4(g.firstVertex, g.firstIndex, flags, g.triangleCount);
     gm.textureSpaceLocation = glm::vec4(space.location, 0.0f);
     gm.textureSpaceSize = glm::vec4(space.size, 0.0f);
-    // A flat mesh that no animation moves: its plane, where the texel cache evaluates its
-    // object-space cells (a LOD keeps its mesh's, as it keeps the texture space).
-    const bool animated = std::find(scene.animatedMeshes.begin(), scene.animatedMeshes.end(),
-                                    meshes.size()) != scene.animatedMeshes.end();
-    if (space.flatAxis >= 0 && !animated) {
+    // A flat mesh's plane, where the texel cache evaluates its object-space cells (a LOD keeps
+    // its mesh's, as it keeps the texture space).
+    if (space.flatAxis >= 0) {
       gm.textureSpaceSize.w = static_cast<float>(space.flatAxis + 1);
       gm.textureSpaceLocation.w = space.flatCoordinate;
     }
     meshes.push_back(gm);
     return g;
   };
-  std::vector<TextureSpace> spaces;
-  for (const Mesh& mesh : scene.meshes) {
-    TextureSpace space = autoTextureSpace(mesh);
-    if (mesh.hasTextureSpace) {
-      space.location = mesh.textureSpaceLocation;
-      space.size = mesh.textureSpaceSize;
-      for (int k = 0; k < 3; ++k)
-        if (space.size[k] == 0.0f)
-          space.size[k] = 1.0f;
-    }
-    spaces.push_back(space);
-    out.geometry.push_back(append(mesh, space));
-  }
+  const std::vector<TextureSpace> spaces = sceneTextureSpaces(scene);
+  for (std::size_t m = 0; m < scene.meshes.size(); ++m)
+    out.geometry.push_back(append(scene.meshes[m], spaces[m]));
   if (!scene.meshLods.empty()) {
     out.meshLodIds.resize(scene.meshes.size());
     for (std::size_t level = 0; level < kMaxMeshLods; ++level)

@@ -79,5 +79,8 @@ struct TextureSpace {
   float flatCoordinate = 0.0f;
 };
 TextureSpace autoTextureSpace(const Mesh& mesh);
+// Each scene mesh's texture space as the upload writes it: the mesh's own where it has one
+// (Mesh::hasTextureSpace), else Blender's automatic one; an animated mesh is never flat.
+std::vector<TextureSpace> sceneTextureSpaces(const Scene& scene);
 
 }  // namespace memograph::runtime

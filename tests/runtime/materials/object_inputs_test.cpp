@@ -64,6 +64,25 @@ TEST(ObjectInputs, TextureSpaceIsBlendersAutomaticOne) {
   EXPECT_EQ(autoTextureSpace(mesh).flatAxis, -1);  // thin, not flat
 }
 
+// The upload's texture spaces: a mesh's own replaces the automatic one but keeps its plane
+// (the plane is the mesh's, not its texture space's); a moving mesh, flat at rest (a flag's
+// cloth), gets none, so the cache does not evaluate it on a plane it leaves.
+TEST(ObjectInputs, AMovingMeshHasNoPlane) {
+  Scene scene;
+  scene.meshes = {testing::quad(2.0f), testing::quad(2.0f), testing::quad(2.0f)};
+  scene.meshes[1].hasTextureSpace = true;
+  scene.meshes[1].textureSpaceLocation = glm::vec3(3.0f);
+  scene.meshes[1].textureSpaceSize = glm::vec3(2.0f, 0.0f, 2.0f);
+  scene.animatedMeshes = {2};
+  const std::vector<TextureSpace> spaces = sceneTextureSpaces(scene);
+  ASSERT_EQ(spaces.size(), 3u);
+  EXPECT_EQ(spaces[0].flatAxis, 1);
+  EXPECT_EQ(spaces[1].flatAxis, 1);
+  EXPECT_EQ(spaces[1].location, glm::vec3(3.0f));
+  EXPECT_EQ(spaces[1].size, glm::vec3(2.0f, 1.0f, 2.0f));  // a zero extent becomes 1
+  EXPECT_EQ(spaces[2].flatAxis, -1);
+}
+
 TEST(ObjectInputs, PathTracerFillsGeneratedObjectInfoAndFaceNormal) {
   const fs::path nodes = objectNodes();
   Scene scene;
