@@ -141,10 +141,6 @@ TextureSpace autoTextureSpace(const Mesh& mesh) {
   space.location = bounds.centre();
   space.size = 0.5f * (bounds.hi - bounds.lo);
   for (int k = 0; k < 3; ++k) {
-    if (bounds.lo[k] == bounds.hi[k] && space.flatAxis < 0) {
-      space.flatAxis = k;
-      space.flatCoordinate = bounds.lo[k];
-    }
     if (space.size[k] == 0.0f)
       space.size[k] = 1.0f;
     else if (space.size[k] < 1e-5f)
@@ -154,14 +150,9 @@ TextureSpace autoTextureSpace(const Mesh& mesh) {
 }
 
 std::vector<TextureSpace> sceneTextureSpaces(const Scene& scene) {
-  std::vector<std::uint8_t> animated(scene.meshes.size(), 0);
-  for (const std::uint32_t mesh : scene.animatedMeshes)
-    if (mesh < animated.size())
-      animated[mesh] = 1;
   std::vector<TextureSpace> spaces;
   spaces.reserve(scene.meshes.size());
-  for (std::size_t m = 0; m < scene.meshes.size(); ++m) {
-    const Mesh& mesh = scene.meshes[m];
+  for (const Mesh& mesh : scene.meshes) {
     TextureSpace space = autoTextureSpace(mesh);
     if (mesh.hasTextureSpace) {
       space.location = mesh.textureSpaceLocation;
@@ -170,9 +161,6 @@ std::vector<TextureSpace> sceneTextureSpaces(const Scene& scene) {
         if (space.size[k] == 0.0f)
           space.size[k] = 1.0f;
     }
-    // A moving mesh is flat only at rest (a flag's cloth).
-    if (animated[m])
-      space.flatAxis = -1;
     spaces.push_back(space);
   }
   return spaces;
@@ -267,12 +255,6 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
     gm.ranges = glm::uvec4(g.firstVertex, g.firstIndex, flags, g.triangleCount);
     gm.textureSpaceLocation = glm::vec4(space.location, 0.0f);
     gm.textureSpaceSize = glm::vec4(space.size, 0.0f);
-    // A flat mesh's plane, where the texel cache evaluates its object-space cells (a LOD keeps
-    // its mesh's, as it keeps the texture space).
-    if (space.flatAxis >= 0) {
-      gm.textureSpaceSize.w = static_cast<float>(space.flatAxis + 1);
-      gm.textureSpaceLocation.w = space.flatCoordinate;
-    }
     meshes.push_back(gm);
     return g;
   };

@@ -73,14 +73,10 @@ SceneBuffers uploadScene(const VulkanContext& context, const Scene& scene,
 struct TextureSpace {
   glm::vec3 location{0.0f};
   glm::vec3 size{1.0f};
-  // A flat mesh (every vertex at one coordinate along an axis: Blender's planes): that axis
-  // and coordinate, where the texel cache evaluates its object-space cells; -1: not flat.
-  int flatAxis = -1;
-  float flatCoordinate = 0.0f;
 };
 TextureSpace autoTextureSpace(const Mesh& mesh);
 // Each scene mesh's texture space as the upload writes it: the mesh's own where it has one
-// (Mesh::hasTextureSpace), else Blender's automatic one; an animated mesh is never flat.
+// (Mesh::hasTextureSpace), else Blender's automatic one.
 std::vector<TextureSpace> sceneTextureSpaces(const Scene& scene);
 
 }  // namespace memograph::runtime

@@ -389,10 +389,7 @@ struct Mesh {
   uvec4 ranges;  // x first vertex, y first index, z flags, w triangle count
   // Blender's automatic texture space of the mesh (Generated coordinates): xyz the centre
   // of its object-space bounding box and half its extent (a zero extent becomes 1);
-  // Generated = (objectPosition - location) / (2 size) + 0.5. For a flat mesh that no
-  // animation moves (all its vertices at one coordinate along an axis), textureSpaceSize.w
-  // is that axis + 1 and textureSpaceLocation.w the coordinate: the plane on which the texel
-  // cache evaluates the mesh's object-space cells (texel_cache.glsl voxelKeyInputs); else 0.
+  // Generated = (objectPosition - location) / (2 size) + 0.5. w unused.
   vec4 textureSpaceLocation;
   vec4 textureSpaceSize;
 };

@@ -314,19 +314,63 @@ uint cacheFixedPoint(float voxel) {
   return voxel < 0.0 ? 0x80000000u | uint(-voxel) : uint(voxel);
 }
 
-// The key of voxel `voxel` (integer coordinates, each within ±kCacheVoxelLimit) of level m;
-// `objectWord` the instance or mesh (0 for world space).
-CacheKey cacheVoxelKeyOf(uvec4 info, uint objectWord, int m, vec3 voxel) {
+// A cell's point lies up to a cell off the surface, and a graph of the 3D position reads
+// another value there than on the surface: the expectation of the cell's points is not what
+// the surface shows. A box's side on the faces of its texture space, where a Brick's mortar
+// reaches millimetres either side, shows mortar; the cell's points a cell off it show brick.
+// Where the surface is a face perpendicular to an axis of the key's space (a box's sides,
+// floors, walls, Blender's planes), the plane is known to within a fraction of a cell from
+// the hit: the cell is a voxel's square across the face and a thin step along the axis, the
+// key holds the axis and the step, and its points lie on the plane, still a function of the
+// key, so an entry's value is the same whichever hit fills it. Elsewhere the cell is the
+// voxel. The face is the footprint axes' plane (both lie in the hit's tangent plane) within
+// kCacheFaceAlignment of the axis; the steps are 2^-kCacheFacePlaneBits of the voxel, centred
+// on its multiples, so a plane at a round coordinate (0, 0.5, 1) is one step, evaluated on it.
+const float kCacheFaceAlignment = 0.9999;  // cos 0.8 degrees
+const float kCacheFacePlaneBits = 6.0;
+
+// The axis + 1 to which the plane of footprint axes `axis1`, `axis2` is perpendicular, or 0.
+uint cacheFaceAxis(vec3 axis1, vec3 axis2) {
+  vec3 n = abs(cross(axis1, axis2));
+  float largest = max(n.x, max(n.y, n.z));
+  if (!(largest > 0.0) || !(largest >= kCacheFaceAlignment * length(n))) return 0u;
+  return n.x == largest ? 1u : (n.y == largest ? 2u : 3u);
+}
+
+// The cell of level m that holds `p`: the voxel, or on a face (`face` != 0) the voxel's
+// square across it and the plane's step along its axis.
+vec3 cacheVoxelCell(vec3 p, int m, uint face) {
+  vec3 cell = floor(p * exp2(float(m)));
+  if (face != 0u)
+    cell[face - 1u] = floor(p[face - 1u] * exp2(float(m) + kCacheFacePlaneBits) + 0.5);
+  return cell;
+}
+
+// The point of cell `cell` (size `size`) at `at` in [0, 1)^3 of it (0.5: its centre); on a
+// face, at the centre of the plane's step along the face's axis.
+vec3 cacheVoxelPoint(vec3 cell, vec3 at, float size, uint face) {
+  vec3 point = (cell + at) * size;
+  if (face != 0u) point[face - 1u] = cell[face - 1u] * (size * exp2(-kCacheFacePlaneBits));
+  return point;
+}
+
+// The key of cell `voxel` (integer coordinates, each within ±kCacheVoxelLimit) of level m on
+// face `face` (0: none); `objectWord` the instance or mesh (0 for world space). The face goes
+// into the level's word (bits 24-25, which no level within ±kCacheVoxelLevels sets or
+// clears), so a face's cell and a voxel with the same coordinates are two keys.
+CacheKey cacheVoxelKeyOf(uvec4 info, uint objectWord, int m, vec3 voxel, uint face) {
   uint x = cacheFixedPoint(voxel.x), y = cacheFixedPoint(voxel.y), z = cacheFixedPoint(voxel.z);
   uint h0 = cachePcg(objectWord ^ info.y);
   uint h1 = cachePcg(objectWord ^ info.z);
-  return cacheKeyOfHashes(cachePcg(uint(m) ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h0)))),
-                          cachePcg(uint(m) ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h1)))));
+  uint level = uint(m) ^ (face << 24u);
+  return cacheKeyOfHashes(cachePcg(level ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h0)))),
+                          cachePcg(level ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h1)))));
 }
 
-// The voxel key of `p` with footprint axes `axis1`, `axis2`; `objectWord` the instance or mesh
-// (0 for world space). `centre` and `size` are the voxel's centre (with MG_CACHE_REFRESH this
-// epoch's point of the voxel: where its value is evaluated) and width. False when the
+// The voxel key of `p` with footprint axes `axis1`, `axis2` (a face's cell where they lie on
+// one); `objectWord` the instance or mesh (0 for world space). `centre` and `size` are the
+// cell's centre (with MG_CACHE_REFRESH this epoch's point of the cell: where its value is
+// evaluated) and width. False when the
 // position is unusable (non-finite, or its voxel outside the fixed-point range).
 bool cacheVoxelKeyFor(uvec4 info, uint objectWord, vec3 p, vec3 axis1, vec3 axis2,
                       out CacheKey key, out vec3 centre, out float size) {
@@ -335,8 +379,13 @@ bool cacheVoxelKeyFor(uvec4 info, uint objectWord, vec3 p, vec3 axis1, vec3 axis
   float level = lMin > 0.0 ? -log2(lMin) + bias : kCacheVoxelLevels;
   int m = int(clamp(round(isnan(level) ? 0.0 : level), -kCacheVoxelLevels, kCacheVoxelLevels));
   size = exp2(-float(m));
-  vec3 voxel = floor(p * exp2(float(m)));
-  centre = (voxel + 0.5) * size;
+  uint face = cacheFaceAxis(axis1, axis2);
+  vec3 voxel = cacheVoxelCell(p, m, face);
+  if (face != 0u && abs(voxel[face - 1u]) >= kCacheVoxelLimit) {  // the step past the range
+    face = 0u;
+    voxel = cacheVoxelCell(p, m, face);
+  }
+  centre = cacheVoxelPoint(voxel, vec3(0.5), size, face);
   key.base = 0u;
   key.hash = 0u;
   key.texelUv = vec2(0.0);
@@ -344,9 +393,10 @@ bool cacheVoxelKeyFor(uvec4 info, uint objectWord, vec3 p, vec3 axis1, vec3 axis
   if (isnan(level) || any(isnan(p)) || any(isinf(p)) ||
       any(greaterThanEqual(abs(voxel), vec3(kCacheVoxelLimit))))
     return false;
-  key = cacheVoxelKeyOf(info, objectWord, m, voxel);
+  key = cacheVoxelKeyOf(info, objectWord, m, voxel, face);
 #ifdef MG_CACHE_REFRESH
-  centre = (voxel + cacheRefreshJitter(key)) * size;  // this epoch's point of the voxel
+  // This epoch's point of the cell (on a face, of its square on the plane).
+  centre = cacheVoxelPoint(voxel, cacheRefreshJitter(key), size, face);
 #endif
   return true;
 }
@@ -836,14 +886,6 @@ MaterialInputs voxelKeyInputs(uint domain, MaterialInputs inputs, uvec2 object, 
     // from the centre alone, not moved from the hit's, so an entry's value is the same to the
     // bit whichever hit filled it (moved, it differed by float rounding from run to run).
     vec3 toGenerated = 0.5 / meshes[object.y].textureSpaceSize.xyz;
-    // A cell's point lies up to a cell off the surface, and a graph of the 3D position reads
-    // another value there than on the surface: the expectation of the cell's points is not
-    // what the surface shows (on the material scene's floor and wall, whose Generated z moves
-    // 7x faster than x and y, a block error 15x the noise). On a flat mesh the surface is
-    // known from the key: the point moves onto its plane, still a function of the key.
-    uint flatAxis = uint(meshes[object.y].textureSpaceSize.w);
-    if (flatAxis != 0u)
-      centre[flatAxis - 1u] = meshes[object.y].textureSpaceLocation.w;
     keyInputs.objectPosition.v = centre;
     keyInputs.objectPosition.x = voxelAxis(0u, size);
     keyInputs.objectPosition.y = voxelAxis(1u, size);
@@ -962,6 +1004,7 @@ float cacheFilterRandom() {
 struct CacheFilterSite {
   vec3 position;
   uint dimensions;  // 2 (uv texels) or 3 (voxels)
+  uint face;        // voxels on a face: its axis + 1 (cacheFaceAxis), else 0
   float centreOffset;
   int coarseLevel;    // floor(L); the finer level is coarseLevel + 1
   float fineWeight;   // L - floor(L)
@@ -983,6 +1026,7 @@ bool cacheUvFilterSite(MaterialInputs inputs, out CacheFilterSite site) {
   float level = lMin > 0.0 ? -log2(lMin) + bias : 24.0;
   site.position = vec3(uv, 0.0);
   site.dimensions = 2u;
+  site.face = 0u;
   site.centreOffset = 0.0;
   site.coarseLevel = 0;
   site.fineWeight = 0.0;
@@ -992,19 +1036,24 @@ bool cacheUvFilterSite(MaterialInputs inputs, out CacheFilterSite site) {
 }
 
 // The voxel site of position `p` with footprint axes `axis1`, `axis2`, with
-// cacheVoxelKeyFor's level unrounded. False when p is not finite or a voxel of the finer level
-// around it (one past floor on each axis) is outside the fixed-point range.
+// cacheVoxelKeyFor's level unrounded and its face (where the finer level's step along the
+// face's axis is within the fixed-point range). False when p is not finite or a voxel of the
+// finer level around it (one past floor on each axis) is outside the fixed-point range.
 bool cacheVoxelFilterSite(vec3 p, vec3 axis1, vec3 axis2, out CacheFilterSite site) {
   float lMin = min(length(axis1), length(axis2));
   float bias = uintBitsToFloat(frame.cache.z);
   float level = lMin > 0.0 ? -log2(lMin) + bias : kCacheVoxelLevels;
   site.position = p;
   site.dimensions = 3u;
+  site.face = cacheFaceAxis(axis1, axis2);
   site.centreOffset = 0.5;
   site.coarseLevel = 0;
   site.fineWeight = 0.0;
   if (isnan(level) || any(isnan(p)) || any(isinf(p))) return false;
   cacheFilterLevels(level, kCacheVoxelLevels, site);
+  if (site.face != 0u &&
+      abs(cacheVoxelCell(p, site.coarseLevel + 1, site.face)[site.face - 1u]) >= kCacheVoxelLimit)
+    site.face = 0u;
   vec3 fine = floor(p * exp2(float(site.coarseLevel + 1)) - 0.5);
   return all(lessThan(abs(fine) + 1.0, vec3(kCacheVoxelLimit)));
 }
@@ -1022,7 +1071,8 @@ uint cacheFilterEntryCount(CacheFilterSite site) {
 // (integer coordinates at m; z = 0 for uv) and its weight. Trilinear: index bits are the cell's
 // corner per axis, then the level; the weight is the product of the linear weights. Stochastic:
 // the level, then the corner on each axis, drawn with their linear weights as probabilities, so
-// the entry comes with the trilinear weight as its probability and counts with weight 1.
+// the entry comes with the trilinear weight as its probability and counts with weight 1. On a
+// face the cells are its squares (bilinear in each level), all at the plane's step.
 void cacheFilterEntry(CacheFilterSite site, uint index, out int m, out vec3 cell,
                       out float weight) {
 #if MG_CACHE_FILTER == 1
@@ -1034,6 +1084,7 @@ void cacheFilterEntry(CacheFilterSite site, uint index, out int m, out vec3 cell
   vec3 t = site.position * exp2(float(m)) - site.centreOffset;
   vec3 lower = floor(t);
   vec3 f = t - lower;  // 0 in z for uv (position.z = 0, offset 0)
+  if (site.face != 0u) f[site.face - 1u] = 0.0;  // one cell along a face's axis
 #if MG_CACHE_FILTER == 1
   vec3 corner = vec3(uvec3(index, index >> 1u, site.dimensions == 3u ? index >> 2u : 0u) & 1u);
   vec3 axisWeights = mix(1.0 - f, f, corner);
@@ -1045,6 +1096,7 @@ void cacheFilterEntry(CacheFilterSite site, uint index, out int m, out vec3 cell
   weight = 1.0;
 #endif
   cell = lower + corner;
+  if (site.face != 0u) cell[site.face - 1u] = cacheVoxelCell(site.position, m, site.face)[site.face - 1u];
 }
 
 // One entry of a filtered lookup: its values, read, or on a miss evaluated at `keyInputs` (its
@@ -1093,8 +1145,9 @@ void cacheFilteredValues(uint materialId, uvec4 info, uint domain, uint objectWo
     MaterialInputs keyInputs;
 #ifdef MG_CACHE_CUTS
     if (site.dimensions == 3u) {
-      key = cacheVoxelKeyOf(info, objectWord, m, cell);
-      keyInputs = voxelKeyInputs(domain, inputs, object, (cell + 0.5) * size, size);
+      key = cacheVoxelKeyOf(info, objectWord, m, cell, site.face);
+      keyInputs = voxelKeyInputs(domain, inputs, object,
+                                 cacheVoxelPoint(cell, vec3(0.5), size, site.face), size);
     } else
 #endif
     {

@@ -57,30 +57,24 @@ TEST(ObjectInputs, TextureSpaceIsBlendersAutomaticOne) {
   const TextureSpace space = autoTextureSpace(mesh);
   EXPECT_EQ(space.location, glm::vec3(1.0f, 0.0f, 0.5f));
   EXPECT_EQ(space.size, glm::vec3(1.0f, 1.0f, 1.0f));  // the flat y: 0 becomes 1
-  EXPECT_EQ(space.flatAxis, 1);                        // the plane y = 0
-  EXPECT_EQ(space.flatCoordinate, 0.0f);
   mesh.positions = {{0, 0, 0}, {4, 1e-6f, 2}};
   EXPECT_EQ(autoTextureSpace(mesh).size, glm::vec3(2.0f, 1e-5f, 1.0f));
-  EXPECT_EQ(autoTextureSpace(mesh).flatAxis, -1);  // thin, not flat
 }
 
-// The upload's texture spaces: a mesh's own replaces the automatic one but keeps its plane
-// (the plane is the mesh's, not its texture space's); a moving mesh, flat at rest (a flag's
-// cloth), gets none, so the cache does not evaluate it on a plane it leaves.
-TEST(ObjectInputs, AMovingMeshHasNoPlane) {
+// The upload's texture spaces: a mesh's own (Blender's texture space, imported) replaces the
+// automatic one, with a zero extent made 1 as Blender does.
+TEST(ObjectInputs, AMeshsOwnTextureSpaceReplacesTheAutomaticOne) {
   Scene scene;
-  scene.meshes = {testing::quad(2.0f), testing::quad(2.0f), testing::quad(2.0f)};
+  scene.meshes = {testing::quad(2.0f), testing::quad(2.0f)};
   scene.meshes[1].hasTextureSpace = true;
   scene.meshes[1].textureSpaceLocation = glm::vec3(3.0f);
   scene.meshes[1].textureSpaceSize = glm::vec3(2.0f, 0.0f, 2.0f);
-  scene.animatedMeshes = {2};
   const std::vector<TextureSpace> spaces = sceneTextureSpaces(scene);
-  ASSERT_EQ(spaces.size(), 3u);
-  EXPECT_EQ(spaces[0].flatAxis, 1);
-  EXPECT_EQ(spaces[1].flatAxis, 1);
+  ASSERT_EQ(spaces.size(), 2u);
+  EXPECT_EQ(spaces[0].location, glm::vec3(0.0f));
+  EXPECT_EQ(spaces[0].size, glm::vec3(1.0f));
   EXPECT_EQ(spaces[1].location, glm::vec3(3.0f));
   EXPECT_EQ(spaces[1].size, glm::vec3(2.0f, 1.0f, 2.0f));  // a zero extent becomes 1
-  EXPECT_EQ(spaces[2].flatAxis, -1);
 }
 
 TEST(ObjectInputs, PathTracerFillsGeneratedObjectInfoAndFaceNormal) {
