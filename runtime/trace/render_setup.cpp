@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 
@@ -46,13 +47,37 @@ SceneBufferBudget sceneBufferBudget(const DeviceInfo& info) {
 }
 
 std::function<void(std::uint64_t, std::uint64_t)> deviceGeometryCheck(
-    const ContextOptions& options) {
-  const std::optional<DeviceInfo> info = peekDeviceInfo(options);
-  if (!info)
-    return {};
-  return [budget = sceneBufferBudget(*info)](std::uint64_t vertices, std::uint64_t triangles) {
-    checkGeometryBuffers(budget, vertices, triangles, true);
+    std::function<std::optional<DeviceInfo>()> peek) {
+  // Every Vulkan device binds a storage buffer of 2^27 bytes and allocates 2^30 (the least
+  // maxStorageBufferRange and maxMemoryAllocationSize the specification allows), so geometry
+  // within them needs no device to check it. The device is asked once a buffer passes them,
+  // and only then: a render of a smaller scene creates one Vulkan instance, the renderer's,
+  // not a second one before it that loads the driver again (the first frame's wall time).
+  constexpr std::uint64_t kEveryDevicesStorageRange = std::uint64_t(1) << 27;
+  struct Device {
+    std::function<std::optional<DeviceInfo>()> peek;
+    bool asked = false;
+    std::optional<SceneBufferBudget> budget;
   };
+  auto device = std::make_shared<Device>(Device{std::move(peek)});
+  return [device](std::uint64_t vertices, std::uint64_t triangles) {
+    const std::uint64_t largest =
+        std::max(vertices * sizeof(gpu::Vertex), triangles * 3 * sizeof(std::uint32_t));
+    if (largest <= kEveryDevicesStorageRange)
+      return;
+    if (!device->asked) {
+      device->asked = true;
+      if (const std::optional<DeviceInfo> info = device->peek())
+        device->budget = sceneBufferBudget(*info);
+    }
+    if (device->budget)  // none where no device qualifies: the renderer then says why
+      checkGeometryBuffers(*device->budget, vertices, triangles, true);
+  };
+}
+
+std::function<void(std::uint64_t, std::uint64_t)> deviceGeometryCheck(
+    const ContextOptions& options) {
+  return deviceGeometryCheck([options] { return peekDeviceInfo(options); });
 }
 
 namespace {

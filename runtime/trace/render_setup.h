@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "runtime/materials/scene_materials.h"
@@ -31,10 +32,13 @@ SceneBufferBudget sceneBufferBudget(const DeviceInfo& info);
 
 // The check a built-in scene runs while it is built (BuiltinSceneOptions::onGeometry):
 // checkGeometryBuffers against the device a renderer with `options` would choose, read
-// before the renderer exists (peekDeviceInfo). Empty where no device qualifies; the renderer
-// then says why.
+// before the renderer exists (peekDeviceInfo) once the geometry passes what every Vulkan
+// device holds. No check where no device qualifies; the renderer then says why.
 std::function<void(std::uint64_t vertices, std::uint64_t triangles)> deviceGeometryCheck(
     const ContextOptions& options);
+// The same with the device read by `peek`, called at most once.
+std::function<void(std::uint64_t vertices, std::uint64_t triangles)> deviceGeometryCheck(
+    std::function<std::optional<DeviceInfo>()> peek);
 
 // The checks that need neither the materials nor the device's resources: the settings, the
 // scene, the culling options and what the device cannot do for them. Returns the feedback
