@@ -84,6 +84,20 @@ RenderSettings settings(std::uint32_t frames) {
   return testing::primaryHitSettings(frames);
 }
 
+// `scene` rendered cached (texel) and uncached at one seed, 4 frames: the cached render, and
+// its mean LDR-FLIP against the uncached one.
+struct CachedRender {
+  RenderResult render;
+  double flip = 0.0;
+};
+
+CachedRender renderCachedAgainstUncached(const Scene& scene, Shading shading = Shading::Auto) {
+  const RenderResult off = Renderer(options(CacheMode::None, shading)).render(scene, settings(4));
+  CachedRender cached{Renderer(options(CacheMode::Texel, shading)).render(scene, settings(4))};
+  cached.flip = meanFlip(off.image, cached.render.image);
+  return cached;
+}
+
 // The linker's view of a graph: which key its cut takes, and its width.
 LinkedMaterial linked(const char* graph) {
   return linkMaterials({{"M", "", graph}}).materials.at(0);
@@ -203,11 +217,10 @@ TEST_P(CutKeyDomains, CachedImageMatchesUncachedAtOneSeed) {
   EXPECT_FALSE(m.cacheable);
   ASSERT_EQ(m.cutDomain, c.domain);
   EXPECT_EQ(m.cutWidth, 3u);
-  const Scene scene = testing::wallScene(c.graph, false);
-  const RenderResult off = Renderer(options(CacheMode::None)).render(scene, settings(4));
-  const RenderResult on = Renderer(options(CacheMode::Texel)).render(scene, settings(4));
+  const CachedRender cached = renderCachedAgainstUncached(testing::wallScene(c.graph, false));
+  const RenderResult& on = cached.render;
+  const double flip = cached.flip;
   expectConsistentCounters(on.stats);
-  const double flip = meanFlip(off.image, on.image);
   const FrameStats& last = on.stats.frames.back();
   std::printf(
       "cut key %s: mean LDR-FLIP cached vs uncached %.4f; last frame %llu lookups, hit "
@@ -316,11 +329,11 @@ TEST_P(FaceCutKeys, AFacesCellsLieOnItsPlane) {
   scene.camera.target = {0, 0, 0};
   scene.camera.up = {0, 1, 0};
   for (Shading shading : {Shading::Megakernel, Shading::Wavefront}) {
-    const RenderResult off = Renderer(options(CacheMode::None, shading)).render(scene, settings(4));
-    const RenderResult on = Renderer(options(CacheMode::Texel, shading)).render(scene, settings(4));
+    const CachedRender cached = renderCachedAgainstUncached(scene, shading);
+    const RenderResult& on = cached.render;
+    const double flip = cached.flip;
     ASSERT_EQ(on.stats.shading, shadingName(shading));
     expectConsistentCounters(on.stats);
-    const double flip = meanFlip(off.image, on.image);
     const FrameStats& last = on.stats.frames.back();
     std::printf(
         "a face's cells (%s, %s): mean LDR-FLIP cached vs uncached %.4f; last frame %llu "
