@@ -317,100 +317,61 @@ uint cacheFixedPoint(float voxel) {
 // A cell's point lies up to a cell off the surface, and a graph of the 3D position reads
 // another value there than on the surface: the expectation of the cell's points is not what
 // the surface shows. A box's side on the faces of its texture space, where a Brick's mortar
-// reaches millimetres either side, shows mortar; the cell's points a cell off it show brick;
-// a sphere's cells show the noise inside and outside it. So a cell is a square on the hit's
-// plane, not a voxel: the plane's normal, binned (cachePlaneOf), gives the plane's frame
-// (cachePlaneFrame: two axes across it and its normal), in which a position's coordinates are
-// the square's two and a thin step along the normal. The key holds the bin and the step, and
-// the cell's points lie on the binned plane, still a function of the key, so an entry's value
-// is the same whichever hit fills it. The plane is the footprint axes' (both lie in the hit's
-// tangent plane); the normal's bins are the cube-map coordinates of its two smaller components
-// over its largest, in steps of 1/kCachePlaneBins, so a face perpendicular to an axis (a box's
-// sides, floors, walls, Blender's planes) has the axis itself, and its frame is exact. Steps
-// along the normal are 2^-kCachePlaneStepBits of the voxel, centred on its multiples, so a
-// face at a round coordinate (0, 0.5, 1) is one step, evaluated on it. A footprint that spans
-// no plane keeps the voxel.
-const float kCachePlaneBins = 16.0;
-const float kCachePlaneStepBits = 4.0;
+// reaches millimetres either side, shows mortar; the cell's points a cell off it show brick.
+// Where the surface is a face perpendicular to an axis of the key's space (a box's sides,
+// floors, walls, Blender's planes), the plane is known to within a fraction of a cell from
+// the hit: the cell is a voxel's square across the face and a thin step along the axis, the
+// key holds the axis and the step, and its points lie on the plane, still a function of the
+// key, so an entry's value is the same whichever hit fills it. Elsewhere the cell is the
+// voxel. The face is the footprint axes' plane (both lie in the hit's tangent plane) within
+// kCacheFaceAlignment of the axis; the steps are 2^-kCacheFacePlaneBits of the voxel, centred
+// on its multiples, so a plane at a round coordinate (0, 0.5, 1) is one step, evaluated on it.
+const float kCacheFaceAlignment = 0.9999;  // cos 0.8 degrees
+const float kCacheFacePlaneBits = 6.0;
 
-// The binned plane of footprint axes `axis1`, `axis2`, or 0 where they span none: bits 0-1 its
-// normal's largest axis + 1, bits 2-7 and 8-13 the bins + 16 of the next two components over it.
-uint cachePlaneOf(vec3 axis1, vec3 axis2) {
-  vec3 n = cross(axis1, axis2);
-  vec3 size = abs(n);
-  float largest = max(size.x, max(size.y, size.z));
-  if (!(largest > 0.0) || isinf(largest)) return 0u;
-  uint a = size.x == largest ? 0u : (size.y == largest ? 1u : 2u);
-  int i = int(round(n[(a + 1u) % 3u] / n[a] * kCachePlaneBins));
-  int j = int(round(n[(a + 2u) % 3u] / n[a] * kCachePlaneBins));
-  return (a + 1u) | (uint(i + 16) << 2u) | (uint(j + 16) << 8u);
+// The axis + 1 to which the plane of footprint axes `axis1`, `axis2` is perpendicular, or 0.
+uint cacheFaceAxis(vec3 axis1, vec3 axis2) {
+  vec3 n = abs(cross(axis1, axis2));
+  float largest = max(n.x, max(n.y, n.z));
+  if (!(largest > 0.0) || !(largest >= kCacheFaceAlignment * length(n))) return 0u;
+  return n.x == largest ? 1u : (n.y == largest ? 2u : 3u);
 }
 
-// The frame of binned plane `plane` (non-zero): `across` two axes on it, `normal` its normal
-// (the axis itself and the next two axes for a face perpendicular to an axis, exactly).
-void cachePlaneFrame(uint plane, out vec3 acrossX, out vec3 acrossY, out vec3 normal) {
-  uint a = (plane & 3u) - 1u, b = (a + 1u) % 3u, c = (a + 2u) % 3u;
-  normal = vec3(0.0);
-  normal[a] = 1.0;
-  normal[b] = float(int((plane >> 2u) & 63u) - 16) / kCachePlaneBins;
-  normal[c] = float(int((plane >> 8u) & 63u) - 16) / kCachePlaneBins;
-  normal = normalize(normal);
-  vec3 axisB = vec3(0.0);
-  axisB[b] = 1.0;
-  acrossX = normalize(axisB - normal[b] * normal);
-  acrossY = cross(normal, acrossX);
-}
-
-// A position's coordinates in the frame of `plane` (across, across, along the normal), and
-// back; plane 0 is the key space's own.
-vec3 cachePlaneCoordinates(uint plane, vec3 p) {
-  if (plane == 0u) return p;
-  vec3 acrossX, acrossY, normal;
-  cachePlaneFrame(plane, acrossX, acrossY, normal);
-  return vec3(dot(acrossX, p), dot(acrossY, p), dot(normal, p));
-}
-
-vec3 cachePlanePosition(uint plane, vec3 q) {
-  if (plane == 0u) return q;
-  vec3 acrossX, acrossY, normal;
-  cachePlaneFrame(plane, acrossX, acrossY, normal);
-  return acrossX * q.x + acrossY * q.y + normal * q.z;
-}
-
-// The cell of level m that holds plane coordinates `q`: the voxel, or on a plane the voxel's
-// square across it and the step along its normal (z).
-vec3 cacheVoxelCell(vec3 q, int m, uint plane) {
-  vec3 cell = floor(q * exp2(float(m)));
-  if (plane != 0u) cell.z = floor(q.z * exp2(float(m) + kCachePlaneStepBits) + 0.5);
+// The cell of level m that holds `p`: the voxel, or on a face (`face` != 0) the voxel's
+// square across it and the plane's step along its axis.
+vec3 cacheVoxelCell(vec3 p, int m, uint face) {
+  vec3 cell = floor(p * exp2(float(m)));
+  if (face != 0u)
+    cell[face - 1u] = floor(p[face - 1u] * exp2(float(m) + kCacheFacePlaneBits) + 0.5);
   return cell;
 }
 
-// The point (plane coordinates) of cell `cell` (size `size`) at `at` in [0, 1)^3 of it (0.5:
-// its centre); on a plane, at the centre of its step along the normal.
-vec3 cacheVoxelPoint(vec3 cell, vec3 at, float size, uint plane) {
+// The point of cell `cell` (size `size`) at `at` in [0, 1)^3 of it (0.5: its centre); on a
+// face, at the centre of the plane's step along the face's axis.
+vec3 cacheVoxelPoint(vec3 cell, vec3 at, float size, uint face) {
   vec3 point = (cell + at) * size;
-  if (plane != 0u) point.z = cell.z * (size * exp2(-kCachePlaneStepBits));
+  if (face != 0u) point[face - 1u] = cell[face - 1u] * (size * exp2(-kCacheFacePlaneBits));
   return point;
 }
 
 // The key of cell `voxel` (integer coordinates, each within ±kCacheVoxelLimit) of level m on
-// binned plane `plane` (0: a voxel); `objectWord` the instance or mesh (0 for world space). The
-// plane goes into the level's word (bits 16-29, which no level within ±kCacheVoxelLevels sets
-// or clears), so cells of two planes, or of a plane and a voxel, are two keys.
-CacheKey cacheVoxelKeyOf(uvec4 info, uint objectWord, int m, vec3 voxel, uint plane) {
+// face `face` (0: none); `objectWord` the instance or mesh (0 for world space). The face goes
+// into the level's word (bits 24-25, which no level within ±kCacheVoxelLevels sets or
+// clears), so a face's cell and a voxel with the same coordinates are two keys.
+CacheKey cacheVoxelKeyOf(uvec4 info, uint objectWord, int m, vec3 voxel, uint face) {
   uint x = cacheFixedPoint(voxel.x), y = cacheFixedPoint(voxel.y), z = cacheFixedPoint(voxel.z);
   uint h0 = cachePcg(objectWord ^ info.y);
   uint h1 = cachePcg(objectWord ^ info.z);
-  uint level = uint(m) ^ (plane << 16u);
+  uint level = uint(m) ^ (face << 24u);
   return cacheKeyOfHashes(cachePcg(level ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h0)))),
                           cachePcg(level ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h1)))));
 }
 
-// The voxel key of `p` with footprint axes `axis1`, `axis2` (a cell of their binned plane);
-// `objectWord` the instance or mesh (0 for world space). `centre` and `size` are the cell's
-// centre in the key's space (with MG_CACHE_REFRESH this epoch's point of the cell: where its
-// value is evaluated) and width. False when the position is unusable (non-finite, or its cell
-// outside the fixed-point range).
+// The voxel key of `p` with footprint axes `axis1`, `axis2` (a face's cell where they lie on
+// one); `objectWord` the instance or mesh (0 for world space). `centre` and `size` are the
+// cell's centre (with MG_CACHE_REFRESH this epoch's point of the cell: where its value is
+// evaluated) and width. False when the
+// position is unusable (non-finite, or its voxel outside the fixed-point range).
 bool cacheVoxelKeyFor(uvec4 info, uint objectWord, vec3 p, vec3 axis1, vec3 axis2,
                       out CacheKey key, out vec3 centre, out float size) {
   float lMin = min(length(axis1), length(axis2));
@@ -418,15 +379,13 @@ bool cacheVoxelKeyFor(uvec4 info, uint objectWord, vec3 p, vec3 axis1, vec3 axis
   float level = lMin > 0.0 ? -log2(lMin) + bias : kCacheVoxelLevels;
   int m = int(clamp(round(isnan(level) ? 0.0 : level), -kCacheVoxelLevels, kCacheVoxelLevels));
   size = exp2(-float(m));
-  uint plane = cachePlaneOf(axis1, axis2);
-  vec3 q = cachePlaneCoordinates(plane, p);
-  vec3 voxel = cacheVoxelCell(q, m, plane);
-  if (plane != 0u && any(greaterThanEqual(abs(voxel), vec3(kCacheVoxelLimit)))) {
-    plane = 0u;  // the step past the range: the voxel's may still fit
-    q = p;
-    voxel = cacheVoxelCell(q, m, plane);
+  uint face = cacheFaceAxis(axis1, axis2);
+  vec3 voxel = cacheVoxelCell(p, m, face);
+  if (face != 0u && abs(voxel[face - 1u]) >= kCacheVoxelLimit) {  // the step past the range
+    face = 0u;
+    voxel = cacheVoxelCell(p, m, face);
   }
-  centre = cachePlanePosition(plane, cacheVoxelPoint(voxel, vec3(0.5), size, plane));
+  centre = cacheVoxelPoint(voxel, vec3(0.5), size, face);
   key.base = 0u;
   key.hash = 0u;
   key.texelUv = vec2(0.0);
@@ -434,10 +393,10 @@ bool cacheVoxelKeyFor(uvec4 info, uint objectWord, vec3 p, vec3 axis1, vec3 axis
   if (isnan(level) || any(isnan(p)) || any(isinf(p)) ||
       any(greaterThanEqual(abs(voxel), vec3(kCacheVoxelLimit))))
     return false;
-  key = cacheVoxelKeyOf(info, objectWord, m, voxel, plane);
+  key = cacheVoxelKeyOf(info, objectWord, m, voxel, face);
 #ifdef MG_CACHE_REFRESH
-  // This epoch's point of the cell (on a plane, of its square).
-  centre = cachePlanePosition(plane, cacheVoxelPoint(voxel, cacheRefreshJitter(key), size, plane));
+  // This epoch's point of the cell (on a face, of its square on the plane).
+  centre = cacheVoxelPoint(voxel, cacheRefreshJitter(key), size, face);
 #endif
   return true;
 }
@@ -1045,7 +1004,7 @@ float cacheFilterRandom() {
 struct CacheFilterSite {
   vec3 position;
   uint dimensions;  // 2 (uv texels) or 3 (voxels)
-  uint plane;       // voxel keys: the binned plane (cachePlaneOf) whose frame holds position
+  uint face;        // voxels on a face: its axis + 1 (cacheFaceAxis), else 0
   float centreOffset;
   int coarseLevel;    // floor(L); the finer level is coarseLevel + 1
   float fineWeight;   // L - floor(L)
@@ -1067,7 +1026,7 @@ bool cacheUvFilterSite(MaterialInputs inputs, out CacheFilterSite site) {
   float level = lMin > 0.0 ? -log2(lMin) + bias : 24.0;
   site.position = vec3(uv, 0.0);
   site.dimensions = 2u;
-  site.plane = 0u;
+  site.face = 0u;
   site.centreOffset = 0.0;
   site.coarseLevel = 0;
   site.fineWeight = 0.0;
@@ -1077,30 +1036,24 @@ bool cacheUvFilterSite(MaterialInputs inputs, out CacheFilterSite site) {
 }
 
 // The voxel site of position `p` with footprint axes `axis1`, `axis2`, with
-// cacheVoxelKeyFor's level unrounded, in the frame of its binned plane (where the finer level's
-// cells are within the fixed-point range; else the key space's voxels). False when p is not
-// finite or a voxel of the finer level around it (one past floor on each axis) is outside the
-// fixed-point range.
+// cacheVoxelKeyFor's level unrounded and its face (where the finer level's step along the
+// face's axis is within the fixed-point range). False when p is not finite or a voxel of the
+// finer level around it (one past floor on each axis) is outside the fixed-point range.
 bool cacheVoxelFilterSite(vec3 p, vec3 axis1, vec3 axis2, out CacheFilterSite site) {
   float lMin = min(length(axis1), length(axis2));
   float bias = uintBitsToFloat(frame.cache.z);
   float level = lMin > 0.0 ? -log2(lMin) + bias : kCacheVoxelLevels;
   site.position = p;
   site.dimensions = 3u;
-  site.plane = cachePlaneOf(axis1, axis2);
+  site.face = cacheFaceAxis(axis1, axis2);
   site.centreOffset = 0.5;
   site.coarseLevel = 0;
   site.fineWeight = 0.0;
   if (isnan(level) || any(isnan(p)) || any(isinf(p))) return false;
   cacheFilterLevels(level, kCacheVoxelLevels, site);
-  if (site.plane != 0u) {
-    vec3 q = cachePlaneCoordinates(site.plane, p);
-    if (all(lessThan(abs(cacheVoxelCell(q, site.coarseLevel + 1, site.plane)) + 1.0,
-                     vec3(kCacheVoxelLimit))))
-      site.position = q;
-    else
-      site.plane = 0u;
-  }
+  if (site.face != 0u &&
+      abs(cacheVoxelCell(p, site.coarseLevel + 1, site.face)[site.face - 1u]) >= kCacheVoxelLimit)
+    site.face = 0u;
   vec3 fine = floor(p * exp2(float(site.coarseLevel + 1)) - 0.5);
   return all(lessThan(abs(fine) + 1.0, vec3(kCacheVoxelLimit)));
 }
@@ -1119,7 +1072,7 @@ uint cacheFilterEntryCount(CacheFilterSite site) {
 // corner per axis, then the level; the weight is the product of the linear weights. Stochastic:
 // the level, then the corner on each axis, drawn with their linear weights as probabilities, so
 // the entry comes with the trilinear weight as its probability and counts with weight 1. On a
-// plane the cells are its squares (bilinear in each level), all at the plane's step.
+// face the cells are its squares (bilinear in each level), all at the plane's step.
 void cacheFilterEntry(CacheFilterSite site, uint index, out int m, out vec3 cell,
                       out float weight) {
 #if MG_CACHE_FILTER == 1
@@ -1131,7 +1084,7 @@ void cacheFilterEntry(CacheFilterSite site, uint index, out int m, out vec3 cell
   vec3 t = site.position * exp2(float(m)) - site.centreOffset;
   vec3 lower = floor(t);
   vec3 f = t - lower;  // 0 in z for uv (position.z = 0, offset 0)
-  if (site.plane != 0u) f.z = 0.0;  // one cell along a plane's normal
+  if (site.face != 0u) f[site.face - 1u] = 0.0;  // one cell along a face's axis
 #if MG_CACHE_FILTER == 1
   vec3 corner = vec3(uvec3(index, index >> 1u, site.dimensions == 3u ? index >> 2u : 0u) & 1u);
   vec3 axisWeights = mix(1.0 - f, f, corner);
@@ -1143,7 +1096,7 @@ void cacheFilterEntry(CacheFilterSite site, uint index, out int m, out vec3 cell
   weight = 1.0;
 #endif
   cell = lower + corner;
-  if (site.plane != 0u) cell.z = cacheVoxelCell(site.position, m, site.plane).z;
+  if (site.face != 0u) cell[site.face - 1u] = cacheVoxelCell(site.position, m, site.face)[site.face - 1u];
 }
 
 // One entry of a filtered lookup: its values, read, or on a miss evaluated at `keyInputs` (its
@@ -1192,10 +1145,9 @@ void cacheFilteredValues(uint materialId, uvec4 info, uint domain, uint objectWo
     MaterialInputs keyInputs;
 #ifdef MG_CACHE_CUTS
     if (site.dimensions == 3u) {
-      key = cacheVoxelKeyOf(info, objectWord, m, cell, site.plane);
-      keyInputs = voxelKeyInputs(
-          domain, inputs, object,
-          cachePlanePosition(site.plane, cacheVoxelPoint(cell, vec3(0.5), size, site.plane)), size);
+      key = cacheVoxelKeyOf(info, objectWord, m, cell, site.face);
+      keyInputs = voxelKeyInputs(domain, inputs, object,
+                                 cacheVoxelPoint(cell, vec3(0.5), size, site.face), size);
     } else
 #endif
     {
