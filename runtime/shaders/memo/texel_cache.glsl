@@ -370,8 +370,8 @@ CacheKey cacheVoxelKeyOf(uvec4 info, uint objectWord, int m, vec3 voxel, uint fa
 // The voxel key of `p` with footprint axes `axis1`, `axis2` (a face's cell where they lie on
 // one); `objectWord` the instance or mesh (0 for world space). `centre` and `size` are the
 // cell's centre (with MG_CACHE_REFRESH this epoch's point of the cell: where its value is
-// evaluated) and width. False when the
-// position is unusable (non-finite, or its voxel outside the fixed-point range).
+// evaluated) and width. False when the position is unusable (non-finite, or its voxel outside
+// the fixed-point range).
 bool cacheVoxelKeyFor(uvec4 info, uint objectWord, vec3 p, vec3 axis1, vec3 axis2,
                       out CacheKey key, out vec3 centre, out float size) {
   float lMin = min(length(axis1), length(axis2));
@@ -1096,7 +1096,8 @@ void cacheFilterEntry(CacheFilterSite site, uint index, out int m, out vec3 cell
   weight = 1.0;
 #endif
   cell = lower + corner;
-  if (site.face != 0u) cell[site.face - 1u] = cacheVoxelCell(site.position, m, site.face)[site.face - 1u];
+  if (site.face != 0u)
+    cell[site.face - 1u] = cacheVoxelCell(site.position, m, site.face)[site.face - 1u];
 }
 
 // One entry of a filtered lookup: its values, read, or on a miss evaluated at `keyInputs` (its
