@@ -153,14 +153,14 @@ std::vector<TextureSpace> sceneTextureSpaces(const Scene& scene) {
   std::vector<TextureSpace> spaces;
   spaces.reserve(scene.meshes.size());
   for (const Mesh& mesh : scene.meshes) {
-    TextureSpace space = autoTextureSpace(mesh);
-    if (mesh.hasTextureSpace) {
-      space.location = mesh.textureSpaceLocation;
-      space.size = mesh.textureSpaceSize;
-      for (int k = 0; k < 3; ++k)
-        if (space.size[k] == 0.0f)
-          space.size[k] = 1.0f;
+    if (!mesh.hasTextureSpace) {
+      spaces.push_back(autoTextureSpace(mesh));  // a pass over its vertices
+      continue;
     }
+    TextureSpace space{mesh.textureSpaceLocation, mesh.textureSpaceSize};
+    for (int k = 0; k < 3; ++k)
+      if (space.size[k] == 0.0f)
+        space.size[k] = 1.0f;
     spaces.push_back(space);
   }
   return spaces;

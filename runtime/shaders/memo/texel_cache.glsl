@@ -356,8 +356,9 @@ vec3 cacheVoxelPoint(vec3 cell, vec3 at, float size, uint face) {
 
 // The key of cell `voxel` (integer coordinates, each within ±kCacheVoxelLimit) of level m on
 // face `face` (0: none); `objectWord` the instance or mesh (0 for world space). The face goes
-// into the level's word (bits 24-25, which no level within ±kCacheVoxelLevels sets or
-// clears), so a face's cell and a voxel with the same coordinates are two keys.
+// into the level's word, flipping bits 24-25: a level within ±kCacheVoxelLevels varies only
+// in bits 0-4 below its sign's extension, so no two (level, face) pairs share a word, and a
+// face's cell and a voxel with the same coordinates are two keys.
 CacheKey cacheVoxelKeyOf(uvec4 info, uint objectWord, int m, vec3 voxel, uint face) {
   uint x = cacheFixedPoint(voxel.x), y = cacheFixedPoint(voxel.y), z = cacheFixedPoint(voxel.z);
   uint h0 = cachePcg(objectWord ^ info.y);
