@@ -111,7 +111,7 @@ DynamicAccelerationStructures::DynamicAccelerationStructures(
 
 bool DynamicAccelerationStructures::prepareLook(const Camera& camera, float aspect,
                                                 std::uint32_t frame, float seconds,
-                                                FrameStats& stats) {
+                                                std::uint32_t pixelStep, FrameStats& stats) {
   using Clock = std::chrono::steady_clock;
   const auto stateStart = Clock::now();
   if (!culling_.wantsLook(camera, aspect)) {
@@ -126,6 +126,7 @@ bool DynamicAccelerationStructures::prepareLook(const Camera& camera, float aspe
     lodsChosen_ = true;
   }
   lookCountsPending_ = true;
+  lookRayWeight_ = 1.0 / (double(std::max(pixelStep, 1u)) * double(std::max(pixelStep, 1u)));
   prepareStructures(frame, seconds, stats, stateStart);
   stats.looks = 1;
   return true;
@@ -154,8 +155,9 @@ void DynamicAccelerationStructures::prepareFrame(const Camera& camera, float asp
       footprints.clear();
     }
   }
-  culling_.update(camera, aspect, hits, previousRays,
-                  lookCountsPending_ ? 1u : options_.feedbackStride * feedbackPathWeight_);
+  culling_.update(
+      camera, aspect, hits, previousRays,
+      lookCountsPending_ ? lookRayWeight_ : double(options_.feedbackStride * feedbackPathWeight_));
   // The LODs from the counting frame's footprints; between counting frames the choice keeps
   // them, and what has no feedback follows its distance.
   if (lods_ && (!lodsChosen_ || !footprints.empty() || !hitFeedbackOn())) {

@@ -67,10 +67,11 @@ class DynamicAccelerationStructures {
   // LiPaC's look (SceneCulling::look), where the culling wants one for this camera: the
   // probe's states and structures, for one trace of the frame's camera whose counters the
   // frame's prepareFrame then reads; fills `stats` as prepareFrame does, with looks = 1.
-  // Returns whether it prepared one; the check's host time is in
-  // stats.cullingHostMilliseconds either way (the frame adds it to its own).
+  // `pixelStep`: the probe traces one path per pixelStep x pixelStep pixels. Returns whether
+  // it prepared one; the check's host time is in stats.cullingHostMilliseconds either way
+  // (the frame adds it to its own).
   bool prepareLook(const Camera& camera, float aspect, std::uint32_t frame, float seconds,
-                   FrameStats& stats);
+                   std::uint32_t pixelStep, FrameStats& stats);
   // In the frame's command buffer, with the other clears (the caller's barrier orders them
   // before the trace): zeroes the hit counters.
   void recordClears(VkCommandBuffer commands) const;
@@ -128,6 +129,7 @@ class DynamicAccelerationStructures {
   GpuBuffer hitFeedback_;
   GpuBuffer hitReadback_;
   bool lookCountsPending_ = false;  // the next prepareFrame reads a look's counters
+  double lookRayWeight_ = 1.0;      // SceneCulling::update's rayWeight for the look's counters
   bool frameCounted_ = false;       // the frame last prepared counts (frameCounts)
   const std::uint32_t feedbackPathWeight_;
 };

@@ -40,8 +40,8 @@ VkAccelerationStructureKHR RenderAcceleration::countingBoxes() const {
 }
 
 bool RenderAcceleration::prepareLook(const Camera& camera, float aspect, std::uint32_t frame,
-                                     float seconds, FrameStats& look) {
-  return dynamic_ && dynamic_->prepareLook(camera, aspect, frame, seconds, look);
+                                     float seconds, std::uint32_t pixelStep, FrameStats& look) {
+  return dynamic_ && dynamic_->prepareLook(camera, aspect, frame, seconds, pixelStep, look);
 }
 
 void RenderAcceleration::prepareFrame(const Camera& camera, float aspect, std::uint32_t frame,

@@ -45,9 +45,10 @@ class RenderAcceleration {
   bool frameCounts() const { return dynamic_ && dynamic_->frameCounts(); }
 
   // LiPaC's look (SceneCulling::look) before frame `frame`, where the culling wants one for
-  // this camera: fills `look` as prepareFrame does and returns true.
+  // this camera, its probe one path per pixelStep x pixelStep pixels: fills `look` as
+  // prepareFrame does and returns true.
   bool prepareLook(const Camera& camera, float aspect, std::uint32_t frame, float seconds,
-                   FrameStats& look);
+                   std::uint32_t pixelStep, FrameStats& look);
   // Before frame `frame`'s submit: the per-frame culling update (the last trace's counters,
   // `previousRays` of them) and the structures it keeps; fills the frame's culling and
   // structure figures.

@@ -313,7 +313,7 @@ void SceneCulling::look(const Camera& camera, float aspect) {
 }
 
 void SceneCulling::update(const Camera& camera, float aspect, std::span<const std::uint32_t> hits,
-                          std::uint64_t rays, std::uint32_t countWeight) {
+                          std::uint64_t rays, double rayWeight) {
   counts_.changes = 0;
   const Frustum frustum = cameraFrustum(camera, aspect);
   switch (options_.mode) {
@@ -323,7 +323,7 @@ void SceneCulling::update(const Camera& camera, float aspect, std::span<const st
       updateFrustum(frustum, camera);
       break;
     case CullingMode::Lipac:
-      updateLipac(frustum, camera, hits, rays, std::max(countWeight, 1u));
+      updateLipac(frustum, camera, hits, rays, rayWeight > 0.0 ? rayWeight : 1.0);
       break;
   }
   first_ = false;
@@ -340,7 +340,7 @@ void SceneCulling::updateFrustum(const Frustum& frustum, const Camera& camera) {
 
 void SceneCulling::updateLipac(const Frustum& frustum, const Camera& camera,
                                std::span<const std::uint32_t> hits, std::uint64_t rays,
-                               std::uint32_t countWeight) {
+                               double rayWeight) {
   const std::uint32_t n = instanceCount();
   if (!hits.empty() && hits.size() != counterCount())
     throw std::logic_error("SceneCulling::update: " + std::to_string(hits.size()) +
@@ -348,10 +348,9 @@ void SceneCulling::updateLipac(const Frustum& frustum, const Camera& camera,
   if (!hits.empty()) {
     // Hitboxes (§3.3.2, algorithm 5): an inactive one counts the rays through its box, an
     // active one the hits of its instances (their own, or their boxes' while omitted).
-    // A counted ray adds countWeight to its counter (sampled feedback; 1 in a look's
-    // probe): the minimums are in rays, so they scale with it; the per-million thresholds
-    // keep their expected value.
-    const double rayWeight = static_cast<double>(countWeight);
+    // A counted ray adds rayWeight to its counter (sampled feedback; 1 in a look's probe,
+    // whose sparse rays stand for less, update()): the minimums are in rays, so they scale
+    // with it; the per-million thresholds keep their expected value.
     const double activate = std::max(kMinHitboxActivationHits * rayWeight,
                                      thresholdHits(options_.hitboxActivate, rays));
     const double deactivate = thresholdHits(options_.hitboxDeactivate, rays);

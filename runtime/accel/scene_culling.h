@@ -175,12 +175,15 @@ class SceneCulling {
 
   // Before each frame's trace: the frame's camera and image aspect, and the counters of the
   // previous frame's trace (instanceCount() + hitboxCount() values; empty before the first
-  // frame, and for the modes without feedback) with the rays it traced. `countWeight`: what
-  // one counted ray added to its counter (a frame's trace counts 1 in feedbackStride blocks
-  // of pixels and N of P paths, each ray weighted feedbackStride * P / N; a look's probe
-  // counts every ray, weighted 1); the minimum activation hits are in rays.
+  // frame, and for the modes without feedback) with the rays it traced. `rayWeight`: the
+  // pixels' rays one counted ray stands for (a frame's trace counts 1 in feedbackStride
+  // blocks of pixels and N of P paths, each ray adding feedbackStride * P / N to its
+  // counter; a look's probe counts every ray it traces, adding 1, and a sparse look's ray,
+  // one per step x step pixels, stands for 1 / step^2 of what it adds). The minimum
+  // activation hits are in rays times rayWeight: at least that many counted rays, and a
+  // sparse look activates an instance its one ray reaches.
   void update(const Camera& camera, float aspect, std::span<const std::uint32_t> hits,
-              std::uint64_t rays, std::uint32_t countWeight = 1);
+              std::uint64_t rays, double rayWeight = 1.0);
 
   std::uint32_t instanceCount() const { return static_cast<std::uint32_t>(states_.size()); }
   std::uint32_t hitboxCount() const { return static_cast<std::uint32_t>(hitboxActive_.size()); }
@@ -212,8 +215,7 @@ class SceneCulling {
  private:
   void updateFrustum(const Frustum& frustum, const Camera& camera);
   void updateLipac(const Frustum& frustum, const Camera& camera,
-                   std::span<const std::uint32_t> hits, std::uint64_t rays,
-                   std::uint32_t countWeight);
+                   std::span<const std::uint32_t> hits, std::uint64_t rays, double rayWeight);
   void setState(std::uint32_t instance, InstanceState state);
   // A counting frame of a hitbox or an instance in the TLAS, `low` below its deactivation
   // threshold: whether it leaves now (then its wait doubles, up to the cap).

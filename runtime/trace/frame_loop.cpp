@@ -16,6 +16,8 @@ namespace {
 
 // The tracer's own timestamps follow the trace's (0, 1) and the builds' (2-4).
 constexpr std::uint32_t kFirstBuildTimestamp = 2;
+// A look after the render's first traces one path per block of this many pixels square.
+constexpr std::uint32_t kSparseLookStep = 2;
 constexpr std::uint32_t kFirstTracerTimestamp =
     kFirstBuildTimestamp + RenderAcceleration::kBuildTimestamps;
 
@@ -174,8 +176,9 @@ gpu::Counters FrameLoop::readCounters() const {
   return counters;
 }
 
-void FrameLoop::look(std::uint32_t f, const Camera& camera, FrameStats& look) {
-  if (!in_.acceleration->prepareLook(camera, aspect_, f, frame_.cameraForward.w, look))
+void FrameLoop::look(std::uint32_t f, const Camera& camera, bool firstLook, FrameStats& look) {
+  const std::uint32_t step = firstLook ? 1u : kSparseLookStep;
+  if (!in_.acceleration->prepareLook(camera, aspect_, f, frame_.cameraForward.w, step, look))
     return;
   // LiPaC's look (SceneCulling::look): one trace of this frame's camera, its image replaced
   // by the frame's, its builds, host and GPU time folded into the frame's figures, its
@@ -188,9 +191,18 @@ void FrameLoop::look(std::uint32_t f, const Camera& camera, FrameStats& look) {
   // is not kept, and on the H200 at P = 6 a frame with a look of P paths took 1.6-2.5x the
   // unculled frame's time (with one path 1.10x). For the same reason its paths trace no
   // shadow rays (frame.culling.w).
-  const glm::uvec4 framePath = frame_.path, frameCulling = frame_.culling;
+  //
+  // After the first, a look is sparse: one path per kSparseLookStep x kSparseLookStep block
+  // of pixels, at a random point of its block but with the pixel's ray cone (so its cache
+  // keys and LOD footprints are the frame's), and one of its rays activates what it reaches
+  // (SceneCulling::update's rayWeight). It looks for what comes into view while most of the
+  // scene is already held. The first look, with nothing held yet, traces every pixel.
+  const glm::uvec4 framePath = frame_.path, frameCulling = frame_.culling,
+                   frameImage = frame_.image;
   frame_.path.x = 1u;
   frame_.culling = glm::uvec4(1u, frame_.culling.y, 0u, gpu::kCullingLook);
+  frame_.image.x = (frameImage.x + step - 1u) / step;
+  frame_.image.y = (frameImage.y + step - 1u) / step;
   frameBuffer_.write(&frame_, sizeof frame_);
   FrameTrace probe;
   probe.paths = 1;
@@ -198,9 +210,11 @@ void FrameLoop::look(std::uint32_t f, const Camera& camera, FrameStats& look) {
   probe.counts = true;
   probe.look = true;
   probe.counted = {0, 1};
-  submit(f == in_.settings->firstFrame, probe);
+  probe.pixels = frame_.image.x * frame_.image.y;
+  submit(firstLook, probe);
   frame_.path = framePath;
   frame_.culling = frameCulling;
+  frame_.image = frameImage;
   frameBuffer_.write(&frame_, sizeof frame_);
   previousRays_ = look.lookRays = readCounters().rays;
   if (timestampPool_) {
@@ -314,7 +328,7 @@ void FrameLoop::run(RenderResult& result) {
     // probe's sample is replaced, not averaged in.
     FrameStats lookStats;
     if (sampleIndex == 0)
-      look(f, camera, lookStats);
+      look(f, camera, firstRendered, lookStats);
     accel.prepareFrame(camera, aspect_, f, frame_.cameraForward.w, previousRays_, frameStats);
 
     FrameTrace trace;

@@ -49,8 +49,9 @@ class FrameLoop {
   // One submit: clears (`firstFrame`: the cache and the persistent counters too), the
   // builds, the trace, the read-backs.
   void submit(bool firstFrame, const FrameTrace& trace) const;
-  // LiPaC's look before frame `f`, where the culling wants one: fills `look`.
-  void look(std::uint32_t f, const Camera& camera, FrameStats& look);
+  // LiPaC's look before frame `f`, where the culling wants one: fills `look`. `firstLook`:
+  // before the render's first frame (it sets up, and traces every pixel).
+  void look(std::uint32_t f, const Camera& camera, bool firstLook, FrameStats& look);
   // The figures of the frame just submitted (counters, timestamps), with its look's.
   void readFrame(const FrameTrace& trace, const FrameStats& look, FrameStats& stats);
   // The last submitted frame's timestamps first..first+count-1.

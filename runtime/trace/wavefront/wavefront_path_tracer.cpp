@@ -59,8 +59,9 @@ std::uint32_t workgroupsFor(std::uint64_t invocations) {
 // points are binned and their emitters' graphs evaluated. Every chunk of pixels runs all P
 // rounds before the next.
 std::vector<WavefrontPathTracer::FramePass> WavefrontPathTracer::framePasses(
-    std::uint32_t paths, std::uint32_t bounces) const {
+    std::uint32_t paths, std::uint32_t bounces, std::uint32_t pixels) const {
   const bool materials = !materialPasses_.empty();
+  const std::uint32_t chunks = pixels == 0 ? chunks_ : (pixels + slots_ - 1) / slots_;
   std::vector<FramePass> passes;
   auto binning = [&](bool lightPoints) {
     for (std::uint32_t pass :
@@ -71,7 +72,7 @@ std::vector<WavefrontPathTracer::FramePass> WavefrontPathTracer::framePasses(
       passes.push_back({gpu::kWavefrontTracedInputs});
     passes.push_back({gpu::kWavefrontMaterial, lightPoints});
   };
-  for (std::uint32_t round = 0; round < chunks_ * paths; ++round) {
+  for (std::uint32_t round = 0; round < chunks * paths; ++round) {
     passes.push_back({gpu::kWavefrontGenerate});
     if (ambientOcclusionIntegrator_) {
       // The AO integrator: the camera rays' hits and their AO rays, nothing shaded.
@@ -514,13 +515,14 @@ std::uint32_t WavefrontPathTracer::timestampCount(std::uint32_t paths,
 }
 
 void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pass,
-                                     std::uint32_t chunk, std::uint32_t round, std::uint32_t bounce,
-                                     bool countsHits, bool lightPoints) const {
+                                     std::uint32_t pixels, std::uint32_t chunk, std::uint32_t round,
+                                     std::uint32_t bounce, bool countsHits,
+                                     bool lightPoints) const {
   // Live queues alternate: bounce b traces queue b % 2 and appends to the other.
   gpu::WavefrontPush push{};
   push.step = glm::uvec4(round, bounce, bounce % 2, 0);
   const std::uint32_t firstPixel = chunk * slots_;
-  const std::uint32_t chunkPixels = std::min(slots_, pixels_ - firstPixel);
+  const std::uint32_t chunkPixels = std::min(slots_, pixels - firstPixel);
   // w: LiPaC's counting frame (the trace pass counts its rays, hit_feedback.glsl); the
   // light samples' points binned and evaluated after the shadow pass.
   push.chunk = glm::uvec4(slots_, firstPixel, chunkPixels,
@@ -608,7 +610,9 @@ void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pas
 
 void WavefrontPathTracer::record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t paths,
                                  std::uint32_t bounces, bool countsHits, VkQueryPool timestamps,
-                                 std::uint32_t firstQuery) const {
+                                 std::uint32_t firstQuery, std::uint32_t pixels) const {
+  if (pixels == 0 || pixels > pixels_)
+    pixels = pixels_;
   vkCmdBindDescriptorSets(commands, VK_PIPELINE_BIND_POINT_COMPUTE, layout_.get(), 0, 1, &set, 0,
                           nullptr);
   if (!query_)
@@ -633,8 +637,8 @@ void WavefrontPathTracer::record(VkCommandBuffer commands, VkDescriptorSet set, 
   barrier.dstAccessMask =
       VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
   std::uint32_t chunk = 0, round = 0, bounce = 0;
-  for (const FramePass& step : framePasses(paths, bounces)) {
-    recordPass(commands, step.pass, chunk, round, bounce, countsHits, step.lightPoints);
+  for (const FramePass& step : framePasses(paths, bounces, pixels)) {
+    recordPass(commands, step.pass, pixels, chunk, round, bounce, countsHits, step.lightPoints);
     if (timestamps)
       vkCmdWriteTimestamp(commands, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, query++);
     vkCmdPipelineBarrier(commands, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,

@@ -124,9 +124,10 @@ class WavefrontPathTracer final : public FrameTracer {
   // shadow[, the light points' bin count, offsets, scatter and material passes]), finish, with
   // a barrier between passes. `countsHits`: the trace passes count LiPaC's hit feedback (a
   // tracer built with MG_HIT_FEEDBACK; the frame counts). `timestamps` VK_NULL_HANDLE: none.
+  // `pixels`: the image's (0: the frame's; a sparse look's are fewer, FrameTrace::pixels).
   void record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t paths,
               std::uint32_t bounces, bool countsHits, VkQueryPool timestamps,
-              std::uint32_t firstQuery) const;
+              std::uint32_t firstQuery, std::uint32_t pixels = 0) const;
 
   // Adds the passes' GPU times to `frame` (its wavefront*Milliseconds) from the timestamps
   // record() wrote, read back as `ticks` (timestampCount of them).
@@ -140,7 +141,8 @@ class WavefrontPathTracer final : public FrameTracer {
   std::uint32_t dispatchCount(const FrameTrace&) const override { return 0; }
   void recordTrace(VkCommandBuffer commands, VkDescriptorSet set, const FrameTrace& trace,
                    VkQueryPool timestamps, std::uint32_t firstTimestamp) const override {
-    record(commands, set, trace.paths, trace.rays, trace.counts, timestamps, firstTimestamp);
+    record(commands, set, trace.paths, trace.rays, trace.counts, timestamps, firstTimestamp,
+           trace.pixels);
   }
   void addFrameStats(const FrameTrace& trace, const std::vector<std::uint64_t>* passTicks,
                      double millisecondsPerTick, FrameStats& stats) const override;
@@ -235,9 +237,11 @@ class WavefrontPathTracer final : public FrameTracer {
     std::uint32_t pass = 0;  // gpu::kWavefront*
     bool lightPoints = false;
   };
-  std::vector<FramePass> framePasses(std::uint32_t paths, std::uint32_t bounces) const;
-  void recordPass(VkCommandBuffer commands, std::uint32_t pass, std::uint32_t chunk,
-                  std::uint32_t round, std::uint32_t bounce, bool countsHits,
+  // The passes of an image of `pixels` (0: the frame's).
+  std::vector<FramePass> framePasses(std::uint32_t paths, std::uint32_t bounces,
+                                     std::uint32_t pixels = 0) const;
+  void recordPass(VkCommandBuffer commands, std::uint32_t pass, std::uint32_t pixels,
+                  std::uint32_t chunk, std::uint32_t round, std::uint32_t bounce, bool countsHits,
                   bool lightPoints) const;
 };
 
