@@ -210,7 +210,8 @@ void FrameLoop::look(std::uint32_t f, const Camera& camera, bool firstLook, Fram
   probe.counts = true;
   probe.look = true;
   probe.counted = {0, 1};
-  probe.pixels = frame_.image.x * frame_.image.y;
+  probe.width = frame_.image.x;
+  probe.height = frame_.image.y;
   submit(firstLook, probe);
   frame_.path = framePath;
   frame_.culling = frameCulling;

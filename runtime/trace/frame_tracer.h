@@ -21,9 +21,10 @@ struct FrameTrace {
   bool counts = false;      // LiPaC counts its hits (the feedback's pipeline)
   bool look = false;        // LiPaC's look: one probe trace, its paths counted together
   CountedPaths counted;     // the counting paths of a counting frame
-  // The pixels the trace's image has (FrameConstants::image.xy): 0, the frame's; a sparse
-  // look traces one path per block of pixels, so its image is smaller.
-  std::uint32_t pixels = 0;
+  // The trace's image (FrameConstants::image.xy): 0 x 0, the frame's; a sparse look traces
+  // one path per block of pixels, so its image is smaller.
+  std::uint32_t width = 0;
+  std::uint32_t height = 0;
 };
 
 class FrameTracer {

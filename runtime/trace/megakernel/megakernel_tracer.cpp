@@ -1,5 +1,6 @@
 #include "runtime/trace/megakernel/megakernel_tracer.h"
 
+#include <algorithm>
 #include <future>
 
 namespace memograph::runtime {
@@ -60,12 +61,16 @@ std::uint32_t MegakernelTracer::dispatchCount(const FrameTrace& trace) const {
 
 void MegakernelTracer::recordTrace(VkCommandBuffer commands, VkDescriptorSet set,
                                    const FrameTrace& trace, VkQueryPool, std::uint32_t) const {
+  // A sparse look's image is smaller than the frame's: a launch past it would trace rays
+  // outside the frustum (the pipeline backend's raygen takes every launch as a pixel).
+  const std::uint32_t width = trace.width > 0 ? std::min(trace.width, width_) : width_;
+  const std::uint32_t height = trace.height > 0 ? std::min(trace.height, height_) : height_;
   for (const PathDispatch& d : plan(trace)) {
     // A later dispatch adds its share to what the earlier ones wrote (renderPixel).
     if (d.adds)
       shaderBarrier(commands);
     const TracePipeline& traced = quietPipeline_ && !d.feedback ? *quietPipeline_ : *pipeline_;
-    traced.record(commands, set, width_, height_, d.push());
+    traced.record(commands, set, width, height, d.push());
   }
   if (tileFillRows_ > 0) {
     // The deferred tile fill computes the tiles the trace queued (its stores, queue and

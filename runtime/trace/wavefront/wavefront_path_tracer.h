@@ -124,7 +124,7 @@ class WavefrontPathTracer final : public FrameTracer {
   // shadow[, the light points' bin count, offsets, scatter and material passes]), finish, with
   // a barrier between passes. `countsHits`: the trace passes count LiPaC's hit feedback (a
   // tracer built with MG_HIT_FEEDBACK; the frame counts). `timestamps` VK_NULL_HANDLE: none.
-  // `pixels`: the image's (0: the frame's; a sparse look's are fewer, FrameTrace::pixels).
+  // `pixels`: the image's (0: the frame's; a sparse look's are fewer, FrameTrace::width).
   void record(VkCommandBuffer commands, VkDescriptorSet set, std::uint32_t paths,
               std::uint32_t bounces, bool countsHits, VkQueryPool timestamps,
               std::uint32_t firstQuery, std::uint32_t pixels = 0) const;
@@ -142,7 +142,7 @@ class WavefrontPathTracer final : public FrameTracer {
   void recordTrace(VkCommandBuffer commands, VkDescriptorSet set, const FrameTrace& trace,
                    VkQueryPool timestamps, std::uint32_t firstTimestamp) const override {
     record(commands, set, trace.paths, trace.rays, trace.counts, timestamps, firstTimestamp,
-           trace.pixels);
+           trace.width * trace.height);
   }
   void addFrameStats(const FrameTrace& trace, const std::vector<std::uint64_t>* passTicks,
                      double millisecondsPerTick, FrameStats& stats) const override;
