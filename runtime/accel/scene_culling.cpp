@@ -348,9 +348,9 @@ void SceneCulling::updateLipac(const Frustum& frustum, const Camera& camera,
   if (!hits.empty()) {
     // Hitboxes (§3.3.2, algorithm 5): an inactive one counts the rays through its box, an
     // active one the hits of its instances (their own, or their boxes' while omitted).
-    // A counted ray adds rayWeight to its counter (sampled feedback; 1 in a look's probe,
-    // whose sparse rays stand for less, update()): the minimums are in rays, so they scale
-    // with it; the per-million thresholds keep their expected value.
+    // A counted ray adds rayWeight to its counter (sampled feedback; 1 in a look's probe, and
+    // a sparse look passes less, update()): the minimums are in rays, so they scale with it;
+    // the per-million thresholds keep their expected value.
     const double activate = std::max(kMinHitboxActivationHits * rayWeight,
                                      thresholdHits(options_.hitboxActivate, rays));
     const double deactivate = thresholdHits(options_.hitboxDeactivate, rays);

@@ -175,13 +175,12 @@ class SceneCulling {
 
   // Before each frame's trace: the frame's camera and image aspect, and the counters of the
   // previous frame's trace (instanceCount() + hitboxCount() values; empty before the first
-  // frame, and for the modes without feedback) with the rays it traced. `rayWeight`: the
-  // pixels' rays one counted ray stands for (a frame's trace counts 1 in feedbackStride
-  // blocks of pixels and N of P paths, each ray adding feedbackStride * P / N to its
-  // counter; a look's probe counts every ray it traces, adding 1, and a sparse look's ray,
-  // one per step x step pixels, stands for 1 / step^2 of what it adds). The minimum
-  // activation hits are in rays times rayWeight: at least that many counted rays, and a
-  // sparse look activates an instance its one ray reaches.
+  // frame, and for the modes without feedback) with the rays it traced. `rayWeight` scales
+  // the minimum activation counts: a frame's trace counts 1 in feedbackStride blocks of
+  // pixels and N of P paths, each counted ray adding rayWeight = feedbackStride * P / N to its
+  // counter, so the minimums ask for that many counted rays; a look's probe adds 1 a ray
+  // (rayWeight 1), and a sparse look, one ray per step x step pixels, passes 1 / step^2, so
+  // that one of its rays reaching an instance activates it.
   void update(const Camera& camera, float aspect, std::span<const std::uint32_t> hits,
               std::uint64_t rays, double rayWeight = 1.0);
 
