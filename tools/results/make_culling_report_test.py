@@ -36,10 +36,10 @@ class MakeCullingReportTest(unittest.TestCase):
             write_frames(os.path.join(run, f"frames_{mode}.csv"), frames)
         return run
 
-    def run_report(self, folder):
+    def run_report(self, folder, *flags):
         out = os.path.join(self.dir.name, "report.md")
         result = subprocess.run([sys.executable, REPORT, folder, "--out", out, "--plots",
-                                 os.path.join(self.dir.name, "plots"), "--no-png"],
+                                 os.path.join(self.dir.name, "plots"), "--no-png", *flags],
                                 capture_output=True, text=True)
         text = ""
         if os.path.exists(out):
@@ -199,6 +199,33 @@ class MakeCullingReportTest(unittest.TestCase):
                                                     "culling.gp")))
         # Not the default report's folder (relative to the working directory).
         self.assertFalse(os.path.exists(os.path.join(self.dir.name, "docs")))
+
+    def test_skipped_frames_leave_every_run(self):
+        # The GPU's first frames after the scene's build can run slow in one run and not in
+        # another: none's first frame here is 3x its second. With it, lipac's path reads
+        # 0.601x none's (301.5 against 501.5 ms); without, 1.000x, and the rows still say how
+        # many frames each ran.
+        run = self.make_run({
+            "none": [(300.0, 1000, 0.0, 20000), (100.0, 1000, 0.0, 20000),
+                     (100.0, 1000, 0.0, 20000)],
+            "lipac": [(100.0, 300, 0.0, 3000), (100.0, 300, 0.0, 3000),
+                      (100.0, 300, 0.0, 3000)]})
+        result, text = self.run_report(run)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        lipac = next(line for line in text.splitlines() if line.startswith("| lipac |"))
+        self.assertEqual([c.strip() for c in lipac.strip("|").split("|")][10], "0.601×")
+        result, text = self.run_report(run, "--skip-frames", "1")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        self.assertIn("frames 1 to 2 of the path (the first 1 left out", text)
+        lipac = next(line for line in text.splitlines() if line.startswith("| lipac |"))
+        cells = [c.strip() for c in lipac.strip("|").split("|")]
+        self.assertEqual(cells[1], "3")
+        self.assertEqual(cells[9:12], ["1.000×", "1.000×", "1.000×"])
+        result, _ = self.run_report(run, "--skip-frames", "3")
+        self.assertEqual(result.returncode, 1)
+        self.assertIn("none left after --skip-frames 3", result.stderr)
+        result, _ = self.run_report(run, "--skip-frames", "-1")
+        self.assertEqual(result.returncode, 2)
 
     def test_bad_input_exits_1(self):
         result, _ = self.run_report(os.path.join(self.dir.name, "missing"))
