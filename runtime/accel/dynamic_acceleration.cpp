@@ -126,7 +126,8 @@ bool DynamicAccelerationStructures::prepareLook(const Camera& camera, float aspe
     lodsChosen_ = true;
   }
   lookCountsPending_ = true;
-  lookRayWeight_ = 1.0 / (double(std::max(pixelStep, 1u)) * double(std::max(pixelStep, 1u)));
+  const double step = std::max(pixelStep, 1u);
+  lookRayWeight_ = 1.0 / (step * step);
   prepareStructures(frame, seconds, stats, stateStart);
   stats.looks = 1;
   return true;

@@ -193,10 +193,11 @@ void FrameLoop::look(std::uint32_t f, const Camera& camera, bool firstLook, Fram
   // shadow rays (frame.culling.w).
   //
   // After the first, a look is sparse: one path per kSparseLookStep x kSparseLookStep block
-  // of pixels, at a random point of its block but with the pixel's ray cone (so its cache
-  // keys and LOD footprints are the frame's), and one of its rays activates what it reaches
-  // (SceneCulling::update's rayWeight). It looks for what comes into view while most of the
-  // scene is already held. The first look, with nothing held yet, traces every pixel.
+  // of pixels, at a random point of its block (its centre with --shared-primary) but with the
+  // pixel's ray cone (so its cache keys and LOD footprints are the frame's), and one of its
+  // rays activates what it reaches (SceneCulling::update's rayWeight). It looks for what
+  // comes into view while most of the scene is already held. The first look, with nothing
+  // held yet, traces every pixel.
   const glm::uvec4 framePath = frame_.path, frameCulling = frame_.culling,
                    frameImage = frame_.image;
   frame_.path.x = 1u;
