@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <future>
 #include <set>
 #include <stdexcept>
 
@@ -56,21 +57,25 @@ ContextOptions contextOptions(const RendererOptions& options) {
 
 Renderer::Renderer(RendererOptions options)
     : options_(std::move(options)),
-      context_(std::make_unique<VulkanContext>(contextOptions(options_))) {}
+      context_(std::async(std::launch::async, [context = contextOptions(options_)] {
+        return std::make_unique<VulkanContext>(context);
+      })) {}
 
 Renderer::~Renderer() = default;
 
 // The stages in order, each refusing bad input before the next spends time on it: the
 // request checked; the materials linked (the graphs, and whether NEE must evaluate an
-// emitter's); the plan (architecture, dispatch, cache); the scene and its
+// emitter's), while the constructor's thread still creates the device; the request checked
+// against the device; the plan (architecture, dispatch, cache); the scene and its
 // textures uploaded; the acceleration structures built; the shaders compiled into the chosen
 // architecture's pipelines; then the frames.
 RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings) {
   const auto renderStart = std::chrono::steady_clock::now();
-  const VulkanContext& context = *context_;
-  const std::uint32_t pathWeight = validateRender(options_, settings, scene, context);
+  const std::uint32_t pathWeight = validateRender(options_, settings, scene);
   const SceneMaterials materials =
       linkSceneMaterials(scene, options_.nodeLibraryDirectory, options_.cache.keyDomains);
+  const VulkanContext& context = this->context();
+  validateRenderOnDevice(options_, scene, context);
   const RenderPlan plan = planRender(options_, settings, context, materials, pathWeight);
   RenderResult result;
   result.stats = describeRender(options_, settings, scene, context, materials, plan);

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <future>
 #include <memory>
 #include <optional>
 #include <string>
@@ -159,7 +160,10 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  const VulkanContext& context() const { return *context_; }
+  // The device. The constructor creates it on a thread of its own (a GPU driver's start
+  // takes hundreds of milliseconds), so render() links the scene's materials meanwhile; the
+  // first call waits for it, and every call rethrows what its creation threw.
+  const VulkanContext& context() const { return *context_.get(); }
 
   // Compiles the scene's materials, uploads it, builds its acceleration structures and
   // renders settings.frames frames. Throws std::runtime_error / std::invalid_argument with a
@@ -168,7 +172,7 @@ class Renderer {
 
  private:
   RendererOptions options_;
-  std::unique_ptr<VulkanContext> context_;
+  std::shared_future<std::unique_ptr<VulkanContext>> context_;
 };
 
 }  // namespace memograph::runtime

@@ -296,7 +296,7 @@ void checkCpuSwitchLimit(const RendererOptions& options, const VulkanContext& co
 }  // namespace
 
 std::uint32_t validateRender(const RendererOptions& options, const RenderSettings& settings,
-                             const Scene& scene, const VulkanContext& context) {
+                             const Scene& scene) {
   validateSettings(settings);
   validateScene(scene);
   // The cameras, before anything is built for them: a camera far outside float range would
@@ -308,7 +308,6 @@ std::uint32_t validateRender(const RendererOptions& options, const RenderSetting
   for (std::size_t k = 0; k < settings.cameraPath.size(); ++k)
     if (const std::string problem = cameraProblem(settings.cameraPath[k]); !problem.empty())
       throw std::invalid_argument("camera path frame " + std::to_string(k) + ": " + problem);
-  checkSceneFitsDevice(scene, context, options.culling);
   validateCullingOptions(options.culling);
   const std::uint32_t pathWeight =
       options.culling.mode == CullingMode::Lipac
@@ -320,11 +319,16 @@ std::uint32_t validateRender(const RendererOptions& options, const RenderSetting
     throw std::invalid_argument(
         "--debug-culling shows which instances culling keeps; it needs --culling frustum or "
         "--culling lipac");
+  return pathWeight;
+}
+
+void validateRenderOnDevice(const RendererOptions& options, const Scene& scene,
+                            const VulkanContext& context) {
+  checkSceneFitsDevice(scene, context, options.culling);
   if (options.culling.blasBuildMilliseconds > 0.0 && !context.info().timestamps)
     throw std::invalid_argument(
         "--blas-build-ms times the BLAS builds with GPU timestamps, which this device does not "
         "have; --blas-build-budget limits the triangles built instead");
-  return pathWeight;
 }
 
 RenderPlan planRender(const RendererOptions& options, const RenderSettings& settings,

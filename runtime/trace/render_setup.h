@@ -1,6 +1,7 @@
-// The first stages of Renderer::render: the request checked (validateRender), then, once the
-// materials are linked, what the render will run (planRender: the architecture, the material
-// dispatch, the cache's resolved options) and the statistics that describe it.
+// The first stages of Renderer::render: the request checked (validateRender); once the
+// materials are linked, the request checked on the device (validateRenderOnDevice), then what
+// the render will run (planRender: the architecture, the material dispatch, the cache's
+// resolved options) and the statistics that describe it.
 #pragma once
 
 #include <cstdint>
@@ -40,11 +41,16 @@ std::function<void(std::uint64_t vertices, std::uint64_t triangles)> deviceGeome
 std::function<void(std::uint64_t vertices, std::uint64_t triangles)> deviceGeometryCheck(
     std::function<std::optional<DeviceInfo>()> peek);
 
-// The checks that need neither the materials nor the device's resources: the settings, the
-// scene, the culling options and what the device cannot do for them. Returns the feedback
-// path weight. Throws std::invalid_argument naming the option.
+// The checks that need neither the materials nor the device: the settings, the scene, the
+// cameras and the options. Returns the feedback path weight. Throws std::invalid_argument
+// naming the option.
 std::uint32_t validateRender(const RendererOptions& options, const RenderSettings& settings,
-                             const Scene& scene, const VulkanContext& context);
+                             const Scene& scene);
+
+// What the device cannot do for the request: the scene's size against its limits, and the
+// options that need a feature it lacks. Throws as validateRender does.
+void validateRenderOnDevice(const RendererOptions& options, const Scene& scene,
+                            const VulkanContext& context);
 
 // The architecture (resolveShading), then every check that needs it or the materials, before
 // anything compiles: the image's buffer, the material dispatch, the cache on this device and
