@@ -131,6 +131,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   frames.acceleration = &acceleration;
   frames.cache = pipelines.cache.get();
   frames.tracer = pipelines.tracer.get();
+  frames.shaderCacheDirectory = shaderCacheDirectory;
   frames.cullingViewSize = options_.debugCullingSize;
   frames.renderStart = renderStart;
   FrameLoop(context, frames).run(result);

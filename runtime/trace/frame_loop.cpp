@@ -8,6 +8,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "runtime/vk/clock_warmup.h"
 #include "runtime/vk/vulkan_error.h"
 
 namespace memograph::runtime {
@@ -273,6 +274,13 @@ void FrameLoop::readFrame(const FrameTrace& trace, const FrameStats& look, Frame
   }
 }
 
+void FrameLoop::warmClocks() const {
+  const std::uint32_t milliseconds = in_.settings->clockWarmupMilliseconds;
+  if (milliseconds == 0 || context_.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU)
+    return;
+  warmUpClocks(context_, std::chrono::milliseconds(milliseconds), in_.shaderCacheDirectory);
+}
+
 HdrImage FrameLoop::readImage() const {
   const RenderSettings& settings = *in_.settings;
   const std::uint64_t bytes = in_.plan->accumulationBytes;
@@ -298,6 +306,7 @@ void FrameLoop::run(RenderResult& result) {
   const std::uint32_t first = settings.firstFrame, end = first + settings.frames;
   bool firstRendered = true;     // the render's first frame: submit sets up, its time is reported
   bool deferredCreated = false;  // the tracer's deferred pipelines, before the second frame
+  warmClocks();
   for (std::uint32_t f = first; f < end; ++f) {
     if (settings.skipFrame && settings.skipFrame(f))
       continue;
@@ -309,6 +318,8 @@ void FrameLoop::run(RenderResult& result) {
       result.stats.deferredPipelineMilliseconds =
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
               .count();
+      if (result.stats.deferredPipelinesCreated > 0)
+        warmClocks();
     }
     const Camera& camera =
         settings.cameraPath.empty()

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <filesystem>
 #include <vector>
 
 #include "runtime/accel/render_acceleration.h"
@@ -30,8 +31,9 @@ struct FrameLoopInputs {
   const SceneResources* resources = nullptr;
   RenderAcceleration* acceleration = nullptr;
   const MaterialCache* cache = nullptr;
-  FrameTracer* tracer = nullptr;      // its deferred pipelines are created before the 2nd frame
-  std::uint32_t cullingViewSize = 0;  // RendererOptions::debugCullingSize
+  FrameTracer* tracer = nullptr;  // its deferred pipelines are created before the 2nd frame
+  std::filesystem::path shaderCacheDirectory;  // the clock warm-up's SPIR-V (none when empty)
+  std::uint32_t cullingViewSize = 0;           // RendererOptions::debugCullingSize
   // When Renderer::render began: RenderStats::firstFrameMilliseconds counts from it.
   std::chrono::steady_clock::time_point renderStart = std::chrono::steady_clock::now();
 };
@@ -52,6 +54,8 @@ class FrameLoop {
   // LiPaC's look before frame `f`, where the culling wants one: fills `look`. `firstLook`:
   // before the render's first frame (it sets up, and traces every pixel).
   void look(std::uint32_t f, const Camera& camera, bool firstLook, FrameStats& look);
+  // RenderSettings::clockWarmupMilliseconds on a GPU, after host work that left it idle.
+  void warmClocks() const;
   // The figures of the frame just submitted (counters, timestamps), with its look's.
   void readFrame(const FrameTrace& trace, const FrameStats& look, FrameStats& stats);
   // The last submitted frame's timestamps first..first+count-1.

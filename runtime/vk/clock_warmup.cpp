@@ -1,0 +1,52 @@
+#include "runtime/vk/clock_warmup.h"
+
+#include <algorithm>
+
+#include "runtime/vk/compute_pipeline.h"
+#include "runtime/vk/gpu_buffer.h"
+
+namespace memograph::runtime {
+
+namespace {
+
+struct WarmupPush {
+  glm::uvec2 sink;
+  std::uint32_t iterations;
+};
+
+// 1024 work groups of 256 invocations: about one of each of an H100's 132 multiprocessors'
+// 2048 resident invocations, so every multiprocessor is busy.
+constexpr std::uint32_t kWorkgroups = 1024;
+// A submission is grown (its iterations doubled) until it takes this long, so that the
+// host's turnaround between submissions leaves the GPU idle for a small share of the time.
+constexpr auto kSubmission = std::chrono::milliseconds(5);
+constexpr std::uint32_t kMaxIterations = 1u << 24;
+
+}  // namespace
+
+std::uint32_t warmUpClocks(const VulkanContext& context, std::chrono::milliseconds duration,
+                           const std::filesystem::path& shaderCacheDirectory) {
+  const PushConstantPass pass = createPushConstantPass(
+      context, "clock_warmup.comp", sizeof(WarmupPush), shaderCacheDirectory, "clock warm-up");
+  GpuBuffer sink(context, sizeof(std::uint32_t),
+                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+                 VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+  WarmupPush push{addressWords(sink.address()), 16};
+  const auto start = std::chrono::steady_clock::now();
+  std::uint32_t submissions = 0;
+  do {
+    const auto submitted = std::chrono::steady_clock::now();
+    context.submitAndWait([&](VkCommandBuffer commands) {
+      vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipeline.get());
+      vkCmdPushConstants(commands, pass.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push,
+                         &push);
+      vkCmdDispatch(commands, kWorkgroups, 1, 1);
+    });
+    ++submissions;
+    if (std::chrono::steady_clock::now() - submitted < kSubmission)
+      push.iterations = std::min(push.iterations * 2, kMaxIterations);
+  } while (std::chrono::steady_clock::now() - start < duration);
+  return submissions;
+}
+
+}  // namespace memograph::runtime
