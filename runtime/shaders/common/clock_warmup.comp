@@ -18,6 +18,8 @@ push;
 
 void main() {
   uint x = gl_GlobalInvocationID.x + 1u;
-  for (uint i = 0u; i < push.iterations; ++i) x = x * 1664525u + 1013904223u;
-  if (x == 0xFFFFFFFFu) Sink(push.sink).value = x;
+  for (uint i = 0u; i < push.iterations; ++i)
+    x = x * 1664525u + 1013904223u;
+  if (x == 0xFFFFFFFFu)
+    Sink(push.sink).value = x;
 }
