@@ -14,8 +14,8 @@ struct WarmupPush {
   std::uint32_t iterations;
 };
 
-// 1024 work groups of 256 invocations: about one of each of an H100's 132 multiprocessors'
-// 2048 resident invocations, so every multiprocessor is busy.
+// 1024 work groups of 256: 262,144 invocations, about what an H100's 132 multiprocessors
+// hold at once (2,048 each), so that every multiprocessor is busy.
 constexpr std::uint32_t kWorkgroups = 1024;
 // A submission is grown (its iterations doubled) until it takes this long, so that the
 // host's turnaround between submissions leaves the GPU idle for a small share of the time.
