@@ -111,9 +111,20 @@ TEST(BadOptions, UnknownBackendAndDeviceIndexAreExplained) {
   EXPECT_THROW(parseBackend("optix"), std::invalid_argument);
   RendererOptions options = testing::testOptions();
   options.context.deviceIndex = 99;
+  // The device opens on the renderer's own thread: its error comes from context() and from
+  // render(), each time they are called.
+  Renderer renderer(options);
+  for (int call = 0; call < 2; ++call) {
+    try {
+      renderer.context();
+      ADD_FAILURE() << "device 99 was accepted";
+    } catch (const std::runtime_error& e) {
+      EXPECT_NE(std::string(e.what()).find("out of range"), std::string::npos) << e.what();
+    }
+  }
   try {
-    Renderer renderer(options);
-    ADD_FAILURE() << "device 99 was accepted";
+    renderer.render(oneQuad(), tiny());
+    ADD_FAILURE() << "device 99 rendered";
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find("out of range"), std::string::npos) << e.what();
   }
