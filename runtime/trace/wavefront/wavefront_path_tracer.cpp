@@ -61,7 +61,7 @@ std::uint32_t workgroupsFor(std::uint64_t invocations) {
 std::vector<WavefrontPathTracer::FramePass> WavefrontPathTracer::framePasses(
     std::uint32_t paths, std::uint32_t bounces, std::uint32_t pixels) const {
   const bool materials = !materialPasses_.empty();
-  const std::uint32_t chunks = pixels == 0 ? chunks_ : (pixels + slots_ - 1) / slots_;
+  const std::uint32_t chunks = (pixels + slots_ - 1) / slots_;
   std::vector<FramePass> passes;
   auto binning = [&](bool lightPoints) {
     for (std::uint32_t pass :
@@ -511,7 +511,7 @@ void WavefrontPathTracer::createPipelines(const PipelineShaders& shaders, std::u
 
 std::uint32_t WavefrontPathTracer::timestampCount(std::uint32_t paths,
                                                   std::uint32_t bounces) const {
-  return 1 + static_cast<std::uint32_t>(framePasses(paths, bounces).size());
+  return 1 + static_cast<std::uint32_t>(framePasses(paths, bounces, pixels_).size());
 }
 
 void WavefrontPathTracer::recordPass(VkCommandBuffer commands, std::uint32_t pass,
@@ -683,7 +683,7 @@ std::vector<std::uint32_t> WavefrontPathTracer::binHits() const {
 void WavefrontPathTracer::addPassTimes(const std::vector<std::uint64_t>& ticks, std::uint32_t paths,
                                        std::uint32_t bounces, double millisecondsPerTick,
                                        FrameStats& frame) const {
-  const auto passes = framePasses(paths, bounces);
+  const auto passes = framePasses(paths, bounces, pixels_);
   if (ticks.size() < passes.size() + 1)
     return;
   for (std::size_t i = 0; i < passes.size(); ++i) {

@@ -237,9 +237,9 @@ class WavefrontPathTracer final : public FrameTracer {
     std::uint32_t pass = 0;  // gpu::kWavefront*
     bool lightPoints = false;
   };
-  // The passes of an image of `pixels` (0: the frame's).
+  // The passes of an image of `pixels`, in chunks of at most slots_.
   std::vector<FramePass> framePasses(std::uint32_t paths, std::uint32_t bounces,
-                                     std::uint32_t pixels = 0) const;
+                                     std::uint32_t pixels) const;
   void recordPass(VkCommandBuffer commands, std::uint32_t pass, std::uint32_t pixels,
                   std::uint32_t chunk, std::uint32_t round, std::uint32_t bounce, bool countsHits,
                   bool lightPoints) const;
