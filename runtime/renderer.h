@@ -142,7 +142,7 @@ struct RenderSettings {
   std::function<void(std::uint32_t frame, const HdrImage&)> onFrameImage;
   // Before the render's first frame, and again after the pipelines created before its second,
   // a GPU (not a CPU device) runs a compute pass that only spins, for this many milliseconds
-  // (warmUpClocks): a discrete GPU lowers its clocks while it idles through host work, and
+  // (ClockWarmup): a discrete GPU lowers its clocks while it idles through host work, and
   // its first frames would otherwise time the clocks. 0: none. `memograph bench` sets it.
   std::uint32_t clockWarmupMilliseconds = 0;
 };

@@ -8,7 +8,6 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "runtime/vk/clock_warmup.h"
 #include "runtime/vk/vulkan_error.h"
 
 namespace memograph::runtime {
@@ -274,11 +273,13 @@ void FrameLoop::readFrame(const FrameTrace& trace, const FrameStats& look, Frame
   }
 }
 
-void FrameLoop::warmClocks() const {
+void FrameLoop::warmClocks() {
   const std::uint32_t milliseconds = in_.settings->clockWarmupMilliseconds;
   if (milliseconds == 0 || context_.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU)
     return;
-  warmUpClocks(context_, std::chrono::milliseconds(milliseconds), in_.shaderCacheDirectory);
+  if (!clockWarmup_)
+    clockWarmup_.emplace(context_, in_.shaderCacheDirectory);
+  clockWarmup_->run(std::chrono::milliseconds(milliseconds));
 }
 
 HdrImage FrameLoop::readImage() const {

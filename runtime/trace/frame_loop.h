@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include "runtime/accel/render_acceleration.h"
@@ -17,6 +18,7 @@
 #include "runtime/trace/frame_tracer.h"
 #include "runtime/trace/render_setup.h"
 #include "runtime/trace/trace_descriptors.h"
+#include "runtime/vk/clock_warmup.h"
 #include "runtime/vk/gpu_buffer.h"
 #include "runtime/vk/vulkan_handle.h"
 
@@ -55,7 +57,7 @@ class FrameLoop {
   // before the render's first frame (it sets up, and traces every pixel).
   void look(std::uint32_t f, const Camera& camera, bool firstLook, FrameStats& look);
   // RenderSettings::clockWarmupMilliseconds on a GPU, after host work that left it idle.
-  void warmClocks() const;
+  void warmClocks();
   // The figures of the frame just submitted (counters, timestamps), with its look's.
   void readFrame(const FrameTrace& trace, const FrameStats& look, FrameStats& stats);
   // The last submitted frame's timestamps first..first+count-1.
@@ -79,6 +81,7 @@ class FrameLoop {
   double millisecondsPerTick_ = 0.0;
   gpu::FrameConstants frame_{};
   std::uint64_t previousRays_ = 0;
+  std::optional<ClockWarmup> clockWarmup_;  // made at the first warmClocks() that runs
 };
 
 }  // namespace memograph::runtime

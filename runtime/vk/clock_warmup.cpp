@@ -2,9 +2,6 @@
 
 #include <algorithm>
 
-#include "runtime/vk/compute_pipeline.h"
-#include "runtime/vk/gpu_buffer.h"
-
 namespace memograph::runtime {
 
 namespace {
@@ -24,27 +21,30 @@ constexpr std::uint32_t kMaxIterations = 1u << 24;
 
 }  // namespace
 
-std::uint32_t warmUpClocks(const VulkanContext& context, std::chrono::milliseconds duration,
-                           const std::filesystem::path& shaderCacheDirectory) {
-  const PushConstantPass pass = createPushConstantPass(
-      context, "clock_warmup.comp", sizeof(WarmupPush), shaderCacheDirectory, "clock warm-up");
-  GpuBuffer sink(context, sizeof(std::uint32_t),
-                 VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
-                 VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-  WarmupPush push{addressWords(sink.address()), 16};
+ClockWarmup::ClockWarmup(const VulkanContext& context,
+                         const std::filesystem::path& shaderCacheDirectory)
+    : context_(context),
+      pass_(createPushConstantPass(context, "clock_warmup.comp", sizeof(WarmupPush),
+                                   shaderCacheDirectory, "clock warm-up")),
+      sink_(context, sizeof(std::uint32_t),
+            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT,
+            VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT) {}
+
+std::uint32_t ClockWarmup::run(std::chrono::milliseconds duration) {
   const auto start = std::chrono::steady_clock::now();
   std::uint32_t submissions = 0;
   do {
+    const WarmupPush push{addressWords(sink_.address()), iterations_};
     const auto submitted = std::chrono::steady_clock::now();
-    context.submitAndWait([&](VkCommandBuffer commands) {
-      vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pass.pipeline.get());
-      vkCmdPushConstants(commands, pass.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push,
+    context_.submitAndWait([&](VkCommandBuffer commands) {
+      vkCmdBindPipeline(commands, VK_PIPELINE_BIND_POINT_COMPUTE, pass_.pipeline.get());
+      vkCmdPushConstants(commands, pass_.layout.get(), VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof push,
                          &push);
       vkCmdDispatch(commands, kWorkgroups, 1, 1);
     });
     ++submissions;
     if (std::chrono::steady_clock::now() - submitted < kSubmission)
-      push.iterations = std::min(push.iterations * 2, kMaxIterations);
+      iterations_ = std::min(iterations_ * 2, kMaxIterations);
   } while (std::chrono::steady_clock::now() - start < duration);
   return submissions;
 }

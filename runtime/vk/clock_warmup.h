@@ -9,15 +9,27 @@
 #include <cstdint>
 #include <filesystem>
 
+#include "runtime/vk/compute_pipeline.h"
+#include "runtime/vk/gpu_buffer.h"
 #include "runtime/vk/vulkan_context.h"
 
 namespace memograph::runtime {
 
-// Submits a compute pass that only spins (shaders/common/clock_warmup.comp), one submission
-// after another, each grown until it takes about 5 ms, until `duration` of wall time has
-// passed; returns the submissions made (at least one). Its SPIR-V is cached in
-// `shaderCacheDirectory` (none when empty). Throws VulkanError on a device failure.
-std::uint32_t warmUpClocks(const VulkanContext& context, std::chrono::milliseconds duration,
-                           const std::filesystem::path& shaderCacheDirectory);
+class ClockWarmup {
+ public:
+  // The compute pass that only spins (shaders/common/clock_warmup.comp), its SPIR-V cached in
+  // `shaderCacheDirectory` (none when empty). Throws VulkanError on a device failure.
+  ClockWarmup(const VulkanContext& context, const std::filesystem::path& shaderCacheDirectory);
+
+  // Submits the pass, one submission after another, each grown until it takes about 5 ms,
+  // until `duration` of wall time has passed; returns the submissions made (at least one).
+  std::uint32_t run(std::chrono::milliseconds duration);
+
+ private:
+  const VulkanContext& context_;
+  PushConstantPass pass_;
+  GpuBuffer sink_;
+  std::uint32_t iterations_ = 16;  // a submission's loop count, grown as run() measures
+};
 
 }  // namespace memograph::runtime
