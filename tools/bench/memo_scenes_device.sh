@@ -31,7 +31,8 @@
 # (default wavefront; lavapipe compiles the wavefront's per-material passes slowly);
 # --variants: texel-cache settings measured beside the default, each a bench run
 # texel-wavefront-NAME and a picture texel-NAME: trilinear and stochastic (--cache-filter),
-# finer (--mip-bias 1: keys of half the size), refreshN (--cache-refresh N) (default none);
+# finer (--mip-bias 1: keys of half the size), secondary (--cache-secondary-only: camera hits
+# uncached), refreshN (--cache-refresh N), and NAME_NAME... for several at once (default none);
 # --keep-pictures: the uncached
 # and texel pictures (PFM) come back in $OUT too, as SCENE_none.pfm and SCENE_texel.pfm (and
 # SCENE_texel-NAME.pfm for each variant).
@@ -61,7 +62,7 @@ while [ $# -gt 0 ]; do
   --quality-shading) qshading=$2; shift 2 ;;
   --variants) variants=$2; shift 2 ;;
   --keep-pictures) keep=1; shift ;;
-  -h | --help) sed -n '2,37p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  -h | --help) sed -n '2,38p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
   *) echo "memo_scenes_device.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
   esac
 done
@@ -97,14 +98,18 @@ field() {
   grep -o "$2" "$1" | head -1 | awk '{ for (i = 1; i <= NF; ++i) if ($i ~ /^[0-9]/) { print $i; exit } }'
 }
 
-# variantFlags NAME: the texel cache's flags of a --variants name.
+# variantFlags NAME: the texel cache's flags of a --variants name; NAME_NAME... joins them.
 variantFlags() {
-  case $1 in
-    trilinear | stochastic) echo "--cache-filter $1" ;;
-    finer) echo "--mip-bias 1" ;;
-    refresh[0-9]*) echo "--cache-refresh ${1#refresh}" ;;
-    *) echo "memo_scenes_device.sh: unknown variant $1" >&2; exit 2 ;;
-  esac
+  local part
+  for part in ${1//_/ }; do
+    case $part in
+      trilinear | stochastic) echo "--cache-filter $part" ;;
+      finer) echo "--mip-bias 1" ;;
+      secondary) echo "--cache-secondary-only" ;;
+      refresh[0-9]*) echo "--cache-refresh ${part#refresh}" ;;
+      *) echo "memo_scenes_device.sh: unknown variant $part" >&2; exit 2 ;;
+    esac
+  done
 }
 
 # bench SCENE NAME LIMIT FLAGS...: one bench run, its line appended to the table.
@@ -182,8 +187,9 @@ quality="$OUT/memo_scenes_quality.md"
 {
   echo "# Memoization on the material scenes: the converged picture"
   echo
-  echo "Static camera, $qsize, P = 6, $qframes frames: $spp samples a pixel (not 1536: the"
-  echo "device call's time limit). Against the uncached render at seed 0: mean LDR-FLIP, and"
+  echo "Static camera, $qsize, P = 6, $qframes frames: $spp samples a pixel$([ $spp = 1536 ] ||
+    echo " (not 1536: the device call's time limit)"). Against the uncached render at seed 0:"
+  echo "mean LDR-FLIP, and"
   echo "the bias: mean absolute error of 8x8-block means and the image means (linear)."
   echo "\`none-seed7\` is the uncached render at another seed: the noise a bias must stay below."
   echo
