@@ -636,39 +636,70 @@ Scene bandedCube(glm::vec3 camera) {
 
 // A diffuse bounce's cone opens to a hemisphere (ray_cone.glsl), so at a sphere beside the
 // view, reached only by bounces off a grey wall, it asks for cells metres wide, wider than
-// the sphere: their one point each, far off its surface, would stand for all of it. An
-// object-space key's cell is no wider than 1/256 of its object, unless the cell a camera ray
-// would take there is wider (texel_cache.glsl, cacheObjectCellBound). Only object keys are
-// cached (the wall's constant graph is not), so the entries in use are the sphere's cells.
-// Measured on lavapipe, both architectures alike, 4 frames of 32 x 32 pixels, 4 paths each:
-// 347 lookups on the sphere, 278 entries in use; without the bound 19 (about a cell a
-// side of the sphere). Bound: entries above a quarter of the lookups.
-TEST(CutKeys, ADiffuseBouncesCellsStayWithinAFractionOfTheObject) {
+// the sphere: their one point each, far off its surface, would stand for all of it. A voxel
+// key's cell is no wider than 1/256 of the hit's object, unless the cell a camera ray would
+// take there is wider (texel_cache.glsl, cacheObjectCellBound and cacheWorldCellBound). Only
+// the domain's keys are cached (the wall's constant graph is not), so the entries in use are
+// the sphere's cells. Measured on lavapipe, both architectures alike, 4 frames of 32 x 32
+// pixels, 4 paths each: 347 lookups on the sphere, 278 entries in use with object keys and
+// 239 with world keys; without the bound 19 and 14 (about a cell a side of the sphere).
+// Bound: entries above a quarter of the lookups.
+struct BounceCase {
+  const char* name;
+  const char* coordinates;  // the node writing link 1
+  std::uint32_t keys;       // CacheOptions::keyDomains
+  std::uint32_t domain;
+};
+
+void PrintTo(const BounceCase& c, std::ostream* os) {
+  *os << c.name;
+}
+
+class BounceCellKeys : public ::testing::TestWithParam<BounceCase> {};
+
+TEST_P(BounceCellKeys, ADiffuseBouncesCellsStayWithinAFractionOfTheObject) {
+  const BounceCase& c = GetParam();
+  const std::string graph = std::string("material Bands;\n") + c.coordinates +
+                            "WaveTexture Vector<1 Scale=2.0 Color>2;\n"
+                            "LayerWeight Facing>3;\n"
+                            "MixColor Factor<3 A<2 B=(0.0, 0.0, 0.0) Result>4;\n"
+                            "BaseColorOutput In<4;\n";
+  ASSERT_EQ(linked(graph.c_str()).cutDomain, c.domain);
   Scene scene = testing::wallScene("material Wall;\nBaseColorOutput In=(0.8, 0.8, 0.8);\n", false);
   scene.meshes.push_back(testing::sphere(16));
-  scene.materials.push_back({"Bands", "", kBandsGraph});
+  scene.materials.push_back({"Bands", "", graph});
   scene.instances.push_back(
       {1, 1,
        glm::scale(glm::translate(glm::mat4(1.0f), glm::vec3(5.0f, 0.0f, 1.2f)), glm::vec3(1.5f))});
   RenderSettings bounces = testing::cacheSettings(4, 2, 4);
   bounces.width = bounces.height = 32;
-  std::uint64_t lookups = 0, entries = 0;
   for (Shading shading : {Shading::Megakernel, Shading::Wavefront}) {
     RendererOptions o = options(CacheMode::Texel, shading);
-    o.cache.keyDomains = kCacheKeyObject;
+    o.cache.keyDomains = c.keys;
     const RenderResult on = Renderer(o).render(scene, bounces);
     ASSERT_EQ(on.stats.shading, shadingName(shading));
     expectConsistentCounters(on.stats);
-    lookups = 0;
+    std::uint64_t lookups = 0;
     for (const FrameStats& f : on.stats.frames)
       lookups += f.cacheLookups;
-    entries = on.stats.frames.back().cacheOccupancy;
-    std::printf("a diffuse bounce's cells on a sphere (%s): %llu lookups, %llu entries in use\n",
-                shadingName(shading), (unsigned long long)lookups, (unsigned long long)entries);
+    const std::uint64_t entries = on.stats.frames.back().cacheOccupancy;
+    std::printf(
+        "a diffuse bounce's cells on a sphere (%s keys, %s): %llu lookups, %llu entries "
+        "in use\n",
+        c.name, shadingName(shading), (unsigned long long)lookups, (unsigned long long)entries);
     EXPECT_GT(lookups, 50u);
     EXPECT_GT(entries, lookups / 4);
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(, BounceCellKeys,
+                         ::testing::Values(BounceCase{"object", "TextureCoordinate Generated>1;\n",
+                                                      kCacheKeyObject, gpu::kCacheCutObject},
+                                           BounceCase{"world", "PositionInput Out>1;\n",
+                                                      kCacheKeyWorld, gpu::kCacheCutWorld}),
+                         [](const ::testing::TestParamInfo<BounceCase>& info) {
+                           return std::string(info.param.name);
+                         });
 
 // The bound never keys an object finer than a camera pixel at the hit: the same cube far away
 // (19 pixels of the view) keeps cells of about its pixels' size, which the next frames'
