@@ -372,7 +372,7 @@ CacheKey cacheVoxelKeyOf(uvec4 info, uint objectWord, int m, vec3 voxel, uint fa
 // one); `objectWord` the instance or mesh (0 for world space). `centre` and `size` are the
 // cell's centre (with MG_CACHE_REFRESH this epoch's point of the cell: where its value is
 // evaluated) and width; `widest`, where positive, the widest cell the key may take
-// (cacheObjectCellBound). False when the position is unusable (non-finite, or its voxel
+// (cacheCellBound). False when the position is unusable (non-finite, or its voxel
 // outside the fixed-point range).
 bool cacheVoxelKeyFor(uvec4 info, uint objectWord, vec3 p, vec3 axis1, vec3 axis2,
                       float widest, out CacheKey key, out vec3 centre, out float size) {
@@ -907,51 +907,35 @@ MaterialInputs voxelKeyInputs(uint domain, MaterialInputs inputs, uvec2 object, 
 // instances. Materials sharing a graph share one choice, so the two never mix.
 uint cutObjectWord(uvec4 cut, uvec2 object) { return cut.z != 0u ? object.x : object.y; }
 
-// The widest cell a voxel key may take at a hit. A voxel's point fills its cell's volume, up
+// The widest cell a voxel key may take at world position p of the hit's `object`, in world
+// units, or with `objectUnits` in the object's. A voxel's point fills its cell's volume, up
 // to a cell off the surface, and a wide cone (a diffuse bounce's) asks for a cell as wide as
 // the object: its one point, far inside or outside the object, where Generated coordinates
 // leave the texture space and bands or ramps take other values, then stands for all of it.
-// So a cell is no wider than 1/kCacheObjectCells of the hit's object (the largest side of its
-// mesh's texture space), unless the cell a camera ray would take at the hit is wider (a pixel
-// at its distance, scaled by the mip bias as every footprint is): what the camera cannot
-// resolve there keeps cells of that width, so a small object far away is not keyed finer than
-// its pixels, which would leave nothing to find again, and a coarser mip bias still coarsens.
-// Chosen on an H100 (the Blender material scene's object keys, 1536 samples a pixel, refresh
-// 16, without the pixel): the still camera's 8x8-block error 0.0027 without the bound, 0.0010
-// at 1/64, 0.0009 at 1/128 and 0.0006 at 1/256, against a seed-to-seed 0.0009; the frame
-// 43.9, 44.3, 44.8 and 45.6 ms (docs/design/memoization.md, "Where the cached picture
-// differs").
+// So a cell is no wider than 1/kCacheObjectCells of the object (the largest side of its
+// mesh's texture space, times its instance's largest axis scale), unless the cell a camera
+// ray would take at the hit is wider (a pixel at its distance, scaled by the mip bias as
+// every footprint is): what the camera cannot resolve there keeps cells of that width, so a
+// small object far away is not keyed finer than its pixels, which would leave nothing to
+// find again, and a coarser mip bias still coarsens. Chosen on an H100 (the Blender material
+// scene's object keys, 1536 samples a pixel, refresh 16, without the pixel): the still
+// camera's 8x8-block error 0.0027 without the bound, 0.0010 at 1/64, 0.0009 at 1/128 and
+// 0.0006 at 1/256, against a seed-to-seed 0.0009; the frame 43.9, 44.3, 44.8 and 45.6 ms
+// (docs/design/memoization.md, "Where the cached picture differs").
 const float kCacheObjectCells = 256.0;
 
-// The largest side of the hit's object, in object units, over kCacheObjectCells.
-float cacheObjectCellLimit(uvec2 object) {
+float cacheCellBound(uvec2 object, vec3 p, bool objectUnits) {
   vec3 halfSize = meshes[object.y].textureSpaceSize.xyz;
-  return 2.0 * max(halfSize.x, max(halfSize.y, halfSize.z)) / kCacheObjectCells;
-}
-
-// A camera pixel's width at world position p, scaled by the mip bias, in world units.
-float cacheCameraCell(vec3 p) {
-  return frame.cameraPosition.w * distance(p, frame.cameraPosition.xyz) *
-         exp2(-uintBitsToFloat(frame.cache.z));
-}
-
-// World keys: the object's limit scaled by its instance's largest axis scale.
-float cacheWorldCellBound(uvec2 object, MaterialInputs inputs) {
   mat4 toWorld = instances[object.x].objectToWorld;
   float scale =
       max(length(toWorld[0].xyz), max(length(toWorld[1].xyz), length(toWorld[2].xyz)));
-  return max(cacheObjectCellLimit(object) * scale, cacheCameraCell(inputs.position.v));
+  float objectCell =
+      2.0 * max(halfSize.x, max(halfSize.y, halfSize.z)) * scale / kCacheObjectCells;
+  float cameraCell = frame.cameraPosition.w * distance(p, frame.cameraPosition.xyz) *
+                     exp2(-uintBitsToFloat(frame.cache.z));
+  float widest = max(objectCell, cameraCell);
+  return objectUnits ? widest / scale : widest;
 }
-
-#ifndef MG_OMIT_OBJECT_INPUTS
-// Object keys: the camera's cell converted to object units by the footprint's own scale.
-float cacheObjectCellBound(uvec2 object, MaterialInputs inputs) {
-  float worldAxis = min(length(inputs.position.x), length(inputs.position.y));
-  float objectAxis = min(length(inputs.objectPosition.x), length(inputs.objectPosition.y));
-  float toObject = worldAxis > 0.0 ? objectAxis / worldAxis : 1.0;
-  return max(cacheObjectCellLimit(object), cacheCameraCell(inputs.position.v) * toObject);
-}
-#endif
 
 // The key of a material's cut at a hit, and the inputs its cut is evaluated with on a miss
 // (thesis §7: memoize the part of the graph one key determines; compiler/cut.h; the voxel
@@ -975,7 +959,8 @@ bool cacheCutKeyFor(uvec4 info, uvec4 cut, uvec2 object, MaterialInputs inputs,
     vec3 centre;
     float size;
     usable = cacheVoxelKeyFor(info, 0u, inputs.position.v, inputs.position.x, inputs.position.y,
-                              cacheWorldCellBound(object, inputs), key, centre, size);
+                              cacheCellBound(object, inputs.position.v, false), key, centre,
+                              size);
     keyInputs = voxelKeyInputs(kCacheCutWorld, inputs, object, centre, size);
   }
 #ifndef MG_OMIT_OBJECT_INPUTS
@@ -984,7 +969,7 @@ bool cacheCutKeyFor(uvec4 info, uvec4 cut, uvec2 object, MaterialInputs inputs,
     float size;
     usable = cacheVoxelKeyFor(info, cutObjectWord(cut, object), inputs.objectPosition.v,
                               inputs.objectPosition.x, inputs.objectPosition.y,
-                              cacheObjectCellBound(object, inputs), key, centre, size);
+                              cacheCellBound(object, inputs.position.v, true), key, centre, size);
     keyInputs = voxelKeyInputs(kCacheCutObject, inputs, object, centre, size);
   }
 #endif

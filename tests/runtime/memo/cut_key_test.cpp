@@ -638,7 +638,7 @@ Scene bandedCube(glm::vec3 camera) {
 // view, reached only by bounces off a grey wall, it asks for cells metres wide, wider than
 // the sphere: their one point each, far off its surface, would stand for all of it. A voxel
 // key's cell is no wider than 1/256 of the hit's object, unless the cell a camera ray would
-// take there is wider (texel_cache.glsl, cacheObjectCellBound and cacheWorldCellBound). Only
+// take there is wider (texel_cache.glsl, cacheCellBound). Only
 // the domain's keys are cached (the wall's constant graph is not), so the entries in use are
 // the sphere's cells. Measured on lavapipe, both architectures alike, 4 frames of 32 x 32
 // pixels, 4 paths each: 347 lookups on the sphere, 278 entries in use with object keys and
