@@ -111,6 +111,9 @@ variantFlags() {
     esac
   done
 }
+# Every variant is checked here, where an unknown one ends the script: inside the $(...) of
+# a run it would only drop its own flags and run under the variant's name.
+for v in $variants; do variantFlags "$v" >/dev/null; done
 
 # bench SCENE NAME LIMIT FLAGS...: one bench run, its line appended to the table.
 bench() {
