@@ -71,12 +71,18 @@ VulkanHandle<VkPipeline> createComputePipeline(const VulkanContext& context, VkS
   info.layout = layout;
   PipelineCreationFeedback feedback(context, 1);
   info.pNext = feedback.chain(info.pNext);
+  PipelineStatistics* statistics = context.pipelineStatistics();
+  if (statistics)
+    info.flags |= PipelineStatistics::captureFlags();
   VkPipeline pipeline = VK_NULL_HANDLE;
   checkVk(vkCreateComputePipelines(device, cache, 1, &info, nullptr, &pipeline),
           ("vkCreateComputePipelines (" + std::string(what) + ")").c_str());
   feedback.count();
-  return VulkanHandle<VkPipeline>(
-      pipeline, [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); });
+  VulkanHandle<VkPipeline> owned(pipeline,
+                                 [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); });
+  if (statistics)
+    statistics->record(pipeline, what);
+  return owned;
 }
 
 PushConstantPass createPushConstantPass(const VulkanContext& context, const std::string& file,

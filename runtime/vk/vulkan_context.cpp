@@ -33,6 +33,7 @@ struct Candidate {
   bool rayQuery = false;
   bool rayTracingPipeline = false;
   bool pipelineCreationFeedback = false;
+  bool pipelineExecutableProperties = false;
   std::vector<std::string> missing;  // what keeps it from ray tracing
 };
 
@@ -49,6 +50,8 @@ Candidate inspect(VkPhysicalDevice device) {
                          hasExtension(extensions, VK_KHR_RAY_TRACING_PIPELINE_EXTENSION_NAME);
   c.pipelineCreationFeedback =
       hasExtension(extensions, VK_EXT_PIPELINE_CREATION_FEEDBACK_EXTENSION_NAME);
+  c.pipelineExecutableProperties =
+      hasExtension(extensions, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
   if (c.properties.apiVersion < VK_API_VERSION_1_2)
     c.missing.push_back("Vulkan 1.2");
   if (!c.accelerationStructure)
@@ -553,6 +556,19 @@ VulkanContext::VulkanContext(const ContextOptions& options)
   info_.pipelineCreationFeedback = chosen.pipelineCreationFeedback;
   if (info_.pipelineCreationFeedback)
     extensions.push_back(VK_EXT_PIPELINE_CREATION_FEEDBACK_EXTENSION_NAME);
+  // Only when asked: capturing statistics may cost the driver time at every creation.
+  VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR enableExecutableInfo{
+      VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
+  if (options.pipelineStatistics) {
+    if (!chosen.pipelineExecutableProperties)
+      throw std::runtime_error("The Vulkan driver of " + info_.name +
+                               " does not report pipeline statistics (it lacks " +
+                               VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME + ").");
+    extensions.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+    enableExecutableInfo.pipelineExecutableInfo = VK_TRUE;
+    enableExecutableInfo.pNext = enabled.enable2.pNext;
+    enabled.enable2.pNext = &enableExecutableInfo;
+  }
 
   queueFamily_ = chooseQueueFamily(physicalDevice_, info_);
 
@@ -574,6 +590,8 @@ VulkanContext::VulkanContext(const ContextOptions& options)
     vkDestroyDevice(d, nullptr);
   });
   vkGetDeviceQueue(device, queueFamily_, 0, &queue_);
+  if (options.pipelineStatistics)
+    pipelineStatistics_ = std::make_unique<PipelineStatistics>(device);
 
   VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
   poolInfo.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
@@ -597,6 +615,7 @@ VulkanContext::~VulkanContext() {
   // Members go in reverse order: pool, pipeline cache, device, messenger, instance.
   commandPool_.reset();
   pipelineCache_.reset();
+  pipelineStatistics_.reset();
   device_.reset();
 }
 

@@ -13,6 +13,7 @@
 #include <vulkan/vulkan.h>
 
 #include "runtime/vk/pipeline_cache.h"
+#include "runtime/vk/pipeline_statistics.h"
 #include "runtime/vk/vulkan_handle.h"
 
 namespace memograph::runtime {
@@ -35,6 +36,10 @@ struct ContextOptions {
   // Where the device's pipeline cache file is kept (PipelineCache; the Renderer puts it in
   // the shader cache's folder). Empty: no pipeline cache.
   std::filesystem::path pipelineCacheDirectory;
+  // Keep the driver's statistics of every pipeline (PipelineStatistics: registers, spills,
+  // ...). The device must have VK_KHR_pipeline_executable_properties, else the constructor
+  // throws saying so.
+  bool pipelineStatistics = false;
 };
 
 // Entry points of device extensions, loaded per device (no global dispatch state).
@@ -125,6 +130,9 @@ class VulkanContext {
   // VK_NULL_HANDLE without a folder). Thread-safe; the renderer saves it after creating its
   // pipelines.
   PipelineCache& pipelineCache() const { return *pipelineCache_; }
+  // The pipelines' statistics where ContextOptions::pipelineStatistics asked for them, else
+  // nullptr. Every pipeline creation adds PipelineStatistics::captureFlags() and record()s.
+  PipelineStatistics* pipelineStatistics() const { return pipelineStatistics_.get(); }
 
   // Validation-layer errors seen so far (empty without validation).
   std::vector<std::string> validationErrors() const;
@@ -152,6 +160,7 @@ class VulkanContext {
   std::uint32_t queueFamily_ = 0;
   VulkanHandle<VkCommandPool> commandPool_;
   std::unique_ptr<PipelineCache> pipelineCache_;
+  std::unique_ptr<PipelineStatistics> pipelineStatistics_;
   DeviceFunctions functions_;
   DeviceInfo info_;
   Backend backend_ = Backend::Auto;

@@ -134,6 +134,9 @@ TEST_F(BenchCliTest, OutputsOverInputsOrEachOtherAreRefused) {
        "--csv '" + path("link.csv") + "' is --nodes file"},
       {"--frames-csv " + path("f_") + " --csv " + path("f_landscape_16x9.csv"),
        "--csv '" + path("f_landscape_16x9.csv") + "': two outputs cannot share a file"},
+      {"--csv " + path("a.csv") + " --pipeline-statistics " + path("a.csv"),
+       "--pipeline-statistics '" + path("a.csv") + "' is --csv '" + path("a.csv") +
+           "': two outputs cannot share a file"},
   };
   for (const auto& [arguments, message] : cases) {
     const auto run = runCli("bench builtin:landscape --sizes 16x9 " + arguments);
@@ -145,6 +148,28 @@ TEST_F(BenchCliTest, OutputsOverInputsOrEachOtherAreRefused) {
   std::string line;
   std::getline(kept, line);
   EXPECT_EQ(line, "// kept");
+}
+
+// --pipeline-statistics: where the driver reports none (lavapipe), the run fails (1) naming
+// the extension it lacks and writes no file, its --csv neither; where it reports them (the
+// GPU machine), the file holds the header and the scene's pipelines.
+TEST_F(BenchCliTest, PipelineStatisticsAreWrittenOrWhatTheDriverLacksIsNamed) {
+  const auto run = runCli(smallRun() + " --frames 1 --warmup 0 --csv " + path("out.csv") +
+                          " --pipeline-statistics " + path("statistics.csv"));
+  if (run.exitCode == 1) {
+    EXPECT_NE(run.output.find("lacks VK_KHR_pipeline_executable_properties"), std::string::npos)
+        << run.output;
+    EXPECT_FALSE(fs::exists(path("statistics.csv")));
+    EXPECT_FALSE(fs::exists(path("out.csv")));
+    return;
+  }
+  ASSERT_EQ(run.exitCode, 0) << run.output;
+  std::ifstream in(path("statistics.csv"));
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_EQ(header, "scene,pipeline,executable,statistic,value");
+  ASSERT_TRUE(std::getline(in, line));
+  EXPECT_EQ(line.rfind("landscape,", 0), 0u) << line;
 }
 
 }  // namespace

@@ -64,6 +64,7 @@ struct Bench {
   BenchFramePlan plan;
   Clock::time_point start;  // --time-limit counts from here
   std::ostringstream csv;
+  std::ostringstream pipelineStatistics;  // --pipeline-statistics: every scene's rows
   std::vector<std::pair<std::string, std::string> > outputs;  // written as a set at the end
   std::optional<runtime::Scene> firstScene;  // built by the checks, taken by its run
 };
@@ -185,7 +186,8 @@ std::string framesCsvPath(const TraceCommandOptions& options, const RunNames& na
 // existing --csv is not truncated by a run that then fails. The usage errors (an output
 // over an input or another output, --device) come before the folders' checks.
 int checkOutputs(const TraceCommandOptions& options, const std::vector<std::string>& scenes) {
-  std::vector<CommandFile> outputs = {{"--csv", options.csv}};
+  std::vector<CommandFile> outputs = {{"--csv", options.csv},
+                                      {"--pipeline-statistics", options.pipelineStatistics}};
   if (!options.framesCsv.empty()) {
     for (const std::string& sceneName : scenes) {
       const RunNames names = runNames(sceneName, options.label);
@@ -200,8 +202,10 @@ int checkOutputs(const TraceCommandOptions& options, const std::vector<std::stri
   if (const int code = checkDeviceIndex("bench", options.renderer.context.deviceIndex);
       code != kExitOk)
     return code;
-  if (!options.csv.empty()) {
-    if (const int code = checkOutputFile("bench", options.csv); code != kExitOk)
+  for (const std::string& file : {options.csv, options.pipelineStatistics}) {
+    if (file.empty())
+      continue;
+    if (const int code = checkOutputFile("bench", file); code != kExitOk)
       return code;
   }
   if (!options.framesCsv.empty()) {
@@ -380,6 +384,13 @@ void benchSize(Bench& bench, runtime::Renderer& renderer, const runtime::Scene& 
   }
 }
 
+// --pipeline-statistics: the statistics of the pipelines a scene's renderer created.
+void appendPipelineStatistics(Bench& bench, const runtime::Renderer& renderer,
+                              const RunNames& names) {
+  if (const runtime::PipelineStatistics* statistics = renderer.context().pipelineStatistics())
+    runtime::appendPipelineStatisticsCsv(bench.pipelineStatistics, names.csv, statistics->rows());
+}
+
 // The cameras of a pack's own path for each rendered frame: the path's cameras spread over
 // the bench's camera positions (bench.plan.pathCameras), so that the timed frames cover the
 // whole path whatever its length; none (its own camera) when the pack has no path.
@@ -412,6 +423,7 @@ void benchPack(Bench& bench, const std::string& sceneName) {
   const RunNames names = runNames(sceneName, o.label);
   for (const ImageSize size : o.sizes)
     benchSize(bench, renderer, scene, names, size, packCameras(bench, path));
+  appendPipelineStatistics(bench, renderer, names);
 }
 
 // Renders one scene at every size (checked by checkPlanAndScenes).
@@ -449,6 +461,7 @@ void benchScene(Bench& bench, const std::string& sceneName) {
   const RunNames names = runNames(sceneName, o.label);
   for (const ImageSize size : o.sizes)
     benchSize(bench, renderer, scene, names, size, cameras);
+  appendPipelineStatistics(bench, renderer, names);
 }
 
 }  // namespace
@@ -487,6 +500,10 @@ int runBench(std::span<const std::string_view> args) {
   }
   if (!bench.options.csv.empty())
     bench.outputs.emplace_back(bench.options.csv, bench.csv.str());
+  if (!bench.options.pipelineStatistics.empty())
+    bench.outputs.emplace_back(
+        bench.options.pipelineStatistics,
+        runtime::kPipelineStatisticsCsvHeader + bench.pipelineStatistics.str());
   std::string error;
   if (!writeFilesAtomically(bench.outputs, error)) {
     std::cerr << "memograph bench: " << error << "\n";

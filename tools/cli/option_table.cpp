@@ -137,6 +137,14 @@ const Option kOptions[] = {
     {"--frames-csv", ValueType::Path, "PREFIX",
      "per-frame statistics to PREFIX<scene>[_<label>]_<W>x<H>.csv", "", kShown, S::InputOutput,
      kCommon, N::Nothing, kBench, [](O& o, const Value& v) { o.framesCsv = v.text; }},
+    {"--pipeline-statistics", ValueType::Path, "FILE",
+     "the driver's statistics of each pipeline it compiled (registers, spills, ...;\n"
+     "VK_KHR_pipeline_executable_properties), one CSV line per statistic",
+     "", kShown, S::InputOutput, kAdvanced, N::Nothing, kBench,
+     [](O& o, const Value& v) {
+       o.pipelineStatistics = v.text;
+       o.renderer.context.pipelineStatistics = true;
+     }},
     {"--label", ValueType::Text, "NAME",
      "names the run in the output, the CSV and the per-frame file names\n"
      "(letters, digits, '.', '_', '-')",

@@ -47,7 +47,7 @@ struct TraceCommandOptions {
   std::uint32_t warmup = 0, frameStride = 1;
   std::optional<std::uint32_t> cameraFrames;
   std::optional<double> timeLimitSeconds;
-  std::string label, csv, framesCsv;
+  std::string label, csv, framesCsv, pipelineStatistics;
   bool staticCamera = false;
 
   // The options given, by declared name, in the order met.

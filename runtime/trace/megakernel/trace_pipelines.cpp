@@ -86,7 +86,7 @@ VulkanHandle<VkPipeline> createRayTracingPipeline(const VulkanContext& context,
                                                   const std::vector<VkShaderModule>& modules,
                                                   const std::vector<VkShaderStageFlagBits>& stages,
                                                   VkPipelineLayout layout, std::uint32_t threads,
-                                                  bool dynamicStack) {
+                                                  bool dynamicStack, const char* what) {
   const auto shaderCount = static_cast<std::uint32_t>(modules.size());
   std::vector<VkPipelineShaderStageCreateInfo> shaderStages(shaderCount);
   std::vector<VkRayTracingShaderGroupCreateInfoKHR> groups(shaderCount);
@@ -123,10 +123,16 @@ VulkanHandle<VkPipeline> createRayTracingPipeline(const VulkanContext& context,
   dynamicState.pDynamicStates = &stackState;
   if (dynamicStack)
     info.pDynamicState = &dynamicState;
+  PipelineStatistics* statistics = context.pipelineStatistics();
+  if (statistics)
+    info.flags |= PipelineStatistics::captureFlags();
   VkDevice device = context.device();
-  return VulkanHandle<VkPipeline>(
+  VulkanHandle<VkPipeline> pipeline(
       createWithDeferredOperation(context, info, threads),
       [device](VkPipeline p) { vkDestroyPipeline(device, p, nullptr); });
+  if (statistics)
+    statistics->record(pipeline.get(), what);
+  return pipeline;
 }
 
 ShaderBindingTable createShaderBindingTable(const VulkanContext& context, VkPipeline pipeline,
@@ -297,7 +303,7 @@ TracePipeline::TracePipeline(const VulkanContext& context, ShaderCompiler& compi
     moduleHandles.push_back(module.get());
   // The stack size is set per launch (below), not left to the spec's default.
   pipeline_ = createRayTracingPipeline(context, moduleHandles, stageBits, layout,
-                                       setup.pipelineThreads, true);
+                                       setup.pipelineThreads, true, "megakernel");
   VkPipeline pipeline = pipeline_.get();
 
   // The pipeline stack. The spec's default assumes callables may be called from hit and

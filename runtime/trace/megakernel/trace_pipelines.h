@@ -43,12 +43,12 @@ void appendReportingShaders(VkDevice device, ShaderCompiler& compiler,
 // makes a triangle hit group, any other shader a general group (raygen, miss, callable).
 // Raygens trace, hit shaders do not (recursion depth 1). `dynamicStack`: the stack size is set
 // at each launch (vkCmdSetRayTracingPipelineStackSizeKHR). Created through a deferred
-// operation joined by up to `threads` host threads.
+// operation joined by up to `threads` host threads. `what` names it (pipeline statistics).
 VulkanHandle<VkPipeline> createRayTracingPipeline(const VulkanContext& context,
                                                   const std::vector<VkShaderModule>& modules,
                                                   const std::vector<VkShaderStageFlagBits>& stages,
                                                   VkPipelineLayout layout, std::uint32_t threads,
-                                                  bool dynamicStack);
+                                                  bool dynamicStack, const char* what);
 
 // One region of a shader-binding table: a record for each group listed (a group may repeat).
 // A raygen region holds one record, its stride and size the base alignment.

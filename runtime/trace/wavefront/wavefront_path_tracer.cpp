@@ -468,7 +468,7 @@ void WavefrontPathTracer::createPipelines(const PipelineShaders& shaders, std::u
       for (const auto& module : shaders.rayTracingModules)
         moduleHandles.push_back(module.get());
       rayTracing_ = createRayTracingPipeline(context_, moduleHandles, shaders.rayTracingStages,
-                                             layout_.get(), 1, false);
+                                             layout_.get(), 1, false, "wavefront ray tracing");
       return;
     }
     job -= rayTracingJobs;
