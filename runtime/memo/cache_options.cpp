@@ -198,6 +198,14 @@ TileFill parseTileFill(const std::string& text) {
   throw std::invalid_argument("unknown --tile-fill '" + text + "' (choose subgroup or deferred)");
 }
 
+CacheRefresh cacheRefreshOf(const CacheOptions& cache) {
+  if (cache.mode != CacheMode::Texel || cache.filter != CacheFilter::Nearest)
+    return {};
+  if (cache.refreshFrames)
+    return {*cache.refreshFrames, *cache.refreshFrames};
+  return {0, kDefaultVoxelRefreshFrames};
+}
+
 void validateCacheOptions(const CacheOptions& cache) {
   if (cache.probe < 1 || cache.probe > gpu::kCacheMaxProbe)
     throw std::invalid_argument("--probe must be 1.." + std::to_string(gpu::kCacheMaxProbe) +
@@ -208,11 +216,11 @@ void validateCacheOptions(const CacheOptions& cache) {
                                 ")");
   if (!std::isfinite(cache.mipBias))
     throw std::invalid_argument("--mip-bias must be finite");
-  if (cache.refreshFrames > 0 && cache.mode == CacheMode::Tile)
+  if (cache.refreshFrames.value_or(0) > 0 && cache.mode == CacheMode::Tile)
     throw std::invalid_argument(
         "--cache-refresh is the texel cache's (--cache texel): a tile's "
         "texels are computed at their centres");
-  if (cache.refreshFrames > 0 && cache.filter != CacheFilter::Nearest)
+  if (cache.refreshFrames.value_or(0) > 0 && cache.filter != CacheFilter::Nearest)
     throw std::invalid_argument(std::string("--cache-refresh with --cache-filter ") +
                                 cacheFilterName(cache.filter) +
                                 ": the filters blend or pick entries by their cells' centres, "
@@ -323,8 +331,10 @@ std::vector<std::string> cacheShaderDefines(const CacheOptions& cache, std::uint
     defines.push_back("MG_CACHE_SNAP_UV=1");
   if (cache.secondaryOnly)
     defines.push_back("MG_CACHE_SECONDARY_ONLY=1");
-  if (cache.mode == CacheMode::Texel && cache.refreshFrames > 0)
-    defines.push_back("MG_CACHE_REFRESH=" + std::to_string(cache.refreshFrames));
+  if (const CacheRefresh refresh = cacheRefreshOf(cache); refresh.uv > 0)
+    defines.push_back("MG_CACHE_REFRESH_UV=" + std::to_string(refresh.uv));
+  if (const CacheRefresh refresh = cacheRefreshOf(cache); refresh.voxel > 0)
+    defines.push_back("MG_CACHE_REFRESH_VOXEL=" + std::to_string(refresh.voxel));
   if (cache.mode == CacheMode::Texel && cache.filter != CacheFilter::Nearest)
     defines.push_back("MG_CACHE_FILTER=" +
                       std::to_string(static_cast<std::uint32_t>(cache.filter)));

@@ -136,8 +136,8 @@ struct CacheOptions {
   // Texel cache, nearest filter: frames a key lives before its cell is keyed and filled anew at
   // another point of the cell, each key at its own phase (texel_cache.glsl cacheKeyOfHashes);
   // 0: never, an entry keeps its cell's centre value (the snapped or cut evaluation) or its
-  // first hit's for as long as it stays.
-  std::uint32_t refreshFrames = 0;
+  // first hit's for as long as it stays. Unset: the defaults of cacheRefreshOf.
+  std::optional<std::uint32_t> refreshFrames;
   // Tile cache (§5.4): texels stored per tile (W x H <= the device's subgroup size; the
   // thesis's 4 x 4 needs 16 lanes, lavapipe has 8), the filter, the storage and §5.4.4's
   // grouping of missing tiles by material. `entries` counts tiles.
@@ -169,6 +169,25 @@ struct CacheOptions {
 
 // Throws std::invalid_argument naming the option (CLI spelling) when out of range.
 void validateCacheOptions(const CacheOptions& options);
+
+// The refresh of object- and world-space keys when CacheOptions::refreshFrames is unset. A
+// voxel's entry holds one point of a cell that, under a bounce's wide cone, spans much of the
+// material's variation, and that point biases a converged picture: on the Blender material
+// scene (H100, 1536 samples a pixel) the still camera's 8x8-block error was 1.12x the
+// seed-to-seed noise without refresh and 0.74x with 16, for 7 % of the frame
+// (docs/results.md, "Refresh"). A uv texel follows its texture's pixel footprint, and the
+// classroom's and the landscape's uv keys are not refreshed by default.
+constexpr std::uint32_t kDefaultVoxelRefreshFrames = 16;
+
+// Frames a key lives (0: never refreshed) for the texel cache's uv keys (whole uv-only
+// graphs, uv cuts) and its voxel keys (object- and world-space cuts): a given refreshFrames
+// for both, else 0 and kDefaultVoxelRefreshFrames; 0 for both with the tile cache or a
+// filter (they evaluate entries at their cells' centres).
+struct CacheRefresh {
+  std::uint32_t uv = 0;
+  std::uint32_t voxel = 0;
+};
+CacheRefresh cacheRefreshOf(const CacheOptions& options);
 
 // S when CacheOptions::entries is unset, before fitting: kDefaultTexelCacheEntries texels or
 // kDefaultCacheEntries tiles.

@@ -302,9 +302,9 @@ const Option kOptions[] = {
        o.renderer.cache.valueFormat = runtime::parseCacheValueFormat(v.text);
      }},
     {"--cache-refresh", ValueType::Whole, "N",
-     "texel cache: refill each key at another point of its cell every N\n"
-     "frames, each at its own phase; 0: never",
-     "0", kShown, S::Memoization, kAdvanced, N::Cache, kBoth,
+     "texel cache, nearest: refill each key at another point of its cell every N\n"
+     "frames, each at its own phase, against a fixed point's bias; 0: never",
+     "16 for object- and world-space keys, 0 for uv keys", kShown, S::Memoization, kAdvanced, N::Cache, kBoth,
      [](O& o, const Value& v) { o.renderer.cache.refreshFrames = v.whole; },
      "a number of frames (0..65536)", 0, 65536},
     {"--cache-secondary-only", ValueType::Flag, "",

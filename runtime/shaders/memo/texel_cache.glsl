@@ -10,8 +10,9 @@
 //   MG_CACHE_CLOCK_COUNTER   (optional) the 64-bit atomic counter clock of §5.3.3 instead of
 //                            the frame clock, with MG_CACHE_CLOCK_SHIFT (bits kept),
 //   MG_CACHE_SNAP_UV         (optional) a miss evaluates the graph at its texel centre (§6.1),
-//   MG_CACHE_REFRESH         (optional) frames a key lives before its cell is keyed (and
-//                            filled) anew at another point of the cell (cacheKeyOfHashes),
+//   MG_CACHE_REFRESH_UV, MG_CACHE_REFRESH_VOXEL (optional) frames a uv key (a texel), a
+//                            voxel key (object or world space) lives before its cell is keyed
+//                            (and filled) anew at another point of the cell (cacheKeyOfHashes),
 //   MG_CACHE_STAMP_BY_SUBGROUP (optional; needs subgroup arithmetic and every invocation of
 //                            the subgroup calling cacheStampReads) lru's counter-clock stamps
 //                            of reads, one clock atomic per subgroup (cacheStampReads),
@@ -221,8 +222,8 @@ uint cachePcg(uint v) {
 struct CacheKey {
   uint base;     // first entry of the probe range: I of eq. 5.10
   uint hash;     // H1 of eq. 5.9, stored in the entry; never kCacheKeyEmpty or kCacheKeyLock
-  vec2 texelUv;  // the texel's centre (û, v̂ of eq. 5.6-5.7 over 2^m; with MG_CACHE_REFRESH
-                 // this epoch's point of the texel): where a snapped miss
+  vec2 texelUv;  // the texel's centre (û, v̂ of eq. 5.6-5.7 over 2^m; with
+                 // MG_CACHE_REFRESH_UV this epoch's point of the texel): where a snapped miss
                  // evaluates the graph (§6.1)
   float texelSize;  // 2^-m: a texel's width in uv, the snapped evaluation's footprint
 };
@@ -247,8 +248,22 @@ bool cacheMipLevel(MaterialInputs inputs, out int m) {
 
 // The key of hashes H0 and H1 (eq. 5.8-5.9): H1 is stored, kept off the empty and locked
 // values; eq. 5.10: the first probed entry is I = H0 mod (S - D) (the host guarantees S > D).
-// texelUv and texelSize are the caller's.
-CacheKey cacheKeyOfHashes(uint h0, uint h1) {
+// texelUv and texelSize are the caller's. `refreshFrames` (a constant: kCacheRefreshUv or
+// kCacheRefreshVoxel) is how many frames the key lives; 0: for ever.
+#if defined(MG_CACHE_REFRESH_UV) || defined(MG_CACHE_REFRESH_VOXEL)
+#define MG_CACHE_REFRESH 1
+#endif
+#ifdef MG_CACHE_REFRESH_UV
+const uint kCacheRefreshUv = uint(MG_CACHE_REFRESH_UV);
+#else
+const uint kCacheRefreshUv = 0u;
+#endif
+#ifdef MG_CACHE_REFRESH_VOXEL
+const uint kCacheRefreshVoxel = uint(MG_CACHE_REFRESH_VOXEL);
+#else
+const uint kCacheRefreshVoxel = 0u;
+#endif
+CacheKey cacheKeyOfHashes(uint h0, uint h1, uint refreshFrames) {
 #ifdef MG_CACHE_REFRESH
   // --cache-refresh N: a key lives N frames, then its cell is another key (an epoch in the
   // hashes), so the entry is filled again, at another point of the cell (cacheRefreshJitter),
@@ -256,10 +271,12 @@ CacheKey cacheKeyOfHashes(uint h0, uint h1) {
   // (H1 mod N), so a still camera refreshes 1/N of its entries a frame, not all of them every
   // N-th frame. Accumulated frames then average the cell's values instead of holding one
   // point of it (the voxel keys' point sample is otherwise fixed: seed 002 §3.2's aliasing).
-  uint epoch = (frame.image.z + h1 % uint(MG_CACHE_REFRESH)) / uint(MG_CACHE_REFRESH);
-  uint epochHash = cachePcg(epoch ^ 0x5bd1e995u);
-  h0 = cachePcg(h0 ^ epochHash);
-  h1 = cachePcg(h1 ^ cachePcg(epochHash));
+  if (refreshFrames > 0u) {
+    uint epoch = (frame.image.z + h1 % refreshFrames) / refreshFrames;
+    uint epochHash = cachePcg(epoch ^ 0x5bd1e995u);
+    h0 = cachePcg(h0 ^ epochHash);
+    h1 = cachePcg(h1 ^ cachePcg(epochHash));
+  }
 #endif
   if (h1 == kCacheKeyEmpty) h1 = 1u;
   if (h1 == kCacheKeyLock) h1 = kCacheKeyLock - 1u;
@@ -290,7 +307,8 @@ CacheKey cacheKeyOf(uvec4 info, int m, vec2 cell) {
   uint v = floatBitsToUint(cell.y);
   // Eq. 5.8-5.9: two nested PCG hashes from two independent material ids.
   return cacheKeyOfHashes(cachePcg(uint(m) ^ cachePcg(u ^ cachePcg(v ^ info.y))),
-                          cachePcg(uint(m) ^ cachePcg(u ^ cachePcg(v ^ info.z))));
+                          cachePcg(uint(m) ^ cachePcg(u ^ cachePcg(v ^ info.z))),
+                          kCacheRefreshUv);
 }
 
 // Voxel keys (MG_CACHE_CUTS) for cuts in object or world space, after seed 002 §3.1-3.2:
@@ -365,12 +383,13 @@ CacheKey cacheVoxelKeyOf(uvec4 info, uint objectWord, int m, vec3 voxel, uint fa
   uint h1 = cachePcg(objectWord ^ info.z);
   uint level = uint(m) ^ (face << 24u);
   return cacheKeyOfHashes(cachePcg(level ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h0)))),
-                          cachePcg(level ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h1)))));
+                          cachePcg(level ^ cachePcg(z ^ cachePcg(y ^ cachePcg(x ^ h1)))),
+                          kCacheRefreshVoxel);
 }
 
 // The voxel key of `p` with footprint axes `axis1`, `axis2` (a face's cell where they lie on
 // one); `objectWord` the instance or mesh (0 for world space). `centre` and `size` are the
-// cell's centre (with MG_CACHE_REFRESH this epoch's point of the cell: where its value is
+// cell's centre (with MG_CACHE_REFRESH_VOXEL this epoch's point of the cell: where its value is
 // evaluated) and width; `widest`, where positive, the widest cell the key may take
 // (cacheCellBound). False when the position is unusable (non-finite, or its voxel
 // outside the fixed-point range).
@@ -397,7 +416,7 @@ bool cacheVoxelKeyFor(uvec4 info, uint objectWord, vec3 p, vec3 axis1, vec3 axis
       any(greaterThanEqual(abs(voxel), vec3(kCacheVoxelLimit))))
     return false;
   key = cacheVoxelKeyOf(info, objectWord, m, voxel, face);
-#ifdef MG_CACHE_REFRESH
+#ifdef MG_CACHE_REFRESH_VOXEL
   // This epoch's point of the cell (on a face, of its square on the plane).
   centre = cacheVoxelPoint(voxel, cacheRefreshJitter(key), size, face);
 #endif
@@ -418,7 +437,7 @@ bool cacheKeyFor(uvec4 info, MaterialInputs inputs, out CacheKey key) {
   key = cacheKeyOf(info, m, texel);
   key.texelSize = exp2(-float(m));
   key.texelUv = key.texelSize * texel;  // exact: a power of two times an integer
-#ifdef MG_CACHE_REFRESH
+#ifdef MG_CACHE_REFRESH_UV
   // This epoch's point of the texel (eq. 5.6-5.7's texel spans its centre +- half a texel).
   key.texelUv += key.texelSize * (cacheRefreshJitter(key).xy - 0.5);
 #endif

@@ -136,13 +136,39 @@ TEST(CacheRefreshOptions, TheTileCacheAndTheFiltersRefuseIt) {
   nearest.mode = CacheMode::Texel;
   nearest.refreshFrames = 4;
   EXPECT_NO_THROW(validateCacheOptions(nearest));
-  const std::vector<std::string> defines = cacheShaderDefines(nearest, 4);
-  EXPECT_NE(std::find(defines.begin(), defines.end(), "MG_CACHE_REFRESH=4"), defines.end());
+}
+
+// Given, the refresh applies to every key; unset, to voxel keys (object and world space)
+// alone, every kDefaultVoxelRefreshFrames frames; never with the tile cache or a filter,
+// given or not.
+std::vector<std::string> refreshDefines(const CacheOptions& options) {
+  std::vector<std::string> refresh;
+  for (const std::string& define : cacheShaderDefines(options, 4))
+    if (define.rfind("MG_CACHE_REFRESH", 0) == 0)
+      refresh.push_back(define);
+  return refresh;
+}
+
+TEST(CacheRefreshOptions, UnsetItRefreshesVoxelKeysOnlyAndGivenEveryKey) {
+  CacheOptions nearest;
+  nearest.mode = CacheMode::Texel;
+  EXPECT_EQ(kDefaultVoxelRefreshFrames, 16u);
+  EXPECT_EQ(refreshDefines(nearest), std::vector<std::string>{"MG_CACHE_REFRESH_VOXEL=16"});
+  nearest.refreshFrames = 4;
+  EXPECT_EQ(refreshDefines(nearest),
+            (std::vector<std::string>{"MG_CACHE_REFRESH_UV=4", "MG_CACHE_REFRESH_VOXEL=4"}));
   nearest.refreshFrames = 0;
-  const std::vector<std::string> none = cacheShaderDefines(nearest, 4);
-  EXPECT_EQ(std::find_if(none.begin(), none.end(),
-                         [](const std::string& d) { return d.rfind("MG_CACHE_REFRESH", 0) == 0; }),
-            none.end());
+  EXPECT_TRUE(refreshDefines(nearest).empty());
+  CacheOptions filtered;
+  filtered.mode = CacheMode::Texel;
+  filtered.filter = CacheFilter::Trilinear;
+  EXPECT_NO_THROW(validateCacheOptions(filtered));
+  EXPECT_TRUE(refreshDefines(filtered).empty());
+  CacheOptions tile;
+  tile.mode = CacheMode::Tile;
+  EXPECT_NO_THROW(validateCacheOptions(tile));
+  EXPECT_TRUE(refreshDefines(tile).empty());
+  EXPECT_TRUE(refreshDefines(CacheOptions{}).empty());  // no cache
 }
 
 }  // namespace
