@@ -45,6 +45,25 @@ void writeCsvField(std::ostream& out, const std::string& field) {
   out << '"';
 }
 
+// Vulkan's two-call enumeration through `get(count, items)`: the count, then `items`, each
+// of structure type `type`. False, after a warning naming pipeline `name`, when the driver
+// refuses either call (the render goes on without that pipeline's rows).
+template <typename Item, typename Get>
+bool enumerate(Get get, VkStructureType type, const std::string& name, std::vector<Item>& items) {
+  std::uint32_t count = 0;
+  VkResult result = get(&count, nullptr);
+  Item blank{};
+  blank.sType = type;
+  items.assign(count, blank);
+  if (result == VK_SUCCESS)
+    result = get(&count, items.data());
+  items.resize(count);
+  if (result != VK_SUCCESS)
+    std::cerr << "memograph: warning: the driver gave no statistics of pipeline " << name
+              << " (VkResult " << result << ")\n";
+  return result == VK_SUCCESS;
+}
+
 }  // namespace
 
 void appendPipelineStatisticsCsv(std::ostream& out, const std::string& scene,
@@ -77,33 +96,25 @@ PipelineStatistics::PipelineStatistics(VkDevice device) : device_(device) {
 void PipelineStatistics::record(VkPipeline pipeline, const std::string& name) {
   VkPipelineInfoKHR pipelineInfo{VK_STRUCTURE_TYPE_PIPELINE_INFO_KHR};
   pipelineInfo.pipeline = pipeline;
-  std::uint32_t executableCount = 0;
-  VkResult result = getProperties_(device_, &pipelineInfo, &executableCount, nullptr);
-  std::vector<VkPipelineExecutablePropertiesKHR> executables(
-      executableCount, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR});
-  if (result == VK_SUCCESS)
-    result = getProperties_(device_, &pipelineInfo, &executableCount, executables.data());
-  if (result != VK_SUCCESS) {
-    std::cerr << "memograph: warning: the driver gave no executables of pipeline " << name
-              << " (VkResult " << result << ")\n";
+  std::vector<VkPipelineExecutablePropertiesKHR> executables;
+  if (!enumerate(
+          [&](std::uint32_t* count, VkPipelineExecutablePropertiesKHR* items) {
+            return getProperties_(device_, &pipelineInfo, count, items);
+          },
+          VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_PROPERTIES_KHR, name, executables))
     return;
-  }
   std::vector<PipelineStatistic> rows;
-  for (std::uint32_t index = 0; index < executableCount; ++index) {
+  for (std::uint32_t index = 0; index < executables.size(); ++index) {
     VkPipelineExecutableInfoKHR executableInfo{VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_INFO_KHR};
     executableInfo.pipeline = pipeline;
     executableInfo.executableIndex = index;
-    std::uint32_t count = 0;
-    result = getStatistics_(device_, &executableInfo, &count, nullptr);
-    std::vector<VkPipelineExecutableStatisticKHR> statistics(
-        count, {VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR});
-    if (result == VK_SUCCESS)
-      result = getStatistics_(device_, &executableInfo, &count, statistics.data());
-    if (result != VK_SUCCESS) {
-      std::cerr << "memograph: warning: the driver gave no statistics of pipeline " << name
-                << " (VkResult " << result << ")\n";
+    std::vector<VkPipelineExecutableStatisticKHR> statistics;
+    if (!enumerate(
+            [&](std::uint32_t* count, VkPipelineExecutableStatisticKHR* items) {
+              return getStatistics_(device_, &executableInfo, count, items);
+            },
+            VK_STRUCTURE_TYPE_PIPELINE_EXECUTABLE_STATISTIC_KHR, name, statistics))
       return;
-    }
     for (const auto& statistic : statistics)
       rows.push_back({name, executables[index].name, statistic.name, statisticValue(statistic)});
   }
