@@ -175,8 +175,8 @@ void validateCacheOptions(const CacheOptions& options);
 // material's variation, and that point biases a converged picture: on the Blender material
 // scene (H100, 1536 samples a pixel) the still camera's 8x8-block error was 1.12x the
 // seed-to-seed noise without refresh and 0.74x with 16, for 7 % of the frame
-// (docs/results.md, "Refresh"). A uv texel follows its texture's pixel footprint, and the
-// classroom's and the landscape's uv keys are not refreshed by default.
+// (docs/design/memoization.md, "Refresh"). A uv texel follows its texture's pixel footprint,
+// and the classroom's and the landscape's uv keys are not refreshed by default.
 constexpr std::uint32_t kDefaultVoxelRefreshFrames = 16;
 
 // Frames a key lives (0: never refreshed) for the texel cache's uv keys (whole uv-only
