@@ -138,8 +138,8 @@ const Option kOptions[] = {
      "per-frame statistics to PREFIX<scene>[_<label>]_<W>x<H>.csv", "", kShown, S::InputOutput,
      kCommon, N::Nothing, kBench, [](O& o, const Value& v) { o.framesCsv = v.text; }},
     {"--pipeline-statistics", ValueType::Path, "FILE",
-     "the driver's statistics of each pipeline it compiled (registers, spills, ...;\n"
-     "VK_KHR_pipeline_executable_properties), one CSV line per statistic",
+     "the driver's statistics of each pipeline it compiled (registers,\n"
+     "spills, ...), one CSV line per statistic",
      "", kShown, S::InputOutput, kAdvanced, N::Nothing, kBench,
      [](O& o, const Value& v) {
        o.pipelineStatistics = v.text;
@@ -302,9 +302,9 @@ const Option kOptions[] = {
        o.renderer.cache.valueFormat = runtime::parseCacheValueFormat(v.text);
      }},
     {"--cache-refresh", ValueType::Whole, "N",
-     "texel cache, nearest: refill each key at another point of its cell every N\n"
-     "frames, each at its own phase, against a fixed point's bias; 0: never",
-     "16 for object- and world-space keys, 0 for uv keys", kShown, S::Memoization, kAdvanced, N::Cache, kBoth,
+     "texel cache, nearest: refill each key at another point of its cell\n"
+     "every N frames; 0: never",
+     "16 for object/world keys, 0 for uv", kShown, S::Memoization, kAdvanced, N::Cache, kBoth,
      [](O& o, const Value& v) { o.renderer.cache.refreshFrames = v.whole; },
      "a number of frames (0..65536)", 0, 65536},
     {"--cache-secondary-only", ValueType::Flag, "",
