@@ -331,9 +331,10 @@ std::vector<std::string> cacheShaderDefines(const CacheOptions& cache, std::uint
     defines.push_back("MG_CACHE_SNAP_UV=1");
   if (cache.secondaryOnly)
     defines.push_back("MG_CACHE_SECONDARY_ONLY=1");
-  if (const CacheRefresh refresh = cacheRefreshOf(cache); refresh.uv > 0)
+  const CacheRefresh refresh = cacheRefreshOf(cache);
+  if (refresh.uv > 0)
     defines.push_back("MG_CACHE_REFRESH_UV=" + std::to_string(refresh.uv));
-  if (const CacheRefresh refresh = cacheRefreshOf(cache); refresh.voxel > 0)
+  if (refresh.voxel > 0)
     defines.push_back("MG_CACHE_REFRESH_VOXEL=" + std::to_string(refresh.voxel));
   if (cache.mode == CacheMode::Texel && cache.filter != CacheFilter::Nearest)
     defines.push_back("MG_CACHE_FILTER=" +

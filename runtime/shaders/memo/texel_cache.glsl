@@ -250,9 +250,6 @@ bool cacheMipLevel(MaterialInputs inputs, out int m) {
 // values; eq. 5.10: the first probed entry is I = H0 mod (S - D) (the host guarantees S > D).
 // texelUv and texelSize are the caller's. `refreshFrames` (a constant: kCacheRefreshUv or
 // kCacheRefreshVoxel) is how many frames the key lives; 0: for ever.
-#if defined(MG_CACHE_REFRESH_UV) || defined(MG_CACHE_REFRESH_VOXEL)
-#define MG_CACHE_REFRESH 1
-#endif
 #ifdef MG_CACHE_REFRESH_UV
 const uint kCacheRefreshUv = uint(MG_CACHE_REFRESH_UV);
 #else
@@ -264,7 +261,6 @@ const uint kCacheRefreshVoxel = uint(MG_CACHE_REFRESH_VOXEL);
 const uint kCacheRefreshVoxel = 0u;
 #endif
 CacheKey cacheKeyOfHashes(uint h0, uint h1, uint refreshFrames) {
-#ifdef MG_CACHE_REFRESH
   // --cache-refresh N: a key lives N frames, then its cell is another key (an epoch in the
   // hashes), so the entry is filled again, at another point of the cell (cacheRefreshJitter),
   // and the old one ages out under the eviction. Each key's epochs start at its own phase
@@ -277,7 +273,6 @@ CacheKey cacheKeyOfHashes(uint h0, uint h1, uint refreshFrames) {
     h0 = cachePcg(h0 ^ epochHash);
     h1 = cachePcg(h1 ^ cachePcg(epochHash));
   }
-#endif
   if (h1 == kCacheKeyEmpty) h1 = 1u;
   if (h1 == kCacheKeyLock) h1 = kCacheKeyLock - 1u;
   CacheKey key;
@@ -288,7 +283,6 @@ CacheKey cacheKeyOfHashes(uint h0, uint h1, uint refreshFrames) {
   return key;
 }
 
-#ifdef MG_CACHE_REFRESH
 // The point of its cell where a refreshed key is evaluated, in [0, 1)^3 of the cell: a hash
 // of the key (which holds the epoch), so an entry is still its key's value whichever hit
 // fills it, and each epoch takes a new point.
@@ -297,7 +291,6 @@ vec3 cacheRefreshJitter(CacheKey key) {
                      cachePcg(key.hash ^ 0x94d049bbu));
   return vec3(bits >> 8u) * (1.0 / 16777216.0);
 }
-#endif
 
 // Eq. 5.8-5.10 for the cell (texel or tile) `cell` of level m. Cells are hashed by their
 // float bits, which are exact for every magnitude (an int conversion would merge all cells
