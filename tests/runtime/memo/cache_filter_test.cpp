@@ -71,6 +71,9 @@ RendererOptions options(CacheMode mode, CacheFilter filter) {
   o.nodeLibraryDirectory.clear();  // the embedded (real) node library
   o.cache.filter = filter;
   o.cache.mipBias = -3.0f;
+  // Nearest as the filters' baseline holds each cell's point for ever (--cache-refresh 0),
+  // as when the figures below were measured: the voxel keys' default refresh would average it.
+  o.cache.refreshFrames = 0;
   return o;
 }
 
