@@ -18,7 +18,11 @@
 
 #ifdef MG_BSDF_LOBES
 
-// A material's lobes at one hit, with their pick probabilities.
+// A material's lobes at one hit, with their pick probabilities. Every loop over them runs
+// over all MG_MAX_LOBES slots (a slot past `count` has pick 0 and is skipped), a constant trip
+// count that a GPU's compiler unrolls, and the sampled lobe is copied out once by bsdfLobeAt:
+// an array read with a dynamic index is kept in local memory instead of registers (on an
+// H100 this took the Blender scene's shade pass from 256 to 160 B of it; docs/results.md).
 struct BsdfLobes {
   int count;
   vec3 weight[MG_MAX_LOBES];
@@ -86,7 +90,8 @@ BsdfLobes bsdfLobesFromMaterial(MaterialOutputs m, bool entering, BrdfParameters
     lobes.pick[i] = i < lobes.count ? dot(lobes.weight[i], vec3(0.2126, 0.7152, 0.0722)) : 0.0;
     total += lobes.pick[i];
   }
-  for (int i = 0; i < MG_MAX_LOBES; ++i) lobes.pick[i] = total > 0.0 ? lobes.pick[i] / total : 0.0;
+  for (int i = 0; i < MG_MAX_LOBES; ++i)
+    lobes.pick[i] = total > 0.0 ? lobes.pick[i] / total : 0.0;
   return lobes;
 }
 
@@ -470,13 +475,12 @@ float principledGlassPdf(BsdfLobes lobes, int i, vec3 wo, vec3 wi) {
 // A direction from it: reflected below F (uChoice), else refracted, about a GGX visible
 // normal of the part's roughness, or about the shading normal where the lobe is singular;
 // then `singularWeight` is the part's weight over its probability (per unit weight): the
-// reflection's Fresnel colour, the refraction's tint. The zero vector: total internal
-// reflection of a microfacet.
-vec3 principledGlassSample(BsdfLobes lobes, int i, vec3 wo, vec2 u, float uChoice,
-                           out vec3 singularWeight) {
-  float eta = lobes.eta[i];
+// reflection's Fresnel colour, the refraction's tint. `eta` and `refractionRoughness` are the
+// lobe's (BsdfLobe). The zero vector: total internal reflection of a microfacet.
+vec3 principledGlassSample(BsdfLobes lobes, float eta, float refractionRoughness, vec3 wo,
+                           vec2 u, float uChoice, out vec3 singularWeight) {
   float fresnel = fresnelDielectric(wo.z, eta);
-  bool singular = lobeIsSingular(MG_LOBE_PRINCIPLED_GLASS, lobes.roughness[i]);
+  bool singular = lobeIsSingular(MG_LOBE_PRINCIPLED_GLASS, refractionRoughness);
   bool reflects = uChoice < fresnel;
   if (singular) {
     singularWeight = reflects ? fresnelInterpolated(lobes.glassReflectionF0, wo.z, eta)
@@ -486,7 +490,7 @@ vec3 principledGlassSample(BsdfLobes lobes, int i, vec3 wo, vec2 u, float uChoic
                     : refractDirection(wo, vec3(0.0, 0.0, 1.0), eta);
   }
   singularWeight = vec3(0.0);
-  float roughness = reflects ? lobes.glassReflectionRoughness : lobes.roughness[i];
+  float roughness = reflects ? lobes.glassReflectionRoughness : refractionRoughness;
   vec3 m = ggxSampleVisibleNormal(wo, lobeAlpha(roughness), u);
   return reflects ? reflect(-wo, m) : refractDirection(wo, m, eta);
 }
@@ -496,7 +500,7 @@ vec3 principledGlassSample(BsdfLobes lobes, int i, vec3 wo, vec2 u, float uChoic
 // coloured by the material's outputs).
 vec3 bsdfLobesEvaluateCos(BsdfLobes lobes, vec3 woMaterial, vec3 wiMaterial) {
   vec3 sum = vec3(0.0);
-  for (int i = 0; i < lobes.count; ++i) {
+  for (int i = 0; i < MG_MAX_LOBES; ++i) {
     if (lobes.pick[i] <= 0.0) continue;  // no weight: nothing to add (a PrincipledLayers slot)
     vec3 wo, wi;
     if (!lobeDirections(lobes, i, woMaterial, wiMaterial, wo, wi)) continue;
@@ -516,7 +520,7 @@ vec3 bsdfLobesEvaluateCos(BsdfLobes lobes, vec3 woMaterial, vec3 wiMaterial) {
 // The density of bsdfLobesSample: the lobes' densities mixed by their pick probabilities.
 float bsdfLobesPdf(BsdfLobes lobes, vec3 woMaterial, vec3 wiMaterial) {
   float pdf = 0.0;
-  for (int i = 0; i < lobes.count; ++i) {
+  for (int i = 0; i < MG_MAX_LOBES; ++i) {
     if (lobes.pick[i] <= 0.0) continue;
     // A direction a lobe's sample may not take (lobeDirections) has no density from it.
     vec3 wo, wi;
@@ -540,7 +544,7 @@ int bsdfLobesPick(BsdfLobes lobes, float uLobe, out float uWithin) {
   int picked = -1;
   float cumulative = 0.0;
   uWithin = 0.0;
-  for (int i = 0; i < lobes.count; ++i) {
+  for (int i = 0; i < MG_MAX_LOBES; ++i) {
     if (lobes.pick[i] <= 0.0) continue;
     picked = i;  // the last one with weight also takes uLobe's float round-off above the sum
     uWithin = clamp((uLobe - cumulative) / lobes.pick[i], 0.0, 0.99999994);
@@ -552,37 +556,78 @@ int bsdfLobesPick(BsdfLobes lobes, float uLobe, out float uWithin) {
 
 // Whether some lobe sends light through the surface: light sampling then looks on both sides.
 bool bsdfLobesTransmit(BsdfLobes lobes) {
-  for (int i = 0; i < lobes.count; ++i)
+  for (int i = 0; i < MG_MAX_LOBES; ++i)
     if (lobes.pick[i] > 0.0 && lobeTransmits(lobes.kind[i])) return true;
   return false;
+}
+
+// One lobe's fields, copied out of BsdfLobes.
+struct BsdfLobe {
+  vec3 weight;
+  int kind;
+  float roughness;
+  float eta;
+  float pick;
+#ifdef MG_LOBE_NORMALS
+  bool ownNormal;
+  mat3 toLobe;
+#endif
+};
+
+// Lobe `index`'s fields, each slot read with a constant index once the loop is unrolled
+// (see BsdfLobes).
+BsdfLobe bsdfLobeAt(BsdfLobes lobes, int index) {
+  BsdfLobe lobe;
+  lobe.weight = lobes.weight[0];
+  lobe.kind = lobes.kind[0];
+  lobe.roughness = lobes.roughness[0];
+  lobe.eta = lobes.eta[0];
+  lobe.pick = lobes.pick[0];
+#ifdef MG_LOBE_NORMALS
+  lobe.ownNormal = lobes.ownNormal[0];
+  lobe.toLobe = lobes.toLobe[0];
+#endif
+  for (int i = 1; i < MG_MAX_LOBES; ++i) {
+    if (i != index) continue;
+    lobe.weight = lobes.weight[i];
+    lobe.kind = lobes.kind[i];
+    lobe.roughness = lobes.roughness[i];
+    lobe.eta = lobes.eta[i];
+    lobe.pick = lobes.pick[i];
+#ifdef MG_LOBE_NORMALS
+    lobe.ownNormal = lobes.ownNormal[i];
+    lobe.toLobe = lobes.toLobe[i];
+#endif
+  }
+  return lobe;
 }
 
 // One direction drawn from the lobes (the one-sample mixture model): `weight` is the
 // throughput factor f |wi.z| / pdf. A singular lobe's sample is that lobe's alone (weight
 // its weight x singularWeight over its pick probability; `pdf` 0, as the other lobes and
 // light sampling cannot draw it); any other's is weighted by the whole BSDF over the
-// mixture's density (`pdf`). `diffuse`: the direction came from a diffuse closure (Diffuse,
-// Velvet, Translucent, the sheen, the Principled lobe's diffuse part), as Cycles labels a
-// bounce. False: no direction.
+// mixture's density (`pdf`). `sampled`: the lobe drawn from. `diffuse`: the direction came
+// from a diffuse closure (Diffuse, Velvet, Translucent, the sheen, the Principled lobe's
+// diffuse part), as Cycles labels a bounce. False: no direction.
 bool bsdfLobesSample(BsdfLobes lobes, vec3 woMaterial, float uLobe, vec2 u, out vec3 wi,
-                     out vec3 weight, out float pdf, out int picked, out bool diffuse) {
+                     out vec3 weight, out float pdf, out BsdfLobe sampled, out bool diffuse) {
   float uChoice;
-  picked = bsdfLobesPick(lobes, uLobe, uChoice);
+  int picked = bsdfLobesPick(lobes, uLobe, uChoice);
+  sampled = bsdfLobeAt(lobes, max(picked, 0));
   weight = vec3(0.0);
   pdf = 0.0;
   wi = vec3(0.0, 0.0, 1.0);
   diffuse = false;
   if (picked < 0) return false;
-  vec3 wo = woMaterial;  // in the picked lobe's frame
+  vec3 wo = woMaterial;  // in the sampled lobe's frame
 #ifdef MG_LOBE_NORMALS
-  bool ownNormal = lobes.ownNormal[picked];
-  if (ownNormal) {
-    wo = lobes.toLobe[picked] * woMaterial;
+  if (sampled.ownNormal) {
+    wo = sampled.toLobe * woMaterial;
     if (!(wo.z > 0.0)) return false;  // the viewer is below the lobe: it scatters nothing
   }
 #endif
-  int kind = lobes.kind[picked];
-  float roughness = lobes.roughness[picked];
+  int kind = sampled.kind;
+  float roughness = sampled.roughness;
   float singularWeight = 1.0;
   vec3 singularColor = vec3(1.0);
   diffuse = kind == MG_LOBE_DIFFUSE || kind == MG_LOBE_VELVET || kind == MG_LOBE_TRANSLUCENT ||
@@ -593,21 +638,26 @@ bool bsdfLobesSample(BsdfLobes lobes, vec3 woMaterial, float uLobe, vec2 u, out 
     wi = brdfSample(lobes.principled, wo, uChoice, u);
     diffuse = uChoice >= brdfSpecularProbability(lobes.principled, wo);
   } else if (kind == MG_LOBE_PRINCIPLED_GLASS) {
-    wi = principledGlassSample(lobes, picked, wo, u, uChoice, singularColor);
+    wi = principledGlassSample(lobes, sampled.eta, roughness, wo, u, uChoice, singularColor);
   } else
 #endif
   {
-    wi = lobeSample(kind, roughness, lobes.eta[picked], wo, u, uChoice, singularWeight);
+    wi = lobeSample(kind, roughness, sampled.eta, wo, u, uChoice, singularWeight);
   }
   if (!(dot(wi, wi) > 0.0)) return false;
   wi = normalize(wi);
 #ifdef MG_LOBE_NORMALS
-  if (ownNormal) wi = wi * lobes.toLobe[picked];  // back to the material's frame (transpose)
-  vec3 woUnused, wiLobe;
-  if (!lobeDirections(lobes, picked, woMaterial, wi, woUnused, wiLobe)) return false;
+  if (lobes.anyOwnNormal) {
+    // wi back in the material's frame (the transpose), then lobeDirections' check for the
+    // sampled lobe: on the same side of the lobe's normal as of the geometric one.
+    if (sampled.ownNormal) wi = wi * sampled.toLobe;
+    vec3 wiLobe = sampled.ownNormal ? sampled.toLobe * wi : wi;
+    float g = dot(wi, lobes.geometricNormal);
+    if (!(wiLobe.z > 0.0 ? g > 0.0 : g < 0.0)) return false;
+  }
 #endif
   if (lobeIsSingular(kind, roughness)) {
-    weight = lobes.weight[picked] * singularColor * (singularWeight / lobes.pick[picked]);
+    weight = sampled.weight * singularColor * (singularWeight / sampled.pick);
     return true;
   }
   pdf = bsdfLobesPdf(lobes, woMaterial, wi);

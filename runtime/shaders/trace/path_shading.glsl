@@ -548,7 +548,8 @@ void filterGlossy(inout ShadingPoint p, MaterialOutputs m, PathState path) {
   p.brdf.alpha = max(p.brdf.alpha, blurAlpha);
 #ifdef MG_BSDF_LOBES
   float blurRoughness = sqrt(blurAlpha);
-  for (int i = 0; i < p.lobes.count; ++i) {
+  for (int i = 0; i < MG_MAX_LOBES; ++i) {
+    if (i >= p.lobes.count) break;
     int kind = p.lobes.kind[i];
     if (m.lobeParameters[i].x < 0.0) continue;  // Sharp (MG_LOBE_ROUGHNESS_SHARP)
     if (kind == MG_LOBE_GLOSSY_GGX || kind == MG_LOBE_GLOSSY_BECKMANN || lobeIsRefraction(kind) ||
@@ -679,9 +680,9 @@ bool continuePathThroughLobes(ShadingPoint p, SurfaceHit s, vec3 woLocal, float 
   vec2 u = rngNext2(rng);
   vec3 wiLocal, weight;
   float pdf;
-  int picked;
+  BsdfLobe sampled;
   bool diffuse;
-  if (!bsdfLobesSample(p.lobes, woLocal, uLobe, u, wiLocal, weight, pdf, picked, diffuse))
+  if (!bsdfLobesSample(p.lobes, woLocal, uLobe, u, wiLocal, weight, pdf, sampled, diffuse))
     return false;
   vec3 wi = transpose(p.toLocal) * wiLocal;
   if (!sameSideOfBothNormals(p, wi, wiLocal.z)) return false;
@@ -690,8 +691,8 @@ bool continuePathThroughLobes(ShadingPoint p, SurfaceHit s, vec3 woLocal, float 
 #ifdef MG_FILTER_GLOSSY_INVERSE
   pathStateAfterBsdfPdf(path, pdf);
 #endif
-  int kind = p.lobes.kind[picked];
-  float roughness = p.lobes.roughness[picked];
+  int kind = sampled.kind;
+  float roughness = sampled.roughness;
   bool transmitted = wiLocal.z < 0.0;
 #ifdef MG_LOBE_NORMALS
   // The lobe's side is the geometric normal's (lobeDirections), not the material normal's.
