@@ -206,6 +206,17 @@ CacheRefresh cacheRefreshOf(const CacheOptions& cache) {
   return {0, kDefaultVoxelRefreshFrames};
 }
 
+std::string cacheRefreshText(const CacheRefresh& refresh) {
+  auto every = [](std::uint32_t frames) { return "every " + std::to_string(frames) + " frames"; };
+  if (refresh.uv == refresh.voxel)
+    return refresh.uv == 0 ? "keys never refreshed" : "keys refreshed " + every(refresh.uv);
+  if (refresh.uv == 0)
+    return "voxel keys refreshed " + every(refresh.voxel) + ", uv keys never";
+  if (refresh.voxel == 0)
+    return "uv keys refreshed " + every(refresh.uv) + ", voxel keys never";
+  return "uv keys refreshed " + every(refresh.uv) + ", voxel keys " + every(refresh.voxel);
+}
+
 void validateCacheOptions(const CacheOptions& cache) {
   if (cache.probe < 1 || cache.probe > gpu::kCacheMaxProbe)
     throw std::invalid_argument("--probe must be 1.." + std::to_string(gpu::kCacheMaxProbe) +

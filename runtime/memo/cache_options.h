@@ -188,6 +188,10 @@ struct CacheRefresh {
   std::uint32_t voxel = 0;
 };
 CacheRefresh cacheRefreshOf(const CacheOptions& options);
+// How `refresh` renews keys, for the printed configuration: "keys never refreshed", "keys
+// refreshed every N frames", or "voxel keys refreshed every N frames, uv keys never" (and the
+// reverse, which no option gives today).
+std::string cacheRefreshText(const CacheRefresh& refresh);
 
 // S when CacheOptions::entries is unset, before fitting: kDefaultTexelCacheEntries texels or
 // kDefaultCacheEntries tiles.

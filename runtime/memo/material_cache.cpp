@@ -234,6 +234,8 @@ void MaterialCache::describe(RenderStats& stats) const {
   stats.cacheSecondaryOnly = options_.secondaryOnly;
   stats.cacheFilter = cacheFilterName(options_.filter);
   stats.cacheKeyDomains = cacheKeyDomainsName(options_.keyDomains);
+  if (options_.mode == CacheMode::Texel)
+    stats.cacheRefresh = cacheRefreshText(cacheRefreshOf(options_));
   if (options_.mode == CacheMode::Tile)
     stats.cacheTile =
         std::to_string(options_.tileWidth) + "x" + std::to_string(options_.tileHeight) + " " +

@@ -195,6 +195,7 @@ struct RenderStats {
   // The texel cache's --cache-filter: "nearest", "trilinear" or "stochastic".
   std::string cacheFilter = "nearest";
   std::string cacheKeyDomains = "all";  // --cache-keys
+  std::string cacheRefresh;             // cacheRefreshText of the texel cache's refresh
   std::uint64_t cacheBytes = 0;
   std::string culling = "none";  // --culling: none, frustum or lipac
   // The share of the scene's estimated material cost (compiler/cut.h's per-node estimates,

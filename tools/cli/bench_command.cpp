@@ -265,6 +265,7 @@ void printCacheAndCulling(const BenchRun& run) {
               << (stats.cacheSnapUv ? ", snapped uv" : "")
               << (stats.cacheFilter != "nearest" ? ", filter " + stats.cacheFilter : "")
               << (stats.cacheKeyDomains != "all" ? ", keys " + stats.cacheKeyDomains : "")
+              << (stats.cacheRefresh.empty() ? "" : ", " + stats.cacheRefresh)
               << (stats.cacheSecondaryOnly ? ", secondary hits only" : "") << "): median hit rate "
               << 100.0 * run.summary.medianCacheHitRate << " %, total "
               << 100.0 * run.summary.totalCacheHitRate << " %\n"

@@ -362,7 +362,8 @@ void printSummary(const std::string& out, const runtime::RenderStats& stats) {
     std::cerr << stats.cache << " cache"
               << (stats.cacheTile.empty() ? "" : " (" + stats.cacheTile + ")") << ": "
               << stats.cacheEntriesText() << " (" << stats.cacheBytes << " B, "
-              << stats.cacheValueFormat << ", clock " << stats.cacheClock << "); last frame "
+              << stats.cacheValueFormat << ", clock " << stats.cacheClock
+              << (stats.cacheRefresh.empty() ? "" : ", " + stats.cacheRefresh) << "); last frame "
               << last.cacheLookups << " lookups, " << last.cacheHits << " hits ("
               << 100.0 * last.cacheHitRate() << " %), " << last.cacheOccupancy << " entries in use";
     if (stats.cache == "tile")

@@ -171,5 +171,20 @@ TEST(CacheRefreshOptions, UnsetItRefreshesVoxelKeysOnlyAndGivenEveryKey) {
   EXPECT_TRUE(refreshDefines(CacheOptions{}).empty());  // no cache
 }
 
+// What bench and render print of it.
+TEST(CacheRefreshOptions, ItsTextSaysWhichKeysAreRefreshed) {
+  CacheOptions texel;
+  texel.mode = CacheMode::Texel;
+  EXPECT_EQ(cacheRefreshText(cacheRefreshOf(texel)),
+            "voxel keys refreshed every 16 frames, uv keys never");
+  texel.refreshFrames = 4;
+  EXPECT_EQ(cacheRefreshText(cacheRefreshOf(texel)), "keys refreshed every 4 frames");
+  texel.refreshFrames = 0;
+  EXPECT_EQ(cacheRefreshText(cacheRefreshOf(texel)), "keys never refreshed");
+  EXPECT_EQ(cacheRefreshText({2, 0}), "uv keys refreshed every 2 frames, voxel keys never");
+  EXPECT_EQ(cacheRefreshText({2, 8}),
+            "uv keys refreshed every 2 frames, voxel keys every 8 frames");
+}
+
 }  // namespace
 }  // namespace memograph::runtime
