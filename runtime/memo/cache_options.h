@@ -189,8 +189,8 @@ struct CacheRefresh {
 };
 CacheRefresh cacheRefreshOf(const CacheOptions& options);
 // How `refresh` renews keys, for the printed configuration: "keys never refreshed", "keys
-// refreshed every N frames", or "voxel keys refreshed every N frames, uv keys never" (and the
-// reverse, which no option gives today).
+// refreshed every N frames", or each kind's period ("voxel keys refreshed every N frames, uv
+// keys never").
 std::string cacheRefreshText(const CacheRefresh& refresh);
 
 // S when CacheOptions::entries is unset, before fitting: kDefaultTexelCacheEntries texels or
