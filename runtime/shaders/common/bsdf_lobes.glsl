@@ -116,17 +116,24 @@ bool lobeHasOwnNormal(MaterialOutputs m, int i) {
 // normal (a direction between the two planes, which would leak light through the surface or
 // hide it: path_shading.glsl's sameSideOfBothNormals, lobe by lobe; Cycles 3.4 evaluates a
 // closure's reflection only above Ng and its transmission only below, bsdf.h bsdf_eval).
-bool lobeDirections(BsdfLobes lobes, int i, vec3 wo, vec3 wi, out vec3 woLobe,
-                    out vec3 wiLobe) {
+// lobeFrameDirections takes the lobe's frame itself (its ownNormal and toLobe), as the
+// sampled lobe's copy (bsdfLobeAt) holds them.
+bool lobeFrameDirections(BsdfLobes lobes, bool ownNormal, mat3 toLobe, vec3 wo, vec3 wi,
+                         out vec3 woLobe, out vec3 wiLobe) {
   woLobe = wo;
   wiLobe = wi;
   if (!lobes.anyOwnNormal) return true;
-  if (lobes.ownNormal[i]) {
-    woLobe = lobes.toLobe[i] * wo;
-    wiLobe = lobes.toLobe[i] * wi;
+  if (ownNormal) {
+    woLobe = toLobe * wo;
+    wiLobe = toLobe * wi;
   }
   float g = dot(wi, lobes.geometricNormal);
   return wiLobe.z > 0.0 ? g > 0.0 : g < 0.0;
+}
+bool lobeDirections(BsdfLobes lobes, int i, vec3 wo, vec3 wi, out vec3 woLobe,
+                    out vec3 wiLobe) {
+  return lobeFrameDirections(lobes, lobes.ownNormal[i], lobes.toLobe[i], wo, wi, woLobe,
+                             wiLobe);
 }
 #else
 // Without per-lobe normals every lobe sees the material's frame.
@@ -575,20 +582,11 @@ struct BsdfLobe {
 };
 
 // Lobe `index`'s fields, each slot read with a constant index once the loop is unrolled
-// (see BsdfLobes).
+// (see BsdfLobes). Slot 0 is copied first, so that every field is set whatever `index` is.
 BsdfLobe bsdfLobeAt(BsdfLobes lobes, int index) {
   BsdfLobe lobe;
-  lobe.weight = lobes.weight[0];
-  lobe.kind = lobes.kind[0];
-  lobe.roughness = lobes.roughness[0];
-  lobe.eta = lobes.eta[0];
-  lobe.pick = lobes.pick[0];
-#ifdef MG_LOBE_NORMALS
-  lobe.ownNormal = lobes.ownNormal[0];
-  lobe.toLobe = lobes.toLobe[0];
-#endif
-  for (int i = 1; i < MG_MAX_LOBES; ++i) {
-    if (i != index) continue;
+  for (int i = 0; i < MG_MAX_LOBES; ++i) {
+    if (i != 0 && i != index) continue;
     lobe.weight = lobes.weight[i];
     lobe.kind = lobes.kind[i];
     lobe.roughness = lobes.roughness[i];
@@ -647,14 +645,11 @@ bool bsdfLobesSample(BsdfLobes lobes, vec3 woMaterial, float uLobe, vec2 u, out 
   if (!(dot(wi, wi) > 0.0)) return false;
   wi = normalize(wi);
 #ifdef MG_LOBE_NORMALS
-  if (lobes.anyOwnNormal) {
-    // wi back in the material's frame (the transpose), then lobeDirections' check for the
-    // sampled lobe: on the same side of the lobe's normal as of the geometric one.
-    if (sampled.ownNormal) wi = wi * sampled.toLobe;
-    vec3 wiLobe = sampled.ownNormal ? sampled.toLobe * wi : wi;
-    float g = dot(wi, lobes.geometricNormal);
-    if (!(wiLobe.z > 0.0 ? g > 0.0 : g < 0.0)) return false;
-  }
+  if (sampled.ownNormal) wi = wi * sampled.toLobe;  // back to the material's frame (transpose)
+  vec3 woUnused, wiLobe;
+  if (!lobeFrameDirections(lobes, sampled.ownNormal, sampled.toLobe, woMaterial, wi, woUnused,
+                           wiLobe))
+    return false;
 #endif
   if (lobeIsSingular(kind, roughness)) {
     weight = sampled.weight * singularColor * (singularWeight / sampled.pick);
