@@ -207,14 +207,12 @@ CacheRefresh cacheRefreshOf(const CacheOptions& cache) {
 }
 
 std::string cacheRefreshText(const CacheRefresh& refresh) {
-  auto every = [](std::uint32_t frames) { return "every " + std::to_string(frames) + " frames"; };
+  auto period = [](std::uint32_t frames) {
+    return frames == 0 ? std::string("never") : "every " + std::to_string(frames) + " frames";
+  };
   if (refresh.uv == refresh.voxel)
-    return refresh.uv == 0 ? "keys never refreshed" : "keys refreshed " + every(refresh.uv);
-  if (refresh.uv == 0)
-    return "voxel keys refreshed " + every(refresh.voxel) + ", uv keys never";
-  if (refresh.voxel == 0)
-    return "uv keys refreshed " + every(refresh.uv) + ", voxel keys never";
-  return "uv keys refreshed " + every(refresh.uv) + ", voxel keys " + every(refresh.voxel);
+    return "keys refreshed " + period(refresh.uv);
+  return "keys refreshed: uv " + period(refresh.uv) + ", voxel " + period(refresh.voxel);
 }
 
 void validateCacheOptions(const CacheOptions& cache) {

@@ -188,9 +188,9 @@ struct CacheRefresh {
   std::uint32_t voxel = 0;
 };
 CacheRefresh cacheRefreshOf(const CacheOptions& options);
-// How `refresh` renews keys, for the printed configuration: "keys never refreshed", "keys
-// refreshed every N frames", or each kind's period ("voxel keys refreshed every N frames, uv
-// keys never").
+// How `refresh` renews keys, for the printed configuration: "keys refreshed never", "keys
+// refreshed every N frames", or each kind's period ("keys refreshed: uv never, voxel every N
+// frames").
 std::string cacheRefreshText(const CacheRefresh& refresh);
 
 // S when CacheOptions::entries is unset, before fitting: kDefaultTexelCacheEntries texels or

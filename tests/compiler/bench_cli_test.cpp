@@ -79,6 +79,18 @@ TEST_F(BenchCliTest, LabelNamesThePerFrameFileAndTheCsvLine) {
   EXPECT_NE(line.find(",floor_x2,0,2,4,"), std::string::npos) << line;
 }
 
+// The cache's line says how its keys are refreshed (cacheRefreshText), the default included.
+TEST_F(BenchCliTest, TheCacheLineSaysHowKeysAreRefreshed) {
+  const auto byDefault = runCli(smallRun() + " --frames 1 --warmup 0 --cache texel");
+  ASSERT_EQ(byDefault.exitCode, 0) << byDefault.output;
+  EXPECT_NE(byDefault.output.find("keys refreshed: uv never, voxel every 16 frames"),
+            std::string::npos)
+      << byDefault.output;
+  const auto given = runCli(smallRun() + " --frames 1 --warmup 0 --cache texel --cache-refresh 4");
+  ASSERT_EQ(given.exitCode, 0) << given.output;
+  EXPECT_NE(given.output.find("keys refreshed every 4 frames"), std::string::npos) << given.output;
+}
+
 // --time-limit stops a run after the frame that reaches it (here 0 s: after the first,
 // a warm-up frame), reports what it covers and marks the CSV line; a bad value is a usage
 // error. Without reaching the limit a run is complete (stopped_early 0).
