@@ -396,7 +396,11 @@ def run_case(memograph, work, index, case):
     with open(os.path.join(run_dir, "out", "keep.txt"), "w") as f:
         f.write("must survive a failed command\n")
     before = snapshot(os.path.join(run_dir, "out"))
-    env = dict(os.environ, XDG_CACHE_HOME=os.path.join(work, "cache"))
+    # memograph's caches start empty under `work`; Mesa's shader cache stays where it is
+    # without that XDG_CACHE_HOME, since a fresh one compiles every lavapipe pipeline anew.
+    env = dict(os.environ, XDG_CACHE_HOME=os.path.join(work, "cache"),
+               MESA_SHADER_CACHE_DIR=os.environ.get("MESA_SHADER_CACHE_DIR")
+               or os.environ.get("XDG_CACHE_HOME") or os.path.expanduser("~/.cache"))
     t0 = time.monotonic()
     try:
         result = subprocess.run([memograph] + argv, cwd=run_dir, env=env, capture_output=True,

@@ -160,4 +160,8 @@ class BakeShard(unittest.TestCase):
 
 if __name__ == "__main__":
     MEMOGRAPH, REPO = os.path.realpath(sys.argv[1]), os.path.realpath(sys.argv[2])
+    # Each test gives memograph a fresh XDG_CACHE_HOME; Mesa's shader cache stays where it is
+    # without one, since a fresh one compiles every lavapipe pipeline anew, seconds a render.
+    os.environ.setdefault("MESA_SHADER_CACHE_DIR",
+                          os.environ.get("XDG_CACHE_HOME") or os.path.expanduser("~/.cache"))
     unittest.main(argv=[sys.argv[0], *sys.argv[3:]])
