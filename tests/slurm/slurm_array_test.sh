@@ -53,7 +53,8 @@ export SBATCH_GRES=none SBATCH_CPUS_PER_TASK=1
 export MEMOGRAPH=$memograph MEMOGRAPH_CACHE_HOME=$tmp/node-cache
 # The node cache holds memograph's SPIR-V; Mesa's shader cache stays where it is without that
 # XDG_CACHE_HOME, since a fresh one compiles every lavapipe pipeline anew, seconds a render.
-export MESA_SHADER_CACHE_DIR=${MESA_SHADER_CACHE_DIR:-${XDG_CACHE_HOME:-$HOME/.cache}}
+mesa_cache=${MESA_SHADER_CACHE_DIR:-${XDG_CACHE_HOME:-${HOME:+$HOME/.cache}}}
+[ -z "$mesa_cache" ] || export MESA_SHADER_CACHE_DIR=$mesa_cache
 script=$repo/tools/slurm/memograph_array.sbatch
 collect=(python3 "$repo/tools/slurm/collect_frames.py")
 mkdir -p "$tmp/logs" "$tmp/frames" "$tmp/local"
