@@ -4,20 +4,27 @@
 # bisection of a performance change): bundle/ab/<short-rev>/memograph. Everything must stay
 # under the 64 MiB a device call carries (about 10 MiB a binary: four revisions at most).
 #
-# Usage: tools/bundle_ab.sh REV...            (from the repository root)
+# Usage: tools/bundle_ab.sh [--material-scene] REV...    (from the repository root)
+# --material-scene: the bundle of tools/bundle_memo_scenes.sh instead, with the Blender
+# material scene's pack (ab_device.sh's scene `pack`; needs Blender and the io build).
 # Then, on the GPU machine (carry bundle and .gl):
-#   bash tools/bench/ab_device.sh [--frames N] [bench flags...]
+#   bash tools/bench/ab_device.sh [--scenes "pack classroom"] [--frames N] [bench flags...]
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 cd "$root"
-[ $# -ge 1 ] || { echo "usage: tools/bundle_ab.sh REV..." >&2; exit 2; }
+bundle_script=tools/bundle_device.sh
+if [ "${1:-}" = --material-scene ]; then
+  bundle_script=tools/bundle_memo_scenes.sh
+  shift
+fi
+[ $# -ge 1 ] || { echo "usage: tools/bundle_ab.sh [--material-scene] REV..." >&2; exit 2; }
 [ $# -le 4 ] || { echo "bundle_ab: at most 4 revisions fit beside the bundle" >&2; exit 2; }
 for rev in "$@"; do
   git rev-parse --verify --quiet "$rev^{commit}" >/dev/null ||
     { echo "bundle_ab: '$rev' is not a commit" >&2; exit 2; }
 done
 
-bash tools/bundle_device.sh
+bash "$bundle_script"
 rm -rf bundle/ab
 for rev in "$@"; do
   short=$(git rev-parse --short=7 "$rev")

@@ -3,7 +3,9 @@
 # every bundle/ab/<rev>/memograph, alternated (A B A B ...) for each scene in one call, so that
 # their frame times compare on one GPU with its drift spread over both. Each row is a scene at
 # 1920x1080, P = 6, L = 4 over the first --frames cameras of its built-in path, at the
-# defaults unless bench flags follow. --local runs here (no carried Vulkan loader), e.g.
+# defaults unless bench flags follow. The scene `pack` is the Blender material scene's pack
+# (bundle/material_scene.mgpack, tools/bundle_ab.sh --material-scene) over its own camera
+# path. --local runs here (no carried Vulkan loader), e.g.
 #   bash tools/bench/ab_device.sh --local --scenes landscape --size 32x18 --frames 2
 # on lavapipe to check the script.
 #   bash tools/bench/ab_device.sh [--local] [--scenes "S ..."] [--size WxH] [--frames N]
@@ -32,6 +34,13 @@ nvidia-smi --query-gpu=name,driver_version --format=csv,noheader >"$OUT/ab_env.t
 first=1
 [ -s "$OUT/ab_rows.csv" ] && first=0
 for scene in $scenes; do
+  # A built-in scene's path is 300 cameras long; the pack brings its own.
+  spec=("builtin:$scene" --camera-frames 300)
+  if [ "$scene" = pack ]; then
+    [ -f bundle/material_scene.mgpack ] ||
+      { echo "ab_device: no bundle/material_scene.mgpack (tools/bundle_ab.sh --material-scene)" >&2; exit 2; }
+    spec=(bundle/material_scene.mgpack)
+  fi
   for round in $(seq 1 "$rounds"); do
     for m in bundle/memograph bundle/ab/*/memograph; do
       [ -x "$m" ] || continue
@@ -39,8 +48,8 @@ for scene in $scenes; do
       rev=$(cut -d' ' -f1 "$dir/VERSION" 2>/dev/null || basename "$dir")
       label="$rev-$scene-$round"
       echo "== $label ($(cat "$dir/VERSION" 2>/dev/null)): ${flags[*]}" | tee -a "$OUT/ab_log.txt"
-      timeout "$limit" "$m" bench "builtin:$scene" --sizes "$size" --paths 6 --bounces 4 \
-        --warmup 2 --frames "$frames" --camera-frames 300 --time-limit $((limit - 10)) \
+      timeout "$limit" "$m" bench "${spec[@]}" --sizes "$size" --paths 6 --bounces 4 \
+        --warmup 2 --frames "$frames" --time-limit $((limit - 10)) \
         --shader-cache "/tmp/ab_shaders_$rev" --label "$label" --csv "/tmp/ab_$label.csv" \
         "${flags[@]}" 2>&1 | tail -6 | tee -a "$OUT/ab_log.txt"
       if [ $first = 1 ]; then cat "/tmp/ab_$label.csv"; first=0; else tail -n +2 "/tmp/ab_$label.csv"; fi \
