@@ -33,13 +33,14 @@ nvidia-smi --query-gpu=name,driver_version --format=csv,noheader >"$OUT/ab_env.t
 # A second run in the same call appends to ab_rows.csv under the header already there.
 first=1
 [ -s "$OUT/ab_rows.csv" ] && first=0
+pack=bundle/material_scene.mgpack
 for scene in $scenes; do
   # A built-in scene's path is 300 cameras long; the pack brings its own.
   spec=("builtin:$scene" --camera-frames 300)
   if [ "$scene" = pack ]; then
-    [ -f bundle/material_scene.mgpack ] ||
-      { echo "ab_device: no bundle/material_scene.mgpack (tools/bundle_ab.sh --material-scene)" >&2; exit 2; }
-    spec=(bundle/material_scene.mgpack)
+    [ -f $pack ] ||
+      { echo "ab_device: no $pack (tools/bundle_ab.sh --material-scene)" >&2; exit 2; }
+    spec=($pack)
   fi
   for round in $(seq 1 "$rounds"); do
     for m in bundle/memograph bundle/ab/*/memograph; do
