@@ -36,6 +36,12 @@ struct LinkedMaterial {
   std::uint32_t cutDomain = 0;
   std::uint32_t cutWidth = 0;
   bool cutKeyedByInstance = false;
+  // Keyed by its cut and reads no traced input: in the wavefront with unfiltered reads the
+  // lookup and material passes hand the shade pass the cut's values, and the shade pass runs
+  // the rest (docs/design/wavefront.md, "Cut values go to the shade pass"). A graph with
+  // Ambient Occlusion or Bevel keeps its rest in its material pass, which has the traced
+  // values.
+  bool restInShade = false;
   // The cut's share of the graph's estimated cost (compiler metadata cutCostShare; 0 without
   // a cut): what a cached cut saves, for the cached-share statistic (RenderStats).
   double cutCostShare = 0.0;
@@ -84,6 +90,9 @@ struct DistinctMaterial {
   // Cacheable as a whole (LinkedMaterial::cacheable): the wavefront's material pass compiles
   // its insert only then (MG_MATERIAL_CACHEABLE).
   bool cacheable = false;
+  // LinkedMaterial::restInShade: where the wavefront hands the shade pass the cut's values,
+  // its material pass runs no rest but for light points (MG_MATERIAL_REST_IN_SHADE).
+  bool restInShade = false;
 };
 
 // Distinct graphs of one shape, which share one wavefront material pass (material
@@ -97,11 +106,10 @@ struct MaterialInstanceGroup {
 struct LinkedMaterials {
   std::string source;         // materials.glsl for the switch dispatch
   std::string preludeSource;  // materials.glsl for the callable dispatch
-  // material_rests.glsl for the wavefront's lookup pass: the graphs keyed by their cut, with
-  // materialRestInLookup and evaluateMaterialRestInLookup, so that a hit whose cut's entry
-  // is found runs the rest of its graph there and needs no material pass (docs/design/
-  // wavefront.md, "Cut hits finish in the lookup"). Guarded by MG_CACHE_CUTS.
-  std::string lookupRestSource;
+  // material_rests.glsl for the wavefront's shade pass: the graphs whose rest it runs
+  // (LinkedMaterial::restInShade) and evaluateMaterialRestInShade, which runs a material's
+  // rest from its cut's values. Guarded by MG_CACHE_CUTS.
+  std::string shadeRestSource;
   std::vector<LinkedMaterial> materials;  // parallel to Scene::materials
   std::vector<DistinctMaterial> distinct;
   // The distinct graphs by shape: each in exactly one group, the groups in the order of their

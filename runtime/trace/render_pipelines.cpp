@@ -159,6 +159,8 @@ std::unique_ptr<FrameTracer> buildWavefront(const ShaderBuild& b, ShaderCompiler
   setup.ambientOcclusionIntegrator = b.options.integrator == Integrator::AmbientOcclusion;
   setup.sharedPrimaryHits = b.settings.sharedPrimaryRay && !setup.ambientOcclusionIntegrator;
   setup.cutKeys = b.cutKeys;
+  // A filtered read blends several entries in the material pass, which then runs the rest.
+  setup.cutValuesToShade = b.cutKeys && b.plan.cache.filter == CacheFilter::Nearest;
   setup.pathSlots = b.options.wavefrontPaths;
   setup.compileThreads = b.options.shaderCompileThreads;
   setup.materialInstances = b.options.materialInstances;
@@ -253,7 +255,7 @@ RenderPipelines buildPipelines(const VulkanContext& context, const RendererOptio
   b.cutKeys = keysCuts(plan, callables, b.floor, materials);
   files["materials.glsl"] =
       callables || b.floor || plan.wavefront ? materials.preludeSource : materials.source;
-  files["material_rests.glsl"] = plan.wavefront && !b.floor ? materials.lookupRestSource : "";
+  files["material_rests.glsl"] = plan.wavefront && !b.floor ? materials.shadeRestSource : "";
   files["shadow_materials.glsl"] = plan.wavefront && !b.floor ? materials.shadowSource : "";
   ShaderCompiler compiler(std::move(files), inputs.shaderCacheDirectory);
   const auto pipelineStart = std::chrono::steady_clock::now();

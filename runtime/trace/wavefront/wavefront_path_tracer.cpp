@@ -143,8 +143,12 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
       fieldsBeforeTraced + (tracedInputs_ ? gpu::kPathStateFieldsForTracedInputs : 0u);
   const std::uint32_t fieldsBeforeMinRayPdf =
       fieldsBeforePrimary + (setup.sharedPrimaryHits ? 2u : 0u);
-  const std::uint32_t fields =
+  const std::uint32_t fieldsBeforeCut =
       fieldsBeforeMinRayPdf + (setup.minRayPdf ? gpu::kPathStateFieldsForMinRayPdf : 0u);
+  // With cut values for the shade pass, the widest cut's floats after those, four a field.
+  const std::uint32_t cutFields =
+      materials && setup.cutValuesToShade ? (materials->cutValueCount + 3) / 4 : 0u;
+  const std::uint32_t fields = fieldsBeforeCut + cutFields;
   // Paths in flight: as asked, else every pixel, or as many as one storage binding of path
   // state, a row of work groups and the largest allocation hold (lavapipe's 128 MiB range:
   // about 645,000 with graphs, so a 1080p round there runs in 4 chunks).
@@ -203,6 +207,10 @@ WavefrontPathTracer::WavefrontPathTracer(const VulkanContext& context, ShaderCom
     defines.push_back("MG_WAVEFRONT_LOBE_FIELD=" + std::to_string(fieldsBeforeLobes));
   if (setup.minRayPdf)
     defines.push_back("MG_WAVEFRONT_MIN_RAY_PDF_FIELD=" + std::to_string(fieldsBeforeMinRayPdf));
+  if (cutFields > 0) {
+    defines.push_back("MG_WAVEFRONT_CUT_FIELD=" + std::to_string(fieldsBeforeCut));
+    defines.push_back("MG_WAVEFRONT_CUT_FIELDS=" + std::to_string(cutFields));
+  }
   if (tracedInputs_) {
     defines.push_back("MG_WAVEFRONT_TRACED_FIELD=" + std::to_string(fieldsBeforeTraced));
     // Per bin, whether its graph reads a traced input: those bins' hits go first in the
@@ -403,16 +411,19 @@ std::vector<std::vector<std::uint32_t>> WavefrontPathTracer::compileMaterialPass
   // The evaluation of light points only in the passes of graphs that emitters' light samples
   // evaluate: the others' bins never hold a point, and each pass compiled is a driver's
   // compile at a cold start.
-  if (lightPoints_) {
-    request.materialDefines.resize(binsOfUnit.size());
-    for (std::size_t pass = 0; pass < binsOfUnit.size(); ++pass) {
-      const auto& bins = binsOfUnit[pass];
-      if (std::any_of(bins.begin(), bins.end(), [&](std::uint32_t bin) {
-            return setup.lightPointGraphs.empty() ||
-                   (bin < setup.lightPointGraphs.size() && setup.lightPointGraphs[bin]);
-          }))
-        request.materialDefines[pass].push_back("MG_MATERIAL_LIGHT_POINTS=1");
-    }
+  // With cut values for the shade pass, a graph whose rest the shade pass runs hands it its
+  // cut's values (its pass runs the rest only for light points). A pass's graphs share one
+  // shape, so they agree.
+  request.materialDefines.resize(binsOfUnit.size());
+  for (std::size_t pass = 0; pass < binsOfUnit.size(); ++pass) {
+    const auto& bins = binsOfUnit[pass];
+    if (lightPoints_ && std::any_of(bins.begin(), bins.end(), [&](std::uint32_t bin) {
+          return setup.lightPointGraphs.empty() ||
+                 (bin < setup.lightPointGraphs.size() && setup.lightPointGraphs[bin]);
+        }))
+      request.materialDefines[pass].push_back("MG_MATERIAL_LIGHT_POINTS=1");
+    if (setup.cutValuesToShade && !bins.empty() && materials.distinct[bins.front()].restInShade)
+      request.materialDefines[pass].push_back("MG_MATERIAL_REST_IN_SHADE=1");
   }
   request.threads = setup.compileThreads;
   request.what = "wavefront material pass";

@@ -62,6 +62,12 @@ struct WavefrontSetup {
   // pass reads a cut material's values, and its material pass evaluates the cut on a miss
   // and the rest always, through the cut functions of its graph's include.
   bool cutKeys = false;
+  // With cutKeys and unfiltered reads: the lookup pass stores a found cut entry's values, and
+  // a material pass the values it reads or evaluates, in ceil(cutValueCount / 4) fields of
+  // their own (MG_WAVEFRONT_CUT_FIELD), and the shade pass runs the rest of each graph whose
+  // rest it holds (LinkedMaterial::restInShade, material_rests.glsl) from them: a hit moves
+  // its cut's few floats instead of all of MaterialOutputs.
+  bool cutValuesToShade = false;
   // The path state's capacity, paths in flight (0: every pixel, or as many as the device's
   // storage-buffer range and work-group count allow); a round over more pixels runs in
   // chunks of at most that many, one after another.

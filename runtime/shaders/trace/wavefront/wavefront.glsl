@@ -28,17 +28,20 @@
 //   outputs and only the misses are binned; the material passes insert what they evaluate
 //   (lock, values, unlock, as the megakernel's evaluateMaterialCached does); with
 //   MG_CACHE_CUTS a material that is not cacheable as a whole is keyed by its cut (thesis §7;
-//   texel_cache.glsl cacheCutKeyFor): the lookup reads the cut's entry and a found one's hit
-//   runs the rest of its graph there (the host's material_rests.glsl), a missing one's is
-//   binned and its material pass evaluates the cut at the key's centre, inserts it and runs
-//   the rest; a read with a filter (MG_CACHE_FILTER) runs in the material pass, in place (the
-//   megakernel's evaluateMaterialThroughCut); with the tile cache (MG_CACHE_TILE, its
-//   deferred fill's queue) the lookup reads the hit's tile and queues a missing one, and each
-//   bin's material pass also computes its bin's queued tiles, one invocation a texel, so the
-//   next bounce finds them;
+//   texel_cache.glsl cacheCutKeyFor): the lookup reads the cut's entry and a found one's
+//   values go into the path state (MG_WAVEFRONT_CUT_FIELD), a missing one's hit is binned
+//   and its material pass evaluates the cut at the key's centre, inserts it and stores the
+//   values likewise; the shade pass runs the rest of the graph from them (the host's
+//   material_rests.glsl). A graph that reads a traced input runs its rest in its material
+//   pass. A read with a filter (MG_CACHE_FILTER) runs in the material pass, in place (the
+//   megakernel's evaluateMaterialThroughCut), as does the rest; with the tile cache
+//   (MG_CACHE_TILE, its deferred fill's queue) the lookup reads the hit's tile and queues a
+//   missing one, and each bin's material pass also computes its bin's queued tiles, one
+//   invocation a texel, so the next bounce finds them;
 // - MG_WAVEFRONT_SHADE: the material's outputs (the floor's constants, or the material
-//   pass's), emission, one light sample (its shadow ray into the shadow queue) and the BSDF
-//   sample (the path into the next live queue);
+//   pass's, or the rest of a cut graph from the cut's values), emission, one light sample
+//   (its shadow ray into the shadow queue) and the BSDF sample (the path into the next live
+//   queue);
 // - MG_WAVEFRONT_QUEUE: one invocation turns the queues' counts into the next passes'
 //   indirect arguments;
 // - MG_WAVEFRONT_SHADOW: traces the queued shadow rays and adds the unblocked contributions;
@@ -59,7 +62,8 @@
 #ifdef MG_SUBGROUP_RAY_COUNT
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #endif
-#if defined(MG_WAVEFRONT_MATERIAL) || (defined(MG_WAVEFRONT_LOOKUP) && defined(MG_CACHE_CUTS)) || \
+#if defined(MG_WAVEFRONT_MATERIAL) ||                                       \
+    (defined(MG_WAVEFRONT_SHADE) && defined(MG_WAVEFRONT_CUT_FIELD)) ||   \
     (defined(MG_WAVEFRONT_SHADOW) && defined(MG_TRANSPARENT_SHADOWS)) || \
     (defined(MG_WAVEFRONT_TRACE) && defined(MG_STOCHASTIC_OPACITY))
 #extension GL_EXT_nonuniform_qualifier : require  // material_textures.glsl
@@ -112,8 +116,8 @@ float materialParameter(int k);
 #ifdef MG_CACHE_TEXEL
 // The megakernel's names for evaluating a material, for texel_cache.glsl's in-place
 // read-or-fill (evaluateMaterialCached, evaluateMaterialThroughCut), which this pass runs
-// where a hit reads more entries than one (--cache-filter) or a cut is wider than the path
-// state carries: a material pass has one graph, so the scene material id is its own.
+// where a hit reads more entries than one (--cache-filter): a material pass has one graph, so
+// the scene material id is its own.
 void evaluateMaterialDirect(uint materialId, MaterialInputs inputs,
                             out MaterialOutputs outputs) {
   MG_EVALUATE_MATERIAL(inputs, outputs);
@@ -175,13 +179,13 @@ void evaluateMaterialRestSwitch(uint materialId, MaterialInputs inputs,
 #define MG_CACHE_CUT_PASS 1  // this pass's graph is keyed by its cut: no whole-graph fill
 #endif
 #include "texel_cache.glsl"
-#if defined(MG_WAVEFRONT_LOOKUP) && defined(MG_CACHE_CUTS) && !defined(MG_CACHE_FILTER)
-// The rests of the graphs keyed by their cut (the host's material_rests.glsl): a hit whose
-// cut's entry the lookup finds runs the rest of its graph here and needs no material pass.
+#endif
+#if defined(MG_WAVEFRONT_SHADE) && defined(MG_WAVEFRONT_CUT_FIELD)
+// The rests of the graphs keyed by their cut that read no traced input (the host's
+// material_rests.glsl, evaluateMaterialRestInShade): their hits reach the shade pass with the
+// cut's values, from the lookup pass or their material pass.
 #include "material_rests.glsl"
 #include "material_textures.glsl"
-#define MG_LOOKUP_FINISHES_CUTS 1
-#endif
 #endif
 #if defined(MG_CACHE_TILE) &&                                                    \
     (defined(MG_WAVEFRONT_LOOKUP) || defined(MG_WAVEFRONT_BIN_COUNT) ||          \
@@ -293,6 +297,12 @@ const uint kFieldTracedInputs = uint(MG_WAVEFRONT_TRACED_FIELD);
 // With Filter Glossy (MG_FILTER_GLOSSY_INVERSE), after the fields above: x the path's
 // PathState::minRayPdf, written where the path's ray is (the generate and shade passes).
 const uint kFieldMinRayPdf = uint(MG_WAVEFRONT_MIN_RAY_PDF_FIELD);
+#endif
+#ifdef MG_WAVEFRONT_CUT_FIELD
+// With cut keys read unfiltered, last: the cut's values at a hit of a graph whose rest the
+// shade pass runs (mg_materialCutInfo's w), four a field, as many fields as the widest cut
+// needs (MG_WAVEFRONT_CUT_FIELDS); a hit fills those its own cut needs.
+const uint kFieldCut = uint(MG_WAVEFRONT_CUT_FIELD);
 #endif
 #ifdef MG_WAVEFRONT_PRIMARY_FIELD
 // With --shared-primary, after the fields above (the host's count of them): the pixel's
@@ -620,6 +630,30 @@ MaterialOutputs loadMaterialOutputs(uint slot, SurfaceHit s) {
 }
 #endif
 
+#if defined(MG_WAVEFRONT_CUT_FIELD) && \
+    (defined(MG_WAVEFRONT_MATERIAL) || defined(MG_WAVEFRONT_SHADE) || defined(MG_WAVEFRONT_LOOKUP))
+// A cut's `width` values at a path's hit, from the lookup or material pass to the shade pass.
+void storeCutValues(uint slot, float values[MG_CACHE_VALUES], uint width) {
+  for (uint f = 0u; f < uint(MG_WAVEFRONT_CUT_FIELDS); ++f) {
+    if (4u * f >= width) break;
+    vec4 field = vec4(0.0);
+    for (uint c = 0u; c < 4u; ++c)
+      if (4u * f + c < uint(MG_CACHE_VALUES)) field[c] = values[4u * f + c];
+    pathState[fieldIndex(kFieldCut + f, slot)] = field;
+  }
+}
+
+void loadCutValues(uint slot, uint width, out float values[MG_CACHE_VALUES]) {
+  for (uint k = 0u; k < uint(MG_CACHE_VALUES); ++k) values[k] = 0.0;
+  for (uint f = 0u; f < uint(MG_WAVEFRONT_CUT_FIELDS); ++f) {
+    if (4u * f >= width) break;
+    vec4 field = pathState[fieldIndex(kFieldCut + f, slot)];
+    for (uint c = 0u; c < 4u; ++c)
+      if (4u * f + c < uint(MG_CACHE_VALUES)) values[4u * f + c] = field[c];
+  }
+}
+#endif
+
 #if defined(MG_WAVEFRONT_BIN_COUNT) || defined(MG_WAVEFRONT_BIN_SCATTER)
 // Adds 1 for each invocation with `adds` to a bin record's counter (x, the count, or with
 // `cursor` z, the scatter's cursor) and returns the value before the invocation's own 1. One
@@ -798,39 +832,37 @@ void main() {
     uint bin = binOfPath(slot);
     // Whole uv-only materials are looked up here, whose found hits then need no material
     // pass; the material id comes from the hit's instance, so the surface is built for those
-    // alone. So are materials keyed by their cut (MG_LOOKUP_FINISHES_CUTS): a found entry's
-    // hit runs the rest of its graph here; a missing one is left to its material pass, which
-    // reads the entry again (and counts that lookup), evaluates the cut and inserts it. Every
-    // material with a filtered read, which blends (or picks among) several entries, reads in
-    // its material pass.
+    // alone. So are materials keyed by their cut whose rest the shade pass runs
+    // (MG_WAVEFRONT_CUT_FIELD, mg_materialCutInfo's w): a found entry's values go to the shade
+    // pass; a missing one is left to its material pass, which reads the entry again (and
+    // counts that lookup), evaluates the cut and inserts it. Every material with a filtered
+    // read, which blends (or picks among) several entries, reads in its material pass.
     uvec4 info = uvec4(0u);
-    bool cutRest = false;
+    uvec4 cut = uvec4(0u);
 #ifndef MG_CACHE_FILTER
     if (bin != kNoBin) {
       uint materialId = materialOfPath(slot);
       info = cacheInfoOf(materialId);
-#ifdef MG_LOOKUP_FINISHES_CUTS
-      cutRest = info.x == 0u && materialRestInLookup(materialId);
+#ifdef MG_WAVEFRONT_CUT_FIELD
+      if (info.x == 0u) cut = cutInfoOf(materialId);
 #endif
     }
 #endif
-    if ((info.x != 0u || cutRest) && frame.cache.x != 0u && cacheTakesBounce(push.step.y)) {
+    bool cutLookup = cut.w != 0u;
+    if ((info.x != 0u || cutLookup) && frame.cache.x != 0u && cacheTakesBounce(push.step.y)) {
       vec3 origin, direction;
       RayCone cone;
       SurfaceHit s = surfaceOfPath(slot, origin, direction, cone);
-#ifdef MG_LOOKUP_FINISHES_CUTS
-      if (cutRest) {
+#ifdef MG_WAVEFRONT_CUT_FIELD
+      if (cutLookup) {
         CacheKey cutKey;
         MaterialInputs keyInputs;  // unread here: a miss's material pass evaluates the cut
         float cutValues[MG_CACHE_VALUES];
-        if (cacheCutKeyFor(info, cutInfoOf(s.materialId), s.object, s.inputs, cutKey,
-                           keyInputs) &&
+        if (cacheCutKeyFor(info, cut, s.object, s.inputs, cutKey, keyInputs) &&
             cacheRead(cutKey, cutValues)) {
           g_cacheLookups += 1u;
           g_cacheHits += 1u;
-          MaterialOutputs m;
-          evaluateMaterialRestInLookup(s.materialId, s.inputs, cutValues, m);
-          storeMaterialOutputs(slot, m);
+          storeCutValues(slot, cutValues, cut.y);
           bin = kNoBin;
         }
       } else
@@ -1104,8 +1136,9 @@ void storeEvaluated(uint slot, bool lightPoint, MaterialOutputs m) {
 }
 
 #if defined(MG_CACHE_CUT_PASS) && !defined(MG_CACHE_FILTER)
-// The material pass of a graph keyed by its cut. The lookup pass finished the hits whose
-// entry it found (MG_LOOKUP_FINISHES_CUTS), so this pass sees the misses, the hits without a
+// The material pass of a graph keyed by its cut. The lookup pass handed the shade pass the
+// values of the hits whose entry it found (a graph whose rest the shade pass runs,
+// MG_MATERIAL_REST_IN_SHADE), so this pass sees the misses, the hits without a
 // key (a bounce the cache does not take, no usable key) and light points: nearly every
 // invocation evaluates the cut, side by side with its subgroup's others, so none gathers
 // them (a shared-memory list would run a work group's cuts 32 at a time while its other
@@ -1113,8 +1146,9 @@ void storeEvaluated(uint slot, bool lightPoint, MaterialOutputs m) {
 // (an earlier work group of this pass may have inserted it), a missing one evaluated at its
 // key's centre and inserted; a hit without a key (or, with `lightPoint`, a light point:
 // evaluated without the cache, as the megakernel's) evaluates the cut at its own inputs. Then
-// the rest of the graph with the hit's own inputs. One copy of the graph: the cut, then the
-// rest.
+// a hit's values go to the shade pass (MG_MATERIAL_REST_IN_SHADE), or the rest of the graph
+// runs with the hit's own inputs: for a light point, and for a graph with a traced input,
+// whose values this pass has. One copy of the graph: the cut, then the rest.
 void materialPassThroughCut(uint slot, bool lightPoint) {
   SurfaceHit s = surfaceToEvaluate(slot, lightPoint);
   s.inputs.textureBase = MG_TEXTURE_BASE;  // as the switch's case sets it
@@ -1127,12 +1161,20 @@ void materialPassThroughCut(uint slot, bool lightPoint) {
     evaluateMaterialCutSwitch(0u, keyInputs, values);
     if (keyed) cacheWrite(key, values);
   }
-  MaterialOutputs m;
-  evaluateMaterialRestSwitch(s.materialId, s.inputs, values, m);
 #ifdef MG_DEBUG_CACHE_MISSES
   if (g_cacheMissed) pathState[fieldIndex(kFieldPixelSum, slot)].w = 1.0;  // as the lookup's
 #endif
+#ifdef MG_MATERIAL_REST_IN_SHADE
+  if (!lightPoint) {
+    storeCutValues(slot, values, uint(MG_MATERIAL_CUT_WIDTH));
+    return;
+  }
+#endif
+#if !defined(MG_MATERIAL_REST_IN_SHADE) || defined(MG_MATERIAL_LIGHT_POINTS)
+  MaterialOutputs m;
+  evaluateMaterialRestSwitch(s.materialId, s.inputs, values, m);
   storeEvaluated(slot, lightPoint, m);
+#endif
 }
 #endif
 
@@ -1259,6 +1301,24 @@ void main() {
 }
 
 #elif defined(MG_WAVEFRONT_SHADE)
+#ifndef MG_MATERIAL_FLOOR
+// A live path's material outputs at its hit: a graph whose rest this pass runs gets it from
+// its cut's values (the lookup or material pass stored them); any other's, its material
+// pass's or the lookup's outputs.
+MaterialOutputs materialOutputsOfPath(uint slot, SurfaceHit s) {
+#ifdef MG_WAVEFRONT_CUT_FIELD
+  if (s.materialId < uint(MG_MATERIAL_COUNT) && mg_materialCutInfo[s.materialId].w != 0u) {
+    float values[MG_CACHE_VALUES];
+    loadCutValues(slot, mg_materialCutInfo[s.materialId].y, values);
+    MaterialOutputs m;
+    evaluateMaterialRestInShade(s.materialId, s.inputs, values, m);
+    return m;
+  }
+#endif
+  return loadMaterialOutputs(slot, s);
+}
+#endif
+
 // One vertex of every live path, as the megakernel's loop body shades it: a miss takes the
 // environment; a hit its floor material's emission, one light sample (queued as a shadow
 // ray) and, unless this is the last bounce, the BSDF's next ray (queued as a live path).
@@ -1284,7 +1344,7 @@ void main() {
 #ifdef MG_MATERIAL_FLOOR
       evaluateMaterialDirect(s.materialId, s.inputs, m);
 #else
-      m = loadMaterialOutputs(slot, s);
+      m = materialOutputsOfPath(slot, s);
 #endif
       ShadingPoint p = shadingPointAt(s, m, direction);
       radiance += throughput * m.emission * emissionMisWeight(s, origin, direction, previousBsdfPdf);
