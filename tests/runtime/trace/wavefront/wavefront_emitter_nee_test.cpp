@@ -44,13 +44,16 @@ Scene panelScene(const std::string& emitterBody, bool facingDown) {
   return scene;
 }
 
-// `pathSlots` > 0: the wavefront's rounds in chunks of that many pixels.
+// `pathSlots` > 0: the wavefront's rounds in chunks of that many pixels. `cache`: the texel
+// cache (its voxel keys never refreshed, so both architectures keep every entry they insert).
 RenderResult renderPanel(const Scene& scene, Backend backend, Shading shading,
-                         std::uint32_t pathSlots = 0) {
+                         std::uint32_t pathSlots = 0, CacheMode cache = CacheMode::None) {
   RendererOptions options = testing::testOptions(backend);
   options.nodeLibraryDirectory.clear();  // the embedded library
   options.shading = shading;
   options.wavefrontPaths = pathSlots;
+  options.cache.mode = cache;
+  options.cache.refreshFrames = 0;
   Renderer renderer(options);
   RenderSettings settings;
   settings.width = settings.height = 16;
@@ -172,6 +175,45 @@ TEST(WavefrontEmitterNee, LightPointsOfARoundSplitIntoChunksGiveTheSameImage) {
   EXPECT_EQ(split.stats.wavefrontChunks, 3u);
   EXPECT_EQ(whole.image.rgba, split.image.rgba);
   EXPECT_GT(testing::meanChannel(split.image, 0, 0, 12, 16, 16), 0.01);
+}
+
+// An emitter keyed by its cut (a checker over its world position, the cut, mixed towards grey
+// by Layer Weight per ray, the rest) with the texel cache: a hit on the panel hands its cut's
+// values to the shade pass, which runs the rest, while a light point on it runs the rest in
+// the panel's material pass and adds its emission there (MG_MATERIAL_REST_IN_SHADE with
+// MG_MATERIAL_LIGHT_POINTS). The cached megakernel's picture (its hits read the same entries,
+// its light points evaluate uncached, as the wavefront's), on both backends. Fails where
+// either route drops the values, runs another graph's rest or skips the light points.
+TEST(WavefrontEmitterNee, ACutEmittersHitsAndLightPointsGiveTheCachedMegakernelsPicture) {
+  const Scene scene = panelScene(
+      "PositionInput Out>0;\n"
+      "CheckerTexture Vector<0 Color1=(8, 8, 8) Color2=(1, 2, 4) Scale=4 Color>1;\n"
+      "LayerWeight Facing>2;\n"
+      "MixColor Factor<2 A<1 B=(0.5, 0.5, 0.5) Result>3;\n"
+      "EmissionOutput Color<3 Strength=1;\n",
+      true);
+  for (Backend backend : {Backend::RayQuery, Backend::RayTracingPipeline}) {
+    SCOPED_TRACE(backend == Backend::RayQuery ? "query" : "pipeline");
+    const RenderResult megakernel =
+        renderPanel(scene, backend, Shading::Megakernel, 0, CacheMode::Texel);
+    const RenderResult wavefront =
+        renderPanel(scene, backend, Shading::Wavefront, 0, CacheMode::Texel);
+    const FrameStats& last = wavefront.stats.frames.back();
+    const double floorLight = testing::meanChannel(wavefront.image, 0, 0, 12, 16, 16);
+    const double difference = largestRelativeDifference(megakernel.image, wavefront.image);
+    std::printf(
+        "%s: %llu lookups, %llu hits (megakernel %llu, %llu); floor %.4f, largest "
+        "relative difference %.3g\n",
+        backend == Backend::RayQuery ? "query" : "pipeline", (unsigned long long)last.cacheLookups,
+        (unsigned long long)last.cacheHits,
+        (unsigned long long)megakernel.stats.frames.back().cacheLookups,
+        (unsigned long long)megakernel.stats.frames.back().cacheHits, floorLight, difference);
+    EXPECT_GT(last.cacheHits, 0u) << "the panel's hits read its cut's entries";
+    EXPECT_GT(megakernel.stats.frames.back().cacheHits, 0u);
+    EXPECT_GT(floorLight, 0.01) << "the panel's light points light the floor";
+    EXPECT_LT(difference, 1e-4);
+    EXPECT_EQ(last.rays, megakernel.stats.frames.back().rays);
+  }
 }
 
 }  // namespace
