@@ -38,7 +38,7 @@ struct LinkedMaterial {
   bool cutKeyedByInstance = false;
   // Keyed by its cut and reads no traced input: in the wavefront with unfiltered reads the
   // lookup and material passes hand the shade pass the cut's values, and the shade pass runs
-  // the rest (docs/design/wavefront.md, "Cut values go to the shade pass"). A graph with
+  // the rest (docs/design/wavefront.md, "The caches in the wavefront"). A graph with
   // Ambient Occlusion or Bevel keeps its rest in its material pass, which has the traced
   // values.
   bool restInShade = false;
