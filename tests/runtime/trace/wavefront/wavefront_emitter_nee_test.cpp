@@ -181,9 +181,11 @@ TEST(WavefrontEmitterNee, LightPointsOfARoundSplitIntoChunksGiveTheSameImage) {
 // by Layer Weight per ray, the rest) with the texel cache: a hit on the panel hands its cut's
 // values to the shade pass, which runs the rest, while a light point on it runs the rest in
 // the panel's material pass and adds its emission there (MG_MATERIAL_REST_IN_SHADE with
-// MG_MATERIAL_LIGHT_POINTS). The cached megakernel's picture (its hits read the same entries,
-// its light points evaluate uncached, as the wavefront's), on both backends. Fails where
-// either route drops the values, runs another graph's rest or skips the light points.
+// MG_MATERIAL_LIGHT_POINTS). The cached megakernel's picture, on both backends: on the query
+// backend its hits read the same entries; on the pipeline backend its callables key no cut
+// and evaluate the panel at each hit, which a checker's cell makes the same value. Its light
+// points evaluate uncached, as the wavefront's. Fails where either route drops the values,
+// runs another graph's rest or skips the light points.
 TEST(WavefrontEmitterNee, ACutEmittersHitsAndLightPointsGiveTheCachedMegakernelsPicture) {
   const Scene scene = panelScene(
       "PositionInput Out>0;\n"
