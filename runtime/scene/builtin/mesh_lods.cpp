@@ -156,8 +156,13 @@ std::vector<MeshLod> buildMeshLods(const Mesh& mesh, const MeshLodSettings& sett
     SimplifiedMesh pass = simplifyOnce(*finer, budget);
     const std::size_t kept = pass.mesh.indices.size() / 3;
     const std::size_t finerTriangles = finer->indices.size() / 3;
-    if (kept == 0 || double(kept) > settings.maxTriangleFraction * double(finerTriangles))
+    if (kept == 0)
       break;
+    // Too little gone within this target: skipped, and the next, wider target tried from the
+    // same finer mesh (a building whose frames are plain boxes loses only a tenth of its
+    // triangles within 0.25 % of its extent, but three quarters within 0.75 %).
+    if (double(kept) > settings.maxTriangleFraction * double(finerTriangles))
+      continue;
     const float removedPart =
         lods.empty() ? pass.removedPart : std::max(lods.back().removedPart, pass.removedPart);
     lods.push_back({std::move(pass.mesh), finerError + pass.error, removedPart});

@@ -25,8 +25,7 @@ struct MeshLodSettings {
   // than what a second BLAS beside it would during a switch.
   std::size_t minTriangles = 256;
   // A level is kept only if it has at most this fraction of the finer level's triangles;
-  // the chain stops at the first that does not (the simplifier found nothing more to take
-  // within the error).
+  // one that does not is skipped, and the next target tried from the same finer level.
   float maxTriangleFraction = 0.8f;
 };
 
