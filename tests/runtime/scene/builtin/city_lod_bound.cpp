@@ -1,11 +1,11 @@
 // The share of the city's triangles that the LOD choice keeps when every instance stays in the
 // TLAS and takes the level its distance alone allows (a pixel's width there, the render's
 // height): `scenes_city_lod_bound [scale] [height] [pixel-error]` (defaults 1, 1080, 1), along
-// both camera paths (360 cameras each). The choice at run time is never coarser (ray cones
-// only narrow the footprint: runtime/accel/lod_choice.cpp), so where culling removes little,
-// as from the air, this bounds what LiPaC with mesh LODs can reach; triangles stand for BLAS
-// bytes. Printed for the choice's error (the simplifier's, or the longest part a level
-// removes whole, whichever is larger) and for the simplifier's alone.
+// both camera paths (360 cameras each), with the run time's own choice given no feedback. With
+// feedback it is never coarser (ray cones only narrow the footprint), so where culling removes
+// little, as from the air, this bounds what LiPaC with mesh LODs can reach; triangles stand for
+// BLAS bytes. Printed for the choice's error (the simplifier's, or the longest part a level removes
+// whole, whichever is larger) and for the simplifier's alone.
 #include <algorithm>
 #include <cstdio>
 #include <iostream>
@@ -15,16 +15,13 @@
 #include <vector>
 
 #include "runtime/accel/lod_choice.h"
+#include "runtime/accel/scene_culling.h"
 #include "runtime/scene/builtin/builtin_scenes.h"
 #include "runtime/scene/builtin/camera_path.h"
 
 namespace {
 
 using namespace memograph::runtime;
-
-struct Box {
-  glm::vec3 lo{1e30f}, hi{-1e30f};
-};
 
 double triangles(const Mesh& mesh) {
   return double(mesh.indices.size() / 3);
@@ -38,40 +35,25 @@ struct KeptShare {
 };
 constexpr float kHighAbove = 100.0f;
 
-// Per camera of `path`: the triangles of the distinct (mesh, level) pairs the instances show
-// (a BLAS per mesh LOD, shared), over those of every mesh whole.
-KeptShare keptShare(const Scene& scene, const std::vector<Box>& boxes, const CameraPath& path,
-                    std::uint32_t height, float pixelError, bool countRemovedParts) {
+// Per camera of `path`, the run time's choice (InstanceLodChoice) without feedback: the
+// triangles of the distinct (mesh, level) pairs the instances show (a BLAS per mesh LOD,
+// shared), over those of every mesh whole.
+KeptShare keptShare(const Scene& scene, const std::vector<Bounds>& bounds, const CameraPath& path,
+                    std::uint32_t height, float pixelError) {
   std::set<std::uint32_t> meshes;
   for (const Instance& instance : scene.instances)
     meshes.insert(instance.mesh);
   double whole = 0.0;
   for (const std::uint32_t m : meshes)
     whole += triangles(scene.meshes[m]);
+  InstanceLodChoice choice(scene, bounds, pixelError);
   KeptShare share;
   double sum = 0.0;
   for (const Camera& camera : path.frames) {
-    const float angle = pixelSpreadAngle(camera, height);
+    choice.update(camera, pixelSpreadAngle(camera, height), {});
     std::set<std::pair<std::uint32_t, std::uint32_t>> shown;
-    for (std::size_t i = 0; i < scene.instances.size(); ++i) {
-      const Instance& instance = scene.instances[i];
-      const std::vector<MeshLod>* lods =
-          instance.mesh < scene.meshLods.size() ? &scene.meshLods[instance.mesh] : nullptr;
-      std::uint32_t level = 0;
-      if (instance.castsShadow && lods && !lods->empty()) {
-        const glm::vec3 d = glm::max(
-            glm::max(boxes[i].lo - camera.position, camera.position - boxes[i].hi), glm::vec3(0));
-        const glm::mat4& m = instance.objectToWorld;
-        const float scale = std::max({glm::length(glm::vec3(m[0])), glm::length(glm::vec3(m[1])),
-                                      glm::length(glm::vec3(m[2]))});
-        std::vector<float> errors;
-        for (const MeshLod& lod : *lods)
-          errors.push_back(scale *
-                           (countRemovedParts ? std::max(lod.error, lod.removedPart) : lod.error));
-        level = lodForFootprint(errors, glm::length(d) * angle, pixelError);
-      }
-      shown.insert({instance.mesh, level});
-    }
+    for (std::size_t i = 0; i < scene.instances.size(); ++i)
+      shown.insert({scene.instances[i].mesh, choice.wanted()[i]});
     double kept = 0.0;
     for (const auto& [mesh, level] : shown)
       kept += triangles(level == 0 ? scene.meshes[mesh] : scene.meshLods[mesh][level - 1].mesh);
@@ -111,21 +93,20 @@ int main(int argc, char** argv) {
   options.cityScale = scale;
   options.meshLods = true;
   const Scene scene = makeCityScene(options);
-  std::vector<Box> boxes(scene.instances.size());
-  for (std::size_t i = 0; i < scene.instances.size(); ++i)
-    for (const glm::vec3& p : scene.meshes[scene.instances[i].mesh].positions) {
-      const glm::vec3 w = glm::vec3(scene.instances[i].objectToWorld * glm::vec4(p, 1.0f));
-      boxes[i].lo = glm::min(boxes[i].lo, w);
-      boxes[i].hi = glm::max(boxes[i].hi, w);
-    }
+  // The same scene with no level's removed parts counted: the simplifier's error alone.
+  Scene surfaceOnly = scene;
+  for (std::vector<MeshLod>& lods : surfaceOnly.meshLods)
+    for (MeshLod& lod : lods)
+      lod.removedPart = 0.0f;
+  const std::vector<Bounds> bounds = instanceBounds(scene);
   std::printf(
       "city scale %g, %d rows, --lod-pixel-error %g: triangles kept, peak (mean) over "
       "the path\n",
       scale, height, pixelError);
   for (const CityCameraPath which : {CityCameraPath::Street, CityCameraPath::Aerial}) {
     const CameraPath path = makeBuiltinCameraPath("city", 360, scale, which);
-    const KeptShare counted = keptShare(scene, boxes, path, height, pixelError, true);
-    const KeptShare surface = keptShare(scene, boxes, path, height, pixelError, false);
+    const KeptShare counted = keptShare(scene, bounds, path, height, pixelError);
+    const KeptShare surface = keptShare(surfaceOnly, bounds, path, height, pixelError);
     std::printf(
         "  %s: %.3f (%.3f) with removed parts counted, %.3f (%.3f) the surface's "
         "error alone\n",
